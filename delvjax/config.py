@@ -1,0 +1,60 @@
+"""Method configuration and noise models (SPEC §2.5, §3, §4; defaults are SPEC's).
+
+`Config` is an equinox module: continuous parameters are pytree leaves (they can be
+traced, vmapped in a sweep, or differentiated), discrete ones are static fields
+(changing them recompiles).
+"""
+
+from __future__ import annotations
+
+import equinox as eqx
+
+BACKGROUNDS = ("distant", "walls", "none")
+CHANNELS = ("mask", "gray")
+
+
+class Noise(eqx.Module):
+    """Noise standard deviations (SPEC §2.5). Angles in radians, step factors unitless.
+
+    bearing:        per-blob bearing noise.
+    step:           unit-move length factor `1 + N(0, step)` (the agent believes it moved d).
+    turn:           true turn `psi ~ N(0, turn)` during the unit move.
+    turn_odometry:  error of the odometry's report of that turn, `psi_hat = psi + N(0, .)`.
+    compass:        error of the compass reading of `h - alpha_r`.
+    motion_heading: rollouts only: error of the executed heading of each step.
+    motion_step:    rollouts only: step length factor `1 + N(0, .)` of each step.
+    """
+
+    bearing: float = 0.0
+    step: float = 0.0
+    turn: float = 0.0
+    turn_odometry: float = 0.0
+    compass: float = 0.0
+    motion_heading: float = 0.0
+    motion_step: float = 0.0
+
+
+class Config(eqx.Module):
+    """Everything a homing method and its sensing need besides the scene.
+
+    d:         unit-movement step, cm (SPEC §3.1, default 50).
+    scale:     quantization scale `a`, cm (SPEC §3.2, default 1000).
+    r_max:     cap of estimated distances, cm (SPEC §3.1, default 2000).
+    alpha_r:   reference heading at home, radians (SPEC §1, default 0).
+    noise:     `Noise` (all zero by default).
+    levels:    quantization levels Q (None = continuous distances).
+    n_pix:     ring image width in pixels (360).
+    n_heading: heading hypotheses of DELV's matching (360).
+    background, channel: SPEC §2.2-2.3.
+    """
+
+    d: float = 50.0
+    scale: float = 1000.0
+    r_max: float = 2000.0
+    alpha_r: float = 0.0
+    noise: Noise = Noise()
+    levels: int | None = eqx.field(static=True, default=None)
+    n_pix: int = eqx.field(static=True, default=360)
+    n_heading: int = eqx.field(static=True, default=360)
+    background: str = eqx.field(static=True, default="distant")
+    channel: str = eqx.field(static=True, default="mask")

@@ -1,0 +1,74 @@
+"""Landmark distances from a unit movement, quantization, landmark vectors (thesis §3.2.1-3.2.3).
+
+SPEC §3.1: a C-bearing beta seen in P's frame is beta' = beta + psi_hat; its partner is
+the nearest P-blob theta; delta = wrap(beta' - theta); by the sine law in P-L-C
+
+    R_C = d_hat sin(theta) / sin(delta)            (Eq 3.2, psi = 0)
+    R_P = d_hat sin(theta + delta) / sin(delta)    (Eq 3.3, typo corrected)
+"""
+
+from __future__ import annotations
+
+import jax.numpy as jnp
+from jax import Array
+
+from .config import Config
+from .geometry import unit, wrap
+from .sensing import UnitMove
+
+SIN_EPS = 1e-9
+
+
+def _nearest(parallax: Array, other_valid: Array) -> tuple[Array, Array]:
+    """Row-wise partner with the smallest |parallax| among valid columns: (index, parallax)."""
+    score = jnp.where(other_valid[None, :], jnp.abs(parallax), jnp.inf)
+    idx = jnp.argmin(score, axis=-1)
+    return idx, jnp.take_along_axis(parallax, idx[:, None], axis=-1)[:, 0]
+
+
+def _guard(r: Array, sin_delta: Array, r_max: Array) -> Array:
+    """SPEC §3.1: negative, non-finite, > r_max or |sin(delta)| < 1e-9 -> r_max."""
+    bad = (jnp.abs(sin_delta) < SIN_EPS) | ~jnp.isfinite(r) | (r < 0) | (r > r_max)
+    return jnp.where(bad, r_max, r)
+
+
+def end_distances(move: UnitMove, config: Config) -> Array:
+    """R_C for every end (C) blob, Eq 3.2; (B,) cm, r_max where undefined."""
+    beta = move.end.bearing + move.psi_hat
+    theta_all = move.start.bearing
+    idx, delta = _nearest(wrap(beta[:, None] - theta_all[None, :]), move.start.valid)
+    theta = theta_all[idx]
+    s = jnp.sin(delta)
+    r = move.d_hat * jnp.sin(theta) / jnp.where(jnp.abs(s) < SIN_EPS, 1.0, s)
+    r = _guard(r, s, config.r_max)
+    return jnp.where(jnp.any(move.start.valid), r, config.r_max)
+
+
+def start_distances(move: UnitMove, config: Config) -> Array:
+    """R_P for every start (P) blob, Eq 3.3 (each P-blob takes the nearest C-blob); (B,) cm."""
+    theta = move.start.bearing
+    beta = move.end.bearing + move.psi_hat
+    _, delta = _nearest(wrap(beta[None, :] - theta[:, None]), move.end.valid)
+    s = jnp.sin(delta)
+    r = move.d_hat * jnp.sin(theta + delta) / jnp.where(jnp.abs(s) < SIN_EPS, 1.0, s)
+    r = _guard(r, s, config.r_max)
+    return jnp.where(jnp.any(move.end.valid), r, config.r_max)
+
+
+def quantize(r: Array, levels: int | None, scale: Array) -> Array:
+    """Eq 3.17 / SPEC §3.2: R -> a * clip(ceil(R Q / a), 1, Q) / Q; `levels=None` keeps R."""
+    if levels is None:
+        return r
+    return scale * jnp.clip(jnp.ceil(r * levels / scale), 1, levels) / levels
+
+
+def reference_vectors(home: UnitMove, config: Config) -> tuple[Array, Array]:
+    """Reference map V^R_i = R_P,i (cos theta_i, sin theta_i), home frame (SPEC §3.3): ((B, 2), (B,))."""
+    r = quantize(start_distances(home, config), config.levels, config.scale)
+    return r[:, None] * unit(home.start.bearing), home.start.valid
+
+
+def current_vectors(view: UnitMove, config: Config) -> tuple[Array, Array]:
+    """Current vectors V_j = R_C,j (cos beta_j, sin beta_j), agent frame at C (SPEC §3.3): ((B, 2), (B,))."""
+    r = quantize(end_distances(view, config), config.levels, config.scale)
+    return r[:, None] * unit(view.end.bearing), view.end.valid

@@ -1,0 +1,43 @@
+"""Heading sources: the (noisy) compass and the visual compass (Labrosse 2006, Zeil 2003; SPEC §4.4)."""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import jax.numpy as jnp
+from jax import Array
+
+from ..config import Config
+from ..geometry import TWO_PI, wrap
+from ..sensing import UnitMove
+
+
+def visual_compass(home_gray: Array, view_gray: Array) -> Array:
+    """Estimate h - alpha_r from two gray ring images (SPEC §4.4).
+
+    The pixel shift k minimising sum_j |C[j + k] - S[j]| (first minimum) gives -2 pi k / n.
+    """
+    n = home_gray.shape[-1]
+    idx = (jnp.arange(n)[None, :] + jnp.arange(n)[:, None]) % n  # (k, j)
+    cost = jnp.sum(jnp.abs(view_gray[idx] - home_gray[None, :]), axis=-1)
+    return wrap(-TWO_PI * jnp.argmin(cost) / n)
+
+
+def heading_estimate(home: UnitMove, view: UnitMove, source: str) -> Array:
+    """The agent's estimate of h - alpha_r at the end of `view`: compass reading or visual compass."""
+    if source == "compass":
+        return view.compass
+    if source == "visual":
+        return visual_compass(home.start.gray, view.end.gray)
+    raise ValueError(f"heading source must be 'compass' or 'visual', got {source!r}")
+
+
+def with_heading_source(fn: Callable, source: str) -> Callable:
+    """Turn `fn(home, view, config, heading)` into a method `direction(home, view, config)`."""
+
+    def direction(home: UnitMove, view: UnitMove, config: Config) -> tuple[Array, Array]:
+        return fn(home, view, config, heading_estimate(home, view, source))
+
+    direction.__name__ = f"{fn.__module__.rsplit('.', 1)[-1]}_{source}"
+    direction.__doc__ = f"{fn.__doc__}\n\nHeading source: {source}."
+    return direction

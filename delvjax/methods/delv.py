@@ -1,0 +1,64 @@
+"""DELV: distance-estimated landmark vectors and arrangement matching (thesis §3.2.4, §3.3.1; SPEC §3.4)."""
+
+from __future__ import annotations
+
+import jax.numpy as jnp
+from jax import Array
+
+from ..config import Config
+from ..estimation import current_vectors, reference_vectors
+from ..geometry import TWO_PI, angle_of, rotate, safe_norm, wrap
+from ..sensing import UnitMove
+from .pairing import shift_pairs
+
+
+def match_arrangement(ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array,
+                      alphas: Array) -> tuple[Array, Array, Array, Array]:
+    """Best cyclic shift k and heading hypothesis alpha (Eqs 3.4-3.6): (p (2,), alpha, var, n_pairs).
+
+    For each k and alpha: e_i = V^R_i - Rot(alpha) V_j(i), p = mean e_i, var = sum |e_i - p|^2;
+    the first minimum in k-major order wins. With centred pair vectors a'_i, b'_i,
+    var(alpha) = sum |a'|^2 + |b'|^2 - 2 Re(e^{i alpha} sum conj(a') b'), so all
+    alphas of one shift cost two multiply-adds each.
+    ref_v: (B, 2) home frame; cur_v: (B, 2) agent frame; alphas: (A,) radians.
+    """
+    ref_idx, cur_idx, pair_ok, shift_ok = shift_pairs(ref_valid, cur_valid)
+    w = pair_ok.astype(ref_v.dtype)[..., None]  # (K, S, 1)
+    n = jnp.sum(pair_ok[0])
+    n_safe = jnp.maximum(n, 1)
+    a = ref_v[ref_idx] * w  # (K, S, 2)
+    b = cur_v[cur_idx] * w
+    a_mean = jnp.sum(a, axis=1) / n_safe  # (K, 2)
+    b_mean = jnp.sum(b, axis=1) / n_safe
+    a_c = (a - a_mean[:, None]) * w
+    b_c = (b - b_mean[:, None]) * w
+    const = jnp.sum(a_c * a_c + b_c * b_c, axis=(1, 2))  # (K,)
+    z_re = jnp.sum(a_c[..., 0] * b_c[..., 0] + a_c[..., 1] * b_c[..., 1], axis=1)
+    z_im = jnp.sum(a_c[..., 0] * b_c[..., 1] - a_c[..., 1] * b_c[..., 0], axis=1)
+    var = const[:, None] - 2.0 * (jnp.cos(alphas)[None, :] * z_re[:, None] - jnp.sin(alphas)[None, :] * z_im[:, None])
+    var = jnp.where(shift_ok[:, None], var, jnp.inf)
+    best = jnp.argmin(var)
+    k_best, a_best = best // alphas.shape[0], best % alphas.shape[0]
+    alpha = alphas[a_best]
+    p = a_mean[k_best] - rotate(b_mean[k_best], alpha)
+    return p, alpha, var[k_best, a_best], n
+
+
+def _direction(home: UnitMove, view: UnitMove, config: Config, alphas: Array) -> tuple[Array, Array]:
+    ref_v, ref_valid = reference_vectors(home, config)
+    cur_v, cur_valid = current_vectors(view, config)
+    p, alpha, _, n = match_arrangement(ref_v, ref_valid, cur_v, cur_valid, alphas)
+    valid = (n >= 2) & (safe_norm(p) > 0)
+    angle = wrap(angle_of(-p) - alpha)
+    return jnp.where(valid, angle, jnp.nan), valid
+
+
+def direction(home: UnitMove, view: UnitMove, config: Config) -> tuple[Array, Array]:
+    """DELV without compass: all shifts x `n_heading` hypotheses alpha = 2 pi a / n_heading."""
+    alphas = TWO_PI * jnp.arange(config.n_heading, dtype=jnp.float32) / config.n_heading
+    return _direction(home, view, config, alphas)
+
+
+def direction_with_heading(home: UnitMove, view: UnitMove, config: Config, heading: Array) -> tuple[Array, Array]:
+    """DELV with alpha fixed to a heading estimate (compass or visual compass); only k is searched."""
+    return _direction(home, view, config, jnp.reshape(heading, (1,)))

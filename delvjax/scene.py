@@ -1,0 +1,195 @@
+"""Environments: cylinders in a rectangular arena around a home (SPEC §1, §2.1, §6, §7).
+
+An `Env` is a pytree. Landmarks are an `(L, 3)` array of `[x, y, r]` (cm) with a
+validity mask, so environments with different counts can be padded to one shape and
+batched. Loading and validating user files happens here, once, before any array work.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import equinox as eqx
+import jax.numpy as jnp
+import numpy as np
+from jax import Array
+
+from .errors import InputError
+
+DEFAULT_ARENA = (0.0, 0.0, 1000.0, 1000.0)
+DEFAULT_HOME = (500.0, 500.0)
+
+
+class Env(eqx.Module):
+    """landmarks: (L, 3) [x, y, r] cm; valid: (L,) bool; home: (2,); arena: (4,) [xmin, ymin, xmax, ymax]."""
+
+    landmarks: Array
+    valid: Array
+    home: Array
+    arena: Array
+    name: str = eqx.field(static=True, default="env")
+
+    @property
+    def n_landmarks(self) -> int:
+        return int(np.sum(np.asarray(self.valid)))
+
+
+def make_env(landmarks, home=DEFAULT_HOME, arena=DEFAULT_ARENA, name: str = "env", pad_to: int | None = None) -> Env:
+    """Build an `Env` from plain numbers (validated like a JSON file, SPEC §7)."""
+    spec = {
+        "name": name,
+        "arena": list(arena),
+        "home": list(home),
+        "landmarks": [{"x": float(x), "y": float(y), "r": float(r)} for x, y, r in np.asarray(landmarks, float).reshape(-1, 3)],
+    }
+    return env_from_dict(spec, pad_to=pad_to)
+
+
+def _number(value, field: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise InputError(field, value, "must be a number")
+    if not math.isfinite(value):
+        raise InputError(field, value, "must be finite")
+    return float(value)
+
+
+def _pair(value, field: str, n: int) -> list[float]:
+    if not isinstance(value, (list, tuple)) or len(value) != n:
+        raise InputError(field, value, f"must be a list of {n} numbers")
+    return [_number(v, f"{field}[{i}]") for i, v in enumerate(value)]
+
+
+def validate_env_dict(spec: object) -> dict:
+    """Check an environment description (SPEC §7); return it normalised. Raises `InputError`."""
+    if not isinstance(spec, dict):
+        raise InputError("environment", type(spec).__name__, "must be a JSON object")
+    for key in ("arena", "home", "landmarks"):
+        if key not in spec:
+            raise InputError(key, None, "missing required field")
+    name = spec.get("name", "env")
+    if not isinstance(name, str) or not name:
+        raise InputError("name", name, "must be a non-empty string")
+    xmin, ymin, xmax, ymax = _pair(spec["arena"], "arena", 4)
+    if not (xmax > xmin and ymax > ymin):
+        raise InputError("arena", spec["arena"], "must be [xmin, ymin, xmax, ymax] with xmax > xmin and ymax > ymin")
+    hx, hy = _pair(spec["home"], "home", 2)
+    if not (xmin < hx < xmax and ymin < hy < ymax):
+        raise InputError("home", spec["home"], f"must lie inside the arena {spec['arena']}")
+    raw = spec["landmarks"]
+    if not isinstance(raw, list) or not raw:
+        raise InputError("landmarks", raw, "must be a non-empty list of {x, y, r}")
+    lms = []
+    for i, lm in enumerate(raw):
+        if not isinstance(lm, dict):
+            raise InputError(f"landmarks[{i}]", lm, "must be an object {x, y, r}")
+        for key in ("x", "y", "r"):
+            if key not in lm:
+                raise InputError(f"landmarks[{i}].{key}", None, "missing required field")
+        x, y, r = (_number(lm[k], f"landmarks[{i}].{k}") for k in ("x", "y", "r"))
+        if r <= 0:
+            raise InputError(f"landmarks[{i}].r", lm["r"], "must be > 0")
+        if math.hypot(x - hx, y - hy) <= r:
+            raise InputError(f"landmarks[{i}]", lm, f"covers home {spec['home']}")
+        if not (xmin <= x - r and x + r <= xmax and ymin <= y - r and y + r <= ymax):
+            raise InputError(f"landmarks[{i}]", lm, "must lie inside the arena")
+        for j, (xj, yj, rj) in enumerate(lms):
+            if math.hypot(x - xj, y - yj) < r + rj:
+                raise InputError(f"landmarks[{i}]", lm, f"overlaps landmarks[{j}]")
+        lms.append((x, y, r))
+    return {"name": name, "arena": [xmin, ymin, xmax, ymax], "home": [hx, hy], "landmarks": lms}
+
+
+def env_from_dict(spec: object, pad_to: int | None = None) -> Env:
+    """Validated `Env` from a SPEC §7 dictionary, landmarks padded to `pad_to`."""
+    s = validate_env_dict(spec)
+    lms = np.asarray(s["landmarks"], dtype=np.float32).reshape(-1, 3)
+    n = lms.shape[0]
+    pad = n if pad_to is None else pad_to
+    if pad < n:
+        raise InputError("pad_to", pad_to, f"must be >= the number of landmarks ({n})")
+    # Padding rows sit far outside any arena with a tiny radius; the mask hides them.
+    padded = np.tile(np.array([[1e9, 1e9, 1e-3]], np.float32), (pad, 1))
+    padded[:n] = lms
+    return Env(
+        landmarks=jnp.asarray(padded),
+        valid=jnp.arange(pad) < n,
+        home=jnp.asarray(s["home"], jnp.float32),
+        arena=jnp.asarray(s["arena"], jnp.float32),
+        name=s["name"],
+    )
+
+
+def env_to_dict(env: Env) -> dict:
+    """The SPEC §7 dictionary of an `Env` (padding dropped)."""
+    lms = np.asarray(env.landmarks)[np.asarray(env.valid)]
+    return {
+        "name": env.name,
+        "arena": [float(v) for v in np.asarray(env.arena)],
+        "home": [float(v) for v in np.asarray(env.home)],
+        "landmarks": [{"x": float(x), "y": float(y), "r": float(r)} for x, y, r in lms],
+    }
+
+
+def _ring(n: int, distance: float = 250.0, radius: float = 30.0, first_deg: float = 90.0) -> list[tuple[float, float, float]]:
+    hx, hy = DEFAULT_HOME
+    return [
+        (
+            round(hx + distance * math.cos(math.radians(first_deg + 360.0 * i / n)), 3),
+            round(hy + distance * math.sin(math.radians(first_deg + 360.0 * i / n)), 3),
+            radius,
+        )
+        for i in range(n)
+    ]
+
+
+# Thesis §4.2 / SPEC §6 describe these layouts but give no coordinates; ours follow the
+# descriptions (README documents and draws them). Home (500, 500), arena 1000 x 1000 cm.
+PRESETS: dict[str, list[tuple[float, float, float]]] = {
+    # env1: four landmarks of different sizes around home, asymmetric.
+    "env1": [(330.0, 640.0, 30.0), (640.0, 720.0, 40.0), (720.0, 390.0, 25.0), (420.0, 300.0, 35.0)],
+    # env2: four landmarks at 90 degree spacing seen from home (45, 135, 225, 315 deg).
+    "env2": [(676.777, 676.777, 30.0), (323.223, 676.777, 30.0), (323.223, 323.223, 30.0), (676.777, 323.223, 30.0)],
+    # env3: all four landmarks on one side (east) of home.
+    "env3": [(640.0, 700.0, 30.0), (760.0, 590.0, 40.0), (740.0, 400.0, 25.0), (630.0, 290.0, 35.0)],
+    # ringL: L landmarks equally spaced at 250 cm around home, radius 30, first due north.
+    **{f"ring{n}": _ring(n) for n in range(3, 7)},
+}
+
+PRESET_DESCRIPTIONS = {
+    "env1": "4 landmarks of different sizes around home, asymmetric (thesis env 1)",
+    "env2": "4 equal landmarks 250 cm from home at 45/135/225/315 deg (thesis env 2)",
+    "env3": "4 landmarks all east of home (thesis env 3)",
+    **{f"ring{n}": f"{n} landmarks equally spaced 250 cm around home (Tables 5.1-5.4)" for n in range(3, 7)},
+}
+
+
+def preset_dict(name: str) -> dict:
+    if name not in PRESETS:
+        raise InputError("env", name, f"unknown preset (choose from {', '.join(PRESETS)}) and no such file")
+    return {
+        "name": name,
+        "arena": list(DEFAULT_ARENA),
+        "home": list(DEFAULT_HOME),
+        "landmarks": [{"x": x, "y": y, "r": r} for x, y, r in PRESETS[name]],
+    }
+
+
+def load_env(name_or_path: str | Path, pad_to: int | None = None) -> Env:
+    """A preset by name (`env1`, `env2`, `env3`, `ring3`..`ring6`) or a SPEC §7 JSON file."""
+    key = str(name_or_path)
+    if key in PRESETS:
+        return env_from_dict(preset_dict(key), pad_to=pad_to)
+    path = Path(key)
+    if not path.is_file():
+        preset_dict(key)  # raises the "unknown preset" error
+    try:
+        spec = json.loads(path.read_text())
+    except json.JSONDecodeError as exc:
+        raise InputError("env", str(path), f"is not valid JSON ({exc.msg} at line {exc.lineno})") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError("env", str(path), f"cannot be read ({exc})") from None
+    if isinstance(spec, dict) and "name" not in spec:
+        spec = {**spec, "name": path.stem}
+    return env_from_dict(spec, pad_to=pad_to)

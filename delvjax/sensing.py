@@ -1,0 +1,180 @@
+"""Ring images, landmark blobs and noisy unit movements (SPEC §2.2-2.5, §3.1).
+
+Everything here is written for ONE viewpoint; maps and rollouts `vmap` it.
+"""
+
+from __future__ import annotations
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+from jax import Array
+
+from .config import Config
+from .geometry import TWO_PI, unit, wrap, wrap_positive
+from .scene import Env
+
+
+class Snapshot(eqx.Module):
+    """One omnidirectional view. mask, gray: (n_pix,); bearing, valid: (B,) blobs sorted by bearing in [0, 2pi), padding last."""
+
+    mask: Array
+    gray: Array
+    bearing: Array
+    valid: Array
+
+
+class UnitMove(eqx.Module):
+    """Two snapshots of one unit movement (SPEC §3.1) and the agent's own readings.
+
+    start, end: snapshots at P and C; d_hat: believed step (cm); psi_hat: believed turn
+    (rad); compass: compass reading of the heading at C minus alpha_r (rad).
+    """
+
+    start: Snapshot
+    end: Snapshot
+    d_hat: Array
+    psi_hat: Array
+    compass: Array
+
+
+def background_of_angle(phi: Array) -> Array:
+    """SPEC §2.3 background intensity as a function of an angle (radians)."""
+    return 0.45 + 0.25 * jnp.sin(3.0 * phi) + 0.15 * jnp.sin(7.0 * phi + 1.0)
+
+
+def wall_coordinate(origin: Array, direction: Array, arena: Array) -> Array:
+    """Perimeter fraction f in [0, 1) of the wall point a ray leaves the arena through (SPEC §2.3).
+
+    origin: (2,); direction: (..., 2) unit vectors; s counted counter-clockwise from (xmin, ymin).
+    """
+    xmin, ymin, xmax, ymax = arena[0], arena[1], arena[2], arena[3]
+    w, h = xmax - xmin, ymax - ymin
+    ux, uy = direction[..., 0], direction[..., 1]
+    big = jnp.float32(1e30)
+    safe_ux = jnp.where(ux == 0, 1.0, ux)
+    safe_uy = jnp.where(uy == 0, 1.0, uy)
+    tx = jnp.where(ux > 0, (xmax - origin[0]) / safe_ux, jnp.where(ux < 0, (xmin - origin[0]) / safe_ux, big))
+    ty = jnp.where(uy > 0, (ymax - origin[1]) / safe_uy, jnp.where(uy < 0, (ymin - origin[1]) / safe_uy, big))
+    t = jnp.maximum(jnp.minimum(tx, ty), 0.0)
+    qx = jnp.clip(origin[0] + t * ux, xmin, xmax)
+    qy = jnp.clip(origin[1] + t * uy, ymin, ymax)
+    s_bottom = qx - xmin
+    s_right = w + (qy - ymin)
+    s_top = w + h + (xmax - qx)
+    s_left = 2 * w + h + (ymax - qy)
+    s = jnp.where(tx < ty, jnp.where(ux > 0, s_right, s_left), jnp.where(uy > 0, s_top, s_bottom))
+    return jnp.mod(s / (2 * (w + h)), 1.0)
+
+
+def ray_depths(landmarks: Array, visible: Array, origin: Array, directions: Array) -> Array:
+    """Distance along each ray to the first cylinder hit, inf for none; (n_rays,).
+
+    landmarks: (L, 3); visible: (L,) bool; origin: (2,); directions: (n_rays, 2) unit.
+    A ray starting inside a cylinder hits it at distance 0 (SPEC §2.2).
+    """
+    rel = landmarks[:, :2] - origin  # (L, 2)
+    c2 = jnp.sum(rel * rel, axis=-1) - landmarks[:, 2] ** 2  # (L,)
+    b = directions @ rel.T  # (n_rays, L)
+    disc = b * b - c2
+    inside = c2 <= 0
+    hit = visible & (inside | ((disc >= 0) & (b > 0)))
+    t = jnp.where(inside, 0.0, b - jnp.sqrt(jnp.maximum(disc, 0.0)))
+    return jnp.min(jnp.where(hit, t, jnp.inf), axis=-1)
+
+
+def render(env: Env, visible: Array, pos: Array, heading: Array, config: Config) -> tuple[Array, Array]:
+    """Ring image at `pos` with `heading` (SPEC §2.2-2.3): (mask bool (n_pix,), gray (n_pix,)).
+
+    Pixel j looks along world angle heading + 2*pi*j/n_pix; the nearest cylinder wins.
+    """
+    phi = heading + TWO_PI * jnp.arange(config.n_pix) / config.n_pix
+    directions = unit(phi)
+    mask = jnp.isfinite(ray_depths(env.landmarks, visible & env.valid, pos, directions))
+    if config.background == "distant":
+        back = background_of_angle(phi)
+    elif config.background == "walls":
+        back = background_of_angle(TWO_PI * wall_coordinate(pos, directions, env.arena))
+    else:
+        back = jnp.zeros_like(phi)
+    return mask, jnp.where(mask, 1.0, back)
+
+
+def extract_blobs(mask: Array, max_blobs: int) -> tuple[Array, Array]:
+    """Blobs of a ring mask (SPEC §2.4): (bearing (B,), valid (B,)), sorted by bearing in [0, 2pi).
+
+    A blob is a maximal circular run of mask pixels; its bearing is the circular midpoint
+    of its first and last pixel. All pixels set: one blob at 0. Shapes are fixed: at most
+    `max_blobs` blobs (a mask of L cylinders has at most L runs), padding marked invalid.
+    """
+    n = mask.shape[-1]
+    starts = mask & ~jnp.roll(mask, 1)
+    ends = mask & ~jnp.roll(mask, -1)
+    count = jnp.minimum(jnp.sum(starts), max_blobs)
+    (start_idx,) = jnp.nonzero(starts, size=max_blobs, fill_value=0)
+    (end_idx,) = jnp.nonzero(ends, size=max_blobs, fill_value=0)
+    # If the first run end precedes the first run start, a run wraps through pixel 0:
+    # start k is closed by end k + 1.
+    wraps = end_idx[0] < start_idx[0]
+    slot = jnp.arange(max_blobs)
+    end_idx = jnp.where(wraps, end_idx[(slot + 1) % jnp.maximum(count, 1)], end_idx)
+    length = jnp.mod(end_idx - start_idx, n)
+    bearing = wrap_positive(TWO_PI * (start_idx + 0.5 * length) / n)
+    valid = slot < count
+    all_on = jnp.all(mask)
+    bearing = jnp.where(all_on, 0.0, bearing)
+    valid = jnp.where(all_on, slot == 0, valid)
+    return sort_blobs(bearing, valid)
+
+
+def sort_blobs(bearing: Array, valid: Array) -> tuple[Array, Array]:
+    """Sort blob bearings into [0, 2pi) ascending, invalid slots last (set to 0)."""
+    b = jnp.sort(jnp.where(valid, wrap_positive(bearing), jnp.inf))
+    valid = jnp.isfinite(b)
+    return jnp.where(valid, b, 0.0), valid
+
+
+def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, config: Config) -> Snapshot:
+    """Render, extract blobs and add bearing noise (SPEC §2.5) for one viewpoint."""
+    mask, gray = render(env, visible, pos, heading, config)
+    bearing, valid = extract_blobs(mask, env.landmarks.shape[0])
+    noise = config.noise.bearing * jax.random.normal(key, bearing.shape)
+    bearing, valid = sort_blobs(bearing + noise, valid)
+    return Snapshot(mask=mask, gray=gray, bearing=bearing, valid=valid)
+
+
+def unit_move(env: Env, start: Array, heading: Array, key: Array, config: Config,
+              visible: Array | None = None, end_at: Array | None = None) -> tuple[UnitMove, Array]:
+    """Sense one unit movement (SPEC §2.5, §3.1); returns (UnitMove, true heading at the end).
+
+    The agent at P = `start` with `heading` moves d * (1 + N(0, noise.step)) along it and
+    turns by psi ~ N(0, noise.turn); odometry reports d_hat = d and psi_hat = psi +
+    N(0, noise.turn_odometry). If `end_at` is given the move ends there instead
+    (P = end_at - step * u(heading)): the current view of a vector map (SPEC §3.3).
+    """
+    if visible is None:
+        visible = jnp.ones(env.landmarks.shape[0], bool)
+    k_step, k_turn, k_odo, k_compass, k_start, k_end = jax.random.split(key, 6)
+    noise = config.noise
+    step = config.d * (1.0 + noise.step * jax.random.normal(k_step))
+    psi = noise.turn * jax.random.normal(k_turn)
+    psi_hat = psi + noise.turn_odometry * jax.random.normal(k_odo)
+    if end_at is not None:
+        start = end_at - step * unit(heading)
+    end = start + step * unit(heading)
+    heading_end = heading + psi
+    compass = wrap(heading_end - config.alpha_r + noise.compass * jax.random.normal(k_compass))
+    move = UnitMove(
+        start=snapshot(env, visible, start, heading, k_start, config),
+        end=snapshot(env, visible, end, heading_end, k_end, config),
+        d_hat=jnp.asarray(config.d, jnp.float32),
+        psi_hat=psi_hat,
+        compass=compass,
+    )
+    return move, heading_end
+
+
+def record_home(env: Env, key: Array, config: Config) -> UnitMove:
+    """The home record (SPEC §3.3): a unit movement from home along alpha_r, all landmarks seen."""
+    move, _ = unit_move(env, env.home, jnp.asarray(config.alpha_r, jnp.float32), key, config)
+    return move
