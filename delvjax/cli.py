@@ -1,0 +1,150 @@
+"""Command line: argument parsing and validation; calls the API. Exit 2 on bad input, no output file then."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from typing import Callable
+
+import numpy as np
+
+from . import api
+from .config import BACKGROUNDS, CHANNELS
+from .errors import InputError
+from .io import check_output_path, save_figure, write_csv, write_json
+from .methods import DESCRIPTIONS, METHODS
+from .options import NOISE_FIELDS_DEG, NOISE_OPTIONS
+from .scene import PRESET_DESCRIPTIONS, PRESETS
+
+CSV = (".csv",)
+FIGURE = (".png", ".pdf", ".svg")
+JSON = (".json",)
+
+
+def progress(msg: str) -> None:
+    print(f"[delvjax] {msg}", file=sys.stderr, flush=True)
+
+
+# --- shared argument groups ------------------------------------------------------------
+
+def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
+    p.add_argument("env", help="preset name (see `delvjax envs`) or a SPEC §7 JSON file")
+    p.add_argument("--method", default="delv", help=f"homing method: {', '.join(methods or METHODS)} (default delv)")
+    p.add_argument("--levels", type=int, default=None, help="DELV distance quantization levels Q >= 1 (default: continuous)")
+    p.add_argument("--d", type=float, default=50.0, help="unit-movement step d in cm (default 50)")
+    p.add_argument("--spacing", type=float, default=25.0, help="grid spacing in cm (default 25: 40x40)")
+    p.add_argument("--clearance", type=float, default=10.0, help="grid points closer than r + clearance to a landmark are dropped (default 10)")
+    p.add_argument("--heading-deg", type=float, default=None, help="fixed heading at every point (default: random per point from --seed)")
+    p.add_argument("--seed", type=int, default=0, help="seed of random headings and all noise (default 0)")
+    p.add_argument("--background", default="distant", help=f"{', '.join(BACKGROUNDS)} (default distant)")
+    p.add_argument("--channel", default="mask", help=f"image channel of holistic methods: {', '.join(CHANNELS)} (default mask)")
+    p.add_argument("--n-heading", type=int, default=360, help="DELV heading hypotheses (default 360)")
+    p.add_argument("--hide", type=int, nargs="+", default=None, metavar="I",
+                   help="landmark indices invisible during homing (occlusion; the home record sees all)")
+    g = p.add_argument_group("noise (all default 0; angles in degrees)")
+    for name in NOISE_OPTIONS:
+        unit = "deg" if name in NOISE_FIELDS_DEG else "fraction of d"
+        g.add_argument("--" + name.replace("_", "-"), type=float, default=0.0, dest=name, help=f"sigma ({unit})")
+
+
+def scene_kwargs(args: argparse.Namespace) -> dict:
+    kw = dict(method=args.method, levels=args.levels, d=args.d, spacing=args.spacing, clearance=args.clearance,
+              heading_deg=args.heading_deg, seed=args.seed, background=args.background, channel=args.channel,
+              n_heading=args.n_heading, hidden=args.hide)
+    kw.update({name: getattr(args, name) for name in NOISE_OPTIONS if getattr(args, name) != 0.0})
+    return kw
+
+
+def add_output_args(p: argparse.ArgumentParser, plot_help: str) -> None:
+    p.add_argument("--out", required=True, help="per-point CSV file")
+    p.add_argument("--plot", default=None, help=plot_help + " (.png, .pdf or .svg)")
+    p.add_argument("--summary", default=None, help="JSON file with the headline numbers")
+
+
+def check_outputs(args: argparse.Namespace) -> None:
+    check_output_path(args.out, "--out", CSV)
+    if args.plot is not None:
+        check_output_path(args.plot, "--plot", FIGURE)
+    if args.summary is not None:
+        check_output_path(args.summary, "--summary", JSON)
+
+
+# --- commands ---------------------------------------------------------------------------
+
+def cmd_envs(args: argparse.Namespace) -> int:
+    for name in PRESETS:
+        env = api.load_env(name)
+        print(f"{name:7s} {env.n_landmarks} landmarks  {PRESET_DESCRIPTIONS[name]}")
+    print("\nmethods:")
+    for name, text in DESCRIPTIONS.items():
+        print(f"  {name:13s} {text}")
+    return 0
+
+
+def add_vector_map(sub) -> None:
+    p = sub.add_parser("vector-map", help="homing direction at every grid point (SPEC §5; Figs 4.2/4.3)")
+    add_scene_args(p)
+    add_output_args(p, "vector-map figure")
+    p.add_argument("--classes", action="store_true", help="mark error classes < 45 / 45-90 / > 90 deg (Fig 4.3)")
+    p.set_defaults(func=cmd_vector_map)
+
+
+def cmd_vector_map(args: argparse.Namespace) -> int:
+    from .metrics import error_class, summarize_map
+    from .plots import vector_map_figure
+
+    check_outputs(args)
+    env = api.load_env(args.env)
+    t0 = time.perf_counter()
+    progress(f"vector map of {args.method} on {env.name} (spacing {args.spacing:g} cm) ...")
+    vm = api.vector_map(env, **scene_kwargs(args))
+    vm.error_deg.block_until_ready()
+    inc = np.asarray(vm.included)
+    summary = {"env": env.name, "method": args.method, **summarize_map(vm.error_deg, vm.valid, vm.included),
+               "seconds": time.perf_counter() - t0}
+    progress(f"done in {summary['seconds']:.2f} s: {summary['points']} points, {summary['invalid']} invalid, "
+             f"mean error {summary['mean_error_deg']:.2f} deg, >45: {summary['gt45_pct']:.2f} %, "
+             f">90: {summary['gt90_pct']:.2f} %")
+    pts = np.asarray(vm.points)[inc]
+    write_csv(args.out, {
+        "x": pts[:, 0], "y": pts[:, 1],
+        "heading_deg": np.degrees(np.asarray(vm.heading)[inc]),
+        "direction_deg": np.degrees(np.asarray(vm.direction)[inc]),
+        "error_deg": np.asarray(vm.error_deg)[inc],
+        "valid": np.asarray(vm.valid)[inc],
+        "error_class": np.asarray(error_class(vm.error_deg))[inc],
+    })
+    if args.summary:
+        write_json(args.summary, summary)
+    if args.plot:
+        title = f"{args.method} on {env.name}: mean error {summary['mean_error_deg']:.1f}°"
+        save_figure(vector_map_figure(env, vm, args.spacing, title=title, classes=args.classes), args.plot)
+    print(f"wrote {args.out}" + (f", {args.plot}" if args.plot else "") + (f", {args.summary}" if args.summary else ""))
+    return 0
+
+
+# Each entry adds one subcommand; a new command is one function here or in its own module.
+COMMANDS: list[Callable] = [add_vector_map]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="delvjax", description="Visual homing methods (DELV, ALV, ACV, ...) as JAX batch evaluators.")
+    sub = parser.add_subparsers(dest="command", required=True)
+    sub.add_parser("envs", help="list the built-in environments and methods").set_defaults(func=cmd_envs)
+    for add in COMMANDS:
+        add(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except InputError as exc:
+        print(f"delvjax: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())
