@@ -143,6 +143,23 @@ def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, c
     return Snapshot(mask=mask, gray=gray, bearing=bearing, valid=valid)
 
 
+def observe_move(env: Env, visible: Array, start: Array, end: Array, heading_start: Array, heading_end: Array,
+                 d_hat: Array, psi_hat: Array, key: Array, config: Config) -> UnitMove:
+    """Snapshots at `start` and `end` of a move already made (true poses given), plus the
+    agent's readings: odometry (d_hat, psi_hat) and a compass reading of heading_end - alpha_r
+    with N(0, noise.compass) error. Rollouts use this for the step just made.
+    """
+    k_compass, k_start, k_end = jax.random.split(key, 3)
+    compass = wrap(heading_end - config.alpha_r + config.noise.compass * jax.random.normal(k_compass))
+    return UnitMove(
+        start=snapshot(env, visible, start, heading_start, k_start, config),
+        end=snapshot(env, visible, end, heading_end, k_end, config),
+        d_hat=jnp.asarray(d_hat, jnp.float32),
+        psi_hat=jnp.asarray(psi_hat, jnp.float32),
+        compass=compass,
+    )
+
+
 def unit_move(env: Env, start: Array, heading: Array, key: Array, config: Config,
               visible: Array | None = None, end_at: Array | None = None) -> tuple[UnitMove, Array]:
     """Sense one unit movement (SPEC §2.5, §3.1); returns (UnitMove, true heading at the end).
@@ -154,7 +171,7 @@ def unit_move(env: Env, start: Array, heading: Array, key: Array, config: Config
     """
     if visible is None:
         visible = jnp.ones(env.landmarks.shape[0], bool)
-    k_step, k_turn, k_odo, k_compass, k_start, k_end = jax.random.split(key, 6)
+    k_step, k_turn, k_odo, k_obs = jax.random.split(key, 4)
     noise = config.noise
     step = config.d * (1.0 + noise.step * jax.random.normal(k_step))
     psi = noise.turn * jax.random.normal(k_turn)
@@ -163,14 +180,7 @@ def unit_move(env: Env, start: Array, heading: Array, key: Array, config: Config
         start = end_at - step * unit(heading)
     end = start + step * unit(heading)
     heading_end = heading + psi
-    compass = wrap(heading_end - config.alpha_r + noise.compass * jax.random.normal(k_compass))
-    move = UnitMove(
-        start=snapshot(env, visible, start, heading, k_start, config),
-        end=snapshot(env, visible, end, heading_end, k_end, config),
-        d_hat=jnp.asarray(config.d, jnp.float32),
-        psi_hat=psi_hat,
-        compass=compass,
-    )
+    move = observe_move(env, visible, start, end, heading, heading_end, config.d, psi_hat, k_obs, config)
     return move, heading_end
 
 
