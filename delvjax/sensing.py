@@ -8,10 +8,11 @@ from __future__ import annotations
 import equinox as eqx
 import jax
 import jax.numpy as jnp
+import numpy as np
 from jax import Array
 
 from .config import Config
-from .geometry import TWO_PI, unit, wrap, wrap_positive
+from .geometry import TWO_PI, rotate, unit, wrap, wrap_positive
 from .scene import Env
 
 
@@ -67,37 +68,64 @@ def wall_coordinate(origin: Array, direction: Array, arena: Array) -> Array:
     return jnp.mod(s / (2 * (w + h)), 1.0)
 
 
-def ray_depths(landmarks: Array, visible: Array, origin: Array, directions: Array) -> Array:
-    """Distance along each ray to the first cylinder hit, inf for none; (n_rays,).
+def pixel_directions(n_pix: int) -> np.ndarray:
+    """Agent-frame unit vectors of the n_pix pixel rays (a trace-time constant), (n_pix, 2)."""
+    a = 2.0 * np.pi * np.arange(n_pix) / n_pix
+    return np.stack([np.cos(a), np.sin(a)], axis=-1).astype(np.float32)
 
-    landmarks: (L, 3); visible: (L,) bool; origin: (2,); directions: (n_rays, 2) unit.
-    A ray starting inside a cylinder hits it at distance 0 (SPEC §2.2).
+
+def ray_hits(landmarks: Array, visible: Array, origin: Array, heading: Array, n_pix: int) -> Array:
+    """Whether each pixel ray hits a visible cylinder (SPEC §2.2), (n_pix,) bool.
+
+    Ray j leaves `origin` along heading + 2 pi j / n_pix. Landmark offsets are rotated
+    into the agent frame once, so the per-pixel work is two dot products and compares;
+    a ray starting inside a cylinder hits it.
     """
-    rel = landmarks[:, :2] - origin  # (L, 2)
+    rel = rotate(landmarks[:, :2] - origin, -heading)  # (L, 2), agent frame
     c2 = jnp.sum(rel * rel, axis=-1) - landmarks[:, 2] ** 2  # (L,)
-    b = directions @ rel.T  # (n_rays, L)
-    disc = b * b - c2
-    inside = c2 <= 0
-    hit = visible & (inside | ((disc >= 0) & (b > 0)))
-    t = jnp.where(inside, 0.0, b - jnp.sqrt(jnp.maximum(disc, 0.0)))
-    return jnp.min(jnp.where(hit, t, jnp.inf), axis=-1)
+    b = jnp.asarray(pixel_directions(n_pix)) @ rel.T  # (n_pix, L)
+    hit = visible & ((c2 <= 0) | ((b * b >= c2) & (b > 0)))
+    return jnp.any(hit, axis=-1)
+
+
+def distant_background(heading: Array, n_pix: int) -> Array:
+    """SPEC §2.3 `distant` background of every pixel, by angle addition from constant tables."""
+    a = 2.0 * np.pi * np.arange(n_pix) / n_pix
+    c3, s3, c7, s7 = (jnp.asarray(f(k * a), jnp.float32) for k in (3, 7) for f in (np.cos, np.sin))
+    sin3 = jnp.sin(3.0 * heading) * c3 + jnp.cos(3.0 * heading) * s3
+    sin7 = jnp.sin(7.0 * heading + 1.0) * c7 + jnp.cos(7.0 * heading + 1.0) * s7
+    return 0.45 + 0.25 * sin3 + 0.15 * sin7
 
 
 def render(env: Env, visible: Array, pos: Array, heading: Array, config: Config) -> tuple[Array, Array]:
     """Ring image at `pos` with `heading` (SPEC §2.2-2.3): (mask bool (n_pix,), gray (n_pix,)).
 
-    Pixel j looks along world angle heading + 2*pi*j/n_pix; the nearest cylinder wins.
+    Pixel j looks along world angle heading + 2*pi*j/n_pix; landmark = 1, else background.
     """
-    phi = heading + TWO_PI * jnp.arange(config.n_pix) / config.n_pix
-    directions = unit(phi)
-    mask = jnp.isfinite(ray_depths(env.landmarks, visible & env.valid, pos, directions))
+    n = config.n_pix
+    mask = ray_hits(env.landmarks, visible & env.valid, pos, heading, n)
     if config.background == "distant":
-        back = background_of_angle(phi)
+        back = distant_background(heading, n)
     elif config.background == "walls":
+        directions = rotate(jnp.asarray(pixel_directions(n)), heading)
         back = background_of_angle(TWO_PI * wall_coordinate(pos, directions, env.arena))
     else:
-        back = jnp.zeros_like(phi)
+        back = jnp.zeros(n, jnp.float32)
     return mask, jnp.where(mask, 1.0, back)
+
+
+def _run_indices(flags: Array, max_blobs: int) -> Array:
+    """Pixel index of the k-th set flag for k < max_blobs (0 where absent): a short chain
+    of argmax searches over the pixels (max_blobs is the landmark count, a handful)."""
+    pixel = jnp.arange(flags.shape[0])
+    found, last = [], -1
+    for _ in range(max_blobs):
+        candidate = flags & (pixel > last)
+        i = jnp.argmax(candidate)
+        ok = candidate[i]
+        found.append(jnp.where(ok, i, 0))
+        last = jnp.where(ok, i, flags.shape[0])
+    return jnp.stack(found)
 
 
 def extract_blobs(mask: Array, max_blobs: int) -> tuple[Array, Array]:
@@ -111,8 +139,8 @@ def extract_blobs(mask: Array, max_blobs: int) -> tuple[Array, Array]:
     starts = mask & ~jnp.roll(mask, 1)
     ends = mask & ~jnp.roll(mask, -1)
     count = jnp.minimum(jnp.sum(starts), max_blobs)
-    (start_idx,) = jnp.nonzero(starts, size=max_blobs, fill_value=0)
-    (end_idx,) = jnp.nonzero(ends, size=max_blobs, fill_value=0)
+    start_idx = _run_indices(starts, max_blobs)
+    end_idx = _run_indices(ends, max_blobs)
     # If the first run end precedes the first run start, a run wraps through pixel 0:
     # start k is closed by end k + 1.
     wraps = end_idx[0] < start_idx[0]

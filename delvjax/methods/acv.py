@@ -6,6 +6,7 @@ import jax.numpy as jnp
 from jax import Array
 
 from ..config import Config
+from ..search import first_argmin
 from ..geometry import angle_of, safe_norm, unit, wrap
 from ..sensing import UnitMove, sort_blobs
 from .pairing import shift_pairs
@@ -22,7 +23,7 @@ def direction_with_heading(home: UnitMove, view: UnitMove, config: Config, headi
     ref_idx, cur_idx, pair_ok, shift_ok = shift_pairs(theta_ok, a_ok)
     diff = wrap(theta[ref_idx] - a[cur_idx])  # (K, S)
     cost = jnp.where(shift_ok, jnp.sum(jnp.where(pair_ok, diff * diff, 0.0), axis=1), jnp.inf)
-    k = jnp.argmin(cost)
+    k = first_argmin(cost)
     corr = -diff[k][:, None] * unit(a[cur_idx[k]] + jnp.pi / 2)
     hv = jnp.sum(jnp.where(pair_ok[k][:, None], corr, 0.0), axis=0)
     valid = jnp.any(pair_ok[k]) & (safe_norm(hv) > 0)

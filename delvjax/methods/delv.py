@@ -7,6 +7,7 @@ from jax import Array
 
 from ..config import Config
 from ..estimation import current_vectors, reference_vectors
+from ..search import first_argmin
 from ..geometry import TWO_PI, angle_of, rotate, safe_norm, wrap
 from ..sensing import UnitMove
 from .pairing import shift_pairs
@@ -37,7 +38,7 @@ def match_arrangement(ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: A
     z_im = jnp.sum(a_c[..., 0] * b_c[..., 1] - a_c[..., 1] * b_c[..., 0], axis=1)
     var = const[:, None] - 2.0 * (jnp.cos(alphas)[None, :] * z_re[:, None] - jnp.sin(alphas)[None, :] * z_im[:, None])
     var = jnp.where(shift_ok[:, None], var, jnp.inf)
-    best = jnp.argmin(var)
+    best = first_argmin(var.reshape(-1))
     k_best, a_best = best // alphas.shape[0], best % alphas.shape[0]
     alpha = alphas[a_best]
     p = a_mean[k_best] - rotate(b_mean[k_best], alpha)
