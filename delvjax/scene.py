@@ -12,6 +12,7 @@ import math
 from pathlib import Path
 
 import equinox as eqx
+import jax
 import jax.numpy as jnp
 import numpy as np
 from jax import Array
@@ -99,6 +100,11 @@ def validate_env_dict(spec: object) -> dict:
                 raise InputError(f"landmarks[{i}]", lm, f"overlaps landmarks[{j}]")
         lms.append((x, y, r))
     return {"name": name, "arena": [xmin, ymin, xmax, ymax], "home": [hx, hy], "landmarks": lms}
+
+
+def stack_envs(envs: list[Env]) -> Env:
+    """One batched `Env` (leading axis = environment) from envs of equal padded size and name."""
+    return jax.tree.map(lambda *leaves: jnp.stack(leaves), *envs)
 
 
 def env_from_dict(spec: object, pad_to: int | None = None) -> Env:

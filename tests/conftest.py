@@ -1,0 +1,40 @@
+"""Shared fixtures: random environments (seeded NumPy), the reference twin on sys.path."""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, str(Path(__file__).parent))
+
+ARENA = (0.0, 0.0, 1000.0, 1000.0)
+HOME = (500.0, 500.0)
+
+
+def random_landmarks(seed: int, n: int | None = None) -> np.ndarray:
+    """3-6 non-overlapping cylinders (r 15-45 cm) in [150, 850]^2, none within r + 40 of home."""
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(3, 7)) if n is None else n
+    out: list[tuple[float, float, float]] = []
+    while len(out) < n:
+        x, y = rng.uniform(150, 850, size=2)
+        r = rng.uniform(15, 45)
+        if math.hypot(x - HOME[0], y - HOME[1]) < r + 40:
+            continue
+        if any(math.hypot(x - a, y - b) < r + c + 20 for a, b, c in out):
+            continue
+        out.append((float(x), float(y), float(r)))
+    return np.array(out)
+
+
+@pytest.fixture(scope="session")
+def random_envs():
+    """20 random environments as (landmarks array, delvjax Env), all padded to 6 landmarks
+    and named alike so that they stack into one batched Env."""
+    import delvjax
+
+    return [(lm, delvjax.make_env(lm, name="random", pad_to=6)) for lm in (random_landmarks(s) for s in range(20))]
