@@ -1,7 +1,7 @@
 """delvjax: the Distance-Estimated Landmark Vector (DELV) homing method and its comparators
 as pure, jit/vmap-able JAX programs (Yu 2011 thesis, chapters 3-5; see SPEC.md)."""
 
-from .api import load_env, vector_map
+from .api import catchment, load_env, success_rate, trajectories, vector_map
 from .config import Config, Noise
 from .errors import InputError
 from .maps import VectorMap
@@ -13,5 +13,6 @@ from .sensing import Snapshot, UnitMove
 __all__ = [
     "Config", "Env", "InputError", "METHODS", "Noise", "Snapshot", "UnitMove", "VectorMap",
     "error_curve", "error_point_rates", "load_env", "make_env", "summarize_map", "vector_map",
+    "catchment", "success_rate", "trajectories",
 ]
 __version__ = "0.1.0"

@@ -12,6 +12,7 @@ from . import maps
 from .errors import InputError
 from .methods import get_method
 from .options import finite, make_config, non_negative, positive, positive_int, seed_value
+from .rollouts import catchment, success_rate, trajectories  # noqa: F401  (SPEC §5 rollouts)
 from .scene import Env
 from .scene import load_env as _load_env
 
@@ -36,8 +37,25 @@ def visible_mask(env: Env, hidden: list[int] | tuple[int, ...] | None) -> jax.Ar
     n = env.n_landmarks
     for i in hidden:
         if isinstance(i, bool) or not isinstance(i, int) or not 0 <= i < n:
-            raise InputError("hidden", i, f"must be a landmark index in 0..{n - 1}")
+            raise InputError("hide", i, f"must be a landmark index in 0..{n - 1}")
     return jnp.ones(env.landmarks.shape[0], bool).at[jnp.asarray(list(hidden))].set(False)
+
+
+def map_request(env: str | Path | Env, method: str = "delv", spacing: float = 25.0, heading_deg: float | None = None,
+                seed: int = 0, levels: int | None = None, d: float = 50.0, background: str = "distant",
+                channel: str = "mask", clearance: float = 10.0, n_heading: int = 360,
+                hidden: list[int] | None = None, batch_size: int = maps.DEFAULT_BATCH, **noise: float) -> dict:
+    """Validate the public options of a vector map (before any array work): keyword
+    arguments of `maps.vector_map`. Raises `InputError` naming the field and value."""
+    get_method(method)
+    spacing = positive(spacing, "spacing")
+    clearance = non_negative(clearance, "clearance")
+    batch_size = positive_int(batch_size, "batch_size")
+    config = make_config(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **noise)
+    env = load_env(env)
+    heading, key = resolve_headings(heading_deg, seed)
+    return dict(env=env, method=method, config=config, spacing=spacing, heading=heading, key=key,
+                clearance=clearance, visible=visible_mask(env, hidden), batch_size=batch_size)
 
 
 def vector_map(env: str | Path | Env, method: str = "delv", spacing: float = 25.0, heading_deg: float | None = None,
@@ -52,12 +70,5 @@ def vector_map(env: str | Path | Env, method: str = "delv", spacing: float = 25.
     `hidden` lists landmark indices invisible in the current views (occlusion).
     Returns a `VectorMap` pytree (points, included, heading, direction, valid, error_deg).
     """
-    get_method(method)
-    spacing = positive(spacing, "spacing")
-    clearance = non_negative(clearance, "clearance")
-    batch_size = positive_int(batch_size, "batch_size")
-    config = make_config(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **noise)
-    env = load_env(env)
-    heading, key = resolve_headings(heading_deg, seed)
-    return maps.vector_map(env, method, config, spacing=spacing, heading=heading, key=key, clearance=clearance,
-                           visible=visible_mask(env, hidden), batch_size=batch_size)
+    return maps.vector_map(**map_request(env, method, spacing, heading_deg, seed, levels, d, background, channel,
+                                         clearance, n_heading, hidden, batch_size, **noise))

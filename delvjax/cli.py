@@ -9,7 +9,8 @@ from typing import Callable
 
 import numpy as np
 
-from . import api
+from . import api, maps
+from .cache import enable_compilation_cache
 from .config import BACKGROUNDS, CHANNELS
 from .errors import InputError
 from .io import check_output_path, save_figure, write_csv, write_json
@@ -91,30 +92,22 @@ def add_vector_map(sub) -> None:
 
 
 def cmd_vector_map(args: argparse.Namespace) -> int:
-    from .metrics import error_class, summarize_map
+    from .metrics import summarize_map
     from .plots import vector_map_figure
 
     check_outputs(args)
-    env = api.load_env(args.env)
+    request = api.map_request(args.env, **scene_kwargs(args))
+    env = request["env"]
     t0 = time.perf_counter()
     progress(f"vector map of {args.method} on {env.name} (spacing {args.spacing:g} cm) ...")
-    vm = api.vector_map(env, **scene_kwargs(args))
+    vm = maps.vector_map(**request)
     vm.error_deg.block_until_ready()
-    inc = np.asarray(vm.included)
     summary = {"env": env.name, "method": args.method, **summarize_map(vm.error_deg, vm.valid, vm.included),
                "seconds": time.perf_counter() - t0}
     progress(f"done in {summary['seconds']:.2f} s: {summary['points']} points, {summary['invalid']} invalid, "
              f"mean error {summary['mean_error_deg']:.2f} deg, >45: {summary['gt45_pct']:.2f} %, "
              f">90: {summary['gt90_pct']:.2f} %")
-    pts = np.asarray(vm.points)[inc]
-    write_csv(args.out, {
-        "x": pts[:, 0], "y": pts[:, 1],
-        "heading_deg": np.degrees(np.asarray(vm.heading)[inc]),
-        "direction_deg": np.degrees(np.asarray(vm.direction)[inc]),
-        "error_deg": np.asarray(vm.error_deg)[inc],
-        "valid": np.asarray(vm.valid)[inc],
-        "error_class": np.asarray(error_class(vm.error_deg))[inc],
-    })
+    write_csv(args.out, maps.vector_map_columns(vm))
     if args.summary:
         write_json(args.summary, summary)
     if args.plot:
@@ -126,6 +119,9 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
 
 # Each entry adds one subcommand; a new command is one function here or in its own module.
 COMMANDS: list[Callable] = [add_vector_map]
+from .cli_rollouts import ROLLOUT_COMMANDS  # noqa: E402  (catchment, success-rate, trajectories)
+
+COMMANDS += ROLLOUT_COMMANDS
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -139,6 +135,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
+    enable_compilation_cache()
     try:
         return args.func(args)
     except InputError as exc:

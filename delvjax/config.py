@@ -42,9 +42,12 @@ class Config(eqx.Module):
     r_max:     cap of estimated distances, cm (SPEC §3.1, default 2000).
     alpha_r:   reference heading at home, radians (SPEC §1, default 0).
     noise:     `Noise` (all zero by default).
-    levels:    quantization levels Q (None = continuous distances).
+    levels:    quantization levels Q (None = continuous distances; a number is a traced
+               leaf, so a sweep can vmap over Q).
     n_pix:     ring image width in pixels (360).
     n_heading: heading hypotheses of DELV's matching (360).
+    n_alpha, n_psi, n_rho, rho_min, rho_max: warping hypotheses (SPEC §4.3: 72 movement
+               directions, 72 rotations, 15 rho = d/r values 0.10..0.80).
     background, channel: SPEC §2.2-2.3.
     """
 
@@ -53,8 +56,13 @@ class Config(eqx.Module):
     r_max: float = 2000.0
     alpha_r: float = 0.0
     noise: Noise = Noise()
-    levels: int | None = eqx.field(static=True, default=None)
+    levels: int | None = None
     n_pix: int = eqx.field(static=True, default=360)
     n_heading: int = eqx.field(static=True, default=360)
+    n_alpha: int = eqx.field(static=True, default=72)
+    n_psi: int = eqx.field(static=True, default=72)
+    n_rho: int = eqx.field(static=True, default=15)
+    rho_min: float = eqx.field(static=True, default=0.10)
+    rho_max: float = eqx.field(static=True, default=0.80)
     background: str = eqx.field(static=True, default="distant")
     channel: str = eqx.field(static=True, default="mask")

@@ -18,7 +18,7 @@ from jax import Array
 from .config import Config
 from .geometry import TWO_PI, wrap
 from .methods import get_method
-from .metrics import angular_error_deg
+from .metrics import angular_error_deg, error_class
 from .scene import Env
 from .sensing import record_home, unit_move
 
@@ -100,6 +100,14 @@ def vector_map(env: Env, method: str, config: Config, spacing: float = 25.0, hea
     """The vector map of `method` on the SPEC §5 grid; heading fixed (rad) or random per point from `key`."""
     key = jax.random.PRNGKey(0) if key is None else key
     points = jnp.asarray(grid_points(env.arena, spacing))
+    heading = None if heading is None else jnp.asarray(heading, jnp.float32)
+    return _vector_map(env.arrays(), points, heading, key, config, method, clearance, visible, batch_size)
+
+
+@partial(jax.jit, static_argnames=("method", "batch_size"))
+def _vector_map(env: Env, points: Array, heading: Array | None, key: Array, config: Config, method: str,
+                clearance: float, visible: Array | None, batch_size: int) -> VectorMap:
+    """One program for the whole map: headings, directions, grid mask and errors."""
     if heading is None:
         headings = random_headings(key, points.shape[0])
     else:
@@ -113,3 +121,44 @@ def vector_map(env: Env, method: str, config: Config, spacing: float = 25.0, hea
         valid=valid,
         error_deg=angular_error_deg(direction, valid, points, env.home),
     )
+
+
+def replace_field(config: Config, name: str, value) -> Config:
+    """`config` with the leaf `name` (e.g. "d", "levels", "noise.bearing") set to `value`."""
+    def where(c):
+        for part in name.split("."):
+            c = getattr(c, part)
+        return c
+
+    return eqx.tree_at(where, config, value, is_leaf=lambda x: x is None)
+
+
+def sweep(env: Env, method: str, config: Config, name: str, values: Array, spacing: float = 25.0,
+          heading: float | None = None, key: Array | None = None, clearance: float = 10.0,
+          visible: Array | None = None, batch_size: int = DEFAULT_BATCH) -> VectorMap:
+    """Vector maps for every value of one continuous parameter, vmapped as one program.
+
+    `name` is a leaf of `Config` ("d", "levels", "scale", "r_max", "noise.bearing", ...);
+    the result's arrays gain a leading axis over `values` (Figs 4.6/4.7, 4.12/4.13).
+    """
+    key = jax.random.PRNGKey(0) if key is None else key
+    points = jnp.asarray(grid_points(env.arena, spacing))
+    heading = None if heading is None else jnp.asarray(heading, jnp.float32)
+    env = env.arrays()
+    one = lambda v: _vector_map(env, points, heading, key, replace_field(config, name, v), method,  # noqa: E731
+                                clearance, visible, batch_size)
+    return jax.vmap(one)(jnp.asarray(values))
+
+
+def vector_map_columns(vm: VectorMap) -> dict[str, np.ndarray]:
+    """The SPEC §7 per-point table of a map (grid points only; degrees; direction NaN where invalid)."""
+    inc = np.asarray(vm.included)
+    pts = np.asarray(vm.points)[inc]
+    return {
+        "x": pts[:, 0], "y": pts[:, 1],
+        "heading_deg": np.degrees(np.asarray(vm.heading)[inc]),
+        "direction_deg": np.degrees(np.asarray(vm.direction)[inc]),
+        "error_deg": np.asarray(vm.error_deg)[inc],
+        "valid": np.asarray(vm.valid)[inc],
+        "error_class": np.asarray(error_class(vm.error_deg))[inc],
+    }

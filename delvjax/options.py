@@ -57,6 +57,15 @@ def positive_int(value: object, field: str) -> int:
     return int(value)
 
 
+def occlusion_count(value: object, n_landmarks: int) -> int:
+    """Number k of landmarks hidden during homing (SPEC §5 occlusion): an integer in 0..N."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or int(value) != value:
+        raise InputError("occlude", value, "must be an integer")
+    if not 0 <= value <= n_landmarks:
+        raise InputError("occlude", value, f"must be in 0..{n_landmarks} (the number of landmarks)")
+    return int(value)
+
+
 def choice(value: object, field: str, options) -> str:
     if value not in options:
         raise InputError(field, value, f"must be one of {', '.join(options)}")

@@ -36,6 +36,10 @@ class Env(eqx.Module):
     def n_landmarks(self) -> int:
         return int(np.sum(np.asarray(self.valid)))
 
+    def arrays(self) -> "Env":
+        """The same scene with a neutral name: jitted code compiles once per shape, not per name."""
+        return Env(self.landmarks, self.valid, self.home, self.arena)
+
 
 def make_env(landmarks, home=DEFAULT_HOME, arena=DEFAULT_ARENA, name: str = "env", pad_to: int | None = None) -> Env:
     """Build an `Env` from plain numbers (validated like a JSON file, SPEC §7)."""
@@ -100,6 +104,23 @@ def validate_env_dict(spec: object) -> dict:
                 raise InputError(f"landmarks[{i}]", lm, f"overlaps landmarks[{j}]")
         lms.append((x, y, r))
     return {"name": name, "arena": [xmin, ymin, xmax, ymax], "home": [hx, hy], "landmarks": lms}
+
+
+def random_env(seed: int, n_landmarks: int, radius=(15.0, 45.0), region=(150.0, 850.0), min_home_gap: float = 40.0,
+               min_gap: float = 20.0, pad_to: int | None = None, name: str | None = None) -> Env:
+    """A reproducible random layout (thesis Fig 4.8 "arbitrary layouts"): `n_landmarks`
+    non-overlapping cylinders in the default arena, none within r + `min_home_gap` of home."""
+    rng = np.random.default_rng(seed)
+    out: list[tuple[float, float, float]] = []
+    while len(out) < n_landmarks:  # rejection sampling of a handful of landmarks: input preparation
+        x, y = rng.uniform(*region, size=2)
+        r = rng.uniform(*radius)
+        if math.hypot(x - DEFAULT_HOME[0], y - DEFAULT_HOME[1]) < r + min_home_gap:
+            continue
+        if any(math.hypot(x - a, y - b) < r + c + min_gap for a, b, c in out):
+            continue
+        out.append((float(x), float(y), float(r)))
+    return make_env(out, name=name or f"random{seed}-{n_landmarks}", pad_to=pad_to)
 
 
 def stack_envs(envs: list[Env]) -> Env:

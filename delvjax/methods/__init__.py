@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from typing import Callable
 
-from . import acv, alv, delv
+from . import acv, alv, delv, mfdid, warping
 from .compass import with_heading_source
 
 Method = Callable
@@ -26,6 +26,8 @@ METHODS: dict[str, Method] = {
     "alv-visual": with_heading_source(alv.direction_with_heading, "visual"),
     "acv": with_heading_source(acv.direction_with_heading, "compass"),
     "acv-visual": with_heading_source(acv.direction_with_heading, "visual"),
+    "warping": warping.direction,
+    "mfdid": with_heading_source(mfdid.direction_with_heading, "compass"),
 }
 
 DESCRIPTIONS: dict[str, str] = {
@@ -36,6 +38,8 @@ DESCRIPTIONS: dict[str, str] = {
     "alv-visual": "ALV with the visual compass (thesis 5.3.2)",
     "acv": "average correction vector with a compass (Hong 1992; thesis Eq 5.2)",
     "acv-visual": "ACV with the visual compass (thesis 5.3.2)",
+    "warping": "predictive image matching, 72 alpha x 15 rho x 72 psi, no compass (Franz 1998; thesis 4.2)",
+    "mfdid": "matched-filter descent in image distances with a compass (Moller & Vardy 2006)",
 }
 
 

@@ -1,0 +1,195 @@
+"""Predictive image matching, "warping" (Franz et al. 1998, Möller 2009; thesis §4.2; SPEC §4.3).
+
+The home snapshot S (channel `config.channel` of `home.start`) is warped to predict the
+current view C (`view.end`) for every hypothesis: movement direction alpha (home frame),
+rotation psi (current heading minus alpha_r) and rho = d / r (every landmark at the same
+distance r from home):
+
+    C_pred(phi) = S(g - asin(rho * sin(g - alpha))),   g = phi + psi,
+
+sampled at the nearest pixel. The distance sum_phi |C_pred(phi) - C(phi)| is searched over
+alpha = 2 pi a / n_alpha, rho = rho_min .. rho_max (n_rho values) and psi = 2 pi m / n_psi;
+the first minimum in (alpha, rho, psi) order (alpha outermost, psi innermost) wins. Home
+direction in the agent frame: alpha + pi - psi. Defaults 72 x 15 x 72 (thesis §4.2).
+
+Nearest pixel, the rule shared with the NumPy twin: index = round(theta * n / (2 pi)) mod n,
+round half to even, theta in float64 (NumPy, at trace time). Over the default hypotheses no
+theta * n / (2 pi) lies within 1.9e-5 of a half-integer, so float64 rounding is unambiguous.
+
+How it is fast (all exact):
+* psi is a whole-pixel rotation (n_psi must divide n_pix): C_pred(phi) = P_{alpha,rho}(phi + psi)
+  with P_{alpha,rho}(g) = S(index[alpha, rho, g]). The table of predicted images P depends on
+  the home snapshot only; under the per-point `vmap` of a map the home record is unbatched,
+  so P is built once per map, not per point.
+* `mask`: sum |P - C| over 0/1 pixels is a Hamming distance. P rows and the n_psi rotations
+  of C are packed into 32-bit words (ceil(n_pix / 32)), so one hypothesis costs
+  ceil(n_pix / 32) xor + population-count + add, vectorised over (alpha, rho). The first
+  minimum is exact integer arithmetic: key = distance * n_psi + m.
+* `gray`: a direct float32 sum of absolute differences over the same (alpha, rho) x psi grid.
+"""
+
+from __future__ import annotations
+
+import math
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+from jax import Array
+
+from ..config import Config
+from ..errors import InputError
+from ..geometry import TWO_PI, wrap
+from ..search import first_argmin
+from ..sensing import UnitMove
+
+WORD_BITS = 32
+
+
+def check_hypotheses(config: Config) -> None:
+    """Raise `InputError` unless the hypothesis grid is usable (trace time, before any work)."""
+    for name in ("n_alpha", "n_psi", "n_rho"):
+        value = getattr(config, name)
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            raise InputError(name, value, "must be an integer >= 1")
+    if not 0.0 < config.rho_min <= config.rho_max < 1.0:
+        raise InputError("rho", (config.rho_min, config.rho_max), "must satisfy 0 < rho_min <= rho_max < 1")
+    if config.n_pix % config.n_psi:
+        raise InputError("n_psi", config.n_psi, f"must divide n_pix = {config.n_pix} (psi hypotheses are whole-pixel rotations)")
+
+
+def rho_values(config: Config) -> np.ndarray:
+    """(n_rho,) float64: rho_min + i * (rho_max - rho_min) / (n_rho - 1); rho_min alone if n_rho = 1."""
+    if config.n_rho == 1:
+        return np.array([config.rho_min])
+    i = np.arange(config.n_rho)
+    return config.rho_min + i * (config.rho_max - config.rho_min) / (config.n_rho - 1)
+
+
+def warp_indices(config: Config) -> np.ndarray:
+    """(n_alpha * n_rho, n_pix) int32: index[alpha, rho, g], the nearest S pixel of
+    g - asin(rho * sin(g - alpha)) at g = 2 pi g / n_pix; rows in (alpha, rho) order. Float64."""
+    n = config.n_pix
+    g = TWO_PI * np.arange(n) / n
+    alpha = TWO_PI * np.arange(config.n_alpha) / config.n_alpha
+    rho = rho_values(config)
+    theta = g[None, None, :] - np.arcsin(rho[None, :, None] * np.sin(g[None, None, :] - alpha[:, None, None]))
+    index = np.mod(np.rint(theta * n / TWO_PI).astype(np.int64), n)
+    return index.reshape(config.n_alpha * config.n_rho, n).astype(np.int32)
+
+
+def pack_bits(bits: Array) -> Array:
+    """(..., n) bool -> (..., ceil(n / 32)) uint32; pixel j is bit j % 32 of word j // 32, padding 0."""
+    n = bits.shape[-1]
+    words = -(-n // WORD_BITS)
+    padded = jnp.pad(bits, [(0, 0)] * (bits.ndim - 1) + [(0, words * WORD_BITS - n)])
+    b = padded.reshape(*bits.shape[:-1], words, WORD_BITS).astype(jnp.uint32)
+    return jnp.sum(b << jnp.arange(WORD_BITS, dtype=jnp.uint32), axis=-1, dtype=jnp.uint32)
+
+
+def rotated_words(mask: Array, shifts: Array) -> Array:
+    """Packed rotations of a ring mask: row m holds C_s(g) = C(g - s_m); (len(shifts), words) uint32.
+
+    Each row is a 32-bit-aligned window of the packed doubled image, read as two
+    neighbouring words shifted and or-ed; the last word keeps only its n_pix % 32 valid bits.
+    """
+    n = mask.shape[-1]
+    words = -(-n // WORD_BITS)
+    total = (-(-(2 * n + WORD_BITS * words) // WORD_BITS) + 1) * WORD_BITS
+    doubled = pack_bits(jnp.pad(jnp.concatenate([mask, mask]), (0, total - 2 * n)))
+    start = (n - shifts) % n  # C(g - s) = doubled[g + start]
+    bit = start[:, None] + WORD_BITS * jnp.arange(words)[None, :]
+    k, b = bit // WORD_BITS, (bit % WORD_BITS).astype(jnp.uint32)
+    hi = jnp.where(b == 0, jnp.uint32(0), doubled[k + 1] << ((WORD_BITS - b) % WORD_BITS))
+    out = (doubled[k] >> b) | hi
+    tail = n - WORD_BITS * (words - 1)
+    if tail < WORD_BITS:
+        out = out.at[:, -1].set(out[:, -1] & jnp.uint32((1 << tail) - 1))
+    return out
+
+
+def hamming_search(predicted_words: Array, current_words: Array) -> tuple[Array, Array, Array]:
+    """First minimum of popcount(P_ar xor C_m) over (ar, m), ar-major: (distance, ar, m).
+
+    predicted_words: (words, n_ar) uint32, transposed so that (alpha, rho) is the vector
+    lane; current_words: (n_psi, words) uint32. A scan over psi keeps, per (alpha, rho), the
+    integer key distance * n_psi + m of its best rotation (the min of keys is the first
+    minimum); the explicit sum over the few words is one vectorised elementwise loop.
+    """
+    n_psi, words = current_words.shape
+    n_ar = predicted_words.shape[1]
+
+    def rotation(best: Array, xs: tuple[Array, Array]) -> tuple[Array, None]:
+        q, m = xs
+        dist = sum(jax.lax.population_count(q[w] ^ predicted_words[w]).astype(jnp.int32) for w in range(words))
+        return jnp.minimum(best, dist * n_psi + m), None
+
+    init = jnp.full((n_ar,), jnp.iinfo(jnp.int32).max, jnp.int32)
+    key, _ = jax.lax.scan(rotation, init, (current_words, jnp.arange(n_psi, dtype=jnp.int32)))
+    ar = first_argmin(key // n_psi)
+    return key[ar] // n_psi, ar, key[ar] % n_psi
+
+
+SAD_BLOCK = 24  # pixels summed per step of the gray search (an unrolled, vectorised sum)
+
+
+def sad_search(predicted: Array, current: Array, shifts: Array) -> tuple[Array, Array, Array]:
+    """First minimum of sum_g |P_ar(g) - C(g - s_m)| over (ar, m), ar-major: (distance, ar, m).
+
+    predicted: (n_ar, n) float; current: (n,); shifts: (n_psi,) pixels. Scans over psi and
+    over blocks of SAD_BLOCK pixels (zero padding adds nothing), accumulating (n_ar,)
+    float32 sums; per (alpha, rho) the first strictly smaller rotation is kept.
+    """
+    n_ar, n = predicted.shape
+    blocks = -(-n // SAD_BLOCK)
+    pad = blocks * SAD_BLOCK - n
+    p_blocks = jnp.pad(predicted.T.astype(jnp.float32), ((0, pad), (0, 0))).reshape(blocks, SAD_BLOCK, n_ar)
+    rolled = current.astype(jnp.float32)[(jnp.arange(n)[None, :] - shifts[:, None]) % n]  # (n_psi, n)
+    rolled = jnp.pad(rolled, ((0, 0), (0, pad))).reshape(-1, blocks, SAD_BLOCK)
+
+    def block_sum(acc: Array, xs: tuple[Array, Array]) -> tuple[Array, None]:
+        p, c = xs
+        return acc + sum(jnp.abs(p[k] - c[k]) for k in range(SAD_BLOCK)), None
+
+    def rotation(carry: tuple[Array, Array], xs: tuple[Array, Array]) -> tuple[tuple[Array, Array], None]:
+        best, best_m = carry
+        c, m = xs
+        dist, _ = jax.lax.scan(block_sum, jnp.zeros((n_ar,), jnp.float32), (p_blocks, c))
+        better = dist < best
+        return (jnp.where(better, dist, best), jnp.where(better, m, best_m)), None
+
+    init = (jnp.full((n_ar,), jnp.inf, jnp.float32), jnp.zeros((n_ar,), jnp.int32))
+    (best, best_m), _ = jax.lax.scan(rotation, init, (rolled, jnp.arange(shifts.shape[0], dtype=jnp.int32)))
+    ar = first_argmin(best)
+    return best[ar], ar, best_m[ar]
+
+
+def search(home_image: Array, view_image: Array, config: Config) -> tuple[Array, Array, Array, Array]:
+    """SPEC §4.3 search for one view: (minimum distance, alpha index, rho index, psi index).
+
+    home_image, view_image: (n_pix,) `mask` (bool) or `gray` (float) ring images.
+    """
+    check_hypotheses(config)
+    index = jnp.asarray(warp_indices(config))  # constant (n_ar, n_pix)
+    shifts = jnp.arange(config.n_psi, dtype=jnp.int32) * (config.n_pix // config.n_psi)
+    if config.channel == "mask":
+        predicted = pack_bits(home_image.astype(bool)[index]).T  # (words, n_ar), per map
+        dist, ar, m = hamming_search(predicted, rotated_words(view_image.astype(bool), shifts))
+        dist = dist.astype(jnp.float32)
+    else:
+        dist, ar, m = sad_search(home_image[index], view_image, shifts)
+    return dist, ar // config.n_rho, ar % config.n_rho, m
+
+
+def direction(home: UnitMove, view: UnitMove, config: Config) -> tuple[Array, Array]:
+    """Warping homing direction alpha + pi - psi in the agent frame (SPEC §4.3).
+
+    Invalid (NaN) when the home image is uniform: then every hypothesis predicts the same
+    image and the search carries no information.
+    """
+    s = getattr(home.start, config.channel)
+    c = getattr(view.end, config.channel)
+    _, a, _, m = search(s, c, config)
+    angle = wrap(TWO_PI * a / config.n_alpha + math.pi - TWO_PI * m / config.n_psi)
+    valid = jnp.any(s != s[0])
+    return jnp.where(valid, angle, jnp.nan), valid

@@ -1,0 +1,619 @@
+"""Homing rollouts, catchment area, success rate, trajectories and occlusion (thesis §4.3, §5.3.1; SPEC §5).
+
+A rollout (SPEC §5): released at a point with a heading, the agent repeatedly moves `d`
+along its heading, senses the move just made as its unit movement, asks the homing
+method for a direction at the new point and turns to it. It succeeds when within
+`home_radius` of home at the release point or after a move, within `max_steps` moves;
+a move ending inside a landmark or outside the arena ends it as a failure; an invalid
+direction keeps the heading.
+
+Noise in rollouts (SPEC §2.5; SPEC leaves the details to us; decided here):
+  * executed heading = commanded heading + N(0, motion_heading);
+  * true length = d * (1 + N(0, step)) * (1 + N(0, motion_step)); the odometry reports d_hat = d;
+  * the body turns by psi ~ N(0, turn) during the move (the end view has heading
+    executed + psi); odometry reports psi_hat = psi + N(0, turn_odometry);
+  * bearing and compass noise come from `sensing.observe_move` (start and end snapshots
+    of the move just made); the new heading is heading_end + agent-frame direction.
+All draws use the key fold_in(fold_in(key_rollout, trial key index), step index), so
+results do not depend on how trials are scheduled; with every sigma 0 the draws are
+multiplied by 0 and the noise-free numbers are reproduced exactly.
+
+Batching: one jitted program runs a whole set of trials. `lanes` trials advance together
+(vmap) inside a `lax.while_loop`; a lane whose trial ends (most succeed in 10-15 moves) is
+refilled with the next pending trial, so the loop costs about sum(steps) / lanes
+iterations instead of max_steps per chunk, and memory is bounded by `lanes`.
+"""
+
+from __future__ import annotations
+
+import itertools
+from functools import partial
+from pathlib import Path
+from typing import Sequence
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+import numpy as np
+from jax import Array
+
+from .config import Config
+from .errors import InputError
+from .geometry import TWO_PI, unit, wrap
+from .maps import DEFAULT_BATCH, grid_included, grid_points, homing_directions, random_headings, stream_keys
+from .methods import get_method
+from .metrics import angular_error_deg, error_point_rates
+from .scene import Env
+from .sensing import UnitMove, observe_move, record_home
+
+# Trial outcome codes (a running trial is RUNNING; a grid cell never released is EXCLUDED).
+OUTCOMES = ("success", "timeout", "landmark", "arena")
+SUCCESS, TIMEOUT, LANDMARK, ARENA = range(4)
+RUNNING, EXCLUDED = -1, -2
+# "Within home_radius" is inclusive; 1e-3 cm absorbs float32 rounding of a release placed at
+# exactly home_radius (the first success-rate bin), so such a release counts as home.
+HOME_TOLERANCE = 1e-3
+DEFAULT_LANES = 256
+DEFAULT_DISTANCES = tuple(float(v) for v in range(50, 451, 50))
+START_TRIES = 64  # candidate release points per trial before a trial counts as not placed
+
+
+def rollout_keys(key: Array) -> tuple[Array, Array, Array]:
+    """(home record, rollout steps, release points) keys of one seed.
+
+    The home record and per-point headings use the same streams as `maps.vector_map`, so a
+    catchment map and the vector map of the same seed share the home record and headings.
+    """
+    k_home, _, _ = stream_keys(key)
+    return k_home, jax.random.fold_in(key, 3), jax.random.fold_in(key, 4)
+
+
+# --- one trial ---------------------------------------------------------------------------
+
+def position_status(env: Env, pos: Array, home_radius: Array) -> Array:
+    """SPEC §5 status of a point: LANDMARK (inside a cylinder), ARENA (outside), SUCCESS (at home) or RUNNING."""
+    lm = env.landmarks
+    dist = jnp.sqrt(jnp.sum((pos[None, :] - lm[:, :2]) ** 2, axis=-1))
+    inside = jnp.any(env.valid & (dist < lm[:, 2]))
+    a = env.arena
+    outside = (pos[0] < a[0]) | (pos[0] > a[2]) | (pos[1] < a[1]) | (pos[1] > a[3])
+    at_home = jnp.sqrt(jnp.sum((pos - env.home) ** 2)) <= home_radius + HOME_TOLERANCE
+    return jnp.where(inside, LANDMARK, jnp.where(outside, ARENA, jnp.where(at_home, SUCCESS, RUNNING)))
+
+
+def homing_move(env: Env, home: UnitMove, visible: Array, pos: Array, heading: Array, key: Array,
+                config: Config, method: str) -> tuple[Array, Array, Array]:
+    """One move of a rollout from `pos` with commanded `heading` (rad): (end (2,), new heading, valid).
+
+    The move just made is the unit movement (SPEC §3.3); see the module docstring for noise.
+    """
+    noise = config.noise
+    k_mh, k_ms, k_step, k_turn, k_odo, k_obs = jax.random.split(key, 6)
+    executed = heading + noise.motion_heading * jax.random.normal(k_mh)
+    length = (config.d * (1.0 + noise.step * jax.random.normal(k_step))
+              * (1.0 + noise.motion_step * jax.random.normal(k_ms)))
+    end = pos + length * unit(executed)
+    psi = noise.turn * jax.random.normal(k_turn)
+    psi_hat = psi + noise.turn_odometry * jax.random.normal(k_odo)
+    heading_end = executed + psi
+    view = observe_move(env, visible, pos, end, executed, heading_end, config.d, psi_hat, k_obs, config)
+    angle, valid = get_method(method)(home, view, config)
+    new_heading = wrap(jnp.where(valid, heading_end + angle, heading_end))
+    return end, new_heading, valid
+
+
+# --- a set of trials in one program ------------------------------------------------------
+
+class Trials(eqx.Module):
+    """Per-trial results, T trials.
+
+    outcome: (T,) int, index into OUTCOMES; steps: (T,) moves made; end: (T, 2) final
+    position cm; invalid_steps: (T,) moves after which the method gave no direction;
+    path: (T, max_steps + 1, 2) positions after 0, 1, ... moves, NaN after the end (or None).
+    """
+
+    outcome: Array
+    steps: Array
+    end: Array
+    invalid_steps: Array
+    path: Array | None = None
+
+    @property
+    def success(self) -> Array:
+        return self.outcome == SUCCESS
+
+
+@partial(jax.jit, static_argnames=("method", "max_steps", "lanes", "record_paths"))
+def run_trials(env: Env, starts: Array, headings: Array, key_index: Array, mask_index: Array, masks: Array,
+               key: Array, config: Config, method: str, home_radius: float = 50.0, max_steps: int = 50,
+               lanes: int = DEFAULT_LANES, record_paths: bool = False) -> Trials:
+    """Roll out T trials in one program (SPEC §5).
+
+    starts: (T, 2) cm; headings: (T,) release headings rad; key_index: (T,) int, the trial's
+    noise stream fold_in(key_rollout, key_index) (equal indices = common random numbers);
+    mask_index: (T,) int into masks (M, L) bool, the landmarks visible during homing (the
+    home record always sees all). `lanes` trials run side by side; finished lanes are
+    refilled from the queue of pending trials.
+    """
+    get_method(method)
+    n_trials = starts.shape[0]
+    n_lanes = max(1, min(lanes, n_trials))
+    k_home, k_roll, _ = rollout_keys(key)
+    home = record_home(env, k_home, config)
+    radius = jnp.asarray(home_radius, jnp.float32)
+
+    def init_lane(t):
+        ok = t < n_trials
+        ts = jnp.minimum(t, n_trials - 1)
+        pos = starts[ts]
+        status = jnp.where(ok, position_status(env, pos, radius), RUNNING)
+        return pos, headings[ts], status
+
+    def move_lane(t, pos, heading, step):
+        ts = jnp.minimum(t, n_trials - 1)
+        k = jax.random.fold_in(jax.random.fold_in(k_roll, key_index[ts]), step)
+        end, new_heading, valid = homing_move(env, home, masks[mask_index[ts]], pos, heading, k, config, method)
+        status = position_status(env, end, radius)
+        status = jnp.where((status == RUNNING) & (step + 1 >= max_steps), TIMEOUT, status)
+        return end, new_heading, status, valid
+
+    lane_t = jnp.arange(n_lanes, dtype=jnp.int32)
+    pos, heading, status = jax.vmap(init_lane)(lane_t)
+    zeros_t = jnp.zeros(n_trials, jnp.int32)
+    out = dict(outcome=jnp.full(n_trials, RUNNING, jnp.int32), steps=zeros_t, invalid=zeros_t,
+               end=jnp.zeros((n_trials, 2), jnp.float32))
+    if record_paths:
+        path = jnp.full((n_trials, max_steps + 1, 2), jnp.nan, jnp.float32).at[:, 0].set(starts)
+    else:
+        path = jnp.zeros((0, max_steps + 1, 2), jnp.float32)
+    lane = dict(t=lane_t, pos=pos, heading=heading, status=status,
+                step=jnp.zeros(n_lanes, jnp.int32), invalid=jnp.zeros(n_lanes, jnp.int32))
+    state = (lane, out, path, jnp.int32(n_lanes))
+
+    def cond(state):
+        return jnp.any(state[0]["t"] < n_trials)
+
+    def body(state):
+        lane, out, path, next_t = state
+        # 1. advance every running lane by one move
+        running = (lane["t"] < n_trials) & (lane["status"] == RUNNING)
+        end, new_heading, status, valid = jax.vmap(move_lane)(lane["t"], lane["pos"], lane["heading"], lane["step"])
+        lane = dict(
+            t=lane["t"],
+            pos=jnp.where(running[:, None], end, lane["pos"]),
+            heading=jnp.where(running, new_heading, lane["heading"]),
+            status=jnp.where(running, status, lane["status"]),
+            step=lane["step"] + running.astype(jnp.int32),
+            invalid=lane["invalid"] + (running & ~valid & (status == RUNNING)).astype(jnp.int32),
+        )
+        if record_paths:
+            path = path.at[jnp.where(running, lane["t"], n_trials), lane["step"]].set(lane["pos"], mode="drop")
+        # 2. write the lanes whose trial has ended
+        done = (lane["t"] < n_trials) & (lane["status"] != RUNNING)
+        idx = jnp.where(done, lane["t"], n_trials)
+        out = dict(outcome=out["outcome"].at[idx].set(lane["status"], mode="drop"),
+                   steps=out["steps"].at[idx].set(lane["step"], mode="drop"),
+                   invalid=out["invalid"].at[idx].set(lane["invalid"], mode="drop"),
+                   end=out["end"].at[idx].set(lane["pos"], mode="drop"))
+        # 3. refill them from the queue
+        new_t = jnp.where(done, next_t + jnp.cumsum(done) - 1, lane["t"])
+        new_t = jnp.where(done & (new_t >= n_trials), n_trials, new_t).astype(jnp.int32)
+        pos0, heading0, status0 = jax.vmap(init_lane)(new_t)
+        lane = dict(
+            t=new_t,
+            pos=jnp.where(done[:, None], pos0, lane["pos"]),
+            heading=jnp.where(done, heading0, lane["heading"]),
+            status=jnp.where(done, status0, lane["status"]),
+            step=jnp.where(done, 0, lane["step"]),
+            invalid=jnp.where(done, 0, lane["invalid"]),
+        )
+        return lane, out, path, next_t + jnp.sum(done).astype(jnp.int32)
+
+    _, out, path, _ = jax.lax.while_loop(cond, body, state)
+    return Trials(outcome=out["outcome"], steps=out["steps"], end=out["end"], invalid_steps=out["invalid"],
+                  path=path if record_paths else None)
+
+
+# --- occlusion masks ---------------------------------------------------------------------
+
+def occlusion_masks(env: Env, k: int) -> tuple[np.ndarray, list[tuple[int, ...]]]:
+    """All C(N, k) visibility masks (M, L) bool with k of the N landmarks hidden, and the hidden index tuples."""
+    n = env.n_landmarks
+    combos = list(itertools.combinations(range(n), k))
+    masks = np.tile(np.asarray(env.valid, bool), (len(combos), 1))
+    for m, hidden in enumerate(combos):  # input preparation: C(N, k) <= 20 small rows
+        masks[m, list(hidden)] = False
+    return masks, combos
+
+
+def hidden_masks(env: Env, hidden: Sequence[int] | None) -> tuple[np.ndarray, list[tuple[int, ...]]]:
+    """The single mask (1, L) hiding `hidden` (or none)."""
+    masks = np.asarray(env.valid, bool)[None, :].copy()
+    hidden = tuple(int(i) for i in (hidden or ()))
+    masks[0, list(hidden)] = False
+    return masks, [hidden]
+
+
+# --- catchment area ----------------------------------------------------------------------
+
+class Catchment(eqx.Module):
+    """Catchment area of one method on the SPEC §5 grid under M visibility masks.
+
+    points: (P, 2) all grid cells; included: (P,); heading: (P,) release heading rad;
+    visible: (M, L) landmarks seen while homing; outcome, steps, invalid_steps: (M, P)
+    (outcome EXCLUDED for cells that are not grid points); end: (M, P, 2); the vector map
+    under each mask with the same headings and home record: direction (M, P) world rad
+    (NaN where invalid), valid (M, P), error_deg (M, P).
+    """
+
+    points: Array
+    included: Array
+    heading: Array
+    visible: Array
+    outcome: Array
+    steps: Array
+    end: Array
+    invalid_steps: Array
+    direction: Array
+    valid: Array
+    error_deg: Array
+    hidden: tuple = eqx.field(static=True, default=((),))
+
+    @property
+    def success(self) -> Array:
+        return self.outcome == SUCCESS
+
+    def catchment_pct(self) -> np.ndarray:
+        """% of grid points whose rollout succeeds, per mask (M,)."""
+        inc = np.asarray(self.included)
+        return 100.0 * np.asarray(self.success)[:, inc].mean(axis=1)
+
+
+@partial(jax.jit, static_argnames=("method", "batch_size"))
+def occluded_vector_maps(env: Env, points: Array, headings: Array, key: Array, config: Config, method: str,
+                         masks: Array, batch_size: int = DEFAULT_BATCH) -> tuple[Array, Array]:
+    """`maps.homing_directions` under each of M masks, one program: ((M, P), (M, P))."""
+    return jax.lax.map(lambda vis: homing_directions(env, points, headings, key, config, method, vis, batch_size),
+                       masks)
+
+
+def catchment_area(env: Env, method: str, config: Config, spacing: float = 25.0, heading: float | None = None,
+                   key: Array | None = None, clearance: float = 10.0, masks: np.ndarray | None = None,
+                   hidden: Sequence[tuple[int, ...]] = ((),), home_radius: float = 50.0, max_steps: int = 50,
+                   lanes: int = DEFAULT_LANES, batch_size: int = DEFAULT_BATCH) -> Catchment:
+    """Rollouts from every grid point under every mask in `masks` (M, L), one program (SPEC §5).
+
+    Headings: fixed (rad) or per point from `key` as in `maps.random_headings`. The trial of
+    grid cell i uses noise stream i under every mask (common random numbers across masks).
+    """
+    key = jax.random.PRNGKey(0) if key is None else key
+    masks = np.asarray(env.valid, bool)[None, :] if masks is None else np.asarray(masks, bool)
+    points = jnp.asarray(grid_points(env.arena, spacing))
+    n_cells = points.shape[0]
+    headings = random_headings(key, n_cells) if heading is None else jnp.full(n_cells, heading, jnp.float32)
+    included = grid_included(env, points, clearance)
+    cells = np.flatnonzero(np.asarray(included))  # input preparation: which cells are released
+    n_masks, n_inc = masks.shape[0], cells.size
+    trial_cell = np.tile(cells, n_masks)
+    trial_mask = np.repeat(np.arange(n_masks), n_inc)
+    trials = run_trials(env, points[trial_cell], headings[trial_cell], jnp.asarray(trial_cell, jnp.int32),
+                        jnp.asarray(trial_mask, jnp.int32), jnp.asarray(masks), key, config, method,
+                        home_radius=home_radius, max_steps=max_steps, lanes=lanes)
+
+    def per_cell(values, fill):
+        full = jnp.full((n_masks, n_cells) + values.shape[1:], fill, values.dtype)
+        return full.at[:, cells].set(values.reshape((n_masks, n_inc) + values.shape[1:]))
+
+    direction, valid = occluded_vector_maps(env, points, headings, key, config, method, jnp.asarray(masks),
+                                            batch_size=min(batch_size, n_cells))
+    error = jax.vmap(lambda dr, ok: angular_error_deg(dr, ok, points, env.home))(direction, valid)
+    return Catchment(points=points, included=included, heading=headings, visible=jnp.asarray(masks),
+                     outcome=per_cell(trials.outcome, EXCLUDED), steps=per_cell(trials.steps, 0),
+                     end=per_cell(trials.end, jnp.nan), invalid_steps=per_cell(trials.invalid_steps, 0),
+                     direction=direction, valid=valid, error_deg=error,
+                     hidden=tuple(tuple(int(i) for i in h) for h in hidden))
+
+
+def catchment_summary(result: Catchment) -> dict:
+    """Headline numbers: catchment % and error point rates per mask, and their mean, min and max (Tables 5.1-5.4)."""
+    pct = result.catchment_pct()
+    inc = np.asarray(result.included)
+    outcome = np.asarray(result.outcome)[:, inc]
+    steps = np.asarray(result.steps)[:, inc]
+    per_mask = []
+    for m, hidden in enumerate(result.hidden):  # M <= 20 rows of post-processing
+        rates = error_point_rates(result.error_deg[m], result.included)
+        ok = outcome[m] == SUCCESS
+        per_mask.append({
+            "hidden": list(hidden), "catchment_pct": float(pct[m]), **rates,
+            "invalid_pct": 100.0 * float((~np.asarray(result.valid)[m][inc]).mean()),
+            "mean_steps_success": float(steps[m][ok].mean()) if ok.any() else float("nan"),
+            **{f"{name}_count": int((outcome[m] == code).sum()) for code, name in enumerate(OUTCOMES)},
+        })
+
+    def spread(field):
+        v = np.array([row[field] for row in per_mask])
+        return {"mean": float(v.mean()), "min": float(v.min()), "max": float(v.max())}
+
+    return {"points": int(inc.sum()), "masks": len(per_mask), "catchment_pct": spread("catchment_pct"),
+            "gt45_pct": spread("gt45_pct"), "gt90_pct": spread("gt90_pct"), "per_mask": per_mask}
+
+
+# --- release points ----------------------------------------------------------------------
+
+def clear_of_landmarks(env: Env, pos: Array, clearance: float, margin: float = 0.0) -> Array:
+    """At least `margin` inside the arena and farther than r + clearance + margin from every landmark centre.
+
+    margin 0 is the grid rule of SPEC §5; margin d keeps the first move, whatever its heading, clear.
+    """
+    a = env.arena
+    inside = ((pos[..., 0] >= a[0] + margin) & (pos[..., 0] <= a[2] - margin)
+              & (pos[..., 1] >= a[1] + margin) & (pos[..., 1] <= a[3] - margin))
+    dist = jnp.sqrt(jnp.sum((pos[..., None, :] - env.landmarks[:, :2]) ** 2, axis=-1))
+    near = jnp.any(env.valid & (dist <= env.landmarks[:, 2] + clearance + margin), axis=-1)
+    return inside & ~near
+
+
+@partial(jax.jit, static_argnames=("n", "tries"))
+def release_points(env: Env, key: Array, n: int, distance: Array | None = None, clearance: float = 10.0,
+                   min_home_distance: float = 0.0, margin: float = 0.0,
+                   tries: int = START_TRIES) -> tuple[Array, Array, Array]:
+    """n seeded release points: (points (n, 2), headings (n,), placed (n,)).
+
+    Trial t draws candidates j = 0.. tries-1 from fold_in(fold_in(key, t), j): a uniform
+    direction at `distance` from home, or (distance None) a uniform point in the arena,
+    and a uniform heading. The first candidate that is `clear_of_landmarks(clearance, margin)`
+    and at least `min_home_distance` from home is taken; `placed` is False if none.
+    """
+
+    def candidate(k):
+        k_phi, k_x, k_head = jax.random.split(k, 3)
+        if distance is None:
+            lo, hi = env.arena[:2], env.arena[2:]
+            pos = lo + (hi - lo) * jax.random.uniform(k_x, (2,))
+        else:
+            pos = env.home + distance * unit(jax.random.uniform(k_phi, (), maxval=TWO_PI))
+        return pos, jax.random.uniform(k_head, (), maxval=TWO_PI)
+
+    def one(t):
+        keys = jax.vmap(partial(jax.random.fold_in, jax.random.fold_in(key, t)))(jnp.arange(tries))
+        pos, head = jax.vmap(candidate)(keys)
+        ok = clear_of_landmarks(env, pos, clearance, margin)
+        ok = ok & (jnp.sqrt(jnp.sum((pos - env.home) ** 2, axis=-1)) >= min_home_distance)
+        first = jnp.argmax(ok)
+        return pos[first], head[first], ok[first]
+
+    return jax.vmap(one)(jnp.arange(n))
+
+
+# --- success rate vs release distance -----------------------------------------------------
+
+class SuccessRate(eqx.Module):
+    """Success rate per release distance (Figs 4.10b, 5.7b).
+
+    distances: (D,) cm; start: (D, n, 2); heading: (D, n) rad; placed: (D, n) a release
+    point was found (SPEC: start inside a landmark or outside the arena -> resampled);
+    outcome, steps: (D, n) (outcome EXCLUDED where not placed).
+    """
+
+    distances: Array
+    start: Array
+    heading: Array
+    placed: Array
+    outcome: Array
+    steps: Array
+
+    @property
+    def success(self) -> Array:
+        return self.outcome == SUCCESS
+
+    def table(self) -> list[dict]:
+        """Per-bin rows: distance_cm, trials, placed, successes, success_pct (of placed), mean_steps_success, outcomes."""
+        outcome, steps, placed = (np.asarray(v) for v in (self.outcome, self.steps, self.placed))
+        rows = []
+        for b, dist in enumerate(np.asarray(self.distances)):  # D <= a dozen bins: post-processing
+            ok = outcome[b] == SUCCESS
+            n_placed = int(placed[b].sum())
+            rows.append({
+                "distance_cm": float(dist), "trials": int(placed.shape[1]), "placed": n_placed,
+                "successes": int(ok.sum()),
+                "success_pct": 100.0 * float(ok.sum()) / n_placed if n_placed else float("nan"),
+                "mean_steps_success": float(steps[b][ok].mean()) if ok.any() else float("nan"),
+                **{f"{name}_count": int((outcome[b] == code).sum()) for code, name in enumerate(OUTCOMES)},
+            })
+        return rows
+
+
+def success_rate_trials(env: Env, method: str, config: Config, distances: Sequence[float] = DEFAULT_DISTANCES,
+                        trials: int = 100, heading: float | None = None, key: Array | None = None,
+                        clearance: float = 10.0, visible: Array | None = None, home_radius: float = 50.0,
+                        max_steps: int = 50, lanes: int = DEFAULT_LANES) -> SuccessRate:
+    """`trials` rollouts per release distance: random direction from home, random heading (SPEC §5)."""
+    key = jax.random.PRNGKey(0) if key is None else key
+    _, _, k_start = rollout_keys(key)
+    dist = jnp.asarray(distances, jnp.float32)
+    n_bins = dist.shape[0]
+    starts, heads, placed = jax.vmap(
+        lambda b, r: release_points(env, jax.random.fold_in(k_start, b), trials, r, clearance))(jnp.arange(n_bins), dist)
+    if heading is not None:
+        heads = jnp.full_like(heads, heading)
+    visible = jnp.asarray(env.valid if visible is None else visible, bool)
+    total = n_bins * trials
+    res = run_trials(env, starts.reshape(total, 2), heads.reshape(total), jnp.arange(total, dtype=jnp.int32),
+                     jnp.zeros(total, jnp.int32), visible[None, :], key, config, method,
+                     home_radius=home_radius, max_steps=max_steps, lanes=lanes)
+    placed_flat = placed.reshape(total)
+    outcome = jnp.where(placed_flat, res.outcome, EXCLUDED).reshape(n_bins, trials)
+    steps = jnp.where(placed_flat, res.steps, 0).reshape(n_bins, trials)
+    return SuccessRate(distances=dist, start=starts, heading=heads, placed=placed, outcome=outcome, steps=steps)
+
+
+# --- trajectories ------------------------------------------------------------------------
+
+class Trajectories(eqx.Module):
+    """Homing paths from chosen release points (Figs 4.11, 5.8).
+
+    start: (T, 2); heading: (T,) rad; path: (T, max_steps + 1, 2), NaN after the end;
+    outcome, steps, invalid_steps: (T,).
+    """
+
+    start: Array
+    heading: Array
+    path: Array
+    outcome: Array
+    steps: Array
+    invalid_steps: Array
+
+    @property
+    def success(self) -> Array:
+        return self.outcome == SUCCESS
+
+
+def trajectory_trials(env: Env, method: str, config: Config, starts: Array, headings: Array,
+                      key: Array | None = None, visible: Array | None = None, home_radius: float = 50.0,
+                      max_steps: int = 50, lanes: int = DEFAULT_LANES) -> Trajectories:
+    """Rollouts from `starts` (T, 2) with `headings` (T,) rad, recording every position."""
+    key = jax.random.PRNGKey(0) if key is None else key
+    starts = jnp.asarray(starts, jnp.float32)
+    headings = jnp.asarray(headings, jnp.float32)
+    n = starts.shape[0]
+    visible = jnp.asarray(env.valid if visible is None else visible, bool)
+    res = run_trials(env, starts, headings, jnp.arange(n, dtype=jnp.int32), jnp.zeros(n, jnp.int32),
+                     visible[None, :], key, config, method, home_radius=home_radius, max_steps=max_steps,
+                     lanes=lanes, record_paths=True)
+    return Trajectories(start=starts, heading=headings, path=res.path, outcome=res.outcome, steps=res.steps,
+                        invalid_steps=res.invalid_steps)
+
+
+# --- public API (validated keywords; mirrors the CLI) ----------------------------------------
+
+def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed, config_kw):
+    """Validate the shared keywords before any work: (env, config, heading rad | None, key)."""
+    from .api import load_env, resolve_headings
+    from .options import make_config, non_negative, positive, positive_int
+
+    get_method(method)
+    max_steps = positive_int(max_steps, "max_steps")
+    home_radius = positive(home_radius, "home_radius")
+    lanes = positive_int(lanes, "lanes")
+    clearance = non_negative(clearance, "clearance")
+    config = make_config(**config_kw)
+    env = load_env(env)
+    heading, key = resolve_headings(heading_deg, seed)
+    return env, config, heading, key, max_steps, home_radius, lanes, clearance
+
+
+def catchment(env: str | Path | Env, method: str = "delv", spacing: float = 25.0, heading_deg: float | None = None,
+              seed: int = 0, occlude: int | None = None, hidden: list[int] | None = None, max_steps: int = 50,
+              home_radius: float = 50.0, clearance: float = 10.0, levels: int | None = None, d: float = 50.0,
+              background: str = "distant", channel: str = "mask", n_heading: int = 360,
+              lanes: int = DEFAULT_LANES, batch_size: int = DEFAULT_BATCH, **noise: float) -> Catchment:
+    """Catchment area of `method` (Figs 4.5, 5.5; Tables 5.3/5.4): a rollout from every SPEC §5 grid point.
+
+    heading_deg fixes the release heading; otherwise it is random per point from `seed`
+    (the headings of `vector_map` with the same seed). `occlude=k` evaluates every choice of
+    k hidden landmarks (C(N, k) masks, one program; the home record sees all); `hidden`
+    names one choice. Noise keywords as in `vector_map`, plus motion_heading_noise_deg and
+    motion_step_noise. Returns a `Catchment` (see `catchment_summary`).
+    """
+    from .api import visible_mask
+    from .options import occlusion_count, positive, positive_int
+
+    env, config, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
+        env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
+        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **noise))
+    spacing = positive(spacing, "spacing")
+    if occlude is not None and hidden:
+        raise InputError("occlude", occlude, "cannot be combined with hidden")
+    if occlude is not None:
+        masks, combos = occlusion_masks(env, occlusion_count(occlude, env.n_landmarks))
+    else:
+        visible_mask(env, hidden)  # validates the indices
+        masks, combos = hidden_masks(env, hidden)
+    batch_size = positive_int(batch_size, "batch_size")
+    return catchment_area(env, method, config, spacing=spacing, heading=heading, key=key, clearance=clearance,
+                          masks=masks, hidden=combos, home_radius=home_radius, max_steps=max_steps, lanes=lanes,
+                          batch_size=batch_size)
+
+
+def success_rate(env: str | Path | Env, method: str = "delv", distances: Sequence[float] = DEFAULT_DISTANCES,
+                 trials: int = 100, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
+                 max_steps: int = 50, home_radius: float = 50.0, clearance: float = 10.0,
+                 levels: int | None = None, d: float = 50.0, background: str = "distant", channel: str = "mask",
+                 n_heading: int = 360, lanes: int = DEFAULT_LANES, **noise: float) -> SuccessRate:
+    """Success rate vs release distance (Figs 4.10b, 5.7b): `trials` rollouts per distance from home.
+
+    Each trial: a random direction from home at that distance and a random heading (seeded);
+    a release point inside a landmark's r + clearance or outside the arena is redrawn
+    (deterministically, up to 64 times; else the trial is not placed and not counted).
+    """
+    from .api import visible_mask
+    from .options import positive, positive_int
+
+    env, config, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
+        env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
+        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **noise))
+    trials = positive_int(trials, "trials")
+    if isinstance(distances, (str, bytes)) or not hasattr(distances, "__len__") or len(distances) == 0:
+        raise InputError("distances", distances, "must be a non-empty list of distances in cm")
+    distances = [positive(v, "distances") for v in distances]
+    return success_rate_trials(env, method, config, distances=distances, trials=trials, heading=heading, key=key,
+                               clearance=clearance, visible=visible_mask(env, hidden), home_radius=home_radius,
+                               max_steps=max_steps, lanes=lanes)
+
+
+def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[Sequence[float]] | None = None,
+                 n_starts: int = 6, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
+                 max_steps: int = 50, home_radius: float = 50.0, clearance: float = 10.0,
+                 levels: int | None = None, d: float = 50.0, background: str = "distant", channel: str = "mask",
+                 n_heading: int = 360, **noise: float) -> Trajectories:
+    """Homing paths (Figs 4.11, 5.8) from `starts` [(x, y), ...] or `n_starts` seeded random release points.
+
+    Random release points are uniform in the arena, at least d from the walls, farther than
+    r + clearance + d from every landmark (so the first move, along the random release
+    heading, cannot end the trial) and at least 2 * home_radius from home; headings are
+    random per trial from `seed` unless heading_deg is given. The same seed gives the same
+    release points for every method.
+    """
+    from .api import visible_mask
+    from .options import finite, positive_int
+
+    env, config, heading, key, max_steps, home_radius, _, clearance = _rollout_options(
+        env, method, max_steps, home_radius, DEFAULT_LANES, clearance, heading_deg, seed,
+        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **noise))
+    visible = visible_mask(env, hidden)
+    _, _, k_start = rollout_keys(key)
+    if starts is None:
+        n = positive_int(n_starts, "n_starts")
+        pts, heads, placed = release_points(env, k_start, n, None, clearance, 2.0 * home_radius, config.d)
+        if not bool(np.all(np.asarray(placed))):
+            raise InputError("n_starts", n_starts, "could not place release points clear of landmarks")
+    else:
+        pts = _check_starts(env, starts, finite)
+        _, heads, _ = release_points(env, k_start, pts.shape[0], None, clearance)
+    if heading is not None:
+        heads = jnp.full(pts.shape[0], heading, jnp.float32)
+    return trajectory_trials(env, method, config, pts, heads, key=key, visible=visible, home_radius=home_radius,
+                             max_steps=max_steps, lanes=pts.shape[0])
+
+
+def _check_starts(env: Env, starts, finite) -> Array:
+    """Release points given by the user: a non-empty list of (x, y) inside the arena, outside every landmark."""
+    if isinstance(starts, (str, bytes)) or not hasattr(starts, "__len__") or len(starts) == 0:
+        raise InputError("starts", starts, "must be a non-empty list of (x, y) points")
+    rows = []
+    for i, s in enumerate(starts):
+        if not hasattr(s, "__len__") or len(s) != 2:
+            raise InputError(f"starts[{i}]", s, "must be an (x, y) pair")
+        rows.append([finite(v, f"starts[{i}]") for v in s])
+    pts = np.asarray(rows, np.float32)
+    status = np.asarray(jax.vmap(lambda p: position_status(env, p, jnp.float32(0.0)))(jnp.asarray(pts)))
+    for i, code in enumerate(status):
+        if code in (LANDMARK, ARENA):
+            raise InputError(f"starts[{i}]", starts[i], "must lie inside the arena and outside every landmark")
+    return jnp.asarray(pts)
+
+
+__all__ = ["Catchment", "SuccessRate", "Trajectories", "Trials", "catchment", "catchment_area", "catchment_summary",
+           "occlusion_masks", "release_points", "run_trials", "success_rate", "success_rate_trials", "trajectories",
+           "trajectory_trials", "OUTCOMES"]
