@@ -1,0 +1,61 @@
+"""Bearing-noise sensitivity maps by automatic differentiation (jax.grad; beyond the thesis).
+
+At every grid point: gain = ||d direction / d current bearings||, the first-order std of
+the homing direction per unit std of bearing noise (discrete choices held fixed).
+Run: python -m studies.sensitivity --out results/sensitivity [--env env1]
+"""
+
+from __future__ import annotations
+
+import argparse
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+import delvjax
+from delvjax import maps
+from delvjax.config import Config
+from delvjax.io import save_figure, write_csv
+from delvjax.plots import draw_env
+from delvjax.sensitivity import bearing_noise_gain
+
+from .common import Study
+
+METHODS = ("delv", "delv-compass", "alv", "acv")
+
+
+def main(argv: list[str] | None = None) -> None:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--out", default="results/sensitivity")
+    p.add_argument("--env", default="env1")
+    p.add_argument("--spacing", type=float, default=25.0)
+    p.add_argument("--seed", type=int, default=0)
+    a = p.parse_args(argv)
+    study = Study(a.out, "sensitivity")
+    env = delvjax.load_env(a.env)
+    heading, key = delvjax.api.resolve_headings(None, a.seed)
+    pts = maps.grid_points(env.arena, a.spacing)
+    inc = np.asarray(maps.grid_included(env, pts, 10.0))
+    headings = maps.random_headings(key, pts.shape[0])
+    fig, axes = plt.subplots(1, len(METHODS), figsize=(4.4 * len(METHODS), 4.6))
+    for ax, m in zip(axes, METHODS):
+        study.step(f"{m}: d direction / d bearings on {env.name}")
+        gain, ok = bearing_noise_gain(env, pts, headings, key, Config(), m)
+        gain, ok = np.asarray(gain), np.asarray(ok) & inc
+        write_csv(study.path(f"gain_{m}_{env.name}.csv"),
+                  {"x": pts[inc, 0], "y": pts[inc, 1], "heading_deg": np.degrees(np.asarray(headings))[inc],
+                   "gain_deg_per_deg": gain[inc], "valid": ok[inc]})
+        study.summary[m] = {"median_gain": float(np.median(gain[ok])), "p90_gain": float(np.percentile(gain[ok], 90))}
+        n = int(round(np.sqrt(pts.shape[0])))
+        img = np.where(ok, gain, np.nan).reshape(n, n)
+        xmin, ymin, xmax, ymax = np.asarray(env.arena)
+        im = ax.imshow(np.log10(img), origin="lower", extent=(xmin, xmax, ymin, ymax), cmap="viridis", vmin=-1, vmax=1.5)
+        draw_env(ax, env)
+        ax.set_title(f"{m}: median {study.summary[m]['median_gain']:.2f}°/°", fontsize=10)
+    fig.colorbar(im, ax=axes, shrink=0.8, label="log10 gain (deg of direction per deg of bearing noise)")
+    save_figure(fig, study.path(f"bearing_gain_{env.name}.png"))
+    study.finish()
+
+
+if __name__ == "__main__":
+    main()
