@@ -67,6 +67,8 @@ def vector_map(env: str | Path | Env, method: str = "delv", spacing: float = 25.
     heading_deg fixes the heading at every point; otherwise headings are uniform random
     per point from `seed` (which also drives every noise source). Noise keywords:
     bearing_noise_deg, step_noise, turn_noise_deg, odometry_turn_noise_deg, compass_noise_deg.
+    Warping hypotheses (SPEC §4.3) pass through the same keywords to `make_config`:
+    n_alpha, n_psi, n_rho, rho_min, rho_max.
     `hidden` lists landmark indices invisible in the current views (occlusion).
     Returns a `VectorMap` pytree (points, included, heading, direction, valid, error_deg).
     """

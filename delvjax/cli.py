@@ -43,6 +43,12 @@ def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
     p.add_argument("--n-heading", type=int, default=360, help="DELV heading hypotheses (default 360)")
     p.add_argument("--hide", type=int, nargs="+", default=None, metavar="I",
                    help="landmark indices invisible during homing (occlusion; the home record sees all)")
+    w = p.add_argument_group("warping hypotheses (SPEC §4.3)")
+    w.add_argument("--n-alpha", type=int, default=72, help="movement directions alpha (default 72: 5 deg steps)")
+    w.add_argument("--n-psi", type=int, default=72, help="rotations psi, must divide 360 (default 72: 5 deg steps)")
+    w.add_argument("--n-rho", type=int, default=15, help="values of rho = d/r (default 15)")
+    w.add_argument("--rho-min", type=float, default=0.10, help="smallest rho (default 0.10)")
+    w.add_argument("--rho-max", type=float, default=0.80, help="largest rho, < 1 (default 0.80)")
     g = p.add_argument_group("noise (all default 0; angles in degrees)")
     for name in NOISE_OPTIONS:
         unit = "deg" if name in NOISE_FIELDS_DEG else "fraction of d"
@@ -52,7 +58,8 @@ def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
 def scene_kwargs(args: argparse.Namespace) -> dict:
     kw = dict(method=args.method, levels=args.levels, d=args.d, spacing=args.spacing, clearance=args.clearance,
               heading_deg=args.heading_deg, seed=args.seed, background=args.background, channel=args.channel,
-              n_heading=args.n_heading, hidden=args.hide)
+              n_heading=args.n_heading, hidden=args.hide, n_alpha=args.n_alpha, n_psi=args.n_psi, n_rho=args.n_rho,
+              rho_min=args.rho_min, rho_max=args.rho_max)
     kw.update({name: getattr(args, name) for name in NOISE_OPTIONS if getattr(args, name) != 0.0})
     return kw
 

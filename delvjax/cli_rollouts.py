@@ -66,6 +66,7 @@ def cmd_catchment(args: argparse.Namespace) -> int:
     from . import api
     from .cli import check_outputs, progress
     from .io import save_figure, write_csv, write_json
+    from .options import occlusion_count
 
     check_outputs(args)
     kw = _kwargs(args, drop=())
@@ -75,6 +76,8 @@ def cmd_catchment(args: argparse.Namespace) -> int:
             raise InputError("--occlude", args.occlude, "cannot be combined with --hide")
         kw["occlude"] = args.occlude
     env = api.load_env(args.env)
+    if args.occlude is not None:
+        occlusion_count(args.occlude, env.n_landmarks)
     t0 = time.perf_counter()
     progress(f"catchment of {args.method} on {env.name} (spacing {args.spacing:g} cm"
              + (f", {args.occlude} of {env.n_landmarks} landmarks hidden" if args.occlude else "") + ") ...")

@@ -96,8 +96,22 @@ def make_noise(**kwargs: float) -> Noise:
 
 def make_config(d: float = 50.0, levels: int | None = None, background: str = "distant", channel: str = "mask",
                 n_heading: int = 360, scale: float = 1000.0, r_max: float = 2000.0, alpha_r_deg: float = 0.0,
-                n_pix: int = 360, **noise: float) -> Config:
-    """Validated `Config` (SPEC defaults) from public options."""
+                n_pix: int = 360, n_alpha: int = 72, n_psi: int = 72, n_rho: int = 15, rho_min: float = 0.10,
+                rho_max: float = 0.80, **noise: float) -> Config:
+    """Validated `Config` (SPEC defaults) from public options.
+
+    n_alpha, n_psi, n_rho, rho_min, rho_max: the warping hypotheses (SPEC §4.3); n_psi must
+    divide n_pix (rotations are whole pixels) and 0 < rho_min <= rho_max < 1.
+    """
+    n_pix = positive_int(n_pix, "n_pix")
+    n_psi = positive_int(n_psi, "n_psi")
+    if n_pix % n_psi:
+        raise InputError("n_psi", n_psi, f"must divide n_pix = {n_pix} (psi hypotheses are whole-pixel rotations)")
+    rho_min, rho_max = finite(rho_min, "rho_min"), finite(rho_max, "rho_max")
+    if not 0.0 < rho_min < 1.0:
+        raise InputError("rho_min", rho_min, "must be in (0, 1)")
+    if not rho_min <= rho_max < 1.0:
+        raise InputError("rho_max", rho_max, f"must be in [rho_min = {rho_min}, 1)")
     return Config(
         d=positive(d, "d"),
         scale=positive(scale, "scale"),
@@ -105,8 +119,13 @@ def make_config(d: float = 50.0, levels: int | None = None, background: str = "d
         alpha_r=math.radians(finite(alpha_r_deg, "alpha_r_deg")),
         noise=make_noise(**noise),
         levels=None if levels is None else positive_int(levels, "levels"),
-        n_pix=positive_int(n_pix, "n_pix"),
+        n_pix=n_pix,
         n_heading=positive_int(n_heading, "n_heading"),
+        n_alpha=positive_int(n_alpha, "n_alpha"),
+        n_psi=n_psi,
+        n_rho=positive_int(n_rho, "n_rho"),
+        rho_min=rho_min,
+        rho_max=rho_max,
         background=choice(background, "background", BACKGROUNDS),
         channel=choice(channel, "channel", CHANNELS),
     )

@@ -47,9 +47,9 @@ def catchment_figure(env: Env, result, spacing: float, title: str = ""):
     """Catchment map (Fig 4.5 style); with occlusion one panel per choice of hidden landmarks (Fig 5.10)."""
     pct = result.catchment_pct()
     n = len(pct)
-    cols = min(n, 4 if n > 6 else 3) if n > 1 else 1
+    cols = 1 if n == 1 else 2 if n <= 4 else 3 if n <= 9 else 4
     rows = math.ceil(n / cols)
-    size = 6.4 if n == 1 else 3.6
+    size = 6.4 if n == 1 else 4.6 if n <= 4 else 3.6
     fig, axes = plt.subplots(rows, cols, figsize=(size * cols, size * rows + (0.4 if title else 0)), squeeze=False)
     for m in range(n):
         ax = axes[m // cols][m % cols]

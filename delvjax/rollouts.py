@@ -19,7 +19,7 @@ results do not depend on how trials are scheduled; with every sigma 0 the draws 
 multiplied by 0 and the noise-free numbers are reproduced exactly.
 
 Batching: one jitted program runs a whole set of trials. `lanes` trials advance together
-(vmap) inside a `lax.while_loop`; a lane whose trial ends (most succeed in 10-15 moves) is
+(vmap) inside a `lax.while_loop`; a lane whose trial ends (most succeed within 15 moves) is
 refilled with the next pending trial, so the loop costs about sum(steps) / lanes
 iterations instead of max_steps per chunk, and memory is bounded by `lanes`.
 """
@@ -88,13 +88,13 @@ def homing_move(env: Env, home: UnitMove, visible: Array, pos: Array, heading: A
     The move just made is the unit movement (SPEC §3.3); see the module docstring for noise.
     """
     noise = config.noise
-    k_mh, k_ms, k_step, k_turn, k_odo, k_obs = jax.random.split(key, 6)
-    executed = heading + noise.motion_heading * jax.random.normal(k_mh)
-    length = (config.d * (1.0 + noise.step * jax.random.normal(k_step))
-              * (1.0 + noise.motion_step * jax.random.normal(k_ms)))
+    k_draw, k_obs = jax.random.split(key)
+    z_heading, z_step, z_motion_step, z_turn, z_odometry = jax.random.normal(k_draw, (5,))
+    executed = heading + noise.motion_heading * z_heading
+    length = config.d * (1.0 + noise.step * z_step) * (1.0 + noise.motion_step * z_motion_step)
     end = pos + length * unit(executed)
-    psi = noise.turn * jax.random.normal(k_turn)
-    psi_hat = psi + noise.turn_odometry * jax.random.normal(k_odo)
+    psi = noise.turn * z_turn
+    psi_hat = psi + noise.turn_odometry * z_odometry
     heading_end = executed + psi
     view = observe_move(env, visible, pos, end, executed, heading_end, config.d, psi_hat, k_obs, config)
     angle, valid = get_method(method)(home, view, config)
@@ -104,7 +104,16 @@ def homing_move(env: Env, home: UnitMove, visible: Array, pos: Array, heading: A
 
 # --- a set of trials in one program ------------------------------------------------------
 
-class Trials(eqx.Module):
+class _Outcomes(eqx.Module):
+    """Results with an `outcome` field (codes into OUTCOMES)."""
+
+    @property
+    def success(self) -> Array:
+        """True where the trial reached home."""
+        return self.outcome == SUCCESS  # type: ignore[attr-defined]
+
+
+class Trials(_Outcomes):
     """Per-trial results, T trials.
 
     outcome: (T,) int, index into OUTCOMES; steps: (T,) moves made; end: (T, 2) final
@@ -118,12 +127,13 @@ class Trials(eqx.Module):
     invalid_steps: Array
     path: Array | None = None
 
-    @property
-    def success(self) -> Array:
-        return self.outcome == SUCCESS
+
+@jax.jit
+def home_record(env: Env, key: Array, config: Config) -> UnitMove:
+    """The home record of a rollout seed (SPEC §3.3; the same as the vector map's of that seed)."""
+    return record_home(env, rollout_keys(key)[0], config)
 
 
-@partial(jax.jit, static_argnames=("method", "max_steps", "lanes", "record_paths"))
 def run_trials(env: Env, starts: Array, headings: Array, key_index: Array, mask_index: Array, masks: Array,
                key: Array, config: Config, method: str, home_radius: float = 50.0, max_steps: int = 50,
                lanes: int = DEFAULT_LANES, record_paths: bool = False) -> Trials:
@@ -132,14 +142,22 @@ def run_trials(env: Env, starts: Array, headings: Array, key_index: Array, mask_
     starts: (T, 2) cm; headings: (T,) release headings rad; key_index: (T,) int, the trial's
     noise stream fold_in(key_rollout, key_index) (equal indices = common random numbers);
     mask_index: (T,) int into masks (M, L) bool, the landmarks visible during homing (the
-    home record always sees all). `lanes` trials run side by side; finished lanes are
-    refilled from the queue of pending trials.
+    home record, `home_record(env, key, config)`, always sees all). `lanes` trials run side
+    by side; finished lanes are refilled from the queue of pending trials.
     """
     get_method(method)
+    env = env.arrays()  # compile once per shape, not per environment name
+    return _run_trials(env, home_record(env, key, config), starts, headings, key_index, mask_index, masks, key,
+                       config, method, home_radius, max_steps, lanes, record_paths)
+
+
+@partial(jax.jit, static_argnames=("method", "max_steps", "lanes", "record_paths"))
+def _run_trials(env: Env, home: UnitMove, starts: Array, headings: Array, key_index: Array, mask_index: Array,
+                masks: Array, key: Array, config: Config, method: str, home_radius: float, max_steps: int,
+                lanes: int, record_paths: bool) -> Trials:
     n_trials = starts.shape[0]
     n_lanes = max(1, min(lanes, n_trials))
-    k_home, k_roll, _ = rollout_keys(key)
-    home = record_home(env, k_home, config)
+    _, k_roll, _ = rollout_keys(key)
     radius = jnp.asarray(home_radius, jnp.float32)
 
     def init_lane(t):
@@ -236,7 +254,7 @@ def hidden_masks(env: Env, hidden: Sequence[int] | None) -> tuple[np.ndarray, li
 
 # --- catchment area ----------------------------------------------------------------------
 
-class Catchment(eqx.Module):
+class Catchment(_Outcomes):
     """Catchment area of one method on the SPEC §5 grid under M visibility masks.
 
     points: (P, 2) all grid cells; included: (P,); heading: (P,) release heading rad;
@@ -258,10 +276,6 @@ class Catchment(eqx.Module):
     valid: Array
     error_deg: Array
     hidden: tuple = eqx.field(static=True, default=((),))
-
-    @property
-    def success(self) -> Array:
-        return self.outcome == SUCCESS
 
     def catchment_pct(self) -> np.ndarray:
         """% of grid points whose rollout succeeds, per mask (M,)."""
@@ -304,7 +318,7 @@ def catchment_area(env: Env, method: str, config: Config, spacing: float = 25.0,
         full = jnp.full((n_masks, n_cells) + values.shape[1:], fill, values.dtype)
         return full.at[:, cells].set(values.reshape((n_masks, n_inc) + values.shape[1:]))
 
-    direction, valid = occluded_vector_maps(env, points, headings, key, config, method, jnp.asarray(masks),
+    direction, valid = occluded_vector_maps(env.arrays(), points, headings, key, config, method, jnp.asarray(masks),
                                             batch_size=min(batch_size, n_cells))
     error = jax.vmap(lambda dr, ok: angular_error_deg(dr, ok, points, env.home))(direction, valid)
     return Catchment(points=points, included=included, heading=headings, visible=jnp.asarray(masks),
@@ -388,7 +402,7 @@ def release_points(env: Env, key: Array, n: int, distance: Array | None = None, 
 
 # --- success rate vs release distance -----------------------------------------------------
 
-class SuccessRate(eqx.Module):
+class SuccessRate(_Outcomes):
     """Success rate per release distance (Figs 4.10b, 5.7b).
 
     distances: (D,) cm; start: (D, n, 2); heading: (D, n) rad; placed: (D, n) a release
@@ -402,10 +416,6 @@ class SuccessRate(eqx.Module):
     placed: Array
     outcome: Array
     steps: Array
-
-    @property
-    def success(self) -> Array:
-        return self.outcome == SUCCESS
 
     def table(self) -> list[dict]:
         """Per-bin rows: distance_cm, trials, placed, successes, success_pct (of placed), mean_steps_success, outcomes."""
@@ -434,7 +444,7 @@ def success_rate_trials(env: Env, method: str, config: Config, distances: Sequen
     dist = jnp.asarray(distances, jnp.float32)
     n_bins = dist.shape[0]
     starts, heads, placed = jax.vmap(
-        lambda b, r: release_points(env, jax.random.fold_in(k_start, b), trials, r, clearance))(jnp.arange(n_bins), dist)
+        lambda b, r: release_points(env.arrays(), jax.random.fold_in(k_start, b), trials, r, clearance))(jnp.arange(n_bins), dist)
     if heading is not None:
         heads = jnp.full_like(heads, heading)
     visible = jnp.asarray(env.valid if visible is None else visible, bool)
@@ -450,7 +460,7 @@ def success_rate_trials(env: Env, method: str, config: Config, distances: Sequen
 
 # --- trajectories ------------------------------------------------------------------------
 
-class Trajectories(eqx.Module):
+class Trajectories(_Outcomes):
     """Homing paths from chosen release points (Figs 4.11, 5.8).
 
     start: (T, 2); heading: (T,) rad; path: (T, max_steps + 1, 2), NaN after the end;
@@ -463,10 +473,6 @@ class Trajectories(eqx.Module):
     outcome: Array
     steps: Array
     invalid_steps: Array
-
-    @property
-    def success(self) -> Array:
-        return self.outcome == SUCCESS
 
 
 def trajectory_trials(env: Env, method: str, config: Config, starts: Array, headings: Array,
@@ -507,21 +513,22 @@ def catchment(env: str | Path | Env, method: str = "delv", spacing: float = 25.0
               seed: int = 0, occlude: int | None = None, hidden: list[int] | None = None, max_steps: int = 50,
               home_radius: float = 50.0, clearance: float = 10.0, levels: int | None = None, d: float = 50.0,
               background: str = "distant", channel: str = "mask", n_heading: int = 360,
-              lanes: int = DEFAULT_LANES, batch_size: int = DEFAULT_BATCH, **noise: float) -> Catchment:
+              lanes: int = DEFAULT_LANES, batch_size: int = DEFAULT_BATCH, **options: float) -> Catchment:
     """Catchment area of `method` (Figs 4.5, 5.5; Tables 5.3/5.4): a rollout from every SPEC §5 grid point.
 
     heading_deg fixes the release heading; otherwise it is random per point from `seed`
     (the headings of `vector_map` with the same seed). `occlude=k` evaluates every choice of
     k hidden landmarks (C(N, k) masks, one program; the home record sees all); `hidden`
-    names one choice. Noise keywords as in `vector_map`, plus motion_heading_noise_deg and
-    motion_step_noise. Returns a `Catchment` (see `catchment_summary`).
+    names one choice. `options`: noise sigmas as in `vector_map` plus motion_heading_noise_deg
+    and motion_step_noise, or any other `make_config` option (e.g. warping's n_alpha).
+    Returns a `Catchment` (see `catchment_summary`).
     """
     from .api import visible_mask
     from .options import occlusion_count, positive, positive_int
 
     env, config, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
-        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **noise))
+        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **options))
     spacing = positive(spacing, "spacing")
     if occlude is not None and hidden:
         raise InputError("occlude", occlude, "cannot be combined with hidden")
@@ -540,19 +547,20 @@ def success_rate(env: str | Path | Env, method: str = "delv", distances: Sequenc
                  trials: int = 100, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
                  max_steps: int = 50, home_radius: float = 50.0, clearance: float = 10.0,
                  levels: int | None = None, d: float = 50.0, background: str = "distant", channel: str = "mask",
-                 n_heading: int = 360, lanes: int = DEFAULT_LANES, **noise: float) -> SuccessRate:
+                 n_heading: int = 360, lanes: int = DEFAULT_LANES, **options: float) -> SuccessRate:
     """Success rate vs release distance (Figs 4.10b, 5.7b): `trials` rollouts per distance from home.
 
     Each trial: a random direction from home at that distance and a random heading (seeded);
     a release point inside a landmark's r + clearance or outside the arena is redrawn
     (deterministically, up to 64 times; else the trial is not placed and not counted).
+    `options` as in `catchment`.
     """
     from .api import visible_mask
     from .options import positive, positive_int
 
     env, config, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
-        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **noise))
+        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **options))
     trials = positive_int(trials, "trials")
     if isinstance(distances, (str, bytes)) or not hasattr(distances, "__len__") or len(distances) == 0:
         raise InputError("distances", distances, "must be a non-empty list of distances in cm")
@@ -566,31 +574,31 @@ def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[S
                  n_starts: int = 6, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
                  max_steps: int = 50, home_radius: float = 50.0, clearance: float = 10.0,
                  levels: int | None = None, d: float = 50.0, background: str = "distant", channel: str = "mask",
-                 n_heading: int = 360, **noise: float) -> Trajectories:
+                 n_heading: int = 360, **options: float) -> Trajectories:
     """Homing paths (Figs 4.11, 5.8) from `starts` [(x, y), ...] or `n_starts` seeded random release points.
 
     Random release points are uniform in the arena, at least d from the walls, farther than
     r + clearance + d from every landmark (so the first move, along the random release
     heading, cannot end the trial) and at least 2 * home_radius from home; headings are
     random per trial from `seed` unless heading_deg is given. The same seed gives the same
-    release points for every method.
+    release points for every method. `options` as in `catchment`.
     """
     from .api import visible_mask
     from .options import finite, positive_int
 
     env, config, heading, key, max_steps, home_radius, _, clearance = _rollout_options(
         env, method, max_steps, home_radius, DEFAULT_LANES, clearance, heading_deg, seed,
-        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **noise))
+        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **options))
     visible = visible_mask(env, hidden)
     _, _, k_start = rollout_keys(key)
     if starts is None:
         n = positive_int(n_starts, "n_starts")
-        pts, heads, placed = release_points(env, k_start, n, None, clearance, 2.0 * home_radius, config.d)
+        pts, heads, placed = release_points(env.arrays(), k_start, n, None, clearance, 2.0 * home_radius, config.d)
         if not bool(np.all(np.asarray(placed))):
             raise InputError("n_starts", n_starts, "could not place release points clear of landmarks")
     else:
         pts = _check_starts(env, starts, finite)
-        _, heads, _ = release_points(env, k_start, pts.shape[0], None, clearance)
+        _, heads, _ = release_points(env.arrays(), k_start, pts.shape[0], None, clearance)
     if heading is not None:
         heads = jnp.full(pts.shape[0], heading, jnp.float32)
     return trajectory_trials(env, method, config, pts, heads, key=key, visible=visible, home_radius=home_radius,

@@ -180,8 +180,10 @@ PRESETS: dict[str, list[tuple[float, float, float]]] = {
     "env2": [(676.777, 676.777, 30.0), (323.223, 676.777, 30.0), (323.223, 323.223, 30.0), (676.777, 323.223, 30.0)],
     # env3: all four landmarks on one side (east) of home.
     "env3": [(640.0, 700.0, 30.0), (760.0, 590.0, 40.0), (740.0, 400.0, 25.0), (630.0, 290.0, 35.0)],
-    # ringL: L landmarks equally spaced at 250 cm around home, radius 30, first due north.
-    **{f"ring{n}": _ring(n) for n in range(3, 7)},
+    # ringL: L landmarks equally spaced at 250 cm around home, radius 30, the first due
+    # north; ring4's first at 45 deg, so that no landmark lies on the line of the home
+    # unit move (0/180 deg from home along alpha_r = 0), which gives no parallax (SPEC §3.1).
+    **{f"ring{n}": _ring(n, first_deg=45.0 if n == 4 else 90.0) for n in range(3, 7)},
 }
 
 PRESET_DESCRIPTIONS = {

@@ -24,7 +24,7 @@ How it is fast (all exact):
 * `mask`: sum |P - C| over 0/1 pixels is a Hamming distance. P rows and the n_psi rotations
   of C are packed into 32-bit words (ceil(n_pix / 32)), so one hypothesis costs
   ceil(n_pix / 32) xor + population-count + add, vectorised over (alpha, rho). The first
-  minimum is exact integer arithmetic: key = distance * n_psi + m.
+  minimum is exact integer arithmetic: key = distance << bits | m, the smallest key.
 * `gray`: a direct float32 sum of absolute differences over the same (alpha, rho) x psi grid.
 """
 
@@ -56,6 +56,8 @@ def check_hypotheses(config: Config) -> None:
         raise InputError("rho", (config.rho_min, config.rho_max), "must satisfy 0 < rho_min <= rho_max < 1")
     if config.n_pix % config.n_psi:
         raise InputError("n_psi", config.n_psi, f"must divide n_pix = {config.n_pix} (psi hypotheses are whole-pixel rotations)")
+    if (config.n_pix + 1) << max(1, (config.n_psi - 1).bit_length()) >= 2**31:
+        raise InputError("n_psi", config.n_psi, "too large: the search key distance << bits | psi must fit in int32")
 
 
 def rho_values(config: Config) -> np.ndarray:
@@ -113,21 +115,22 @@ def hamming_search(predicted_words: Array, current_words: Array) -> tuple[Array,
 
     predicted_words: (words, n_ar) uint32, transposed so that (alpha, rho) is the vector
     lane; current_words: (n_psi, words) uint32. A scan over psi keeps, per (alpha, rho), the
-    integer key distance * n_psi + m of its best rotation (the min of keys is the first
+    integer key distance << bits | m of its best rotation (the min of keys is the first
     minimum); the explicit sum over the few words is one vectorised elementwise loop.
     """
     n_psi, words = current_words.shape
     n_ar = predicted_words.shape[1]
+    bits = max(1, (n_psi - 1).bit_length())  # key = distance << bits | m
 
     def rotation(best: Array, xs: tuple[Array, Array]) -> tuple[Array, None]:
         q, m = xs
         dist = sum(jax.lax.population_count(q[w] ^ predicted_words[w]).astype(jnp.int32) for w in range(words))
-        return jnp.minimum(best, dist * n_psi + m), None
+        return jnp.minimum(best, (dist << bits) | m), None
 
     init = jnp.full((n_ar,), jnp.iinfo(jnp.int32).max, jnp.int32)
     key, _ = jax.lax.scan(rotation, init, (current_words, jnp.arange(n_psi, dtype=jnp.int32)))
-    ar = first_argmin(key // n_psi)
-    return key[ar] // n_psi, ar, key[ar] % n_psi
+    ar = first_argmin(key >> bits)
+    return key[ar] >> bits, ar, key[ar] & ((1 << bits) - 1)
 
 
 SAD_BLOCK = 24  # pixels summed per step of the gray search (an unrolled, vectorised sum)
@@ -136,30 +139,31 @@ SAD_BLOCK = 24  # pixels summed per step of the gray search (an unrolled, vector
 def sad_search(predicted: Array, current: Array, shifts: Array) -> tuple[Array, Array, Array]:
     """First minimum of sum_g |P_ar(g) - C(g - s_m)| over (ar, m), ar-major: (distance, ar, m).
 
-    predicted: (n_ar, n) float; current: (n,); shifts: (n_psi,) pixels. Scans over psi and
-    over blocks of SAD_BLOCK pixels (zero padding adds nothing), accumulating (n_ar,)
-    float32 sums; per (alpha, rho) the first strictly smaller rotation is kept.
+    predicted: (n_ar, n) float; current: (n,); shifts: (n_psi,) pixels. Scans over psi (each
+    rotation is a slice of the doubled image) and over blocks of SAD_BLOCK pixels (zero
+    padding adds nothing), accumulating (n_ar,) float32 sums; per (alpha, rho) the first
+    strictly smaller rotation is kept.
     """
     n_ar, n = predicted.shape
     blocks = -(-n // SAD_BLOCK)
     pad = blocks * SAD_BLOCK - n
     p_blocks = jnp.pad(predicted.T.astype(jnp.float32), ((0, pad), (0, 0))).reshape(blocks, SAD_BLOCK, n_ar)
-    rolled = current.astype(jnp.float32)[(jnp.arange(n)[None, :] - shifts[:, None]) % n]  # (n_psi, n)
-    rolled = jnp.pad(rolled, ((0, 0), (0, pad))).reshape(-1, blocks, SAD_BLOCK)
+    doubled = jnp.tile(current.astype(jnp.float32), 2)
 
     def block_sum(acc: Array, xs: tuple[Array, Array]) -> tuple[Array, None]:
         p, c = xs
         return acc + sum(jnp.abs(p[k] - c[k]) for k in range(SAD_BLOCK)), None
 
-    def rotation(carry: tuple[Array, Array], xs: tuple[Array, Array]) -> tuple[tuple[Array, Array], None]:
+    def rotation(carry: tuple[Array, Array], m: Array) -> tuple[tuple[Array, Array], None]:
         best, best_m = carry
-        c, m = xs
-        dist, _ = jax.lax.scan(block_sum, jnp.zeros((n_ar,), jnp.float32), (p_blocks, c))
+        rolled = jax.lax.dynamic_slice(doubled, ((n - shifts[m]) % n,), (n,))  # C(g - s_m)
+        rolled = jnp.pad(rolled, (0, pad)).reshape(blocks, SAD_BLOCK)
+        dist, _ = jax.lax.scan(block_sum, jnp.zeros((n_ar,), jnp.float32), (p_blocks, rolled))
         better = dist < best
         return (jnp.where(better, dist, best), jnp.where(better, m, best_m)), None
 
     init = (jnp.full((n_ar,), jnp.inf, jnp.float32), jnp.zeros((n_ar,), jnp.int32))
-    (best, best_m), _ = jax.lax.scan(rotation, init, (rolled, jnp.arange(shifts.shape[0], dtype=jnp.int32)))
+    (best, best_m), _ = jax.lax.scan(rotation, init, jnp.arange(shifts.shape[0], dtype=jnp.int32))
     ar = first_argmin(best)
     return best[ar], ar, best_m[ar]
 
