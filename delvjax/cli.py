@@ -49,6 +49,7 @@ def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
     w.add_argument("--n-rho", type=int, default=15, help="values of rho = d/r (default 15)")
     w.add_argument("--rho-min", type=float, default=0.10, help="smallest rho (default 0.10)")
     w.add_argument("--rho-max", type=float, default=0.80, help="largest rho, < 1 (default 0.80)")
+    w.add_argument("--mfdid-blur-deg", type=float, default=0.0, help="MFDID: Gaussian low-pass of both images, deg (default 0)")
     g = p.add_argument_group("noise (all default 0; angles in degrees)")
     for name in NOISE_OPTIONS:
         unit = "deg" if name in NOISE_FIELDS_DEG else "fraction of d"
@@ -59,6 +60,7 @@ def scene_kwargs(args: argparse.Namespace) -> dict:
     kw = dict(method=args.method, levels=args.levels, d=args.d, spacing=args.spacing, clearance=args.clearance,
               heading_deg=args.heading_deg, seed=args.seed, background=args.background, channel=args.channel,
               n_heading=args.n_heading, hidden=args.hide, n_alpha=args.n_alpha, n_psi=args.n_psi, n_rho=args.n_rho,
+              mfdid_blur_deg=args.mfdid_blur_deg,
               rho_min=args.rho_min, rho_max=args.rho_max)
     kw.update({name: getattr(args, name) for name in NOISE_OPTIONS if getattr(args, name) != 0.0})
     return kw

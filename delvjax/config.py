@@ -41,6 +41,7 @@ class Config(eqx.Module):
     scale:     quantization scale `a`, cm (SPEC §3.2, default 1000).
     r_max:     cap of estimated distances, cm (SPEC §3.1, default 2000).
     alpha_r:   reference heading at home, radians (SPEC §1, default 0).
+    mfdid_blur_deg: Gaussian low-pass of MFDID's images, degrees (0 = none; §4.5).
     noise:     `Noise` (all zero by default).
     levels:    quantization levels Q (None = continuous distances; a number is a traced
                leaf, so a sweep can vmap over Q).
@@ -55,6 +56,7 @@ class Config(eqx.Module):
     scale: float = 1000.0
     r_max: float = 2000.0
     alpha_r: float = 0.0
+    mfdid_blur_deg: float = 0.0
     noise: Noise = Noise()
     levels: int | None = None
     n_pix: int = eqx.field(static=True, default=360)

@@ -97,7 +97,7 @@ def make_noise(**kwargs: float) -> Noise:
 def make_config(d: float = 50.0, levels: int | None = None, background: str = "distant", channel: str = "mask",
                 n_heading: int = 360, scale: float = 1000.0, r_max: float = 2000.0, alpha_r_deg: float = 0.0,
                 n_pix: int = 360, n_alpha: int = 72, n_psi: int = 72, n_rho: int = 15, rho_min: float = 0.10,
-                rho_max: float = 0.80, **noise: float) -> Config:
+                rho_max: float = 0.80, mfdid_blur_deg: float = 0.0, **noise: float) -> Config:
     """Validated `Config` (SPEC defaults) from public options.
 
     n_alpha, n_psi, n_rho, rho_min, rho_max: the warping hypotheses (SPEC §4.3); n_psi must
@@ -117,6 +117,7 @@ def make_config(d: float = 50.0, levels: int | None = None, background: str = "d
         scale=positive(scale, "scale"),
         r_max=positive(r_max, "r_max"),
         alpha_r=math.radians(finite(alpha_r_deg, "alpha_r_deg")),
+        mfdid_blur_deg=non_negative(mfdid_blur_deg, "mfdid_blur_deg"),
         noise=make_noise(**noise),
         levels=None if levels is None else positive_int(levels, "levels"),
         n_pix=n_pix,

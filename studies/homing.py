@@ -26,21 +26,23 @@ import argparse
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.lines import Line2D
-from matplotlib.patches import Patch
+from matplotlib.patches import Patch, Rectangle
 
 import delvjax
 from delvjax.io import save_figure, write_csv
 from delvjax.maps import VectorMap, vector_map_columns
+from delvjax.metrics import error_curve, summarize_map
 from delvjax.plots import error_curve_figure
 from delvjax.plots_rollouts import SQUARE, catchment_panel, success_rate_figure, trajectories_figure
 from delvjax.rollouts import OUTCOMES, SUCCESS, catchment_summary
 
 from .common import Study
-from .vector_maps import curves_csv, panel_figure, record
+from .vector_maps import curves_csv, panel_figure
 
 ENVS = ("env1", "env2", "env3")
 LABEL = {"delv": "DELV", "delv-compass": "DELV (compass)", "warping": "image matching (warping)",
          "acv": "ACV", "alv": "ALV"}
+SHORT = {**LABEL, "warping": "image matching"}
 # SPEC §6: catchment area %, Figs 4.5 (no compass) and 5.5 (with compass).
 THESIS_CATCHMENT = {"delv": {"env1": 98.52, "env2": 95.41, "env3": 77.66},
                     "delv-compass": {"env1": 92.01, "env2": 97.04, "env3": 84.91}}
@@ -80,6 +82,15 @@ def catchment_figure(items: list[tuple[str, object, object]], spacing: float, ti
     fig.suptitle(title)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
     return fig
+
+
+def show_outside(fig, env, margin: float) -> None:
+    """Widen every panel by `margin` cm and outline the arena, so a path that left it stays visible."""
+    xmin, ymin, xmax, ymax = (float(v) for v in np.asarray(env.arena))
+    for ax in fig.axes:
+        ax.set_xlim(xmin - margin, xmax + margin)
+        ax.set_ylim(ymin - margin, ymax + margin)
+        ax.add_patch(Rectangle((xmin, ymin), xmax - xmin, ymax - ymin, fill=False, edgecolor="0.4", lw=1.0, zorder=1))
 
 
 def trajectory_rows(label: str, traj) -> list[dict]:
@@ -141,8 +152,9 @@ class Homing:
                             + f"   overall {s['overall_success_pct']:5.1f} %")
         return self.tables[label]
 
-    def success_figure(self, labels: list[str], name: str, title: str) -> None:
-        tables = {label: self.tables[label] for label in labels}
+    def success_figure(self, labels: dict[str, str], name: str, title: str) -> None:
+        """labels: {table label: legend label}."""
+        tables = {shown: self.tables[label] for label, shown in labels.items()}
         save_figure(success_rate_figure(tables, title), self.study.path(f"{name}.png"))
         self.study.rows(f"{name}.csv", [{"label": label, **r} for label, rows in tables.items() for r in rows])
 
@@ -154,7 +166,9 @@ class Homing:
             results[LABEL[m]] = delvjax.trajectories(env, method=m, n_starts=N_STARTS, seed=self.seed,
                                                      home_radius=HOME_RADIUS)
             rows += trajectory_rows(m, results[LABEL[m]])
-        save_figure(trajectories_figure(env, results, HOME_RADIUS, title), self.study.path(f"{name}.png"))
+        fig = trajectories_figure(env, results, HOME_RADIUS, title)
+        show_outside(fig, env, margin=60.0)
+        save_figure(fig, self.study.path(f"{name}.png"))
         self.study.rows(f"{name}.csv", rows)
         counts = {LABEL[m]: int((np.asarray(t.outcome) == SUCCESS).sum()) for m, t in zip(methods, results.values())}
         self.study.summary.setdefault("trajectories_env1", {})[name] = {"starts": N_STARTS, "reach_home": counts}
@@ -196,25 +210,34 @@ def main(argv: list[str] | None = None) -> None:
     env = h.envs["env1"]
     items, curves = [], {}
     for m in ("delv", "warping"):
-        vm = as_vector_map(h.catchment("env1", m))
-        curves[LABEL[m]] = record(study, f"{m}_env1", env, vm, a.spacing)
-        s = study.summary[f"{m}_env1"]
-        items.append((f"({'ab'[len(items)]}) {LABEL[m]}: mean error {s['mean_error_deg']:.1f}°, "
+        vm = as_vector_map(h.catchment("env1", m))  # per-point CSV: maps/catchment_{m}_env1.csv
+        s = study.summary.setdefault("vector_map_env1", {})[m] = summarize_map(vm.error_deg, vm.valid, vm.included)
+        curves[LABEL[m]] = error_curve(vm.error_deg, vm.points, env.home, vm.included)
+        items.append((f"({'ab'[len(items)]}) {SHORT[m]}: mean error {s['mean_error_deg']:.1f}°, "
                       f"catchment {study.summary['catchment']['env1'][m]['catchment_pct']:.1f} %", env, vm))
-    save_figure(panel_figure(items, a.spacing, classes=False), study.path("fig4_9_delv_vs_warping_maps.png"))
+        study.step(f"  {m:8s} vector map: mean error {s['mean_error_deg']:5.1f}°, e > 45: {s['gt45_pct']:5.1f} %, "
+                   f"invalid {s['invalid']}")
+    fig = panel_figure(items, a.spacing, classes=False)
+    for ax in fig.axes:
+        if ax.get_legend_handles_labels()[0]:  # invalid points (red x) only
+            ax.legend(loc="upper right", fontsize=8, framealpha=0.9)
+    fig.suptitle("Vector maps, env1, no compass, random headings (Fig 4.9)")
+    fig.tight_layout()
+    save_figure(fig, study.path("fig4_9_delv_vs_warping_maps.png"))
     save_figure(error_curve_figure(curves, "DELV vs image matching, env1, no compass (Fig 4.10a)"),
                 study.path("fig4_10a_delv_vs_warping_errors.png"))
     curves_csv(study, "fig4_10a_delv_vs_warping_errors.csv", curves)
     for m in ("delv", "warping"):
         h.success(LABEL[m], m)
-    h.success_figure([LABEL["delv"], LABEL["warping"]], "fig4_10b_delv_vs_warping_success",
+    h.success_figure({LABEL["delv"]: LABEL["delv"], LABEL["warping"]: LABEL["warping"]}, "fig4_10b_delv_vs_warping_success",
                      f"Success rate, env1, no compass ({a.trials} trials per distance; Fig 4.10b)")
 
     # Fig 4.13b: quantization levels (one compiled program for every Q) vs continuous and warping.
     study.step("fig4_13b: success rate of quantized DELV on env1")
     for q in (1, 2, 5):
         h.success(f"DELV Q = {q}", "delv", levels=q)
-    h.success_figure(["DELV Q = 1", "DELV Q = 2", "DELV Q = 5", LABEL["delv"], LABEL["warping"]],
+    h.success_figure({**{f"DELV Q = {q}": f"DELV, {q} level{'s' * (q > 1)}" for q in (1, 2, 5)},
+                      LABEL["delv"]: "DELV, continuous", LABEL["warping"]: LABEL["warping"]},
                      "fig4_13b_quantization_success",
                      "Success rate, quantized DELV vs continuous and image matching, env1 (Fig 4.13b)")
 
@@ -222,7 +245,7 @@ def main(argv: list[str] | None = None) -> None:
     study.step("fig5_7b: success rate of DELV (compass), ACV, ALV on env1")
     for m in ("delv-compass", "acv", "alv"):
         h.success(LABEL[m], m)
-    h.success_figure([LABEL[m] for m in ("delv-compass", "acv", "alv")], "fig5_7b_compass_success",
+    h.success_figure({LABEL[m]: LABEL[m] for m in ("delv-compass", "acv", "alv")}, "fig5_7b_compass_success",
                      f"Success rate with a compass, env1 ({a.trials} trials per distance; Fig 5.7b)")
 
     # Fig 4.11 / 5.8: trajectories from the same release points.

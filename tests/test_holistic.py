@@ -240,3 +240,17 @@ def test_direct_config_errors_at_trace_time():
         warping.search(jnp.zeros(360, bool), jnp.zeros(360, bool), Config(n_psi=7))
     with pytest.raises(InputError, match="n_alpha"):
         delvjax.vector_map("env1", method="warping", n_alpha=0)
+
+
+def test_mfdid_low_pass_is_identity_at_zero_and_helps_far_from_home():
+    """The optional Gaussian low-pass (Möller & Vardy work on low-passed images): sigma 0 leaves
+    the image unchanged; on env1 a 40 deg blur cuts MFDID's mean error at least in half."""
+    from delvjax.methods.mfdid import low_pass
+
+    img = (jnp.arange(360) % 50 < 9).astype(jnp.float32)
+    np.testing.assert_allclose(np.asarray(low_pass(img, 0.0)), np.asarray(img), atol=1e-5)
+    assert abs(float(low_pass(img, 20.0).sum()) - float(img.sum())) < 1e-3  # mass preserved
+    raw = delvjax.vector_map("env1", method="mfdid", spacing=100.0)
+    blurred = delvjax.vector_map("env1", method="mfdid", spacing=100.0, mfdid_blur_deg=40.0)
+    inc = np.asarray(raw.included)
+    assert np.asarray(blurred.error_deg)[inc].mean() < 0.5 * np.asarray(raw.error_deg)[inc].mean()

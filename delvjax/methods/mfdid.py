@@ -17,6 +17,11 @@ translations), and
 The home vector is minus the gradient, H = sum_j (S(t_j) - C_j) C'_j (-sin t_j, cos t_j);
 r only scales it. C'_j = (C_{j+1} - C_{j-1}) / 2 (circular central difference, per pixel);
 S is read at t_j by circular linear interpolation. Invalid (NaN) when H = 0.
+
+Möller & Vardy work on low-pass filtered images: the first-order flow model holds only
+for image structure wider than the displacement's flow. `config.mfdid_blur_deg` (default 0:
+the raw images) blurs both images with a circular Gaussian first; on env1 with the `mask`
+channel it takes the mean angular error from ~112 deg (raw) to ~35 deg (40 deg blur).
 """
 
 from __future__ import annotations
@@ -39,12 +44,22 @@ def sample_ring(image: Array, angle: Array) -> Array:
     return (1.0 - w) * image[i0] + w * image[(i0 + 1) % n]
 
 
-def home_vector(home_image: Array, view_image: Array, heading: Array) -> Array:
-    """H = -grad D / (2 / r) in the alpha_r frame, (2,); images (n_pix,), heading = h - alpha_r."""
-    c = view_image.astype(jnp.float32)
+def low_pass(image: Array, sigma_pix: Array) -> Array:
+    """Circular Gaussian blur of a ring image, std `sigma_pix` pixels (0 = unchanged), by FFT:
+    the wrapped Gaussian's spectrum is exp(-2 pi^2 sigma^2 f^2 / n^2). Differentiable in sigma."""
+    n = image.shape[-1]
+    f = jnp.arange(n // 2 + 1, dtype=jnp.float32)
+    gain = jnp.exp(-2.0 * (jnp.pi * sigma_pix * f / n) ** 2)
+    return jnp.fft.irfft(jnp.fft.rfft(image) * gain, n=n).astype(jnp.float32)
+
+
+def home_vector(home_image: Array, view_image: Array, heading: Array, blur_pix: Array = 0.0) -> Array:
+    """H = -grad D / (2 / r) in the alpha_r frame, (2,); images (n_pix,), heading = h - alpha_r;
+    both images low-passed by a Gaussian of `blur_pix` pixels first."""
+    c = low_pass(view_image.astype(jnp.float32), blur_pix)
     n = c.shape[-1]
     t = heading + TWO_PI * jnp.arange(n, dtype=jnp.float32) / n
-    s = sample_ring(home_image.astype(jnp.float32), t)
+    s = sample_ring(low_pass(home_image.astype(jnp.float32), blur_pix), t)
     dc = 0.5 * (jnp.roll(c, -1) - jnp.roll(c, 1))
     weight = (s - c) * dc
     return jnp.stack([jnp.sum(-weight * jnp.sin(t)), jnp.sum(weight * jnp.cos(t))])
@@ -52,6 +67,7 @@ def home_vector(home_image: Array, view_image: Array, heading: Array) -> Array:
 
 def direction_with_heading(home: UnitMove, view: UnitMove, config: Config, heading: Array) -> tuple[Array, Array]:
     """MFDID homing direction in the agent frame, channel `config.channel` (SPEC §4.5)."""
-    h = home_vector(getattr(home.start, config.channel), getattr(view.end, config.channel), heading)
+    blur_pix = config.mfdid_blur_deg * config.n_pix / 360.0
+    h = home_vector(getattr(home.start, config.channel), getattr(view.end, config.channel), heading, blur_pix)
     valid = safe_norm(h) > 0
     return jnp.where(valid, wrap(angle_of(h) - heading), jnp.nan), valid
