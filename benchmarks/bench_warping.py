@@ -14,17 +14,15 @@ import argparse
 import os
 import statistics
 import sys
-import time
 from pathlib import Path
 
 import jax
-import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 import reference_holistic as ref  # noqa: E402
+from timing import reference_seconds_per_point, time_map_program  # noqa: E402
 
-import delvjax  # noqa: E402
-from delvjax import maps  # noqa: E402
 from delvjax.config import Config  # noqa: E402
 
 LANES = 8  # 32-bit lanes per vector instruction in the code XLA emits here (256-bit AVX2/AVX-512VL)
@@ -68,28 +66,11 @@ def floor(n_points: int, cfg: Config, channel: str) -> dict:
 
 
 def bench(env_name: str, method: str, channel: str, spacing: float, repeats: int, ref_points: int) -> dict:
-    env = delvjax.load_env(env_name)
     cfg = Config(channel=channel)
-    key = jax.random.PRNGKey(0)
-    points = jax.numpy.asarray(maps.grid_points(env.arena, spacing))
-    headings = maps.random_headings(key, points.shape[0])
-    t0 = time.perf_counter()
-    compiled = maps.homing_directions.lower(env, points, headings, key, cfg, method).compile()
-    compile_s = time.perf_counter() - t0
-    jax.block_until_ready(compiled(env, points, headings, key, cfg))
-    warm, cpu = [], []
-    for _ in range(repeats):
-        t0, c0 = time.perf_counter(), time.process_time()
-        jax.block_until_ready(compiled(env, points, headings, key, cfg))
-        warm.append(time.perf_counter() - t0)
-        cpu.append(time.process_time() - c0)
-    lms, arena, home = np.asarray(env.landmarks), np.asarray(env.arena), np.asarray(env.home)
-    idx = np.linspace(0, points.shape[0] - 1, ref_points + 2).astype(int)[1:-1]
-    t0 = time.perf_counter()
-    for i in idx:  # the twin is per point by design
-        ref.reference_direction(lms, arena, home, np.asarray(points[i], float), float(headings[i]), method,
-                                channel=channel, background=cfg.background)
-    ref_per_point = (time.perf_counter() - t0) / len(idx)
+    run = time_map_program(env_name, method, cfg, spacing, repeats)
+    compile_s, warm, cpu, points = run["compile_s"], run["warm"], run["cpu"], run["points"]
+    ref_per_point = reference_seconds_per_point(ref.reference_direction, run, method, ref_points,
+                                                channel=channel, background=cfg.background)
     warm_s = min(warm)
     n = points.shape[0]
     out = {"method": method, "channel": channel, "points": n, "compile_s": compile_s, "warm_ms": 1e3 * warm_s,

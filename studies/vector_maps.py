@@ -59,6 +59,13 @@ def curves_csv(study: Study, name: str, curves: dict[str, list[dict]]) -> None:
     study.rows(name, [{"label": label, **row} for label, rows in curves.items() for row in rows])
 
 
+def figure_set(study: Study, items, curves, spacing: float, maps_png: str, curves_name: str, title: str) -> None:
+    """Vector-map panels, the error-curve figure and its CSV of one figure set."""
+    save_figure(panel_figure(items, spacing, classes=False), study.path(maps_png))
+    save_figure(error_curve_figure(curves, title), study.path(f"{curves_name}.png"))
+    curves_csv(study, f"{curves_name}.csv", curves)
+
+
 def main(argv: list[str] | None = None) -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--out", default="results/vector_maps")
@@ -76,10 +83,9 @@ def main(argv: list[str] | None = None) -> None:
         vm = delvjax.vector_map(env, method="delv", **kw)
         curves[name] = record(study, f"delv_{name}", env, vm, a.spacing)
         items.append((f"{name}: mean {study.summary[f'delv_{name}']['mean_error_deg']:.1f}°", env, vm))
-    save_figure(panel_figure(items, a.spacing, classes=False), study.path("fig4_2_delv_vector_maps.png"))
+    figure_set(study, items, curves, a.spacing, "fig4_2_delv_vector_maps.png", "fig4_4_delv_error_curves",
+               "DELV without compass (Fig 4.4)")
     save_figure(panel_figure(items, a.spacing, classes=True), study.path("fig4_3_delv_error_classes.png"))
-    save_figure(error_curve_figure(curves, "DELV without compass (Fig 4.4)"), study.path("fig4_4_delv_error_curves.png"))
-    curves_csv(study, "fig4_4_delv_error_curves.csv", curves)
 
     # Fig 4.6-4.7: step distance d, one vmapped sweep.
     study.step("Fig 4.6-4.7: step distance d in 20, 50, 100, 150 (one sweep)")
@@ -92,9 +98,8 @@ def main(argv: list[str] | None = None) -> None:
         vm = take(swept, i)
         curves[f"d = {d:g}"] = record(study, f"delv_env1_d{d:g}", env, vm, a.spacing)
         items.append((f"d = {d:g} cm", env, vm))
-    save_figure(panel_figure(items, a.spacing, classes=False), study.path("fig4_6_step_distance_maps.png"))
-    save_figure(error_curve_figure(curves, "DELV, step distance d (Fig 4.7)"), study.path("fig4_7_step_distance_errors.png"))
-    curves_csv(study, "fig4_7_step_distance_errors.csv", curves)
+    figure_set(study, items, curves, a.spacing, "fig4_6_step_distance_maps.png", "fig4_7_step_distance_errors",
+               "DELV, step distance d (Fig 4.7)")
 
     # Fig 4.8: 3-5 landmarks in arbitrary layouts.
     study.step("Fig 4.8: 3-5 landmarks, seeded random layouts")
@@ -104,9 +109,8 @@ def main(argv: list[str] | None = None) -> None:
         vm = delvjax.vector_map(env, method="delv", **kw)
         curves[f"{n} landmarks"] = record(study, f"delv_random_{n}", env, vm, a.spacing)
         items.append((f"{n} landmarks (seed {100 + n})", env, vm))
-    save_figure(panel_figure(items, a.spacing, classes=False), study.path("fig4_8_landmark_numbers.png"))
-    save_figure(error_curve_figure(curves, "DELV, landmark numbers (Fig 4.8f)"), study.path("fig4_8f_landmark_number_errors.png"))
-    curves_csv(study, "fig4_8f_landmark_number_errors.csv", curves)
+    figure_set(study, items, curves, a.spacing, "fig4_8_landmark_numbers.png", "fig4_8f_landmark_number_errors",
+               "DELV, landmark numbers (Fig 4.8f)")
 
     # Fig 4.12-4.13a: quantization levels, one vmapped sweep over Q, plus continuous.
     study.step("Fig 4.12-4.13: quantization levels 1-5 (one sweep) and continuous")
@@ -121,9 +125,8 @@ def main(argv: list[str] | None = None) -> None:
             items.append((f"level {q}", env, vm))
     vm = delvjax.vector_map(env, method="delv", **kw)
     curves["continuous"] = record(study, "delv_env1_continuous", env, vm, a.spacing)
-    save_figure(panel_figure(items, a.spacing, classes=False), study.path("fig4_12_quantized_maps.png"))
-    save_figure(error_curve_figure(curves, "DELV, quantized distances (Fig 4.13a)"), study.path("fig4_13a_quantization_errors.png"))
-    curves_csv(study, "fig4_13a_quantization_errors.csv", curves)
+    figure_set(study, items, curves, a.spacing, "fig4_12_quantized_maps.png", "fig4_13a_quantization_errors",
+               "DELV, quantized distances (Fig 4.13a)")
 
     # Chapter 5: with a compass (and the visual compass).
     for tag, methods, fig in (("compass", ("delv-compass", "acv", "alv"), "fig5_6"),

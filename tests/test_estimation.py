@@ -155,3 +155,20 @@ def test_delv_potential_points_home():
     x = jnp.array([123.0, 777.0])
     np.testing.assert_allclose(np.asarray(-jax.grad(u)(x)), len(lms) * np.asarray(home - x), rtol=1e-5)
     assert np.linalg.det(np.asarray(jax.hessian(u)(home))) > 0
+
+
+def test_home_is_the_equilibrium_of_the_homing_fields():
+    """§3.3.2 by root finding (optimistix Newton, vmapped over starts): the ALV field of env1 and
+    of ring5, and the DELV field (Eq 3.15), vanish at home and nowhere else near it."""
+    from delvjax.analysis import alv_field, equilibria
+
+    starts = np.random.default_rng(0).uniform(380, 620, size=(40, 2))
+    for name in ("env1", "ring5"):
+        env = delvjax.load_env(name)
+        roots, ok = equilibria(env, starts, "alv")
+        assert bool(np.all(np.asarray(ok)))
+        np.testing.assert_allclose(np.asarray(roots), 500.0, atol=0.05)
+        np.testing.assert_allclose(np.asarray(alv_field(env.home, env)), 0.0, atol=1e-6)
+    roots, ok = equilibria(delvjax.load_env("env3"), starts, "delv")
+    assert bool(np.all(np.asarray(ok)))
+    np.testing.assert_allclose(np.asarray(roots), 500.0, atol=1e-3)
