@@ -14,8 +14,9 @@ def wrap(a: Array) -> Array:
 
 
 def wrap_positive(a: Array) -> Array:
-    """Map angles to [0, 2*pi)."""
-    return jnp.mod(a, TWO_PI)
+    """Map angles to [0, 2*pi) (float32 `mod` of a tiny negative angle rounds to 2*pi: folded to 0)."""
+    r = jnp.mod(a, TWO_PI)
+    return jnp.where(r >= TWO_PI, 0.0, r)
 
 
 def unit(angle: Array) -> Array:

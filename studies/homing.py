@@ -94,14 +94,16 @@ def show_outside(fig, env, margin: float) -> None:
 
 
 def trajectory_rows(label: str, traj) -> list[dict]:
-    """One row per visited position: label, trial, step, x, y, outcome of the trial."""
+    """One row per visited position: label, trial, release heading, step, x, y, outcome of the trial."""
     path = np.asarray(traj.path)
     outcome = np.asarray(traj.outcome)
+    heading = np.degrees(np.asarray(traj.heading))
     rows = []
     for t in range(path.shape[0]):  # a handful of paths: output formatting
+        name = OUTCOMES[outcome[t]] if outcome[t] >= 0 else "running"
         for s in np.flatnonzero(np.all(np.isfinite(path[t]), axis=-1)):
-            rows.append({"label": label, "trial": t, "step": int(s), "x": float(path[t, s, 0]),
-                         "y": float(path[t, s, 1]), "outcome": OUTCOMES[outcome[t]] if outcome[t] >= 0 else "running"})
+            rows.append({"label": label, "trial": t, "release_heading_deg": float(heading[t]), "step": int(s),
+                         "x": float(path[t, s, 0]), "y": float(path[t, s, 1]), "outcome": name})
     return rows
 
 
@@ -129,8 +131,9 @@ class Homing:
             self.catchments[env, method] = c
             s = catchment_summary(c)
             row = s["per_mask"][0]
-            summary = {"catchment_pct": row["catchment_pct"], "thesis_catchment_pct": THESIS_CATCHMENT.get(method, {}).get(env),
-                       "points": s["points"], "mean_steps_success": row["mean_steps_success"],
+            summary = {"catchment_pct": row["catchment_pct"],
+                       "thesis_catchment_pct": THESIS_CATCHMENT.get(method, {}).get(env), "points": s["points"],
+                       "mean_steps_success": row["mean_steps_success"],
                        **{f"{o}_count": row[f"{o}_count"] for o in OUTCOMES}}
             self.study.summary.setdefault("catchment", {}).setdefault(env, {})[method] = summary
             write_csv(self.study.path(f"maps/catchment_{method}_{env}.csv"), catchment_columns(c))
@@ -148,7 +151,8 @@ class Homing:
             self.tables[label] = res.table()
             s = success_summary(self.tables[label])
             self.study.summary.setdefault("success_rate_env1", {})[label] = s
-            self.study.step(f"  success {label:26s} " + " ".join(f"{v:5.1f}" for v in s["success_pct_by_distance"].values())
+            pct = s["success_pct_by_distance"].values()
+            self.study.step(f"  success {label:26s} " + " ".join(f"{v:5.1f}" for v in pct)
                             + f"   overall {s['overall_success_pct']:5.1f} %")
         return self.tables[label]
 
@@ -239,7 +243,7 @@ def main(argv: list[str] | None = None) -> None:
     h.success_figure({**{f"DELV Q = {q}": f"DELV, {q} level{'s' * (q > 1)}" for q in (1, 2, 5)},
                       LABEL["delv"]: "DELV, continuous", LABEL["warping"]: LABEL["warping"]},
                      "fig4_13b_quantization_success",
-                     "Success rate, quantized DELV vs continuous and image matching, env1 (Fig 4.13b)")
+                     f"Success rate, quantized DELV and image matching, env1 ({a.trials} trials per distance; Fig 4.13b)")
 
     # Fig 5.7b: with a compass.
     study.step("fig5_7b: success rate of DELV (compass), ACV, ALV on env1")
@@ -255,9 +259,17 @@ def main(argv: list[str] | None = None) -> None:
     h.trajectories(["delv-compass", "acv", "alv"], "fig5_8_trajectories_compass",
                    "Same release points (black stars), with a compass, env1 (Fig 5.8)")
 
-    study.step("catchment ours vs thesis (%):")
+    catch = study.summary["catchment"]
+    study.summary["headline"] = {
+        "catchment_pct_ours_vs_thesis": {m: {env: [catch[env][m]["catchment_pct"], THESIS_CATCHMENT[m][env]]
+                                             for env in ENVS} for m in THESIS_CATCHMENT},
+        "env1_mean_error_deg": {m: s["mean_error_deg"] for m, s in study.summary["vector_map_env1"].items()},
+        "env1_catchment_pct": {m: catch["env1"][m]["catchment_pct"] for m in ("delv", "delv-compass", "warping")},
+        "env1_overall_success_pct": {k: s["overall_success_pct"] for k, s in study.summary["success_rate_env1"].items()},
+    }
+    study.step("catchment ours (thesis) %:")
     for m in THESIS_CATCHMENT:
-        study.step(f"  {m:13s} " + "  ".join(f"{env} {study.summary['catchment'][env][m]['catchment_pct']:6.2f} "
+        study.step(f"  {m:13s} " + "  ".join(f"{env} {catch[env][m]['catchment_pct']:6.2f} "
                                              f"({THESIS_CATCHMENT[m][env]:.2f})" for env in ENVS))
     study.finish()
 
