@@ -7,7 +7,6 @@ import sys
 import time
 from typing import Callable
 
-import numpy as np
 
 from . import api, maps
 from .cache import enable_compilation_cache

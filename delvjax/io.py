@@ -37,6 +37,9 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
     os.close(fd)
     try:
         yield Path(tmp)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; results are ordinary files
         os.replace(tmp, target)
     finally:
         if os.path.exists(tmp):
@@ -44,6 +47,8 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
 
 
 def _cell(v) -> str:
+    if v is None:
+        return ""
     if isinstance(v, (bool, np.bool_)):
         return "1" if v else "0"
     if isinstance(v, (float, np.floating)):

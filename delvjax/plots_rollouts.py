@@ -68,9 +68,14 @@ def catchment_figure(env: Env, result, spacing: float, title: str = ""):
     return fig
 
 
-def draw_trajectories(ax, env: Env, traj, home_radius: float) -> None:
-    """Paths (lines with a dot per move), release points as black stars, failed ends marked by outcome."""
+def draw_trajectories(ax, env: Env, traj, home_radius: float, margin: float = 60.0) -> None:
+    """Paths (lines with a dot per move), release points as black stars, failed ends marked by outcome.
+    The panel extends `margin` cm beyond the outlined arena so that a path that left it stays visible."""
     draw_env(ax, env)
+    xmin, ymin, xmax, ymax = (float(v) for v in np.asarray(env.arena))
+    ax.set_xlim(xmin - margin, xmax + margin)
+    ax.set_ylim(ymin - margin, ymax + margin)
+    ax.add_patch(Rectangle((xmin, ymin), xmax - xmin, ymax - ymin, fill=False, edgecolor="0.4", lw=1.0, zorder=1))
     ax.add_patch(Circle(np.asarray(env.home), home_radius, fill=False, linestyle=":", edgecolor="0.3", zorder=2))
     path = np.asarray(traj.path)
     outcome = np.asarray(traj.outcome)
@@ -110,8 +115,8 @@ def trajectories_figure(env: Env, results: dict, home_radius: float, title: str 
 
 
 def success_rate_figure(tables: dict, title: str = ""):
-    """Success rate (%) vs release distance, one line per method (Figs 4.10b, 5.7b), with a table of
-    per-bin counts (successes / trials placed) under the axis."""
+    """Success rate (%) vs release distance, one line per method (Figs 4.10b, 5.7b), with 95% Wilson
+    intervals (lines offset a few cm apart) and a table of per-bin counts (successes / trials placed)."""
     n = len(tables)
     fig, ax = plt.subplots(figsize=(7.0, 4.4 + 0.22 * n))
     markers = "osd^v<>"
@@ -119,7 +124,10 @@ def success_rate_figure(tables: dict, title: str = ""):
     for i, (label, rows) in enumerate(tables.items()):
         x = np.array([r["distance_cm"] for r in rows])
         y = np.array([r["success_pct"] for r in rows])
-        line, = ax.plot(x, y, marker=markers[i % len(markers)], ms=5, label=label)
+        yerr = np.nan_to_num(np.array([[r["success_pct"] - r["ci_lo_pct"], r["ci_hi_pct"] - r["success_pct"]]
+                                       for r in rows]).T, nan=0.0)
+        line = ax.errorbar(x + 4.0 * (i - (n - 1) / 2), y, yerr=yerr, marker=markers[i % len(markers)], ms=5,
+                           capsize=2.5, elinewidth=0.8, label=label).lines[0]
         colors.append(line.get_color())
     x = np.array([r["distance_cm"] for r in next(iter(tables.values()))])
     step = np.diff(x)

@@ -35,6 +35,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 import numpy as np
+from scipy import stats
 from jax import Array
 
 from .config import Config
@@ -418,7 +419,8 @@ class SuccessRate(_Outcomes):
     steps: Array
 
     def table(self) -> list[dict]:
-        """Per-bin rows: distance_cm, trials, placed, successes, success_pct (of placed), mean_steps_success, outcomes."""
+        """Per-bin rows: distance_cm, trials, placed, successes, success_pct (of placed) with its 95% Wilson
+        interval (ci_lo_pct, ci_hi_pct), mean_steps_success, and a count per failure outcome."""
         outcome, steps, placed = (np.asarray(v) for v in (self.outcome, self.steps, self.placed))
         rows = []
         for b, dist in enumerate(np.asarray(self.distances)):  # D <= a dozen bins: post-processing
@@ -428,10 +430,20 @@ class SuccessRate(_Outcomes):
                 "distance_cm": float(dist), "trials": int(placed.shape[1]), "placed": n_placed,
                 "successes": int(ok.sum()),
                 "success_pct": 100.0 * float(ok.sum()) / n_placed if n_placed else float("nan"),
+                **wilson_interval_pct(int(ok.sum()), n_placed),
                 "mean_steps_success": float(steps[b][ok].mean()) if ok.any() else float("nan"),
-                **{f"{name}_count": int((outcome[b] == code).sum()) for code, name in enumerate(OUTCOMES)},
+                **{f"{name}_count": int((outcome[b] == code).sum()) for code, name in enumerate(OUTCOMES)
+                   if code != SUCCESS},
             })
         return rows
+
+
+def wilson_interval_pct(successes: int, trials: int, confidence: float = 0.95) -> dict[str, float]:
+    """95% Wilson score interval of a success rate, in % (scipy's binomtest): ci_lo_pct, ci_hi_pct."""
+    if trials == 0:
+        return {"ci_lo_pct": float("nan"), "ci_hi_pct": float("nan")}
+    ci = stats.binomtest(successes, trials).proportion_ci(confidence_level=confidence, method="wilson")
+    return {"ci_lo_pct": 100.0 * ci.low, "ci_hi_pct": 100.0 * ci.high}
 
 
 def success_rate_trials(env: Env, method: str, config: Config, distances: Sequence[float] = DEFAULT_DISTANCES,

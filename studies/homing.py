@@ -12,8 +12,9 @@ Success: within 50 cm of home within 50 moves; a move into a landmark or out of 
 fails (SPEC §5, stricter than the thesis, which is why our catchment is lower; see
 studies/catchment_tables.py). Vector maps and error curves come from the catchment runs
 themselves (the same headings and home record as `vector_map` with the same seed).
-Every environment is passed as `env.arrays()` (one compiled program per shape, not per
-name) and every success-rate call has the same shape, so a method compiles once.
+Every success-rate call (and every trajectory call) has the same shapes, so each method
+compiles once for them; a catchment compiles once per method and environment (the number
+of grid points differs between environments).
 
 Run: python -m studies.homing --out results/homing [--spacing 25] [--trials 100] [--seed 0] [--quick]
 Every figure has its numbers beside it as CSV; the headline numbers go to homing.json.
@@ -26,7 +27,7 @@ import argparse
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.lines import Line2D
-from matplotlib.patches import Patch, Rectangle
+from matplotlib.patches import Patch
 
 import delvjax
 from delvjax.io import save_figure, write_csv
@@ -82,15 +83,6 @@ def catchment_figure(items: list[tuple[str, object, object]], spacing: float, ti
     fig.suptitle(title)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
     return fig
-
-
-def show_outside(fig, env, margin: float) -> None:
-    """Widen every panel by `margin` cm and outline the arena, so a path that left it stays visible."""
-    xmin, ymin, xmax, ymax = (float(v) for v in np.asarray(env.arena))
-    for ax in fig.axes:
-        ax.set_xlim(xmin - margin, xmax + margin)
-        ax.set_ylim(ymin - margin, ymax + margin)
-        ax.add_patch(Rectangle((xmin, ymin), xmax - xmin, ymax - ymin, fill=False, edgecolor="0.4", lw=1.0, zorder=1))
 
 
 def trajectory_rows(label: str, traj) -> list[dict]:
@@ -171,7 +163,6 @@ class Homing:
                                                      home_radius=HOME_RADIUS)
             rows += trajectory_rows(m, results[LABEL[m]])
         fig = trajectories_figure(env, results, HOME_RADIUS, title)
-        show_outside(fig, env, margin=60.0)
         save_figure(fig, self.study.path(f"{name}.png"))
         self.study.rows(f"{name}.csv", rows)
         counts = {LABEL[m]: int((np.asarray(t.outcome) == SUCCESS).sum()) for m, t in zip(methods, results.values())}
