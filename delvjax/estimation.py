@@ -14,22 +14,40 @@ from jax import Array
 
 from .config import Config
 from .geometry import unit, wrap
+from .search import first_argmin
 from .sensing import UnitMove
 
 SIN_EPS = 1e-9
 
 
+TIE_RAD = 1e-5  # partners closer than this in |parallax| tie (bearings sit on a half-pixel lattice)
+
+
 def _nearest(parallax: Array, other_valid: Array) -> tuple[Array, Array]:
-    """Row-wise partner with the smallest |parallax| among valid columns: (index, parallax)."""
+    """Row-wise partner with the smallest |parallax| among valid columns: (index, parallax).
+
+    Blob bearings are multiples of half a pixel, so a C-blob exactly midway between two
+    P-blobs is common; float32 rounding must not decide it: differences within `TIE_RAD`
+    are ties, and the first partner in bearing order wins (as in exact arithmetic).
+    """
     score = jnp.where(other_valid[None, :], jnp.abs(parallax), jnp.inf)
-    idx = jnp.argmin(score, axis=-1)
+    best = jnp.min(score, axis=-1, keepdims=True)
+    idx = first_argmin(jnp.where(score <= best + TIE_RAD, 0.0, 1.0), axis=-1)
     return idx, jnp.take_along_axis(parallax, idx[:, None], axis=-1)[:, 0]
 
 
 def _guard(r: Array, sin_delta: Array, r_max: Array) -> Array:
-    """SPEC §3.1: negative, non-finite, > r_max or |sin(delta)| < 1e-9 -> r_max."""
-    bad = (jnp.abs(sin_delta) < SIN_EPS) | ~jnp.isfinite(r) | (r < 0) | (r > r_max)
+    """SPEC §3.1: negative, non-finite, > r_max or |sin(delta)| < 1e-9 -> r_max. "Negative"
+    is read as "not positive": a landmark on the line of the move gives R = 0 (no triangle)."""
+    bad = (jnp.abs(sin_delta) < SIN_EPS) | ~jnp.isfinite(r) | (r <= 0) | (r > r_max)
     return jnp.where(bad, r_max, r)
+
+
+def _sin_on_lattice(a: Array) -> Array:
+    """sin(a), exactly 0 for a bearing on the line of the move (0 or pi up to float32 rounding:
+    float32 sin(pi) is -8.7e-8, which would otherwise give a tiny positive distance)."""
+    s = jnp.sin(a)
+    return jnp.where(jnp.abs(s) < 1e-6, 0.0, s)
 
 
 def end_distances(move: UnitMove, config: Config) -> Array:
@@ -39,7 +57,7 @@ def end_distances(move: UnitMove, config: Config) -> Array:
     idx, delta = _nearest(wrap(beta[:, None] - theta_all[None, :]), move.start.valid)
     theta = theta_all[idx]
     s = jnp.sin(delta)
-    r = move.d_hat * jnp.sin(theta) / jnp.where(jnp.abs(s) < SIN_EPS, 1.0, s)
+    r = move.d_hat * _sin_on_lattice(theta) / jnp.where(jnp.abs(s) < SIN_EPS, 1.0, s)
     r = _guard(r, s, config.r_max)
     return jnp.where(jnp.any(move.start.valid), r, config.r_max)
 
@@ -50,7 +68,7 @@ def start_distances(move: UnitMove, config: Config) -> Array:
     beta = move.end.bearing + move.psi_hat
     _, delta = _nearest(wrap(beta[None, :] - theta[:, None]), move.end.valid)
     s = jnp.sin(delta)
-    r = move.d_hat * jnp.sin(theta + delta) / jnp.where(jnp.abs(s) < SIN_EPS, 1.0, s)
+    r = move.d_hat * _sin_on_lattice(theta + delta) / jnp.where(jnp.abs(s) < SIN_EPS, 1.0, s)
     r = _guard(r, s, config.r_max)
     return jnp.where(jnp.any(move.end.valid), r, config.r_max)
 

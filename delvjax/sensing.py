@@ -147,7 +147,10 @@ def extract_blobs(mask: Array, max_blobs: int) -> tuple[Array, Array]:
     slot = jnp.arange(max_blobs)
     end_idx = jnp.where(wraps, end_idx[(slot + 1) % jnp.maximum(count, 1)], end_idx)
     length = jnp.mod(end_idx - start_idx, n)
-    bearing = wrap_positive(TWO_PI * (start_idx + 0.5 * length) / n)
+    # Midpoint in whole half-pixels, wrapped in integers: a blob centred on pixel 0 has
+    # bearing exactly 0 however XLA reassociates the float arithmetic.
+    half_pixels = jnp.mod(2 * start_idx + length, 2 * n)
+    bearing = half_pixels.astype(jnp.float32) * jnp.float32(np.pi / n)
     valid = slot < count
     all_on = jnp.all(mask)
     bearing = jnp.where(all_on, 0.0, bearing)

@@ -116,18 +116,29 @@ def extract_blobs(mask):
 
 
 # ----------------------------------------------------------------------------- SPEC 3.1
+TIE_RAD = 1e-5  # bearings sit on a half-pixel lattice: exact ties must not be decided by rounding
+
+
 def _nearest(target, candidates):
-    """Index of the candidate angle circularly nearest to target (first on ties)."""
+    """Index of the candidate angle circularly nearest to target (first on ties within TIE_RAD)."""
     best_i, best_d = 0, math.inf
     for i, c in enumerate(candidates):
         dd = abs(wrap(target - c))
-        if dd < best_d:
+        if dd < best_d - TIE_RAD:
             best_i, best_d = i, dd
     return best_i
 
 
+def _sin_on_lattice(a):
+    """sin(a), exactly 0 for a landmark on the line of the move (a = 0 or pi up to rounding)."""
+    s = math.sin(a)
+    return 0.0 if abs(s) < 1e-6 else s
+
+
 def _valid_or_rmax(R, sin_delta, r_max):
-    if abs(sin_delta) < 1e-9 or not math.isfinite(R) or R < 0 or R > r_max:
+    # "negative" read as "not positive": a landmark on the line of the unit move gives
+    # R = 0 by the sine law (no triangle), as undefined as sin(delta) = 0.
+    if abs(sin_delta) < 1e-9 or not math.isfinite(R) or R <= 0 or R > r_max:
         return r_max
     return R
 
@@ -142,7 +153,7 @@ def estimate_distances_end(start_b, end_b, d_hat, psi_hat, r_max=2000.0):
         theta = start_b[_nearest(beta_p, start_b)]   # partner: nearest start blob
         delta = wrap(beta_p - theta)                 # parallax
         sd = math.sin(delta)
-        R = d_hat * math.sin(theta) / sd if abs(sd) >= 1e-9 else math.inf
+        R = d_hat * _sin_on_lattice(theta) / sd if abs(sd) >= 1e-9 else math.inf
         out[j] = _valid_or_rmax(R, sd, r_max)
     return out
 
@@ -158,7 +169,7 @@ def estimate_distances_start(start_b, end_b, d_hat, psi_hat, r_max=2000.0):
         beta_p = end_p[_nearest(theta, end_p)]       # partner: nearest end blob
         delta = wrap(beta_p - theta)
         sd = math.sin(delta)
-        R = d_hat * math.sin(theta + delta) / sd if abs(sd) >= 1e-9 else math.inf
+        R = d_hat * _sin_on_lattice(theta + delta) / sd if abs(sd) >= 1e-9 else math.inf
         out[i] = _valid_or_rmax(R, sd, r_max)
     return out
 
