@@ -9,6 +9,7 @@ import jax
 import jax.numpy as jnp
 
 from . import maps
+from .config import Config
 from .errors import InputError
 from .methods import get_method
 from .options import finite, make_config, non_negative, positive, positive_int, seed_value
@@ -41,19 +42,30 @@ def visible_mask(env: Env, hidden: list[int] | tuple[int, ...] | None) -> jax.Ar
     return jnp.ones(env.landmarks.shape[0], bool).at[jnp.asarray(list(hidden))].set(False)
 
 
+def scene_request(env: str | Path | Env, method: str, clearance: float, heading_deg: float | None, seed: int,
+                  **config_kw) -> tuple[Env, Config, float | None, jax.Array, float]:
+    """The options every evaluation shares, validated before any work: method name, grid
+    clearance, `make_config` keywords, environment, heading/seed. Returns
+    (env, config, heading rad | None, key, clearance)."""
+    get_method(method)
+    clearance = non_negative(clearance, "clearance")
+    config = make_config(**config_kw)
+    env = load_env(env)
+    heading, key = resolve_headings(heading_deg, seed)
+    return env, config, heading, key, clearance
+
+
 def map_request(env: str | Path | Env, method: str = "delv", spacing: float = 25.0, heading_deg: float | None = None,
                 seed: int = 0, levels: int | None = None, d: float = 50.0, background: str = "distant",
                 channel: str = "mask", clearance: float = 10.0, n_heading: int = 360,
                 hidden: list[int] | None = None, batch_size: int = maps.DEFAULT_BATCH, **noise: float) -> dict:
     """Validate the public options of a vector map (before any array work): keyword
     arguments of `maps.vector_map`. Raises `InputError` naming the field and value."""
-    get_method(method)
+    env, config, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, d=d, levels=levels,
+                                                         background=background, channel=channel,
+                                                         n_heading=n_heading, **noise)
     spacing = positive(spacing, "spacing")
-    clearance = non_negative(clearance, "clearance")
     batch_size = positive_int(batch_size, "batch_size")
-    config = make_config(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **noise)
-    env = load_env(env)
-    heading, key = resolve_headings(heading_deg, seed)
     return dict(env=env, method=method, config=config, spacing=spacing, heading=heading, key=key,
                 clearance=clearance, visible=visible_mask(env, hidden), batch_size=batch_size)
 

@@ -50,13 +50,20 @@ def _outcome_names(codes) -> list[str]:
 
 # --- catchment -------------------------------------------------------------------------------
 
-def add_catchment(sub) -> None:
+def _rollout_parser(sub, name: str, help_text: str, plot_help: str, epilog: str | None = None):
+    """A subcommand with the scene, output and rollout options every rollout command takes."""
     from .cli import add_output_args, add_scene_args
 
-    p = sub.add_parser("catchment", help="catchment area: a rollout from every grid point (SPEC §5; Figs 4.5, 5.5)")
+    p = sub.add_parser(name, help=help_text, epilog=epilog)
     add_scene_args(p)
-    add_output_args(p, "catchment map: squares on catchment points over the vector map")
+    add_output_args(p, plot_help)
     _add_rollout_args(p)
+    return p
+
+
+def add_catchment(sub) -> None:
+    p = _rollout_parser(sub, "catchment", "catchment area: a rollout from every grid point (SPEC §5; Figs 4.5, 5.5)",
+                        "catchment map: squares on catchment points over the vector map")
     p.add_argument("--occlude", type=int, default=None, metavar="K",
                    help="evaluate every choice of K landmarks hidden during homing (Tables 5.3/5.4)")
     p.set_defaults(func=cmd_catchment)
@@ -119,13 +126,8 @@ def cmd_catchment(args: argparse.Namespace) -> int:
 # --- success rate ----------------------------------------------------------------------------
 
 def add_success_rate(sub) -> None:
-    from .cli import add_output_args, add_scene_args
-
-    p = sub.add_parser("success-rate", help="success rate vs release distance (SPEC §5; Figs 4.10b, 5.7b)")
-    add_scene_args(p)
-    add_output_args(p, "success-rate curve")
-    _add_rollout_args(p)
-    p.epilog = "--method takes a comma-separated list (one curve each); --spacing is not used."
+    p = _rollout_parser(sub, "success-rate", "success rate vs release distance (SPEC §5; Figs 4.10b, 5.7b)",
+                        "success-rate curve", "--method takes a comma-separated list (one curve each); --spacing is not used.")
     p.add_argument("--trials", type=int, default=100, help="trials per distance bin (default 100)")
     p.add_argument("--distances", type=float, nargs="+", default=list(rollouts.DEFAULT_DISTANCES), metavar="CM",
                    help="release distances from home (default 50 100 ... 450)")
@@ -187,13 +189,9 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
 # --- trajectories ----------------------------------------------------------------------------
 
 def add_trajectories(sub) -> None:
-    from .cli import add_output_args, add_scene_args
-
-    p = sub.add_parser("trajectories", help="homing paths from chosen release points (SPEC §5; Figs 4.11, 5.8)")
-    add_scene_args(p)
-    add_output_args(p, "trajectory figure (one panel per method)")
-    _add_rollout_args(p)
-    p.epilog = "--method takes a comma-separated list (one panel each, same release points); --spacing is not used."
+    p = _rollout_parser(sub, "trajectories", "homing paths from chosen release points (SPEC §5; Figs 4.11, 5.8)",
+                        "trajectory figure (one panel per method)",
+                        "--method takes a comma-separated list (one panel each, same release points); --spacing is not used.")
     p.add_argument("--start", type=float, nargs=2, action="append", default=None, metavar=("X", "Y"),
                    help="a release point in cm (repeatable; default: --n-starts random points from --seed)")
     p.add_argument("--n-starts", type=int, default=6, help="random release points when no --start is given (default 6)")

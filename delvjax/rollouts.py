@@ -506,18 +506,14 @@ def trajectory_trials(env: Env, method: str, config: Config, starts: Array, head
 # --- public API (validated keywords; mirrors the CLI) ----------------------------------------
 
 def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed, config_kw):
-    """Validate the shared keywords before any work: (env, config, heading rad | None, key)."""
-    from .api import load_env, resolve_headings
-    from .options import make_config, non_negative, positive, positive_int
+    """Validate the shared keywords before any work (`api.scene_request` plus the rollout limits)."""
+    from .api import scene_request
+    from .options import positive, positive_int
 
-    get_method(method)
+    env, config, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **config_kw)
     max_steps = positive_int(max_steps, "max_steps")
     home_radius = positive(home_radius, "home_radius")
     lanes = positive_int(lanes, "lanes")
-    clearance = non_negative(clearance, "clearance")
-    config = make_config(**config_kw)
-    env = load_env(env)
-    heading, key = resolve_headings(heading_deg, seed)
     return env, config, heading, key, max_steps, home_radius, lanes, clearance
 
 
