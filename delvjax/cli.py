@@ -125,8 +125,38 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     return 0
 
 
+def add_reproduce(sub) -> None:
+    p = sub.add_parser("reproduce", help="every simulation study of the thesis, a report beside the thesis's numbers",
+                       description="Run the thesis's studies (skipping those whose code and settings are unchanged) "
+                                   "and write figures, CSV/JSON, report.md and report.html into --out.")
+    p.add_argument("--quick", action="store_true", help="coarse 10 x 10 grid (spacing 100 cm): a preview in about a minute")
+    p.add_argument("--out", default="results", help="output folder (default results/)")
+    p.add_argument("--only", default=None, metavar="STUDY[,STUDY]", help="run only these studies")
+    p.add_argument("--list", action="store_true", help="list the studies and exit")
+    p.add_argument("--force", action="store_true", help="recompute even studies that are up to date")
+    p.add_argument("--seed", type=int, default=0, help="seed of every random heading, release point and noise")
+    p.set_defaults(func=cmd_reproduce)
+
+
+def cmd_reproduce(args: argparse.Namespace) -> int:
+    from . import reproduce
+
+    if args.list:
+        for name, module in reproduce.registry().items():
+            print(f"{name:16s} {module.TITLE}")
+        return 0
+    reproduce.select(args.only)  # validate before any work
+    reproduce.check_out_dir(args.out)
+    t0 = time.perf_counter()
+    result = reproduce.reproduce(args.out, quick=args.quick, only=args.only, force=args.force, seed=args.seed)
+    skipped = [n for n in result["records"] if n not in result["ran"]]
+    print(f"ran {len(result['ran'])} studies" + (f", {len(skipped)} unchanged (skipped)" if skipped else "")
+          + f" in {time.perf_counter() - t0:.1f} s; report: {result['report']}")
+    return 0
+
+
 # Each entry adds one subcommand; a new command is one function here or in its own module.
-COMMANDS: list[Callable] = [add_vector_map]
+COMMANDS: list[Callable] = [add_vector_map, add_reproduce]
 from .cli_rollouts import ROLLOUT_COMMANDS  # noqa: E402  (catchment, success-rate, trajectories)
 
 COMMANDS += ROLLOUT_COMMANDS

@@ -21,6 +21,11 @@ def _add_rollout_args(p: argparse.ArgumentParser) -> None:
     g.add_argument("--home-radius", type=float, default=50.0, help="success within this distance of home, cm (default 50)")
     g.add_argument("--lanes", type=int, default=rollouts.DEFAULT_LANES,
                    help=f"trials advanced side by side (memory bound; default {rollouts.DEFAULT_LANES})")
+    g.add_argument("--first-move", default="homing", metavar="RULE",
+                   help="homing (default): the first move follows the homing direction computed at the release "
+                        "point, as in the vector map; release: it follows the release heading")
+    g.add_argument("--collisions", default="ignore", metavar="RULE",
+                   help="ignore (default): landmarks are no obstacles; fail: a move ending inside a landmark fails")
 
 
 def _kwargs(args: argparse.Namespace, drop=("spacing",)) -> dict:
@@ -29,7 +34,8 @@ def _kwargs(args: argparse.Namespace, drop=("spacing",)) -> dict:
     kw = scene_kwargs(args)
     for name in drop:
         kw.pop(name, None)
-    kw.update(max_steps=args.max_steps, home_radius=args.home_radius)
+    kw.update(max_steps=args.max_steps, home_radius=args.home_radius, first_move=args.first_move,
+              collisions=args.collisions)
     return kw
 
 
@@ -42,6 +48,11 @@ def _methods(text: str) -> list[str]:
     for m in names:
         get_method(m)
     return names
+
+
+def _rule_columns(rules: dict[str, str], n: int) -> dict[str, list[str]]:
+    """The rollout rules as constant CSV columns (so every CSV names the rules it was made under)."""
+    return {name: [value] * n for name, value in rules.items()}
 
 
 def _outcome_names(codes) -> list[str]:
@@ -109,6 +120,7 @@ def cmd_catchment(args: argparse.Namespace) -> int:
         "end_x": per(np.asarray(res.end)[..., 0]), "end_y": per(np.asarray(res.end)[..., 1]),
         "invalid_steps": per(res.invalid_steps),
         "direction_deg": np.degrees(per(res.direction)), "error_deg": per(res.error_deg), "valid": per(res.valid),
+        **_rule_columns(res.rules, pts.shape[0]),
     }
     if args.occlude is not None or args.hide:
         columns["hidden"] = [" ".join(map(str, h)) for h in res.hidden for _ in range(int(inc.sum()))]
@@ -168,14 +180,16 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
             "heading_deg": np.degrees(np.asarray(res.heading).reshape(-1)),
             "placed": placed, "success": np.asarray(res.success).reshape(-1),
             "steps": np.asarray(res.steps).reshape(-1), "outcome": _outcome_names(np.asarray(res.outcome).reshape(-1)),
+            **_rule_columns(res.rules, placed.size),
         })
-    write_rows_csv(args.out, [{"method": m, **row} for m, rows in tables.items() for row in rows])
+    rules = rollouts.check_rules(args.first_move, args.collisions)
+    write_rows_csv(args.out, [{"method": m, **row, **rules} for m, rows in tables.items() for row in rows])
     if args.trials_out:
         write_csv(args.trials_out, {k: np.concatenate([np.asarray(c[k], dtype=object) for c in trial_cols]).tolist()
                                     for k in trial_cols[0]})
     if args.summary:
         write_json(args.summary, {"env": env.name, "trials_per_bin": args.trials, "seed": args.seed,
-                                  "max_steps": args.max_steps, "home_radius": args.home_radius,
+                                  "rules": rules, "max_steps": args.max_steps, "home_radius": args.home_radius,
                                   "seconds": timing, "bins": tables})
     if args.plot:
         from .plots_rollouts import success_rate_figure
@@ -208,7 +222,8 @@ def cmd_trajectories(args: argparse.Namespace) -> int:
     env = api.load_env(args.env)
     kw = _kwargs(args, drop=("spacing", "method"))
     kw.update(starts=args.start, n_starts=args.n_starts)
-    results, cols, summary = {}, [], {"env": env.name, "trials": {}}
+    results, cols = {}, []
+    summary = {"env": env.name, "rules": rollouts.check_rules(args.first_move, args.collisions), "trials": {}}
     for m in methods:  # one program per method
         progress(f"trajectories of {m} on {env.name} ...")
         tr = rollouts.trajectories(env, method=m, **kw)
@@ -222,7 +237,7 @@ def cmd_trajectories(args: argparse.Namespace) -> int:
                          "x": path[t, :n, 0], "y": path[t, :n, 1],
                          "release_heading_deg": [float(np.degrees(tr.heading[t]))] * n,
                          "success": [bool(tr.success[t])] * n, "steps": [int(steps[t])] * n,
-                         "outcome": [outcome[t]] * n})
+                         "outcome": [outcome[t]] * n, **_rule_columns(tr.rules, n)})
         summary["trials"][m] = [{"start": np.asarray(tr.start[t]).tolist(),
                                  "release_heading_deg": float(np.degrees(tr.heading[t])),
                                  "outcome": outcome[t], "steps": int(steps[t])} for t in range(path.shape[0])]

@@ -43,13 +43,15 @@ class Config(eqx.Module):
     alpha_r:   reference heading at home, radians (SPEC §1, default 0).
     mfdid_blur_deg: Gaussian low-pass of MFDID's images, degrees (0 = none; §4.5).
     noise:     `Noise` (all zero by default).
-    levels:    quantization levels Q (None = continuous distances; a number is a traced
-               leaf, so a sweep can vmap over Q).
+    levels:    quantization levels Q (0, or None when constructing, = continuous distances);
+               a traced leaf, so a sweep can vmap over Q and every Q shares one program.
     n_pix:     ring image width in pixels (360).
     n_heading: heading hypotheses of DELV's matching (360).
     n_alpha, n_psi, n_rho, rho_min, rho_max: warping hypotheses (SPEC §4.3: 72 movement
                directions, 72 rotations, 15 rho = d/r values 0.10..0.80).
-    background, channel: SPEC §2.2-2.3.
+    background: SPEC §2.3 setting, stored as an index into BACKGROUNDS (0 distant, 1 walls,
+               2 none; a name is converted): a traced leaf, so every setting shares one program.
+    channel:   SPEC §2.2.
     """
 
     d: float = 50.0
@@ -58,7 +60,7 @@ class Config(eqx.Module):
     alpha_r: float = 0.0
     mfdid_blur_deg: float = 0.0
     noise: Noise = Noise()
-    levels: int | None = None
+    levels: int = eqx.field(default=0, converter=lambda q: 0 if q is None else q)
     n_pix: int = eqx.field(static=True, default=360)
     n_heading: int = eqx.field(static=True, default=360)
     n_alpha: int = eqx.field(static=True, default=72)
@@ -66,5 +68,5 @@ class Config(eqx.Module):
     n_rho: int = eqx.field(static=True, default=15)
     rho_min: float = eqx.field(static=True, default=0.10)
     rho_max: float = eqx.field(static=True, default=0.80)
-    background: str = eqx.field(static=True, default="distant")
+    background: int = eqx.field(default=0, converter=lambda b: BACKGROUNDS.index(b) if isinstance(b, str) else b)
     channel: str = eqx.field(static=True, default="mask")

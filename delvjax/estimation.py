@@ -74,10 +74,14 @@ def start_distances(move: UnitMove, config: Config) -> Array:
 
 
 def quantize(r: Array, levels: int | None, scale: Array) -> Array:
-    """Eq 3.17 / SPEC §3.2: R -> a * clip(ceil(R Q / a), 1, Q) / Q; `levels=None` keeps R."""
+    """Eq 3.17 / SPEC §3.2: R -> a * clip(ceil(R Q / a), 1, Q) / Q; `levels` 0 (or None) keeps R.
+
+    `levels` may be traced: continuous and quantized distances share one compiled program."""
     if levels is None:
         return r
-    return scale * jnp.clip(jnp.ceil(r * levels / scale), 1, levels) / levels
+    q = jnp.maximum(levels, 1)
+    quantized = scale * jnp.clip(jnp.ceil(r * q / scale), 1, q) / q
+    return jnp.where(jnp.asarray(levels) > 0, quantized, r)
 
 
 def reference_vectors(home: UnitMove, config: Config) -> tuple[Array, Array]:

@@ -68,9 +68,10 @@ def write_csv(path: str | Path, columns: dict[str, Sequence]) -> None:
 
 
 def write_rows_csv(path: str | Path, rows: list[dict]) -> None:
-    """A list of flat dicts (same keys) -> CSV."""
-    keys = list(rows[0]) if rows else []
-    write_csv(path, {k: [r[k] for r in rows] for k in keys})
+    """A list of flat dicts -> CSV; columns are the union of the keys in first-seen order, a
+    missing value is an empty cell."""
+    keys = list(dict.fromkeys(k for r in rows for k in r))
+    write_csv(path, {k: [r.get(k) for r in rows] for k in keys})
 
 
 def _jsonable(obj):

@@ -127,6 +127,6 @@ def make_config(d: float = 50.0, levels: int | None = None, background: str = "d
         n_rho=positive_int(n_rho, "n_rho"),
         rho_min=rho_min,
         rho_max=rho_max,
-        background=choice(background, "background", BACKGROUNDS),
+        background=BACKGROUNDS.index(choice(background, "background", BACKGROUNDS)),
         channel=choice(channel, "channel", CHANNELS),
     )

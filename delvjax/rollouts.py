@@ -1,11 +1,19 @@
 """Homing rollouts, catchment area, success rate, trajectories and occlusion (thesis §4.3, §5.3.1; SPEC §5).
 
-A rollout (SPEC §5): released at a point with a heading, the agent repeatedly moves `d`
-along its heading, senses the move just made as its unit movement, asks the homing
-method for a direction at the new point and turns to it. It succeeds when within
-`home_radius` of home at the release point or after a move, within `max_steps` moves;
-a move ending inside a landmark or outside the arena ends it as a failure; an invalid
+A rollout (SPEC §5): released at a point with a heading, the agent computes the homing
+direction, turns to it and moves `d`; it senses the move just made as its unit movement,
+asks the homing method for a direction at the new point, turns to it, and so on. It
+succeeds when within `home_radius` of home at the release point or after a move, within
+`max_steps` moves; a move ending outside the arena ends it as a failure; an invalid
 direction keeps the heading.
+
+Rules (docs/model.md §5), both recorded in every summary and CSV:
+  * first_move = "homing" (default): at the release point the direction is computed exactly
+    as in the vector map (a unit move of length d along the release heading that *ends* at
+    the start, with the vector map's noise stream of that point); "release": the first move
+    goes along the release heading (a robot with no stored move).
+  * collisions = "ignore" (default): landmarks are no obstacles; "fail": a move ending
+    inside a landmark (distance to its centre < r) ends the trial as a failure.
 
 Noise in rollouts (SPEC §2.5; SPEC leaves the details to us; decided here):
   * executed heading = commanded heading + N(0, motion_heading);
@@ -18,14 +26,19 @@ All draws use the key fold_in(fold_in(key_rollout, trial key index), step index)
 results do not depend on how trials are scheduled; with every sigma 0 the draws are
 multiplied by 0 and the noise-free numbers are reproduced exactly.
 
-Batching: one jitted program runs a whole set of trials. `lanes` trials advance together
-(vmap) inside a `lax.while_loop`; a lane whose trial ends (most succeed within 15 moves) is
-refilled with the next pending trial, so the loop costs about sum(steps) / lanes
-iterations instead of max_steps per chunk, and memory is bounded by `lanes`.
+Batching: trials run in blocks of TRIAL_BLOCK (padded), each block one call of the same
+jitted program (one compilation per method and landmark count), so memory is bounded by the
+block. Inside a block `lanes` trials advance together (vmap) in a `lax.while_loop`; a lane
+whose trial ends (most succeed within 15 moves) is refilled with the next pending trial, so
+the loop costs about sum(steps + 1) / lanes iterations instead of max_steps per chunk. A
+lane's first iteration computes the vector map's direction at its release point (the
+method appears once in the program). An invalid first direction keeps the heading at the
+end of that imagined unit move (release heading + turn noise, which is 0 by default).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 from functools import partial
 from pathlib import Path
@@ -41,21 +54,27 @@ from jax import Array
 from .config import Config
 from .errors import InputError
 from .geometry import TWO_PI, unit, wrap
-from .maps import DEFAULT_BATCH, grid_included, grid_points, homing_directions, random_headings, stream_keys
+from .maps import grid_included, grid_points, random_headings, stream_keys
 from .methods import get_method
 from .metrics import angular_error_deg, error_point_rates
 from .scene import Env
-from .sensing import UnitMove, observe_move, record_home
+from .sensing import UnitMove, observe_move, record_home, unit_move_poses
 
 # Trial outcome codes (a running trial is RUNNING; a grid cell never released is EXCLUDED).
 OUTCOMES = ("success", "timeout", "landmark", "arena")
 SUCCESS, TIMEOUT, LANDMARK, ARENA = range(4)
 RUNNING, EXCLUDED = -1, -2
+FIRST_MOVES = ("homing", "release")
+COLLISIONS = ("ignore", "fail")
+DEFAULT_RULES = {"first_move": "homing", "collisions": "ignore"}
+PHYSICAL_RULES = {"first_move": "release", "collisions": "fail"}
 # "Within home_radius" is inclusive; 1e-3 cm absorbs float32 rounding of a release placed at
 # exactly home_radius (the first success-rate bin), so such a release counts as home.
 HOME_TOLERANCE = 1e-3
 DEFAULT_LANES = 256
 DEFAULT_DISTANCES = tuple(float(v) for v in range(50, 451, 50))
+TRIAL_BLOCK = 1024
+MASK_ROWS = 64  # visibility masks are padded to this many rows (all k of 6 landmarks: 42; one program)
 START_TRIES = 64  # candidate release points per trial before a trial counts as not placed
 
 
@@ -71,36 +90,29 @@ def rollout_keys(key: Array) -> tuple[Array, Array, Array]:
 
 # --- one trial ---------------------------------------------------------------------------
 
-def position_status(env: Env, pos: Array, home_radius: Array) -> Array:
-    """SPEC §5 status of a point: LANDMARK (inside a cylinder), ARENA (outside), SUCCESS (at home) or RUNNING."""
+def position_status(env: Env, pos: Array, home_radius: Array, collide: Array | bool = True) -> Array:
+    """SPEC §5 status of a point: LANDMARK (inside a cylinder; only where `collide`, the rule
+    collisions="fail"), ARENA (outside), SUCCESS (at home) or RUNNING."""
     lm = env.landmarks
     dist = jnp.sqrt(jnp.sum((pos[None, :] - lm[:, :2]) ** 2, axis=-1))
-    inside = jnp.any(env.valid & (dist < lm[:, 2]))
+    inside = jnp.any(env.valid & (dist < lm[:, 2])) & collide
     a = env.arena
     outside = (pos[0] < a[0]) | (pos[0] > a[2]) | (pos[1] < a[1]) | (pos[1] > a[3])
     at_home = jnp.sqrt(jnp.sum((pos - env.home) ** 2)) <= home_radius + HOME_TOLERANCE
     return jnp.where(inside, LANDMARK, jnp.where(outside, ARENA, jnp.where(at_home, SUCCESS, RUNNING)))
 
 
-def homing_move(env: Env, home: UnitMove, visible: Array, pos: Array, heading: Array, key: Array,
-                config: Config, method: str) -> tuple[Array, Array, Array]:
-    """One move of a rollout from `pos` with commanded `heading` (rad): (end (2,), new heading, valid).
-
-    The move just made is the unit movement (SPEC §3.3); see the module docstring for noise.
-    """
+def move_poses(pos: Array, heading: Array, key: Array, config: Config):
+    """The poses and odometry of one rollout move from `pos` with commanded `heading` (module
+    docstring's noise): (start, end, executed heading, heading at the end, psi_hat, observation key),
+    the same tuple as `sensing.unit_move_poses`."""
     noise = config.noise
     k_draw, k_obs = jax.random.split(key)
     z_heading, z_step, z_motion_step, z_turn, z_odometry = jax.random.normal(k_draw, (5,))
     executed = heading + noise.motion_heading * z_heading
     length = config.d * (1.0 + noise.step * z_step) * (1.0 + noise.motion_step * z_motion_step)
-    end = pos + length * unit(executed)
     psi = noise.turn * z_turn
-    psi_hat = psi + noise.turn_odometry * z_odometry
-    heading_end = executed + psi
-    view = observe_move(env, visible, pos, end, executed, heading_end, config.d, psi_hat, k_obs, config)
-    angle, valid = get_method(method)(home, view, config)
-    new_heading = wrap(jnp.where(valid, heading_end + angle, heading_end))
-    return end, new_heading, valid
+    return pos, pos + length * unit(executed), executed, executed + psi, psi + noise.turn_odometry * z_odometry, k_obs
 
 
 # --- a set of trials in one program ------------------------------------------------------
@@ -113,20 +125,31 @@ class _Outcomes(eqx.Module):
         """True where the trial reached home."""
         return self.outcome == SUCCESS  # type: ignore[attr-defined]
 
+    @property
+    def rules(self) -> dict[str, str]:
+        """The rollout rules used (module docstring): {"first_move": ..., "collisions": ...}."""
+        return {"first_move": self.first_move, "collisions": self.collisions}  # type: ignore[attr-defined]
+
 
 class Trials(_Outcomes):
     """Per-trial results, T trials.
 
     outcome: (T,) int, index into OUTCOMES; steps: (T,) moves made; end: (T, 2) final
     position cm; invalid_steps: (T,) moves after which the method gave no direction;
-    path: (T, max_steps + 1, 2) positions after 0, 1, ... moves, NaN after the end (or None).
+    path: (T, max_steps + 1, 2) positions after 0, 1, ... moves, NaN after the end (or None);
+    first_direction: (T,) world homing direction at the release point, rad, NaN where invalid
+    (the vector map's direction there, under either first_move rule); first_valid: (T,).
     """
 
     outcome: Array
     steps: Array
     end: Array
     invalid_steps: Array
+    first_direction: Array
+    first_valid: Array
     path: Array | None = None
+    first_move: str = eqx.field(static=True, default="homing")
+    collisions: str = eqx.field(static=True, default="ignore")
 
 
 @jax.jit
@@ -137,92 +160,150 @@ def home_record(env: Env, key: Array, config: Config) -> UnitMove:
 
 def run_trials(env: Env, starts: Array, headings: Array, key_index: Array, mask_index: Array, masks: Array,
                key: Array, config: Config, method: str, home_radius: float = 50.0, max_steps: int = 50,
-               lanes: int = DEFAULT_LANES, record_paths: bool = False) -> Trials:
-    """Roll out T trials in one program (SPEC §5).
+               lanes: int = DEFAULT_LANES, record_paths: bool = False, first_move: str = "homing",
+               collisions: str = "ignore") -> Trials:
+    """Roll out T trials (SPEC §5), in blocks of one compiled program.
 
     starts: (T, 2) cm; headings: (T,) release headings rad; key_index: (T,) int, the trial's
-    noise stream fold_in(key_rollout, key_index) (equal indices = common random numbers);
-    mask_index: (T,) int into masks (M, L) bool, the landmarks visible during homing (the
-    home record, `home_record(env, key, config)`, always sees all). `lanes` trials run side
-    by side; finished lanes are refilled from the queue of pending trials.
+    noise stream fold_in(key_rollout, key_index) and the vector map's view stream of its
+    first direction (equal indices = common random numbers); mask_index: (T,) int into
+    masks (M, L) bool, the landmarks visible during homing (the home record,
+    `home_record(env, key, config)`, always sees all). `lanes` trials run side by side;
+    finished lanes are refilled from the queue of pending trials. `first_move` and
+    `collisions` are the rules of the module docstring.
     """
     get_method(method)
+    check_rules(first_move, collisions)
     env = env.arrays()  # compile once per shape, not per environment name
-    return _run_trials(env, home_record(env, key, config), starts, headings, key_index, mask_index, masks, key,
-                       config, method, home_radius, max_steps, lanes, record_paths)
+    n = int(starts.shape[0])
+    if n == 0:
+        raise InputError("starts", 0, "no trials to run")
+    block = trial_block(n)
+    padded = -(-n // block) * block
+    # host-side padding and slicing (NumPy): no eager device op, so no compilation per shape
+    pad = lambda a, m, dtype: np.concatenate([np.asarray(a, dtype), np.repeat(np.asarray(a, dtype)[:1], m, axis=0)])  # noqa: E731
+    starts, headings = pad(starts, padded - n, np.float32), pad(headings, padded - n, np.float32)
+    key_index, mask_index = pad(key_index, padded - n, np.int32), pad(mask_index, padded - n, np.int32)
+    masks = pad(masks, max(0, MASK_ROWS - len(masks)), bool)  # C(N, k) masks of every k, padded likewise
+    home = home_record(env, key, config)
+    flags = jnp.asarray(first_move == "homing"), jnp.asarray(collisions == "fail")
+    blocks = []
+    for i in range(0, padded, block):  # chunked driver: every block is the same compiled program
+        res = _run_trials(env, home, starts[i:i + block], headings[i:i + block], key_index[i:i + block],
+                          mask_index[i:i + block], masks, key, config, method, home_radius, max_steps, lanes,
+                          jnp.int32(min(block, n - i)), *flags)
+        blocks.append(res if record_paths else eqx.tree_at(lambda r: r.path, res, None, is_leaf=lambda x: x is None))
+    res = jax.tree.map(lambda *a: jnp.asarray(np.concatenate([np.asarray(x) for x in a])[:n]), *blocks)
+    return dataclasses.replace(res, first_move=first_move, collisions=collisions)
 
 
-@partial(jax.jit, static_argnames=("method", "max_steps", "lanes", "record_paths"))
+def trial_block(n: int) -> int:
+    """Trials run in blocks of TRIAL_BLOCK (padded), so catchments of every environment and
+    occlusion, success-rate tables and trajectories share one compiled program per method; each
+    trial keeps its own noise streams, so the numbers do not depend on the blocking."""
+    return TRIAL_BLOCK
+
+
+def check_rules(first_move: str, collisions: str) -> dict[str, str]:
+    """Validated rollout rules (module docstring) as the dict recorded in summaries."""
+    if first_move not in FIRST_MOVES:
+        raise InputError("first_move", first_move, f"must be one of {', '.join(FIRST_MOVES)}")
+    if collisions not in COLLISIONS:
+        raise InputError("collisions", collisions, f"must be one of {', '.join(COLLISIONS)}")
+    return {"first_move": first_move, "collisions": collisions}
+
+
+@partial(jax.jit, static_argnames=("method", "max_steps", "lanes"))
 def _run_trials(env: Env, home: UnitMove, starts: Array, headings: Array, key_index: Array, mask_index: Array,
                 masks: Array, key: Array, config: Config, method: str, home_radius: float, max_steps: int,
-                lanes: int, record_paths: bool) -> Trials:
+                lanes: int, n_valid: Array, homing_first: Array, collide: Array) -> Trials:
+    """One block of trials, the first `n_valid` real (the padding is never run). A lane first spends one iteration at its release point computing the
+    vector map's direction there (a unit move ending at the release point, the vector map's
+    noise stream; recorded as first_direction, and the first heading under first_move="homing"),
+    then one move per iteration, so the method appears once in the program."""
+    fn = get_method(method)
     n_trials = starts.shape[0]
     n_lanes = max(1, min(lanes, n_trials))
     _, k_roll, _ = rollout_keys(key)
+    _, k_views, _ = stream_keys(key)
     radius = jnp.asarray(home_radius, jnp.float32)
 
     def init_lane(t):
-        ok = t < n_trials
+        ok = t < n_valid
         ts = jnp.minimum(t, n_trials - 1)
         pos = starts[ts]
-        status = jnp.where(ok, position_status(env, pos, radius), RUNNING)
+        status = jnp.where(ok, position_status(env, pos, radius, collide), RUNNING)
         return pos, headings[ts], status
 
-    def move_lane(t, pos, heading, step):
+    def advance_lane(t, pos, heading, step, first):
         ts = jnp.minimum(t, n_trials - 1)
+        at_release = unit_move_poses(pos, heading, jax.random.fold_in(k_views, key_index[ts]), config, end_at=pos)
         k = jax.random.fold_in(jax.random.fold_in(k_roll, key_index[ts]), step)
-        end, new_heading, valid = homing_move(env, home, masks[mask_index[ts]], pos, heading, k, config, method)
-        status = position_status(env, end, radius)
+        moving = move_poses(pos, heading, k, config)
+        start, end, h_start, h_end, psi_hat, k_obs = jax.tree.map(lambda a, b: jnp.where(first, a, b),
+                                                                  at_release, moving)
+        view = observe_move(env, masks[mask_index[ts]], start, end, h_start, h_end, config.d, psi_hat, k_obs, config)
+        angle, valid = fn(home, view, config)
+        direction = jnp.where(valid, wrap(h_end + angle), jnp.nan)
+        new_heading = jnp.where(valid, direction, wrap(h_end))
+        first_heading = jnp.where(homing_first, new_heading, heading)
+        status = position_status(env, end, radius, collide)
         status = jnp.where((status == RUNNING) & (step + 1 >= max_steps), TIMEOUT, status)
-        return end, new_heading, status, valid
+        return end, jnp.where(first, first_heading, new_heading), status, valid, direction
 
     lane_t = jnp.arange(n_lanes, dtype=jnp.int32)
+    lane_t = jnp.where(lane_t < n_valid, lane_t, n_trials)
     pos, heading, status = jax.vmap(init_lane)(lane_t)
     zeros_t = jnp.zeros(n_trials, jnp.int32)
     out = dict(outcome=jnp.full(n_trials, RUNNING, jnp.int32), steps=zeros_t, invalid=zeros_t,
-               end=jnp.zeros((n_trials, 2), jnp.float32))
-    if record_paths:
-        path = jnp.full((n_trials, max_steps + 1, 2), jnp.nan, jnp.float32).at[:, 0].set(starts)
-    else:
-        path = jnp.zeros((0, max_steps + 1, 2), jnp.float32)
-    lane = dict(t=lane_t, pos=pos, heading=heading, status=status,
+               end=jnp.zeros((n_trials, 2), jnp.float32), first_dir=jnp.full(n_trials, jnp.nan, jnp.float32),
+               first_valid=jnp.zeros(n_trials, bool))
+    path = jnp.full((n_trials, max_steps + 1, 2), jnp.nan, jnp.float32).at[:, 0].set(starts)
+    lane = dict(t=lane_t, pos=pos, heading=heading, status=status, first=jnp.ones(n_lanes, bool),
                 step=jnp.zeros(n_lanes, jnp.int32), invalid=jnp.zeros(n_lanes, jnp.int32))
-    state = (lane, out, path, jnp.int32(n_lanes))
+    state = (lane, out, path, jnp.minimum(jnp.int32(n_lanes), n_valid))
 
     def cond(state):
-        return jnp.any(state[0]["t"] < n_trials)
+        return jnp.any(state[0]["t"] < n_valid)
 
     def body(state):
         lane, out, path, next_t = state
-        # 1. advance every running lane by one move
-        running = (lane["t"] < n_trials) & (lane["status"] == RUNNING)
-        end, new_heading, status, valid = jax.vmap(move_lane)(lane["t"], lane["pos"], lane["heading"], lane["step"])
+        # 1. every active lane: its first direction (at the release point) or one move
+        active = lane["t"] < n_valid
+        first = active & lane["first"]
+        moving = active & ~lane["first"] & (lane["status"] == RUNNING)
+        end, new_heading, status, valid, direction = jax.vmap(advance_lane)(
+            lane["t"], lane["pos"], lane["heading"], lane["step"], lane["first"])
+        idx0 = jnp.where(first, lane["t"], n_trials)
+        out = dict(out, first_dir=out["first_dir"].at[idx0].set(direction, mode="drop"),
+                   first_valid=out["first_valid"].at[idx0].set(valid, mode="drop"))
         lane = dict(
             t=lane["t"],
-            pos=jnp.where(running[:, None], end, lane["pos"]),
-            heading=jnp.where(running, new_heading, lane["heading"]),
-            status=jnp.where(running, status, lane["status"]),
-            step=lane["step"] + running.astype(jnp.int32),
-            invalid=lane["invalid"] + (running & ~valid & (status == RUNNING)).astype(jnp.int32),
+            pos=jnp.where(moving[:, None], end, lane["pos"]),
+            heading=jnp.where(moving | first, new_heading, lane["heading"]),
+            status=jnp.where(moving, status, lane["status"]),
+            first=lane["first"] & ~active,
+            step=lane["step"] + moving.astype(jnp.int32),
+            invalid=lane["invalid"] + (moving & ~valid & (status == RUNNING)).astype(jnp.int32),
         )
-        if record_paths:
-            path = path.at[jnp.where(running, lane["t"], n_trials), lane["step"]].set(lane["pos"], mode="drop")
-        # 2. write the lanes whose trial has ended
-        done = (lane["t"] < n_trials) & (lane["status"] != RUNNING)
+        path = path.at[jnp.where(moving, lane["t"], n_trials), lane["step"]].set(lane["pos"], mode="drop")
+        # 2. write the lanes whose trial has ended (after its first direction)
+        done = active & ~lane["first"] & (lane["status"] != RUNNING)
         idx = jnp.where(done, lane["t"], n_trials)
-        out = dict(outcome=out["outcome"].at[idx].set(lane["status"], mode="drop"),
+        out = dict(out, outcome=out["outcome"].at[idx].set(lane["status"], mode="drop"),
                    steps=out["steps"].at[idx].set(lane["step"], mode="drop"),
                    invalid=out["invalid"].at[idx].set(lane["invalid"], mode="drop"),
                    end=out["end"].at[idx].set(lane["pos"], mode="drop"))
         # 3. refill them from the queue
         new_t = jnp.where(done, next_t + jnp.cumsum(done) - 1, lane["t"])
-        new_t = jnp.where(done & (new_t >= n_trials), n_trials, new_t).astype(jnp.int32)
+        new_t = jnp.where(done & (new_t >= n_valid), n_trials, new_t).astype(jnp.int32)
         pos0, heading0, status0 = jax.vmap(init_lane)(new_t)
         lane = dict(
             t=new_t,
             pos=jnp.where(done[:, None], pos0, lane["pos"]),
             heading=jnp.where(done, heading0, lane["heading"]),
             status=jnp.where(done, status0, lane["status"]),
+            first=lane["first"] | done,
             step=jnp.where(done, 0, lane["step"]),
             invalid=jnp.where(done, 0, lane["invalid"]),
         )
@@ -230,7 +311,7 @@ def _run_trials(env: Env, home: UnitMove, starts: Array, headings: Array, key_in
 
     _, out, path, _ = jax.lax.while_loop(cond, body, state)
     return Trials(outcome=out["outcome"], steps=out["steps"], end=out["end"], invalid_steps=out["invalid"],
-                  path=path if record_paths else None)
+                  first_direction=out["first_dir"], first_valid=out["first_valid"], path=path)
 
 
 # --- occlusion masks ---------------------------------------------------------------------
@@ -277,6 +358,8 @@ class Catchment(_Outcomes):
     valid: Array
     error_deg: Array
     hidden: tuple = eqx.field(static=True, default=((),))
+    first_move: str = eqx.field(static=True, default="homing")
+    collisions: str = eqx.field(static=True, default="ignore")
 
     def catchment_pct(self) -> np.ndarray:
         """% of grid points whose rollout succeeds, per mask (M,)."""
@@ -284,22 +367,15 @@ class Catchment(_Outcomes):
         return 100.0 * np.asarray(self.success)[:, inc].mean(axis=1)
 
 
-@partial(jax.jit, static_argnames=("method", "batch_size"))
-def occluded_vector_maps(env: Env, points: Array, headings: Array, key: Array, config: Config, method: str,
-                         masks: Array, batch_size: int = DEFAULT_BATCH) -> tuple[Array, Array]:
-    """`maps.homing_directions` under each of M masks, one program: ((M, P), (M, P))."""
-    return jax.lax.map(lambda vis: homing_directions(env, points, headings, key, config, method, vis, batch_size),
-                       masks)
-
-
 def catchment_area(env: Env, method: str, config: Config, spacing: float = 25.0, heading: float | None = None,
                    key: Array | None = None, clearance: float = 10.0, masks: np.ndarray | None = None,
                    hidden: Sequence[tuple[int, ...]] = ((),), home_radius: float = 50.0, max_steps: int = 50,
-                   lanes: int = DEFAULT_LANES, batch_size: int = DEFAULT_BATCH) -> Catchment:
+                   lanes: int = DEFAULT_LANES, first_move: str = "homing", collisions: str = "ignore") -> Catchment:
     """Rollouts from every grid point under every mask in `masks` (M, L), one program (SPEC §5).
 
     Headings: fixed (rad) or per point from `key` as in `maps.random_headings`. The trial of
     grid cell i uses noise stream i under every mask (common random numbers across masks).
+    The vector map under each mask comes from the same program (each trial's first direction).
     """
     key = jax.random.PRNGKey(0) if key is None else key
     masks = np.asarray(env.valid, bool)[None, :] if masks is None else np.asarray(masks, bool)
@@ -308,25 +384,31 @@ def catchment_area(env: Env, method: str, config: Config, spacing: float = 25.0,
     headings = random_headings(key, n_cells) if heading is None else jnp.full(n_cells, heading, jnp.float32)
     included = grid_included(env, points, clearance)
     cells = np.flatnonzero(np.asarray(included))  # input preparation: which cells are released
+    if cells.size == 0:
+        raise InputError("spacing", spacing, "leaves no grid point clear of the landmarks (r + clearance)")
     n_masks, n_inc = masks.shape[0], cells.size
     trial_cell = np.tile(cells, n_masks)
     trial_mask = np.repeat(np.arange(n_masks), n_inc)
     trials = run_trials(env, points[trial_cell], headings[trial_cell], jnp.asarray(trial_cell, jnp.int32),
                         jnp.asarray(trial_mask, jnp.int32), jnp.asarray(masks), key, config, method,
-                        home_radius=home_radius, max_steps=max_steps, lanes=lanes)
+                        home_radius=home_radius, max_steps=max_steps, lanes=lanes, first_move=first_move,
+                        collisions=collisions)
 
     def per_cell(values, fill):
-        full = jnp.full((n_masks, n_cells) + values.shape[1:], fill, values.dtype)
-        return full.at[:, cells].set(values.reshape((n_masks, n_inc) + values.shape[1:]))
+        values = np.asarray(values)
+        full = np.full((n_masks, n_cells) + values.shape[1:], fill, values.dtype)
+        full[:, cells] = values.reshape((n_masks, n_inc) + values.shape[1:])
+        return jnp.asarray(full)
 
-    direction, valid = occluded_vector_maps(env.arrays(), points, headings, key, config, method, jnp.asarray(masks),
-                                            batch_size=min(batch_size, n_cells))
+    direction = per_cell(trials.first_direction, jnp.nan)  # the vector map under each mask
+    valid = per_cell(trials.first_valid, False)
     error = jax.vmap(lambda dr, ok: angular_error_deg(dr, ok, points, env.home))(direction, valid)
     return Catchment(points=points, included=included, heading=headings, visible=jnp.asarray(masks),
                      outcome=per_cell(trials.outcome, EXCLUDED), steps=per_cell(trials.steps, 0),
                      end=per_cell(trials.end, jnp.nan), invalid_steps=per_cell(trials.invalid_steps, 0),
                      direction=direction, valid=valid, error_deg=error,
-                     hidden=tuple(tuple(int(i) for i in h) for h in hidden))
+                     hidden=tuple(tuple(int(i) for i in h) for h in hidden), first_move=first_move,
+                     collisions=collisions)
 
 
 def catchment_summary(result: Catchment) -> dict:
@@ -350,7 +432,7 @@ def catchment_summary(result: Catchment) -> dict:
         v = np.array([row[field] for row in per_mask])
         return {"mean": float(v.mean()), "min": float(v.min()), "max": float(v.max())}
 
-    return {"points": int(inc.sum()), "masks": len(per_mask), "catchment_pct": spread("catchment_pct"),
+    return {"rules": result.rules, "points": int(inc.sum()), "masks": len(per_mask), "catchment_pct": spread("catchment_pct"),
             "gt45_pct": spread("gt45_pct"), "gt90_pct": spread("gt90_pct"), "per_mask": per_mask}
 
 
@@ -417,6 +499,8 @@ class SuccessRate(_Outcomes):
     placed: Array
     outcome: Array
     steps: Array
+    first_move: str = eqx.field(static=True, default="homing")
+    collisions: str = eqx.field(static=True, default="ignore")
 
     def table(self) -> list[dict]:
         """Per-bin rows: distance_cm, trials, placed, successes, success_pct (of placed) with its 95% Wilson
@@ -449,7 +533,8 @@ def wilson_interval_pct(successes: int, trials: int, confidence: float = 0.95) -
 def success_rate_trials(env: Env, method: str, config: Config, distances: Sequence[float] = DEFAULT_DISTANCES,
                         trials: int = 100, heading: float | None = None, key: Array | None = None,
                         clearance: float = 10.0, visible: Array | None = None, home_radius: float = 50.0,
-                        max_steps: int = 50, lanes: int = DEFAULT_LANES) -> SuccessRate:
+                        max_steps: int = 50, lanes: int = DEFAULT_LANES, first_move: str = "homing",
+                        collisions: str = "ignore") -> SuccessRate:
     """`trials` rollouts per release distance: random direction from home, random heading (SPEC §5)."""
     key = jax.random.PRNGKey(0) if key is None else key
     _, _, k_start = rollout_keys(key)
@@ -463,11 +548,13 @@ def success_rate_trials(env: Env, method: str, config: Config, distances: Sequen
     total = n_bins * trials
     res = run_trials(env, starts.reshape(total, 2), heads.reshape(total), jnp.arange(total, dtype=jnp.int32),
                      jnp.zeros(total, jnp.int32), visible[None, :], key, config, method,
-                     home_radius=home_radius, max_steps=max_steps, lanes=lanes)
+                     home_radius=home_radius, max_steps=max_steps, lanes=lanes, first_move=first_move,
+                     collisions=collisions)
     placed_flat = placed.reshape(total)
     outcome = jnp.where(placed_flat, res.outcome, EXCLUDED).reshape(n_bins, trials)
     steps = jnp.where(placed_flat, res.steps, 0).reshape(n_bins, trials)
-    return SuccessRate(distances=dist, start=starts, heading=heads, placed=placed, outcome=outcome, steps=steps)
+    return SuccessRate(distances=dist, start=starts, heading=heads, placed=placed, outcome=outcome, steps=steps,
+                       first_move=first_move, collisions=collisions)
 
 
 # --- trajectories ------------------------------------------------------------------------
@@ -485,11 +572,14 @@ class Trajectories(_Outcomes):
     outcome: Array
     steps: Array
     invalid_steps: Array
+    first_move: str = eqx.field(static=True, default="homing")
+    collisions: str = eqx.field(static=True, default="ignore")
 
 
 def trajectory_trials(env: Env, method: str, config: Config, starts: Array, headings: Array,
                       key: Array | None = None, visible: Array | None = None, home_radius: float = 50.0,
-                      max_steps: int = 50, lanes: int = DEFAULT_LANES) -> Trajectories:
+                      max_steps: int = 50, lanes: int = DEFAULT_LANES, first_move: str = "homing",
+                      collisions: str = "ignore") -> Trajectories:
     """Rollouts from `starts` (T, 2) with `headings` (T,) rad, recording every position."""
     key = jax.random.PRNGKey(0) if key is None else key
     starts = jnp.asarray(starts, jnp.float32)
@@ -498,18 +588,20 @@ def trajectory_trials(env: Env, method: str, config: Config, starts: Array, head
     visible = jnp.asarray(env.valid if visible is None else visible, bool)
     res = run_trials(env, starts, headings, jnp.arange(n, dtype=jnp.int32), jnp.zeros(n, jnp.int32),
                      visible[None, :], key, config, method, home_radius=home_radius, max_steps=max_steps,
-                     lanes=lanes, record_paths=True)
+                     lanes=lanes, record_paths=True, first_move=first_move, collisions=collisions)
     return Trajectories(start=starts, heading=headings, path=res.path, outcome=res.outcome, steps=res.steps,
-                        invalid_steps=res.invalid_steps)
+                        invalid_steps=res.invalid_steps, first_move=first_move, collisions=collisions)
 
 
 # --- public API (validated keywords; mirrors the CLI) ----------------------------------------
 
-def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed, config_kw):
-    """Validate the shared keywords before any work (`api.scene_request` plus the rollout limits)."""
+def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed, config_kw,
+                     first_move="homing", collisions="ignore"):
+    """Validate the shared keywords before any work (`api.scene_request` plus the rollout limits and rules)."""
     from .api import scene_request
     from .options import positive, positive_int
 
+    check_rules(first_move, collisions)
     env, config, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **config_kw)
     max_steps = positive_int(max_steps, "max_steps")
     home_radius = positive(home_radius, "home_radius")
@@ -521,7 +613,8 @@ def catchment(env: str | Path | Env, method: str = "delv", spacing: float = 25.0
               seed: int = 0, occlude: int | None = None, hidden: list[int] | None = None, max_steps: int = 50,
               home_radius: float = 50.0, clearance: float = 10.0, levels: int | None = None, d: float = 50.0,
               background: str = "distant", channel: str = "mask", n_heading: int = 360,
-              lanes: int = DEFAULT_LANES, batch_size: int = DEFAULT_BATCH, **options: float) -> Catchment:
+              lanes: int = DEFAULT_LANES, first_move: str = "homing",
+              collisions: str = "ignore", **options: float) -> Catchment:
     """Catchment area of `method` (Figs 4.5, 5.5; Tables 5.3/5.4): a rollout from every SPEC §5 grid point.
 
     heading_deg fixes the release heading; otherwise it is random per point from `seed`
@@ -529,14 +622,16 @@ def catchment(env: str | Path | Env, method: str = "delv", spacing: float = 25.0
     k hidden landmarks (C(N, k) masks, one program; the home record sees all); `hidden`
     names one choice. `options`: noise sigmas as in `vector_map` plus motion_heading_noise_deg
     and motion_step_noise, or any other `make_config` option (e.g. warping's n_alpha).
-    Returns a `Catchment` (see `catchment_summary`).
+    `first_move` ("homing" | "release") and `collisions` ("ignore" | "fail"): the rollout
+    rules of the module docstring (defaults: SPEC §5). Returns a `Catchment` (see `catchment_summary`).
     """
     from .api import visible_mask
-    from .options import occlusion_count, positive, positive_int
+    from .options import occlusion_count, positive
 
     env, config, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
-        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **options))
+        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **options),
+        first_move, collisions)
     spacing = positive(spacing, "spacing")
     if occlude is not None and hidden:
         raise InputError("occlude", occlude, "cannot be combined with hidden")
@@ -545,58 +640,62 @@ def catchment(env: str | Path | Env, method: str = "delv", spacing: float = 25.0
     else:
         visible_mask(env, hidden)  # validates the indices
         masks, combos = hidden_masks(env, hidden)
-    batch_size = positive_int(batch_size, "batch_size")
     return catchment_area(env, method, config, spacing=spacing, heading=heading, key=key, clearance=clearance,
                           masks=masks, hidden=combos, home_radius=home_radius, max_steps=max_steps, lanes=lanes,
-                          batch_size=batch_size)
+                          first_move=first_move, collisions=collisions)
 
 
 def success_rate(env: str | Path | Env, method: str = "delv", distances: Sequence[float] = DEFAULT_DISTANCES,
                  trials: int = 100, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
                  max_steps: int = 50, home_radius: float = 50.0, clearance: float = 10.0,
                  levels: int | None = None, d: float = 50.0, background: str = "distant", channel: str = "mask",
-                 n_heading: int = 360, lanes: int = DEFAULT_LANES, **options: float) -> SuccessRate:
+                 n_heading: int = 360, lanes: int = DEFAULT_LANES, first_move: str = "homing",
+                 collisions: str = "ignore", **options: float) -> SuccessRate:
     """Success rate vs release distance (Figs 4.10b, 5.7b): `trials` rollouts per distance from home.
 
     Each trial: a random direction from home at that distance and a random heading (seeded);
     a release point inside a landmark's r + clearance or outside the arena is redrawn
     (deterministically, up to 64 times; else the trial is not placed and not counted).
-    `options` as in `catchment`.
+    `options`, `first_move` and `collisions` as in `catchment`.
     """
     from .api import visible_mask
     from .options import positive, positive_int
 
     env, config, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
-        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **options))
+        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **options),
+        first_move, collisions)
     trials = positive_int(trials, "trials")
     if isinstance(distances, (str, bytes)) or not hasattr(distances, "__len__") or len(distances) == 0:
         raise InputError("distances", distances, "must be a non-empty list of distances in cm")
     distances = [positive(v, "distances") for v in distances]
     return success_rate_trials(env, method, config, distances=distances, trials=trials, heading=heading, key=key,
                                clearance=clearance, visible=visible_mask(env, hidden), home_radius=home_radius,
-                               max_steps=max_steps, lanes=lanes)
+                               max_steps=max_steps, lanes=lanes, first_move=first_move, collisions=collisions)
 
 
 def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[Sequence[float]] | None = None,
                  n_starts: int = 6, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
                  max_steps: int = 50, home_radius: float = 50.0, clearance: float = 10.0,
                  levels: int | None = None, d: float = 50.0, background: str = "distant", channel: str = "mask",
-                 n_heading: int = 360, **options: float) -> Trajectories:
+                 n_heading: int = 360, first_move: str = "homing", collisions: str = "ignore",
+                 **options: float) -> Trajectories:
     """Homing paths (Figs 4.11, 5.8) from `starts` [(x, y), ...] or `n_starts` seeded random release points.
 
     Random release points are uniform in the arena, at least d from the walls, farther than
-    r + clearance + d from every landmark (so the first move, along the random release
-    heading, cannot end the trial) and at least 2 * home_radius from home; headings are
+    r + clearance + d from every landmark (so that under first_move="release" the first move,
+    along the random release heading, cannot end the trial) and at least 2 * home_radius
+    from home; headings are
     random per trial from `seed` unless heading_deg is given. The same seed gives the same
-    release points for every method. `options` as in `catchment`.
+    release points for every method. `options`, `first_move` and `collisions` as in `catchment`.
     """
     from .api import visible_mask
     from .options import finite, positive_int
 
     env, config, heading, key, max_steps, home_radius, _, clearance = _rollout_options(
         env, method, max_steps, home_radius, DEFAULT_LANES, clearance, heading_deg, seed,
-        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **options))
+        dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **options),
+        first_move, collisions)
     visible = visible_mask(env, hidden)
     _, _, k_start = rollout_keys(key)
     if starts is None:
@@ -610,7 +709,7 @@ def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[S
     if heading is not None:
         heads = jnp.full(pts.shape[0], heading, jnp.float32)
     return trajectory_trials(env, method, config, pts, heads, key=key, visible=visible, home_radius=home_radius,
-                             max_steps=max_steps, lanes=pts.shape[0])
+                             max_steps=max_steps, first_move=first_move, collisions=collisions)
 
 
 def _check_starts(env: Env, starts, finite) -> Array:

@@ -159,6 +159,39 @@ def env_to_dict(env: Env) -> dict:
     }
 
 
+def rotation_mismatch(env: Env, angles_deg=(90.0, 180.0, 270.0)) -> dict[float, float]:
+    """How far each rotation of the layout about home is from mapping it onto itself (SPEC §6).
+
+    For each angle: rotate the landmark centres about home and return the bottleneck distance
+    (cm) to the original centres, i.e. the smallest d such that a one-to-one matching of the
+    rotated to the original centres moves none by more than d. 0 for a layout with that
+    rotational symmetry (env2, ring4 at 90 deg); env1 is asymmetric: > `ASYMMETRY_CM` for all three.
+    """
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import maximum_bipartite_matching
+
+    pts = np.asarray(env.landmarks, float)[np.asarray(env.valid), :2]
+    rel = pts - np.asarray(env.home, float)
+    out = {}
+    for deg in angles_deg:  # a handful of landmarks: input analysis, not a hot path
+        a = math.radians(deg)
+        rot = rel @ np.array([[math.cos(a), math.sin(a)], [-math.sin(a), math.cos(a)]])
+        dist = np.linalg.norm(rot[:, None, :] - rel[None, :, :], axis=-1)
+        best = float(dist.max())
+        for t in np.unique(dist):  # smallest threshold with a perfect matching
+            match = maximum_bipartite_matching(csr_matrix(dist <= t), perm_type="column")
+            if np.all(match >= 0):
+                best = float(t)
+                break
+        out[float(deg)] = best
+    return out
+
+
+# SPEC §6 "no rotation by a multiple of 90 degrees nearly maps it onto itself", in numbers:
+# every rotation_mismatch of env1 exceeds this (cm); the first env1 layout had 63 cm.
+ASYMMETRY_CM = 80.0
+
+
 def _ring(n: int, distance: float = 250.0, radius: float = 30.0, first_deg: float = 90.0) -> list[tuple[float, float, float]]:
     hx, hy = DEFAULT_HOME
     return [
@@ -174,8 +207,12 @@ def _ring(n: int, distance: float = 250.0, radius: float = 30.0, first_deg: floa
 # Thesis §4.2 / SPEC §6 describe these layouts but give no coordinates; ours follow the
 # descriptions (README documents and draws them). Home (500, 500), arena 1000 x 1000 cm.
 PRESETS: dict[str, list[tuple[float, float, float]]] = {
-    # env1: four landmarks of different sizes around home, asymmetric.
-    "env1": [(330.0, 640.0, 30.0), (640.0, 720.0, 40.0), (720.0, 390.0, 25.0), (420.0, 300.0, 35.0)],
+    # env1: four landmarks of different sizes around home, asymmetric (SPEC §6; docs/env1.md):
+    # bearings from home 23.5/142.3/207.8/289.8 deg (gaps 118.8/65.6/82.0/93.6), distances
+    # 289/196/204/324 cm, none within 20 deg of the home unit move's line. No rotation by
+    # 90/180/270 deg about home brings the centres within 150 cm of the layout
+    # (`rotation_mismatch`), so DELV without a compass does not confuse those rotations.
+    "env1": [(765.0, 615.0, 20.0), (345.0, 620.0, 40.0), (320.0, 405.0, 30.0), (610.0, 195.0, 45.0)],
     # env2: four landmarks at 90 degree spacing seen from home (45, 135, 225, 315 deg).
     "env2": [(676.777, 676.777, 30.0), (323.223, 676.777, 30.0), (323.223, 323.223, 30.0), (676.777, 323.223, 30.0)],
     # env3: all four landmarks on one side (east) of home.
@@ -187,7 +224,7 @@ PRESETS: dict[str, list[tuple[float, float, float]]] = {
 }
 
 PRESET_DESCRIPTIONS = {
-    "env1": "4 landmarks of different sizes around home, asymmetric (thesis env 1)",
+    "env1": "4 landmarks of different sizes around home, asymmetric: gaps 119/66/82/94 deg, 196-324 cm (thesis env 1)",
     "env2": "4 equal landmarks 250 cm from home at 45/135/225/315 deg (thesis env 2)",
     "env3": "4 landmarks all east of home (thesis env 3)",
     **{f"ring{n}": f"{n} landmarks equally spaced 250 cm around home (Tables 5.1-5.4)" for n in range(3, 7)},

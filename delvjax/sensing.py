@@ -104,13 +104,10 @@ def render(env: Env, visible: Array, pos: Array, heading: Array, config: Config)
     """
     n = config.n_pix
     mask = ray_hits(env.landmarks, visible & env.valid, pos, heading, n)
-    if config.background == "distant":
-        back = distant_background(heading, n)
-    elif config.background == "walls":
-        directions = rotate(jnp.asarray(pixel_directions(n)), heading)
-        back = background_of_angle(TWO_PI * wall_coordinate(pos, directions, env.arena))
-    else:
-        back = jnp.zeros(n, jnp.float32)
+    directions = rotate(jnp.asarray(pixel_directions(n)), heading)
+    walls = background_of_angle(TWO_PI * wall_coordinate(pos, directions, env.arena))
+    code = jnp.asarray(config.background)  # traced: every setting shares one compiled program
+    back = jnp.where(code == 0, distant_background(heading, n), jnp.where(code == 1, walls, 0.0))
     return mask, jnp.where(mask, 1.0, back)
 
 
@@ -191,17 +188,15 @@ def observe_move(env: Env, visible: Array, start: Array, end: Array, heading_sta
     )
 
 
-def unit_move(env: Env, start: Array, heading: Array, key: Array, config: Config,
-              visible: Array | None = None, end_at: Array | None = None) -> tuple[UnitMove, Array]:
-    """Sense one unit movement (SPEC §2.5, §3.1); returns (UnitMove, true heading at the end).
+def unit_move_poses(start: Array, heading: Array, key: Array, config: Config, end_at: Array | None = None):
+    """The true poses and odometry of one unit movement (SPEC §2.5, §3.1), before sensing:
+    (start (2,), end (2,), heading_start, heading_end, psi_hat, key of the observation).
 
     The agent at P = `start` with `heading` moves d * (1 + N(0, noise.step)) along it and
     turns by psi ~ N(0, noise.turn); odometry reports d_hat = d and psi_hat = psi +
     N(0, noise.turn_odometry). If `end_at` is given the move ends there instead
     (P = end_at - step * u(heading)): the current view of a vector map (SPEC §3.3).
     """
-    if visible is None:
-        visible = jnp.ones(env.landmarks.shape[0], bool)
     k_step, k_turn, k_odo, k_obs = jax.random.split(key, 4)
     noise = config.noise
     step = config.d * (1.0 + noise.step * jax.random.normal(k_step))
@@ -210,7 +205,15 @@ def unit_move(env: Env, start: Array, heading: Array, key: Array, config: Config
     if end_at is not None:
         start = end_at - step * unit(heading)
     end = start + step * unit(heading)
-    heading_end = heading + psi
+    return start, end, heading, heading + psi, psi_hat, k_obs
+
+
+def unit_move(env: Env, start: Array, heading: Array, key: Array, config: Config,
+              visible: Array | None = None, end_at: Array | None = None) -> tuple[UnitMove, Array]:
+    """Sense one unit movement (`unit_move_poses`); returns (UnitMove, true heading at the end)."""
+    if visible is None:
+        visible = jnp.ones(env.landmarks.shape[0], bool)
+    start, end, heading, heading_end, psi_hat, k_obs = unit_move_poses(start, heading, key, config, end_at)
     move = observe_move(env, visible, start, end, heading, heading_end, config.d, psi_hat, k_obs, config)
     return move, heading_end
 

@@ -1,1 +1,18 @@
-"""Thesis studies: one module per figure set; each writes figures, CSV and JSON to --out."""
+"""The thesis's simulation studies, one module per figure set; `delvjax reproduce` runs them.
+
+Each module has `TITLE`, optionally `STEPS` (progress ticks), and `run(ctx)` with a
+`delvjax.reproduce.StudyContext`. `STUDIES` is the registry, in report order.
+"""
+
+STUDIES = [
+    "environments",
+    "no_compass",
+    "step_distance",
+    "landmark_number",
+    "image_matching",
+    "quantization",
+    "with_compass",
+    "comparators",
+    "occlusion",
+    "visual_compass",
+]

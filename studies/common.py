@@ -1,43 +1,171 @@
-"""Helpers shared by the study modules: output folder, batched-result slicing, progress."""
+"""What the thesis studies share: padded environments, cached runs, hull error rates, figures.
+
+Every environment is padded to `PAD` landmark slots and stripped of its name, and vector
+maps are read from catchment runs, so one compiled program per method serves every
+environment, occlusion, layout, quantization level, background and noise setting (the
+numbers do not change: padding slots are masked out). Rollouts run under the default
+rules (SPEC §5) and the physical rules (first move along the release heading, landmark
+hits fail), reported side by side.
+"""
 
 from __future__ import annotations
 
-import sys
-import time
-from pathlib import Path
+import numpy as np
+import matplotlib.pyplot as plt
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
+from scipy.spatial import Delaunay
 
-import jax
+import delvjax
+from delvjax import rollouts
+from delvjax.maps import VectorMap
+from delvjax.metrics import error_curve, summarize_map
+from delvjax.plots import draw_env, draw_vector_map
+from delvjax.plots_rollouts import SQUARE, catchment_panel
+from delvjax.scene import Env, load_env
 
-from delvjax.cache import enable_compilation_cache
-from delvjax.io import write_json, write_rows_csv
-
-
-class Study:
-    """An output folder plus timing/progress lines on stderr and a JSON summary."""
-
-    def __init__(self, out: str | Path, name: str):
-        self.out = Path(out)
-        self.out.mkdir(parents=True, exist_ok=True)
-        self.name = name
-        enable_compilation_cache()
-        self.summary: dict = {}
-        self.t0 = time.perf_counter()
-
-    def step(self, msg: str) -> None:
-        print(f"[{self.name} {time.perf_counter() - self.t0:6.1f}s] {msg}", file=sys.stderr, flush=True)
-
-    def path(self, name: str) -> Path:
-        return self.out / name
-
-    def rows(self, name: str, rows: list[dict]) -> None:
-        write_rows_csv(self.path(name), rows)
-
-    def finish(self) -> None:
-        self.summary["seconds"] = time.perf_counter() - self.t0
-        write_json(self.path(f"{self.name}.json"), self.summary)
-        self.step(f"done: {self.out}/{self.name}.json")
+PAD = 6
+RULES = {"default": rollouts.DEFAULT_RULES, "physical": rollouts.PHYSICAL_RULES}
+LABEL = {"delv": "DELV", "delv-compass": "DELV (compass)", "delv-visual": "DELV (visual compass)",
+         "acv": "ACV", "alv": "ALV", "acv-visual": "ACV (visual compass)", "alv-visual": "ALV (visual compass)",
+         "warping": "image matching"}
+HOME_RADIUS = 50.0
 
 
-def take(tree, i: int):
-    """Element i of a batched pytree (a sweep's result)."""
-    return jax.tree.map(lambda a: a[i], tree)
+def env(name: str) -> Env:
+    """A built-in environment padded to PAD landmarks (one compiled program for all)."""
+    return load_env(name, pad_to=PAD)
+
+
+def vector_map(ctx, e: Env, method: str, **options) -> VectorMap:
+    """The vector map of `method`, read from a catchment run: the rollouts' first directions are the
+    vector map of the same seed (the same numbers as `delvjax.vector_map`, tested), and every study
+    then needs one compiled program per method."""
+    return as_vector_map(catchment(ctx, e, method, **options))
+
+
+def catchment(ctx, e: Env, method: str, rules: str = "default", **options) -> rollouts.Catchment:
+    return delvjax.catchment(e.arrays(), method=method, spacing=ctx.settings.spacing, seed=ctx.settings.seed,
+                             home_radius=HOME_RADIUS, **RULES[rules], **options)
+
+
+def success_table(ctx, e: Env, method: str, rules: str = "default", **options) -> list[dict]:
+    """Success rate per release distance 50..450 cm (`settings.trials` per bin, Figs 4.10b, 5.7b)."""
+    res = delvjax.success_rate(e.arrays(), method=method, trials=ctx.settings.trials, seed=ctx.settings.seed,
+                               home_radius=HOME_RADIUS, **RULES[rules], **options)
+    return res.table()
+
+
+def inside_hull(e: Env, points: np.ndarray) -> np.ndarray:
+    """True where a point lies inside the convex hull of the landmark centres."""
+    lms = np.asarray(e.landmarks)[np.asarray(e.valid), :2]
+    return Delaunay(lms).find_simplex(np.asarray(points)) >= 0
+
+
+def map_numbers(e: Env, vm: VectorMap) -> dict:
+    """summarize_map plus e > 45 % inside and outside the landmarks' convex hull (Fig 4.3's reading)."""
+    s = summarize_map(vm.error_deg, vm.valid, vm.included)
+    inc = np.asarray(vm.included)
+    hull = inside_hull(e, np.asarray(vm.points)) & inc
+    out = ~hull & inc
+    err = np.asarray(vm.error_deg)
+    s["gt45_inside_hull_pct"] = 100.0 * float((err[hull] > 45).mean()) if hull.any() else float("nan")
+    s["gt45_outside_hull_pct"] = 100.0 * float((err[out] > 45).mean()) if out.any() else float("nan")
+    return s
+
+
+def curve(e: Env, vm: VectorMap) -> list[dict]:
+    return error_curve(vm.error_deg, vm.points, e.home, vm.included)
+
+
+def curve_means(rows: list[dict]) -> list[float]:
+    return [r["mean_deg"] for r in rows]
+
+
+def curves_rows(curves: dict[str, list[dict]]) -> list[dict]:
+    return [{"label": label, **row} for label, rows in curves.items() for row in rows]
+
+
+def as_vector_map(c: rollouts.Catchment, m: int = 0) -> VectorMap:
+    """The vector map inside a `Catchment` (mask m): same headings and home record as `vector_map`."""
+    return VectorMap(points=c.points, included=c.included, heading=c.heading, direction=c.direction[m],
+                     valid=c.valid[m], error_deg=c.error_deg[m])
+
+
+def outcome_counts(c: rollouts.Catchment, m: int = 0) -> dict[str, int]:
+    inc = np.asarray(c.included)
+    out = np.asarray(c.outcome)[m][inc]
+    return {f"{name}": int((out == code).sum()) for code, name in enumerate(rollouts.OUTCOMES)}
+
+
+def success_summary(rows: list[dict]) -> dict:
+    placed = sum(r["placed"] for r in rows)
+    return {"by_distance": [r["success_pct"] for r in rows],
+            "overall": 100.0 * sum(r["successes"] for r in rows) / max(placed, 1)}
+
+
+# --- figures ---------------------------------------------------------------------------------
+
+def panel_figure(items, spacing: float, classes: bool = False, title: str = ""):
+    """1 x n vector-map panels: items = [(panel title, env, VectorMap)]; every marker in a legend."""
+    fig, axes = plt.subplots(1, len(items), figsize=(4.6 * len(items), 5.0), squeeze=False)
+    for ax, (label, e, vm) in zip(axes[0], items):
+        draw_vector_map(ax, e, vm.points, vm.direction, vm.valid, vm.included, spacing,
+                        error_deg=vm.error_deg if classes else None)
+        draw_env(ax, e)
+        ax.set_title(label, fontsize=9)
+    handles = [Line2D([], [], marker=r"$\rightarrow$", color="black", ls="", ms=10, label="homing direction"),
+               Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
+               Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
+               Line2D([], [], marker="x", color="tab:red", ls="", ms=7, label="no direction (invalid)")]
+    if classes:
+        from delvjax.plots import CLASS_STYLE
+
+        handles += [Line2D([], [], ls="", label=f"error {lab}", marker=style["marker"],
+                           color=style.get("color", style.get("edgecolors")),
+                           mfc="none" if "facecolors" in style else None) for lab, style in CLASS_STYLE[1:]]
+    fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8, frameon=False)
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    return fig
+
+
+def catchment_figure(items, spacing: float, title: str):
+    """1 x n catchment panels (Figs 4.5 / 5.5): items = [(panel title, env, Catchment)]."""
+    fig, axes = plt.subplots(1, len(items), figsize=(4.8 * len(items), 5.4), squeeze=False)
+    for ax, (label, e, c) in zip(axes[0], items):
+        catchment_panel(ax, e, c, 0, spacing, title=label)
+    handles = [Patch(label="release point inside the catchment area", **SQUARE),
+               Line2D([], [], marker=r"$\rightarrow$", color="black", ls="", ms=10, label="first homing direction"),
+               Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
+               Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)")]
+    fig.legend(handles=handles, loc="lower center", ncol=4, fontsize=8, frameon=False)
+    fig.suptitle(title)
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    return fig
+
+
+def trajectory_rows(label: str, traj) -> list[dict]:
+    """One row per visited position: label, trial, release heading, step, x, y, outcome of the trial."""
+    path = np.asarray(traj.path)
+    outcome = np.asarray(traj.outcome)
+    heading = np.degrees(np.asarray(traj.heading))
+    rows = []
+    for t in range(path.shape[0]):  # a handful of paths: output formatting
+        name = rollouts.OUTCOMES[outcome[t]] if outcome[t] >= 0 else "running"
+        for s in np.flatnonzero(np.all(np.isfinite(path[t]), axis=-1)):
+            rows.append({"label": label, "trial": t, "release_heading_deg": float(heading[t]), "step": int(s),
+                         "x": float(path[t, s, 0]), "y": float(path[t, s, 1]), "outcome": name,
+                         **traj.rules})
+    return rows
+
+
+def thesis_value(table: dict, env_name: str, method: str, k: int = 0):
+    """A thesis number or None (`table[env][method][k]`)."""
+    values = table.get(env_name, {}).get(method)
+    if values is None:
+        return None
+    if isinstance(values, dict):
+        values = values.get("gt45")
+    return values[k] if values is not None and k < len(values) else None

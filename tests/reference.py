@@ -191,13 +191,15 @@ def _pairs(N, M, k):
     return [(i, (i + k) % M) for i in range(N)]
 
 
-def match_arrangement(ref_vecs, cur_vecs, alphas):
+def match_arrangement(ref_vecs, cur_vecs, alphas, min_pairs=2):
     """Search shift k (outer) and heading alpha (inner) minimising var; returns
-    (k, alpha, p, var) of the first strict minimum, or None when n < 2."""
+    (k, alpha, p, var) of the first strict minimum, or None when n < min_pairs or n = 0.
+    min_pairs: 2 without a compass (one pair fits every heading), 1 with a fixed heading
+    (one pair fixes p; with n = 1 every shift has var = 0 and k = 0 wins), SPEC 3.4."""
     ref = np.asarray(ref_vecs, dtype=float).reshape(-1, 2)
     cur = np.asarray(cur_vecs, dtype=float).reshape(-1, 2)
     N, M = len(ref), len(cur)
-    if min(N, M) < 2:
+    if min(N, M) < max(min_pairs, 1):
         return None
     best = None
     for k in range(max(N, M)):
@@ -231,7 +233,7 @@ def delv_direction(home_start_b, home_end_b, here_start_b, here_end_b,
         alphas = [TWO_PI * a / n_heading for a in range(n_heading)]
     else:
         alphas = [alpha_fixed]                        # compass / visual compass: only k
-    res = match_arrangement(ref, cur, alphas)
+    res = match_arrangement(ref, cur, alphas, min_pairs=2 if alpha_fixed is None else 1)
     if res is None:
         return math.nan, {"k": None, "alpha": None, "p": None, "var": None}
     k, alpha, p, var = res
@@ -296,15 +298,20 @@ def visual_compass(home_gray, here_gray):
 # ----------------------------------------------------------------------------- SPEC 5
 def reference_direction(landmarks, arena, home, point, heading, method, d=50.0,
                         levels=None, background="distant", alpha_r=0.0, scale=1000.0,
-                        r_max=2000.0, n_heading=360, n_pix=360):
-    """Noise-free world-frame homing direction at `point` with heading `heading`."""
+                        r_max=2000.0, n_heading=360, n_pix=360, visible=None):
+    """Noise-free world-frame homing direction at `point` with heading `heading`.
+    `visible` (bool per landmark, default all): the landmarks seen in the current views
+    (occlusion, SPEC 5); the home snapshots always see every landmark."""
     home, point, h = np.asarray(home, float), np.asarray(point, float), float(heading)
+    seen = np.asarray(landmarks, float).reshape(-1, 3)
+    if visible is not None:
+        seen = seen[np.asarray(visible, bool)]
     # Home unit move: from home along alpha_r, heading unchanged (psi = 0, d_hat = d).
     hs_mask, hs_gray = render(landmarks, home, alpha_r, arena, background, n_pix)
     he_mask, _ = render(landmarks, home + d * _unit(alpha_r), alpha_r, arena, background, n_pix)
     # Current unit move ending at point with heading h throughout.
-    xs_mask, _ = render(landmarks, point - d * _unit(h), h, arena, background, n_pix)
-    xe_mask, xe_gray = render(landmarks, point, h, arena, background, n_pix)
+    xs_mask, _ = render(seen, point - d * _unit(h), h, arena, background, n_pix)
+    xe_mask, xe_gray = render(seen, point, h, arena, background, n_pix)
     home_start_b, home_end_b = extract_blobs(hs_mask), extract_blobs(he_mask)
     here_start_b, here_end_b = extract_blobs(xs_mask), extract_blobs(xe_mask)
     compass = wrap(h - alpha_r)

@@ -11,7 +11,7 @@ import delvjax
 from delvjax.config import Config
 from delvjax.estimation import current_vectors, end_distances, quantize, reference_vectors, start_distances
 from delvjax.methods import METHODS
-from delvjax.methods.delv import match_arrangement
+from delvjax.methods.delv import direction_with_heading, match_arrangement
 from delvjax.sensing import Snapshot, UnitMove
 from conftest import random_landmarks
 
@@ -172,3 +172,47 @@ def test_home_is_the_equilibrium_of_the_homing_fields():
     roots, ok = equilibria(delvjax.load_env("env3"), starts, "delv")
     assert bool(np.all(np.asarray(ok)))
     np.testing.assert_allclose(np.asarray(roots), 500.0, atol=1e-3)
+
+
+def test_one_pair_with_a_heading_takes_the_first_shift():
+    """SPEC §3.4: with n = 1 every shift has var = 0; the first k wins (current 0 pairs reference 0)."""
+    ref_v = jnp.array([[100.0, 50.0], [-80.0, 120.0], [-30.0, -200.0]])
+    cur_v = jnp.array([[40.0, -60.0], [0.0, 0.0], [0.0, 0.0]])
+    alpha = jnp.array([0.7])
+    rot = np.array([[np.cos(0.7), -np.sin(0.7)], [np.sin(0.7), np.cos(0.7)]])
+    for ref_ok, cur_ok, expect in [
+        (jnp.array([True, True, True]), jnp.array([True, False, False]), np.asarray(ref_v[0]) - rot @ np.asarray(cur_v[0])),
+        (jnp.array([True, False, False]), jnp.array([True, True, False]), np.asarray(ref_v[0]) - rot @ np.asarray(cur_v[0])),
+    ]:
+        p, a, var, n = match_arrangement(ref_v, ref_ok, cur_v, cur_ok, alpha)
+        assert int(n) == 1 and float(var) == 0.0 and float(a) == pytest.approx(0.7)
+        np.testing.assert_allclose(np.asarray(p), expect, atol=1e-4)
+
+
+def test_delv_with_compass_homes_on_one_landmark():
+    """SPEC §3.4: with a compass one landmark (n = 1) fixes p = V^R - Rot(alpha) V; with exact
+    bearings and heading it is x - home exactly, so the direction is exact. Without a compass
+    one pair fits every heading: invalid (NaN)."""
+    lm = np.array([[640.0, 730.0]])
+    home = np.array([500.0, 500.0])
+    record = exact_move(lm, home, 0.0, 50.0)
+    rng = np.random.default_rng(5)
+    done = 0
+    while done < 8:
+        h = float(rng.uniform(0.0, 2 * np.pi))
+        x = rng.uniform(150.0, 850.0, size=2)
+        start = x - 50.0 * np.array([np.cos(h), np.sin(h)])
+        rel = lm[0] - start
+        if np.linalg.norm(lm[0] - x) < 100 or np.linalg.norm(x - home) < 100 \
+                or abs(np.sin(np.arctan2(rel[1], rel[0]) - h)) < 0.05:
+            continue  # no parallax straight ahead/behind (R = r_max), and a tiny p near home
+        done += 1
+        view = exact_move(lm, start, h, 50.0, compass=h)
+        to_home = np.arctan2(*(home - x)[::-1])
+        angle, valid = METHODS["delv-compass"](record, view, Config())
+        assert bool(valid) and abs(np.angle(np.exp(1j * (h + float(angle) - to_home)))) < 2e-3
+        # the heading estimate the visual compass passes in takes the same path
+        angle_v, valid_v = direction_with_heading(record, view, Config(), jnp.float32(h))
+        assert bool(valid_v) and float(angle_v) == pytest.approx(float(angle), abs=1e-6)
+        angle, valid = METHODS["delv"](record, view, Config())
+        assert not bool(valid) and np.isnan(float(angle))

@@ -74,7 +74,9 @@ def test_rotating_the_world_rotates_the_map():
 
 
 def test_undefined_directions_are_invalid_not_nan_errors():
-    """DELV needs >= 2 landmark pairs: a one-landmark world gives only invalid points (error 180)."""
+    """DELV without a compass needs >= 2 landmark pairs: a one-landmark world gives only invalid
+    points (error 180). With a compass (true or visual) one pair suffices (SPEC §3.4): every
+    point is valid and, the one pairing being right, the errors are small."""
     env = delvjax.make_env([[700.0, 600.0, 30.0]])
     vm = delvjax.vector_map(env, method="delv", spacing=100.0)
     assert not np.asarray(vm.valid).any()
@@ -82,6 +84,20 @@ def test_undefined_directions_are_invalid_not_nan_errors():
     np.testing.assert_array_equal(np.asarray(vm.error_deg), 180.0)
     alv = delvjax.vector_map(env, method="alv", spacing=100.0)
     assert np.asarray(alv.valid)[np.asarray(alv.included)].mean() > 0.9
+    for method in ("delv-compass", "delv-visual"):
+        one = delvjax.vector_map(env, method=method, spacing=50.0)
+        inc = np.asarray(one.included)
+        assert np.asarray(one.valid)[inc].all(), method
+        assert np.median(np.asarray(one.error_deg)[inc]) < 5.0, method
+
+
+def test_one_visible_landmark_needs_a_compass():
+    """Occlusion down to one visible landmark (`hidden`): delv-compass stays defined, delv does not."""
+    hidden = [1, 2, 3]
+    with_compass = delvjax.vector_map("env1", method="delv-compass", spacing=100.0, hidden=hidden)
+    assert np.asarray(with_compass.valid)[np.asarray(with_compass.included)].all()
+    without = delvjax.vector_map("env1", method="delv", spacing=100.0, hidden=hidden)
+    assert not np.asarray(without.valid).any()
 
 
 def test_metrics():

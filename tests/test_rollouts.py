@@ -1,10 +1,20 @@
 """Rollouts, catchment area, success rate, trajectories, occlusion and noise (SPEC §5, §2.5).
 
 Analytic cases first (ALV homes from inside a symmetric ring), then agreement with the
-per-point NumPy reference rollout on random environments, then properties (determinism,
-chunk invariance, occlusion batching, zero noise) and bad input.
+per-point NumPy reference rollout on random environments under both rule sets (the
+default first_move="homing", collisions="ignore" and the physical agent's "release",
+"fail"), then the rules themselves, properties (determinism, lane and block invariance,
+occlusion batching, zero noise) and bad input.
+
+Compiled programs are the cost of this file: a rollout program is compiled once per
+(method, landmark count, trial block, lanes, record_paths). The tests below reuse a few
+shapes on purpose: four landmarks, blocks of 32 (<= 32 trials, lanes 256), 128 (spacing-100
+catchments) and 4 (recorded paths, lanes 4). Environments are explicit arrays, not the
+built-in presets, unless only a count of points or lines is checked.
 """
 
+import csv
+import json
 import math
 import sys
 from pathlib import Path
@@ -15,7 +25,7 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
-from reference_rollouts import HomeRecord, reference_rollout  # noqa: E402
+from reference_rollouts import HomeRecord, reference_rollout, release_direction  # noqa: E402
 
 import delvjax  # noqa: E402
 from delvjax import rollouts  # noqa: E402
@@ -29,6 +39,10 @@ ARENA = [0.0, 0.0, 1000.0, 1000.0]
 HOME = [500.0, 500.0]
 NOISE = dict(bearing_noise_deg=2.0, step_noise=0.05, turn_noise_deg=3.0, odometry_turn_noise_deg=1.0,
              compass_noise_deg=2.0, motion_heading_noise_deg=5.0, motion_step_noise=0.1)
+# four cylinders [x, y, r] around the default home (explicit: the built-in layouts may change)
+FOUR = np.array([[330.0, 640.0, 30.0], [640.0, 720.0, 40.0], [720.0, 390.0, 25.0], [420.0, 300.0, 35.0]])
+DEFAULT, PHYSICAL = rollouts.DEFAULT_RULES, rollouts.PHYSICAL_RULES
+RULE_SETS = (DEFAULT, PHYSICAL)
 
 
 def random_landmarks(rng, n):
@@ -42,23 +56,33 @@ def random_landmarks(rng, n):
     return np.array(lms)
 
 
-def run(env, starts, heads, method, config=None, lanes=64, key=0, masks=None, record_paths=False):
+def run(env, starts, heads, method, config=None, lanes=rollouts.DEFAULT_LANES, key=0, masks=None,
+        record_paths=False, first_move="homing", collisions="ignore"):
+    """`rollouts.run_trials` with trial i on noise stream i under one mask; lanes default as the public API
+    (so that these programs are the ones `catchment` and `success_rate` compile)."""
     n = starts.shape[0]
     masks = env.valid[None] if masks is None else masks
     return rollouts.run_trials(env, jnp.asarray(starts), jnp.asarray(heads), jnp.arange(n, dtype=jnp.int32),
                                jnp.zeros(n, jnp.int32), masks, jax.random.PRNGKey(key), config or make_config(),
-                               method, lanes=lanes, record_paths=record_paths)
+                               method, lanes=lanes, record_paths=record_paths, first_move=first_move,
+                               collisions=collisions)
+
+
+def angle_diff(a, b):
+    return np.abs((np.asarray(a, float) - np.asarray(b, float) + math.pi) % (2 * math.pi) - math.pi)
 
 
 # --- analytic -------------------------------------------------------------------------------
 
-def test_alv_homes_from_every_interior_start_of_a_symmetric_ring():
-    """ALV converges globally (Möller 2000): every start whose first move stays inside the ring homes."""
+@pytest.mark.parametrize("rules", RULE_SETS, ids=["default", "physical"])
+def test_alv_homes_from_every_interior_start_of_a_symmetric_ring(rules):
+    """ALV converges globally (Möller 2000): every start whose first move stays inside the ring homes
+    (with first_move="release" the first move goes along the random release heading)."""
     env = delvjax.load_env("ring6")
     pts = grid_points(env.arena, 25.0)
     inner = pts[np.hypot(*(pts - 500.0).T) < 250.0 - 30.0 - 50.0]  # ring radius - r - d
     heads = np.asarray(random_headings(jax.random.PRNGKey(0), len(inner)))
-    res = run(env, inner, heads, "alv")
+    res = run(env, inner, heads, "alv", **rules)
     assert len(inner) > 100
     assert np.asarray(res.success).all()
 
@@ -66,10 +90,14 @@ def test_alv_homes_from_every_interior_start_of_a_symmetric_ring():
 # --- the NumPy twin ---------------------------------------------------------------------------
 
 def test_success_flags_match_the_numpy_reference_rollout():
-    """>= 98% identical success flags on random environments (float32 vs float64 paths may part at a pixel edge)."""
+    """Under both rule sets, >= 98% identical success flags on random environments (float32 vs float64
+    paths may part at a pixel edge). The library runs all 20 trials under both rules (one program per
+    method); the slow twin checks trials 0.. under the default rules and 10.. under the physical ones."""
     rng = np.random.default_rng(0)
-    plan = [("alv", 20), ("acv", 20), ("delv-compass", 20), ("delv", 6)]
-    same = total = 0
+    plan = [("alv", 7), ("acv", 7), ("delv-compass", 7), ("delv", 2)]
+    same = [0, 0]
+    total = [0, 0]
+    landmark_outcomes = [0, 0]
     for e in range(3):
         lms = random_landmarks(rng, 4)
         env = make_env(lms)
@@ -78,20 +106,29 @@ def test_success_flags_match_the_numpy_reference_rollout():
         starts, heads = np.asarray(starts), np.asarray(heads)
         record = HomeRecord(lms, ARENA, HOME)
         for method, n in plan:
-            res = run(env, starts, heads, method)
-            for i in range(n):
-                outcome, steps, _ = reference_rollout(lms, ARENA, HOME, starts[i], heads[i], method, record=record)
-                same += (outcome == rollouts.SUCCESS) == bool(res.success[i])
-                total += 1
-    assert same >= 0.98 * total, f"{total - same} of {total} success flags differ"
+            for k, rules in enumerate(RULE_SETS):
+                res = run(env, starts, heads, method, **rules)
+                landmark_outcomes[k] += int(np.sum(np.asarray(res.outcome) == rollouts.LANDMARK))
+                for i in range(10 * k, 10 * k + n):
+                    outcome, steps, _ = reference_rollout(lms, ARENA, HOME, starts[i], heads[i], method,
+                                                          record=record, **rules)
+                    same[k] += (outcome == rollouts.SUCCESS) == bool(res.success[i])
+                    total[k] += 1
+    for k, rules in enumerate(RULE_SETS):
+        assert same[k] >= 0.98 * total[k], f"{rules}: {total[k] - same[k]} of {total[k]} success flags differ"
+    assert landmark_outcomes[0] == 0  # collisions="ignore": landmarks are no obstacles
+    assert landmark_outcomes[1] > 0  # collisions="fail" is exercised by these trials
 
+
+# --- the rules ----------------------------------------------------------------------------------
 
 def test_paths_follow_the_rules():
-    """First move along the release heading, d long; path NaN after the end; end = last position."""
-    env = delvjax.load_env("env1")
+    """first_move="release": first move along the release heading, d long; path NaN after the end;
+    end = last position."""
+    env = make_env(FOUR)
     starts = np.array([[100.0, 100.0], [900.0, 500.0], [500.0, 530.0], [20.0, 500.0]], np.float32)
     heads = np.array([0.3, 2.0, 1.0, math.pi], np.float32)
-    res = run(env, starts, heads, "alv", record_paths=True)
+    res = run(env, starts, heads, "alv", lanes=4, record_paths=True, **PHYSICAL)
     path, steps = np.asarray(res.path), np.asarray(res.steps)
     assert res.outcome[2] == rollouts.SUCCESS and steps[2] == 0  # released within home_radius
     assert res.outcome[3] == rollouts.ARENA and steps[3] == 1  # first move leaves the arena
@@ -106,39 +143,137 @@ def test_paths_follow_the_rules():
         assert np.hypot(*(path[t, steps[t]] - 500.0)) <= 50.0 < np.hypot(*(path[t, steps[t] - 1] - 500.0))
 
 
+def test_first_move_follows_the_vector_map_direction_at_the_release_point():
+    """first_move="homing" (default): the first move goes d along the direction computed from a unit move
+    along the release heading that ends at the start (the NumPy twin's vector-map direction); the first
+    direction is reported, the same, under either rule."""
+    env = make_env(FOUR)
+    starts = np.array([[150.0, 150.0], [850.0, 200.0], [200.0, 850.0], [850.0, 850.0]], np.float32)
+    heads = np.array([0.3, 2.0, 4.0, 5.5], np.float32)
+    res = run(env, starts, heads, "alv", lanes=4, record_paths=True)
+    rel = run(env, starts, heads, "alv", lanes=4, record_paths=True, first_move="release")
+    first, valid = np.asarray(res.first_direction), np.asarray(res.first_valid)
+    assert valid.all() and np.array_equal(np.asarray(rel.first_direction), first)
+    record = HomeRecord(FOUR, ARENA, HOME)
+    twin = [release_direction(record, FOUR, ARENA, starts[t], float(heads[t]), "alv") for t in range(4)]
+    assert np.all(angle_diff(first, twin) < 1e-3), (first, twin)
+    path, steps = np.asarray(res.path), np.asarray(res.steps)
+    assert (steps > 0).all() and np.asarray(res.success).all()
+    moves = path[:, 1] - path[:, 0]
+    assert np.allclose(moves, 50.0 * np.stack([np.cos(first), np.sin(first)], axis=1), atol=1e-3)
+    assert not np.allclose(moves, 50.0 * np.stack([np.cos(heads), np.sin(heads)], axis=1), atol=1.0)
+    rel_moves = np.asarray(rel.path)[:, 1] - np.asarray(rel.path)[:, 0]
+    assert np.allclose(rel_moves, 50.0 * np.stack([np.cos(heads), np.sin(heads)], axis=1), atol=1e-3)
+
+
+def test_catchment_first_directions_are_the_vector_map():
+    """A catchment's direction/valid/error_deg (its trials' first directions) equal `delvjax.vector_map`'s at
+    the same grid points for the same seed, noise included (the vector map's streams)."""
+    env = make_env(FOUR)
+    noise = {k: v for k, v in NOISE.items() if not k.startswith("motion")}  # the vector map's noise sources
+    c = delvjax.catchment(env, method="alv", spacing=100.0, seed=5, **noise)
+    vm = delvjax.vector_map(env, method="alv", spacing=100.0, seed=5, **noise)
+    inc = np.asarray(c.included)
+    assert np.array_equal(inc, np.asarray(vm.included)) and inc.sum() > 50
+    assert np.array_equal(np.asarray(c.points), np.asarray(vm.points))
+    assert np.array_equal(np.asarray(c.heading), np.asarray(vm.heading))
+    d_c, d_v = np.asarray(c.direction)[0][inc], np.asarray(vm.direction)[inc]
+    assert np.array_equal(np.asarray(c.valid)[0][inc], np.asarray(vm.valid)[inc])
+    assert np.array_equal(np.isnan(d_c), np.isnan(d_v)) and np.array_equal(np.isnan(d_v), ~np.asarray(vm.valid)[inc])
+    ok = ~np.isnan(d_v)
+    assert ok.sum() > 50 and np.all(angle_diff(d_c[ok], d_v[ok]) <= 1e-4)
+    assert np.allclose(np.asarray(c.error_deg)[0][inc], np.asarray(vm.error_deg)[inc], atol=1e-2)
+
+
+# a cylinder (r 45) on the straight way from (500, 900) to home, three more away from it
+CROSSED = np.array([[500.0, 700.0, 45.0], [250.0, 350.0, 30.0], [750.0, 350.0, 30.0], [780.0, 780.0, 30.0]])
+
+
+def test_collisions_fail_ends_inside_a_landmark_and_ignore_passes_through():
+    env = make_env(CROSSED)
+    starts = [[500.0, 900.0], [150.0, 150.0], [850.0, 150.0], [150.0, 850.0]]
+    fail = delvjax.trajectories(env, method="alv", starts=starts, heading_deg=-90.0, collisions="fail")
+    ignore = delvjax.trajectories(env, method="alv", starts=starts, heading_deg=-90.0)
+    assert fail.rules == {"first_move": "homing", "collisions": "fail"} and ignore.rules == DEFAULT
+
+    def inside(p):
+        return np.hypot(p[0] - 500.0, p[1] - 700.0) < 45.0
+
+    n = int(fail.steps[0])
+    assert fail.outcome[0] == rollouts.LANDMARK and inside(np.asarray(fail.path)[0, n])
+    assert ignore.outcome[0] == rollouts.SUCCESS and int(ignore.steps[0]) > n
+    assert np.array_equal(np.asarray(ignore.path)[0, :n + 1], np.asarray(fail.path)[0, :n + 1])  # through it
+    for t in range(1, 4):  # trials that meet no landmark do not depend on the rule
+        assert fail.outcome[t] == ignore.outcome[t] == rollouts.SUCCESS and fail.steps[t] == ignore.steps[t]
+
+    # a whole catchment: no LANDMARK outcome under "ignore"; the same trials as "fail" wherever "fail" met none
+    c_fail = delvjax.catchment(env, method="alv", spacing=100.0, collisions="fail")
+    c_ignore = delvjax.catchment(env, method="alv", spacing=100.0)
+    s_fail, s_ignore = rollouts.catchment_summary(c_fail), rollouts.catchment_summary(c_ignore)
+    assert s_ignore["rules"] == DEFAULT and s_fail["rules"] == {"first_move": "homing", "collisions": "fail"}
+    assert [row["landmark_count"] for row in s_ignore["per_mask"]] == [0]
+    assert s_fail["per_mask"][0]["landmark_count"] > 0
+    hit = np.asarray(c_fail.outcome) == rollouts.LANDMARK
+    for field in ("outcome", "steps", "end"):
+        assert np.array_equal(np.asarray(getattr(c_fail, field))[~hit], np.asarray(getattr(c_ignore, field))[~hit],
+                              equal_nan=True)
+    assert s_ignore["catchment_pct"]["mean"] >= s_fail["catchment_pct"]["mean"]
+
+
 # --- properties ---------------------------------------------------------------------------------
 
 def test_deterministic_and_independent_of_lanes_with_every_noise_source():
     env = make_env(random_landmarks(np.random.default_rng(1), 4))  # shapes of the reference test: one compile less
     starts, heads, _ = rollouts.release_points(env, jax.random.PRNGKey(3), 20, None, 10.0, 0.0)
     noisy = make_config(**NOISE)
-    a = run(env, starts, heads, "delv-compass", noisy, lanes=64)
-    b = run(env, starts, heads, "delv-compass", noisy, lanes=7)
-    c = run(env, starts, heads, "delv-compass", noisy, lanes=64)
-    quiet = run(env, starts, heads, "delv-compass", make_config(), lanes=64)
+    a = run(env, starts, heads, "delv-compass", noisy)
+    b = run(env, starts, heads, "delv-compass", noisy, lanes=7)  # lanes refilled from the queue
+    c = run(env, starts, heads, "delv-compass", noisy)
+    quiet = run(env, starts, heads, "delv-compass", make_config())
     assert np.asarray(a.success).any()
     for x, y in ((a, b), (a, c)):
-        for field in ("outcome", "steps", "end", "invalid_steps"):
-            assert np.array_equal(np.asarray(getattr(x, field)), np.asarray(getattr(y, field)))
+        for field in ("outcome", "steps", "end", "invalid_steps", "first_direction", "first_valid"):
+            assert np.array_equal(np.asarray(getattr(x, field)), np.asarray(getattr(y, field)), equal_nan=True)
     assert not np.array_equal(np.asarray(a.end), np.asarray(quiet.end))
 
 
+def test_results_do_not_depend_on_the_trial_blocks(monkeypatch):
+    """120 noisy trials in one block (padded to TRIAL_BLOCK) or in four blocks of 32 (the last one padded):
+    every trial keeps its own noise stream, so the results are identical (collisions="fail" for a mix of
+    outcomes)."""
+    env = make_env(CROSSED)
+    starts, heads, placed = rollouts.release_points(env, jax.random.PRNGKey(7), 120, None, 10.0, 0.0)
+    assert np.asarray(placed).all()
+    noisy = make_config(**NOISE)
+    assert rollouts.trial_block(120) == rollouts.TRIAL_BLOCK
+    whole = run(env, starts, heads, "alv", noisy, collisions="fail")
+    monkeypatch.setattr(rollouts, "TRIAL_BLOCK", 32)
+    assert rollouts.trial_block(120) == 32
+    blocks = run(env, starts, heads, "alv", noisy, collisions="fail")
+    outcome = np.asarray(whole.outcome)
+    assert outcome.shape == (120,) and (outcome == rollouts.SUCCESS).any() and (outcome != rollouts.SUCCESS).any()
+    for field in ("outcome", "steps", "end", "invalid_steps", "first_direction", "first_valid"):
+        assert np.array_equal(np.asarray(getattr(whole, field)), np.asarray(getattr(blocks, field)), equal_nan=True)
+
+
 def test_zero_noise_reproduces_the_noise_free_results_exactly():
-    plain = delvjax.catchment("env1", method="alv", spacing=100.0, seed=1)
-    zero = delvjax.catchment("env1", method="alv", spacing=100.0, seed=1, **{k: 0.0 for k in NOISE})
+    env = make_env(FOUR)
+    plain = delvjax.catchment(env, method="alv", spacing=100.0, seed=1)
+    zero = delvjax.catchment(env, method="alv", spacing=100.0, seed=1, **{k: 0.0 for k in NOISE})
     for field in ("outcome", "steps", "end", "direction"):
         assert np.array_equal(np.asarray(getattr(plain, field)), np.asarray(getattr(zero, field)), equal_nan=True)
 
 
 def test_occlusion_k0_equals_no_occlusion_and_batched_masks_equal_single_ones():
-    kw = dict(method="alv", spacing=100.0, seed=1)
-    none = delvjax.catchment("env1", **kw)
-    k0 = delvjax.catchment("env1", occlude=0, **kw)
+    env = make_env(FOUR)
+    kw = dict(method="alv", spacing=200.0, seed=1)  # 25 points: one mask is a block of 32, four of 128
+    none = delvjax.catchment(env, **kw)
+    k0 = delvjax.catchment(env, occlude=0, **kw)
     for field in ("outcome", "steps", "end", "error_deg"):
         assert np.array_equal(np.asarray(getattr(none, field)), np.asarray(getattr(k0, field)), equal_nan=True)
-    k1 = delvjax.catchment("env1", occlude=1, **kw)
+    k1 = delvjax.catchment(env, occlude=1, **kw)
     assert k1.hidden == ((0,), (1,), (2,), (3,))
-    one = delvjax.catchment("env1", hidden=[2], **kw)
+    one = delvjax.catchment(env, hidden=[2], **kw)
     for field in ("outcome", "steps", "error_deg"):
         assert np.array_equal(np.asarray(getattr(k1, field))[2], np.asarray(getattr(one, field))[0])
     summary = rollouts.catchment_summary(k1)
@@ -148,44 +283,84 @@ def test_occlusion_k0_equals_no_occlusion_and_batched_masks_equal_single_ones():
 
 
 def test_success_rate_bins_and_seeding():
-    kw = dict(method="alv", distances=[50.0, 250.0, 450.0], trials=12, seed=2)
+    kw = dict(method="alv", distances=[50.0, 250.0, 450.0], trials=10, seed=2)  # 30 trials: a block of 32
     a = delvjax.success_rate("ring4", **kw)
     b = delvjax.success_rate("ring4", **kw)
+    assert a.rules == DEFAULT
     assert np.array_equal(np.asarray(a.outcome), np.asarray(b.outcome))
     dist = np.hypot(*(np.asarray(a.start) - 500.0).transpose(2, 0, 1))
-    assert np.allclose(dist[np.asarray(a.placed)], np.repeat([50.0, 250.0, 450.0], 12).reshape(3, 12)[np.asarray(a.placed)], atol=1e-2)
+    placed = np.asarray(a.placed)
+    assert np.allclose(dist[placed], np.repeat([50.0, 250.0, 450.0], 10).reshape(3, 10)[placed], atol=1e-2)
     rows = a.table()
     assert rows[0]["success_pct"] == 100.0 and rows[0]["mean_steps_success"] == 0.0  # released at home_radius
-    assert rows[1]["placed"] == 12  # starts inside a landmark's clearance were redrawn
+    assert rows[1]["placed"] == 10  # starts inside a landmark's clearance were redrawn
 
 
 # --- CLI and bad input --------------------------------------------------------------------------------
 
+def write_env(path, landmarks):
+    """A SPEC §7 environment file."""
+    path.write_text(json.dumps({"name": "four", "arena": ARENA, "home": HOME,
+                                "landmarks": [{"x": x, "y": y, "r": r} for x, y, r in landmarks.tolist()]}))
+    return str(path)
+
+
+def read_rows(path):
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
 def test_cli_catchment_success_rate_trajectories(tmp_path):
     out = tmp_path / "c.csv"
-    assert main(["catchment", "env1", "--method", "alv", "--spacing", "100", "--out", str(out), "--occlude", "1",
+    assert main(["catchment", "env1", "--method", "alv", "--spacing", "200", "--out", str(out), "--occlude", "1",
                  "--summary", str(tmp_path / "c.json")]) == 0
     header = out.read_text().splitlines()[0].split(",")
     assert header[:5] == ["x", "y", "heading_deg", "success", "steps"] and "hidden" in header
     env = delvjax.load_env("env1")
-    n_points = int(np.sum(np.asarray(grid_included(env, jnp.asarray(grid_points(env.arena, 100.0)), 10.0))))
-    assert len(out.read_text().splitlines()) == 1 + 4 * n_points
-    assert main(["success-rate", "ring4", "--method", "alv,acv", "--trials", "12", "--distances", "50", "250", "450",
+    n_points = int(np.sum(np.asarray(grid_included(env, jnp.asarray(grid_points(env.arena, 200.0)), 10.0))))
+    assert len(out.read_text().splitlines()) == 1 + env.n_landmarks * n_points  # C(N, 1) masks
+    assert main(["success-rate", "ring4", "--method", "alv,acv", "--trials", "10", "--distances", "50", "250", "450",
                  "--seed", "2", "--out", str(tmp_path / "s.csv")]) == 0
-    assert len((tmp_path / "s.csv").read_text().splitlines()) == 1 + 2 * 3
-    assert main(["trajectories", "env1", "--method", "alv", "--start", "100", "100", "--start", "800", "300",
-                 "--out", str(tmp_path / "t.csv"), "--plot", str(tmp_path / "t.png")]) == 0
+    rows = read_rows(tmp_path / "s.csv")
+    assert len(rows) == 2 * 3 and all(r["first_move"] == "homing" and r["collisions"] == "ignore" for r in rows)
+    four = write_env(tmp_path / "four.json", FOUR)
+    assert main(["trajectories", four, "--method", "alv", "--start", "100", "100", "--start", "800", "300",
+                 "--start", "150", "850", "--start", "850", "850", "--out", str(tmp_path / "t.csv"),
+                 "--plot", str(tmp_path / "t.png")]) == 0
     assert (tmp_path / "t.png").stat().st_size > 0
+    rows = read_rows(tmp_path / "t.csv")
+    assert rows and all(r["first_move"] == "homing" and r["collisions"] == "ignore" for r in rows)
+
+
+@pytest.mark.parametrize("flags, rules", [([], DEFAULT),
+                                          (["--first-move", "release", "--collisions", "fail"], PHYSICAL)],
+                         ids=["default", "physical"])
+def test_cli_catchment_records_the_rules(tmp_path, flags, rules):
+    """The rules are constant CSV columns and a "rules" dict in the summary JSON."""
+    out, summary = tmp_path / "c.csv", tmp_path / "c.json"
+    assert main(["catchment", "env1", "--method", "alv", "--spacing", "200", "--occlude", "1", "--out", str(out),
+                 "--summary", str(summary)] + flags) == 0
+    rows = read_rows(out)
+    assert rows and {(r["first_move"], r["collisions"]) for r in rows} == {(rules["first_move"], rules["collisions"])}
+    if rules["collisions"] == "ignore":
+        assert all(r["outcome"] != "landmark" for r in rows)
+    data = json.loads(summary.read_text())
+    assert data["rules"] == rules
+    assert all(row["landmark_count"] == 0 for row in data["per_mask"]) or rules["collisions"] == "fail"
 
 
 @pytest.mark.parametrize("argv, field", [
-    (["catchment", "env1", "--occlude", "5"], "occlude"),
+    (["catchment", "env1", "--occlude", "99"], "occlude"),
     (["catchment", "env1", "--bearing-noise-deg", "-1"], "bearing_noise_deg"),
     (["catchment", "env1", "--max-steps", "0"], "max_steps"),
+    (["catchment", "env1", "--first-move", "bogus"], "first_move"),
+    (["catchment", "env1", "--collisions", "bounce"], "collisions"),
     (["success-rate", "env1", "--motion-step-noise", "-0.1"], "motion_step_noise"),
     (["success-rate", "env1", "--trials", "0"], "trials"),
-    (["trajectories", "env1", "--start", "330", "640"], "starts[0]"),
+    (["success-rate", "env1", "--first-move", "bogus"], "first_move"),
+    (["trajectories", "env1", "--start", "1500", "500"], "starts[0]"),
     (["trajectories", "env1", "--home-radius", "0"], "home_radius"),
+    (["trajectories", "env1", "--collisions", "bounce"], "collisions"),
 ])
 def test_bad_input_exits_2_without_output(tmp_path, capsys, argv, field):
     out = tmp_path / "o.csv"
@@ -204,3 +379,23 @@ def test_api_bad_input_raises_input_error():
         delvjax.success_rate("env1", max_steps=0)
     with pytest.raises(InputError, match="distances"):
         delvjax.success_rate("env1", distances=[])
+    with pytest.raises(InputError, match=r"starts\[0\]"):  # inside a landmark
+        delvjax.trajectories(make_env(FOUR), starts=[[330.0, 640.0]])
+
+
+@pytest.mark.parametrize("call", [delvjax.catchment, delvjax.success_rate, delvjax.trajectories])
+@pytest.mark.parametrize("field, value", [("first_move", "x"), ("collisions", "x"), ("first_move", "Homing"),
+                                          ("collisions", None)])
+def test_bad_rules_raise_input_error_naming_the_field(call, field, value):
+    with pytest.raises(InputError, match=field) as info:
+        call("env1", **{field: value})
+    assert info.value.field == field
+
+
+def test_run_trials_checks_the_rules():
+    env = make_env(FOUR)
+    starts = np.array([[150.0, 150.0]], np.float32)
+    with pytest.raises(InputError, match="first_move"):
+        run(env, starts, np.zeros(1, np.float32), "alv", first_move="straight")
+    with pytest.raises(InputError, match="collisions"):
+        run(env, starts, np.zeros(1, np.float32), "alv", collisions="bounce")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import json
 
 import numpy as np
@@ -10,7 +11,7 @@ import pytest
 import delvjax
 from delvjax.errors import InputError
 from delvjax.maps import grid_included, grid_points
-from delvjax.scene import PRESETS, env_to_dict
+from delvjax.scene import ASYMMETRY_CM, PRESETS, env_to_dict, rotation_mismatch
 
 GOOD = {"name": "t", "arena": [0, 0, 1000, 1000], "home": [500, 500],
         "landmarks": [{"x": 300, "y": 600, "r": 30}, {"x": 700, "y": 650, "r": 20}, {"x": 600, "y": 300, "r": 25}]}
@@ -81,3 +82,37 @@ def test_grid_is_40x40_and_drops_points_near_landmarks():
     d = np.linalg.norm(pts[:, None] - lms[None, :, :2], axis=-1)
     np.testing.assert_array_equal(inc, ~np.any(d <= lms[None, :, 2] + 10.0, axis=-1))
     assert 1500 < inc.sum() < 1600
+
+
+def test_env1_is_asymmetric_and_env2_is_not():
+    """SPEC §6: no rotation of env1 by 90/180/270 deg about home nearly maps it onto itself: the
+    bottleneck matching distance of rotated to original centres exceeds ASYMMETRY_CM (80 cm).
+    env2 (four at 90 deg) maps exactly; the first env1 layout (gaps 83/108/85/84) came within 63 cm."""
+    env1 = rotation_mismatch(delvjax.load_env("env1"))
+    assert set(env1) == {90.0, 180.0, 270.0}
+    assert min(env1.values()) > ASYMMETRY_CM, env1
+    assert max(rotation_mismatch(delvjax.load_env("env2")).values()) < 1e-3
+    old = rotation_mismatch(delvjax.make_env([[330, 640, 30], [640, 720, 40], [720, 390, 25], [420, 300, 35]]))
+    assert min(old.values()) < ASYMMETRY_CM and old[180.0] == pytest.approx(np.hypot(20, 60), abs=1e-3)
+    # brute force over all matchings agrees with the bipartite-matching search
+    lms = np.asarray(delvjax.load_env("env1").landmarks)[:, :2] - 500.0
+    for deg, value in env1.items():
+        a = np.radians(deg)
+        rot = lms @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
+        brute = min(max(np.linalg.norm(rot[i] - lms[j]) for i, j in enumerate(perm))
+                    for perm in itertools.permutations(range(len(lms))))
+        assert value == pytest.approx(brute, abs=1e-6)
+
+
+def test_env1_surrounds_home_with_unequal_gaps_and_distances():
+    """SPEC §6 env1: four landmarks around home (home inside their hull: every angular gap < 180),
+    gaps and distances clearly unequal, none on the line of the home unit move (+x)."""
+    env = delvjax.load_env("env1")
+    rel = np.asarray(env.landmarks)[:, :2] - np.asarray(env.home)
+    bearing = np.sort(np.degrees(np.arctan2(rel[:, 1], rel[:, 0])) % 360)
+    gaps = np.diff(np.r_[bearing, bearing[0] + 360])
+    dist = np.hypot(rel[:, 0], rel[:, 1])
+    assert len(bearing) == 4 and gaps.max() < 180
+    assert gaps.max() - gaps.min() > 40 and dist.max() - dist.min() > 100
+    off_axis = np.minimum(np.abs((bearing + 180) % 360 - 180), np.abs(bearing % 360 - 180))
+    assert off_axis.min() > 10

@@ -49,3 +49,23 @@ def with_heading_source(fn: Callable, source: str) -> Callable:
     direction.__name__ = f"{fn.__module__.rsplit('.', 1)[-1]}_{source}"
     direction.__doc__ = f"{fn.__doc__}\n\nHeading source: {source}."
     return direction
+
+
+def visual_compass_errors(env, points: Array, headings: Array, config: Config) -> Array:
+    """Heading error of the visual compass at each point (SPEC §4.4; thesis §5.3.2), (P,) rad.
+
+    The home image is taken at home with heading alpha_r, the current one at `points` with
+    `headings`; error = wrap(estimate - (h - alpha_r)). Rendering is noise-free.
+    """
+    import jax
+
+    from ..sensing import render
+
+    visible = jnp.ones(env.landmarks.shape[0], bool)
+    _, home_gray = render(env, visible, env.home, jnp.asarray(config.alpha_r, jnp.float32), config)
+
+    def one(point, heading):
+        _, gray = render(env, visible, point, heading, config)
+        return wrap(visual_compass(home_gray, gray) - (heading - config.alpha_r))
+
+    return jax.vmap(one)(points, headings)

@@ -45,11 +45,18 @@ def match_arrangement(ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: A
     return p, alpha, var[k_best, a_best], n
 
 
-def _direction(home: UnitMove, view: UnitMove, config: Config, alphas: Array) -> tuple[Array, Array]:
+def _direction(home: UnitMove, view: UnitMove, config: Config, alphas: Array,
+               min_pairs: int) -> tuple[Array, Array]:
+    """Homing direction from the best (k, alpha); invalid (NaN) when n < `min_pairs` or |p| = 0.
+
+    `min_pairs` is static: 2 without a compass (one pair fits every heading), 1 with a
+    heading estimate (one pair fixes p = V^R_i - Rot(alpha) V_j; with n = 1 every shift
+    has var = 0 and the first k wins), SPEC §3.4.
+    """
     ref_v, ref_valid = reference_vectors(home, config)
     cur_v, cur_valid = current_vectors(view, config)
     p, alpha, _, n = match_arrangement(ref_v, ref_valid, cur_v, cur_valid, alphas)
-    valid = (n >= 2) & (safe_norm(p) > 0)
+    valid = (n >= min_pairs) & (n >= 1) & (safe_norm(p) > 0)
     angle = wrap(angle_of(-p) - alpha)
     return jnp.where(valid, angle, jnp.nan), valid
 
@@ -57,9 +64,11 @@ def _direction(home: UnitMove, view: UnitMove, config: Config, alphas: Array) ->
 def direction(home: UnitMove, view: UnitMove, config: Config) -> tuple[Array, Array]:
     """DELV without compass: all shifts x `n_heading` hypotheses alpha = 2 pi a / n_heading."""
     alphas = TWO_PI * jnp.arange(config.n_heading, dtype=jnp.float32) / config.n_heading
-    return _direction(home, view, config, alphas)
+    return _direction(home, view, config, alphas, min_pairs=2)
 
 
 def direction_with_heading(home: UnitMove, view: UnitMove, config: Config, heading: Array) -> tuple[Array, Array]:
-    """DELV with alpha fixed to a heading estimate (compass or visual compass); only k is searched."""
-    return _direction(home, view, config, jnp.reshape(heading, (1,)))
+    """DELV with alpha fixed to a heading estimate (compass or visual compass); only k is searched.
+
+    One visible landmark (n = 1) suffices here (SPEC §3.4)."""
+    return _direction(home, view, config, jnp.reshape(heading, (1,)), min_pairs=1)

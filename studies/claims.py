@@ -1,0 +1,52 @@
+"""The thesis's claims, each checked against this run's numbers (the report's claims table).
+
+`evaluate(numbers)` takes {study: {key: value}} (the `numbers` of every study.json) and
+returns one row per claim of `studies.thesis.CLAIMS`: section, quote, statement, our
+numbers, a verdict ("holds", "partly", "fails", or "n/a" when a study it needs was not
+run) and why. Verdicts are computed here, never typed in.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+from . import thesis
+
+CHECKS: dict[str, Callable] = {}
+
+
+def check(claim_id: str):
+    def deco(fn):
+        CHECKS[claim_id] = fn
+        return fn
+    return deco
+
+
+class Missing(KeyError):
+    """A number the claim needs was not produced (its study was not run)."""
+
+
+def evaluate(numbers_by_study: dict[str, dict]) -> list[dict]:
+    flat = {}
+    for numbers in numbers_by_study.values():
+        flat.update(numbers)
+
+    def get(key):
+        if key not in flat or flat[key] is None:
+            raise Missing(key)
+        return flat[key]
+
+    rows = []
+    for claim in thesis.CLAIMS:
+        fn = CHECKS.get(claim["id"])
+        row = {k: claim[k] for k in ("id", "section", "quote", "statement")}
+        if fn is None:
+            row.update(ours="", verdict="n/a", why="no check written for this claim")
+        else:
+            try:
+                ours, verdict, why = fn(get)
+            except Missing as exc:
+                ours, verdict, why = "", "n/a", f"needs {exc.args[0]} (study not run)"
+            row.update(ours=ours, verdict=verdict, why=why)
+        rows.append(row)
+    return rows

@@ -1,0 +1,192 @@
+"""Occlusion: error point rates and catchment with k landmarks hidden (thesis §5.3.1, Figs 5.9-5.10,
+Tables 5.1-5.4).
+
+For env1-env3 and L = 3, 5, 6 equally spaced landmarks (ring3, ring5, ring6) with the compass
+methods DELV, ACV and ALV, every choice of k hidden landmarks (all C(N, k)) is evaluated:
+all k of one environment, method and rule set in ONE batched program (the masks of every k
+are stacked). The home record sees every landmark. Reported: mean, min and max over the
+choices beside the thesis's numbers, under the default rules and the physical rules.
+ring4 (L = 4 equally spaced) is the same layout as env2, so its rows are env2's (k up to 3);
+the thesis's own L = 4 rows copy other rows (see the table notes).
+"""
+
+from __future__ import annotations
+
+import jax
+import matplotlib.pyplot as plt
+import numpy as np
+
+from delvjax import rollouts
+from delvjax.options import make_config
+from delvjax.plots_rollouts import catchment_panel
+from studies import thesis
+
+from .common import HOME_RADIUS, LABEL, RULES, as_vector_map, env, panel_figure
+
+TITLE = "Occlusion: k landmarks hidden (Figs 5.9-5.10, Tables 5.1-5.4)"
+METHODS = ("delv-compass", "acv", "alv")
+ENVS = {"env1": 2, "env2": 3, "env3": 2, "ring3": 2, "ring5": 3, "ring6": 3}  # env -> largest k
+STEPS = len(ENVS) * len(METHODS)
+SAME_LAYOUT = {"ring4": "env2"}
+
+
+def stacked_masks(e, k_max: int):
+    """Masks of every k = 0..k_max stacked: (masks (M, L), hidden tuples, k of each mask)."""
+    masks, hidden, ks = [], [], []
+    for k in range(k_max + 1):  # input preparation: a handful of k
+        m, h = rollouts.occlusion_masks(e, k)
+        masks.append(m)
+        hidden += h
+        ks += [k] * len(h)
+    return np.concatenate(masks), hidden, np.array(ks)
+
+
+def thesis_row(table: str, name: str, method: str, k: int, field: str | None = None):
+    source = thesis.ERROR_POINTS if field else thesis.CATCHMENT
+    values = source[table].get(name, {}).get(method)
+    if values is None:
+        return None
+    if field:
+        values = values.get(field, [])
+    return values[k] if k < len(values) else None
+
+
+def spread(values) -> dict:
+    v = np.asarray(values, float)
+    return {"mean": float(v.mean()), "min": float(v.min()), "max": float(v.max())}
+
+
+def run(ctx) -> None:
+    settings = ctx.settings
+    config = make_config()
+    key = jax.random.PRNGKey(settings.seed)
+    per_k, mask_rows, fig5_10 = [], [], {}
+    for name, k_max in ENVS.items():  # six layouts x three methods
+        e = env(name)
+        masks, hidden, ks = stacked_masks(e, k_max)
+        for m in METHODS:
+            res = {rules: rollouts.catchment_area(e.arrays(), m, config, spacing=settings.spacing, key=key,
+                                                  masks=masks, hidden=hidden, home_radius=HOME_RADIUS, **RULES[rules])
+                   for rules in RULES}
+            summaries = {rules: rollouts.catchment_summary(c)["per_mask"] for rules, c in res.items()}
+            for i, row in enumerate(summaries["default"]):
+                mask_rows.append({"env": name, "method": m, "k": int(ks[i]), "hidden": " ".join(map(str, row["hidden"])),
+                                  "gt45_pct": row["gt45_pct"], "gt90_pct": row["gt90_pct"],
+                                  **{f"{rules}_{f}": summaries[rules][i][f] for rules in RULES
+                                     for f in ("catchment_pct", "timeout_count", "landmark_count", "arena_count")}})
+            for k in range(k_max + 1):
+                sel = np.flatnonzero(ks == k)
+                row = {"env": name, "method": m, "k": k, "choices": len(sel)}
+                for field in ("gt45_pct", "gt90_pct"):
+                    row[field] = spread([summaries["default"][i][field] for i in sel])
+                for rules in RULES:
+                    row[f"catchment_{rules}"] = spread([summaries[rules][i]["catchment_pct"] for i in sel])
+                    row[f"failures_{rules}"] = {f: int(sum(summaries[rules][i][f"{f}_count"] for i in sel))
+                                                for f in ("timeout", "landmark", "arena")}
+                per_k.append(row)
+            for field, getter in (("gt45", lambda r: r["gt45_pct"]["mean"]), ("gt90", lambda r: r["gt90_pct"]["mean"]),
+                                  ("catchment", lambda r: r["catchment_default"]["mean"]),
+                                  ("catchment:physical", lambda r: r["catchment_physical"]["mean"])):
+                rows_m = [r for r in per_k if r["env"] == name and r["method"] == m]
+                ctx.number(f"occlusion:{name}:{m}:{field}", [getter(r) for r in rows_m])
+            if name == "env1" and m == "delv-compass":
+                fig5_10 = {"env": e, "result": res["default"], "ks": ks}
+            ctx.step(f"{name} {m}")
+    tables(ctx, per_k)
+    ctx.csv("occlusion_per_choice.csv", rows=mask_rows)
+    figures(ctx, per_k, fig5_10)
+
+
+def _fmt(s: dict) -> str:
+    return f"{s['mean']:.2f} [{s['min']:.2f}-{s['max']:.2f}]" if s["min"] != s["max"] else f"{s['mean']:.2f}"
+
+
+def tables(ctx, per_k: list[dict]) -> None:
+    for table, source, title, envs in (("table5_1", "Table 5.1", "Error point rates, env1-3", ("env1", "env2", "env3")),
+                                       ("table5_2", "Table 5.2", "Error point rates, L equally spaced landmarks",
+                                        ("ring3", "ring4", "ring5", "ring6"))):
+        rows = []
+        for name in envs:
+            ours = SAME_LAYOUT.get(name, name)
+            for r in (r for r in per_k if r["env"] == ours):
+                rows.append({"env": name if ours == name else f"{name} (= {ours})", "method": LABEL[r["method"]],
+                             "k": r["k"], "ours e>45 % mean [min-max]": _fmt(r["gt45_pct"]),
+                             "thesis e>45 %": thesis_row(table, name, r["method"], r["k"], "gt45"),
+                             "ours e>90 %": r["gt90_pct"]["mean"],
+                             "thesis e>90 %": thesis_row(table, name, r["method"], r["k"], "gt90")})
+        ctx.table(table, title, rows, source=source, note=NOTE)
+    for table, source, title, envs in (("table5_3", "Table 5.3", "Catchment area, env1-3", ("env1", "env2", "env3")),
+                                       ("table5_4", "Table 5.4", "Catchment area, L equally spaced landmarks",
+                                        ("ring3", "ring4", "ring5", "ring6"))):
+        rows = []
+        for name in envs:
+            ours = SAME_LAYOUT.get(name, name)
+            for r in (r for r in per_k if r["env"] == ours):
+                fd, fp = r["failures_default"], r["failures_physical"]
+                row = {"env": name if ours == name else f"{name} (= {ours})", "method": LABEL[r["method"]],
+                       "k": r["k"], "choices": r["choices"],
+                       "ours default % mean [min-max]": _fmt(r["catchment_default"]),
+                       "ours physical %": r["catchment_physical"]["mean"],
+                       "thesis %": thesis_row(table, name, r["method"], r["k"]),
+                       "default failures timeout/arena": f"{fd['timeout']}/{fd['arena']}",
+                       "physical failures timeout/landmark/arena": f"{fp['timeout']}/{fp['landmark']}/{fp['arena']}"}
+                if table == "table5_3" and name == "env1" and r["method"] == "delv-compass":
+                    row["thesis %"] = f"{row['thesis %']} (Fig 5.10: {thesis_row('fig5_10', 'env1', r['method'], r['k'])})"
+                rows.append(row)
+        ctx.table(table, title, rows, source=source, note=NOTE + (FIG5_10_NOTE if table == "table5_3" else ""))
+
+
+NOTE = ("Mean [min-max] over the C(N, k) choices of hidden landmarks. The thesis's L = 4 rows of Tables 5.2 and 5.4 "
+        "copy other rows (DELV and ACV equal environment 1's, ALV environment 2's); our ring4 is the env2 layout, so "
+        "its rows are env2's. default rules: first move along the homing direction, landmarks no obstacles; "
+        "physical: first move along the release heading, a move ending inside a landmark fails.")
+FIG5_10_NOTE = (" The thesis disagrees with itself for DELV on env1: Table 5.3 gives 92.01 / 49.11 / 40.3 % for "
+                "k = 0 / 1 / 2, Fig 5.10's caption 92.01 / 82.04 / 59.11 %; both are shown.")
+
+
+def figures(ctx, per_k: list[dict], fig5_10: dict) -> None:
+    spacing = ctx.settings.spacing
+    for field, key, ylabel, name in (("catchment_default", "table5_3", "catchment area (%)", "catchment_vs_k.png"),
+                                     ("gt45_pct", "table5_1", "error points e > 45° (%)", "error_points_vs_k.png")):
+        envs = list(ENVS)
+        fig, axes = plt.subplots(2, 3, figsize=(13, 7.6), sharey=True)
+        for ax, env_name in zip(axes.ravel(), envs):
+            table = key if env_name.startswith("env") else key.replace("5_3", "5_4").replace("5_1", "5_2")
+            for i, m in enumerate(METHODS):
+                sel = [r for r in per_k if r["env"] == env_name and r["method"] == m]
+                k = np.array([r["k"] for r in sel])
+                mean = np.array([r[field]["mean"] for r in sel])
+                err = np.array([[r[field]["mean"] - r[field]["min"] for r in sel],
+                                [r[field]["max"] - r[field]["mean"] for r in sel]])
+                ax.errorbar(k + 0.06 * (i - 1), mean, yerr=err, marker="o", ms=4, capsize=3, color=f"C{i}",
+                            label=f"{LABEL[m]} (ours, min-max over choices)")
+                t = [thesis_row(table, env_name, m, int(kk), "gt45" if field == "gt45_pct" else None) for kk in k]
+                ax.plot(k, [np.nan if v is None else v for v in t], "--", marker="s", mfc="none", color=f"C{i}",
+                        alpha=0.8, label=f"{LABEL[m]} (thesis)")
+            ax.set_title(env_name, fontsize=10)
+            ax.set_xticks(range(ENVS[env_name] + 1))
+            ax.set_xlabel("hidden landmarks k")
+            ax.grid(alpha=0.3)
+        for ax in axes[:, 0]:
+            ax.set_ylabel(ylabel)
+        handles, labels = axes.ravel()[0].get_legend_handles_labels()
+        fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8, frameon=False)
+        fig.tight_layout(rect=(0, 0.07, 1, 1))
+        ctx.figure(name, fig, f"{ylabel} vs the number of hidden landmarks k: ours (solid; bars: min-max over the "
+                              "choices of hidden landmarks) and the thesis (dashed), default rollout rules.")
+    # Fig 5.9 / 5.10: DELV with a compass on env1, one representative choice per k (nearest the mean).
+    c, ks, e = fig5_10["result"], fig5_10["ks"], fig5_10["env"]
+    pct = c.catchment_pct()
+    picks = [int(np.flatnonzero(ks == k)[np.argmin(np.abs(pct[ks == k] - pct[ks == k].mean()))]) for k in range(3)]
+    items = [(f"k = {k}, hidden {list(c.hidden[i]) or 'none'}", e, as_vector_map(c, i)) for k, i in enumerate(picks)]
+    ctx.figure("fig5_9_occluded_vector_maps.png", panel_figure(items, spacing, classes=True,
+                                                               title="DELV with a compass, env1, landmarks hidden"),
+               "Fig 5.9: homing vectors with k = 0, 1, 2 hidden landmarks (hollow dashed discs: hidden).")
+    fig, axes = plt.subplots(1, 3, figsize=(14.4, 5.2))
+    for ax, k, i in zip(axes, range(3), picks):
+        catchment_panel(ax, e, c, i, spacing, title=f"k = {k}: {pct[i]:.2f} % (mean over choices "
+                                                    f"{pct[ks == k].mean():.2f} %)")
+    fig.tight_layout()
+    ctx.figure("fig5_10_occluded_catchment.png", fig,
+               "Fig 5.10: catchment of DELV with a compass on env1 with k = 0, 1, 2 hidden landmarks "
+               "(squares: release points that reach home; hollow dashed discs: hidden landmarks).")

@@ -1,0 +1,45 @@
+"""Step distance d of the unit movement (thesis §4.2, Figs 4.6-4.7).
+
+DELV without compass on env1 for d in {20, 50, 100, 150} cm: one vmapped sweep over d
+(`maps.sweep`, one compiled program for all four values).
+"""
+
+from __future__ import annotations
+
+import jax
+import jax.numpy as jnp
+
+from delvjax import maps
+from delvjax.config import Config
+from delvjax.plots import error_curve_figure
+
+from .common import curve, curve_means, curves_rows, env, map_numbers, panel_figure
+
+TITLE = "Step distance d of the unit movement (Figs 4.6-4.7)"
+STEPS = 1
+DS = (20.0, 50.0, 100.0, 150.0)
+
+
+def run(ctx) -> None:
+    e = env("env1")
+    swept = maps.sweep(e.arrays(), "delv", Config(), "d", jnp.asarray(DS), spacing=ctx.settings.spacing,
+                       key=jax.random.PRNGKey(ctx.settings.seed))
+    ctx.step("sweep over d")
+    items, curves, rows = [], {}, []
+    for i, d in enumerate(DS):  # four results of one program: tabulation
+        vm = jax.tree.map(lambda a: a[i], swept)
+        s = map_numbers(e, vm)
+        curves[f"d = {d:g} cm"] = curve(e, vm)
+        ctx.number(f"error_curve:env1:delv:d={d:g}", curve_means(curves[f"d = {d:g} cm"]))
+        ctx.number(f"map:env1:delv:d={d:g}:mean_error_deg", s["mean_error_deg"])
+        rows.append({"d cm": d, "mean error °": s["mean_error_deg"], "e>45 %": s["gt45_pct"], "e>90 %": s["gt90_pct"],
+                     "invalid points": s["invalid"]})
+        items.append((f"d = {d:g} cm: mean error {s['mean_error_deg']:.1f}°", e, vm))
+    ctx.table("step_distance", "DELV without compass on env1 by step distance d", rows, source="Figs 4.6-4.7",
+              note="The thesis prints no numbers for these figures; its claim is that d rarely matters (§4.2).")
+    ctx.figure("fig4_6_step_distance_maps.png", panel_figure(
+        items, ctx.settings.spacing, title="DELV without compass on env1, step distance d"),
+        "Fig 4.6: homing vectors of DELV without compass for d = 20, 50, 100, 150 cm.")
+    ctx.figure("fig4_7_step_distance_errors.png", error_curve_figure(curves, "DELV, step distance d (Fig 4.7)"),
+               "Fig 4.7: mean angular error vs distance from home for each d (95 % t intervals).")
+    ctx.csv("fig4_7_step_distance_errors.csv", rows=curves_rows(curves))
