@@ -1,4 +1,4 @@
-"""Benchmark: catchment rollouts (SPEC §5) — compile and warm times, the NumPy reference, the ratio.
+"""Benchmark: catchment rollouts (docs/model.md §5) — compile and warm times, the NumPy reference, the ratio.
 
     python benchmarks/bench_rollouts.py [--env env1] [--spacing 25] [--ref-points 12] [--strategies]
 

@@ -1,4 +1,4 @@
-"""Time the holistic comparators (warping, SPEC §4.3; MFDID, §4.5) against their NumPy twins.
+"""Time the holistic comparators (warping, docs/model.md §4.3; MFDID, §4.5) against their NumPy twins.
 
 For each (method, channel): compile time and warm time of the jitted map program
 (`maps.homing_directions`, all cells of the grid: 40 x 40 on env1 at spacing 25), the

@@ -1,6 +1,6 @@
 """delvjax: the Distance-Estimated Landmark Vector (DELV) homing method and its comparators
 as pure, jit/vmap-able JAX programs (the thesis "Distance-Estimated Landmark Vector Model for
-Vision-Based Homing Navigation", chapters 3-5; see SPEC.md)."""
+Vision-Based Homing Navigation", chapters 3-5; see docs/model.md)."""
 
 from .api import catchment, load_env, success_rate, trajectories, vector_map
 from .config import Config, Noise

@@ -13,13 +13,13 @@ from .config import Config
 from .errors import InputError
 from .methods import get_method
 from .options import finite, make_config, non_negative, positive, positive_int, seed_value
-from .rollouts import catchment, success_rate, trajectories  # noqa: F401  (SPEC §5 rollouts)
+from .rollouts import catchment, success_rate, trajectories  # noqa: F401  (docs/model.md §5 rollouts)
 from .scene import Env
 from .scene import load_env as _load_env
 
 
 def load_env(name_or_path: str | Path | Env) -> Env:
-    """A preset (`env1`, `env2`, `env3`, `ring3`..`ring6`), a SPEC §7 JSON path, or an `Env` as is."""
+    """A preset (`env1`, `env2`, `env3`, `ring3`..`ring6`), a docs/model.md §7 JSON path, or an `Env` as is."""
     return name_or_path if isinstance(name_or_path, Env) else _load_env(name_or_path)
 
 
@@ -32,7 +32,7 @@ def resolve_headings(heading_deg: float | None, seed: int) -> tuple[float | None
 
 
 def visible_mask(env: Env, hidden: list[int] | tuple[int, ...] | None) -> jax.Array | None:
-    """Boolean (L,) mask of the landmarks seen during homing, `hidden` ones occluded (SPEC §5)."""
+    """Boolean (L,) mask of the landmarks seen during homing, `hidden` ones occluded (docs/model.md §5)."""
     if not hidden:
         return None
     n = env.n_landmarks
@@ -74,12 +74,12 @@ def vector_map(env: str | Path | Env, method: str = "delv", spacing: float = 25.
                seed: int = 0, levels: int | None = None, d: float = 50.0, background: str = "distant",
                channel: str = "mask", clearance: float = 10.0, n_heading: int = 360,
                hidden: list[int] | None = None, batch_size: int = maps.DEFAULT_BATCH, **noise: float) -> maps.VectorMap:
-    """Homing direction of `method` at every SPEC §5 grid point, one jitted vmapped call.
+    """Homing direction of `method` at every docs/model.md §5 grid point, one jitted vmapped call.
 
     heading_deg fixes the heading at every point; otherwise headings are uniform random
     per point from `seed` (which also drives every noise source). Noise keywords:
     bearing_noise_deg, step_noise, turn_noise_deg, odometry_turn_noise_deg, compass_noise_deg.
-    Warping hypotheses (SPEC §4.3) pass through the same keywords to `make_config`:
+    Warping hypotheses (docs/model.md §4.3) pass through the same keywords to `make_config`:
     n_alpha, n_psi, n_rho, rho_min, rho_max.
     `hidden` lists landmark indices invisible in the current views (occlusion).
     Returns a `VectorMap` pytree (points, included, heading, direction, valid, error_deg).

@@ -29,7 +29,7 @@ def progress(msg: str) -> None:
 # --- shared argument groups ------------------------------------------------------------
 
 def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
-    p.add_argument("env", help="preset name (see `delvjax envs`) or a SPEC §7 JSON file")
+    p.add_argument("env", help="preset name (see `delvjax envs`) or a docs/model.md §7 JSON file")
     p.add_argument("--method", default="delv", help=f"homing method: {', '.join(methods or METHODS)} (default delv)")
     p.add_argument("--levels", type=int, default=None, help="DELV distance quantization levels Q >= 1 (default: continuous)")
     p.add_argument("--d", type=float, default=50.0, help="unit-movement step d in cm (default 50)")
@@ -42,7 +42,7 @@ def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
     p.add_argument("--n-heading", type=int, default=360, help="DELV heading hypotheses (default 360)")
     p.add_argument("--hide", type=int, nargs="+", default=None, metavar="I",
                    help="landmark indices invisible during homing (occlusion; the home record sees all)")
-    w = p.add_argument_group("warping hypotheses (SPEC §4.3)")
+    w = p.add_argument_group("warping hypotheses (docs/model.md §4.3)")
     w.add_argument("--n-alpha", type=int, default=72, help="movement directions alpha (default 72: 5 deg steps)")
     w.add_argument("--n-psi", type=int, default=72, help="rotations psi, must divide 360 (default 72: 5 deg steps)")
     w.add_argument("--n-rho", type=int, default=15, help="values of rho = d/r (default 15)")
@@ -92,7 +92,7 @@ def cmd_envs(args: argparse.Namespace) -> int:
 
 
 def add_vector_map(sub) -> None:
-    p = sub.add_parser("vector-map", help="homing direction at every grid point (SPEC §5; Figs 4.2/4.3)")
+    p = sub.add_parser("vector-map", help="homing direction at every grid point (docs/model.md §5; Figs 4.2/4.3)")
     add_scene_args(p)
     add_output_args(p, "vector-map figure")
     p.add_argument("--classes", action="store_true", help="mark error classes < 45 / 45-90 / > 90 deg (Fig 4.3)")

@@ -1,4 +1,4 @@
-"""CLI subcommands for homing rollouts (SPEC §5): `catchment`, `success-rate`, `trajectories`.
+"""CLI subcommands for homing rollouts (docs/model.md §5): `catchment`, `success-rate`, `trajectories`.
 
 Each validates its outputs and options before any work; bad input -> exit 2, no output file.
 `cli` is imported inside the functions so that this module can be imported from cli.py.
@@ -16,7 +16,7 @@ from .errors import InputError
 
 
 def _add_rollout_args(p: argparse.ArgumentParser) -> None:
-    g = p.add_argument_group("rollouts (SPEC §5)")
+    g = p.add_argument_group("rollouts (docs/model.md §5)")
     g.add_argument("--max-steps", type=int, default=50, help="moves allowed to reach home (default 50)")
     g.add_argument("--home-radius", type=float, default=50.0, help="success within this distance of home, cm (default 50)")
     g.add_argument("--lanes", type=int, default=rollouts.DEFAULT_LANES,
@@ -73,7 +73,7 @@ def _rollout_parser(sub, name: str, help_text: str, plot_help: str, epilog: str 
 
 
 def add_catchment(sub) -> None:
-    p = _rollout_parser(sub, "catchment", "catchment area: a rollout from every grid point (SPEC §5; Figs 4.5, 5.5)",
+    p = _rollout_parser(sub, "catchment", "catchment area: a rollout from every grid point (docs/model.md §5; Figs 4.5, 5.5)",
                         "catchment map: squares on catchment points over the vector map")
     p.add_argument("--occlude", type=int, default=None, metavar="K",
                    help="evaluate every choice of K landmarks hidden during homing (Tables 5.3/5.4)")
@@ -138,7 +138,7 @@ def cmd_catchment(args: argparse.Namespace) -> int:
 # --- success rate ----------------------------------------------------------------------------
 
 def add_success_rate(sub) -> None:
-    p = _rollout_parser(sub, "success-rate", "success rate vs release distance (SPEC §5; Figs 4.10b, 5.7b)",
+    p = _rollout_parser(sub, "success-rate", "success rate vs release distance (docs/model.md §5; Figs 4.10b, 5.7b)",
                         "success-rate curve", "--method takes a comma-separated list (one curve each); --spacing is not used.")
     p.add_argument("--trials", type=int, default=100, help="trials per distance bin (default 100)")
     p.add_argument("--distances", type=float, nargs="+", default=list(rollouts.DEFAULT_DISTANCES), metavar="CM",
@@ -203,7 +203,7 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
 # --- trajectories ----------------------------------------------------------------------------
 
 def add_trajectories(sub) -> None:
-    p = _rollout_parser(sub, "trajectories", "homing paths from chosen release points (SPEC §5; Figs 4.11, 5.8)",
+    p = _rollout_parser(sub, "trajectories", "homing paths from chosen release points (docs/model.md §5; Figs 4.11, 5.8)",
                         "trajectory figure (one panel per method)",
                         "--method takes a comma-separated list (one panel each, same release points); --spacing is not used.")
     p.add_argument("--start", type=float, nargs=2, action="append", default=None, metavar=("X", "Y"),

@@ -1,4 +1,4 @@
-"""Method configuration and noise models (SPEC §2.5, §3, §4; defaults are SPEC's).
+"""Method configuration and noise models (docs/model.md §2.5, §3, §4; defaults are SPEC's).
 
 `Config` is an equinox module: continuous parameters are pytree leaves (they can be
 traced, vmapped in a sweep, or differentiated), discrete ones are static fields
@@ -14,7 +14,7 @@ CHANNELS = ("mask", "gray")
 
 
 class Noise(eqx.Module):
-    """Noise standard deviations (SPEC §2.5). Angles in radians, step factors unitless.
+    """Noise standard deviations (docs/model.md §2.5). Angles in radians, step factors unitless.
 
     bearing:        per-blob bearing noise.
     step:           unit-move length factor `1 + N(0, step)` (the agent believes it moved d).
@@ -37,21 +37,21 @@ class Noise(eqx.Module):
 class Config(eqx.Module):
     """Everything a homing method and its sensing need besides the scene.
 
-    d:         unit-movement step, cm (SPEC §3.1, default 50).
-    scale:     quantization scale `a`, cm (SPEC §3.2, default 1000).
-    r_max:     cap of estimated distances, cm (SPEC §3.1, default 2000).
-    alpha_r:   reference heading at home, radians (SPEC §1, default 0).
+    d:         unit-movement step, cm (docs/model.md §3.1, default 50).
+    scale:     quantization scale `a`, cm (docs/model.md §3.2, default 1000).
+    r_max:     cap of estimated distances, cm (docs/model.md §3.1, default 2000).
+    alpha_r:   reference heading at home, radians (docs/model.md §1, default 0).
     mfdid_blur_deg: Gaussian low-pass of MFDID's images, degrees (0 = none; §4.5).
     noise:     `Noise` (all zero by default).
     levels:    quantization levels Q (0, or None when constructing, = continuous distances);
                a traced leaf, so a sweep can vmap over Q and every Q shares one program.
     n_pix:     ring image width in pixels (360).
     n_heading: heading hypotheses of DELV's matching (360).
-    n_alpha, n_psi, n_rho, rho_min, rho_max: warping hypotheses (SPEC §4.3: 72 movement
+    n_alpha, n_psi, n_rho, rho_min, rho_max: warping hypotheses (docs/model.md §4.3: 72 movement
                directions, 72 rotations, 15 rho = d/r values 0.10..0.80).
-    background: SPEC §2.3 setting, stored as an index into BACKGROUNDS (0 distant, 1 walls,
+    background: docs/model.md §2.3 setting, stored as an index into BACKGROUNDS (0 distant, 1 walls,
                2 none; a name is converted): a traced leaf, so every setting shares one program.
-    channel:   SPEC §2.2.
+    channel:   docs/model.md §2.2.
     """
 
     d: float = 50.0

@@ -1,6 +1,6 @@
 """Landmark distances from a unit movement, quantization, landmark vectors (thesis §3.2.1-3.2.3).
 
-SPEC §3.1: a C-bearing beta seen in P's frame is beta' = beta + psi_hat; its partner is
+docs/model.md §3.1: a C-bearing beta seen in P's frame is beta' = beta + psi_hat; its partner is
 the nearest P-blob theta; delta = wrap(beta' - theta); by the sine law in P-L-C
 
     R_C = d_hat sin(theta) / sin(delta)            (Eq 3.2, psi = 0)
@@ -37,7 +37,7 @@ def _nearest(parallax: Array, other_valid: Array) -> tuple[Array, Array]:
 
 
 def _guard(r: Array, sin_delta: Array, r_max: Array) -> Array:
-    """SPEC §3.1: negative, non-finite, > r_max or |sin(delta)| < 1e-9 -> r_max. "Negative"
+    """docs/model.md §3.1: negative, non-finite, > r_max or |sin(delta)| < 1e-9 -> r_max. "Negative"
     is read as "not positive": a landmark on the line of the move gives R = 0 (no triangle)."""
     bad = (jnp.abs(sin_delta) < SIN_EPS) | ~jnp.isfinite(r) | (r <= 0) | (r > r_max)
     return jnp.where(bad, r_max, r)
@@ -74,7 +74,7 @@ def start_distances(move: UnitMove, config: Config) -> Array:
 
 
 def quantize(r: Array, levels: int | None, scale: Array) -> Array:
-    """Eq 3.17 / SPEC §3.2: R -> a * clip(ceil(R Q / a), 1, Q) / Q; `levels` 0 (or None) keeps R.
+    """Eq 3.17 / docs/model.md §3.2: R -> a * clip(ceil(R Q / a), 1, Q) / Q; `levels` 0 (or None) keeps R.
 
     `levels` may be traced: continuous and quantized distances share one compiled program."""
     if levels is None:
@@ -85,12 +85,12 @@ def quantize(r: Array, levels: int | None, scale: Array) -> Array:
 
 
 def reference_vectors(home: UnitMove, config: Config) -> tuple[Array, Array]:
-    """Reference map V^R_i = R_P,i (cos theta_i, sin theta_i), home frame (SPEC §3.3): ((B, 2), (B,))."""
+    """Reference map V^R_i = R_P,i (cos theta_i, sin theta_i), home frame (docs/model.md §3.3): ((B, 2), (B,))."""
     r = quantize(start_distances(home, config), config.levels, config.scale)
     return r[:, None] * unit(home.start.bearing), home.start.valid
 
 
 def current_vectors(view: UnitMove, config: Config) -> tuple[Array, Array]:
-    """Current vectors V_j = R_C,j (cos beta_j, sin beta_j), agent frame at C (SPEC §3.3): ((B, 2), (B,))."""
+    """Current vectors V_j = R_C,j (cos beta_j, sin beta_j), agent frame at C (docs/model.md §3.3): ((B, 2), (B,))."""
     r = quantize(end_distances(view, config), config.levels, config.scale)
     return r[:, None] * unit(view.end.bearing), view.end.valid

@@ -1,4 +1,4 @@
-"""Angles and planar vectors (SPEC §1: cm, radians, counter-clockwise, 0 = +x)."""
+"""Angles and planar vectors (docs/model.md §1: cm, radians, counter-clockwise, 0 = +x)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ TWO_PI = 2.0 * jnp.pi
 
 
 def wrap(a: Array) -> Array:
-    """Map angles to (-pi, pi] (SPEC §1)."""
+    """Map angles to (-pi, pi] (docs/model.md §1)."""
     return jnp.pi - jnp.mod(jnp.pi - a, TWO_PI)
 
 

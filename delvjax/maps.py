@@ -1,4 +1,4 @@
-"""Vector maps: the homing direction at every grid point in one jitted, vmapped call (SPEC §5).
+"""Vector maps: the homing direction at every grid point in one jitted, vmapped call (docs/model.md §5).
 
 Every grid point gets its own PRNG key `fold_in(key_views, i)` and, when headings are
 random, its heading from `fold_in(key_headings, i)`: the numbers do not depend on how
@@ -43,7 +43,7 @@ class VectorMap(eqx.Module):
 
 
 def grid_points(arena, spacing: float) -> np.ndarray:
-    """Centres of square cells of side `spacing` tiling the arena (SPEC §5), row-major from (xmin, ymin)."""
+    """Centres of square cells of side `spacing` tiling the arena (docs/model.md §5), row-major from (xmin, ymin)."""
     xmin, ymin, xmax, ymax = (float(v) for v in np.asarray(arena))
     xs = np.arange(xmin + spacing / 2, xmax, spacing, dtype=np.float64)
     ys = np.arange(ymin + spacing / 2, ymax, spacing, dtype=np.float64)
@@ -77,7 +77,7 @@ def homing_directions(env: Env, points: Array, headings: Array, key: Array, conf
     """World homing directions (P,) and validity (P,) of `method` at `points` with `headings`.
 
     The home record sees every landmark; the current views see only `visible` ones
-    (occlusion, SPEC §5). One program: vmap over points inside chunks of `batch_size`.
+    (occlusion, docs/model.md §5). One program: vmap over points inside chunks of `batch_size`.
     """
     fn = get_method(method)
     k_home, k_views, _ = stream_keys(key)
@@ -97,7 +97,7 @@ def homing_directions(env: Env, points: Array, headings: Array, key: Array, conf
 def vector_map(env: Env, method: str, config: Config, spacing: float = 25.0, heading: float | None = None,
                key: Array | None = None, clearance: float = 10.0, visible: Array | None = None,
                batch_size: int = DEFAULT_BATCH) -> VectorMap:
-    """The vector map of `method` on the SPEC §5 grid; heading fixed (rad) or random per point from `key`."""
+    """The vector map of `method` on the docs/model.md §5 grid; heading fixed (rad) or random per point from `key`."""
     key = jax.random.PRNGKey(0) if key is None else key
     points = jnp.asarray(grid_points(env.arena, spacing))
     heading = None if heading is None else jnp.asarray(heading, jnp.float32)
@@ -151,7 +151,7 @@ def sweep(env: Env, method: str, config: Config, name: str, values: Array, spaci
 
 
 def vector_map_columns(vm: VectorMap) -> dict[str, np.ndarray]:
-    """The SPEC §7 per-point table of a map (grid points only; degrees; direction NaN where invalid)."""
+    """The docs/model.md §7 per-point table of a map (grid points only; degrees; direction NaN where invalid)."""
     inc = np.asarray(vm.included)
     pts = np.asarray(vm.points)[inc]
     return {

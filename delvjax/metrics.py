@@ -1,4 +1,4 @@
-"""Angular errors, error classes, error point rates and error curves (thesis §4.2; SPEC §5)."""
+"""Angular errors, error classes, error point rates and error curves (thesis §4.2; docs/model.md §5)."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ CLASS_NAMES = ("<45", "45-90", ">90")
 
 
 def angular_error_deg(direction: Array, valid: Array, points: Array, home: Array) -> Array:
-    """|wrap(direction - angle(home - x))| in degrees; an invalid point counts as 180 (SPEC §5)."""
+    """|wrap(direction - angle(home - x))| in degrees; an invalid point counts as 180 (docs/model.md §5)."""
     ideal = angle_of(home - points)
     err = jnp.degrees(jnp.abs(wrap(direction - ideal)))
     return jnp.where(valid, err, 180.0)

@@ -58,7 +58,7 @@ def positive_int(value: object, field: str) -> int:
 
 
 def occlusion_count(value: object, n_landmarks: int) -> int:
-    """Number k of landmarks hidden during homing (SPEC §5 occlusion): an integer in 0..N."""
+    """Number k of landmarks hidden during homing (docs/model.md §5 occlusion): an integer in 0..N."""
     if isinstance(value, bool) or not isinstance(value, (int, float)) or int(value) != value:
         raise InputError("occlude", value, "must be an integer")
     if not 0 <= value <= n_landmarks:
@@ -100,7 +100,7 @@ def make_config(d: float = 50.0, levels: int | None = None, background: str = "d
                 rho_max: float = 0.80, mfdid_blur_deg: float = 0.0, **noise: float) -> Config:
     """Validated `Config` (SPEC defaults) from public options.
 
-    n_alpha, n_psi, n_rho, rho_min, rho_max: the warping hypotheses (SPEC §4.3); n_psi must
+    n_alpha, n_psi, n_rho, rho_min, rho_max: the warping hypotheses (docs/model.md §4.3); n_psi must
     divide n_pix (rotations are whole pixels) and 0 < rho_min <= rho_max < 1.
     """
     n_pix = positive_int(n_pix, "n_pix")

@@ -82,7 +82,7 @@ def settings_section(settings, versions: dict, records: dict, wall_seconds: floa
     from .rollouts import DEFAULT_RULES, PHYSICAL_RULES
 
     rows = [{"setting": k, "value": v} for k, v in asdict(settings).items()]
-    rows += [{"setting": "rollout rules (default, SPEC §5)", "value": ", ".join(f"{k}={v}" for k, v in DEFAULT_RULES.items())},
+    rows += [{"setting": "rollout rules (default, docs/model.md §5)", "value": ", ".join(f"{k}={v}" for k, v in DEFAULT_RULES.items())},
              {"setting": "rollout rules (physical, beside the default)",
               "value": ", ".join(f"{k}={v}" for k, v in PHYSICAL_RULES.items())},
              {"setting": "success", "value": "within 50 cm of home within 50 moves of d = 50 cm"}]

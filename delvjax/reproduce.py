@@ -37,7 +37,7 @@ COMPILE_EVENTS = ("/jax/core/compile/jaxpr_trace_duration", "/jax/core/compile/j
 class Settings:
     """What a run depends on besides the code (recorded in the report and every JSON).
 
-    spacing: grid spacing cm (SPEC §5, 25 = 40 x 40; --quick: 100 = 10 x 10); trials: rollouts
+    spacing: grid spacing cm (docs/model.md §5, 25 = 40 x 40; --quick: 100 = 10 x 10); trials: rollouts
     per success-rate distance bin (thesis: 100; they fill one trial block, so --quick keeps
     them); seed: every random heading, release point and noise draw.
     """
@@ -220,6 +220,8 @@ def check_out_dir(out: str | Path) -> Path:
     probe_parent = path
     while not probe_parent.exists():
         probe_parent = probe_parent.parent
+    if not probe_parent.is_dir():
+        raise InputError("--out", str(out), f"lies under {probe_parent}, which is not a directory")
     if not os.access(probe_parent, os.W_OK | os.X_OK):
         raise InputError("--out", str(out), "is not writable")
     return path

@@ -1,6 +1,6 @@
-"""Homing rollouts, catchment area, success rate, trajectories and occlusion (thesis §4.3, §5.3.1; SPEC §5).
+"""Homing rollouts, catchment area, success rate, trajectories and occlusion (thesis §4.3, §5.3.1; docs/model.md §5).
 
-A rollout (SPEC §5): released at a point with a heading, the agent computes the homing
+A rollout (docs/model.md §5): released at a point with a heading, the agent computes the homing
 direction, turns to it and moves `d`; it senses the move just made as its unit movement,
 asks the homing method for a direction at the new point, turns to it, and so on. It
 succeeds when within `home_radius` of home at the release point or after a move, within
@@ -15,7 +15,7 @@ Rules (docs/model.md §5), both recorded in every summary and CSV:
   * collisions = "ignore" (default): landmarks are no obstacles; "fail": a move ending
     inside a landmark (distance to its centre < r) ends the trial as a failure.
 
-Noise in rollouts (SPEC §2.5; SPEC leaves the details to us; decided here):
+Noise in rollouts (docs/model.md §2.5; SPEC leaves the details to us; decided here):
   * executed heading = commanded heading + N(0, motion_heading);
   * true length = d * (1 + N(0, step)) * (1 + N(0, motion_step)); the odometry reports d_hat = d;
   * the body turns by psi ~ N(0, turn) during the move (the end view has heading
@@ -91,7 +91,7 @@ def rollout_keys(key: Array) -> tuple[Array, Array, Array]:
 # --- one trial ---------------------------------------------------------------------------
 
 def position_status(env: Env, pos: Array, home_radius: Array, collide: Array | bool = True) -> Array:
-    """SPEC §5 status of a point: LANDMARK (inside a cylinder; only where `collide`, the rule
+    """docs/model.md §5 status of a point: LANDMARK (inside a cylinder; only where `collide`, the rule
     collisions="fail"), ARENA (outside), SUCCESS (at home) or RUNNING."""
     lm = env.landmarks
     dist = jnp.sqrt(jnp.sum((pos[None, :] - lm[:, :2]) ** 2, axis=-1))
@@ -154,7 +154,7 @@ class Trials(_Outcomes):
 
 @jax.jit
 def home_record(env: Env, key: Array, config: Config) -> UnitMove:
-    """The home record of a rollout seed (SPEC §3.3; the same as the vector map's of that seed)."""
+    """The home record of a rollout seed (docs/model.md §3.3; the same as the vector map's of that seed)."""
     return record_home(env, rollout_keys(key)[0], config)
 
 
@@ -162,7 +162,7 @@ def run_trials(env: Env, starts: Array, headings: Array, key_index: Array, mask_
                key: Array, config: Config, method: str, home_radius: float = 50.0, max_steps: int = 50,
                lanes: int = DEFAULT_LANES, record_paths: bool = False, first_move: str = "homing",
                collisions: str = "ignore") -> Trials:
-    """Roll out T trials (SPEC §5), in blocks of one compiled program.
+    """Roll out T trials (docs/model.md §5), in blocks of one compiled program.
 
     starts: (T, 2) cm; headings: (T,) release headings rad; key_index: (T,) int, the trial's
     noise stream fold_in(key_rollout, key_index) and the vector map's view stream of its
@@ -337,7 +337,7 @@ def hidden_masks(env: Env, hidden: Sequence[int] | None) -> tuple[np.ndarray, li
 # --- catchment area ----------------------------------------------------------------------
 
 class Catchment(_Outcomes):
-    """Catchment area of one method on the SPEC §5 grid under M visibility masks.
+    """Catchment area of one method on the docs/model.md §5 grid under M visibility masks.
 
     points: (P, 2) all grid cells; included: (P,); heading: (P,) release heading rad;
     visible: (M, L) landmarks seen while homing; outcome, steps, invalid_steps: (M, P)
@@ -371,7 +371,7 @@ def catchment_area(env: Env, method: str, config: Config, spacing: float = 25.0,
                    key: Array | None = None, clearance: float = 10.0, masks: np.ndarray | None = None,
                    hidden: Sequence[tuple[int, ...]] = ((),), home_radius: float = 50.0, max_steps: int = 50,
                    lanes: int = DEFAULT_LANES, first_move: str = "homing", collisions: str = "ignore") -> Catchment:
-    """Rollouts from every grid point under every mask in `masks` (M, L), one program (SPEC §5).
+    """Rollouts from every grid point under every mask in `masks` (M, L), one program (docs/model.md §5).
 
     Headings: fixed (rad) or per point from `key` as in `maps.random_headings`. The trial of
     grid cell i uses noise stream i under every mask (common random numbers across masks).
@@ -441,7 +441,7 @@ def catchment_summary(result: Catchment) -> dict:
 def clear_of_landmarks(env: Env, pos: Array, clearance: float, margin: float = 0.0) -> Array:
     """At least `margin` inside the arena and farther than r + clearance + margin from every landmark centre.
 
-    margin 0 is the grid rule of SPEC §5; margin d keeps the first move, whatever its heading, clear.
+    margin 0 is the grid rule of docs/model.md §5; margin d keeps the first move, whatever its heading, clear.
     """
     a = env.arena
     inside = ((pos[..., 0] >= a[0] + margin) & (pos[..., 0] <= a[2] - margin)
@@ -535,7 +535,7 @@ def success_rate_trials(env: Env, method: str, config: Config, distances: Sequen
                         clearance: float = 10.0, visible: Array | None = None, home_radius: float = 50.0,
                         max_steps: int = 50, lanes: int = DEFAULT_LANES, first_move: str = "homing",
                         collisions: str = "ignore") -> SuccessRate:
-    """`trials` rollouts per release distance: random direction from home, random heading (SPEC §5)."""
+    """`trials` rollouts per release distance: random direction from home, random heading (docs/model.md §5)."""
     key = jax.random.PRNGKey(0) if key is None else key
     _, _, k_start = rollout_keys(key)
     dist = jnp.asarray(distances, jnp.float32)
@@ -615,7 +615,7 @@ def catchment(env: str | Path | Env, method: str = "delv", spacing: float = 25.0
               background: str = "distant", channel: str = "mask", n_heading: int = 360,
               lanes: int = DEFAULT_LANES, first_move: str = "homing",
               collisions: str = "ignore", **options: float) -> Catchment:
-    """Catchment area of `method` (Figs 4.5, 5.5; Tables 5.3/5.4): a rollout from every SPEC §5 grid point.
+    """Catchment area of `method` (Figs 4.5, 5.5; Tables 5.3/5.4): a rollout from every docs/model.md §5 grid point.
 
     heading_deg fixes the release heading; otherwise it is random per point from `seed`
     (the headings of `vector_map` with the same seed). `occlude=k` evaluates every choice of
@@ -623,7 +623,7 @@ def catchment(env: str | Path | Env, method: str = "delv", spacing: float = 25.0
     names one choice. `options`: noise sigmas as in `vector_map` plus motion_heading_noise_deg
     and motion_step_noise, or any other `make_config` option (e.g. warping's n_alpha).
     `first_move` ("homing" | "release") and `collisions` ("ignore" | "fail"): the rollout
-    rules of the module docstring (defaults: SPEC §5). Returns a `Catchment` (see `catchment_summary`).
+    rules of the module docstring (defaults: docs/model.md §5). Returns a `Catchment` (see `catchment_summary`).
     """
     from .api import visible_mask
     from .options import occlusion_count, positive

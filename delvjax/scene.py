@@ -1,4 +1,4 @@
-"""Environments: cylinders in a rectangular arena around a home (SPEC §1, §2.1, §6, §7).
+"""Environments: cylinders in a rectangular arena around a home (docs/model.md §1, §2.1, §6, §7).
 
 An `Env` is a pytree. Landmarks are an `(L, 3)` array of `[x, y, r]` (cm) with a
 validity mask, so environments with different counts can be padded to one shape and
@@ -42,7 +42,7 @@ class Env(eqx.Module):
 
 
 def make_env(landmarks, home=DEFAULT_HOME, arena=DEFAULT_ARENA, name: str = "env", pad_to: int | None = None) -> Env:
-    """Build an `Env` from plain numbers (validated like a JSON file, SPEC §7)."""
+    """Build an `Env` from plain numbers (validated like a JSON file, docs/model.md §7)."""
     spec = {
         "name": name,
         "arena": list(arena),
@@ -67,7 +67,7 @@ def _pair(value, field: str, n: int) -> list[float]:
 
 
 def validate_env_dict(spec: object) -> dict:
-    """Check an environment description (SPEC §7); return it normalised. Raises `InputError`."""
+    """Check an environment description (docs/model.md §7); return it normalised. Raises `InputError`."""
     if not isinstance(spec, dict):
         raise InputError("environment", type(spec).__name__, "must be a JSON object")
     for key in ("arena", "home", "landmarks"):
@@ -129,7 +129,7 @@ def stack_envs(envs: list[Env]) -> Env:
 
 
 def env_from_dict(spec: object, pad_to: int | None = None) -> Env:
-    """Validated `Env` from a SPEC §7 dictionary, landmarks padded to `pad_to`."""
+    """Validated `Env` from a docs/model.md §7 dictionary, landmarks padded to `pad_to`."""
     s = validate_env_dict(spec)
     lms = np.asarray(s["landmarks"], dtype=np.float32).reshape(-1, 3)
     n = lms.shape[0]
@@ -149,7 +149,7 @@ def env_from_dict(spec: object, pad_to: int | None = None) -> Env:
 
 
 def env_to_dict(env: Env) -> dict:
-    """The SPEC §7 dictionary of an `Env` (padding dropped)."""
+    """The docs/model.md §7 dictionary of an `Env` (padding dropped)."""
     lms = np.asarray(env.landmarks)[np.asarray(env.valid)]
     return {
         "name": env.name,
@@ -160,7 +160,7 @@ def env_to_dict(env: Env) -> dict:
 
 
 def rotation_mismatch(env: Env, angles_deg=(90.0, 180.0, 270.0)) -> dict[float, float]:
-    """How far each rotation of the layout about home is from mapping it onto itself (SPEC §6).
+    """How far each rotation of the layout about home is from mapping it onto itself (docs/model.md §6).
 
     For each angle: rotate the landmark centres about home and return the bottleneck distance
     (cm) to the original centres, i.e. the smallest d such that a one-to-one matching of the
@@ -187,7 +187,7 @@ def rotation_mismatch(env: Env, angles_deg=(90.0, 180.0, 270.0)) -> dict[float, 
     return out
 
 
-# SPEC §6 "no rotation by a multiple of 90 degrees nearly maps it onto itself", in numbers:
+# docs/model.md §6 "no rotation by a multiple of 90 degrees nearly maps it onto itself", in numbers:
 # every rotation_mismatch of env1 exceeds this (cm); the first env1 layout had 63 cm.
 ASYMMETRY_CM = 80.0
 
@@ -204,10 +204,10 @@ def _ring(n: int, distance: float = 250.0, radius: float = 30.0, first_deg: floa
     ]
 
 
-# Thesis §4.2 / SPEC §6 describe these layouts but give no coordinates; ours follow the
+# Thesis §4.2 / docs/model.md §6 describe these layouts but give no coordinates; ours follow the
 # descriptions (README documents and draws them). Home (500, 500), arena 1000 x 1000 cm.
 PRESETS: dict[str, list[tuple[float, float, float]]] = {
-    # env1: four landmarks of different sizes around home, asymmetric (SPEC §6; docs/env1.md):
+    # env1: four landmarks of different sizes around home, asymmetric (docs/model.md §6; docs/env1.md):
     # bearings from home 23.5/142.3/207.8/289.8 deg (gaps 118.8/65.6/82.0/93.6), distances
     # 289/196/204/324 cm, none within 20 deg of the home unit move's line. No rotation by
     # 90/180/270 deg about home brings the centres within 150 cm of the layout
@@ -219,7 +219,7 @@ PRESETS: dict[str, list[tuple[float, float, float]]] = {
     "env3": [(640.0, 700.0, 30.0), (760.0, 590.0, 40.0), (740.0, 400.0, 25.0), (630.0, 290.0, 35.0)],
     # ringL: L landmarks equally spaced at 250 cm around home, radius 30, the first due
     # north; ring4's first at 45 deg, so that no landmark lies on the line of the home
-    # unit move (0/180 deg from home along alpha_r = 0), which gives no parallax (SPEC §3.1).
+    # unit move (0/180 deg from home along alpha_r = 0), which gives no parallax (docs/model.md §3.1).
     **{f"ring{n}": _ring(n, first_deg=45.0 if n == 4 else 90.0) for n in range(3, 7)},
 }
 
@@ -243,7 +243,7 @@ def preset_dict(name: str) -> dict:
 
 
 def load_env(name_or_path: str | Path, pad_to: int | None = None) -> Env:
-    """A preset by name (`env1`, `env2`, `env3`, `ring3`..`ring6`) or a SPEC §7 JSON file."""
+    """A preset by name (`env1`, `env2`, `env3`, `ring3`..`ring6`) or a docs/model.md §7 JSON file."""
     key = str(name_or_path)
     if key in PRESETS:
         return env_from_dict(preset_dict(key), pad_to=pad_to)

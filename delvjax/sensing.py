@@ -1,4 +1,4 @@
-"""Ring images, landmark blobs and noisy unit movements (SPEC §2.2-2.5, §3.1).
+"""Ring images, landmark blobs and noisy unit movements (docs/model.md §2.2-2.5, §3.1).
 
 Everything here is written for ONE viewpoint; maps and rollouts `vmap` it.
 """
@@ -26,7 +26,7 @@ class Snapshot(eqx.Module):
 
 
 class UnitMove(eqx.Module):
-    """Two snapshots of one unit movement (SPEC §3.1) and the agent's own readings.
+    """Two snapshots of one unit movement (docs/model.md §3.1) and the agent's own readings.
 
     start, end: snapshots at P and C; d_hat: believed step (cm); psi_hat: believed turn
     (rad); compass: compass reading of the heading at C minus alpha_r (rad).
@@ -40,12 +40,12 @@ class UnitMove(eqx.Module):
 
 
 def background_of_angle(phi: Array) -> Array:
-    """SPEC §2.3 background intensity as a function of an angle (radians)."""
+    """docs/model.md §2.3 background intensity as a function of an angle (radians)."""
     return 0.45 + 0.25 * jnp.sin(3.0 * phi) + 0.15 * jnp.sin(7.0 * phi + 1.0)
 
 
 def wall_coordinate(origin: Array, direction: Array, arena: Array) -> Array:
-    """Perimeter fraction f in [0, 1) of the wall point a ray leaves the arena through (SPEC §2.3).
+    """Perimeter fraction f in [0, 1) of the wall point a ray leaves the arena through (docs/model.md §2.3).
 
     origin: (2,); direction: (..., 2) unit vectors; s counted counter-clockwise from (xmin, ymin).
     """
@@ -75,7 +75,7 @@ def pixel_directions(n_pix: int) -> np.ndarray:
 
 
 def ray_hits(landmarks: Array, visible: Array, origin: Array, heading: Array, n_pix: int) -> Array:
-    """Whether each pixel ray hits a visible cylinder (SPEC §2.2), (n_pix,) bool.
+    """Whether each pixel ray hits a visible cylinder (docs/model.md §2.2), (n_pix,) bool.
 
     Ray j leaves `origin` along heading + 2 pi j / n_pix. Landmark offsets are rotated
     into the agent frame once, so the per-pixel work is two dot products and compares;
@@ -89,7 +89,7 @@ def ray_hits(landmarks: Array, visible: Array, origin: Array, heading: Array, n_
 
 
 def distant_background(heading: Array, n_pix: int) -> Array:
-    """SPEC §2.3 `distant` background of every pixel, by angle addition from constant tables."""
+    """docs/model.md §2.3 `distant` background of every pixel, by angle addition from constant tables."""
     a = 2.0 * np.pi * np.arange(n_pix) / n_pix
     c3, s3, c7, s7 = (jnp.asarray(f(k * a), jnp.float32) for k in (3, 7) for f in (np.cos, np.sin))
     sin3 = jnp.sin(3.0 * heading) * c3 + jnp.cos(3.0 * heading) * s3
@@ -98,7 +98,7 @@ def distant_background(heading: Array, n_pix: int) -> Array:
 
 
 def render(env: Env, visible: Array, pos: Array, heading: Array, config: Config) -> tuple[Array, Array]:
-    """Ring image at `pos` with `heading` (SPEC §2.2-2.3): (mask bool (n_pix,), gray (n_pix,)).
+    """Ring image at `pos` with `heading` (docs/model.md §2.2-2.3): (mask bool (n_pix,), gray (n_pix,)).
 
     Pixel j looks along world angle heading + 2*pi*j/n_pix; landmark = 1, else background.
     """
@@ -126,7 +126,7 @@ def _run_indices(flags: Array, max_blobs: int) -> Array:
 
 
 def extract_blobs(mask: Array, max_blobs: int) -> tuple[Array, Array]:
-    """Blobs of a ring mask (SPEC §2.4): (bearing (B,), valid (B,)), sorted by bearing in [0, 2pi).
+    """Blobs of a ring mask (docs/model.md §2.4): (bearing (B,), valid (B,)), sorted by bearing in [0, 2pi).
 
     A blob is a maximal circular run of mask pixels; its bearing is the circular midpoint
     of its first and last pixel. All pixels set: one blob at 0. Shapes are fixed: at most
@@ -163,7 +163,7 @@ def sort_blobs(bearing: Array, valid: Array) -> tuple[Array, Array]:
 
 
 def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, config: Config) -> Snapshot:
-    """Render, extract blobs and add bearing noise (SPEC §2.5) for one viewpoint."""
+    """Render, extract blobs and add bearing noise (docs/model.md §2.5) for one viewpoint."""
     mask, gray = render(env, visible, pos, heading, config)
     bearing, valid = extract_blobs(mask, env.landmarks.shape[0])
     noise = config.noise.bearing * jax.random.normal(key, bearing.shape)
@@ -189,13 +189,13 @@ def observe_move(env: Env, visible: Array, start: Array, end: Array, heading_sta
 
 
 def unit_move_poses(start: Array, heading: Array, key: Array, config: Config, end_at: Array | None = None):
-    """The true poses and odometry of one unit movement (SPEC §2.5, §3.1), before sensing:
+    """The true poses and odometry of one unit movement (docs/model.md §2.5, §3.1), before sensing:
     (start (2,), end (2,), heading_start, heading_end, psi_hat, key of the observation).
 
     The agent at P = `start` with `heading` moves d * (1 + N(0, noise.step)) along it and
     turns by psi ~ N(0, noise.turn); odometry reports d_hat = d and psi_hat = psi +
     N(0, noise.turn_odometry). If `end_at` is given the move ends there instead
-    (P = end_at - step * u(heading)): the current view of a vector map (SPEC §3.3).
+    (P = end_at - step * u(heading)): the current view of a vector map (docs/model.md §3.3).
     """
     k_step, k_turn, k_odo, k_obs = jax.random.split(key, 4)
     noise = config.noise
@@ -219,6 +219,6 @@ def unit_move(env: Env, start: Array, heading: Array, key: Array, config: Config
 
 
 def record_home(env: Env, key: Array, config: Config) -> UnitMove:
-    """The home record (SPEC §3.3): a unit movement from home along alpha_r, all landmarks seen."""
+    """The home record (docs/model.md §3.3): a unit movement from home along alpha_r, all landmarks seen."""
     move, _ = unit_move(env, env.home, jnp.asarray(config.alpha_r, jnp.float32), key, config)
     return move

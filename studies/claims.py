@@ -50,3 +50,323 @@ def evaluate(numbers_by_study: dict[str, dict]) -> list[dict]:
             row.update(ours=ours, verdict=verdict, why=why)
         rows.append(row)
     return rows
+
+
+# --- helpers ----------------------------------------------------------------------------------
+
+ENVS = ("env1", "env2", "env3")
+BACKGROUNDS = ("distant", "walls", "none")
+
+
+def _n(v) -> str:
+    """A number or a list of numbers, 1 decimal."""
+    if isinstance(v, (list, tuple)):
+        return "/".join(_n(x) for x in v)
+    return "–" if v is None else f"{v:.1f}"
+
+
+def _verdict(parts: list[bool]) -> str:
+    """holds if every part holds, fails if none does, else partly."""
+    return "holds" if all(parts) else "fails" if not any(parts) else "partly"
+
+
+def _share(flags) -> float:
+    flags = list(flags)
+    return sum(flags) / max(len(flags), 1)
+
+
+def _pairs(a, b):
+    return list(zip(a, b))
+
+
+def _mean(v) -> float:
+    return sum(v) / len(v)
+
+
+# --- chapter 4 ----------------------------------------------------------------------------------
+
+@check("delv_nocompass_catchment_all_envs")
+def _(get):
+    c = {e: get(f"catchment:{e}:delv") for e in ENVS}
+    large = all(v >= 75.0 for v in c.values())
+    env3_lowest = c["env3"] <= min(c["env1"], c["env2"])
+    ours = "catchment env1/2/3: " + _n(list(c.values())) + " % (thesis 98.5/95.4/77.7)"
+    why = "" if large and env3_lowest else (
+        "env3 is not the lowest: with landmarks no obstacles, DELV homes from almost everywhere" if large
+        else "a catchment is below 75 %")
+    return ours, _verdict([large, env3_lowest]), why
+
+
+@check("errors_outside_landmark_hull")
+def _(get):
+    ins = {e: get(f"map:{e}:delv:gt45_inside_hull_pct") for e in ENVS}
+    out = {e: get(f"map:{e}:delv:gt45_outside_hull_pct") for e in ENVS}
+    near0 = [ins[e] <= 2.0 for e in ENVS]
+    outside = [ins[e] <= out[e] for e in ENVS]
+    ours = "; ".join(f"{e} e>45 inside {_n(ins[e])} %, outside {_n(out[e])} %" for e in ENVS)
+    bad = [e for e in ENVS if not (ins[e] <= 2.0 and ins[e] <= out[e])]
+    why = "" if not bad else (f"not in {', '.join(bad)}: the hull there is a thin region at the edge of the layout "
+                              "(env3: home lies outside it), where the parallax of a 50 cm move is small")
+    return ours, _verdict([all(near0) and all(outside), _share(outside) >= 2 / 3]), why
+
+
+@check("step_distance_rarely_matters")
+def _(get):
+    means = {d: _mean(get(f"error_curve:env1:delv:d={d}")) for d in (20, 50, 100, 150)}
+    spread = max(means.values()) - min(means.values())
+    ours = "mean of the error curve, d = 20/50/100/150 cm: " + _n(list(means.values())) + "°"
+    verdict = "holds" if spread <= 10 else "partly" if spread <= 20 else "fails"
+    return ours, verdict, "" if verdict == "holds" else f"the curves differ by {spread:.1f}° on average"
+
+
+@check("few_landmarks_error_below_90")
+def _(get):
+    curves = {n: get(f"error_curve:random{n}:delv") for n in (3, 4, 5)}
+    below = [v < 90 for c in curves.values() for v in c]
+    ours = "largest bin mean, 3/4/5 landmarks: " + _n([max(c) for c in curves.values()]) + "°"
+    verdict = "holds" if all(below) else "partly" if _share(below) >= 0.9 else "fails"
+    return ours, verdict, "" if verdict == "holds" else "some distance bins average 90° or more"
+
+
+@check("delv_smaller_error_than_warping")
+def _(get):
+    d, w = get("error_curve:env1:delv"), get("error_curve:env1:warping")
+    share = _share(a < b for a, b in _pairs(d, w))
+    ours = f"env1 mean error DELV {_n(get('map:env1:delv:mean_error_deg'))}°, image matching " \
+           f"{_n(get('map:env1:warping:mean_error_deg'))}°; DELV lower in {share:.0%} of distance bins"
+    verdict = "holds" if share >= 0.8 else "partly" if share >= 0.5 else "fails"
+    return ours, verdict, "" if verdict == "holds" else "image matching is as good near home"
+
+
+@check("delv_success_over_90")
+def _(get):
+    s, p = get("success:env1:delv"), get("success:env1:delv:physical")
+    ours = f"default rules {_n(s)} %; physical rules {_n(p)} %"
+    verdict = "holds" if min(s) > 90 else "partly" if _mean(s) > 90 else "fails"
+    why = "" if verdict == "holds" else "some release distances succeed in 90 % of trials or fewer"
+    if verdict == "holds" and min(p) <= 90:
+        why = "holds under the default rules; under the physical rules far releases fall below 90 % (landmark hits)"
+    return ours, verdict, why
+
+
+@check("delv_beats_warping_success")
+def _(get):
+    d, w = get("success:env1:delv"), get("success:env1:warping")
+    ge = [a >= b for a, b in _pairs(d, w)]
+    cd, cw = get("catchment:env1:delv"), get("catchment:env1:warping")
+    ours = f"success DELV {_n(d)} vs image matching {_n(w)} %; catchment {_n(cd)} vs {_n(cw)} %"
+    verdict = _verdict([all(ge) and cd > cw, _share(ge) >= 0.5])
+    return ours, verdict, "" if verdict == "holds" else "image matching succeeds as often at some distances"
+
+
+@check("warping_fails_outside_hull")
+def _(get):
+    wi, wo = get("fail_inside_hull:env1:warping"), get("fail_outside_hull:env1:warping")
+    do = get("fail_outside_hull:env1:delv")
+    ours = f"failed releases: image matching inside hull {_n(wi)} %, outside {_n(wo)} %; DELV outside {_n(do)} %"
+    return ours, _verdict([wo > wi, wo > do]), ""
+
+
+@check("quantized_error_small_and_level_insensitive")
+def _(get):
+    cont = _mean(get("error_curve:env1:delv:continuous"))
+    levels = {q: get(f"error_curve:env1:delv:Q{q}") for q in (1, 2, 3, 4, 5)}
+    small = [_share(v < 30 for v in c) >= 0.5 for c in levels.values()]
+    close = [abs(_mean(c) - cont) <= 10 for c in levels.values()]
+    ours = "mean error Q = 1..5: " + _n([_mean(c) for c in levels.values()]) + f"°, continuous {_n(cont)}°"
+    verdict = _verdict([all(small), all(close)])
+    bad = [q for q, ok in zip(levels, close) if not ok]
+    return ours, verdict, "" if verdict == "holds" else f"Q = {bad} differ from continuous by more than 10°"
+
+
+@check("fewer_levels_more_failures_three_suffice")
+def _(get):
+    tags = ("Q1", "Q2", "Q3", "Q5", "continuous")
+    s = [get(f"success_overall:env1:delv:{t}") for t in tags]
+    c = [get(f"catchment:env1:delv:{t}") for t in tags]
+    monotone = all(b >= a - 2.0 for a, b in zip(s, s[1:]))
+    three = s[2] >= s[-1] - 5.0
+    ours = "success overall Q = 1/2/3/5/continuous: " + _n(s) + " %; catchment " + _n(c) + " %"
+    why = "" if monotone and three else (
+        "success does not fall with fewer levels" if not monotone else "three levels fall short of continuous")
+    return ours, _verdict([monotone, three]), why
+
+
+@check("surrounding_landmarks_lower_error")
+def _(get):
+    sur = {e: get(f"map:{e}:delv:Q3:mean_error_deg") for e in ("env2", "ring6")}
+    edge = get("map:env3:delv:Q3:mean_error_deg")
+    lower = [v < edge for v in sur.values()]
+    ours = f"3 levels, mean error env2 {_n(sur['env2'])}°, ring6 {_n(sur['ring6'])}° vs env3 (one side) {_n(edge)}°"
+    return ours, _verdict(lower), ""
+
+
+# --- chapter 5 ----------------------------------------------------------------------------------
+
+@check("compass_slightly_smaller_error")
+def _(get):
+    w = {e: get(f"map:{e}:delv-compass:mean_error_deg") for e in ENVS}
+    wo = {e: get(f"map:{e}:delv:mean_error_deg") for e in ENVS}
+    smaller = [w[e] <= wo[e] for e in ENVS]
+    slight = [wo[e] - w[e] <= 10 for e in ENVS]
+    ours = "; ".join(f"{e} {_n(w[e])}° with vs {_n(wo[e])}° without" for e in ENVS)
+    verdict = "holds" if all(smaller) and all(slight) else "partly" if _share(smaller) >= 2 / 3 else "fails"
+    return ours, verdict, "" if verdict == "holds" else "not smaller (or far smaller) in every environment"
+
+
+@check("compass_catchment_env2_similar_env3_better")
+def _(get):
+    c = {e: (get(f"catchment:{e}:delv-compass"), get(f"catchment:{e}:delv")) for e in ENVS}
+    similar = abs(c["env2"][0] - c["env2"][1]) <= 5
+    better = c["env3"][0] > c["env3"][1]
+    ours = "; ".join(f"{e} {_n(a)} with vs {_n(b)} % without" for e, (a, b) in c.items())
+    why = "" if better else "env3: both already near 100 % under the default rules (landmarks no obstacles)"
+    return ours, _verdict([similar, better]), why
+
+
+@check("delv_vs_acv_alv_error_mixed")
+def _(get):
+    d, acv, alv = (get(f"error_curve:env1:{m}") for m in ("delv-compass", "acv", "alv"))
+    below_acv = _share(a < b for a, b in _pairs(d, acv))
+    below_alv = _share(a < b for a, b in _pairs(d, alv))
+    ours = f"DELV lower than ACV in {below_acv:.0%}, than ALV in {below_alv:.0%} of distance bins (env1)"
+    return ours, _verdict([below_acv >= 0.6, 0.1 <= below_alv <= 0.9]), ""
+
+
+@check("delv_compass_success_near_far")
+def _(get):
+    d, acv, alv = (get(f"success:env1:{m}") for m in ("delv-compass", "acv", "alv"))
+    similar = all(abs(_mean(d) - _mean(o)) <= 5 for o in (acv, alv))
+    near = all(_mean(d[:3]) >= _mean(o[:3]) for o in (acv, alv))
+    far = all(_mean(d[-3:]) <= _mean(o[-3:]) for o in (acv, alv))
+    ours = f"success DELV {_n(d)}, ACV {_n(acv)}, ALV {_n(alv)} %"
+    why = "" if far else "far from home DELV succeeds at least as often as ACV and ALV"
+    return ours, _verdict([similar, near, far]), why
+
+
+def _occl(get, env, m, field="catchment"):
+    return get(f"occlusion:{env}:{m}:{field}")
+
+
+@check("occlusion_increases_errors")
+def _(get):
+    g = _occl(get, "env1", "delv-compass", "gt45")
+    ours = f"env1 DELV e>45, k = 0/1/2: {_n(g[:3])} % (thesis 8.75/13.99/20.48)"
+    return ours, "holds" if g[0] < g[1] < g[2] else "fails", ""
+
+
+@check("acv_error_grows_faster_than_delv")
+def _(get):
+    below, faster, parts = [], [], []
+    for e in ENVS:
+        d, a = _occl(get, e, "delv-compass", "gt45")[:3], _occl(get, e, "acv", "gt45")[:3]
+        below.append(all(x <= y + 1.0 for x, y in zip(d, a)))
+        faster.append(a[2] - a[0] > d[2] - d[0])
+        parts.append(f"{e} DELV {_n(d)} vs ACV {_n(a)}")
+    ours = "e>45 % for k = 0/1/2: " + "; ".join(parts)
+    verdict = "holds" if all(below) and all(faster) else "partly" if all(faster) or all(below) else "fails"
+    return ours, verdict, ""
+
+
+@check("acv_larger_catchment_small_occlusion")
+def _(get):
+    d, a = _occl(get, "env1", "delv-compass"), _occl(get, "env1", "acv")
+    ours = f"env1 catchment k = 0/1: DELV {_n(d[:2])}, ACV {_n(a[:2])} % (thesis 92.01/49.11 vs 100/52.88)"
+    why = "" if a[0] > d[0] and a[1] > d[1] else \
+        "DELV with a compass reaches home from every grid point without occlusion under the default rules"
+    return ours, _verdict([a[0] > d[0], a[1] > d[1]]), why
+
+
+@check("acv_catchment_shrinks_faster")
+def _(get):
+    ok, parts = [], []
+    for e in ENVS:
+        d, a = _occl(get, e, "delv-compass"), _occl(get, e, "acv")
+        ok.append(a[0] - a[2] > d[0] - d[2] and d[2] > a[2])
+        parts.append(f"{e} DELV {_n(d[:3])} vs ACV {_n(a[:3])}")
+    verdict = "holds" if all(ok) else "partly" if _share(ok) >= 0.5 else "fails"
+    return "catchment % for k = 0/1/2: " + "; ".join(parts), verdict, ""
+
+
+@check("alv_perfect_then_collapses_under_occlusion")
+def _(get):
+    envs = ("env1", "env2", "env3", "ring3", "ring5", "ring6")
+    perfect, collapse = [], []
+    for e in envs:
+        alv, d = _occl(get, e, "alv"), _occl(get, e, "delv-compass")
+        perfect.append(_occl(get, e, "alv", "gt45")[0] == 0 and alv[0] >= 99.99)
+        collapse += [alv[k] < d[k] for k in (1, 2)]
+    ours = (f"ALV k = 0 perfect in {sum(perfect)}/{len(envs)} layouts; below DELV for k = 1, 2 in "
+            f"{sum(collapse)}/{len(collapse)} cases; env1 k = 1: ALV {_n(_occl(get, 'env1', 'alv')[1])} vs "
+            f"DELV {_n(_occl(get, 'env1', 'delv-compass')[1])} %")
+    verdict = "holds" if all(perfect) and all(collapse) else "partly" if all(perfect) or _share(collapse) >= 0.75 \
+        else "fails"
+    return ours, verdict, ""
+
+
+def _visual(get, bg, m, field):
+    return get(f"visual:{bg}:{m}:{field}")
+
+
+@check("visual_compass_not_exact")
+def _(get):
+    parts, ok = [], []
+    for bg in BACKGROUNDS:
+        wrong = get(f"visual:{bg}:heading_error_gt5_pct")
+        worse = all(_visual(get, bg, m, "mean_error_deg") > get(f"map:env1:{m}:mean_error_deg")
+                    for m in ("delv-compass", "acv", "alv"))
+        ok.append(wrong > 0 and worse)
+        parts.append(f"{bg}: heading error > 5° at {_n(wrong)} % of points")
+    return "; ".join(parts), _verdict(ok), "" if all(ok) else "exact or harmless under some background settings"
+
+
+@check("visual_compass_catchment_order")
+def _(get):
+    parts, ok, holds_in = [], [], []
+    for bg in BACKGROUNDS:
+        for rules in ("", ":physical"):
+            c = [_visual(get, bg, m, "catchment" + rules) for m in ("delv-compass", "acv", "alv")]
+            ok.append(c[0] > c[1] > c[2])
+            setting = f"{bg}, {'physical' if rules else 'default'} rules"
+            parts.append(f"{setting}: DELV {_n(c[0])}, ACV {_n(c[1])}, ALV {_n(c[2])} %")
+            if ok[-1]:
+                holds_in.append(setting)
+    why = f"the order DELV > ACV > ALV holds with {'; '.join(holds_in) or 'none of the settings'}"
+    return "; ".join(parts) + " (thesis 74.85 > 47.04 > 40.68)", _verdict(ok), why
+
+
+@check("visual_compass_error_order")
+def _(get):
+    parts, ok = [], []
+    for bg in BACKGROUNDS:
+        v = {m: _visual(get, bg, m, "mean_error_deg") for m in ("delv-compass", "acv", "alv")}
+        rise = {m: v[m] - get(f"map:env1:{m}:mean_error_deg") for m in v}
+        ok.append(v["delv-compass"] < min(v["acv"], v["alv"]) and rise["alv"] >= max(rise.values()))
+        parts.append(f"{bg}: " + ", ".join(f"{m.split('-')[0].upper()} {_n(x)}°" for m, x in v.items()))
+    return "; ".join(parts), _verdict(ok), ""
+
+
+@check("delv_least_compass_dependent")
+def _(get):
+    methods = ("delv-compass", "acv", "alv")
+    loss = {m: get(f"catchment:env1:{m}") - _visual(get, "distant", m, "catchment") for m in methods}
+    noise = {m: get(f"compass_noise:env1:{m}:catchment") for m in methods}
+    drop = {m: v[0] - v[-1] for m, v in noise.items()}
+    visual_ok = loss["delv-compass"] <= min(loss["acv"], loss["alv"]) + 1.0  # ties within a point count
+    noise_ok = drop["delv-compass"] <= min(drop["acv"], drop["alv"]) + 1.0
+    ours = ("catchment lost to the visual compass (distant background): "
+            + ", ".join(f"{m.split('-')[0].upper()} {_n(v)}" for m, v in loss.items())
+            + " points; to compass noise 0 -> 45°: " + ", ".join(f"{m.split('-')[0].upper()} {_n(v)}"
+                                                             for m, v in drop.items()) + " points")
+    why = ""
+    if max(*loss.values(), *drop.values()) < 1.0:
+        why = "no method loses catchment here (homing succeeds despite heading errors), so dependence cannot be told apart"
+    return ours, _verdict([visual_ok, noise_ok]), why
+
+
+@check("delv_acv_similar_without_occlusion")
+def _(get):
+    ed, ea = get("map:env1:delv-compass:mean_error_deg"), get("map:env1:acv:mean_error_deg")
+    cd, ca = _occl(get, "env1", "delv-compass")[0], _occl(get, "env1", "acv")[0]
+    ours = f"env1 mean error DELV {_n(ed)}° vs ACV {_n(ea)}°; catchment {_n(cd)} vs {_n(ca)} %"
+    return ours, _verdict([abs(ed - ea) <= 10, abs(cd - ca) <= 10]), ""

@@ -4,7 +4,7 @@ Every environment is padded to `PAD` landmark slots and stripped of its name, an
 maps are read from catchment runs, so one compiled program per method serves every
 environment, occlusion, layout, quantization level, background and noise setting (the
 numbers do not change: padding slots are masked out). Rollouts run under the default
-rules (SPEC §5) and the physical rules (first move along the release heading, landmark
+rules (docs/model.md §5) and the physical rules (first move along the release heading, landmark
 hits fail), reported side by side.
 """
 

@@ -14,7 +14,7 @@ from .common import (as_vector_map, catchment, catchment_figure, curve, curve_me
                      outcome_counts, panel_figure)
 
 TITLE = "DELV without a compass, environments 1-3 (Figs 4.2-4.5)"
-STEPS = 6
+STEPS = 3
 ENVS = ("env1", "env2", "env3")
 
 
@@ -46,7 +46,7 @@ def run(ctx) -> None:
         items.append((f"{name}: mean error {s['mean_error_deg']:.1f}°, e>45 {s['gt45_pct']:.1f} %", e, vm))
         catch_items.append((f"{name}: {row['ours default %']:.2f} % (thesis {thesis_pct:.2f} %)", e, res["default"]))
     ctx.table("catchment_fig4_5", "Catchment area and errors of DELV without compass", rows, source="Fig 4.5, §4.2",
-              note="default rules: first move along the homing direction, landmarks no obstacles (SPEC §5); "
+              note="default rules: first move along the homing direction, landmarks no obstacles (docs/model.md §5); "
                    "physical: first move along the release heading, a move ending inside a landmark fails.")
     ctx.figure("fig4_2_vector_maps.png", panel_figure(items, spacing, title="DELV without compass, random headings"),
                "Fig 4.2: homing vectors of DELV without compass on env1-3 (release heading random per point).")

@@ -8,6 +8,8 @@ Run: python -m studies.sensitivity --out results/sensitivity [--env env1]
 from __future__ import annotations
 
 import argparse
+import sys
+from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -19,7 +21,7 @@ from delvjax.io import save_figure, write_csv
 from delvjax.plots import draw_env
 from delvjax.sensitivity import bearing_noise_gain
 
-from .common import Study
+from delvjax.io import write_json
 
 METHODS = ("delv", "delv-compass", "alv", "acv")
 
@@ -31,7 +33,8 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--spacing", type=float, default=25.0)
     p.add_argument("--seed", type=int, default=0)
     a = p.parse_args(argv)
-    study = Study(a.out, "sensitivity")
+    out = Path(a.out)
+    summary: dict = {}
     env = delvjax.load_env(a.env)
     heading, key = delvjax.api.resolve_headings(None, a.seed)
     pts = maps.grid_points(env.arena, a.spacing)
@@ -39,22 +42,23 @@ def main(argv: list[str] | None = None) -> None:
     headings = maps.random_headings(key, pts.shape[0])
     fig, axes = plt.subplots(1, len(METHODS), figsize=(4.4 * len(METHODS), 4.6))
     for ax, m in zip(axes, METHODS):
-        study.step(f"{m}: d direction / d bearings on {env.name}")
+        print(f"[sensitivity] {m}: d direction / d bearings on {env.name}", file=sys.stderr, flush=True)
         gain, ok = bearing_noise_gain(env, pts, headings, key, Config(), m)
         gain, ok = np.asarray(gain), np.asarray(ok) & inc
-        write_csv(study.path(f"gain_{m}_{env.name}.csv"),
+        write_csv(out / f"gain_{m}_{env.name}.csv",
                   {"x": pts[inc, 0], "y": pts[inc, 1], "heading_deg": np.degrees(np.asarray(headings))[inc],
                    "gain_deg_per_deg": gain[inc], "valid": ok[inc]})
-        study.summary[m] = {"median_gain": float(np.median(gain[ok])), "p90_gain": float(np.percentile(gain[ok], 90))}
+        summary[m] = {"median_gain": float(np.median(gain[ok])), "p90_gain": float(np.percentile(gain[ok], 90))}
         n = int(round(np.sqrt(pts.shape[0])))
         img = np.where(ok, gain, np.nan).reshape(n, n)
         xmin, ymin, xmax, ymax = np.asarray(env.arena)
         im = ax.imshow(np.log10(img), origin="lower", extent=(xmin, xmax, ymin, ymax), cmap="viridis", vmin=-1, vmax=1.5)
         draw_env(ax, env)
-        ax.set_title(f"{m}: median {study.summary[m]['median_gain']:.2f}°/°", fontsize=10)
+        ax.set_title(f"{m}: median {summary[m]['median_gain']:.2f}°/°", fontsize=10)
     fig.colorbar(im, ax=axes, shrink=0.8, label="log10 gain (deg of direction per deg of bearing noise)")
-    save_figure(fig, study.path(f"bearing_gain_{env.name}.png"))
-    study.finish()
+    save_figure(fig, out / f"bearing_gain_{env.name}.png")
+    write_json(out / "sensitivity.json", {"env": env.name, "spacing": a.spacing, "seed": a.seed, **summary})
+    print(f"wrote {out}/bearing_gain_{env.name}.png and the CSV/JSON beside it")
 
 
 if __name__ == "__main__":

@@ -1,7 +1,7 @@
 """What the thesis reports for its simulation experiments, as plain data.
 
 Source: Seung-Eun Yu, "Distance-Estimated Landmark Vector Model for Vision-Based Homing
-Navigation" (PhD thesis), text copy /work/shared/seed/000_b7819b1cab185662.txt. Every
+Navigation" (PhD thesis), in the plain-text copy the project works from. Every
 ``line`` below is a 1-based line number in that file (``sed -n Np`` prints it). Chapters 4
 (DELV without compass, predictive image matching) and 5 (DELV with compass, ACV, ALV,
 occlusion, visual compass) hold the simulation results; chapter 6 summarises them.
@@ -40,13 +40,13 @@ copies of env1 / env2 rows (see NOTES), they are stored here as printed under "r
 In chapter 5 every DELV number is with the compass ("delv-compass"); the ACV / ALV numbers
 of Tables 5.1-5.4 use the true compass ("acv", "alv").
 
-The thesis gives no landmark coordinates, grid spacing or home radius; SPEC §6 says the
+The thesis gives no landmark coordinates, grid spacing or home radius; docs/model.md §6 says the
 claims to check are the trends (who beats whom, how fast each degrades), not the digits.
 """
 
 from __future__ import annotations
 
-THESIS_FILE = "/work/shared/seed/000_b7819b1cab185662.txt"
+THESIS_TITLE = "Distance-Estimated Landmark Vector Model for Vision-Based Homing Navigation"
 
 # ---------------------------------------------------------------------------------------
 # 1. Catchment area (%), lists indexed by k = number of hidden landmarks.
@@ -422,11 +422,11 @@ NOTES = {
         "section": "§3.2.1-3.2.3, Eqs 3.1-3.3", "line": 297,
         "description": "Eq 3.3 for the reference-map distance R' has sin(theta - psi) in the "
                        "denominator, inconsistent with Eq 3.1 (which gives sin(delta + psi)); "
-                       "SPEC §3.1 treats it as a typo and derives R_P from the sine law."},
+                       "docs/model.md §3.1 treats it as a typo and derives R_P from the sine law."},
     "alv_100_needs_no_collisions": {
         "section": "Tables 5.3-5.4", "line": 905,
         "description": "ALV's 100 % catchment in every environment implies that rollouts "
-                       "ignored collisions with landmarks and exits from the arena (SPEC §5 "
+                       "ignored collisions with landmarks and exits from the arena (docs/model.md §5 "
                        "default collisions = 'ignore'); the thesis does not say so."},
 }
 

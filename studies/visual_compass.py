@@ -1,6 +1,6 @@
 """The visual compass in place of the compass (thesis §5.3.2, Figs 5.11-5.12), and compass noise.
 
-For each background setting (`distant`, `walls`, `none`; SPEC §2.3): the visual compass's
+For each background setting (`distant`, `walls`, `none`; docs/model.md §2.3): the visual compass's
 heading error at every grid point (release heading random per point), and the catchment
 and mean angular error of DELV, ACV and ALV with the visual compass beside the true
 compass, on env1, under the default and the physical rollout rules. Then a compass-noise
@@ -83,7 +83,7 @@ def run(ctx) -> None:
                                     "it does not say which background it used.")
     ctx.table("visual_compass_catchment", "Catchment and mean error with the visual compass, env1", catch_rows,
               source="Figs 5.11-5.12", note="Thesis (Fig 5.11): DELV 74.85, ACV 47.04, ALV 40.68 %. "
-                                            "default / physical: the rollout rules (SPEC §5).")
+                                            "default / physical: the rollout rules (docs/model.md §5).")
     fig, axes = plt.subplots(1, 3, figsize=(13, 3.8), sharey=True)
     for ax, bg in zip(axes, BACKGROUNDS):
         ax.hist(errors[bg], bins=np.arange(-180, 181, 5), color="C0")
@@ -95,7 +95,7 @@ def run(ctx) -> None:
     ctx.figure("fig5_11_visual_compass_errors.png", fig,
                "Heading error of the visual compass at the env1 grid points (release heading random per point), "
                "per background setting; log scale.")
-    ctx.csv("visual_compass_heading_errors.csv",
+    ctx.csv("visual_compass_heading_errors_per_point.csv",
             columns={"background": np.repeat(BACKGROUNDS, [errors[b].size for b in BACKGROUNDS]).tolist(),
                      "heading_error_deg": np.concatenate([errors[b] for b in BACKGROUNDS])})
     fig, ax = plt.subplots(figsize=(7.5, 4))

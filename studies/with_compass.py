@@ -47,7 +47,7 @@ def run(ctx) -> None:
         catch_items.append((f"{name}: {row['ours default %']:.2f} % (thesis {thesis_pct:.2f} %)", e, res["default"]))
         ctx.step(name)
     ctx.table("catchment_fig5_5", "Catchment area and errors of DELV with a compass", rows, source="Fig 5.5, §5.2",
-              note="default rules: first move along the homing direction, landmarks no obstacles (SPEC §5); "
+              note="default rules: first move along the homing direction, landmarks no obstacles (docs/model.md §5); "
                    "physical: first move along the release heading, a move ending inside a landmark fails.")
     ctx.figure("fig5_2_vector_maps.png", panel_figure(items, spacing, classes=True, title="DELV with a compass"),
                "Figs 5.2-5.3: homing vectors of DELV with a compass, error classes marked.")

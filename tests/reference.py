@@ -1,6 +1,6 @@
 """Plain, per-point NumPy reference ("twin") of the delvjax method specification.
 
-Follows /work/shared/design/SPEC.md (sections 1, 2, 3, 4.1, 4.2, 4.4, 5) literally,
+Follows docs/model.md (sections 1, 2, 3, 4.1, 4.2, 4.4, 5) literally,
 with explicit Python loops over pixels, blobs, shifts and headings.  It is slow on
 purpose: it is meant to be read and to check the vectorised JAX library against.
 

@@ -1,7 +1,7 @@
-"""Plain, per-point NumPy twins of the holistic comparators (SPEC §4.3, §4.5).
+"""Plain, per-point NumPy twins of the holistic comparators (docs/model.md §4.3, §4.5).
 
 * `warping_search` / `warping_direction`: predictive image matching (Franz et al. 1998;
-  thesis §4.2; SPEC §4.3), written literally: for every (alpha, rho, psi) hypothesis, in
+  thesis §4.2; docs/model.md §4.3), written literally: for every (alpha, rho, psi) hypothesis, in
   (alpha, rho, psi) order, the predicted image C_pred(phi) = S(g - asin(rho*sin(g - alpha))),
   g = phi + psi, is sampled at the nearest pixel, compared with C by the sum of absolute
   differences, and the first strict minimum wins.  Only the loop over phi is vectorised;
@@ -61,7 +61,7 @@ def warping_search(S, C, n_alpha=N_ALPHA, n_psi=N_PSI, n_rho=N_RHO, rho_min=RHO_
 
 
 def warping_direction(S, C, **hyp):
-    """Homing direction in the agent frame, alpha + pi - psi (SPEC §4.3); NaN if S is uniform."""
+    """Homing direction in the agent frame, alpha + pi - psi (docs/model.md §4.3); NaN if S is uniform."""
     S = np.asarray(S, float)
     if np.all(S == S[0]):
         return math.nan

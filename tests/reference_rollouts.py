@@ -1,4 +1,4 @@
-"""Plain per-point NumPy reference of a noise-free homing rollout (SPEC §5), built from tests/reference.py.
+"""Plain per-point NumPy reference of a noise-free homing rollout (docs/model.md §5), built from tests/reference.py.
 
 One trial at a time, one move at a time, in float64. At the release point (rule
 first_move="homing", the default) the agent computes the homing direction exactly as in
@@ -8,7 +8,7 @@ h); it turns to it (keeps h if invalid). Then, repeatedly: move d along the head
 the move just made as the unit movement (start and end snapshots rendered at the true
 poses), ask the method for a direction at the end point and turn to it.
 
-Rules (SPEC §5): first_move="release" makes the first move go along the release heading
+Rules (docs/model.md §5): first_move="release" makes the first move go along the release heading
 (a robot with no stored move); collisions="fail" ends a trial whose move ends inside a
 landmark (distance to its centre < r) as LANDMARK, whereas with collisions="ignore" (the
 default) landmarks are no obstacles. first_move="release", collisions="fail" is the old
@@ -72,7 +72,7 @@ def release_direction(record, landmarks, arena, start, heading, method, d=50.0, 
 
 
 def status(landmarks_all, arena, home, pos, home_radius, collide=False):
-    """SPEC §5: inside a landmark (failure, only if `collide`, the rule collisions="fail") or outside the
+    """docs/model.md §5: inside a landmark (failure, only if `collide`, the rule collisions="fail") or outside the
     arena (failure), at home (success), else None."""
     if collide:
         for x, y, r in landmarks_all:

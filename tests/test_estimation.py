@@ -47,7 +47,7 @@ def test_distances_are_exact_with_exact_bearings(psi_deg):
 
 
 def test_undefined_distance_becomes_r_max():
-    """A landmark straight ahead has no parallax: its distance is r_max (SPEC §3.1)."""
+    """A landmark straight ahead has no parallax: its distance is r_max (docs/model.md §3.1)."""
     lms = np.array([[800.0, 500.0], [500.0, 800.0]])
     move = exact_move(lms, np.array([500.0, 500.0]), 0.0, 50.0)
     r = np.asarray(start_distances(move, Config()))
@@ -64,7 +64,7 @@ def test_quantization_eq_3_17():
 
 def separated_landmarks(seed: int) -> np.ndarray:
     """3-6 landmarks 180-350 cm from home, bearings >= 40 deg apart and >= 15 deg off the x axis:
-    the geometry in which the nearest-bearing partner of SPEC §3.1 is the true one."""
+    the geometry in which the nearest-bearing partner of docs/model.md §3.1 is the true one."""
     rng = np.random.default_rng(seed)
     n = int(rng.integers(3, 7))
     base = np.radians(rng.uniform(15, 45)) + 2 * np.pi * np.arange(n) / n
@@ -175,7 +175,7 @@ def test_home_is_the_equilibrium_of_the_homing_fields():
 
 
 def test_one_pair_with_a_heading_takes_the_first_shift():
-    """SPEC §3.4: with n = 1 every shift has var = 0; the first k wins (current 0 pairs reference 0)."""
+    """docs/model.md §3.4: with n = 1 every shift has var = 0; the first k wins (current 0 pairs reference 0)."""
     ref_v = jnp.array([[100.0, 50.0], [-80.0, 120.0], [-30.0, -200.0]])
     cur_v = jnp.array([[40.0, -60.0], [0.0, 0.0], [0.0, 0.0]])
     alpha = jnp.array([0.7])
@@ -190,7 +190,7 @@ def test_one_pair_with_a_heading_takes_the_first_shift():
 
 
 def test_delv_with_compass_homes_on_one_landmark():
-    """SPEC §3.4: with a compass one landmark (n = 1) fixes p = V^R - Rot(alpha) V; with exact
+    """docs/model.md §3.4: with a compass one landmark (n = 1) fixes p = V^R - Rot(alpha) V; with exact
     bearings and heading it is x - home exactly, so the direction is exact. Without a compass
     one pair fits every heading: invalid (NaN)."""
     lm = np.array([[640.0, 730.0]])

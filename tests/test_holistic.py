@@ -1,4 +1,4 @@
-"""Holistic comparators: warping (SPEC §4.3) and MFDID (SPEC §4.5).
+"""Holistic comparators: warping (docs/model.md §4.3) and MFDID (docs/model.md §4.5).
 
 Analytic cases first (the warp equation in a world where it is exact, the MFDID sign),
 then agreement with the per-point NumPy twins (tests/reference_holistic.py) on random

@@ -1,4 +1,4 @@
-"""Vector maps: jit/vmap consistency, determinism, chunk invariance, invalid points, metrics (SPEC §5)."""
+"""Vector maps: jit/vmap consistency, determinism, chunk invariance, invalid points, metrics (docs/model.md §5)."""
 
 from __future__ import annotations
 
@@ -75,7 +75,7 @@ def test_rotating_the_world_rotates_the_map():
 
 def test_undefined_directions_are_invalid_not_nan_errors():
     """DELV without a compass needs >= 2 landmark pairs: a one-landmark world gives only invalid
-    points (error 180). With a compass (true or visual) one pair suffices (SPEC §3.4): every
+    points (error 180). With a compass (true or visual) one pair suffices (docs/model.md §3.4): every
     point is valid and, the one pairing being right, the errors are small."""
     env = delvjax.make_env([[700.0, 600.0, 30.0]])
     vm = delvjax.vector_map(env, method="delv", spacing=100.0)

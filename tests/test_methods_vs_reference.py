@@ -52,7 +52,7 @@ def test_method_agrees_with_reference(random_envs, batch, method):
 
 @pytest.mark.parametrize("method, points_per_env", [("delv-compass", 5), ("delv-visual", 2), ("delv", 3)])
 def test_one_visible_landmark_agrees_with_reference(random_envs, batch, method, points_per_env):
-    """SPEC §3.4: all landmarks but the first hidden during homing (the home record sees all).
+    """docs/model.md §3.4: all landmarks but the first hidden during homing (the home record sees all).
     With a compass (true or visual) one pair suffices: the direction is defined at every grid
     point and agrees with the twin (pairing the first shift, k = 0); without one it is undefined."""
     envs, points, headings, key, included = batch

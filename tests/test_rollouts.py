@@ -1,4 +1,4 @@
-"""Rollouts, catchment area, success rate, trajectories, occlusion and noise (SPEC §5, §2.5).
+"""Rollouts, catchment area, success rate, trajectories, occlusion and noise (docs/model.md §5, §2.5).
 
 Analytic cases first (ALV homes from inside a symmetric ring), then agreement with the
 per-point NumPy reference rollout on random environments under both rule sets (the
@@ -299,7 +299,7 @@ def test_success_rate_bins_and_seeding():
 # --- CLI and bad input --------------------------------------------------------------------------------
 
 def write_env(path, landmarks):
-    """A SPEC §7 environment file."""
+    """A docs/model.md §7 environment file."""
     path.write_text(json.dumps({"name": "four", "arena": ARENA, "home": HOME,
                                 "landmarks": [{"x": x, "y": y, "r": r} for x, y, r in landmarks.tolist()]}))
     return str(path)

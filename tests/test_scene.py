@@ -1,4 +1,4 @@
-"""Environments: presets, JSON loading, validation (SPEC §6, §7)."""
+"""Environments: presets, JSON loading, validation (docs/model.md §6, §7)."""
 
 from __future__ import annotations
 
@@ -85,7 +85,7 @@ def test_grid_is_40x40_and_drops_points_near_landmarks():
 
 
 def test_env1_is_asymmetric_and_env2_is_not():
-    """SPEC §6: no rotation of env1 by 90/180/270 deg about home nearly maps it onto itself: the
+    """docs/model.md §6: no rotation of env1 by 90/180/270 deg about home nearly maps it onto itself: the
     bottleneck matching distance of rotated to original centres exceeds ASYMMETRY_CM (80 cm).
     env2 (four at 90 deg) maps exactly; the first env1 layout (gaps 83/108/85/84) came within 63 cm."""
     env1 = rotation_mismatch(delvjax.load_env("env1"))
@@ -105,7 +105,7 @@ def test_env1_is_asymmetric_and_env2_is_not():
 
 
 def test_env1_surrounds_home_with_unequal_gaps_and_distances():
-    """SPEC §6 env1: four landmarks around home (home inside their hull: every angular gap < 180),
+    """docs/model.md §6 env1: four landmarks around home (home inside their hull: every angular gap < 180),
     gaps and distances clearly unequal, none on the line of the home unit move (+x)."""
     env = delvjax.load_env("env1")
     rel = np.asarray(env.landmarks)[:, :2] - np.asarray(env.home)

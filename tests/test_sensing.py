@@ -1,4 +1,4 @@
-"""Ring rendering, blobs, background and the visual compass against the NumPy twin (SPEC §2, §4.4)."""
+"""Ring rendering, blobs, background and the visual compass against the NumPy twin (docs/model.md §2, §4.4)."""
 
 from __future__ import annotations
 

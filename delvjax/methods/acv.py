@@ -1,4 +1,4 @@
-"""ACV, average correction vector (Hong et al. 1992, Weber et al. 1999; thesis Eq 5.2; SPEC §4.2)."""
+"""ACV, average correction vector (Hong et al. 1992, Weber et al. 1999; thesis Eq 5.2; docs/model.md §4.2)."""
 
 from __future__ import annotations
 

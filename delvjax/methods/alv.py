@@ -1,4 +1,4 @@
-"""ALV, average landmark vector (Lambrinos et al. 2000; thesis Eqs 3.11-3.12; SPEC §4.1)."""
+"""ALV, average landmark vector (Lambrinos et al. 2000; thesis Eqs 3.11-3.12; docs/model.md §4.1)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Heading sources: the (noisy) compass and the visual compass (Labrosse 2006, Zeil 2003; SPEC §4.4)."""
+"""Heading sources: the (noisy) compass and the visual compass (Labrosse 2006, Zeil 2003; docs/model.md §4.4)."""
 
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ from ..sensing import UnitMove
 
 
 def visual_compass(home_gray: Array, view_gray: Array) -> Array:
-    """Estimate h - alpha_r from two gray ring images (SPEC §4.4).
+    """Estimate h - alpha_r from two gray ring images (docs/model.md §4.4).
 
     The pixel shift k minimising sum_j |C[j + k] - S[j]| (first minimum) gives -2 pi k / n.
     """
@@ -52,7 +52,7 @@ def with_heading_source(fn: Callable, source: str) -> Callable:
 
 
 def visual_compass_errors(env, points: Array, headings: Array, config: Config) -> Array:
-    """Heading error of the visual compass at each point (SPEC §4.4; thesis §5.3.2), (P,) rad.
+    """Heading error of the visual compass at each point (docs/model.md §4.4; thesis §5.3.2), (P,) rad.
 
     The home image is taken at home with heading alpha_r, the current one at `points` with
     `headings`; error = wrap(estimate - (h - alpha_r)). Rendering is noise-free.

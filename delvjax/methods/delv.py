@@ -1,4 +1,4 @@
-"""DELV: distance-estimated landmark vectors and arrangement matching (thesis §3.2.4, §3.3.1; SPEC §3.4)."""
+"""DELV: distance-estimated landmark vectors and arrangement matching (thesis §3.2.4, §3.3.1; docs/model.md §3.4)."""
 
 from __future__ import annotations
 
@@ -51,7 +51,7 @@ def _direction(home: UnitMove, view: UnitMove, config: Config, alphas: Array,
 
     `min_pairs` is static: 2 without a compass (one pair fits every heading), 1 with a
     heading estimate (one pair fixes p = V^R_i - Rot(alpha) V_j; with n = 1 every shift
-    has var = 0 and the first k wins), SPEC §3.4.
+    has var = 0 and the first k wins), docs/model.md §3.4.
     """
     ref_v, ref_valid = reference_vectors(home, config)
     cur_v, cur_valid = current_vectors(view, config)
@@ -70,5 +70,5 @@ def direction(home: UnitMove, view: UnitMove, config: Config) -> tuple[Array, Ar
 def direction_with_heading(home: UnitMove, view: UnitMove, config: Config, heading: Array) -> tuple[Array, Array]:
     """DELV with alpha fixed to a heading estimate (compass or visual compass); only k is searched.
 
-    One visible landmark (n = 1) suffices here (SPEC §3.4)."""
+    One visible landmark (n = 1) suffices here (docs/model.md §3.4)."""
     return _direction(home, view, config, jnp.reshape(heading, (1,)), min_pairs=1)

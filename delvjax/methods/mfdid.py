@@ -1,4 +1,4 @@
-"""Matched-filter descent in image distances, MFDID (Möller & Vardy 2006; SPEC §4.5).
+"""Matched-filter descent in image distances, MFDID (Möller & Vardy 2006; docs/model.md §4.5).
 
 Source: R. Möller, A. Vardy, "Local visual homing by matched-filter descent in image
 distances", Biological Cybernetics 95:413-430 (2006), specialised to 1D ring images and
@@ -66,7 +66,7 @@ def home_vector(home_image: Array, view_image: Array, heading: Array, blur_pix: 
 
 
 def direction_with_heading(home: UnitMove, view: UnitMove, config: Config, heading: Array) -> tuple[Array, Array]:
-    """MFDID homing direction in the agent frame, channel `config.channel` (SPEC §4.5)."""
+    """MFDID homing direction in the agent frame, channel `config.channel` (docs/model.md §4.5)."""
     blur_pix = config.mfdid_blur_deg * config.n_pix / 360.0
     h = home_vector(getattr(home.start, config.channel), getattr(view.end, config.channel), heading, blur_pix)
     valid = safe_norm(h) > 0

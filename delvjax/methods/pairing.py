@@ -1,4 +1,4 @@
-"""Cyclic-shift pairing of two sorted, padded bearing lists (SPEC §3.4, used by DELV and ACV)."""
+"""Cyclic-shift pairing of two sorted, padded bearing lists (docs/model.md §3.4, used by DELV and ACV)."""
 
 from __future__ import annotations
 

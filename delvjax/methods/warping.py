@@ -1,4 +1,4 @@
-"""Predictive image matching, "warping" (Franz et al. 1998, Möller 2009; thesis §4.2; SPEC §4.3).
+"""Predictive image matching, "warping" (Franz et al. 1998, Möller 2009; thesis §4.2; docs/model.md §4.3).
 
 The home snapshot S (channel `config.channel` of `home.start`) is warped to predict the
 current view C (`view.end`) for every hypothesis: movement direction alpha (home frame),
@@ -169,7 +169,7 @@ def sad_search(predicted: Array, current: Array, shifts: Array) -> tuple[Array, 
 
 
 def search(home_image: Array, view_image: Array, config: Config) -> tuple[Array, Array, Array, Array]:
-    """SPEC §4.3 search for one view: (minimum distance, alpha index, rho index, psi index).
+    """docs/model.md §4.3 search for one view: (minimum distance, alpha index, rho index, psi index).
 
     home_image, view_image: (n_pix,) `mask` (bool) or `gray` (float) ring images.
     """
@@ -186,7 +186,7 @@ def search(home_image: Array, view_image: Array, config: Config) -> tuple[Array,
 
 
 def direction(home: UnitMove, view: UnitMove, config: Config) -> tuple[Array, Array]:
-    """Warping homing direction alpha + pi - psi in the agent frame (SPEC §4.3).
+    """Warping homing direction alpha + pi - psi in the agent frame (docs/model.md §4.3).
 
     Invalid (NaN) when the home image is uniform: then every hypothesis predicts the same
     image and the search carries no information.

@@ -1,0 +1,50 @@
+"""Time `delvjax reproduce`: a cold run (empty compilation cache), a second run with nothing
+changed, per-study wall and compile seconds, and peak memory (issue targets: full < 5 min,
+--quick < 60 s, second run < 10 s, peak < 4 GB on 2 CPU cores).
+
+Run: python benchmarks/bench_reproduce.py [--quick] [--out DIR]
+Each run is a subprocess (`python -m delvjax.cli reproduce`); peak memory is the largest
+resident set of those children (getrusage). This is a benchmark, not a test.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+
+def run(out: Path, quick: bool, cache: str) -> float:
+    cmd = [sys.executable, "-m", "delvjax.cli", "reproduce", "--out", str(out)] + (["--quick"] if quick else [])
+    env = {**os.environ, "DELVJAX_CACHE_DIR": cache}
+    t0 = time.perf_counter()
+    subprocess.run(cmd, check=True, env=env, stderr=subprocess.DEVNULL)
+    return time.perf_counter() - t0
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--quick", action="store_true")
+    p.add_argument("--out", default=None, help="output folder (default: a temporary one)")
+    a = p.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(a.out or Path(tmp) / "results")
+        cold = run(out, a.quick, cache="")  # no persistent compilation cache: everything compiles
+        again = run(out, a.quick, cache="")
+        peak_gb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024 ** 2
+        print(f"reproduce{' --quick' if a.quick else ''}: cold {cold:.1f} s, second run {again:.1f} s, "
+              f"peak RSS {peak_gb:.2f} GB")
+        print(f"{'study':16s} {'wall s':>8s} {'compile s':>10s}")
+        for f in sorted(out.glob("*/study.json")):
+            d = json.loads(f.read_text())
+            print(f"{d['name']:16s} {d['seconds']:8.1f} {d['compile_seconds']:10.1f}")
+
+
+if __name__ == "__main__":
+    main()
