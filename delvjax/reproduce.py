@@ -52,6 +52,13 @@ class Settings:
         return cls(quick=quick, seed=seed, spacing=100.0 if quick else 25.0, trials=100)
 
 
+def settings_record(settings: Settings) -> dict:
+    """The settings as recorded in every study.json and the report, with the rollout rules."""
+    from .rollouts import DEFAULT_RULES, PHYSICAL_RULES
+
+    return {**asdict(settings), "rules": {"default": DEFAULT_RULES, "physical": PHYSICAL_RULES}}
+
+
 def versions() -> dict[str, str]:
     from . import __version__
 
@@ -248,7 +255,8 @@ def run_study(name: str, module, out: Path, settings: Settings, force: bool = Fa
     digest = study_hash(module, settings)
     if not force and is_current(folder, digest):
         return load_record(folder), False  # type: ignore[return-value]
-    record = StudyRecord(name=name, title=module.TITLE, hash=digest, settings=asdict(settings), versions=versions())
+    record = StudyRecord(name=name, title=module.TITLE, hash=digest, settings=settings_record(settings),
+                         versions=versions())
     c0, t0 = compile_seconds(), time.perf_counter()
     with tqdm(total=getattr(module, "STEPS", None), desc=f"  {name}", leave=False, disable=not progress,
               file=sys.stderr) as bar:
@@ -292,7 +300,7 @@ def reproduce(out: str | Path = "results", quick: bool = False, only: str | None
     for name in order:  # studies of an earlier run (other --only) still appear in the report
         if name not in records:
             rec = load_record(out / name)
-            if rec is not None and rec.settings == asdict(settings):
+            if rec is not None and rec.settings == settings_record(settings):
                 records[name] = rec
     ordered = {n: records[n] for n in order if n in records}
     report = write_report(out, ordered, settings, versions(), wall_seconds=time.perf_counter() - t0, ran=ran)

@@ -169,3 +169,57 @@ def thesis_value(table: dict, env_name: str, method: str, k: int = 0):
     if isinstance(values, dict):
         values = values.get("gt45")
     return values[k] if values is not None and k < len(values) else None
+
+
+def rule_suffix(rules: str) -> str:
+    """The numbers-key suffix of a rule set: "" for the default rules, ":physical" otherwise."""
+    return "" if rules == "default" else ":physical"
+
+
+def catchment_columns(ctx, key: str, results: dict, row: dict) -> None:
+    """Record the catchment of each rule set (`results`: {rules: Catchment}) as number `key` (+ suffix)
+    and as table columns "ours <rules> %" and "<rules> failures (timeout/landmark/arena)" of `row`."""
+    for rules, c in results.items():
+        pct = float(c.catchment_pct()[0])
+        ctx.number(key + rule_suffix(rules), pct)
+        counts = outcome_counts(c)
+        row[f"ours {rules} %"] = pct
+        row[f"{rules} failures (timeout/landmark/arena)"] = f"{counts['timeout']}/{counts['landmark']}/{counts['arena']}"
+
+
+def success_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, source: str, note: str) -> dict:
+    """Success rate vs release distance of `methods` under both rule sets: numbers
+    `success:env1:<method>[:physical]` and `success_overall:...`, a table, a figure and the counts CSV."""
+    from delvjax.plots_rollouts import success_rate_figure
+
+    tables = {}
+    for m in methods:  # a few methods x two rule sets; one compiled program per method
+        for rules in RULES:
+            tables[f"{LABEL[m]} ({rules})"] = t = success_table(ctx, e, m, rules)
+            summ = success_summary(t)
+            ctx.number(f"success:env1:{m}{rule_suffix(rules)}", summ["by_distance"])
+            ctx.number(f"success_overall:env1:{m}{rule_suffix(rules)}", summ["overall"])
+            ctx.step(f"success {m} {rules}")
+    ctx.table("success_rate", f"Success rate (%) by release distance, {title}", [
+        {"method (rules)": k, **{f"{r['distance_cm']:g} cm": r["success_pct"] for r in v}} for k, v in tables.items()],
+        source=source, note=note)
+    ctx.figure(f"{fig_file}.png", success_rate_figure(
+        tables, f"Success rate, {title} ({ctx.settings.trials} trials per distance; {source})"), caption)
+    ctx.csv(f"{fig_file}_counts.csv", rows=[{"label": k, **r} for k, v in tables.items() for r in v])
+    return tables
+
+
+def trajectory_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, n_starts: int = 8) -> None:
+    """Homing paths of `methods` from the same `n_starts` seeded release points (Figs 4.11, 5.8):
+    numbers `trajectories:env1:<method>:reach_home`, the figure and the CSV of every position."""
+    from delvjax.plots_rollouts import trajectories_figure
+
+    results, rows = {}, []
+    for m in methods:
+        tr = delvjax.trajectories(e.arrays(), method=m, n_starts=n_starts, seed=ctx.settings.seed,
+                                  home_radius=HOME_RADIUS)
+        results[LABEL[m]] = tr
+        rows += trajectory_rows(m, tr)
+        ctx.number(f"trajectories:env1:{m}:reach_home", int(np.asarray(tr.success).sum()))
+    ctx.figure(f"{fig_file}.png", trajectories_figure(e, results, HOME_RADIUS, title), caption)
+    ctx.csv(f"{fig_file}.csv", rows=rows)

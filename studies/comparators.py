@@ -7,14 +7,10 @@ same release points (Fig 5.8) on env1.
 
 from __future__ import annotations
 
-import numpy as np
-
-import delvjax
 from delvjax.plots import error_curve_figure
-from delvjax.plots_rollouts import success_rate_figure, trajectories_figure
 
-from .common import (HOME_RADIUS, LABEL, RULES, curve, curve_means, curves_rows, env, map_numbers, panel_figure,
-                     success_summary, success_table, trajectory_rows, vector_map)
+from .common import (LABEL, curve, curve_means, curves_rows, env, map_numbers, panel_figure, success_set,
+                     trajectory_set, vector_map)
 
 TITLE = "DELV vs ACV vs ALV with a compass (Figs 5.6-5.8)"
 STEPS = 10
@@ -47,31 +43,9 @@ def run(ctx) -> None:
         ctx.step(name)
     ctx.table("vector_maps", "Vector-map errors with a compass", rows, source="Figs 5.6-5.7a")
     e = env("env1")
-    tables = {}
-    for m in METHODS:
-        for rules in RULES:
-            tables[f"{LABEL[m]} ({rules})"] = t = success_table(ctx, e, m, rules)
-            summ = success_summary(t)
-            suffix = "" if rules == "default" else ":physical"
-            ctx.number(f"success:env1:{m}{suffix}", summ["by_distance"])
-            ctx.number(f"success_overall:env1:{m}{suffix}", summ["overall"])
-            ctx.step(f"success {m} {rules}")
-    ctx.table("success_rate", "Success rate (%) by release distance, env1, with a compass", [
-        {"method (rules)": k, **{f"{r['distance_cm']:g} cm": r["success_pct"] for r in v}} for k, v in tables.items()],
-        source="Fig 5.7b", note="The thesis prints no numbers for this figure.")
-    ctx.figure("fig5_7b_success_rate.png",
-               success_rate_figure(tables, f"Success rate with a compass, env1 ({ctx.settings.trials} trials per "
-                                           "distance; Fig 5.7b)"),
-               "Fig 5.7b: success rate vs release distance, 95 % Wilson intervals; default and physical rules.")
-    ctx.csv("fig5_7b_success_rate_counts.csv", rows=[{"label": k, **r} for k, v in tables.items() for r in v])
-    results, traj_rows = {}, []
-    for m in METHODS:
-        tr = delvjax.trajectories(e.arrays(), method=m, n_starts=N_STARTS, seed=ctx.settings.seed,
-                                  home_radius=HOME_RADIUS)
-        results[LABEL[m]] = tr
-        traj_rows += trajectory_rows(m, tr)
-        ctx.number(f"trajectories:env1:{m}:reach_home", int(np.asarray(tr.success).sum()))
-    ctx.figure("fig5_8_trajectories.png",
-               trajectories_figure(e, results, HOME_RADIUS, "Same release points, with a compass, env1 (Fig 5.8)"),
-               f"Fig 5.8: homing paths of DELV, ACV and ALV from the same {N_STARTS} seeded release points.")
-    ctx.csv("fig5_8_trajectories.csv", rows=traj_rows)
+    success_set(ctx, e, METHODS, "fig5_7b_success_rate", "env1, with a compass",
+                "Fig 5.7b: success rate vs release distance, 95 % Wilson intervals; default and physical rules.",
+                source="Fig 5.7b", note="The thesis prints no numbers for this figure.")
+    trajectory_set(ctx, e, METHODS, "fig5_8_trajectories", "Same release points, with a compass, env1 (Fig 5.8)",
+                   f"Fig 5.8: homing paths of DELV, ACV and ALV from the same {N_STARTS} seeded release points.",
+                   N_STARTS)

@@ -10,12 +10,10 @@ from __future__ import annotations
 
 import numpy as np
 
-import delvjax
 from delvjax.plots import error_curve_figure
-from delvjax.plots_rollouts import success_rate_figure, trajectories_figure
 
-from .common import (HOME_RADIUS, LABEL, RULES, as_vector_map, catchment, curve, curve_means, curves_rows, env,
-                     inside_hull, map_numbers, panel_figure, success_summary, success_table, trajectory_rows)
+from .common import (LABEL, RULES, as_vector_map, catchment, curve, curve_means, curves_rows, env, inside_hull,
+                     map_numbers, panel_figure, rule_suffix, success_set, trajectory_set)
 
 TITLE = "DELV vs predictive image matching, no compass (Figs 4.9-4.11)"
 STEPS = 8
@@ -26,7 +24,7 @@ N_STARTS = 8
 def run(ctx) -> None:
     e = env("env1")
     spacing = ctx.settings.spacing
-    items, curves, rows, tables = [], {}, [], {}
+    items, curves, rows = [], {}, []
     for m in METHODS:  # two methods: two programs
         for rules in RULES:
             c = catchment(ctx, e, m, rules)
@@ -34,7 +32,7 @@ def run(ctx) -> None:
             hull = inside_hull(e, np.asarray(c.points))
             ok = np.asarray(c.success)[0]
             pct = float(c.catchment_pct()[0])
-            suffix = "" if rules == "default" else ":physical"
+            suffix = rule_suffix(rules)
             ctx.number(f"catchment:env1:{m}{suffix}", pct)
             fail_in = 100.0 * float((~ok[inc & hull]).mean())
             fail_out = 100.0 * float((~ok[inc & ~hull]).mean())
@@ -51,10 +49,6 @@ def run(ctx) -> None:
                          "fail inside hull %": fail_in, "fail outside hull %": fail_out,
                          "mean error °": s["mean_error_deg"]})
             ctx.step(f"catchment {m} {rules}")
-            tables[f"{LABEL[m]} ({rules})"] = t = success_table(ctx, e, m, rules)
-            summ = success_summary(t)
-            ctx.number(f"success:env1:{m}{suffix}", summ["by_distance"])
-            ctx.step(f"success {m} {rules}")
     ctx.table("catchment_delv_vs_warping", "Catchment and failures by region, env1", rows, source="Figs 4.9-4.11",
               note="The thesis prints no numbers for these figures. Hull: the convex hull of the landmark centres.")
     ctx.figure("fig4_9_vector_maps.png", panel_figure(items, spacing, title="env1, no compass, random headings"),
@@ -62,24 +56,10 @@ def run(ctx) -> None:
     ctx.figure("fig4_10a_error_curves.png", error_curve_figure(curves, "DELV vs image matching, env1 (Fig 4.10a)"),
                "Fig 4.10a: mean angular error vs distance from home (95 % t intervals).")
     ctx.csv("fig4_10a_error_curves.csv", rows=curves_rows(curves))
-    ctx.figure("fig4_10b_success_rate.png",
-               success_rate_figure(tables, f"Success rate, env1, no compass ({ctx.settings.trials} trials per "
-                                           "distance; Fig 4.10b)"),
-               "Fig 4.10b: success rate vs release distance, 95 % Wilson intervals; default and physical rules.")
-    success_rows = [{"label": k, **r} for k, v in tables.items() for r in v]
-    ctx.table("success_rate", "Success rate (%) by release distance, env1", [
-        {"method (rules)": k, **{f"{r['distance_cm']:g} cm": r["success_pct"] for r in v}} for k, v in tables.items()],
-        source="Fig 4.10b", note="The thesis: DELV > 90 % at every distance (§4.2).")
-    ctx.csv("fig4_10b_success_rate_counts.csv", rows=success_rows)
-    results, traj_rows = {}, []
-    for m in METHODS:
-        tr = delvjax.trajectories(e.arrays(), method=m, n_starts=N_STARTS, seed=ctx.settings.seed,
-                                  home_radius=HOME_RADIUS)
-        results[LABEL[m]] = tr
-        traj_rows += trajectory_rows(m, tr)
-        ctx.number(f"trajectories:env1:{m}:reach_home", int(np.asarray(tr.success).sum()))
-    ctx.figure("fig4_11_trajectories.png",
-               trajectories_figure(e, results, HOME_RADIUS, "Same release points, no compass, env1 (Fig 4.11)"),
-               f"Fig 4.11: homing paths of DELV and image matching from the same {N_STARTS} seeded release points.")
-    ctx.csv("fig4_11_trajectories.csv", rows=traj_rows)
+    success_set(ctx, e, METHODS, "fig4_10b_success_rate", "env1, no compass",
+                "Fig 4.10b: success rate vs release distance, 95 % Wilson intervals; default and physical rules.",
+                source="Fig 4.10b", note="The thesis: DELV > 90 % at every distance (§4.2).")
+    trajectory_set(ctx, e, METHODS, "fig4_11_trajectories", "Same release points, no compass, env1 (Fig 4.11)",
+                   f"Fig 4.11: homing paths of DELV and image matching from the same {N_STARTS} seeded release "
+                   "points.", N_STARTS)
     ctx.step("trajectories")

@@ -10,8 +10,8 @@ from __future__ import annotations
 from delvjax.plots import error_curve_figure
 from studies import thesis
 
-from .common import (as_vector_map, catchment, catchment_figure, curve, curve_means, curves_rows, env, map_numbers,
-                     outcome_counts, panel_figure)
+from .common import (as_vector_map, catchment, catchment_columns, catchment_figure, curve, curve_means, curves_rows, env, map_numbers,
+                     panel_figure)
 
 TITLE = "DELV without a compass, environments 1-3 (Figs 4.2-4.5)"
 STEPS = 3
@@ -33,13 +33,7 @@ def run(ctx) -> None:
         ctx.number(f"error_curve:{name}:delv", curve_means(curves[name]))
         thesis_pct = thesis.CATCHMENT["fig4_5"][name]["delv"][0]
         row = {"env": name, "thesis %": thesis_pct}
-        for rules, c in res.items():
-            pct = float(c.catchment_pct()[0])
-            ctx.number(f"catchment:{name}:delv" + ("" if rules == "default" else ":physical"), pct)
-            counts = outcome_counts(c)
-            row[f"ours {rules} %"] = pct
-            row[f"{rules} failures (timeout/landmark/arena)"] = \
-                f"{counts['timeout']}/{counts['landmark']}/{counts['arena']}"
+        catchment_columns(ctx, f"catchment:{name}:delv", res, row)
         row.update({"points": int(s["points"]), "mean error °": s["mean_error_deg"], "e>45 %": s["gt45_pct"],
                     "e>45 inside hull %": s["gt45_inside_hull_pct"], "e>45 outside hull %": s["gt45_outside_hull_pct"]})
         rows.append(row)

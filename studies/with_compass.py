@@ -10,8 +10,8 @@ from __future__ import annotations
 from delvjax.plots import error_curve_figure
 from studies import thesis
 
-from .common import (as_vector_map, catchment, catchment_figure, curve, curve_means, curves_rows, env, map_numbers,
-                     outcome_counts, panel_figure, vector_map)
+from .common import (as_vector_map, catchment, catchment_columns, catchment_figure, curve, curve_means, curves_rows, env, map_numbers,
+                     panel_figure, vector_map)
 
 TITLE = "DELV with a compass, environments 1-3 (Figs 5.2-5.5)"
 STEPS = 3
@@ -33,13 +33,7 @@ def run(ctx) -> None:
         thesis_pct = thesis.CATCHMENT["fig5_5"][name]["delv-compass"][0]
         row = {"env": name, "thesis with compass %": thesis_pct,
                "thesis without compass % (Fig 4.5)": thesis.CATCHMENT["fig4_5"][name]["delv"][0]}
-        for rules, c in res.items():
-            pct = float(c.catchment_pct()[0])
-            ctx.number(f"catchment:{name}:delv-compass" + ("" if rules == "default" else ":physical"), pct)
-            counts = outcome_counts(c)
-            row[f"ours {rules} %"] = pct
-            row[f"{rules} failures (timeout/landmark/arena)"] = \
-                f"{counts['timeout']}/{counts['landmark']}/{counts['arena']}"
+        catchment_columns(ctx, f"catchment:{name}:delv-compass", res, row)
         row.update({"mean error ° (compass)": s["mean_error_deg"], "mean error ° (no compass)":
                     no_compass["mean_error_deg"], "e>45 %": s["gt45_pct"]})
         rows.append(row)

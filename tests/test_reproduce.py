@@ -19,7 +19,6 @@ import re
 import subprocess
 import sys
 import time
-from dataclasses import asdict
 from pathlib import Path
 
 import pytest
@@ -76,7 +75,8 @@ def test_study_record_and_files(run, name):
     module = reproduce.registry([name])[name]
     rec = read_record(out, name)
     assert rec["name"] == name and rec["title"] == module.TITLE
-    assert rec["settings"] == asdict(TINY)
+    assert rec["settings"] == reproduce.settings_record(TINY)
+    assert rec["settings"]["rules"]["default"] == {"first_move": "homing", "collisions": "ignore"}
     assert rec["hash"] == reproduce.study_hash(module, TINY)
     assert rec["versions"]["delvjax"] and rec["versions"]["jax"]
     assert rec["seconds"] > 0 and rec["compile_seconds"] >= 0
