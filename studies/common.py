@@ -201,8 +201,10 @@ def success_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, s
             ctx.number(f"success_overall:env1:{m}{rule_suffix(rules)}", summ["overall"])
             ctx.step(f"success {m} {rules}")
     ctx.table("success_rate", f"Success rate (%) by release distance, {title}", [
-        {"method (rules)": k, **{f"{r['distance_cm']:g} cm": r["success_pct"] for r in v}} for k, v in tables.items()],
-        source=source, note=note)
+        {"method (rules)": k, **{f"{r['distance_cm']:g} cm": r["success_pct"] for r in v},
+         "failures timeout/landmark/arena": "/".join(str(sum(r[f"{o}_count"] for r in v))
+                                                     for o in ("timeout", "landmark", "arena"))}
+        for k, v in tables.items()], source=source, note=note)
     ctx.figure(f"{fig_file}.png", success_rate_figure(
         tables, f"Success rate, {title} ({ctx.settings.trials} trials per distance; {source})"), caption)
     ctx.csv(f"{fig_file}_counts.csv", rows=[{"label": k, **r} for k, v in tables.items() for r in v])

@@ -13,7 +13,7 @@ import numpy as np
 from delvjax.plots import error_curve_figure
 
 from .common import (LABEL, RULES, as_vector_map, catchment, curve, curve_means, curves_rows, env, inside_hull,
-                     map_numbers, panel_figure, rule_suffix, success_set, trajectory_set)
+                     map_numbers, outcome_counts, panel_figure, rule_suffix, success_set, trajectory_set)
 
 TITLE = "DELV vs predictive image matching, no compass (Figs 4.9-4.11)"
 STEPS = 8
@@ -45,7 +45,9 @@ def run(ctx) -> None:
                 ctx.number(f"error_curve:env1:{m}", curve_means(curves[LABEL[m]]))
                 ctx.number(f"map:env1:{m}:mean_error_deg", s["mean_error_deg"])
                 items.append((f"{LABEL[m]}: mean error {s['mean_error_deg']:.1f}°, catchment {pct:.1f} %", e, vm))
+            counts = outcome_counts(c)
             rows.append({"method": LABEL[m], "rules": rules, "catchment %": pct,
+                         "failures timeout/landmark/arena": f"{counts['timeout']}/{counts['landmark']}/{counts['arena']}",
                          "fail inside hull %": fail_in, "fail outside hull %": fail_out,
                          "mean error °": s["mean_error_deg"]})
             ctx.step(f"catchment {m} {rules}")

@@ -20,7 +20,9 @@ import numpy as np
 
 from delvjax import rollouts
 from delvjax.options import make_config
-from delvjax.plots_rollouts import catchment_panel
+from delvjax.plots_rollouts import SQUARE, catchment_panel
+from matplotlib.lines import Line2D
+from matplotlib.patches import Circle, Patch
 from studies import thesis
 
 from .common import HOME_RADIUS, LABEL, RULES, as_vector_map, env, panel_figure
@@ -186,14 +188,24 @@ def figures(ctx, per_k: list[dict], fig5_10: dict) -> None:
     pct = c.catchment_pct()
     picks = [int(np.flatnonzero(ks == k)[np.argmin(np.abs(pct[ks == k] - pct[ks == k].mean()))]) for k in range(3)]
     items = [(f"k = {k}, hidden {list(c.hidden[i]) or 'none'}", e, as_vector_map(c, i)) for k, i in enumerate(picks)]
-    ctx.figure("fig5_9_occluded_vector_maps.png", panel_figure(items, spacing, classes=True,
-                                                               title="DELV with a compass, env1, landmarks hidden"),
+    fig = panel_figure(items, spacing, classes=True, title="DELV with a compass, env1, landmarks hidden")
+    lms = np.asarray(e.landmarks)
+    for ax, i in zip(fig.axes, picks):  # hidden landmarks: hollow, dashed (as in Fig 5.10)
+        for j in c.hidden[i]:
+            ax.add_patch(Circle(lms[j, :2], lms[j, 2], facecolor="white", edgecolor="black", linestyle="--", zorder=4))
+    ctx.figure("fig5_9_occluded_vector_maps.png", fig,
                "Fig 5.9: homing vectors with k = 0, 1, 2 hidden landmarks (hollow dashed discs: hidden).")
     fig, axes = plt.subplots(1, 3, figsize=(14.4, 5.2))
     for ax, k, i in zip(axes, range(3), picks):
         catchment_panel(ax, e, c, i, spacing, title=f"k = {k}: {pct[i]:.2f} % (mean over choices "
                                                     f"{pct[ks == k].mean():.2f} %)")
-    fig.tight_layout()
+    handles = [Patch(label="release point inside the catchment area", **SQUARE),
+               Line2D([], [], marker=r"$\rightarrow$", color="black", ls="", ms=10, label="first homing direction"),
+               Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
+               Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
+               Line2D([], [], marker="o", mfc="white", mec="black", ls="", ms=9, label="hidden landmark")]
+    fig.legend(handles=handles, loc="lower center", ncol=5, fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
     ctx.figure("fig5_10_occluded_catchment.png", fig,
                "Fig 5.10: catchment of DELV with a compass on env1 with k = 0, 1, 2 hidden landmarks "
                "(squares: release points that reach home; hollow dashed discs: hidden landmarks).")

@@ -20,7 +20,7 @@ from delvjax.methods.compass import visual_compass_errors
 from delvjax.options import make_config
 from studies import thesis
 
-from .common import LABEL, RULES, as_vector_map, catchment, env, map_numbers
+from .common import LABEL, RULES, as_vector_map, catchment, env, map_numbers, outcome_counts
 
 TITLE = "The visual compass and compass noise (Figs 5.11-5.12)"
 BACKGROUNDS = ("distant", "walls", "none")
@@ -67,7 +67,10 @@ def run(ctx) -> None:
             for rules in RULES:
                 c = catchment(ctx, e, vm_name, rules, background=bg)
                 pct = float(c.catchment_pct()[0])
+                counts = outcome_counts(c)
                 row[f"visual {rules} %"] = pct
+                row[f"visual {rules} failures timeout/landmark/arena"] = \
+                    f"{counts['timeout']}/{counts['landmark']}/{counts['arena']}"
                 if rules == "default":
                     s = map_numbers(e, as_vector_map(c))
                     ctx.number(f"visual:{bg}:{tm}:mean_error_deg", s["mean_error_deg"])
@@ -98,7 +101,7 @@ def run(ctx) -> None:
     ctx.csv("visual_compass_heading_errors_per_point.csv",
             columns={"background": np.repeat(BACKGROUNDS, [errors[b].size for b in BACKGROUNDS]).tolist(),
                      "heading_error_deg": np.concatenate([errors[b] for b in BACKGROUNDS])})
-    fig, ax = plt.subplots(figsize=(7.5, 4))
+    fig, ax = plt.subplots(figsize=(7.5, 4.6))
     width = 0.13
     for i, (bg, hatch) in enumerate(zip((*BACKGROUNDS, "true compass"), ("", "//", "..", "xx"))):
         vals = [true[m, "default"] if bg == "true compass" else
@@ -110,7 +113,7 @@ def run(ctx) -> None:
     ax.set_xticks(np.arange(3), [LABEL[m] for m in TRUE])
     ax.set_ylabel("catchment area (%)")
     ax.set_ylim(0, 105)
-    ax.legend(fontsize=7, loc="lower left")
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3, frameon=False)
     ax.grid(alpha=0.3, axis="y")
     fig.tight_layout()
     ctx.figure("fig5_11_visual_compass_catchment.png", fig,
