@@ -73,7 +73,7 @@ PHYSICAL_RULES = {"first_move": "release", "collisions": "fail"}
 HOME_TOLERANCE = 1e-3
 DEFAULT_LANES = 256
 DEFAULT_DISTANCES = tuple(float(v) for v in range(50, 451, 50))
-TRIAL_BLOCK = 1024
+TRIAL_BLOCK = 16384
 MASK_ROWS = 64  # visibility masks are padded to this many rows (all k of 6 landmarks: 42; one program)
 START_TRIES = 64  # candidate release points per trial before a trial counts as not placed
 
