@@ -16,8 +16,8 @@ from delvjax.config import Config
 from delvjax.plots import error_curve_figure
 from delvjax.plots_rollouts import success_rate_figure
 
-from .common import (catchment, curve, curve_means, curves_rows, env, map_numbers, panel_figure, success_summary,
-                     success_table, vector_map)
+from .common import (RULES, catchment, catchment_columns, curve, curve_means, curves_rows, env, map_numbers,
+                     panel_figure, rule_suffix, success_summary, success_table, vector_map)
 
 TITLE = "Quantized distances (Figs 4.12-4.14)"
 STEPS = 9
@@ -45,15 +45,16 @@ def run(ctx) -> None:
         row = {"levels": label, "mean error °": s["mean_error_deg"], "e>45 %": s["gt45_pct"], "e>90 %": s["gt90_pct"]}
         if q is None or q in SUCCESS_LEVELS:
             opts = {} if q is None else {"levels": q}
-            c = catchment(ctx, e, "delv", **opts)
-            row["catchment %"] = float(c.catchment_pct()[0])
-            ctx.number(f"catchment:env1:delv:{tag}", row["catchment %"])
-            table = success_table(ctx, e, "delv", **opts)
-            summ = success_summary(table)
-            row["success overall %"] = summ["overall"]
-            ctx.number(f"success:env1:delv:{tag}", summ["by_distance"])
-            ctx.number(f"success_overall:env1:delv:{tag}", summ["overall"])
-            row["_table"] = table
+            catchment_columns(ctx, f"catchment:env1:delv:{tag}",
+                              {rules: catchment(ctx, e, "delv", rules, **opts) for rules in RULES}, row)
+            for rules in RULES:
+                table = success_table(ctx, e, "delv", rules, **opts)
+                summ = success_summary(table)
+                row[f"success overall {rules} %"] = summ["overall"]
+                ctx.number(f"success:env1:delv:{tag}{rule_suffix(rules)}", summ["by_distance"])
+                ctx.number(f"success_overall:env1:delv:{tag}{rule_suffix(rules)}", summ["overall"])
+                if rules == "default":
+                    row["_table"] = table
             ctx.step(label)
         rows.append(row)
         if q is not None and q >= 3:
@@ -70,7 +71,8 @@ def run(ctx) -> None:
     ctx.figure("fig4_13b_quantization_success.png",
                success_rate_figure(tables, f"Success rate by quantization level, env1 ({ctx.settings.trials} trials "
                                            "per distance; Fig 4.13b)"),
-               "Fig 4.13b: success rate vs release distance per level, 95 % Wilson intervals.")
+               "Fig 4.13b: success rate vs release distance per level, 95 % Wilson intervals (default rules; the "
+               "table gives both rule sets).")
     ctx.csv("fig4_13b_quantization_success.csv", rows=[{"levels": k, **r} for k, v in tables.items() for r in v])
     # Fig 4.14: three levels in other layouts.
     items, curves, rows = [], {}, []
