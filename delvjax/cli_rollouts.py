@@ -34,6 +34,7 @@ def _kwargs(args: argparse.Namespace, drop=("spacing",)) -> dict:
     kw = scene_kwargs(args)
     for name in drop:
         kw.pop(name, None)
+    rollouts.check_rules(args.first_move, args.collisions)  # before any work or progress line
     kw.update(max_steps=args.max_steps, home_radius=args.home_radius, first_move=args.first_move,
               collisions=args.collisions)
     return kw
