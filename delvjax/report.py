@@ -73,8 +73,6 @@ def study_section(rec) -> str:
         parts.append(f"Data: [`{rec.name}/{t['file']}`]({rec.name}/{t['file']})")
     for f in rec.figures:
         parts.append(f"![{fmt(f['caption'])}]({rec.name}/{f['file']})\n\n*{f['caption']}*")
-    if rec.notes:
-        parts.append("\n".join(f"- {n}" for n in rec.notes))
     return "\n\n".join(parts)
 
 

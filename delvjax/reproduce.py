@@ -105,7 +105,6 @@ class StudyRecord:
     figures: list = field(default_factory=list)  # {"file", "caption"}
     tables: list = field(default_factory=list)  # {"id", "title", "source", "file", "columns", "rows", "note"}
     numbers: dict = field(default_factory=dict)  # flat keys -> JSON values, read by the claims
-    notes: list = field(default_factory=list)
     files: list = field(default_factory=list)
 
 
@@ -115,10 +114,6 @@ class StudyContext:
     def __init__(self, out: Path, record: StudyRecord, settings: Settings, bar=None):
         self.out, self.record, self.settings, self._bar = out, record, settings, bar
         out.mkdir(parents=True, exist_ok=True)
-
-    @property
-    def quick(self) -> bool:
-        return self.settings.quick
 
     def _file(self, name: str) -> Path:
         self.record.files.append(name)
@@ -151,9 +146,6 @@ class StudyContext:
     def number(self, key: str, value: Any) -> None:
         """A headline number the claims table reads (`numbers[key]`)."""
         self.record.numbers[key] = _jsonable(value)
-
-    def note(self, text: str) -> None:
-        self.record.notes.append(text)
 
     def step(self, text: str) -> None:
         """Progress within a long study (advances the inner bar)."""

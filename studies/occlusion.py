@@ -107,38 +107,42 @@ def _fmt(s: dict) -> str:
     return f"{s['mean']:.2f} [{s['min']:.2f}-{s['max']:.2f}]" if s["min"] != s["max"] else f"{s['mean']:.2f}"
 
 
+def layout_rows(per_k: list[dict], envs) -> list[tuple[str, str, dict]]:
+    """(thesis layout name, row label, per-k row) for the layouts of one thesis table; ring4 reads env2's rows."""
+    out = []
+    for name in envs:
+        ours = SAME_LAYOUT.get(name, name)
+        out += [(name, name if ours == name else f"{name} (= {ours})", r) for r in per_k if r["env"] == ours]
+    return out
+
+
 def tables(ctx, per_k: list[dict]) -> None:
     for table, source, title, envs in (("table5_1", "Table 5.1", "Error point rates, env1-3", ("env1", "env2", "env3")),
                                        ("table5_2", "Table 5.2", "Error point rates, L equally spaced landmarks",
                                         ("ring3", "ring4", "ring5", "ring6"))):
-        rows = []
-        for name in envs:
-            ours = SAME_LAYOUT.get(name, name)
-            for r in (r for r in per_k if r["env"] == ours):
-                rows.append({"env": name if ours == name else f"{name} (= {ours})", "method": LABEL[r["method"]],
-                             "k": r["k"], "ours e>45 % mean [min-max]": _fmt(r["gt45_pct"]),
-                             "thesis e>45 %": thesis_row(table, name, r["method"], r["k"], "gt45"),
-                             "ours e>90 %": r["gt90_pct"]["mean"],
-                             "thesis e>90 %": thesis_row(table, name, r["method"], r["k"], "gt90")})
+        rows = [{"env": label, "method": LABEL[r["method"]], "k": r["k"],
+                 "ours e>45 % mean [min-max]": _fmt(r["gt45_pct"]),
+                 "thesis e>45 %": thesis_row(table, name, r["method"], r["k"], "gt45"),
+                 "ours e>90 %": r["gt90_pct"]["mean"],
+                 "thesis e>90 %": thesis_row(table, name, r["method"], r["k"], "gt90")}
+                for name, label, r in layout_rows(per_k, envs)]
         ctx.table(table, title, rows, source=source, note=NOTE + (RING_NOTE if table == "table5_2" else ""))
     for table, source, title, envs in (("table5_3", "Table 5.3", "Catchment area, env1-3", ("env1", "env2", "env3")),
                                        ("table5_4", "Table 5.4", "Catchment area, L equally spaced landmarks",
                                         ("ring3", "ring4", "ring5", "ring6"))):
         rows = []
-        for name in envs:
-            ours = SAME_LAYOUT.get(name, name)
-            for r in (r for r in per_k if r["env"] == ours):
-                fd, fp = r["failures_default"], r["failures_physical"]
-                row = {"env": name if ours == name else f"{name} (= {ours})", "method": LABEL[r["method"]],
-                       "k": r["k"], "choices": r["choices"],
-                       "ours default % mean [min-max]": _fmt(r["catchment_default"]),
-                       "ours physical %": r["catchment_physical"]["mean"],
-                       "thesis %": thesis_row(table, name, r["method"], r["k"]),
-                       "default failures timeout/arena": f"{fd['timeout']}/{fd['arena']}",
-                       "physical failures timeout/landmark/arena": f"{fp['timeout']}/{fp['landmark']}/{fp['arena']}"}
-                if table == "table5_3" and name == "env1" and r["method"] == "delv-compass":
-                    row["thesis %"] = f"{row['thesis %']} (Fig 5.10: {thesis_row('fig5_10', 'env1', r['method'], r['k'])})"
-                rows.append(row)
+        for name, label, r in layout_rows(per_k, envs):  # tabulation of a few dozen rows
+            fd, fp = r["failures_default"], r["failures_physical"]
+            row = {"env": label, "method": LABEL[r["method"]],
+                   "k": r["k"], "choices": r["choices"],
+                   "ours default % mean [min-max]": _fmt(r["catchment_default"]),
+                   "ours physical %": r["catchment_physical"]["mean"],
+                   "thesis %": thesis_row(table, name, r["method"], r["k"]),
+                   "default failures timeout/arena": f"{fd['timeout']}/{fd['arena']}",
+                   "physical failures timeout/landmark/arena": f"{fp['timeout']}/{fp['landmark']}/{fp['arena']}"}
+            if table == "table5_3" and name == "env1" and r["method"] == "delv-compass":
+                row["thesis %"] = f"{row['thesis %']} (Fig 5.10: {thesis_row('fig5_10', 'env1', r['method'], r['k'])})"
+            rows.append(row)
         ctx.table(table, title, rows, source=source,
                   note=NOTE + (FIG5_10_NOTE if table == "table5_3" else RING_NOTE))
 
