@@ -97,8 +97,14 @@ def write_json(path: str | Path, obj) -> None:
 
 
 def save_figure(fig, path: str | Path, dpi: int = 150) -> None:
+    """Write `fig` atomically (format from the suffix) and close it."""
     import matplotlib.pyplot as plt
 
+    plt.close(fig)  # leaves pyplot's registry; the figure can still be drawn
+    write_figure(fig, path, dpi)
+
+
+def write_figure(fig, path: str | Path, dpi: int = 150) -> None:
+    """Render a figure already closed in pyplot (no pyplot state: safe in a worker thread)."""
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=dpi, bbox_inches="tight", format=Path(path).suffix.lstrip(".").lower())
-    plt.close(fig)

@@ -51,6 +51,7 @@ def grid_points(arena, spacing: float) -> np.ndarray:
     return np.stack([gx.ravel(), gy.ravel()], axis=-1).astype(np.float32)
 
 
+@jax.jit
 def grid_included(env: Env, points: Array, clearance: float) -> Array:
     """True where a point is farther than r + clearance from every landmark centre."""
     dist = jnp.linalg.norm(points[:, None, :] - env.landmarks[None, :, :2], axis=-1)
@@ -63,6 +64,7 @@ def stream_keys(key: Array) -> tuple[Array, Array, Array]:
     return jax.random.fold_in(key, 0), jax.random.fold_in(key, 1), jax.random.fold_in(key, 2)
 
 
+@partial(jax.jit, static_argnums=1)
 def random_headings(key: Array, n: int) -> Array:
     """Per-point uniform headings in [0, 2 pi), point i from fold_in(key_headings, i)."""
     _, _, k_head = stream_keys(key)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import jax
 import jax.numpy as jnp
 import numpy as np
 from jax import Array
@@ -13,6 +14,7 @@ CLASS_EDGES_DEG = (45.0, 90.0)
 CLASS_NAMES = ("<45", "45-90", ">90")
 
 
+@jax.jit  # one compiled program per shape instead of an eager op each
 def angular_error_deg(direction: Array, valid: Array, points: Array, home: Array) -> Array:
     """|wrap(direction - angle(home - x))| in degrees; an invalid point counts as 180 (docs/model.md §5)."""
     ideal = angle_of(home - points)

@@ -93,5 +93,5 @@ def environments_figure(envs: list[Env]):
         ax.set_title(env.name)
         ax.set_xlabel("")
         ax.set_ylabel("")
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # applied when drawn (in the figure thread)
     return fig

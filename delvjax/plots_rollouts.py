@@ -64,7 +64,7 @@ def catchment_figure(env: Env, result, spacing: float, title: str = ""):
         axes[m // cols][m % cols].axis("off")
     if n > 1 and title:
         fig.suptitle(f"{title}: mean {pct.mean():.2f}%, min {pct.min():.2f}%, max {pct.max():.2f}%")
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # applied when drawn (in the figure thread)
     return fig
 
 
@@ -110,7 +110,7 @@ def trajectories_figure(env: Env, results: dict, home_radius: float, title: str 
     fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8, frameon=False)
     if title:
         fig.suptitle(title)
-    fig.tight_layout(rect=(0, 0.05 / rows, 1, 1))
+    fig.set_layout_engine("tight", rect=(0, 0.05 / rows, 1, 1))  # applied when drawn (in the figure thread)
     return fig
 
 
@@ -154,5 +154,5 @@ def success_rate_figure(tables: dict, title: str = ""):
     ax.set_title(title)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="lower left")
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # applied when drawn (in the figure thread)
     return fig

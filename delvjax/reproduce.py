@@ -18,15 +18,16 @@ import os
 import platform
 import sys
 import time
+from concurrent.futures import Future, ThreadPoolExecutor
 from contextlib import contextmanager
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any, Iterator
+from typing import Any, Callable, Iterator
 
 import jax
 
 from .errors import InputError
-from .io import _jsonable, save_figure, write_csv, write_json, write_rows_csv
+from .io import _jsonable, write_csv, write_figure, write_json, write_rows_csv
 
 STUDY_FILE = "study.json"
 COMPILE_EVENTS = ("/jax/core/compile/jaxpr_trace_duration", "/jax/core/compile/jaxpr_to_mlir_module_duration",
@@ -111,8 +112,10 @@ class StudyRecord:
 class StudyContext:
     """The output folder and writers of one study; every write is atomic and recorded."""
 
-    def __init__(self, out: Path, record: StudyRecord, settings: Settings, bar=None):
+    def __init__(self, out: Path, record: StudyRecord, settings: Settings, bar=None,
+                 painter: ThreadPoolExecutor | None = None):
         self.out, self.record, self.settings, self._bar = out, record, settings, bar
+        self._painter, self._pending = painter, []  # type: ignore[var-annotated]
         out.mkdir(parents=True, exist_ok=True)
 
     def _file(self, name: str) -> Path:
@@ -121,8 +124,32 @@ class StudyContext:
 
     def figure(self, name: str, fig, caption: str) -> None:
         """Save a matplotlib figure as `name` (.png) with the caption the report prints under it."""
-        save_figure(fig, self._file(name))
+        import matplotlib.pyplot as plt
+
+        plt.close(fig)  # pyplot state stays in this thread; rendering needs none
+        path = self._file(name)
+        if self._painter is None:
+            write_figure(fig, path)
+        else:  # rendered while this thread waits on the device: figures overlap the computation
+            self._pending.append(self._painter.submit(write_figure, fig, path))
         self.record.figures.append({"file": name, "caption": caption})
+
+    def finish(self, last: Callable[[], None]) -> Future | None:
+        """Run `last` (the study.json write) once every figure of the study is written: on the
+        figure thread, after them (one thread, first in first out), and only if none failed.
+        Returns its future (None when run here, without a figure thread)."""
+        pending: list[Future] = self._pending
+        self._pending = []
+        if self._painter is None:
+            last()
+            return None
+
+        def after_figures() -> None:
+            for f in pending:
+                f.result()  # a failed figure raises here: no study.json, so the study runs again
+            last()
+
+        return self._painter.submit(after_figures)
 
     def table(self, table_id: str, title: str, rows: list[dict], source: str = "", note: str = "",
               columns: list[str] | None = None) -> None:
@@ -239,24 +266,33 @@ def _bars(total: int, enabled: bool) -> Iterator[Any]:
 
 
 def run_study(name: str, module, out: Path, settings: Settings, force: bool = False,
-              progress: bool = True) -> tuple[StudyRecord, bool]:
-    """Run one study unless current; returns (record, ran)."""
+              progress: bool = True, painter: ThreadPoolExecutor | None = None
+              ) -> tuple[StudyRecord, bool, Future | None]:
+    """Run one study unless current; returns (record, ran, future of its completion).
+
+    `painter`: one thread that renders the figures while the next study computes; the
+    study.json is then written by that thread after the figures (`StudyContext.finish`).
+    `record.seconds` is the study's computation; rendering its figures overlaps the next one.
+    """
     from tqdm.auto import tqdm
 
     folder = out / name
     digest = study_hash(module, settings)
     if not force and is_current(folder, digest):
-        return load_record(folder), False  # type: ignore[return-value]
+        return load_record(folder), False, None  # type: ignore[return-value]
     record = StudyRecord(name=name, title=module.TITLE, hash=digest, settings=settings_record(settings),
                          versions=versions())
     c0, t0 = compile_seconds(), time.perf_counter()
     with tqdm(total=getattr(module, "STEPS", None), desc=f"  {name}", leave=False, disable=not progress,
               file=sys.stderr) as bar:
-        module.run(StudyContext(folder, record, settings, bar))
+        ctx = StudyContext(folder, record, settings, bar, painter)
+        module.run(ctx)
     record.seconds = time.perf_counter() - t0
     record.compile_seconds = compile_seconds() - c0
-    write_json(folder / STUDY_FILE, asdict(record))  # last: its presence marks the study complete
-    return record, True
+    data = asdict(record)
+    # last, after the figures: its presence marks the study complete
+    done = ctx.finish(lambda: write_json(folder / STUDY_FILE, data))
+    return record, True, done
 
 
 def reproduce(out: str | Path = "results", quick: bool = False, only: str | None = None, force: bool = False,
@@ -280,14 +316,20 @@ def reproduce(out: str | Path = "results", quick: bool = False, only: str | None
     modules = registry(names)
     records, ran = {}, []
     t0 = time.perf_counter()
-    with _bars(len(names), progress) as bar:
+    completions = []
+    with _bars(len(names), progress) as bar, ThreadPoolExecutor(1, thread_name_prefix="figures") as painter:
         for name in names:  # a dozen heterogeneous studies: the driver, not a hot path
             bar.set_postfix_str(name)
-            rec, did = run_study(name, modules[name], out, settings, force=force, progress=progress)
+            rec, did, done = run_study(name, modules[name], out, settings, force=force, progress=progress,
+                                       painter=painter)
             records[name] = rec
+            completions.append(done)
             if did:
                 ran.append(name)
             bar.update(1)
+        for done in completions:  # figures and study.json files written; a failure is raised here
+            if done is not None:
+                done.result()
     order = importlib.import_module("studies").STUDIES
     for name in order:  # studies of an earlier run (other --only) still appear in the report
         if name not in records:

@@ -55,7 +55,7 @@ from .config import Config
 from .errors import InputError
 from .geometry import TWO_PI, unit, wrap
 from .maps import grid_included, grid_points, random_headings, stream_keys
-from .methods import get_method
+from .methods import get_method, uses_start_view
 from .metrics import angular_error_deg, error_point_rates
 from .scene import Env
 from .sensing import UnitMove, observe_move, record_home, unit_move_poses
@@ -71,7 +71,7 @@ PHYSICAL_RULES = {"first_move": "release", "collisions": "fail"}
 # "Within home_radius" is inclusive; 1e-3 cm absorbs float32 rounding of a release placed at
 # exactly home_radius (the first success-rate bin), so such a release counts as home.
 HOME_TOLERANCE = 1e-3
-DEFAULT_LANES = 256
+DEFAULT_LANES = 128
 DEFAULT_DISTANCES = tuple(float(v) for v in range(50, 451, 50))
 TRIAL_BLOCK = 16384
 MASK_ROWS = 64  # visibility masks are padded to this many rows (all k of 6 landmarks: 42; one program)
@@ -123,7 +123,7 @@ class _Outcomes(eqx.Module):
     @property
     def success(self) -> Array:
         """True where the trial reached home."""
-        return self.outcome == SUCCESS  # type: ignore[attr-defined]
+        return np.asarray(self.outcome) == SUCCESS  # type: ignore[attr-defined]
 
     @property
     def rules(self) -> dict[str, str]:
@@ -161,7 +161,7 @@ def home_record(env: Env, key: Array, config: Config) -> UnitMove:
 def run_trials(env: Env, starts: Array, headings: Array, key_index: Array, mask_index: Array, masks: Array,
                key: Array, config: Config, method: str, home_radius: float = 50.0, max_steps: int = 50,
                lanes: int = DEFAULT_LANES, record_paths: bool = False, first_move: str = "homing",
-               collisions: str = "ignore") -> Trials:
+               collisions: str = "ignore", program: Sequence[str] | None = None) -> Trials:
     """Roll out T trials (docs/model.md §5), in blocks of one compiled program.
 
     starts: (T, 2) cm; headings: (T,) release headings rad; key_index: (T,) int, the trial's
@@ -170,9 +170,11 @@ def run_trials(env: Env, starts: Array, headings: Array, key_index: Array, mask_
     masks (M, L) bool, the landmarks visible during homing (the home record,
     `home_record(env, key, config)`, always sees all). `lanes` trials run side by side;
     finished lanes are refilled from the queue of pending trials. `first_move` and
-    `collisions` are the rules of the module docstring.
+    `collisions` are the rules of the module docstring. `program`: the methods compiled into
+    the same program (`program_method`; default just `method`): callers that run several
+    methods compile once, at the price of a larger program.
     """
-    get_method(method)
+    methods = check_program(method, program)
     check_rules(first_move, collisions)
     env = env.arrays()  # compile once per shape, not per environment name
     n = int(starts.shape[0])
@@ -190,10 +192,11 @@ def run_trials(env: Env, starts: Array, headings: Array, key_index: Array, mask_
     blocks = []
     for i in range(0, padded, block):  # chunked driver: every block is the same compiled program
         res = _run_trials(env, home, starts[i:i + block], headings[i:i + block], key_index[i:i + block],
-                          mask_index[i:i + block], masks, key, config, method, home_radius, max_steps, lanes,
+                          mask_index[i:i + block], masks, key, config, methods, jnp.int32(methods.index(method)),
+                          home_radius, max_steps, lanes,
                           jnp.int32(min(block, n - i)), *flags)
         blocks.append(res if record_paths else eqx.tree_at(lambda r: r.path, res, None, is_leaf=lambda x: x is None))
-    res = jax.tree.map(lambda *a: jnp.asarray(np.concatenate([np.asarray(x) for x in a])[:n]), *blocks)
+    res = jax.tree.map(lambda *a: jax.device_put(np.concatenate([np.asarray(x) for x in a])[:n]), *blocks)
     return dataclasses.replace(res, first_move=first_move, collisions=collisions)
 
 
@@ -202,6 +205,17 @@ def trial_block(n: int) -> int:
     occlusion, success-rate tables and trajectories share one compiled program per method; each
     trial keeps its own noise streams, so the numbers do not depend on the blocking."""
     return TRIAL_BLOCK
+
+
+def check_program(method: str, program: Sequence[str] | None) -> tuple[str, ...]:
+    """The validated methods of one rollout program (`run_trials`), a tuple containing `method`."""
+    get_method(method)
+    methods = (method,) if program is None else tuple(program)
+    for m in methods:
+        get_method(m)
+    if method not in methods:
+        raise InputError("program", list(methods), f"must contain the method {method!r}")
+    return methods
 
 
 def check_rules(first_move: str, collisions: str) -> dict[str, str]:
@@ -213,15 +227,36 @@ def check_rules(first_move: str, collisions: str) -> dict[str, str]:
     return {"first_move": first_move, "collisions": collisions}
 
 
-@partial(jax.jit, static_argnames=("method", "max_steps", "lanes"))
+def program_method(methods: tuple[str, ...]):
+    """One method function for the methods of one program: `fn(home, view, config, index)` runs
+    methods[index]. With several methods the traced index selects a branch of a `lax.switch`
+    (unbatched, so only that branch runs): the methods share one compiled rollout program."""
+    fns = [get_method(m) for m in methods]
+    if len(fns) == 1:
+        return lambda home, view, config, index: fns[0](home, view, config)
+
+    def typed(fn):
+        def branch(home, view, config):
+            angle, valid = fn(home, view, config)
+            return jnp.asarray(angle, jnp.float32), jnp.asarray(valid, bool)
+        return branch
+
+    branches = [typed(fn) for fn in fns]
+    return lambda home, view, config, index: jax.lax.switch(index, branches, home, view, config)
+
+
+@partial(jax.jit, static_argnames=("methods", "max_steps", "lanes"))
 def _run_trials(env: Env, home: UnitMove, starts: Array, headings: Array, key_index: Array, mask_index: Array,
-                masks: Array, key: Array, config: Config, method: str, home_radius: float, max_steps: int,
-                lanes: int, n_valid: Array, homing_first: Array, collide: Array) -> Trials:
+                masks: Array, key: Array, config: Config, methods: tuple[str, ...], method_index: Array,
+                home_radius: float, max_steps: int, lanes: int, n_valid: Array, homing_first: Array,
+                collide: Array) -> Trials:
     """One block of trials, the first `n_valid` real (the padding is never run). A lane first spends one iteration at its release point computing the
     vector map's direction there (a unit move ending at the release point, the vector map's
     noise stream; recorded as first_direction, and the first heading under first_move="homing"),
     then one move per iteration, so the method appears once in the program."""
-    fn = get_method(method)
+    fn = program_method(methods)
+    starts_used = [uses_start_view(m) for m in methods]
+    with_start = starts_used[0] if len(set(starts_used)) == 1 else jnp.asarray(starts_used)[method_index]
     n_trials = starts.shape[0]
     n_lanes = max(1, min(lanes, n_trials))
     _, k_roll, _ = rollout_keys(key)
@@ -242,8 +277,9 @@ def _run_trials(env: Env, home: UnitMove, starts: Array, headings: Array, key_in
         moving = move_poses(pos, heading, k, config)
         start, end, h_start, h_end, psi_hat, k_obs = jax.tree.map(lambda a, b: jnp.where(first, a, b),
                                                                   at_release, moving)
-        view = observe_move(env, masks[mask_index[ts]], start, end, h_start, h_end, config.d, psi_hat, k_obs, config)
-        angle, valid = fn(home, view, config)
+        view = observe_move(env, masks[mask_index[ts]], start, end, h_start, h_end, config.d, psi_hat, k_obs, config,
+                            with_start)
+        angle, valid = fn(home, view, config, method_index)
         direction = jnp.where(valid, wrap(h_end + angle), jnp.nan)
         new_heading = jnp.where(valid, direction, wrap(h_end))
         first_heading = jnp.where(homing_first, new_heading, heading)
@@ -370,7 +406,8 @@ class Catchment(_Outcomes):
 def catchment_area(env: Env, method: str, config: Config, spacing: float = 25.0, heading: float | None = None,
                    key: Array | None = None, clearance: float = 10.0, masks: np.ndarray | None = None,
                    hidden: Sequence[tuple[int, ...]] = ((),), home_radius: float = 50.0, max_steps: int = 50,
-                   lanes: int = DEFAULT_LANES, first_move: str = "homing", collisions: str = "ignore") -> Catchment:
+                   lanes: int = DEFAULT_LANES, first_move: str = "homing", collisions: str = "ignore",
+                   program: Sequence[str] | None = None) -> Catchment:
     """Rollouts from every grid point under every mask in `masks` (M, L), one program (docs/model.md §5).
 
     Headings: fixed (rad) or per point from `key` as in `maps.random_headings`. The trial of
@@ -379,31 +416,32 @@ def catchment_area(env: Env, method: str, config: Config, spacing: float = 25.0,
     """
     key = jax.random.PRNGKey(0) if key is None else key
     masks = np.asarray(env.valid, bool)[None, :] if masks is None else np.asarray(masks, bool)
-    points = jnp.asarray(grid_points(env.arena, spacing))
+    # input preparation on the host (NumPy): eager device ops would compile once per shape
+    points = grid_points(env.arena, spacing)
     n_cells = points.shape[0]
-    headings = random_headings(key, n_cells) if heading is None else jnp.full(n_cells, heading, jnp.float32)
-    included = grid_included(env, points, clearance)
-    cells = np.flatnonzero(np.asarray(included))  # input preparation: which cells are released
+    headings = np.asarray(random_headings(key, n_cells) if heading is None else np.full(n_cells, heading, np.float32))
+    included = np.asarray(grid_included(env, points, clearance))
+    cells = np.flatnonzero(included)  # which cells are released
     if cells.size == 0:
         raise InputError("spacing", spacing, "leaves no grid point clear of the landmarks (r + clearance)")
     n_masks, n_inc = masks.shape[0], cells.size
-    trial_cell = np.tile(cells, n_masks)
-    trial_mask = np.repeat(np.arange(n_masks), n_inc)
-    trials = run_trials(env, points[trial_cell], headings[trial_cell], jnp.asarray(trial_cell, jnp.int32),
-                        jnp.asarray(trial_mask, jnp.int32), jnp.asarray(masks), key, config, method,
+    trial_cell = np.tile(cells, n_masks).astype(np.int32)
+    trial_mask = np.repeat(np.arange(n_masks, dtype=np.int32), n_inc)
+    trials = run_trials(env, points[trial_cell], headings[trial_cell], trial_cell, trial_mask, masks, key, config, method,
                         home_radius=home_radius, max_steps=max_steps, lanes=lanes, first_move=first_move,
-                        collisions=collisions)
+                        collisions=collisions, program=program)
 
     def per_cell(values, fill):
         values = np.asarray(values)
         full = np.full((n_masks, n_cells) + values.shape[1:], fill, values.dtype)
         full[:, cells] = values.reshape((n_masks, n_inc) + values.shape[1:])
-        return jnp.asarray(full)
+        return jax.device_put(full)  # host to device without an eager op (no compile per shape)
 
     direction = per_cell(trials.first_direction, jnp.nan)  # the vector map under each mask
     valid = per_cell(trials.first_valid, False)
-    error = jax.vmap(lambda dr, ok: angular_error_deg(dr, ok, points, env.home))(direction, valid)
-    return Catchment(points=points, included=included, heading=headings, visible=jnp.asarray(masks),
+    error = angular_error_deg(direction, valid, points[None], env.home)
+    return Catchment(points=jax.device_put(points), included=jax.device_put(included), heading=jax.device_put(headings),
+                     visible=jax.device_put(masks),
                      outcome=per_cell(trials.outcome, EXCLUDED), steps=per_cell(trials.steps, 0),
                      end=per_cell(trials.end, jnp.nan), invalid_steps=per_cell(trials.invalid_steps, 0),
                      direction=direction, valid=valid, error_deg=error,
@@ -419,7 +457,7 @@ def catchment_summary(result: Catchment) -> dict:
     steps = np.asarray(result.steps)[:, inc]
     per_mask = []
     for m, hidden in enumerate(result.hidden):  # M <= 20 rows of post-processing
-        rates = error_point_rates(result.error_deg[m], result.included)
+        rates = error_point_rates(np.asarray(result.error_deg)[m], inc)
         ok = outcome[m] == SUCCESS
         per_mask.append({
             "hidden": list(hidden), "catchment_pct": float(pct[m]), **rates,
@@ -534,27 +572,34 @@ def success_rate_trials(env: Env, method: str, config: Config, distances: Sequen
                         trials: int = 100, heading: float | None = None, key: Array | None = None,
                         clearance: float = 10.0, visible: Array | None = None, home_radius: float = 50.0,
                         max_steps: int = 50, lanes: int = DEFAULT_LANES, first_move: str = "homing",
-                        collisions: str = "ignore") -> SuccessRate:
+                        collisions: str = "ignore", program: Sequence[str] | None = None) -> SuccessRate:
     """`trials` rollouts per release distance: random direction from home, random heading (docs/model.md §5)."""
     key = jax.random.PRNGKey(0) if key is None else key
-    _, _, k_start = rollout_keys(key)
-    dist = jnp.asarray(distances, jnp.float32)
+    dist = np.asarray(distances, np.float32)
     n_bins = dist.shape[0]
-    starts, heads, placed = jax.vmap(
-        lambda b, r: release_points(env.arrays(), jax.random.fold_in(k_start, b), trials, r, clearance))(jnp.arange(n_bins), dist)
+    starts, heads, placed = (np.asarray(a) for a in _release_bins(env.arrays(), key, dist, trials, clearance))
     if heading is not None:
-        heads = jnp.full_like(heads, heading)
-    visible = jnp.asarray(env.valid if visible is None else visible, bool)
+        heads = np.full_like(heads, heading)
+    visible = np.asarray(env.valid if visible is None else visible, bool)
     total = n_bins * trials
-    res = run_trials(env, starts.reshape(total, 2), heads.reshape(total), jnp.arange(total, dtype=jnp.int32),
-                     jnp.zeros(total, jnp.int32), visible[None, :], key, config, method,
+    res = run_trials(env, starts.reshape(total, 2), heads.reshape(total), np.arange(total, dtype=np.int32),
+                     np.zeros(total, np.int32), visible[None, :], key, config, method,
                      home_radius=home_radius, max_steps=max_steps, lanes=lanes, first_move=first_move,
-                     collisions=collisions)
+                     collisions=collisions, program=program)
     placed_flat = placed.reshape(total)
-    outcome = jnp.where(placed_flat, res.outcome, EXCLUDED).reshape(n_bins, trials)
-    steps = jnp.where(placed_flat, res.steps, 0).reshape(n_bins, trials)
-    return SuccessRate(distances=dist, start=starts, heading=heads, placed=placed, outcome=outcome, steps=steps,
+    outcome = np.where(placed_flat, np.asarray(res.outcome), EXCLUDED).reshape(n_bins, trials)
+    steps = np.where(placed_flat, np.asarray(res.steps), 0).reshape(n_bins, trials)
+    return SuccessRate(**{k: jax.device_put(v) for k, v in dict(distances=dist, start=starts, heading=heads, placed=placed,
+                                                                outcome=outcome, steps=steps).items()},
                        first_move=first_move, collisions=collisions)
+
+
+@partial(jax.jit, static_argnames=("trials",))
+def _release_bins(env: Env, key: Array, distances: Array, trials: int, clearance: float) -> tuple[Array, Array, Array]:
+    """`release_points` for every distance bin b, from fold_in(key_start, b)."""
+    _, _, k_start = rollout_keys(key)
+    return jax.vmap(lambda b, r: release_points(env, jax.random.fold_in(k_start, b), trials, r, clearance))(
+        jnp.arange(distances.shape[0]), distances)
 
 
 # --- trajectories ------------------------------------------------------------------------
@@ -579,29 +624,30 @@ class Trajectories(_Outcomes):
 def trajectory_trials(env: Env, method: str, config: Config, starts: Array, headings: Array,
                       key: Array | None = None, visible: Array | None = None, home_radius: float = 50.0,
                       max_steps: int = 50, lanes: int = DEFAULT_LANES, first_move: str = "homing",
-                      collisions: str = "ignore") -> Trajectories:
+                      collisions: str = "ignore", program: Sequence[str] | None = None) -> Trajectories:
     """Rollouts from `starts` (T, 2) with `headings` (T,) rad, recording every position."""
     key = jax.random.PRNGKey(0) if key is None else key
-    starts = jnp.asarray(starts, jnp.float32)
-    headings = jnp.asarray(headings, jnp.float32)
+    starts = np.asarray(starts, np.float32)
+    headings = np.asarray(headings, np.float32)
     n = starts.shape[0]
-    visible = jnp.asarray(env.valid if visible is None else visible, bool)
-    res = run_trials(env, starts, headings, jnp.arange(n, dtype=jnp.int32), jnp.zeros(n, jnp.int32),
+    visible = np.asarray(env.valid if visible is None else visible, bool)
+    res = run_trials(env, starts, headings, np.arange(n, dtype=np.int32), np.zeros(n, np.int32),
                      visible[None, :], key, config, method, home_radius=home_radius, max_steps=max_steps,
-                     lanes=lanes, record_paths=True, first_move=first_move, collisions=collisions)
-    return Trajectories(start=starts, heading=headings, path=res.path, outcome=res.outcome, steps=res.steps,
+                     lanes=lanes, record_paths=True, first_move=first_move, collisions=collisions, program=program)
+    return Trajectories(start=jax.device_put(starts), heading=jax.device_put(headings), path=res.path, outcome=res.outcome, steps=res.steps,
                         invalid_steps=res.invalid_steps, first_move=first_move, collisions=collisions)
 
 
 # --- public API (validated keywords; mirrors the CLI) ----------------------------------------
 
 def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed, config_kw,
-                     first_move="homing", collisions="ignore"):
+                     first_move="homing", collisions="ignore", program=None):
     """Validate the shared keywords before any work (`api.scene_request` plus the rollout limits and rules)."""
     from .api import scene_request
     from .options import positive, positive_int
 
     check_rules(first_move, collisions)
+    check_program(method, program)
     env, config, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **config_kw)
     max_steps = positive_int(max_steps, "max_steps")
     home_radius = positive(home_radius, "home_radius")
@@ -614,7 +660,7 @@ def catchment(env: str | Path | Env, method: str = "delv", spacing: float = 25.0
               home_radius: float = 50.0, clearance: float = 10.0, levels: int | None = None, d: float = 50.0,
               background: str = "distant", channel: str = "mask", n_heading: int = 360,
               lanes: int = DEFAULT_LANES, first_move: str = "homing",
-              collisions: str = "ignore", **options: float) -> Catchment:
+              collisions: str = "ignore", program: Sequence[str] | None = None, **options: float) -> Catchment:
     """Catchment area of `method` (Figs 4.5, 5.5; Tables 5.3/5.4): a rollout from every docs/model.md §5 grid point.
 
     heading_deg fixes the release heading; otherwise it is random per point from `seed`
@@ -623,7 +669,8 @@ def catchment(env: str | Path | Env, method: str = "delv", spacing: float = 25.0
     names one choice. `options`: noise sigmas as in `vector_map` plus motion_heading_noise_deg
     and motion_step_noise, or any other `make_config` option (e.g. warping's n_alpha).
     `first_move` ("homing" | "release") and `collisions` ("ignore" | "fail"): the rollout
-    rules of the module docstring (defaults: docs/model.md §5). Returns a `Catchment` (see `catchment_summary`).
+    rules of the module docstring (defaults: docs/model.md §5). `program`: methods compiled into
+    one rollout program with this one (`run_trials`). Returns a `Catchment` (see `catchment_summary`).
     """
     from .api import visible_mask
     from .options import occlusion_count, positive
@@ -631,7 +678,7 @@ def catchment(env: str | Path | Env, method: str = "delv", spacing: float = 25.0
     env, config, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **options),
-        first_move, collisions)
+        first_move, collisions, program)
     spacing = positive(spacing, "spacing")
     if occlude is not None and hidden:
         raise InputError("occlude", occlude, "cannot be combined with hidden")
@@ -642,7 +689,7 @@ def catchment(env: str | Path | Env, method: str = "delv", spacing: float = 25.0
         masks, combos = hidden_masks(env, hidden)
     return catchment_area(env, method, config, spacing=spacing, heading=heading, key=key, clearance=clearance,
                           masks=masks, hidden=combos, home_radius=home_radius, max_steps=max_steps, lanes=lanes,
-                          first_move=first_move, collisions=collisions)
+                          first_move=first_move, collisions=collisions, program=program)
 
 
 def success_rate(env: str | Path | Env, method: str = "delv", distances: Sequence[float] = DEFAULT_DISTANCES,
@@ -650,13 +697,13 @@ def success_rate(env: str | Path | Env, method: str = "delv", distances: Sequenc
                  max_steps: int = 50, home_radius: float = 50.0, clearance: float = 10.0,
                  levels: int | None = None, d: float = 50.0, background: str = "distant", channel: str = "mask",
                  n_heading: int = 360, lanes: int = DEFAULT_LANES, first_move: str = "homing",
-                 collisions: str = "ignore", **options: float) -> SuccessRate:
+                 collisions: str = "ignore", program: Sequence[str] | None = None, **options: float) -> SuccessRate:
     """Success rate vs release distance (Figs 4.10b, 5.7b): `trials` rollouts per distance from home.
 
     Each trial: a random direction from home at that distance and a random heading (seeded);
     a release point inside a landmark's r + clearance or outside the arena is redrawn
     (deterministically, up to 64 times; else the trial is not placed and not counted).
-    `options`, `first_move` and `collisions` as in `catchment`.
+    `options`, `first_move`, `collisions` and `program` as in `catchment`.
     """
     from .api import visible_mask
     from .options import positive, positive_int
@@ -664,14 +711,15 @@ def success_rate(env: str | Path | Env, method: str = "delv", distances: Sequenc
     env, config, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **options),
-        first_move, collisions)
+        first_move, collisions, program)
     trials = positive_int(trials, "trials")
     if isinstance(distances, (str, bytes)) or not hasattr(distances, "__len__") or len(distances) == 0:
         raise InputError("distances", distances, "must be a non-empty list of distances in cm")
     distances = [positive(v, "distances") for v in distances]
     return success_rate_trials(env, method, config, distances=distances, trials=trials, heading=heading, key=key,
                                clearance=clearance, visible=visible_mask(env, hidden), home_radius=home_radius,
-                               max_steps=max_steps, lanes=lanes, first_move=first_move, collisions=collisions)
+                               max_steps=max_steps, lanes=lanes, first_move=first_move, collisions=collisions,
+                               program=program)
 
 
 def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[Sequence[float]] | None = None,
@@ -679,7 +727,7 @@ def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[S
                  max_steps: int = 50, home_radius: float = 50.0, clearance: float = 10.0,
                  levels: int | None = None, d: float = 50.0, background: str = "distant", channel: str = "mask",
                  n_heading: int = 360, first_move: str = "homing", collisions: str = "ignore",
-                 **options: float) -> Trajectories:
+                 program: Sequence[str] | None = None, **options: float) -> Trajectories:
     """Homing paths (Figs 4.11, 5.8) from `starts` [(x, y), ...] or `n_starts` seeded random release points.
 
     Random release points are uniform in the arena, at least d from the walls, farther than
@@ -687,7 +735,7 @@ def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[S
     along the random release heading, cannot end the trial) and at least 2 * home_radius
     from home; headings are
     random per trial from `seed` unless heading_deg is given. The same seed gives the same
-    release points for every method. `options`, `first_move` and `collisions` as in `catchment`.
+    release points for every method. `options`, `first_move`, `collisions` and `program` as in `catchment`.
     """
     from .api import visible_mask
     from .options import finite, positive_int
@@ -695,7 +743,7 @@ def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[S
     env, config, heading, key, max_steps, home_radius, _, clearance = _rollout_options(
         env, method, max_steps, home_radius, DEFAULT_LANES, clearance, heading_deg, seed,
         dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **options),
-        first_move, collisions)
+        first_move, collisions, program)
     visible = visible_mask(env, hidden)
     _, _, k_start = rollout_keys(key)
     if starts is None:
@@ -709,7 +757,7 @@ def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[S
     if heading is not None:
         heads = jnp.full(pts.shape[0], heading, jnp.float32)
     return trajectory_trials(env, method, config, pts, heads, key=key, visible=visible, home_radius=home_radius,
-                             max_steps=max_steps, first_move=first_move, collisions=collisions)
+                             max_steps=max_steps, first_move=first_move, collisions=collisions, program=program)
 
 
 def _check_starts(env: Env, starts, finite) -> Array:

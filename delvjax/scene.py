@@ -139,11 +139,12 @@ def env_from_dict(spec: object, pad_to: int | None = None) -> Env:
     # Padding rows sit far outside any arena with a tiny radius; the mask hides them.
     padded = np.tile(np.array([[1e9, 1e9, 1e-3]], np.float32), (pad, 1))
     padded[:n] = lms
+    put = jax.device_put  # host to device without an eager op (those compile once per shape)
     return Env(
-        landmarks=jnp.asarray(padded),
-        valid=jnp.arange(pad) < n,
-        home=jnp.asarray(s["home"], jnp.float32),
-        arena=jnp.asarray(s["arena"], jnp.float32),
+        landmarks=put(padded),
+        valid=put(np.arange(pad) < n),
+        home=put(np.asarray(s["home"], np.float32)),
+        arena=put(np.asarray(s["arena"], np.float32)),
         name=s["name"],
     )
 

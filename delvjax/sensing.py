@@ -172,15 +172,31 @@ def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, c
 
 
 def observe_move(env: Env, visible: Array, start: Array, end: Array, heading_start: Array, heading_end: Array,
-                 d_hat: Array, psi_hat: Array, key: Array, config: Config) -> UnitMove:
+                 d_hat: Array, psi_hat: Array, key: Array, config: Config,
+                 with_start: Array | bool = True) -> UnitMove:
     """Snapshots at `start` and `end` of a move already made (true poses given), plus the
     agent's readings: odometry (d_hat, psi_hat) and a compass reading of heading_end - alpha_r
     with N(0, noise.compass) error. Rollouts use this for the step just made.
+
+    `with_start` False leaves the start snapshot zero (a method that reads only the current
+    view); a traced flag skips its rendering at run time (`lax.cond`). The end snapshot's
+    noise does not depend on it.
     """
     k_compass, k_start, k_end = jax.random.split(key, 3)
     compass = wrap(heading_end - config.alpha_r + config.noise.compass * jax.random.normal(k_compass))
+
+    def start_view():
+        return snapshot(env, visible, start, heading_start, k_start, config)
+
+    def blank():
+        return jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), jax.eval_shape(start_view))
+
+    if isinstance(with_start, bool):
+        first = start_view() if with_start else blank()
+    else:
+        first = jax.lax.cond(with_start, start_view, blank)
     return UnitMove(
-        start=snapshot(env, visible, start, heading_start, k_start, config),
+        start=first,
         end=snapshot(env, visible, end, heading_end, k_end, config),
         d_hat=jnp.asarray(d_hat, jnp.float32),
         psi_hat=jnp.asarray(psi_hat, jnp.float32),

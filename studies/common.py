@@ -10,6 +10,7 @@ hits fail), reported side by side.
 
 from __future__ import annotations
 
+import jax
 import numpy as np
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
@@ -30,6 +31,11 @@ LABEL = {"delv": "DELV", "delv-compass": "DELV (compass)", "delv-visual": "DELV 
          "acv": "ACV", "alv": "ALV", "acv-visual": "ACV (visual compass)", "alv-visual": "ALV (visual compass)",
          "warping": "image matching"}
 HOME_RADIUS = 50.0
+# Methods compiled into one rollout program (`rollouts.run_trials(program=...)`): compiling a rollout
+# program costs about 6 CPU-seconds, so the reproduction compiles three, not eight. The families
+# group methods that need the same sensing (the landmark methods read only the mask channel).
+FAMILIES = (("delv", "delv-compass", "alv", "acv"), ("delv-visual", "alv-visual", "acv-visual"), ("warping",))
+PROGRAM = {m: family for family in FAMILIES for m in family}
 
 
 def env(name: str) -> Env:
@@ -46,13 +52,13 @@ def vector_map(ctx, e: Env, method: str, **options) -> VectorMap:
 
 def catchment(ctx, e: Env, method: str, rules: str = "default", **options) -> rollouts.Catchment:
     return delvjax.catchment(e.arrays(), method=method, spacing=ctx.settings.spacing, seed=ctx.settings.seed,
-                             home_radius=HOME_RADIUS, **RULES[rules], **options)
+                             home_radius=HOME_RADIUS, program=PROGRAM[method], **RULES[rules], **options)
 
 
 def success_table(ctx, e: Env, method: str, rules: str = "default", **options) -> list[dict]:
     """Success rate per release distance 50..450 cm (`settings.trials` per bin, Figs 4.10b, 5.7b)."""
     res = delvjax.success_rate(e.arrays(), method=method, trials=ctx.settings.trials, seed=ctx.settings.seed,
-                               home_radius=HOME_RADIUS, **RULES[rules], **options)
+                               home_radius=HOME_RADIUS, program=PROGRAM[method], **RULES[rules], **options)
     return res.table()
 
 
@@ -88,8 +94,13 @@ def curves_rows(curves: dict[str, list[dict]]) -> list[dict]:
 
 def as_vector_map(c: rollouts.Catchment, m: int = 0) -> VectorMap:
     """The vector map inside a `Catchment` (mask m): same headings and home record as `vector_map`."""
-    return VectorMap(points=c.points, included=c.included, heading=c.heading, direction=c.direction[m],
-                     valid=c.valid[m], error_deg=c.error_deg[m])
+    return VectorMap(points=c.points, included=c.included, heading=c.heading, direction=np.asarray(c.direction)[m],
+                     valid=np.asarray(c.valid)[m], error_deg=np.asarray(c.error_deg)[m])
+
+
+def index(tree, i: int):
+    """Result i of a swept (vmapped) result, on the host (an eager device op would compile per shape)."""
+    return jax.tree.map(lambda a: np.asarray(a)[i], tree)
 
 
 def outcome_counts(c: rollouts.Catchment, m: int = 0) -> dict[str, int]:
@@ -127,7 +138,7 @@ def panel_figure(items, spacing: float, classes: bool = False, title: str = ""):
     fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8, frameon=False)
     if title:
         fig.suptitle(title)
-    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    fig.set_layout_engine("tight", rect=(0, 0.05, 1, 1))  # applied when drawn (in the figure thread)
     return fig
 
 
@@ -142,7 +153,7 @@ def catchment_figure(items, spacing: float, title: str):
                Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)")]
     fig.legend(handles=handles, loc="lower center", ncol=4, fontsize=8, frameon=False)
     fig.suptitle(title)
-    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    fig.set_layout_engine("tight", rect=(0, 0.05, 1, 1))  # applied when drawn (in the figure thread)
     return fig
 
 
@@ -219,7 +230,7 @@ def trajectory_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str
     results, rows = {}, []
     for m in methods:
         tr = delvjax.trajectories(e.arrays(), method=m, n_starts=n_starts, seed=ctx.settings.seed,
-                                  home_radius=HOME_RADIUS)
+                                  home_radius=HOME_RADIUS, program=PROGRAM[m])
         results[LABEL[m]] = tr
         rows += trajectory_rows(m, tr)
         ctx.number(f"trajectories:env1:{m}:reach_home", int(np.asarray(tr.success).sum()))

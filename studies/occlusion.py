@@ -25,7 +25,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Patch
 from studies import thesis
 
-from .common import HOME_RADIUS, LABEL, RULES, as_vector_map, env, panel_figure
+from .common import HOME_RADIUS, LABEL, PROGRAM, RULES, as_vector_map, env, panel_figure
 
 TITLE = "Occlusion: k landmarks hidden (Figs 5.9-5.10, Tables 5.1-5.4)"
 METHODS = ("delv-compass", "acv", "alv")
@@ -72,7 +72,8 @@ def run(ctx) -> None:
         for m in METHODS:
             spacing = settings.spacing if name.startswith("env") else max(settings.spacing, RING_SPACING)
             res = {rules: rollouts.catchment_area(e.arrays(), m, config, spacing=spacing, key=key,
-                                                  masks=masks, hidden=hidden, home_radius=HOME_RADIUS, **RULES[rules])
+                                                  masks=masks, hidden=hidden, home_radius=HOME_RADIUS,
+                                                  program=PROGRAM[m], **RULES[rules])
                    for rules in RULES}
             summaries = {rules: rollouts.catchment_summary(c)["per_mask"] for rules, c in res.items()}
             for i, row in enumerate(summaries["default"]):
@@ -184,7 +185,7 @@ def figures(ctx, per_k: list[dict], fig5_10: dict) -> None:
             ax.set_ylabel(ylabel)
         handles, labels = axes.ravel()[0].get_legend_handles_labels()
         fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8, frameon=False)
-        fig.tight_layout(rect=(0, 0.07, 1, 1))
+        fig.set_layout_engine("tight", rect=(0, 0.07, 1, 1))  # applied when drawn (in the figure thread)
         ctx.figure(name, fig, f"{ylabel} vs the number of hidden landmarks k: ours (solid; bars: min-max over the "
                               "choices of hidden landmarks) and the thesis (dashed), default rollout rules.")
     # Fig 5.9 / 5.10: DELV with a compass on env1, one representative choice per k (nearest the mean).
@@ -209,7 +210,7 @@ def figures(ctx, per_k: list[dict], fig5_10: dict) -> None:
                Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
                Line2D([], [], marker="o", mfc="white", mec="black", ls="", ms=9, label="hidden landmark")]
     fig.legend(handles=handles, loc="lower center", ncol=5, fontsize=8, frameon=False)
-    fig.tight_layout(rect=(0, 0.06, 1, 1))
+    fig.set_layout_engine("tight", rect=(0, 0.06, 1, 1))  # applied when drawn (in the figure thread)
     ctx.figure("fig5_10_occluded_catchment.png", fig,
                "Fig 5.10: catchment of DELV with a compass on env1 with k = 0, 1, 2 hidden landmarks "
                "(squares: release points that reach home; hollow dashed discs: hidden landmarks).")

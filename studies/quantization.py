@@ -1,26 +1,22 @@
 """Quantized distances (thesis §3.2.2 Eq 3.17, §4.3, Figs 4.12-4.14).
 
 DELV without compass with Q = 1..5 distance levels and with continuous distances on env1:
-vector maps (Fig 4.12), error curves (Fig 4.13a; one vmapped sweep over Q), success rate
-vs release distance and catchment per level (Fig 4.13b), and level 3 in other layouts
-(Fig 4.14). Q is a traced leaf of `Config`, so every level shares one compiled program.
+vector maps (Fig 4.12), error curves (Fig 4.13a), catchment per level, success rate vs
+release distance (Fig 4.13b), and level 3 in other layouts (Fig 4.14). Q is a traced leaf
+of `Config`, so every level runs through the one compiled rollout program of DELV; the
+vector maps are read from the catchment runs (`common.vector_map`).
 """
 
 from __future__ import annotations
 
-import jax
-import jax.numpy as jnp
-
-from delvjax import maps
-from delvjax.config import Config
 from delvjax.plots import error_curve_figure
 from delvjax.plots_rollouts import success_rate_figure
 
-from .common import (RULES, catchment, catchment_columns, curve, curve_means, curves_rows, env, map_numbers,
-                     panel_figure, rule_suffix, success_summary, success_table, vector_map)
+from .common import (RULES, as_vector_map, catchment, catchment_columns, curve, curve_means, curves_rows, env,
+                     map_numbers, panel_figure, rule_suffix, success_summary, success_table, vector_map)
 
 TITLE = "Quantized distances (Figs 4.12-4.14)"
-STEPS = 9
+STEPS = 7
 LEVELS = (1, 2, 3, 4, 5)
 SUCCESS_LEVELS = (1, 2, 3, 5)
 LAYOUTS = ("env1", "env2", "env3", "ring3", "ring6")
@@ -29,13 +25,11 @@ LAYOUTS = ("env1", "env2", "env3", "ring3", "ring6")
 def run(ctx) -> None:
     e = env("env1")
     spacing = ctx.settings.spacing
-    swept = maps.sweep(e.arrays(), "delv", Config(levels=1), "levels", jnp.asarray(LEVELS), spacing=spacing,
-                       key=jax.random.PRNGKey(ctx.settings.seed))
-    continuous = vector_map(ctx, e, "delv")
-    ctx.step("maps")
     items, curves, rows = [], {}, []
-    for i, q in enumerate((*LEVELS, None)):  # six results: tabulation
-        vm = continuous if q is None else jax.tree.map(lambda a: a[i], swept)
+    for q in (*LEVELS, None):  # six settings of a traced leaf: one compiled rollout program
+        opts = {} if q is None else {"levels": q}
+        cat = {rules: catchment(ctx, e, "delv", rules, **opts) for rules in RULES}
+        vm = as_vector_map(cat["default"])
         label = "continuous" if q is None else f"{q} level{'s' * (q > 1)}"
         s = map_numbers(e, vm)
         curves[label] = curve(e, vm)
@@ -43,10 +37,8 @@ def run(ctx) -> None:
         ctx.number(f"error_curve:env1:delv:{tag}", curve_means(curves[label]))
         ctx.number(f"map:env1:delv:{tag}:mean_error_deg", s["mean_error_deg"])
         row = {"levels": label, "mean error °": s["mean_error_deg"], "e>45 %": s["gt45_pct"], "e>90 %": s["gt90_pct"]}
+        catchment_columns(ctx, f"catchment:env1:delv:{tag}", cat, row)
         if q is None or q in SUCCESS_LEVELS:
-            opts = {} if q is None else {"levels": q}
-            catchment_columns(ctx, f"catchment:env1:delv:{tag}",
-                              {rules: catchment(ctx, e, "delv", rules, **opts) for rules in RULES}, row)
             for rules in RULES:
                 table = success_table(ctx, e, "delv", rules, **opts)
                 summ = success_summary(table)
@@ -55,7 +47,7 @@ def run(ctx) -> None:
                 ctx.number(f"success_overall:env1:delv:{tag}{rule_suffix(rules)}", summ["overall"])
                 if rules == "default":
                     row["_table"] = table
-            ctx.step(label)
+        ctx.step(label)
         rows.append(row)
         if q is not None and q >= 3:
             items.append((f"{label}: mean error {s['mean_error_deg']:.1f}°", e, vm))

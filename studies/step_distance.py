@@ -1,19 +1,16 @@
 """Step distance d of the unit movement (thesis §4.2, Figs 4.6-4.7).
 
-DELV without compass on env1 for d in {20, 50, 100, 150} cm: one vmapped sweep over d
-(`maps.sweep`, one compiled program for all four values).
+DELV without compass on env1 for d in {20, 50, 100, 150} cm. d is a traced leaf of the
+method's settings, so all four values run through the one compiled rollout program that
+every other study of DELV uses (no compilation per value); each vector map is read from a
+catchment run (`common.vector_map`), which also gives the catchment per d.
 """
 
 from __future__ import annotations
 
-import jax
-import jax.numpy as jnp
-
-from delvjax import maps
-from delvjax.config import Config
 from delvjax.plots import error_curve_figure
 
-from .common import curve, curve_means, curves_rows, env, map_numbers, panel_figure
+from .common import as_vector_map, catchment, curve, curve_means, curves_rows, env, map_numbers, panel_figure
 
 TITLE = "Step distance d of the unit movement (Figs 4.6-4.7)"
 STEPS = 1
@@ -22,19 +19,20 @@ DS = (20.0, 50.0, 100.0, 150.0)
 
 def run(ctx) -> None:
     e = env("env1")
-    swept = maps.sweep(e.arrays(), "delv", Config(), "d", jnp.asarray(DS), spacing=ctx.settings.spacing,
-                       key=jax.random.PRNGKey(ctx.settings.seed))
-    ctx.step("sweep over d")
     items, curves, rows = [], {}, []
-    for i, d in enumerate(DS):  # four results of one program: tabulation
-        vm = jax.tree.map(lambda a: a[i], swept)
+    for d in DS:  # four values through one compiled program
+        c = catchment(ctx, e, "delv", d=d)
+        vm = as_vector_map(c)
         s = map_numbers(e, vm)
+        pct = float(c.catchment_pct()[0])
+        ctx.number(f"catchment:env1:delv:d={d:g}", pct)
         curves[f"d = {d:g} cm"] = curve(e, vm)
         ctx.number(f"error_curve:env1:delv:d={d:g}", curve_means(curves[f"d = {d:g} cm"]))
         ctx.number(f"map:env1:delv:d={d:g}:mean_error_deg", s["mean_error_deg"])
         rows.append({"d cm": d, "mean error °": s["mean_error_deg"], "e>45 %": s["gt45_pct"], "e>90 %": s["gt90_pct"],
-                     "invalid points": s["invalid"]})
+                     "invalid points": s["invalid"], "catchment %": pct})
         items.append((f"d = {d:g} cm: mean error {s['mean_error_deg']:.1f}°", e, vm))
+    ctx.step("four values of d")
     ctx.table("step_distance", "DELV without compass on env1 by step distance d", rows, source="Figs 4.6-4.7",
               note="The thesis prints no numbers for these figures; its claim is that d rarely matters (§4.2).")
     ctx.figure("fig4_6_step_distance_maps.png", panel_figure(

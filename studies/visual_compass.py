@@ -94,7 +94,7 @@ def run(ctx) -> None:
         ax.set_xlabel("visual compass heading error (°)")
         ax.set_yscale("log")
     axes[0].set_ylabel("grid points")
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # applied when drawn (in the figure thread)
     ctx.figure("fig5_11_visual_compass_errors.png", fig,
                "Heading error of the visual compass at the env1 grid points (release heading random per point), "
                "per background setting; log scale.")
@@ -115,7 +115,7 @@ def run(ctx) -> None:
     ax.set_ylim(0, 105)
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3, frameon=False)
     ax.grid(alpha=0.3, axis="y")
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # applied when drawn (in the figure thread)
     ctx.figure("fig5_11_visual_compass_catchment.png", fig,
                "Fig 5.11: catchment with the visual compass per background setting beside the true compass (env1, "
                "default rules); stars: the thesis.")
@@ -137,5 +137,5 @@ def run(ctx) -> None:
     ax.set_ylim(0, 105)
     ax.grid(alpha=0.3)
     ax.legend()
-    fig.tight_layout()
+    fig.set_layout_engine("tight")  # applied when drawn (in the figure thread)
     ctx.figure("compass_noise_catchment.png", fig, "Catchment on env1 vs the compass's Gaussian noise sigma.")

@@ -57,7 +57,7 @@ def random_landmarks(rng, n):
 
 
 def run(env, starts, heads, method, config=None, lanes=rollouts.DEFAULT_LANES, key=0, masks=None,
-        record_paths=False, first_move="homing", collisions="ignore"):
+        record_paths=False, first_move="homing", collisions="ignore", program=None):
     """`rollouts.run_trials` with trial i on noise stream i under one mask; lanes default as the public API
     (so that these programs are the ones `catchment` and `success_rate` compile)."""
     n = starts.shape[0]
@@ -65,7 +65,7 @@ def run(env, starts, heads, method, config=None, lanes=rollouts.DEFAULT_LANES, k
     return rollouts.run_trials(env, jnp.asarray(starts), jnp.asarray(heads), jnp.arange(n, dtype=jnp.int32),
                                jnp.zeros(n, jnp.int32), masks, jax.random.PRNGKey(key), config or make_config(),
                                method, lanes=lanes, record_paths=record_paths, first_move=first_move,
-                               collisions=collisions)
+                               collisions=collisions, program=program)
 
 
 def angle_diff(a, b):
@@ -254,6 +254,30 @@ def test_results_do_not_depend_on_the_trial_blocks(monkeypatch):
     assert outcome.shape == (120,) and (outcome == rollouts.SUCCESS).any() and (outcome != rollouts.SUCCESS).any()
     for field in ("outcome", "steps", "end", "invalid_steps", "first_direction", "first_valid"):
         assert np.array_equal(np.asarray(getattr(whole, field)), np.asarray(getattr(blocks, field)), equal_nan=True)
+
+
+def test_methods_sharing_one_program_give_the_same_numbers_as_their_own_programs():
+    """`program=`: a traced index picks the method (lax.switch) and ALV skips the start snapshot
+    (lax.cond): bitwise the same results, with noise, under occlusion, for a method that reads
+    the start snapshot (DELV) and one that does not (ALV)."""
+    env = make_env(random_landmarks(np.random.default_rng(1), 4))
+    starts, heads, _ = rollouts.release_points(env, jax.random.PRNGKey(3), 20, None, 10.0, 0.0)
+    masks = np.array([[True, True, True, True], [True, False, True, True]])
+    noisy = make_config(**NOISE)
+    family = ("delv", "delv-compass", "alv", "acv")
+    for method in ("delv-compass", "alv"):
+        own = run(env, starts, heads, method, noisy, masks=masks)
+        shared = run(env, starts, heads, method, noisy, masks=masks, program=family)
+        assert np.asarray(own.success).any()
+        for field in ("outcome", "steps", "end", "invalid_steps", "first_direction", "first_valid"):
+            assert np.array_equal(np.asarray(getattr(own, field)), np.asarray(getattr(shared, field)), equal_nan=True)
+
+
+@pytest.mark.parametrize("program", [("alv", "acv"), ("delv-compass", "nope")])
+def test_a_program_must_hold_known_methods_including_the_one_run(program):
+    env = make_env(FOUR)
+    with pytest.raises(InputError, match="program|method"):
+        delvjax.catchment(env, method="delv-compass", spacing=100.0, program=program)
 
 
 def test_zero_noise_reproduces_the_noise_free_results_exactly():

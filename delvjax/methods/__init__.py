@@ -43,6 +43,12 @@ DESCRIPTIONS: dict[str, str] = {
 }
 
 
+def uses_start_view(name: str) -> bool:
+    """Whether the method reads the snapshot at the start of the agent's unit move (DELV's
+    motion parallax, docs/model.md §3.1); the others read only the current view."""
+    return name.split("-")[0] == "delv"
+
+
 def get_method(name: str) -> Method:
     from ..errors import InputError
 

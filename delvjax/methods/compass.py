@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Callable
 
+import jax
 import jax.numpy as jnp
 from jax import lax
 from jax import Array
@@ -57,9 +58,13 @@ def visual_compass_errors(env, points: Array, headings: Array, config: Config) -
     The home image is taken at home with heading alpha_r, the current one at `points` with
     `headings`; error = wrap(estimate - (h - alpha_r)). Rendering is noise-free.
     """
-    import jax
+    return _visual_compass_errors(env.arrays(), jnp.asarray(points, jnp.float32), jnp.asarray(headings, jnp.float32),
+                                  config)
 
-    from ..sensing import render
+
+@jax.jit
+def _visual_compass_errors(env, points: Array, headings: Array, config: Config) -> Array:
+    from ..sensing import render  # sensing imports this module's users: imported late
 
     visible = jnp.ones(env.landmarks.shape[0], bool)
     _, home_gray = render(env, visible, env.home, jnp.asarray(config.alpha_r, jnp.float32), config)
