@@ -55,7 +55,7 @@ from .config import Config
 from .errors import InputError
 from .geometry import TWO_PI, unit, wrap
 from .maps import grid_included, grid_points, random_headings, stream_keys
-from .methods import get_method, uses_start_view
+from .methods import get_method, uses_gray, uses_start_view
 from .metrics import angular_error_deg, error_point_rates
 from .scene import Env
 from .sensing import UnitMove, observe_move, record_home, unit_move_poses
@@ -255,8 +255,11 @@ def _run_trials(env: Env, home: UnitMove, starts: Array, headings: Array, key_in
     noise stream; recorded as first_direction, and the first heading under first_move="homing"),
     then one move per iteration, so the method appears once in the program."""
     fn = program_method(methods)
-    starts_used = [uses_start_view(m) for m in methods]
-    with_start = starts_used[0] if len(set(starts_used)) == 1 else jnp.asarray(starts_used)[method_index]
+    def needs(flags: list[bool]) -> Array | bool:  # the same for every method: decided when tracing
+        return flags[0] if len(set(flags)) == 1 else jnp.asarray(flags)[method_index]
+
+    with_start = needs([uses_start_view(m) for m in methods])
+    with_gray = needs([uses_gray(m, config.channel) for m in methods])
     n_trials = starts.shape[0]
     n_lanes = max(1, min(lanes, n_trials))
     _, k_roll, _ = rollout_keys(key)
@@ -278,7 +281,7 @@ def _run_trials(env: Env, home: UnitMove, starts: Array, headings: Array, key_in
         start, end, h_start, h_end, psi_hat, k_obs = jax.tree.map(lambda a, b: jnp.where(first, a, b),
                                                                   at_release, moving)
         view = observe_move(env, masks[mask_index[ts]], start, end, h_start, h_end, config.d, psi_hat, k_obs, config,
-                            with_start)
+                            with_start, with_gray)
         angle, valid = fn(home, view, config, method_index)
         direction = jnp.where(valid, wrap(h_end + angle), jnp.nan)
         new_heading = jnp.where(valid, direction, wrap(h_end))

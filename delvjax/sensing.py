@@ -97,18 +97,36 @@ def distant_background(heading: Array, n_pix: int) -> Array:
     return 0.45 + 0.25 * sin3 + 0.15 * sin7
 
 
-def render(env: Env, visible: Array, pos: Array, heading: Array, config: Config) -> tuple[Array, Array]:
+def computed_if(flag: Array | bool, fn):
+    """fn() where `flag`, else zeros of the same shapes. A Python bool decides when tracing; a
+    traced flag at run time (`lax.cond`: unbatched under vmap, so the skipped branch costs nothing)."""
+
+    def zeros():
+        return jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), jax.eval_shape(fn))
+
+    if isinstance(flag, bool):
+        return fn() if flag else zeros()
+    return jax.lax.cond(flag, fn, zeros)
+
+
+def render(env: Env, visible: Array, pos: Array, heading: Array, config: Config,
+           with_gray: Array | bool = True) -> tuple[Array, Array]:
     """Ring image at `pos` with `heading` (docs/model.md §2.2-2.3): (mask bool (n_pix,), gray (n_pix,)).
 
     Pixel j looks along world angle heading + 2*pi*j/n_pix; landmark = 1, else background.
+    `with_gray` False leaves gray zero (`computed_if`; for methods that read only the mask).
     """
     n = config.n_pix
     mask = ray_hits(env.landmarks, visible & env.valid, pos, heading, n)
-    directions = rotate(jnp.asarray(pixel_directions(n)), heading)
-    walls = background_of_angle(TWO_PI * wall_coordinate(pos, directions, env.arena))
-    code = jnp.asarray(config.background)  # traced: every setting shares one compiled program
-    back = jnp.where(code == 0, distant_background(heading, n), jnp.where(code == 1, walls, 0.0))
-    return mask, jnp.where(mask, 1.0, back)
+
+    def gray():
+        directions = rotate(jnp.asarray(pixel_directions(n)), heading)
+        walls = background_of_angle(TWO_PI * wall_coordinate(pos, directions, env.arena))
+        code = jnp.asarray(config.background)  # traced: every setting shares one compiled program
+        back = jnp.where(code == 0, distant_background(heading, n), jnp.where(code == 1, walls, 0.0))
+        return jnp.where(mask, 1.0, back)
+
+    return mask, computed_if(with_gray, gray)
 
 
 def _run_indices(flags: Array, max_blobs: int) -> Array:
@@ -162,9 +180,10 @@ def sort_blobs(bearing: Array, valid: Array) -> tuple[Array, Array]:
     return jnp.where(valid, b, 0.0), valid
 
 
-def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, config: Config) -> Snapshot:
+def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, config: Config,
+             with_gray: Array | bool = True) -> Snapshot:
     """Render, extract blobs and add bearing noise (docs/model.md §2.5) for one viewpoint."""
-    mask, gray = render(env, visible, pos, heading, config)
+    mask, gray = render(env, visible, pos, heading, config, with_gray)
     bearing, valid = extract_blobs(mask, env.landmarks.shape[0])
     noise = config.noise.bearing * jax.random.normal(key, bearing.shape)
     bearing, valid = sort_blobs(bearing + noise, valid)
@@ -173,31 +192,21 @@ def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, c
 
 def observe_move(env: Env, visible: Array, start: Array, end: Array, heading_start: Array, heading_end: Array,
                  d_hat: Array, psi_hat: Array, key: Array, config: Config,
-                 with_start: Array | bool = True) -> UnitMove:
+                 with_start: Array | bool = True, with_gray: Array | bool = True) -> UnitMove:
     """Snapshots at `start` and `end` of a move already made (true poses given), plus the
     agent's readings: odometry (d_hat, psi_hat) and a compass reading of heading_end - alpha_r
     with N(0, noise.compass) error. Rollouts use this for the step just made.
 
     `with_start` False leaves the start snapshot zero (a method that reads only the current
-    view); a traced flag skips its rendering at run time (`lax.cond`). The end snapshot's
-    noise does not depend on it.
+    view), `with_gray` False the gray channels (`computed_if`; a traced flag skips the work at
+    run time). No noise draw depends on them.
     """
     k_compass, k_start, k_end = jax.random.split(key, 3)
     compass = wrap(heading_end - config.alpha_r + config.noise.compass * jax.random.normal(k_compass))
 
-    def start_view():
-        return snapshot(env, visible, start, heading_start, k_start, config)
-
-    def blank():
-        return jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), jax.eval_shape(start_view))
-
-    if isinstance(with_start, bool):
-        first = start_view() if with_start else blank()
-    else:
-        first = jax.lax.cond(with_start, start_view, blank)
     return UnitMove(
-        start=first,
-        end=snapshot(env, visible, end, heading_end, k_end, config),
+        start=computed_if(with_start, lambda: snapshot(env, visible, start, heading_start, k_start, config, with_gray)),
+        end=snapshot(env, visible, end, heading_end, k_end, config, with_gray),
         d_hat=jnp.asarray(d_hat, jnp.float32),
         psi_hat=jnp.asarray(psi_hat, jnp.float32),
         compass=compass,

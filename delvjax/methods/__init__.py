@@ -49,6 +49,12 @@ def uses_start_view(name: str) -> bool:
     return name.split("-")[0] == "delv"
 
 
+def uses_gray(name: str, channel: str) -> bool:
+    """Whether the method reads the gray channel (docs/model.md §2.2): the visual compass
+    (§4.4), or an image method (warping, MFDID) on `channel="gray"`."""
+    return name.endswith("-visual") or (name in ("warping", "mfdid") and channel == "gray")
+
+
 def get_method(name: str) -> Method:
     from ..errors import InputError
 
