@@ -40,17 +40,20 @@ class Settings:
 
     spacing: grid spacing cm (docs/model.md §5, 25 = 40 x 40; --quick: 100 = 10 x 10); trials: rollouts
     per success-rate distance bin (thesis: 100; they fill one trial block, so --quick keeps
-    them); seed: every random heading, release point and noise draw.
+    them); seed: every random heading, release point and noise draw; lanes: trials advanced side by
+    side in the rollout program (`rollouts.run_trials`; no number depends on it): 256 fill the
+    program best on the large calls of a full run, 128 waste less on the 99-trial calls of --quick.
     """
 
     quick: bool = False
     seed: int = 0
     spacing: float = 25.0
     trials: int = 100
+    lanes: int = 256
 
     @classmethod
     def make(cls, quick: bool = False, seed: int = 0) -> "Settings":
-        return cls(quick=quick, seed=seed, spacing=100.0 if quick else 25.0, trials=100)
+        return cls(quick=quick, seed=seed, spacing=100.0 if quick else 25.0, trials=100, lanes=128 if quick else 256)
 
 
 def settings_record(settings: Settings) -> dict:

@@ -71,7 +71,7 @@ PHYSICAL_RULES = {"first_move": "release", "collisions": "fail"}
 # "Within home_radius" is inclusive; 1e-3 cm absorbs float32 rounding of a release placed at
 # exactly home_radius (the first success-rate bin), so such a release counts as home.
 HOME_TOLERANCE = 1e-3
-DEFAULT_LANES = 128
+DEFAULT_LANES = 256
 DEFAULT_DISTANCES = tuple(float(v) for v in range(50, 451, 50))
 TRIAL_BLOCK = 16384
 MASK_ROWS = 64  # visibility masks are padded to this many rows (all k of 6 landmarks: 42; one program)
@@ -729,8 +729,9 @@ def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[S
                  n_starts: int = 6, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
                  max_steps: int = 50, home_radius: float = 50.0, clearance: float = 10.0,
                  levels: int | None = None, d: float = 50.0, background: str = "distant", channel: str = "mask",
-                 n_heading: int = 360, first_move: str = "homing", collisions: str = "ignore",
-                 program: Sequence[str] | None = None, **options: float) -> Trajectories:
+                 n_heading: int = 360, lanes: int = DEFAULT_LANES, first_move: str = "homing",
+                 collisions: str = "ignore", program: Sequence[str] | None = None,
+                 **options: float) -> Trajectories:
     """Homing paths (Figs 4.11, 5.8) from `starts` [(x, y), ...] or `n_starts` seeded random release points.
 
     Random release points are uniform in the arena, at least d from the walls, farther than
@@ -743,8 +744,8 @@ def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[S
     from .api import visible_mask
     from .options import finite, positive_int
 
-    env, config, heading, key, max_steps, home_radius, _, clearance = _rollout_options(
-        env, method, max_steps, home_radius, DEFAULT_LANES, clearance, heading_deg, seed,
+    env, config, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
+        env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         dict(d=d, levels=levels, background=background, channel=channel, n_heading=n_heading, **options),
         first_move, collisions, program)
     visible = visible_mask(env, hidden)
@@ -760,7 +761,8 @@ def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[S
     if heading is not None:
         heads = jnp.full(pts.shape[0], heading, jnp.float32)
     return trajectory_trials(env, method, config, pts, heads, key=key, visible=visible, home_radius=home_radius,
-                             max_steps=max_steps, first_move=first_move, collisions=collisions, program=program)
+                             max_steps=max_steps, lanes=lanes, first_move=first_move, collisions=collisions,
+                             program=program)
 
 
 def _check_starts(env: Env, starts, finite) -> Array:
