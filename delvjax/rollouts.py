@@ -27,7 +27,7 @@ results do not depend on how trials are scheduled; with every sigma 0 the draws 
 multiplied by 0 and the noise-free numbers are reproduced exactly.
 
 Batching: trials run in blocks of TRIAL_BLOCK (padded), each block one call of the same
-jitted program (one compilation per method and landmark count), so memory is bounded by the
+jitted program (one compilation per set of methods, `program`, and landmark count), so memory is bounded by the
 block. Inside a block `lanes` trials advance together (vmap) in a `lax.while_loop`; a lane
 whose trial ends (most succeed within 15 moves) is refilled with the next pending trial, so
 the loop costs about sum(steps + 1) / lanes iterations instead of max_steps per chunk. A
@@ -202,7 +202,7 @@ def run_trials(env: Env, starts: Array, headings: Array, key_index: Array, mask_
 
 def trial_block(n: int) -> int:
     """Trials run in blocks of TRIAL_BLOCK (padded), so catchments of every environment and
-    occlusion, success-rate tables and trajectories share one compiled program per method; each
+    occlusion, success-rate tables and trajectories share one compiled program; each
     trial keeps its own noise streams, so the numbers do not depend on the blocking."""
     return TRIAL_BLOCK
 

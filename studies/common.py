@@ -1,7 +1,7 @@
 """What the thesis studies share: padded environments, cached runs, hull error rates, figures.
 
 Every environment is padded to `PAD` landmark slots and stripped of its name, and vector
-maps are read from catchment runs, so one compiled program per method serves every
+maps are read from catchment runs, so one compiled rollout program (all methods) serves every
 environment, occlusion, layout, quantization level, background and noise setting (the
 numbers do not change: padding slots are masked out). Rollouts run under the default
 rules (docs/model.md §5) and the physical rules (first move along the release heading, landmark
@@ -47,7 +47,7 @@ def env(name: str) -> Env:
 def vector_map(ctx, e: Env, method: str, **options) -> VectorMap:
     """The vector map of `method`, read from a catchment run: the rollouts' first directions are the
     vector map of the same seed (the same numbers as `delvjax.vector_map`, tested), and every study
-    then needs one compiled program per method."""
+    then needs one compiled program (`PROGRAM`)."""
     return as_vector_map(catchment(ctx, e, method, **options))
 
 
@@ -207,7 +207,7 @@ def success_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, s
     from delvjax.plots_rollouts import success_rate_figure
 
     tables = {}
-    for m in methods:  # a few methods x two rule sets; one compiled program per method
+    for m in methods:  # a few methods x two rule sets; one compiled program
         for rules in RULES:
             tables[f"{LABEL[m]} ({rules})"] = t = success_table(ctx, e, m, rules)
             summ = success_summary(t)

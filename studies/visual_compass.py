@@ -4,8 +4,8 @@ For each background setting (`distant`, `walls`, `none`; docs/model.md §2.3): t
 heading error at every grid point (release heading random per point), and the catchment
 and mean angular error of DELV, ACV and ALV with the visual compass beside the true
 compass, on env1, under the default and the physical rollout rules. Then a compass-noise
-sweep (sigma 0-45 deg) of the catchment of DELV, ACV and ALV with the true compass: one
-compiled program per method, the sigma being a traced leaf of `Config`.
+sweep (sigma 0-45 deg) of the catchment of DELV, ACV and ALV with the true compass: the
+one compiled rollout program, the sigma being a traced leaf of `Config`.
 """
 
 from __future__ import annotations
@@ -121,7 +121,7 @@ def run(ctx) -> None:
                "default rules); stars: the thesis.")
     # compass-noise sweep
     rows = []
-    for m in TRUE:  # one compiled program per method; sigma is traced
+    for m in TRUE:  # one compiled program for all; sigma is traced
         pcts = [float(catchment(ctx, e, m, compass_noise_deg=s).catchment_pct()[0]) for s in SIGMAS]
         ctx.number(f"compass_noise:env1:{m}:catchment", pcts)
         rows += [{"method": LABEL[m], "compass sigma °": s, "catchment %": p} for s, p in zip(SIGMAS, pcts)]
