@@ -379,6 +379,35 @@ def test_crash_mid_study_leaves_it_incomplete_then_resumes(run, monkeypatch):
     assert reproduce.is_current(out / "environments", reproduce.study_hash(module, TINY))
 
 
+def test_a_figure_that_fails_leaves_its_study_incomplete(run, monkeypatch):
+    """Figures are drawn on a second thread and study.json is written after them: a figure that
+    cannot be drawn raises from reproduce(), and its study has no study.json (it runs again)."""
+    import matplotlib.pyplot as plt
+
+    out, _, _ = run
+    module = reproduce.registry(["environments"])["environments"]
+    record = out / "environments" / reproduce.STUDY_FILE
+    record.unlink()
+
+    def broken_figure(ctx):
+        fig, _ = plt.subplots()
+
+        def fail(*args, **kwargs):
+            raise RuntimeError("cannot draw")
+
+        fig.savefig = fail
+        ctx.figure("broken.png", fig, "a figure that fails")
+
+    monkeypatch.setattr(module, "run", broken_figure)
+    with pytest.raises(RuntimeError, match="cannot draw"):
+        reproduce.reproduce(out, settings=TINY, progress=False)
+    assert not record.exists()
+    assert not (out / "environments" / "broken.png").exists()
+    assert dot_files(out) == []
+    monkeypatch.undo()
+    assert reproduce.reproduce(out, settings=TINY, progress=False)["ran"] == ["environments"]
+
+
 def test_changed_settings_rerun(run):
     out, _, _ = run
     other = reproduce.Settings(spacing=TINY.spacing, trials=TINY.trials, seed=TINY.seed + 1)
