@@ -209,10 +209,15 @@ def trial_block(n: int) -> int:
 
 def check_program(method: str, program: Sequence[str] | None) -> tuple[str, ...]:
     """The validated methods of one rollout program (`run_trials`), a tuple containing `method`."""
+    from .methods import METHODS
+
     get_method(method)
+    if program is not None and (isinstance(program, (str, bytes)) or not hasattr(program, "__iter__")):
+        raise InputError("program", program, "must be a list of method names")
     methods = (method,) if program is None else tuple(program)
-    for m in methods:
-        get_method(m)
+    unknown = [m for m in methods if m not in METHODS]
+    if unknown:
+        raise InputError("program", list(methods), f"unknown method {unknown[0]!r} (choose from {', '.join(METHODS)})")
     if method not in methods:
         raise InputError("program", list(methods), f"must contain the method {method!r}")
     return methods
