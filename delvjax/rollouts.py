@@ -55,7 +55,7 @@ from .config import Config
 from .errors import InputError
 from .geometry import TWO_PI, unit, wrap
 from .maps import grid_included, grid_points, random_headings, stream_keys
-from .methods import get_method, uses_gray, uses_start_view
+from .methods import METHODS, get_method, uses_gray, uses_start_view
 from .metrics import angular_error_deg, error_point_rates
 from .scene import Env
 from .sensing import UnitMove, observe_move, record_home, unit_move_poses
@@ -209,8 +209,6 @@ def trial_block(n: int) -> int:
 
 def check_program(method: str, program: Sequence[str] | None) -> tuple[str, ...]:
     """The validated methods of one rollout program (`run_trials`), a tuple containing `method`."""
-    from .methods import METHODS
-
     get_method(method)
     if program is not None and (isinstance(program, (str, bytes)) or not hasattr(program, "__iter__")):
         raise InputError("program", program, "must be a list of method names")
@@ -260,6 +258,7 @@ def _run_trials(env: Env, home: UnitMove, starts: Array, headings: Array, key_in
     noise stream; recorded as first_direction, and the first heading under first_move="homing"),
     then one move per iteration, so the method appears once in the program."""
     fn = program_method(methods)
+
     def needs(flags: list[bool]) -> Array | bool:  # the same for every method: decided when tracing
         return flags[0] if len(set(flags)) == 1 else jnp.asarray(flags)[method_index]
 

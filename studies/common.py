@@ -35,8 +35,7 @@ HOME_RADIUS = 50.0
 # a traced index picks the method): compiling a rollout program costs about 6 CPU-seconds, so the
 # reproduction compiles one, not eight. Rendering a method does not need (the start snapshot, the gray
 # channel) is skipped at run time, so no method runs slower for sharing (docs/reproduce.md).
-METHODS = ("delv", "delv-compass", "alv", "acv", "delv-visual", "alv-visual", "acv-visual", "warping")
-PROGRAM = {m: METHODS for m in METHODS}
+PROGRAM = ("delv", "delv-compass", "alv", "acv", "delv-visual", "alv-visual", "acv-visual", "warping")
 
 
 def env(name: str) -> Env:
@@ -53,14 +52,14 @@ def vector_map(ctx, e: Env, method: str, **options) -> VectorMap:
 
 def catchment(ctx, e: Env, method: str, rules: str = "default", **options) -> rollouts.Catchment:
     return delvjax.catchment(e.arrays(), method=method, spacing=ctx.settings.spacing, seed=ctx.settings.seed,
-                             home_radius=HOME_RADIUS, program=PROGRAM[method], lanes=ctx.settings.lanes,
+                             home_radius=HOME_RADIUS, program=PROGRAM, lanes=ctx.settings.lanes,
                              **RULES[rules], **options)
 
 
 def success_table(ctx, e: Env, method: str, rules: str = "default", **options) -> list[dict]:
     """Success rate per release distance 50..450 cm (`settings.trials` per bin, Figs 4.10b, 5.7b)."""
     res = delvjax.success_rate(e.arrays(), method=method, trials=ctx.settings.trials, seed=ctx.settings.seed,
-                               home_radius=HOME_RADIUS, program=PROGRAM[method], lanes=ctx.settings.lanes,
+                               home_radius=HOME_RADIUS, program=PROGRAM, lanes=ctx.settings.lanes,
                                **RULES[rules], **options)
     return res.table()
 
@@ -233,7 +232,7 @@ def trajectory_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str
     results, rows = {}, []
     for m in methods:
         tr = delvjax.trajectories(e.arrays(), method=m, n_starts=n_starts, seed=ctx.settings.seed,
-                                  home_radius=HOME_RADIUS, program=PROGRAM[m], lanes=ctx.settings.lanes)
+                                  home_radius=HOME_RADIUS, program=PROGRAM, lanes=ctx.settings.lanes)
         results[LABEL[m]] = tr
         rows += trajectory_rows(m, tr)
         ctx.number(f"trajectories:env1:{m}:reach_home", int(np.asarray(tr.success).sum()))

@@ -73,7 +73,7 @@ def run(ctx) -> None:
             spacing = settings.spacing if name.startswith("env") else max(settings.spacing, RING_SPACING)
             res = {rules: rollouts.catchment_area(e.arrays(), m, config, spacing=spacing, key=key,
                                                   masks=masks, hidden=hidden, home_radius=HOME_RADIUS,
-                                                  program=PROGRAM[m], lanes=settings.lanes, **RULES[rules])
+                                                  program=PROGRAM, lanes=settings.lanes, **RULES[rules])
                    for rules in RULES}
             summaries = {rules: rollouts.catchment_summary(c)["per_mask"] for rules, c in res.items()}
             for i, row in enumerate(summaries["default"]):
