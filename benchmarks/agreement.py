@@ -20,9 +20,10 @@ import reference as ref  # noqa: E402
 from conftest import random_landmarks  # noqa: E402
 
 import delvjax  # noqa: E402
-from delvjax.config import Config  # noqa: E402
-from delvjax.maps import grid_included, grid_points, homing_directions, random_headings  # noqa: E402
-from delvjax.scene import stack_envs  # noqa: E402
+from delvjax.core.sensor import Sensor  # noqa: E402
+from delvjax.registry import METHODS  # noqa: E402
+from delvjax.core.maps import grid_included, grid_points, homing_directions, random_headings  # noqa: E402
+from delvjax.core.scene import stack_envs  # noqa: E402
 
 ARENA, HOME = [0, 0, 1000, 1000], [500, 500]
 
@@ -41,7 +42,7 @@ def main() -> None:
     included = np.asarray(jax.vmap(lambda e: grid_included(e, points, 10.0))(envs))
     batched = jax.vmap(homing_directions, in_axes=(0, None, None, None, None, None))
     for method in a.methods:
-        direction, valid = (np.asarray(v) for v in batched(envs, points, headings, key, Config(), method))
+        direction, valid = (np.asarray(v) for v in batched(envs, points, headings, key, Sensor(), METHODS[method]))
         rng = np.random.default_rng(a.seed)
         agree = total = 0
         for e, lms in enumerate(layouts):  # the twin is per point by design

@@ -27,11 +27,11 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from reference_rollouts import HomeRecord, reference_rollout  # noqa: E402
 
-from delvjax import rollouts  # noqa: E402
-from delvjax.maps import grid_included, grid_points, random_headings  # noqa: E402
-from delvjax.methods import METHODS  # noqa: E402
-from delvjax.options import make_config  # noqa: E402
-from delvjax.scene import load_env  # noqa: E402
+from delvjax.core import rollouts  # noqa: E402
+from delvjax.core.maps import grid_included, grid_points, random_headings  # noqa: E402
+from delvjax.registry import METHODS  # noqa: E402
+from delvjax.core.sensor import Sensor  # noqa: E402
+from delvjax.presets import load_env  # noqa: E402
 
 
 def timed(fn, *args, **kw):
@@ -50,18 +50,18 @@ def grid_trials(env, spacing, seed):
 
 
 def bench_method(env, method, spacing, reps, lanes):
-    config = make_config()
+    config, module = Sensor(), METHODS[method]
 
     def rollouts_only(seed):
         pts, heads, cells, key = grid_trials(env, spacing, seed)
         n = pts.shape[0]
         return rollouts.run_trials(env, pts, heads, cells, jnp.zeros(n, jnp.int32), env.valid[None], key, config,
-                                   method, lanes=lanes)
+                                   module, lanes=lanes)
 
     res, first = timed(rollouts_only, 0)
     warm = min(timed(rollouts_only, s)[1] for s in range(1, reps + 1))
-    _, first_full = timed(rollouts.catchment_area, env, method, config, spacing, None, jax.random.PRNGKey(0), lanes=lanes)
-    full = min(timed(rollouts.catchment_area, env, method, config, spacing, None, jax.random.PRNGKey(s), lanes=lanes)[1]
+    _, first_full = timed(rollouts.catchment_area, env, module, config, spacing, None, jax.random.PRNGKey(0), lanes=lanes)
+    full = min(timed(rollouts.catchment_area, env, module, config, spacing, None, jax.random.PRNGKey(s), lanes=lanes)[1]
                for s in range(1, reps + 1))
     steps = np.asarray(res.steps)
     print(f"{method:13s} rollouts: {steps.size} starts, {int(steps.sum())} moves (mean {steps.mean():.1f}, "
@@ -90,14 +90,14 @@ def bench_reference(env, method, spacing, n_points):
 
 def bench_strategies(env, method, spacing):
     """Queue with refill (lanes) vs chunks without refill (each chunk waits for its slowest trial)."""
-    config = make_config()
+    config, module = Sensor(), METHODS[method]
     pts, heads, cells, key = grid_trials(env, spacing, 1)
     n = pts.shape[0]
     masks = env.valid[None]
     print(f"strategies ({method}, {n} starts):")
     for lanes in (64, 128, 256, 512, n):
         run = lambda: rollouts.run_trials(env, pts, heads, cells, jnp.zeros(n, jnp.int32), masks, key, config,  # noqa: E731
-                                          method, lanes=lanes)
+                                          module, lanes=lanes)
         timed(run)
         print(f"  queue, {lanes:4d} lanes: warm {min(timed(run)[1] for _ in range(2)):.3f} s")
     for chunk in (128, 256):
@@ -108,7 +108,7 @@ def bench_strategies(env, method, spacing):
 
         def chunked():
             return [rollouts.run_trials(env, p[i:i + chunk], h[i:i + chunk], c[i:i + chunk],
-                                        jnp.zeros(chunk, jnp.int32), masks, key, config, method, lanes=chunk)
+                                        jnp.zeros(chunk, jnp.int32), masks, key, config, module, lanes=chunk)
                     for i in range(0, n + pad, chunk)]
 
         timed(chunked)

@@ -21,11 +21,11 @@ import reference as ref  # noqa: E402
 from timing import reference_seconds_per_point, time_map_program  # noqa: E402
 
 import delvjax  # noqa: E402
-from delvjax.config import Config  # noqa: E402
+from delvjax.core.sensor import Sensor  # noqa: E402
 
 
 def bench(env_name: str, method: str, spacing: float, repeats: int, ref_points: int) -> dict:
-    run = time_map_program(env_name, method, Config(), spacing, repeats)
+    run = time_map_program(env_name, method, Sensor(), spacing, repeats)
     # the whole public call (grid, headings, errors: one jitted program) for reference
     delvjax.vector_map(env_name, method=method, spacing=spacing).error_deg.block_until_ready()
     t0 = time.perf_counter()

@@ -23,7 +23,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import reference_holistic as ref  # noqa: E402
 from timing import reference_seconds_per_point, time_map_program  # noqa: E402
 
-from delvjax.config import Config  # noqa: E402
+from delvjax.core.sensor import Sensor  # noqa: E402
+from delvjax.registry import METHODS  # noqa: E402
 
 LANES = 8  # 32-bit lanes per vector instruction in the code XLA emits here (256-bit AVX2/AVX-512VL)
 
@@ -39,7 +40,7 @@ def cpu_ghz() -> float:
     return 2.6
 
 
-def floor(n_points: int, cfg: Config, channel: str) -> dict:
+def floor(n_points: int, sensor: Sensor, channel: str) -> dict:
     """Operation and byte counts of the exhaustive warping search and the time they bound.
 
     mask: per hypothesis ceil(n_pix/32) words of xor + population count + add (+ key, min).
@@ -49,24 +50,25 @@ def floor(n_points: int, cfg: Config, channel: str) -> dict:
     cycles. Bytes: the predicted-image table is read once per hypothesis row but stays in
     cache (its size is printed); per point only the image and its rotations are new.
     """
-    hyps = n_points * cfg.n_alpha * cfg.n_rho * cfg.n_psi
-    n_ar = cfg.n_alpha * cfg.n_rho
+    w = METHODS["warping"]
+    hyps = n_points * w.n_alpha * w.n_rho * w.n_psi
+    n_ar = w.n_alpha * w.n_rho
     cores = os.cpu_count() or 1
     hz = cpu_ghz() * 1e9
     if channel == "mask":
-        words = -(-cfg.n_pix // 32)
+        words = -(-sensor.n_pix // 32)
         ops = hyps * (3 * words + 2)
         cycles = hyps * words / LANES
         table = n_ar * words * 4
     else:
-        ops = hyps * (3 * cfg.n_pix + 2)
-        cycles = hyps * cfg.n_pix / LANES
-        table = n_ar * cfg.n_pix * 4
+        ops = hyps * (3 * sensor.n_pix + 2)
+        cycles = hyps * sensor.n_pix / LANES
+        table = n_ar * sensor.n_pix * 4
     return {"hypotheses": hyps, "gops": ops / 1e9, "table_kb": table / 1e3, "floor_ms": 1e3 * cycles / (cores * hz)}
 
 
 def bench(env_name: str, method: str, channel: str, spacing: float, repeats: int, ref_points: int) -> dict:
-    cfg = Config(channel=channel)
+    cfg = Sensor(channel=channel)
     run = time_map_program(env_name, method, cfg, spacing, repeats)
     compile_s, warm, cpu, points = run["compile_s"], run["warm"], run["cpu"], run["points"]
     ref_per_point = reference_seconds_per_point(ref.reference_direction, run, method, ref_points,

@@ -8,12 +8,14 @@ import jax
 import numpy as np
 
 import delvjax
-from delvjax import maps
-from delvjax.config import Config
+from delvjax.core import maps
+from delvjax.core.sensor import Sensor
+from delvjax.registry import METHODS
 
 
-def time_map_program(env_name: str, method: str, cfg: Config, spacing: float, repeats: int) -> dict:
-    """Compile `maps.homing_directions` for the full grid, then time `repeats` warm runs.
+def time_map_program(env_name: str, method: str, sensor: Sensor, spacing: float, repeats: int) -> dict:
+    """Compile `maps.homing_directions` of the registry method `method` for the full grid, then time
+    `repeats` warm runs.
 
     Returns env, points, headings, compile_s, warm (list of wall seconds), cpu (list of CPU seconds).
     """
@@ -22,13 +24,14 @@ def time_map_program(env_name: str, method: str, cfg: Config, spacing: float, re
     points = jax.numpy.asarray(maps.grid_points(env.arena, spacing))
     headings = maps.random_headings(key, points.shape[0])
     t0 = time.perf_counter()
-    compiled = maps.homing_directions.lower(env, points, headings, key, cfg, method).compile()
+    module = METHODS[method]
+    compiled = maps.homing_directions.lower(env, points, headings, key, sensor, module).compile()
     compile_s = time.perf_counter() - t0
-    jax.block_until_ready(compiled(env, points, headings, key, cfg))
+    jax.block_until_ready(compiled(env, points, headings, key, sensor, module))
     warm, cpu = [], []
     for _ in range(repeats):
         t0, c0 = time.perf_counter(), time.process_time()
-        jax.block_until_ready(compiled(env, points, headings, key, cfg))
+        jax.block_until_ready(compiled(env, points, headings, key, sensor, module))
         warm.append(time.perf_counter() - t0)
         cpu.append(time.process_time() - c0)
     return {"env": env, "points": points, "headings": headings, "compile_s": compile_s, "warm": warm, "cpu": cpu}

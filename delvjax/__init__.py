@@ -1,19 +1,28 @@
 """delvjax: the Distance-Estimated Landmark Vector (DELV) homing method and its comparators
 as pure, jit/vmap-able JAX programs (the thesis "Distance-Estimated Landmark Vector Model for
-Vision-Based Homing Navigation", chapters 3-5; see docs/model.md)."""
+Vision-Based Homing Navigation", chapters 3-5; see docs/model.md).
 
-from .api import catchment, load_env, success_rate, trajectories, vector_map
-from .config import Config, Noise
-from .errors import InputError
-from .maps import VectorMap
-from .methods import METHODS
-from .metrics import error_curve, error_point_rates, summarize_map
-from .scene import Env, make_env
-from .sensing import Snapshot, UnitMove
+`delvjax.core` is the model as array programs (methods as equinox modules, sensing, maps,
+rollouts); this top level is the edge: names, options, files, figures, CLI and this API.
+"""
+
+from .api import load_env, vector_map
+from .api_rollouts import catchment, success_rate, trajectories
+from .core.errors import InputError
+from .core.maps import VectorMap
+from .core.methods import (ACV, ALV, DELV, MFDID, CartwrightCollett, Compass, DELVGap, HomingMethod, Method, Program,
+                           VisualCompass, Warping)
+from .core.metrics import error_curve, error_point_rates, summarize_map
+from .core.scene import Env
+from .core.sensing import Snapshot, UnitMove
+from .core.sensor import Noise, Sensor
+from .presets import make_env
+from .registry import METHODS
 
 __all__ = [
-    "Config", "Env", "InputError", "METHODS", "Noise", "Snapshot", "UnitMove", "VectorMap",
-    "error_curve", "error_point_rates", "load_env", "make_env", "summarize_map", "vector_map",
-    "catchment", "success_rate", "trajectories",
+    "ACV", "ALV", "CartwrightCollett", "Compass", "DELV", "DELVGap", "Env", "HomingMethod", "InputError", "METHODS", "MFDID",
+    "Method", "Noise", "Program", "Sensor", "Snapshot", "UnitMove", "VectorMap", "VisualCompass", "Warping",
+    "catchment", "error_curve", "error_point_rates", "load_env", "make_env", "success_rate", "summarize_map",
+    "trajectories", "vector_map",
 ]
 __version__ = "0.1.0"

@@ -13,7 +13,7 @@ from typing import Iterator, Sequence
 
 import numpy as np
 
-from .errors import InputError
+from .core.errors import InputError
 
 
 def check_output_path(path: str | Path, field: str, suffixes: Sequence[str]) -> Path:
@@ -96,15 +96,8 @@ def write_json(path: str | Path, obj) -> None:
         Path(tmp).write_text(json.dumps(_jsonable(obj), indent=2) + "\n")
 
 
-def save_figure(fig, path: str | Path, dpi: int = 150) -> None:
-    """Write `fig` atomically (format from the suffix) and close it."""
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)  # leaves pyplot's registry; the figure can still be drawn
-    write_figure(fig, path, dpi)
-
-
 def write_figure(fig, path: str | Path, dpi: int = 150) -> None:
-    """Render a figure already closed in pyplot (no pyplot state: safe in a worker thread)."""
+    """Write a figure atomically, format from the suffix. Figures come from `plots.subplots`, outside
+    pyplot's state, so this is safe in a worker thread and leaves nothing open."""
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=dpi, bbox_inches="tight", format=Path(path).suffix.lstrip(".").lower())

@@ -1,4 +1,5 @@
-"""The one place where user options (CLI flags, API keywords) become a validated `Config`.
+"""The one place where user options (CLI flags, API keywords) become validated modules: a
+method (`registry`) with its settings and a `Sensor`.
 
 Every check runs before any array work and raises `InputError` naming the field and value.
 Public angles are in degrees; the core sees radians.
@@ -6,10 +7,15 @@ Public angles are in degrees; the core sees radians.
 
 from __future__ import annotations
 
+import dataclasses
+import inspect
 import math
 
-from .config import BACKGROUNDS, CHANNELS, Config, Noise
-from .errors import InputError
+from .core.errors import InputError
+from .core.methods import HomingMethod, Warping
+from .core.sensor import BACKGROUNDS, CHANNELS, Noise, Sensor
+from .registry import configure, get_method
+from .registry import program as registry_program
 
 NOISE_FIELDS_DEG = {  # public name -> Noise field (degrees converted to radians)
     "bearing_noise_deg": "bearing",
@@ -94,39 +100,72 @@ def make_noise(**kwargs: float) -> Noise:
     return Noise(**fields)
 
 
-def make_config(d: float = 50.0, levels: int | None = None, background: str = "distant", channel: str = "mask",
-                n_heading: int = 360, scale: float = 1000.0, r_max: float = 2000.0, alpha_r_deg: float = 0.0,
-                n_pix: int = 360, n_alpha: int = 72, n_psi: int = 72, n_rho: int = 15, rho_min: float = 0.10,
-                rho_max: float = 0.80, mfdid_blur_deg: float = 0.0, **noise: float) -> Config:
-    """Validated `Config` (SPEC defaults) from public options.
+def defaults(module_type) -> dict[str, object]:
+    """The default of every field of a module class (written once, on the module; the CLI reads them)."""
+    return {f.name: f.default for f in dataclasses.fields(module_type) if f.default is not dataclasses.MISSING}
 
-    n_alpha, n_psi, n_rho, rho_min, rho_max: the warping hypotheses (docs/model.md §4.3); n_psi must
-    divide n_pix (rotations are whole pixels) and 0 < rho_min <= rho_max < 1.
-    """
-    n_pix = positive_int(n_pix, "n_pix")
-    n_psi = positive_int(n_psi, "n_psi")
+
+def make_sensor(d: float | None = None, background: str = "distant", channel: str = "mask",
+                alpha_r_deg: float = 0.0, n_pix: int | None = None, **noise: float) -> Sensor:
+    """Validated `Sensor` from public options (None: the module's default); noise keywords as `make_noise`."""
+    fields: dict[str, object] = {"noise": make_noise(**noise),
+                                 "background": BACKGROUNDS.index(choice(background, "background", BACKGROUNDS)),
+                                 "channel": choice(channel, "channel", CHANNELS),
+                                 "alpha_r": math.radians(finite(alpha_r_deg, "alpha_r_deg"))}
+    if d is not None:
+        fields["d"] = positive(d, "d")
+    if n_pix is not None:
+        fields["n_pix"] = positive_int(n_pix, "n_pix")
+    return Sensor(**fields)
+
+
+def method_settings(levels: int | None = None, n_heading: int | None = None, scale: float | None = None,
+                    r_max: float | None = None, n_alpha: int | None = None, n_psi: int | None = None,
+                    n_rho: int | None = None, rho_min: float | None = None, rho_max: float | None = None,
+                    mfdid_blur_deg: float | None = None, n_pix: int | None = None) -> dict[str, object]:
+    """Validated method settings from public options (None: each module's default), as module
+    field names (`registry.configure`). levels, n_heading, scale, r_max: DELV's; n_alpha, n_psi,
+    n_rho, rho_min, rho_max: the warping hypotheses (docs/model.md §4.3; n_psi must divide n_pix
+    and 0 < rho_min <= rho_max < 1); mfdid_blur_deg: MFDID's `blur_deg`."""
+    out: dict[str, object] = {}
+    for name, value in (("levels", levels), ("n_heading", n_heading), ("n_alpha", n_alpha), ("n_psi", n_psi),
+                        ("n_rho", n_rho)):
+        if value is not None:
+            out[name] = positive_int(value, name)
+    for name, value in (("scale", scale), ("r_max", r_max)):
+        if value is not None:
+            out[name] = positive(value, name)
+    if mfdid_blur_deg is not None:
+        out["blur_deg"] = non_negative(mfdid_blur_deg, "mfdid_blur_deg")
+    warping = defaults(Warping)
+    n_psi = out.get("n_psi", warping["n_psi"])
+    n_pix = positive_int(n_pix, "n_pix") if n_pix is not None else defaults(Sensor)["n_pix"]
     if n_pix % n_psi:
         raise InputError("n_psi", n_psi, f"must divide n_pix = {n_pix} (psi hypotheses are whole-pixel rotations)")
-    rho_min, rho_max = finite(rho_min, "rho_min"), finite(rho_max, "rho_max")
-    if not 0.0 < rho_min < 1.0:
-        raise InputError("rho_min", rho_min, "must be in (0, 1)")
-    if not rho_min <= rho_max < 1.0:
-        raise InputError("rho_max", rho_max, f"must be in [rho_min = {rho_min}, 1)")
-    return Config(
-        d=positive(d, "d"),
-        scale=positive(scale, "scale"),
-        r_max=positive(r_max, "r_max"),
-        alpha_r=math.radians(finite(alpha_r_deg, "alpha_r_deg")),
-        mfdid_blur_deg=non_negative(mfdid_blur_deg, "mfdid_blur_deg"),
-        noise=make_noise(**noise),
-        levels=None if levels is None else positive_int(levels, "levels"),
-        n_pix=n_pix,
-        n_heading=positive_int(n_heading, "n_heading"),
-        n_alpha=positive_int(n_alpha, "n_alpha"),
-        n_psi=n_psi,
-        n_rho=positive_int(n_rho, "n_rho"),
-        rho_min=rho_min,
-        rho_max=rho_max,
-        background=BACKGROUNDS.index(choice(background, "background", BACKGROUNDS)),
-        channel=choice(channel, "channel", CHANNELS),
-    )
+    lo = finite(rho_min, "rho_min") if rho_min is not None else warping["rho_min"]
+    hi = finite(rho_max, "rho_max") if rho_max is not None else warping["rho_max"]
+    if not 0.0 < lo < 1.0:
+        raise InputError("rho_min", lo, "must be in (0, 1)")
+    if not lo <= hi < 1.0:
+        raise InputError("rho_max", hi, f"must be in [rho_min = {lo}, 1)")
+    if rho_min is not None:
+        out["rho_min"] = lo
+    if rho_max is not None:
+        out["rho_max"] = hi
+    return out
+
+
+METHOD_OPTIONS = tuple(inspect.signature(method_settings).parameters)
+SENSOR_OPTIONS = ("d", "background", "channel", "alpha_r_deg", "n_pix", *NOISE_OPTIONS)
+
+
+def make_setup(method: str, program=None, **options) -> tuple[HomingMethod, Sensor]:
+    """(method module, sensor) from a registry name and public options, validated before any work.
+    `program`: registry names compiled into one program with `method` (`registry.program`)."""
+    unknown = sorted(set(options) - set(METHOD_OPTIONS) - set(SENSOR_OPTIONS))
+    if unknown:
+        raise InputError(unknown[0], options[unknown[0]], "unknown option")
+    sensor = make_sensor(**{k: v for k, v in options.items() if k in SENSOR_OPTIONS})
+    settings = method_settings(**{k: v for k, v in options.items() if k in METHOD_OPTIONS})
+    module = get_method(method) if program is None else registry_program(method, program)[0]
+    return configure(module, **settings), sensor

@@ -2,15 +2,19 @@
 
 from __future__ import annotations
 
-import matplotlib
+import numpy as np
+from matplotlib.figure import Figure
+from matplotlib.patches import Circle
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.patches import Circle  # noqa: E402
+from .core.metrics import error_class
+from .core.scene import Env
 
-from .metrics import error_class  # noqa: E402
-from .scene import Env  # noqa: E402
+
+def subplots(*grid: int, figsize: tuple[float, float], **kw):
+    """(figure, axes) of a new figure that belongs to no pyplot state (no backend switch, no global
+    figure list; safe to draw on any thread): `Figure(figsize).subplots(*grid, **kw)`."""
+    fig = Figure(figsize=figsize)
+    return fig, fig.subplots(*grid, **kw)
 
 CLASS_STYLE = (  # Fig 4.3: dot < 45, star 45-90, triangle > 90
     ("<45°", dict(marker=".", color="0.35", s=10)),
@@ -56,7 +60,7 @@ def draw_vector_map(ax, env: Env, points, direction, valid, included, spacing: f
 
 def vector_map_figure(env: Env, vm, spacing: float, title: str = "", classes: bool = False):
     """Figure of one vector map (Fig 4.2; with `classes`, the error markers of Fig 4.3)."""
-    fig, ax = plt.subplots(figsize=(6.4, 6.4))
+    fig, ax = subplots(figsize=(6.4, 6.4))
     draw_vector_map(ax, env, vm.points, vm.direction, vm.valid, vm.included, spacing,
                     error_deg=vm.error_deg if classes else None)
     draw_env(ax, env)
@@ -68,7 +72,7 @@ def vector_map_figure(env: Env, vm, spacing: float, title: str = "", classes: bo
 
 def error_curve_figure(curves: dict[str, list[dict]], title: str = ""):
     """Mean angular error vs distance from home with 95% t intervals, one line per label (Fig 4.4)."""
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    fig, ax = subplots(figsize=(6.4, 4.2))
     for label, rows in curves.items():
         x = np.array([(r["bin_lo"] + r["bin_hi"]) / 2 for r in rows])
         m = np.array([r["mean_deg"] for r in rows])
@@ -87,7 +91,7 @@ def error_curve_figure(curves: dict[str, list[dict]], title: str = ""):
 
 def environments_figure(envs: list[Env]):
     """The built-in environments side by side (README)."""
-    fig, axes = plt.subplots(1, len(envs), figsize=(3.2 * len(envs), 3.4))
+    fig, axes = subplots(1, len(envs), figsize=(3.2 * len(envs), 3.4))
     for ax, env in zip(np.atleast_1d(axes), envs):
         draw_env(ax, env)
         ax.set_title(env.name)

@@ -6,17 +6,14 @@ from __future__ import annotations
 import math
 
 import matplotlib
+import numpy as np
+from matplotlib.collections import PatchCollection
+from matplotlib.lines import Line2D
+from matplotlib.patches import Circle, Rectangle
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.collections import PatchCollection  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
-from matplotlib.patches import Circle, Rectangle  # noqa: E402
-
-from .plots import draw_env, draw_vector_map  # noqa: E402
-from .rollouts import OUTCOMES, SUCCESS  # noqa: E402
-from .scene import Env  # noqa: E402
+from .core.rollouts import OUTCOMES, SUCCESS
+from .core.scene import Env
+from .plots import draw_env, draw_vector_map, subplots
 
 SQUARE = dict(facecolor=(0.55, 0.75, 0.95, 0.35), edgecolor=(0.1, 0.35, 0.75), linewidth=0.6)
 FAIL_STYLE = {"timeout": ("o", "black"), "landmark": ("x", "black"), "arena": ("s", "black")}
@@ -50,7 +47,7 @@ def catchment_figure(env: Env, result, spacing: float, title: str = ""):
     cols = 1 if n == 1 else 2 if n <= 4 else 3 if n <= 9 else 4
     rows = math.ceil(n / cols)
     size = 6.4 if n == 1 else 4.6 if n <= 4 else 3.6
-    fig, axes = plt.subplots(rows, cols, figsize=(size * cols, size * rows + (0.4 if title else 0)), squeeze=False)
+    fig, axes = subplots(rows, cols, figsize=(size * cols, size * rows + (0.4 if title else 0)), squeeze=False)
     for m in range(n):
         ax = axes[m // cols][m % cols]
         hidden = result.hidden[m]
@@ -79,7 +76,7 @@ def draw_trajectories(ax, env: Env, traj, home_radius: float, margin: float = 60
     ax.add_patch(Circle(np.asarray(env.home), home_radius, fill=False, linestyle=":", edgecolor="0.3", zorder=2))
     path = np.asarray(traj.path)
     outcome = np.asarray(traj.outcome)
-    colors = plt.cm.tab10(np.arange(path.shape[0]) % 10)
+    colors = matplotlib.colormaps["tab10"](np.arange(path.shape[0]) % 10)
     for t in range(path.shape[0]):  # a handful of paths: drawing, not computing
         p = path[t][np.all(np.isfinite(path[t]), axis=-1)]
         ax.plot(p[:, 0], p[:, 1], "-", color=colors[t], lw=1.2, zorder=5)
@@ -97,7 +94,7 @@ def trajectories_figure(env: Env, results: dict, home_radius: float, title: str 
     n = len(results)
     cols = min(n, 3)
     rows = math.ceil(n / cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 5.4 * rows + 0.3), squeeze=False)
+    fig, axes = subplots(rows, cols, figsize=(5.2 * cols, 5.4 * rows + 0.3), squeeze=False)
     for ax in axes.ravel()[n:]:
         ax.axis("off")
     for ax, (label, traj) in zip(axes.ravel(), results.items()):
@@ -118,7 +115,7 @@ def success_rate_figure(tables: dict, title: str = ""):
     """Success rate (%) vs release distance, one line per method (Figs 4.10b, 5.7b), with 95% Wilson
     intervals (lines offset a few cm apart) and a table of per-bin counts (successes / trials placed)."""
     n = len(tables)
-    fig, ax = plt.subplots(figsize=(7.0, 4.4 + 0.22 * n))
+    fig, ax = subplots(figsize=(7.0, 4.4 + 0.22 * n))
     markers = "osd^v<>"
     colors = []
     for i, (label, rows) in enumerate(tables.items()):

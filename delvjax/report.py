@@ -77,7 +77,7 @@ def study_section(rec) -> str:
 
 
 def settings_section(settings, versions: dict, records: dict, wall_seconds: float, ran: list[str]) -> str:
-    from .rollouts import DEFAULT_RULES, PHYSICAL_RULES
+    from .core.rollouts import DEFAULT_RULES, PHYSICAL_RULES
 
     rows = [{"setting": k, "value": v} for k, v in asdict(settings).items()]
     rows += [{"setting": "rollout rules (default, docs/model.md §5)", "value": ", ".join(f"{k}={v}" for k, v in DEFAULT_RULES.items())},

@@ -14,5 +14,6 @@ STUDIES = [
     "with_compass",
     "comparators",
     "occlusion",
+    "gap_matching",
     "visual_compass",
 ]

@@ -12,30 +12,32 @@ from __future__ import annotations
 
 import jax
 import numpy as np
-import matplotlib.pyplot as plt
+from delvjax.plots import subplots
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from scipy.spatial import Delaunay
 
 import delvjax
-from delvjax import rollouts
-from delvjax.maps import VectorMap
-from delvjax.metrics import error_curve, summarize_map
+from delvjax.core import rollouts
+from delvjax.core.maps import VectorMap
+from delvjax.core.metrics import error_curve, summarize_map
 from delvjax.plots import draw_env, draw_vector_map
 from delvjax.plots_rollouts import SQUARE, catchment_panel
-from delvjax.scene import Env, load_env
+from delvjax.core.scene import Env
+from delvjax.presets import load_env
+from delvjax.tables import concat_columns, trajectory_columns
 
 PAD = 6
 RULES = {"default": rollouts.DEFAULT_RULES, "physical": rollouts.PHYSICAL_RULES}
 LABEL = {"delv": "DELV", "delv-compass": "DELV (compass)", "delv-visual": "DELV (visual compass)",
          "acv": "ACV", "alv": "ALV", "acv-visual": "ACV (visual compass)", "alv-visual": "ALV (visual compass)",
          "warping": "image matching"}
-HOME_RADIUS = 50.0
-# Every method of the reproduction is compiled into one rollout program (`rollouts.run_trials(program=...)`,
-# a traced index picks the method): compiling a rollout program costs about 6 CPU-seconds, so the
+HOME_RADIUS = rollouts.HOME_RADIUS
+# Every method of the reproduction is compiled into one rollout program (`registry.program`: a
+# `Program` module whose traced index picks the method): compiling a rollout program costs about 6 CPU-seconds, so the
 # reproduction compiles one, not eight. Rendering a method does not need (the start snapshot, the gray
 # channel) is skipped at run time, so no method runs slower for sharing (docs/reproduce.md).
-PROGRAM = ("delv", "delv-compass", "alv", "acv", "delv-visual", "alv-visual", "acv-visual", "warping")
+PROGRAM = ("delv", "delv-compass", "alv", "acv", "delv-visual", "alv-visual", "acv-visual", "warping", "delv-gap-compass")
 
 
 def env(name: str) -> Env:
@@ -121,7 +123,7 @@ def success_summary(rows: list[dict]) -> dict:
 
 def panel_figure(items, spacing: float, classes: bool = False, title: str = ""):
     """1 x n vector-map panels: items = [(panel title, env, VectorMap)]; every marker in a legend."""
-    fig, axes = plt.subplots(1, len(items), figsize=(4.6 * len(items), 5.0), squeeze=False)
+    fig, axes = subplots(1, len(items), figsize=(4.6 * len(items), 5.0), squeeze=False)
     for ax, (label, e, vm) in zip(axes[0], items):
         draw_vector_map(ax, e, vm.points, vm.direction, vm.valid, vm.included, spacing,
                         error_deg=vm.error_deg if classes else None)
@@ -146,7 +148,7 @@ def panel_figure(items, spacing: float, classes: bool = False, title: str = ""):
 
 def catchment_figure(items, spacing: float, title: str):
     """1 x n catchment panels (Figs 4.5 / 5.5): items = [(panel title, env, Catchment)]."""
-    fig, axes = plt.subplots(1, len(items), figsize=(4.8 * len(items), 5.4), squeeze=False)
+    fig, axes = subplots(1, len(items), figsize=(4.8 * len(items), 5.4), squeeze=False)
     for ax, (label, e, c) in zip(axes[0], items):
         catchment_panel(ax, e, c, 0, spacing, title=label)
     handles = [Patch(label="release point inside the catchment area", **SQUARE),
@@ -157,21 +159,6 @@ def catchment_figure(items, spacing: float, title: str):
     fig.suptitle(title)
     fig.set_layout_engine("tight", rect=(0, 0.05, 1, 1))  # applied when drawn (in the figure thread)
     return fig
-
-
-def trajectory_rows(label: str, traj) -> list[dict]:
-    """One row per visited position: label, trial, release heading, step, x, y, outcome of the trial."""
-    path = np.asarray(traj.path)
-    outcome = np.asarray(traj.outcome)
-    heading = np.degrees(np.asarray(traj.heading))
-    rows = []
-    for t in range(path.shape[0]):  # a handful of paths: output formatting
-        name = rollouts.OUTCOMES[outcome[t]] if outcome[t] >= 0 else "running"
-        for s in np.flatnonzero(np.all(np.isfinite(path[t]), axis=-1)):
-            rows.append({"label": label, "trial": t, "release_heading_deg": float(heading[t]), "step": int(s),
-                         "x": float(path[t, s, 0]), "y": float(path[t, s, 1]), "outcome": name,
-                         **traj.rules})
-    return rows
 
 
 def thesis_value(table: dict, env_name: str, method: str, k: int = 0):
@@ -229,12 +216,12 @@ def trajectory_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str
     numbers `trajectories:env1:<method>:reach_home`, the figure and the CSV of every position."""
     from delvjax.plots_rollouts import trajectories_figure
 
-    results, rows = {}, []
+    results, tables = {}, []
     for m in methods:
         tr = delvjax.trajectories(e.arrays(), method=m, n_starts=n_starts, seed=ctx.settings.seed,
                                   home_radius=HOME_RADIUS, program=PROGRAM, lanes=ctx.settings.lanes)
         results[LABEL[m]] = tr
-        rows += trajectory_rows(m, tr)
+        tables.append(trajectory_columns(tr, m))
         ctx.number(f"trajectories:env1:{m}:reach_home", int(np.asarray(tr.success).sum()))
     ctx.figure(f"{fig_file}.png", trajectories_figure(e, results, HOME_RADIUS, title), caption)
-    ctx.csv(f"{fig_file}.csv", rows=rows)
+    ctx.csv(f"{fig_file}.csv", columns=concat_columns(tables))

@@ -10,9 +10,9 @@ import math
 
 
 import delvjax
-from delvjax.io import save_figure, write_json
+from delvjax.io import write_figure, write_json
 from delvjax.plots import environments_figure
-from delvjax.scene import PRESET_DESCRIPTIONS, PRESETS, env_to_dict
+from delvjax.presets import PRESET_DESCRIPTIONS, PRESETS, env_to_dict
 
 TITLE = "The environments (thesis §4.2 and Tables 5.1-5.4)"
 STEPS = 1
@@ -49,7 +49,7 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--out", default="docs")
     a = p.parse_args(argv)
     envs = [delvjax.load_env(n) for n in PRESETS]
-    save_figure(environments_figure(envs), f"{a.out}/environments.png", dpi=110)
+    write_figure(environments_figure(envs), f"{a.out}/environments.png", dpi=110)
     for e in envs:
         write_json(f"{a.out}/envs/{e.name}.json", env_to_dict(e))
     print(f"wrote {a.out}/environments.png and {len(envs)} JSON files in {a.out}/envs/")

@@ -7,7 +7,7 @@ shape: one compiled program), vector maps and error curves.
 from __future__ import annotations
 
 from delvjax.plots import error_curve_figure
-from delvjax.scene import random_env
+from delvjax.presets import random_env
 
 from .common import PAD, curve, curve_means, curves_rows, map_numbers, panel_figure, vector_map
 

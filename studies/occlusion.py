@@ -15,11 +15,12 @@ keep the full run within minutes; the tables say so.
 from __future__ import annotations
 
 import jax
-import matplotlib.pyplot as plt
+from delvjax.plots import subplots
 import numpy as np
 
-from delvjax import rollouts
-from delvjax.options import make_config
+from delvjax.core import rollouts
+from delvjax.core.sensor import Sensor
+from delvjax.registry import program
 from delvjax.plots_rollouts import SQUARE, catchment_panel
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Patch
@@ -63,7 +64,7 @@ def spread(values) -> dict:
 
 def run(ctx) -> None:
     settings = ctx.settings
-    config = make_config()
+    sensor = Sensor()
     key = jax.random.PRNGKey(settings.seed)
     per_k, mask_rows, fig5_10 = [], [], {}
     for name, k_max in ENVS.items():  # six layouts x three methods
@@ -71,9 +72,9 @@ def run(ctx) -> None:
         masks, hidden, ks = stacked_masks(e, k_max)
         for m in METHODS:
             spacing = settings.spacing if name.startswith("env") else max(settings.spacing, RING_SPACING)
-            res = {rules: rollouts.catchment_area(e.arrays(), m, config, spacing=spacing, key=key,
+            res = {rules: rollouts.catchment_area(e.arrays(), program(m, PROGRAM)[0], sensor, spacing=spacing, key=key,
                                                   masks=masks, hidden=hidden, home_radius=HOME_RADIUS,
-                                                  program=PROGRAM, lanes=settings.lanes, **RULES[rules])
+                                                  lanes=settings.lanes, **RULES[rules])
                    for rules in RULES}
             summaries = {rules: rollouts.catchment_summary(c)["per_mask"] for rules, c in res.items()}
             for i, row in enumerate(summaries["default"]):
@@ -104,7 +105,7 @@ def run(ctx) -> None:
     figures(ctx, per_k, fig5_10)
 
 
-def _fmt(s: dict) -> str:
+def fmt_spread(s: dict) -> str:
     return f"{s['mean']:.2f} [{s['min']:.2f}-{s['max']:.2f}]" if s["min"] != s["max"] else f"{s['mean']:.2f}"
 
 
@@ -122,7 +123,7 @@ def tables(ctx, per_k: list[dict]) -> None:
                                        ("table5_2", "Table 5.2", "Error point rates, L equally spaced landmarks",
                                         ("ring3", "ring4", "ring5", "ring6"))):
         rows = [{"env": label, "method": LABEL[r["method"]], "k": r["k"],
-                 "ours e>45 % mean [min-max]": _fmt(r["gt45_pct"]),
+                 "ours e>45 % mean [min-max]": fmt_spread(r["gt45_pct"]),
                  "thesis e>45 %": thesis_row(table, name, r["method"], r["k"], "gt45"),
                  "ours e>90 %": r["gt90_pct"]["mean"],
                  "thesis e>90 %": thesis_row(table, name, r["method"], r["k"], "gt90")}
@@ -136,7 +137,7 @@ def tables(ctx, per_k: list[dict]) -> None:
             fd, fp = r["failures_default"], r["failures_physical"]
             row = {"env": label, "method": LABEL[r["method"]],
                    "k": r["k"], "choices": r["choices"],
-                   "ours default % mean [min-max]": _fmt(r["catchment_default"]),
+                   "ours default % mean [min-max]": fmt_spread(r["catchment_default"]),
                    "ours physical %": r["catchment_physical"]["mean"],
                    "thesis %": thesis_row(table, name, r["method"], r["k"]),
                    "default failures timeout/arena": f"{fd['timeout']}/{fd['arena']}",
@@ -163,7 +164,7 @@ def figures(ctx, per_k: list[dict], fig5_10: dict) -> None:
     for field, key, ylabel, name in (("catchment_default", "table5_3", "catchment area (%)", "catchment_vs_k.png"),
                                      ("gt45_pct", "table5_1", "error points e > 45° (%)", "error_points_vs_k.png")):
         envs = list(ENVS)
-        fig, axes = plt.subplots(2, 3, figsize=(13, 7.6), sharey=True)
+        fig, axes = subplots(2, 3, figsize=(13, 7.6), sharey=True)
         for ax, env_name in zip(axes.ravel(), envs):
             table = key if env_name.startswith("env") else key.replace("5_3", "5_4").replace("5_1", "5_2")
             for i, m in enumerate(METHODS):
@@ -200,7 +201,7 @@ def figures(ctx, per_k: list[dict], fig5_10: dict) -> None:
             ax.add_patch(Circle(lms[j, :2], lms[j, 2], facecolor="white", edgecolor="black", linestyle="--", zorder=4))
     ctx.figure("fig5_9_occluded_vector_maps.png", fig,
                "Fig 5.9: homing vectors with k = 0, 1, 2 hidden landmarks (hollow dashed discs: hidden).")
-    fig, axes = plt.subplots(1, 3, figsize=(14.4, 5.2))
+    fig, axes = subplots(1, 3, figsize=(14.4, 5.2))
     for ax, k, i in zip(axes, range(3), picks):
         catchment_panel(ax, e, c, i, spacing, title=f"k = {k}: {pct[i]:.2f} % (mean over choices "
                                                     f"{pct[ks == k].mean():.2f} %)")

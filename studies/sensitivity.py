@@ -11,17 +11,15 @@ import argparse
 import sys
 from pathlib import Path
 
-import matplotlib.pyplot as plt
 import numpy as np
 
 import delvjax
-from delvjax import maps
-from delvjax.config import Config
-from delvjax.io import save_figure, write_csv
-from delvjax.plots import draw_env
-from delvjax.sensitivity import bearing_noise_gain
-
-from delvjax.io import write_json
+from delvjax.core import maps
+from delvjax.core.sensitivity import bearing_noise_gain
+from delvjax.core.sensor import Sensor
+from delvjax.io import write_csv, write_figure, write_json
+from delvjax.plots import draw_env, subplots
+from delvjax.registry import METHODS as REGISTRY
 
 METHODS = ("delv", "delv-compass", "alv", "acv")
 
@@ -40,10 +38,10 @@ def main(argv: list[str] | None = None) -> None:
     pts = maps.grid_points(env.arena, a.spacing)
     inc = np.asarray(maps.grid_included(env, pts, 10.0))
     headings = maps.random_headings(key, pts.shape[0])
-    fig, axes = plt.subplots(1, len(METHODS), figsize=(4.4 * len(METHODS), 4.6))
+    fig, axes = subplots(1, len(METHODS), figsize=(4.4 * len(METHODS), 4.6))
     for ax, m in zip(axes, METHODS):
         print(f"[sensitivity] {m}: d direction / d bearings on {env.name}", file=sys.stderr, flush=True)
-        gain, ok = bearing_noise_gain(env, pts, headings, key, Config(), m)
+        gain, ok = bearing_noise_gain(env, pts, headings, key, Sensor(), REGISTRY[m])
         gain, ok = np.asarray(gain), np.asarray(ok) & inc
         write_csv(out / f"gain_{m}_{env.name}.csv",
                   {"x": pts[inc, 0], "y": pts[inc, 1], "heading_deg": np.degrees(np.asarray(headings))[inc],
@@ -56,7 +54,7 @@ def main(argv: list[str] | None = None) -> None:
         draw_env(ax, env)
         ax.set_title(f"{m}: median {summary[m]['median_gain']:.2f}°/°", fontsize=10)
     fig.colorbar(im, ax=axes, shrink=0.8, label="log10 gain (deg of direction per deg of bearing noise)")
-    save_figure(fig, out / f"bearing_gain_{env.name}.png")
+    write_figure(fig, out / f"bearing_gain_{env.name}.png")
     write_json(out / "sensitivity.json", {"env": env.name, "spacing": a.spacing, "seed": a.seed, **summary})
     print(f"wrote {out}/bearing_gain_{env.name}.png and the CSV/JSON beside it")
 

@@ -12,12 +12,12 @@ from __future__ import annotations
 
 import jax
 import jax.numpy as jnp
-import matplotlib.pyplot as plt
+from delvjax.plots import subplots
 import numpy as np
 
-from delvjax.maps import grid_included, grid_points, random_headings
-from delvjax.methods.compass import visual_compass_errors
-from delvjax.options import make_config
+from delvjax.core.maps import grid_included, grid_points, random_headings
+from delvjax.core.methods.heading import visual_compass_errors
+from delvjax.options import make_sensor
 from studies import thesis
 
 from .common import LABEL, RULES, as_vector_map, catchment, env, map_numbers, outcome_counts
@@ -55,7 +55,7 @@ def run(ctx) -> None:
     ctx.step("true compass")
     errors, compass_rows, catch_rows = {}, [], []
     for bg in BACKGROUNDS:  # three settings (a static field: one program per setting)
-        err = np.degrees(np.asarray(visual_compass_errors(e.arrays(), points, headings, make_config(background=bg))))
+        err = np.degrees(np.asarray(visual_compass_errors(e.arrays(), points, headings, make_sensor(background=bg))))
         errors[bg] = err[included]
         stats = heading_error_stats(errors[bg])
         compass_rows.append({"background": bg, **stats})
@@ -87,7 +87,7 @@ def run(ctx) -> None:
     ctx.table("visual_compass_catchment", "Catchment and mean error with the visual compass, env1", catch_rows,
               source="Figs 5.11-5.12", note="Thesis (Fig 5.11): DELV 74.85, ACV 47.04, ALV 40.68 %. "
                                             "default / physical: the rollout rules (docs/model.md §5).")
-    fig, axes = plt.subplots(1, 3, figsize=(13, 3.8), sharey=True)
+    fig, axes = subplots(1, 3, figsize=(13, 3.8), sharey=True)
     for ax, bg in zip(axes, BACKGROUNDS):
         ax.hist(errors[bg], bins=np.arange(-180, 181, 5), color="C0")
         ax.set_title(f"background {bg}: mean |error| {np.abs(errors[bg]).mean():.1f}°", fontsize=9)
@@ -101,7 +101,7 @@ def run(ctx) -> None:
     ctx.csv("visual_compass_heading_errors_per_point.csv",
             columns={"background": np.repeat(BACKGROUNDS, [errors[b].size for b in BACKGROUNDS]).tolist(),
                      "heading_error_deg": np.concatenate([errors[b] for b in BACKGROUNDS])})
-    fig, ax = plt.subplots(figsize=(7.5, 4.6))
+    fig, ax = subplots(figsize=(7.5, 4.6))
     width = 0.13
     for i, (bg, hatch) in enumerate(zip((*BACKGROUNDS, "true compass"), ("", "//", "..", "xx"))):
         vals = [true[m, "default"] if bg == "true compass" else
@@ -129,7 +129,7 @@ def run(ctx) -> None:
     ctx.step("compass noise")
     ctx.table("compass_noise", "Catchment vs compass noise, env1 (default rules)", rows, source="beyond the thesis",
               note="The thesis's §5.4 claim: DELV depends least on the accuracy of the compass.")
-    fig, ax = plt.subplots(figsize=(6.4, 4))
+    fig, ax = subplots(figsize=(6.4, 4))
     for i, m in enumerate(TRUE):
         ax.plot(SIGMAS, [r["catchment %"] for r in rows if r["method"] == LABEL[m]], marker="o", label=LABEL[m])
     ax.set_xlabel("compass noise sigma (°)")

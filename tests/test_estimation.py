@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 import delvjax
-from delvjax.config import Config
-from delvjax.estimation import current_vectors, end_distances, quantize, reference_vectors, start_distances
-from delvjax.methods import METHODS
-from delvjax.methods.delv import direction_with_heading, match_arrangement
-from delvjax.sensing import Snapshot, UnitMove
+from delvjax.core.estimation import current_vectors, end_distances, quantize, reference_vectors, start_distances
+from delvjax.registry import METHODS
+from delvjax.core.methods import DELV
+from delvjax.core.methods.delv import delv_direction, match_arrangement
+from delvjax.core.sensing import Snapshot, UnitMove
 from conftest import random_landmarks
 
 jax.config.update("jax_enable_x64", False)
@@ -23,7 +23,7 @@ def exact_snapshot(points: np.ndarray, pos: np.ndarray, heading: float) -> Snaps
     rel = points - pos
     b = np.sort(np.mod(np.arctan2(rel[:, 1], rel[:, 0]) - heading, 2 * np.pi))
     return Snapshot(mask=jnp.zeros(360, bool), gray=jnp.zeros(360), bearing=jnp.asarray(b, jnp.float32),
-                    valid=jnp.ones(len(b), bool))
+                    width=jnp.zeros(len(b), jnp.float32), valid=jnp.ones(len(b), bool))
 
 
 def exact_move(points, start, heading, d, psi=0.0, compass=0.0) -> UnitMove:
@@ -38,7 +38,7 @@ def test_distances_are_exact_with_exact_bearings(psi_deg):
     lms = np.array([[300.0, 700.0], [750.0, 650.0], [650.0, 250.0], [250.0, 350.0]])
     start, h, d = np.array([430.0, 520.0]), np.radians(33.0), 50.0
     move = exact_move(lms, start, h, d, psi=np.radians(psi_deg))
-    cfg = Config(d=d)
+    cfg = DELV()
     end = start + d * np.array([np.cos(h), np.sin(h)])
     order_p = np.argsort(np.mod(np.arctan2(*(lms - start).T[::-1]) - h, 2 * np.pi))
     order_c = np.argsort(np.mod(np.arctan2(*(lms - end).T[::-1]) - h - np.radians(psi_deg), 2 * np.pi))
@@ -50,7 +50,7 @@ def test_undefined_distance_becomes_r_max():
     """A landmark straight ahead has no parallax: its distance is r_max (docs/model.md §3.1)."""
     lms = np.array([[800.0, 500.0], [500.0, 800.0]])
     move = exact_move(lms, np.array([500.0, 500.0]), 0.0, 50.0)
-    r = np.asarray(start_distances(move, Config()))
+    r = np.asarray(start_distances(move, DELV()))
     assert r[0] == 2000.0 and abs(r[1] - 300.0) < 0.5
 
 
@@ -80,7 +80,7 @@ def test_exact_bearings_give_exact_position_and_heading(seed):
     rng = np.random.default_rng(seed)
     lms = separated_landmarks(seed)
     home = np.array([500.0, 500.0])
-    cfg = Config()
+    cfg = DELV()
     ref_v, ref_ok = reference_vectors(exact_move(lms, home, 0.0, 50.0), cfg)
     done = 0
     while done < 4:
@@ -99,7 +99,7 @@ def test_exact_bearings_give_exact_position_and_heading(seed):
         np.testing.assert_allclose(np.asarray(p), x - home, atol=0.5)
         assert abs(np.angle(np.exp(1j * (float(alpha) - h)))) < 1e-5
         assert float(var) < 1.0 and int(n) == len(lms)
-        angle, valid = METHODS["delv"](exact_move(lms, home, 0.0, 50.0), view, cfg)
+        angle, valid = METHODS["delv"](exact_move(lms, home, 0.0, 50.0), view)
         to_home = np.arctan2(*(home - x)[::-1])
         assert bool(valid) and abs(np.angle(np.exp(1j * (h + float(angle) - to_home)))) < 1e-3
 
@@ -160,7 +160,7 @@ def test_delv_potential_points_home():
 def test_home_is_the_equilibrium_of_the_homing_fields():
     """§3.3.2 by root finding (optimistix Newton, vmapped over starts): the ALV field of env1 and
     of ring5, and the DELV field (Eq 3.15), vanish at home and nowhere else near it."""
-    from delvjax.analysis import alv_field, equilibria
+    from delvjax.core.analysis import alv_field, equilibria
 
     starts = np.random.default_rng(0).uniform(380, 620, size=(40, 2))
     for name in ("env1", "ring5"):
@@ -209,10 +209,10 @@ def test_delv_with_compass_homes_on_one_landmark():
         done += 1
         view = exact_move(lm, start, h, 50.0, compass=h)
         to_home = np.arctan2(*(home - x)[::-1])
-        angle, valid = METHODS["delv-compass"](record, view, Config())
+        angle, valid = METHODS["delv-compass"](record, view)
         assert bool(valid) and abs(np.angle(np.exp(1j * (h + float(angle) - to_home)))) < 2e-3
         # the heading estimate the visual compass passes in takes the same path
-        angle_v, valid_v = direction_with_heading(record, view, Config(), jnp.float32(h))
+        angle_v, valid_v = delv_direction(record, view, DELV(), jnp.reshape(jnp.float32(h), (1,)), min_pairs=1)
         assert bool(valid_v) and float(angle_v) == pytest.approx(float(angle), abs=1e-6)
-        angle, valid = METHODS["delv"](record, view, Config())
+        angle, valid = METHODS["delv"](record, view)
         assert not bool(valid) and np.isnan(float(angle))

@@ -17,12 +17,13 @@ import pytest
 import delvjax
 import reference_holistic as rh
 from conftest import random_landmarks
-from delvjax import cli, maps
+from delvjax import cli
+from delvjax.core import maps
 from delvjax.config import Config
-from delvjax.errors import InputError
-from delvjax.metrics import angular_error_deg
-from delvjax.methods import mfdid, warping
-from delvjax.sensing import render
+from delvjax.core.errors import InputError
+from delvjax.core.metrics import angular_error_deg
+from delvjax.core.methods import mfdid, warping
+from delvjax.core.sensing import render
 from reference import render as ref_render
 from reference import wrap
 
@@ -245,7 +246,7 @@ def test_direct_config_errors_at_trace_time():
 def test_mfdid_low_pass_is_identity_at_zero_and_helps_far_from_home():
     """The optional Gaussian low-pass (Möller & Vardy work on low-passed images): sigma 0 leaves
     the image unchanged; on env1 a 40 deg blur cuts MFDID's mean error at least in half."""
-    from delvjax.methods.mfdid import low_pass
+    from delvjax.core.methods.mfdid import low_pass
 
     img = (jnp.arange(360) % 50 < 9).astype(jnp.float32)
     np.testing.assert_allclose(np.asarray(low_pass(img, 0.0)), np.asarray(img), atol=1e-5)

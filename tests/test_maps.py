@@ -8,18 +8,18 @@ import numpy as np
 import pytest
 
 import delvjax
-from delvjax.config import Config
-from delvjax.maps import homing_directions, stream_keys
-from delvjax.methods import METHODS
-from delvjax.metrics import angular_error_deg, error_class, error_curve, error_point_rates, t_interval
-from delvjax.sensing import record_home, unit_move
+from delvjax.core.sensor import Sensor
+from delvjax.core.maps import homing_directions, stream_keys
+from delvjax.registry import METHODS
+from delvjax.core.metrics import angular_error_deg, error_class, error_curve, error_point_rates, t_interval
+from delvjax.core.sensing import record_home, unit_move
 
 
 @pytest.mark.parametrize("method", ["delv", "acv"])
 def test_vmapped_map_equals_single_point_calls(method):
     env = delvjax.load_env("env1")
     vm = delvjax.vector_map(env, method=method, spacing=100.0, seed=3)
-    cfg = Config()
+    cfg = Sensor()
     key = jax.random.PRNGKey(3)
     k_home, k_views, _ = stream_keys(key)
 
@@ -27,7 +27,7 @@ def test_vmapped_map_equals_single_point_calls(method):
     def single(point, heading, index):
         home = record_home(env, k_home, cfg)
         view, heading_end = unit_move(env, point, heading, jax.random.fold_in(k_views, index), cfg, end_at=point)
-        angle, valid = METHODS[method](home, view, cfg)
+        angle, valid = METHODS[method](home, view)
         return heading_end + angle, valid
 
     for i in range(0, 100, 9):
@@ -62,13 +62,13 @@ def test_rotating_the_world_rotates_the_map():
     lms = np.asarray(env.landmarks)
     rot = np.column_stack([1000.0 - lms[:, 1], lms[:, 0], lms[:, 2]])  # 90 deg CCW about (500, 500)
     env_r = delvjax.make_env(rot)
-    cfg, cfg_r = Config(background="none"), Config(background="none", alpha_r=float(np.pi / 2))
+    cfg, cfg_r = Sensor(background="none"), Sensor(background="none", alpha_r=float(np.pi / 2))
     pts = jnp.asarray(np.random.default_rng(0).uniform(100, 900, size=(60, 2)), jnp.float32)
     pts_r = jnp.stack([1000.0 - pts[:, 1], pts[:, 0]], axis=1)
     h = jnp.full(60, 0.3, jnp.float32)
     key = jax.random.PRNGKey(0)
-    d, ok = homing_directions(env, pts, h, key, cfg, "delv")
-    d_r, ok_r = homing_directions(env_r, pts_r, h + np.pi / 2, key, cfg_r, "delv")
+    d, ok = homing_directions(env, pts, h, key, cfg, METHODS["delv"])
+    d_r, ok_r = homing_directions(env_r, pts_r, h + np.pi / 2, key, cfg_r, METHODS["delv"])
     same = np.abs(np.angle(np.exp(1j * (np.asarray(d_r) - np.asarray(d) - np.pi / 2)))) < 1e-3
     assert np.mean(same[np.asarray(ok)]) >= 0.95 and np.array_equal(np.asarray(ok), np.asarray(ok_r))
 

@@ -11,9 +11,10 @@ import numpy as np
 import pytest
 
 import reference as ref
-from delvjax.config import Config
-from delvjax.maps import grid_included, grid_points, homing_directions, random_headings
-from delvjax.scene import stack_envs
+from delvjax.core.sensor import Sensor
+from delvjax.core.maps import grid_included, grid_points, homing_directions, random_headings
+from delvjax.core.scene import stack_envs
+from delvjax.registry import METHODS, configure
 
 # points checked per environment against the (slow, readable) twin
 SUBSET = {"delv": 12, "delv-compass": 8, "alv": 8, "acv": 8, "delv-visual": 4, "alv-visual": 3, "acv-visual": 3}
@@ -32,16 +33,17 @@ def batch(random_envs):
 @pytest.mark.parametrize("method", list(SUBSET))
 def test_method_agrees_with_reference(random_envs, batch, method):
     envs, points, headings, key, included = batch
-    cfg = Config(levels=3 if method == "delv-compass" else None)
+    levels = 3 if method == "delv-compass" else None
+    sensor, module = Sensor(), configure(METHODS[method], levels=levels)
     direction, valid = jax.vmap(homing_directions, in_axes=(0, None, None, None, None, None))(
-        envs, points, headings, key, cfg, method)
+        envs, points, headings, key, sensor, module)
     direction, valid = np.asarray(direction), np.asarray(valid)
     rng = np.random.default_rng(0)
     agree, total = 0, 0
     for e, (lms, _) in enumerate(random_envs):  # the twin is per point by design
         for i in rng.choice(np.nonzero(included[e])[0], SUBSET[method], replace=False):
             expect = ref.reference_direction(lms, [0, 0, 1000, 1000], [500, 500], np.asarray(points[i], float),
-                                             float(headings[i]), method, levels=cfg.levels or None)
+                                             float(headings[i]), method, levels=levels)
             total += 1
             if np.isnan(expect) or not valid[e, i]:
                 agree += int(np.isnan(expect) and not valid[e, i])
@@ -57,9 +59,8 @@ def test_one_visible_landmark_agrees_with_reference(random_envs, batch, method, 
     point and agrees with the twin (pairing the first shift, k = 0); without one it is undefined."""
     envs, points, headings, key, included = batch
     visible = jnp.arange(envs.landmarks.shape[1]) == 0
-    cfg = Config()
     direction, valid = jax.vmap(homing_directions, in_axes=(0, None, None, None, None, None, None))(
-        envs, points, headings, key, cfg, method, visible)
+        envs, points, headings, key, Sensor(), METHODS[method], visible)
     direction, valid = np.asarray(direction), np.asarray(valid)
     if method == "delv":
         assert not valid.any() and np.isnan(direction).all()

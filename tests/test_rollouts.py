@@ -28,12 +28,12 @@ sys.path.insert(0, str(Path(__file__).parent))
 from reference_rollouts import HomeRecord, reference_rollout, release_direction  # noqa: E402
 
 import delvjax  # noqa: E402
-from delvjax import rollouts  # noqa: E402
+from delvjax.core import rollouts  # noqa: E402
 from delvjax.cli import main  # noqa: E402
-from delvjax.errors import InputError  # noqa: E402
-from delvjax.maps import grid_included, grid_points, random_headings  # noqa: E402
+from delvjax.core.errors import InputError  # noqa: E402
+from delvjax.core.maps import grid_included, grid_points, random_headings  # noqa: E402
 from delvjax.options import make_config  # noqa: E402
-from delvjax.scene import make_env  # noqa: E402
+from delvjax.presets import make_env  # noqa: E402
 
 ARENA = [0.0, 0.0, 1000.0, 1000.0]
 HOME = [500.0, 500.0]

@@ -9,9 +9,10 @@ import numpy as np
 import pytest
 
 import delvjax
-from delvjax.errors import InputError
-from delvjax.maps import grid_included, grid_points
-from delvjax.scene import ASYMMETRY_CM, PRESETS, env_to_dict, rotation_mismatch
+from delvjax.core.errors import InputError
+from delvjax.core.maps import grid_included, grid_points
+from delvjax.core.scene import ASYMMETRY_CM, rotation_mismatch
+from delvjax.presets import PRESETS, env_to_dict
 
 GOOD = {"name": "t", "arena": [0, 0, 1000, 1000], "home": [500, 500],
         "landmarks": [{"x": 300, "y": 600, "r": 30}, {"x": 700, "y": 650, "r": 20}, {"x": 600, "y": 300, "r": 25}]}

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 import reference as ref
-from delvjax.config import Config
-from delvjax.methods.compass import visual_compass
-from delvjax.sensing import extract_blobs, render
+from delvjax.core.sensor import Sensor
+from delvjax.core.methods.heading import visual_compass
+from delvjax.core.sensing import extract_blobs, render
 
 
 def _poses(seed, n=12):
@@ -20,7 +20,7 @@ def _poses(seed, n=12):
 
 @pytest.mark.parametrize("background", ["distant", "walls", "none"])
 def test_render_matches_reference(random_envs, background):
-    cfg = Config(background=background)
+    cfg = Sensor(background=background)
     agree, total = 0, 0
     for i, (lm, env) in enumerate(random_envs[:8]):
         pos, hd = _poses(i)
@@ -40,8 +40,8 @@ def test_occlusion_is_real():
     import delvjax
 
     env = delvjax.make_env(lms)
-    mask, gray = render(env, env.valid, jnp.array([500.0, 500.0]), jnp.array(0.0), Config())
-    mask_big_only, _ = render(env, jnp.array([True, False]), jnp.array([500.0, 500.0]), jnp.array(0.0), Config())
+    mask, gray = render(env, env.valid, jnp.array([500.0, 500.0]), jnp.array(0.0), Sensor())
+    mask_big_only, _ = render(env, jnp.array([True, False]), jnp.array([500.0, 500.0]), jnp.array(0.0), Sensor())
     np.testing.assert_array_equal(np.asarray(mask), np.asarray(mask_big_only))
     assert np.asarray(mask)[0] and np.asarray(gray)[0] == 1.0
     b, v = extract_blobs(mask, 2)
@@ -74,7 +74,7 @@ def test_blobs_match_reference():
 
 def test_visual_compass_matches_reference_and_recovers_rotation(random_envs):
     lm, env = random_envs[3]
-    cfg = Config()
+    cfg = Sensor()
     _, home_gray = render(env, env.valid, env.home, jnp.array(0.0), cfg)
     for h_deg in (0.0, 37.0, 200.0, 359.0):
         h = np.radians(h_deg)

@@ -15,12 +15,14 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
-from .config import Config
-from .geometry import TWO_PI, wrap
-from .methods import get_method
-from .metrics import angular_error_deg, error_class
-from .scene import Env
-from .sensing import record_home, unit_move
+from .geometry import TWO_PI
+from .kernel import direction_from, map_poses
+from .methods.base import HomingMethod
+from .metrics import angular_error_deg
+from .scene import Env, clear_of_landmarks
+from .sensing import record_home
+from .sensor import Sensor
+from .types import BlobFlags, GridFlag, GridFloat, GridPoints, PerPoint, PerPointFlag, Points
 
 DEFAULT_BATCH = 2048
 
@@ -34,12 +36,12 @@ class VectorMap(eqx.Module):
     180 where invalid.
     """
 
-    points: Array
-    included: Array
-    heading: Array
-    direction: Array
-    valid: Array
-    error_deg: Array
+    points: GridPoints
+    included: GridFlag
+    heading: GridFloat
+    direction: GridFloat
+    valid: GridFlag
+    error_deg: GridFloat
 
 
 def grid_points(arena, spacing: float) -> np.ndarray:
@@ -52,11 +54,9 @@ def grid_points(arena, spacing: float) -> np.ndarray:
 
 
 @jax.jit
-def grid_included(env: Env, points: Array, clearance: float) -> Array:
-    """True where a point is farther than r + clearance from every landmark centre."""
-    dist = jnp.linalg.norm(points[:, None, :] - env.landmarks[None, :, :2], axis=-1)
-    near = (dist <= env.landmarks[None, :, 2] + clearance) & env.valid[None, :]
-    return ~jnp.any(near, axis=-1)
+def grid_included(env: Env, points: Points, clearance: float) -> PerPointFlag:
+    """True where a grid point is farther than r + clearance from every landmark centre."""
+    return clear_of_landmarks(env, points, clearance)
 
 
 def stream_keys(key: Array) -> tuple[Array, Array, Array]:
@@ -72,49 +72,46 @@ def random_headings(key: Array, n: int) -> Array:
     return jax.vmap(lambda k: jax.random.uniform(k, (), minval=0.0, maxval=TWO_PI))(keys)
 
 
-@partial(jax.jit, static_argnames=("method", "batch_size"))
-def homing_directions(env: Env, points: Array, headings: Array, key: Array, config: Config,
-                      method: str, visible: Array | None = None,
-                      batch_size: int = DEFAULT_BATCH) -> tuple[Array, Array]:
+@partial(jax.jit, static_argnames=("batch_size",))
+def homing_directions(env: Env, points: Points, headings: PerPoint, key: Array, sensor: Sensor,
+                      method: HomingMethod, visible: BlobFlags | None = None,
+                      batch_size: int = DEFAULT_BATCH) -> tuple[PerPoint, PerPointFlag]:
     """World homing directions (P,) and validity (P,) of `method` at `points` with `headings`.
 
     The home record sees every landmark; the current views see only `visible` ones
     (occlusion, docs/model.md §5). One program: vmap over points inside chunks of `batch_size`.
     """
-    fn = get_method(method)
     k_home, k_views, _ = stream_keys(key)
-    home = record_home(env, k_home, config)
+    home = record_home(env, k_home, sensor)
+    seen = jnp.ones(env.landmarks.shape[0], bool) if visible is None else visible
 
     def one(args):
         point, heading, index = args
-        view, heading_end = unit_move(env, point, heading, jax.random.fold_in(k_views, index), config,
-                                      visible=visible, end_at=point)
-        angle, valid = fn(home, view, config)
-        return jnp.where(valid, wrap(heading_end + angle), jnp.nan), valid
+        return direction_from(env, seen, map_poses(point, heading, k_views, index, sensor), home, method, sensor)
 
     index = jnp.arange(points.shape[0])
     return jax.lax.map(one, (points, headings, index), batch_size=min(batch_size, points.shape[0]))
 
 
-def vector_map(env: Env, method: str, config: Config, spacing: float = 25.0, heading: float | None = None,
+def vector_map(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = 25.0, heading: float | None = None,
                key: Array | None = None, clearance: float = 10.0, visible: Array | None = None,
                batch_size: int = DEFAULT_BATCH) -> VectorMap:
     """The vector map of `method` on the docs/model.md §5 grid; heading fixed (rad) or random per point from `key`."""
     key = jax.random.PRNGKey(0) if key is None else key
     points = jnp.asarray(grid_points(env.arena, spacing))
     heading = None if heading is None else jnp.asarray(heading, jnp.float32)
-    return _vector_map(env.arrays(), points, heading, key, config, method, clearance, visible, batch_size)
+    return _vector_map(env.arrays(), points, heading, key, sensor, method, clearance, visible, batch_size)
 
 
-@partial(jax.jit, static_argnames=("method", "batch_size"))
-def _vector_map(env: Env, points: Array, heading: Array | None, key: Array, config: Config, method: str,
+@partial(jax.jit, static_argnames=("batch_size",))
+def _vector_map(env: Env, points: Array, heading: Array | None, key: Array, sensor: Sensor, method: HomingMethod,
                 clearance: float, visible: Array | None, batch_size: int) -> VectorMap:
     """One program for the whole map: headings, directions, grid mask and errors."""
     if heading is None:
         headings = random_headings(key, points.shape[0])
     else:
         headings = jnp.full(points.shape[0], heading, jnp.float32)
-    direction, valid = homing_directions(env, points, headings, key, config, method, visible, batch_size)
+    direction, valid = homing_directions(env, points, headings, key, sensor, method, visible, batch_size)
     return VectorMap(
         points=points,
         included=grid_included(env, points, clearance),
@@ -125,42 +122,48 @@ def _vector_map(env: Env, points: Array, heading: Array | None, key: Array, conf
     )
 
 
-def replace_field(config: Config, name: str, value) -> Config:
-    """`config` with the leaf `name` (e.g. "d", "levels", "noise.bearing") set to `value`."""
-    def where(c):
-        for part in name.split("."):
-            c = getattr(c, part)
-        return c
+def replace_field(method: HomingMethod, sensor: Sensor, name: str, value) -> tuple[HomingMethod, Sensor]:
+    """(method, sensor) with the leaf `name` set to `value` (`eqx.tree_at`): "method.levels",
+    "sensor.noise.bearing", or a bare path looked up on the method first, then the sensor
+    ("levels", "d", "noise.bearing")."""
+    parts = name.split(".")
+    owner = parts[0] if parts[0] in ("method", "sensor") else None
+    path = parts[1:] if owner else parts
 
-    return eqx.tree_at(where, config, value, is_leaf=lambda x: x is None)
+    def where(obj):
+        for part in path:
+            obj = getattr(obj, part)
+        return obj
+
+    def has(obj) -> bool:
+        try:
+            where(obj)
+            return True
+        except AttributeError:
+            return False
+
+    owner = owner or ("method" if has(method) else "sensor")
+    if owner == "method":
+        return eqx.tree_at(where, method, value, is_leaf=lambda x: x is None), sensor
+    return method, eqx.tree_at(where, sensor, value, is_leaf=lambda x: x is None)
 
 
-def sweep(env: Env, method: str, config: Config, name: str, values: Array, spacing: float = 25.0,
+def sweep(env: Env, method: HomingMethod, sensor: Sensor, name: str, values: Array, spacing: float = 25.0,
           heading: float | None = None, key: Array | None = None, clearance: float = 10.0,
           visible: Array | None = None, batch_size: int = DEFAULT_BATCH) -> VectorMap:
-    """Vector maps for every value of one continuous parameter, vmapped as one program.
+    """Vector maps for every value of one continuous setting, vmapped as one program.
 
-    `name` is a leaf of `Config` ("d", "levels", "scale", "r_max", "noise.bearing", ...);
-    the result's arrays gain a leading axis over `values` (Figs 4.6/4.7, 4.12/4.13).
+    `name` names a leaf of the method or the sensor (`replace_field`: "levels", "d",
+    "noise.bearing", "sensor.d", ...); the result's arrays gain a leading axis over `values`
+    (Figs 4.6/4.7, 4.12/4.13).
     """
     key = jax.random.PRNGKey(0) if key is None else key
     points = jnp.asarray(grid_points(env.arena, spacing))
     heading = None if heading is None else jnp.asarray(heading, jnp.float32)
     env = env.arrays()
-    one = lambda v: _vector_map(env, points, heading, key, replace_field(config, name, v), method,  # noqa: E731
-                                clearance, visible, batch_size)
+
+    def one(v):
+        m, s = replace_field(method, sensor, name, v)
+        return _vector_map(env, points, heading, key, s, m, clearance, visible, batch_size)
+
     return jax.vmap(one)(jnp.asarray(values))
-
-
-def vector_map_columns(vm: VectorMap) -> dict[str, np.ndarray]:
-    """The docs/model.md §7 per-point table of a map (grid points only; degrees; direction NaN where invalid)."""
-    inc = np.asarray(vm.included)
-    pts = np.asarray(vm.points)[inc]
-    return {
-        "x": pts[:, 0], "y": pts[:, 1],
-        "heading_deg": np.degrees(np.asarray(vm.heading)[inc]),
-        "direction_deg": np.degrees(np.asarray(vm.direction)[inc]),
-        "error_deg": np.asarray(vm.error_deg)[inc],
-        "valid": np.asarray(vm.valid)[inc],
-        "error_class": np.asarray(error_class(vm.error_deg))[inc],
-    }

@@ -19,7 +19,7 @@ r only scales it. C'_j = (C_{j+1} - C_{j-1}) / 2 (circular central difference, p
 S is read at t_j by circular linear interpolation. Invalid (NaN) when H = 0.
 
 Möller & Vardy work on low-pass filtered images: the first-order flow model holds only
-for image structure wider than the displacement's flow. `config.mfdid_blur_deg` (default 0:
+for image structure wider than the displacement's flow. `MFDID.blur_deg` (default 0:
 the raw images) blurs both images with a circular Gaussian first; on env1 with the `mask`
 channel it takes the mean angular error from ~112 deg (raw) to ~35 deg (40 deg blur).
 """
@@ -29,9 +29,10 @@ from __future__ import annotations
 import jax.numpy as jnp
 from jax import Array
 
-from ..config import Config
 from ..geometry import TWO_PI, angle_of, safe_norm, wrap
 from ..sensing import UnitMove
+from .base import HomingMethod
+from .heading import Compass, HeadingSource
 
 
 def sample_ring(image: Array, angle: Array) -> Array:
@@ -65,9 +66,21 @@ def home_vector(home_image: Array, view_image: Array, heading: Array, blur_pix: 
     return jnp.stack([jnp.sum(-weight * jnp.sin(t)), jnp.sum(weight * jnp.cos(t))])
 
 
-def direction_with_heading(home: UnitMove, view: UnitMove, config: Config, heading: Array) -> tuple[Array, Array]:
-    """MFDID homing direction in the agent frame, channel `config.channel` (docs/model.md §4.5)."""
-    blur_pix = config.mfdid_blur_deg * config.n_pix / 360.0
-    h = home_vector(getattr(home.start, config.channel), getattr(view.end, config.channel), heading, blur_pix)
-    valid = safe_norm(h) > 0
-    return jnp.where(valid, wrap(angle_of(h) - heading), jnp.nan), valid
+class MFDID(HomingMethod):
+    """Matched-filter descent in image distances on the sensor's channel (docs/model.md §4.5).
+
+    blur_deg: Gaussian low-pass of both images, degrees (0 = the raw images).
+    """
+
+    blur_deg: float = 0.0
+    heading: HeadingSource = Compass()
+
+    def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
+        heading = self.heading(home, view)
+        blur_pix = self.blur_deg * view.end.mask.shape[-1] / 360.0
+        h = home_vector(home.start.image, view.end.image, heading, blur_pix)
+        valid = safe_norm(h) > 0
+        return jnp.where(valid, wrap(angle_of(h) - heading), jnp.nan), valid
+
+    def reads_gray(self, channel: str) -> bool:
+        return channel == "gray" or self.heading.reads_gray

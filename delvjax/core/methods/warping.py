@@ -1,6 +1,6 @@
 """Predictive image matching, "warping" (Franz et al. 1998, Möller 2009; thesis §4.2; docs/model.md §4.3).
 
-The home snapshot S (channel `config.channel` of `home.start`) is warped to predict the
+The home snapshot S (the sensor's channel of `home.start`) is warped to predict the
 current view C (`view.end`) for every hypothesis: movement direction alpha (home frame),
 rotation psi (current heading minus alpha_r) and rho = d / r (every landmark at the same
 distance r from home):
@@ -32,35 +32,37 @@ from __future__ import annotations
 
 import math
 
+import equinox as eqx
 import jax
 import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
-from ..config import Config
 from ..errors import InputError
 from ..geometry import TWO_PI, wrap
 from ..search import first_argmin
 from ..sensing import UnitMove
+from .base import HomingMethod
 
 WORD_BITS = 32
 
 
-def check_hypotheses(config: Config) -> None:
-    """Raise `InputError` unless the hypothesis grid is usable (trace time, before any work)."""
+def check_hypotheses(config: "Warping", n_pix: int) -> None:
+    """Raise `InputError` unless the hypothesis grid is usable on `n_pix`-pixel rings (trace time,
+    before any work)."""
     for name in ("n_alpha", "n_psi", "n_rho"):
         value = getattr(config, name)
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise InputError(name, value, "must be an integer >= 1")
     if not 0.0 < config.rho_min <= config.rho_max < 1.0:
         raise InputError("rho", (config.rho_min, config.rho_max), "must satisfy 0 < rho_min <= rho_max < 1")
-    if config.n_pix % config.n_psi:
-        raise InputError("n_psi", config.n_psi, f"must divide n_pix = {config.n_pix} (psi hypotheses are whole-pixel rotations)")
-    if (config.n_pix + 1) << max(1, (config.n_psi - 1).bit_length()) >= 2**31:
+    if n_pix % config.n_psi:
+        raise InputError("n_psi", config.n_psi, f"must divide n_pix = {n_pix} (psi hypotheses are whole-pixel rotations)")
+    if (n_pix + 1) << max(1, (config.n_psi - 1).bit_length()) >= 2**31:
         raise InputError("n_psi", config.n_psi, "too large: the search key distance << bits | psi must fit in int32")
 
 
-def rho_values(config: Config) -> np.ndarray:
+def rho_values(config: "Warping") -> np.ndarray:
     """(n_rho,) float64: rho_min + i * (rho_max - rho_min) / (n_rho - 1); rho_min alone if n_rho = 1."""
     if config.n_rho == 1:
         return np.array([config.rho_min])
@@ -68,10 +70,9 @@ def rho_values(config: Config) -> np.ndarray:
     return config.rho_min + i * (config.rho_max - config.rho_min) / (config.n_rho - 1)
 
 
-def warp_indices(config: Config) -> np.ndarray:
+def warp_indices(config: "Warping", n: int) -> np.ndarray:
     """(n_alpha * n_rho, n_pix) int32: index[alpha, rho, g], the nearest S pixel of
-    g - asin(rho * sin(g - alpha)) at g = 2 pi g / n_pix; rows in (alpha, rho) order. Float64."""
-    n = config.n_pix
+    g - asin(rho * sin(g - alpha)) at g = 2 pi g / n; rows in (alpha, rho) order. Float64."""
     g = TWO_PI * np.arange(n) / n
     alpha = TWO_PI * np.arange(config.n_alpha) / config.n_alpha
     rho = rho_values(config)
@@ -168,15 +169,16 @@ def sad_search(predicted: Array, current: Array, shifts: Array) -> tuple[Array, 
     return best[ar], ar, best_m[ar]
 
 
-def search(home_image: Array, view_image: Array, config: Config) -> tuple[Array, Array, Array, Array]:
+def search(home_image: Array, view_image: Array, config: "Warping") -> tuple[Array, Array, Array, Array]:
     """docs/model.md §4.3 search for one view: (minimum distance, alpha index, rho index, psi index).
 
     home_image, view_image: (n_pix,) `mask` (bool) or `gray` (float) ring images.
     """
-    check_hypotheses(config)
-    index = jnp.asarray(warp_indices(config))  # constant (n_ar, n_pix)
-    shifts = jnp.arange(config.n_psi, dtype=jnp.int32) * (config.n_pix // config.n_psi)
-    if config.channel == "mask":
+    n = home_image.shape[-1]
+    check_hypotheses(config, n)
+    index = jnp.asarray(warp_indices(config, n))  # constant (n_ar, n_pix)
+    shifts = jnp.arange(config.n_psi, dtype=jnp.int32) * (n // config.n_psi)
+    if home_image.dtype == jnp.bool_:
         predicted = pack_bits(home_image.astype(bool)[index]).T  # (words, n_ar), per map
         dist, ar, m = hamming_search(predicted, rotated_words(view_image.astype(bool), shifts))
         dist = dist.astype(jnp.float32)
@@ -185,15 +187,27 @@ def search(home_image: Array, view_image: Array, config: Config) -> tuple[Array,
     return dist, ar // config.n_rho, ar % config.n_rho, m
 
 
-def direction(home: UnitMove, view: UnitMove, config: Config) -> tuple[Array, Array]:
-    """Warping homing direction alpha + pi - psi in the agent frame (docs/model.md §4.3).
+class Warping(HomingMethod):
+    """Warping homing direction alpha + pi - psi in the agent frame (docs/model.md §4.3), on the
+    sensor's channel; no compass. Hypotheses: n_alpha movement directions, n_psi rotations (must
+    divide the ring width), n_rho values of rho = d / r from rho_min to rho_max.
 
     Invalid (NaN) when the home image is uniform: then every hypothesis predicts the same
     image and the search carries no information.
     """
-    s = getattr(home.start, config.channel)
-    c = getattr(view.end, config.channel)
-    _, a, _, m = search(s, c, config)
-    angle = wrap(TWO_PI * a / config.n_alpha + math.pi - TWO_PI * m / config.n_psi)
-    valid = jnp.any(s != s[0])
-    return jnp.where(valid, angle, jnp.nan), valid
+
+    n_alpha: int = eqx.field(static=True, default=72)
+    n_psi: int = eqx.field(static=True, default=72)
+    n_rho: int = eqx.field(static=True, default=15)
+    rho_min: float = eqx.field(static=True, default=0.10)
+    rho_max: float = eqx.field(static=True, default=0.80)
+
+    def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
+        s, c = home.start.image, view.end.image
+        _, a, _, m = search(s, c, self)
+        angle = wrap(TWO_PI * a / self.n_alpha + math.pi - TWO_PI * m / self.n_psi)
+        valid = jnp.any(s != s[0])
+        return jnp.where(valid, angle, jnp.nan), valid
+
+    def reads_gray(self, channel: str) -> bool:
+        return channel == "gray"

@@ -10,19 +10,32 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 from jax import Array
+from .types import BlobFlags, Blobs, Point, Ring, RingMask, Scalar
 
-from .config import Config
+from .sensor import Sensor
 from .geometry import TWO_PI, rotate, unit, wrap, wrap_positive
 from .scene import Env
 
 
 class Snapshot(eqx.Module):
-    """One omnidirectional view. mask, gray: (n_pix,); bearing, valid: (B,) blobs sorted by bearing in [0, 2pi), padding last."""
+    """One omnidirectional view (docs/model.md §2.2-2.4).
 
-    mask: Array
-    gray: Array
-    bearing: Array
-    valid: Array
+    mask, gray: (n_pix,) ring images; bearing, width, valid: (B,) blobs sorted by bearing in
+    [0, 2pi), padding last (width: apparent angular size, rad); channel: the sensor's image
+    channel, read by the image methods as `image`.
+    """
+
+    mask: RingMask
+    gray: Ring
+    bearing: Blobs
+    width: Blobs
+    valid: BlobFlags
+    channel: str = eqx.field(static=True, default="mask")
+
+    @property
+    def image(self) -> Array:
+        """The ring image of the sensor's channel (docs/model.md §2.2)."""
+        return getattr(self, self.channel)
 
 
 class UnitMove(eqx.Module):
@@ -109,20 +122,20 @@ def computed_if(flag: Array | bool, fn):
     return jax.lax.cond(flag, fn, zeros)
 
 
-def render(env: Env, visible: Array, pos: Array, heading: Array, config: Config,
+def render(env: Env, visible: Array, pos: Array, heading: Array, sensor: Sensor,
            with_gray: Array | bool = True) -> tuple[Array, Array]:
     """Ring image at `pos` with `heading` (docs/model.md §2.2-2.3): (mask bool (n_pix,), gray (n_pix,)).
 
     Pixel j looks along world angle heading + 2*pi*j/n_pix; landmark = 1, else background.
     `with_gray` False leaves gray zero (`computed_if`; for methods that read only the mask).
     """
-    n = config.n_pix
+    n = sensor.n_pix
     mask = ray_hits(env.landmarks, visible & env.valid, pos, heading, n)
 
     def gray():
         directions = rotate(jnp.asarray(pixel_directions(n)), heading)
         walls = background_of_angle(TWO_PI * wall_coordinate(pos, directions, env.arena))
-        code = jnp.asarray(config.background)  # traced: every setting shares one compiled program
+        code = jnp.asarray(sensor.background)  # traced: every setting shares one compiled program
         back = jnp.where(code == 0, distant_background(heading, n), jnp.where(code == 1, walls, 0.0))
         return jnp.where(mask, 1.0, back)
 
@@ -143,12 +156,14 @@ def _run_indices(flags: Array, max_blobs: int) -> Array:
     return jnp.stack(found)
 
 
-def extract_blobs(mask: Array, max_blobs: int) -> tuple[Array, Array]:
-    """Blobs of a ring mask (docs/model.md §2.4): (bearing (B,), valid (B,)), sorted by bearing in [0, 2pi).
+def blob_runs(mask: Array, max_blobs: int) -> tuple[Array, Array, Array]:
+    """Blobs of a ring mask (docs/model.md §2.4): (bearing (B,), width (B,), valid (B,)), sorted by
+    bearing in [0, 2pi).
 
     A blob is a maximal circular run of mask pixels; its bearing is the circular midpoint
-    of its first and last pixel. All pixels set: one blob at 0. Shapes are fixed: at most
-    `max_blobs` blobs (a mask of L cylinders has at most L runs), padding marked invalid.
+    of its first and last pixel, its width the run's angular size, (pixels) * 2 pi / n_pix.
+    All pixels set: one blob at 0 of width 2 pi. Shapes are fixed: at most `max_blobs` blobs
+    (a mask of L cylinders has at most L runs), padding marked invalid.
     """
     n = mask.shape[-1]
     starts = mask & ~jnp.roll(mask, 1)
@@ -166,32 +181,47 @@ def extract_blobs(mask: Array, max_blobs: int) -> tuple[Array, Array]:
     # bearing exactly 0 however XLA reassociates the float arithmetic.
     half_pixels = jnp.mod(2 * start_idx + length, 2 * n)
     bearing = half_pixels.astype(jnp.float32) * jnp.float32(np.pi / n)
+    width = (length + 1).astype(jnp.float32) * jnp.float32(2.0 * np.pi / n)
     valid = slot < count
     all_on = jnp.all(mask)
     bearing = jnp.where(all_on, 0.0, bearing)
+    width = jnp.where(all_on, jnp.float32(2.0 * np.pi), width)
     valid = jnp.where(all_on, slot == 0, valid)
-    return sort_blobs(bearing, valid)
+    bearing, valid, width = sort_blobs(bearing, valid, width)
+    return bearing, width, valid
 
 
-def sort_blobs(bearing: Array, valid: Array) -> tuple[Array, Array]:
-    """Sort blob bearings into [0, 2pi) ascending, invalid slots last (set to 0)."""
-    b = jnp.sort(jnp.where(valid, wrap_positive(bearing), jnp.inf))
-    valid = jnp.isfinite(b)
-    return jnp.where(valid, b, 0.0), valid
+def extract_blobs(mask: Array, max_blobs: int) -> tuple[Array, Array]:
+    """Blob bearings and validity of a ring mask (`blob_runs` without the widths)."""
+    bearing, _, valid = blob_runs(mask, max_blobs)
+    return bearing, valid
 
 
-def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, config: Config,
+def sort_blobs(bearing: Array, valid: Array, *carried: Array) -> tuple[Array, ...]:
+    """Sort blob bearings into [0, 2pi) ascending, invalid slots last (set to 0): (bearing, valid,
+    *carried), each array of `carried` (per-blob values, e.g. widths) permuted alike."""
+    key = jnp.where(valid, wrap_positive(bearing), jnp.inf)
+    if not carried:
+        b = jnp.sort(key)
+        ok = jnp.isfinite(b)
+        return jnp.where(ok, b, 0.0), ok
+    order = jnp.argsort(key)
+    b = key[order]
+    ok = jnp.isfinite(b)
+    return (jnp.where(ok, b, 0.0), ok, *(jnp.where(ok, c[order], 0.0) for c in carried))
+
+
+def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, sensor: Sensor,
              with_gray: Array | bool = True) -> Snapshot:
     """Render, extract blobs and add bearing noise (docs/model.md §2.5) for one viewpoint."""
-    mask, gray = render(env, visible, pos, heading, config, with_gray)
-    bearing, valid = extract_blobs(mask, env.landmarks.shape[0])
-    noise = config.noise.bearing * jax.random.normal(key, bearing.shape)
-    bearing, valid = sort_blobs(bearing + noise, valid)
-    return Snapshot(mask=mask, gray=gray, bearing=bearing, valid=valid)
+    mask, gray = render(env, visible, pos, heading, sensor, with_gray)
+    bearing, width, valid = blob_runs(mask, env.landmarks.shape[0])
+    bearing, valid, width = sort_blobs(bearing + sensor.noise.bearing_errors(key, bearing.shape), valid, width)
+    return Snapshot(mask=mask, gray=gray, bearing=bearing, width=width, valid=valid, channel=sensor.channel)
 
 
 def observe_move(env: Env, visible: Array, start: Array, end: Array, heading_start: Array, heading_end: Array,
-                 d_hat: Array, psi_hat: Array, key: Array, config: Config,
+                 d_hat: Array, psi_hat: Array, key: Array, sensor: Sensor,
                  with_start: Array | bool = True, with_gray: Array | bool = True) -> UnitMove:
     """Snapshots at `start` and `end` of a move already made (true poses given), plus the
     agent's readings: odometry (d_hat, psi_hat) and a compass reading of heading_end - alpha_r
@@ -201,49 +231,64 @@ def observe_move(env: Env, visible: Array, start: Array, end: Array, heading_sta
     view), `with_gray` False the gray channels (`computed_if`; a traced flag skips the work at
     run time). No noise draw depends on them.
     """
-    k_compass, k_start, k_end = jax.random.split(key, 3)
-    compass = wrap(heading_end - config.alpha_r + config.noise.compass * jax.random.normal(k_compass))
-
+    k_compass, k_start, k_end = sensor.noise.observation_keys(key)
+    compass = wrap(heading_end - sensor.alpha_r + sensor.noise.compass_error(k_compass))
     return UnitMove(
-        start=computed_if(with_start, lambda: snapshot(env, visible, start, heading_start, k_start, config, with_gray)),
-        end=snapshot(env, visible, end, heading_end, k_end, config, with_gray),
+        start=computed_if(with_start, lambda: snapshot(env, visible, start, heading_start, k_start, sensor, with_gray)),
+        end=snapshot(env, visible, end, heading_end, k_end, sensor, with_gray),
         d_hat=jnp.asarray(d_hat, jnp.float32),
         psi_hat=jnp.asarray(psi_hat, jnp.float32),
         compass=compass,
     )
 
 
-def unit_move_poses(start: Array, heading: Array, key: Array, config: Config, end_at: Array | None = None):
-    """The true poses and odometry of one unit movement (docs/model.md §2.5, §3.1), before sensing:
-    (start (2,), end (2,), heading_start, heading_end, psi_hat, key of the observation).
+class MovePoses(eqx.Module):
+    """The true poses and odometry of one move, before sensing (docs/model.md §2.5, §3.1, §5).
+
+    start, end: (2,) cm; heading_start: heading of the move; heading_end: heading at the end
+    (after the body turn psi); psi_hat: the odometry's turn; key: the observation's key.
+    """
+
+    start: Point
+    end: Point
+    heading_start: Scalar
+    heading_end: Scalar
+    psi_hat: Scalar
+    key: Array
+
+
+def unit_move_poses(start: Array, heading: Array, key: Array, sensor: Sensor,
+                    end_at: Array | None = None) -> MovePoses:
+    """The true poses and odometry of one unit movement (docs/model.md §2.5, §3.1), before sensing.
 
     The agent at P = `start` with `heading` moves d * (1 + N(0, noise.step)) along it and
     turns by psi ~ N(0, noise.turn); odometry reports d_hat = d and psi_hat = psi +
     N(0, noise.turn_odometry). If `end_at` is given the move ends there instead
     (P = end_at - step * u(heading)): the current view of a vector map (docs/model.md §3.3).
     """
-    k_step, k_turn, k_odo, k_obs = jax.random.split(key, 4)
-    noise = config.noise
-    step = config.d * (1.0 + noise.step * jax.random.normal(k_step))
-    psi = noise.turn * jax.random.normal(k_turn)
-    psi_hat = psi + noise.turn_odometry * jax.random.normal(k_odo)
+    step, psi, psi_hat, k_obs = sensor.noise.unit_move(key, sensor.d)
     if end_at is not None:
         start = end_at - step * unit(heading)
-    end = start + step * unit(heading)
-    return start, end, heading, heading + psi, psi_hat, k_obs
+    return MovePoses(start, start + step * unit(heading), heading, heading + psi, psi_hat, k_obs)
 
 
-def unit_move(env: Env, start: Array, heading: Array, key: Array, config: Config,
+def observe_poses(env: Env, visible: Array, poses: MovePoses, sensor: Sensor,
+                  with_start: Array | bool = True, with_gray: Array | bool = True) -> UnitMove:
+    """`observe_move` of a `MovePoses` (the odometry reports d_hat = d)."""
+    return observe_move(env, visible, poses.start, poses.end, poses.heading_start, poses.heading_end, sensor.d,
+                        poses.psi_hat, poses.key, sensor, with_start, with_gray)
+
+
+def unit_move(env: Env, start: Array, heading: Array, key: Array, sensor: Sensor,
               visible: Array | None = None, end_at: Array | None = None) -> tuple[UnitMove, Array]:
     """Sense one unit movement (`unit_move_poses`); returns (UnitMove, true heading at the end)."""
     if visible is None:
         visible = jnp.ones(env.landmarks.shape[0], bool)
-    start, end, heading, heading_end, psi_hat, k_obs = unit_move_poses(start, heading, key, config, end_at)
-    move = observe_move(env, visible, start, end, heading, heading_end, config.d, psi_hat, k_obs, config)
-    return move, heading_end
+    poses = unit_move_poses(start, heading, key, sensor, end_at)
+    return observe_poses(env, visible, poses, sensor), poses.heading_end
 
 
-def record_home(env: Env, key: Array, config: Config) -> UnitMove:
+def record_home(env: Env, key: Array, sensor: Sensor) -> UnitMove:
     """The home record (docs/model.md §3.3): a unit movement from home along alpha_r, all landmarks seen."""
-    move, _ = unit_move(env, env.home, jnp.asarray(config.alpha_r, jnp.float32), key, config)
+    move, _ = unit_move(env, env.home, jnp.asarray(sensor.alpha_r, jnp.float32), key, sensor)
     return move

@@ -1,4 +1,4 @@
-"""Exhaustive-search helpers with the SPEC's tie rule (first minimum)."""
+"""Exhaustive-search helpers with the model's tie rule: the first minimum wins (docs/model.md §3.4)."""
 
 from __future__ import annotations
 

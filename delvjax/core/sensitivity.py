@@ -11,40 +11,40 @@ independent bearing noise of std sigma is then `gain * sigma` with
 
 from __future__ import annotations
 
-from functools import partial
-
 import equinox as eqx
 import jax
 import jax.numpy as jnp
 from jax import Array
 
-from .config import Config
+from .kernel import map_poses, sense
 from .maps import stream_keys
-from .methods import get_method
+from .methods.base import HomingMethod
 from .scene import Env
-from .sensing import UnitMove, record_home, unit_move
+from .sensing import UnitMove, record_home
+from .sensor import Sensor
+from .types import PerPoint, PerPointFlag, PointBlobFlags, PointBlobs, Points
 
 
 def _perturbed(view: UnitMove, eps: Array) -> UnitMove:
     return eqx.tree_at(lambda v: v.end.bearing, view, view.end.bearing + eps)
 
 
-@partial(jax.jit, static_argnames=("method",))
-def bearing_jacobian(env: Env, points: Array, headings: Array, key: Array, config: Config,
-                     method: str) -> tuple[Array, Array, Array]:
+@jax.jit
+def bearing_jacobian(env: Env, points: Points, headings: PerPoint, key: Array, sensor: Sensor,
+                     method: HomingMethod) -> tuple[PointBlobs, PointBlobFlags, PerPointFlag]:
     """d(direction)/d(current blob bearings) at every point: (jac (P, B), blob_valid (P, B), valid (P,)).
 
     Same keys and unit moves as `maps.homing_directions`; rad per rad; 0 where undefined.
     """
-    fn = get_method(method)
     k_home, k_views, _ = stream_keys(key)
-    home = record_home(env, k_home, config)
+    home = record_home(env, k_home, sensor)
+    visible = jnp.ones(env.landmarks.shape[0], bool)
 
     def one(point, heading, index):
-        view, _ = unit_move(env, point, heading, jax.random.fold_in(k_views, index), config, end_at=point)
+        view = sense(env, visible, map_poses(point, heading, k_views, index, sensor), method, sensor)
 
         def angle(eps):
-            a, ok = fn(home, _perturbed(view, eps), config)
+            a, ok = method(home, _perturbed(view, eps))
             return jnp.where(ok, a, 0.0), ok
 
         jac, ok = jax.grad(angle, has_aux=True)(jnp.zeros_like(view.end.bearing))
@@ -54,9 +54,9 @@ def bearing_jacobian(env: Env, points: Array, headings: Array, key: Array, confi
     return jax.vmap(one)(points, headings, jnp.arange(points.shape[0]))
 
 
-def bearing_noise_gain(env: Env, points: Array, headings: Array, key: Array, config: Config,
-                       method: str) -> tuple[Array, Array]:
+def bearing_noise_gain(env: Env, points: Points, headings: PerPoint, key: Array, sensor: Sensor,
+                       method: HomingMethod) -> tuple[PerPoint, PerPointFlag]:
     """First-order std of the homing direction per unit std of independent bearing noise
     on the current view, (P,) deg per deg, and validity (P,)."""
-    jac, _, ok = bearing_jacobian(env.arrays(), points, headings, key, config, method)
+    jac, _, ok = bearing_jacobian(env.arrays(), points, headings, key, sensor, method)
     return jnp.linalg.norm(jac, axis=-1), ok

@@ -9,13 +9,23 @@ the nearest P-blob theta; delta = wrap(beta' - theta); by the sine law in P-L-C
 
 from __future__ import annotations
 
+from typing import Protocol
+
 import jax.numpy as jnp
 from jax import Array
 
-from .config import Config
 from .geometry import unit, wrap
 from .search import first_argmin
 from .sensing import UnitMove
+
+
+class DistanceSettings(Protocol):
+    """What distance estimation reads (docs/model.md §3.1-3.2): the cap r_max (cm), quantization
+    levels Q (0 = continuous) and scale a (cm). `DELV` has these fields."""
+
+    r_max: Array | float
+    levels: Array | int
+    scale: Array | float
 
 SIN_EPS = 1e-9
 
@@ -50,7 +60,7 @@ def _sin_on_lattice(a: Array) -> Array:
     return jnp.where(jnp.abs(s) < 1e-6, 0.0, s)
 
 
-def end_distances(move: UnitMove, config: Config) -> Array:
+def end_distances(move: UnitMove, settings: DistanceSettings) -> Array:
     """R_C for every end (C) blob, Eq 3.2; (B,) cm, r_max where undefined."""
     beta = move.end.bearing + move.psi_hat
     theta_all = move.start.bearing
@@ -58,19 +68,19 @@ def end_distances(move: UnitMove, config: Config) -> Array:
     theta = theta_all[idx]
     s = jnp.sin(delta)
     r = move.d_hat * _sin_on_lattice(theta) / jnp.where(jnp.abs(s) < SIN_EPS, 1.0, s)
-    r = _guard(r, s, config.r_max)
-    return jnp.where(jnp.any(move.start.valid), r, config.r_max)
+    r = _guard(r, s, settings.r_max)
+    return jnp.where(jnp.any(move.start.valid), r, settings.r_max)
 
 
-def start_distances(move: UnitMove, config: Config) -> Array:
+def start_distances(move: UnitMove, settings: DistanceSettings) -> Array:
     """R_P for every start (P) blob, Eq 3.3 (each P-blob takes the nearest C-blob); (B,) cm."""
     theta = move.start.bearing
     beta = move.end.bearing + move.psi_hat
     _, delta = _nearest(wrap(beta[None, :] - theta[:, None]), move.end.valid)
     s = jnp.sin(delta)
     r = move.d_hat * _sin_on_lattice(theta + delta) / jnp.where(jnp.abs(s) < SIN_EPS, 1.0, s)
-    r = _guard(r, s, config.r_max)
-    return jnp.where(jnp.any(move.end.valid), r, config.r_max)
+    r = _guard(r, s, settings.r_max)
+    return jnp.where(jnp.any(move.end.valid), r, settings.r_max)
 
 
 def quantize(r: Array, levels: int | None, scale: Array) -> Array:
@@ -84,13 +94,13 @@ def quantize(r: Array, levels: int | None, scale: Array) -> Array:
     return jnp.where(jnp.asarray(levels) > 0, quantized, r)
 
 
-def reference_vectors(home: UnitMove, config: Config) -> tuple[Array, Array]:
+def reference_vectors(home: UnitMove, settings: DistanceSettings) -> tuple[Array, Array]:
     """Reference map V^R_i = R_P,i (cos theta_i, sin theta_i), home frame (docs/model.md §3.3): ((B, 2), (B,))."""
-    r = quantize(start_distances(home, config), config.levels, config.scale)
+    r = quantize(start_distances(home, settings), settings.levels, settings.scale)
     return r[:, None] * unit(home.start.bearing), home.start.valid
 
 
-def current_vectors(view: UnitMove, config: Config) -> tuple[Array, Array]:
+def current_vectors(view: UnitMove, settings: DistanceSettings) -> tuple[Array, Array]:
     """Current vectors V_j = R_C,j (cos beta_j, sin beta_j), agent frame at C (docs/model.md §3.3): ((B, 2), (B,))."""
-    r = quantize(end_distances(view, config), config.levels, config.scale)
+    r = quantize(end_distances(view, settings), settings.levels, settings.scale)
     return r[:, None] * unit(view.end.bearing), view.end.valid

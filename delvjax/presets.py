@@ -1,8 +1,7 @@
-"""Environments: cylinders in a rectangular arena around a home (docs/model.md §1, §2.1, §6, §7).
+"""Environments from user input: presets, JSON files and their validation (docs/model.md §6, §7).
 
-An `Env` is a pytree. Landmarks are an `(L, 3)` array of `[x, y, r]` (cm) with a
-validity mask, so environments with different counts can be padded to one shape and
-batched. Loading and validating user files happens here, once, before any array work.
+The array form, `Env`, lives in the core (`delvjax.core.scene`); everything that reads a
+file or checks a user's numbers happens here, once, before any array work.
 """
 
 from __future__ import annotations
@@ -11,35 +10,11 @@ import json
 import math
 from pathlib import Path
 
-import equinox as eqx
 import jax
-import jax.numpy as jnp
 import numpy as np
-from jax import Array
 
-from .errors import InputError
-
-DEFAULT_ARENA = (0.0, 0.0, 1000.0, 1000.0)
-DEFAULT_HOME = (500.0, 500.0)
-
-
-class Env(eqx.Module):
-    """landmarks: (L, 3) [x, y, r] cm; valid: (L,) bool; home: (2,); arena: (4,) [xmin, ymin, xmax, ymax]."""
-
-    landmarks: Array
-    valid: Array
-    home: Array
-    arena: Array
-    name: str = eqx.field(static=True, default="env")
-
-    @property
-    def n_landmarks(self) -> int:
-        return int(np.sum(np.asarray(self.valid)))
-
-    def arrays(self) -> "Env":
-        """The same scene with a neutral name: jitted code compiles once per shape, not per name."""
-        return Env(self.landmarks, self.valid, self.home, self.arena)
-
+from .core.errors import InputError
+from .core.scene import DEFAULT_ARENA, DEFAULT_HOME, Env
 
 def make_env(landmarks, home=DEFAULT_HOME, arena=DEFAULT_ARENA, name: str = "env", pad_to: int | None = None) -> Env:
     """Build an `Env` from plain numbers (validated like a JSON file, docs/model.md §7)."""
@@ -123,11 +98,6 @@ def random_env(seed: int, n_landmarks: int, radius=(15.0, 45.0), region=(150.0, 
     return make_env(out, name=name or f"random{seed}-{n_landmarks}", pad_to=pad_to)
 
 
-def stack_envs(envs: list[Env]) -> Env:
-    """One batched `Env` (leading axis = environment) from envs of equal padded size and name."""
-    return jax.tree.map(lambda *leaves: jnp.stack(leaves), *envs)
-
-
 def env_from_dict(spec: object, pad_to: int | None = None) -> Env:
     """Validated `Env` from a docs/model.md §7 dictionary, landmarks padded to `pad_to`."""
     s = validate_env_dict(spec)
@@ -158,39 +128,6 @@ def env_to_dict(env: Env) -> dict:
         "home": [float(v) for v in np.asarray(env.home)],
         "landmarks": [{"x": float(x), "y": float(y), "r": float(r)} for x, y, r in lms],
     }
-
-
-def rotation_mismatch(env: Env, angles_deg=(90.0, 180.0, 270.0)) -> dict[float, float]:
-    """How far each rotation of the layout about home is from mapping it onto itself (docs/model.md §6).
-
-    For each angle: rotate the landmark centres about home and return the bottleneck distance
-    (cm) to the original centres, i.e. the smallest d such that a one-to-one matching of the
-    rotated to the original centres moves none by more than d. 0 for a layout with that
-    rotational symmetry (env2, ring4 at 90 deg); env1 is asymmetric: > `ASYMMETRY_CM` for all three.
-    """
-    from scipy.sparse import csr_matrix
-    from scipy.sparse.csgraph import maximum_bipartite_matching
-
-    pts = np.asarray(env.landmarks, float)[np.asarray(env.valid), :2]
-    rel = pts - np.asarray(env.home, float)
-    out = {}
-    for deg in angles_deg:  # a handful of landmarks: input analysis, not a hot path
-        a = math.radians(deg)
-        rot = rel @ np.array([[math.cos(a), math.sin(a)], [-math.sin(a), math.cos(a)]])
-        dist = np.linalg.norm(rot[:, None, :] - rel[None, :, :], axis=-1)
-        best = float(dist.max())
-        for t in np.unique(dist):  # smallest threshold with a perfect matching
-            match = maximum_bipartite_matching(csr_matrix(dist <= t), perm_type="column")
-            if np.all(match >= 0):
-                best = float(t)
-                break
-        out[float(deg)] = best
-    return out
-
-
-# docs/model.md §6 "no rotation by a multiple of 90 degrees nearly maps it onto itself", in numbers:
-# every rotation_mismatch of env1 exceeds this (cm); the first env1 layout had 63 cm.
-ASYMMETRY_CM = 80.0
 
 
 def _ring(n: int, distance: float = 250.0, radius: float = 30.0, first_deg: float = 90.0) -> list[tuple[float, float, float]]:

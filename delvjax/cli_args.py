@@ -1,0 +1,100 @@
+"""Argument groups shared by the CLI commands (`cli`, `cli_rollouts`). Defaults are read from the
+modules (`options.defaults`), so they are written once."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from .core.methods import DELV, Warping
+from .core.rollouts import DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
+from .core.sensor import BACKGROUNDS, CHANNELS, Sensor
+from .io import check_output_path
+from .options import NOISE_FIELDS_DEG, NOISE_OPTIONS, defaults
+from .registry import METHODS
+
+CSV = (".csv",)
+FIGURE = (".png", ".pdf", ".svg")
+JSON = (".json",)
+
+
+def progress(msg: str) -> None:
+    print(f"[delvjax] {msg}", file=sys.stderr, flush=True)
+
+
+def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
+    sensor, delv, warping = defaults(Sensor), defaults(DELV), defaults(Warping)
+    p.add_argument("env", help="preset name (see `delvjax envs`) or a docs/model.md §7 JSON file")
+    p.add_argument("--method", default="delv", help=f"homing method: {', '.join(methods or METHODS)} (default delv)")
+    p.add_argument("--levels", type=int, default=None, help="DELV distance quantization levels Q >= 1 (default: continuous)")
+    p.add_argument("--d", type=float, default=None, help=f"unit-movement step d in cm (default {sensor['d']:g})")
+    p.add_argument("--spacing", type=float, default=25.0, help="grid spacing in cm (default 25: 40x40)")
+    p.add_argument("--clearance", type=float, default=10.0, help="grid points closer than r + clearance to a landmark are dropped (default 10)")
+    p.add_argument("--heading-deg", type=float, default=None, help="fixed heading at every point (default: random per point from --seed)")
+    p.add_argument("--seed", type=int, default=0, help="seed of random headings and all noise (default 0)")
+    p.add_argument("--background", default="distant", help=f"{', '.join(BACKGROUNDS)} (default distant)")
+    p.add_argument("--channel", default=sensor["channel"],
+                   help=f"image channel of holistic methods: {', '.join(CHANNELS)} (default {sensor['channel']})")
+    p.add_argument("--n-heading", type=int, default=None, help=f"DELV heading hypotheses (default {delv['n_heading']})")
+    p.add_argument("--hide", type=int, nargs="+", default=None, metavar="I",
+                   help="landmark indices invisible during homing (occlusion; the home record sees all)")
+    w = p.add_argument_group("warping hypotheses (docs/model.md §4.3)")
+    w.add_argument("--n-alpha", type=int, default=None, help=f"movement directions alpha (default {warping['n_alpha']})")
+    w.add_argument("--n-psi", type=int, default=None, help=f"rotations psi, must divide 360 (default {warping['n_psi']})")
+    w.add_argument("--n-rho", type=int, default=None, help=f"values of rho = d/r (default {warping['n_rho']})")
+    w.add_argument("--rho-min", type=float, default=None, help=f"smallest rho (default {warping['rho_min']:.2f})")
+    w.add_argument("--rho-max", type=float, default=None, help=f"largest rho, < 1 (default {warping['rho_max']:.2f})")
+    w.add_argument("--mfdid-blur-deg", type=float, default=None, help="MFDID: Gaussian low-pass of both images, deg (default 0)")
+    g = p.add_argument_group("noise (all default 0; angles in degrees)")
+    for name in NOISE_OPTIONS:
+        unit = "deg" if name in NOISE_FIELDS_DEG else "fraction of d"
+        g.add_argument("--" + name.replace("_", "-"), type=float, default=0.0, dest=name, help=f"sigma ({unit})")
+
+
+def scene_kwargs(args: argparse.Namespace) -> dict:
+    kw = dict(method=args.method, spacing=args.spacing, clearance=args.clearance, heading_deg=args.heading_deg,
+              seed=args.seed, background=args.background, channel=args.channel, hidden=args.hide)
+    settings = dict(levels=args.levels, d=args.d, n_heading=args.n_heading, n_alpha=args.n_alpha, n_psi=args.n_psi,
+                    n_rho=args.n_rho, mfdid_blur_deg=args.mfdid_blur_deg, rho_min=args.rho_min, rho_max=args.rho_max)
+    kw.update({k: v for k, v in settings.items() if v is not None})
+    kw.update({name: getattr(args, name) for name in NOISE_OPTIONS if getattr(args, name) != 0.0})
+    return kw
+
+
+def add_output_args(p: argparse.ArgumentParser, plot_help: str) -> None:
+    p.add_argument("--out", required=True, help="per-point CSV file")
+    p.add_argument("--plot", default=None, help=plot_help + " (.png, .pdf or .svg)")
+    p.add_argument("--summary", default=None, help="JSON file with the headline numbers")
+
+
+def check_outputs(args: argparse.Namespace) -> None:
+    check_output_path(args.out, "--out", CSV)
+    if args.plot is not None:
+        check_output_path(args.plot, "--plot", FIGURE)
+    if args.summary is not None:
+        check_output_path(args.summary, "--summary", JSON)
+
+
+def add_rollout_args(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("rollouts (docs/model.md §5)")
+    g.add_argument("--max-steps", type=int, default=MAX_STEPS, help=f"moves allowed to reach home (default {MAX_STEPS})")
+    g.add_argument("--home-radius", type=float, default=HOME_RADIUS,
+                   help=f"success within this distance of home, cm (default {HOME_RADIUS:g})")
+    g.add_argument("--lanes", type=int, default=DEFAULT_LANES,
+                   help=f"trials advanced side by side (memory bound; default {DEFAULT_LANES})")
+    g.add_argument("--first-move", default="homing", metavar="RULE",
+                   help="homing (default): the first move follows the homing direction computed at the release "
+                        "point, as in the vector map; release: it follows the release heading")
+    g.add_argument("--collisions", default="ignore", metavar="RULE",
+                   help="ignore (default): landmarks are no obstacles; fail: a move ending inside a landmark fails")
+
+
+def rollout_kwargs(args: argparse.Namespace, drop=("spacing",)) -> dict:
+    """`scene_kwargs` plus the rollout options, validated (rules) before any work or progress line."""
+    kw = scene_kwargs(args)
+    for name in drop:
+        kw.pop(name, None)
+    check_rules(args.first_move, args.collisions)
+    kw.update(max_steps=args.max_steps, home_radius=args.home_radius, first_move=args.first_move,
+              collisions=args.collisions)
+    return kw

@@ -1,0 +1,48 @@
+"""What every homing method is (docs/model.md §3-4): an equinox module called on two unit moves.
+
+    method(home: UnitMove, view: UnitMove) -> (angle, valid)
+
+`home` is what was recorded at home (a unit move from home along alpha_r), `view` the unit
+move that ended at the current point; `angle` is the homing direction in the agent's frame at
+the end of that move (rad), `valid` False where it is undefined (then `angle` is NaN). A
+method owns its settings: continuous ones are traced leaves (a sweep or a gradient reaches
+them with `eqx.tree_at`), shapes and choices are static fields. Maps, rollouts and
+sensitivity take the method as a pytree argument; nothing under jit looks a method up by name.
+"""
+
+from __future__ import annotations
+
+import abc
+from typing import Protocol, runtime_checkable
+
+import equinox as eqx
+from jax import Array
+from ..types import Direction
+
+from ..sensing import UnitMove
+
+
+@runtime_checkable
+class Method(Protocol):
+    """The one signature of a homing method."""
+
+    def __call__(self, home: UnitMove, view: UnitMove) -> Direction: ...
+
+
+class HomingMethod(eqx.Module):
+    """Base class of the methods: the protocol plus what the method reads, so that rendering it
+    does not need is skipped (`sensing.computed_if`)."""
+
+    @abc.abstractmethod
+    def __call__(self, home: UnitMove, view: UnitMove) -> Direction:
+        """Homing direction in the agent frame at the end of `view` (rad) and its validity."""
+
+    def reads_start_view(self) -> bool | Array:
+        """Whether the method reads the snapshot at the start of the current unit move
+        (DELV's motion parallax, docs/model.md §3.1); most read only the current view."""
+        return False
+
+    def reads_gray(self, channel: str) -> bool | Array:
+        """Whether the method reads the gray channel of the current view (docs/model.md §2.2)
+        when the sensor's image channel is `channel`."""
+        return False

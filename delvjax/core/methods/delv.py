@@ -1,0 +1,104 @@
+"""DELV: distance-estimated landmark vectors and arrangement matching (thesis §3.2.4, §3.3.1; docs/model.md §3.4)."""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import equinox as eqx
+import jax.numpy as jnp
+from jax import Array
+
+from ..estimation import DistanceSettings, current_vectors, reference_vectors
+from ..search import first_argmin
+from ..geometry import TWO_PI, angle_of, rotate, safe_norm, wrap
+from ..sensing import UnitMove
+from .base import HomingMethod
+from .heading import HeadingSource
+from .pairing import shift_pairs
+
+
+def match_arrangement(ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array,
+                      alphas: Array) -> tuple[Array, Array, Array, Array]:
+    """Best cyclic shift k and heading hypothesis alpha (Eqs 3.4-3.6): (p (2,), alpha, var, n_pairs).
+
+    For each k and alpha: e_i = V^R_i - Rot(alpha) V_j(i), p = mean e_i, var = sum |e_i - p|^2;
+    the first minimum in k-major order wins. With centred pair vectors a'_i, b'_i,
+    var(alpha) = sum |a'|^2 + |b'|^2 - 2 Re(e^{i alpha} sum conj(a') b'), so all
+    alphas of one shift cost two multiply-adds each.
+    ref_v: (B, 2) home frame; cur_v: (B, 2) agent frame; alphas: (A,) radians.
+    """
+    ref_idx, cur_idx, pair_ok, shift_ok = shift_pairs(ref_valid, cur_valid)
+    w = pair_ok.astype(ref_v.dtype)[..., None]  # (K, S, 1)
+    n = jnp.sum(pair_ok[0])
+    n_safe = jnp.maximum(n, 1)
+    a = ref_v[ref_idx] * w  # (K, S, 2)
+    b = cur_v[cur_idx] * w
+    a_mean = jnp.sum(a, axis=1) / n_safe  # (K, 2)
+    b_mean = jnp.sum(b, axis=1) / n_safe
+    a_c = (a - a_mean[:, None]) * w
+    b_c = (b - b_mean[:, None]) * w
+    const = jnp.sum(a_c * a_c + b_c * b_c, axis=(1, 2))  # (K,)
+    z_re = jnp.sum(a_c[..., 0] * b_c[..., 0] + a_c[..., 1] * b_c[..., 1], axis=1)
+    z_im = jnp.sum(a_c[..., 0] * b_c[..., 1] - a_c[..., 1] * b_c[..., 0], axis=1)
+    var = const[:, None] - 2.0 * (jnp.cos(alphas)[None, :] * z_re[:, None] - jnp.sin(alphas)[None, :] * z_im[:, None])
+    var = jnp.where(shift_ok[:, None], var, jnp.inf)
+    best = first_argmin(var.reshape(-1))
+    k_best, a_best = best // alphas.shape[0], best % alphas.shape[0]
+    alpha = alphas[a_best]
+    p = a_mean[k_best] - rotate(b_mean[k_best], alpha)
+    return p, alpha, var[k_best, a_best], n
+
+
+def delv_direction(home: UnitMove, view: UnitMove, settings: DistanceSettings, alphas: Array, min_pairs: int,
+                   match: Callable = match_arrangement) -> tuple[Array, Array]:
+    """Homing direction from the best (k, alpha) of `match`; invalid (NaN) when n < `min_pairs` or |p| = 0.
+
+    `min_pairs` is static: 2 without a compass (one pair fits every heading), 1 with a
+    heading estimate (one pair fixes p = V^R_i - Rot(alpha) V_j; with n = 1 every shift
+    has var = 0 and the first k wins), docs/model.md §3.4.
+    """
+    ref_v, ref_valid = reference_vectors(home, settings)
+    cur_v, cur_valid = current_vectors(view, settings)
+    p, alpha, _, n = match(ref_v, ref_valid, cur_v, cur_valid, alphas)
+    valid = (n >= min_pairs) & (n >= 1) & (safe_norm(p) > 0)
+    angle = wrap(angle_of(-p) - alpha)
+    return jnp.where(valid, angle, jnp.nan), valid
+
+
+class DELV(HomingMethod):
+    """DELV (thesis ch. 3-5; docs/model.md §3): distances from the unit movement, arrangement matching.
+
+    levels: quantization levels Q (0, or None when constructing, = continuous; Eq 3.17), a
+            traced leaf, so every Q shares one program; scale: quantization scale a, cm;
+    r_max:  cap of estimated distances, cm (§3.1);
+    heading: None searches all cyclic shifts x `n_heading` hypotheses alpha = 2 pi a / n_heading
+            (no compass, thesis ch. 3-4); a heading source (`Compass()`, `VisualCompass()`)
+            fixes alpha, and only the shift is searched (thesis ch. 5); one visible landmark
+            then suffices (§3.4).
+    """
+
+    levels: int = eqx.field(default=0, converter=lambda q: 0 if q is None else q)
+    scale: float = 1000.0
+    r_max: float = 2000.0
+    heading: HeadingSource | None = None
+    n_heading: int = eqx.field(static=True, default=360)
+
+    def alphas(self, home: UnitMove, view: UnitMove) -> Array:
+        """The heading hypotheses: all n_heading of them, or the heading source's estimate."""
+        if self.heading is None:
+            return TWO_PI * jnp.arange(self.n_heading, dtype=jnp.float32) / self.n_heading
+        return jnp.reshape(self.heading(home, view), (1,))
+
+    def match(self, ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array, alphas: Array):
+        """The arrangement search (`match_arrangement`): (p, alpha, var, n)."""
+        return match_arrangement(ref_v, ref_valid, cur_v, cur_valid, alphas)
+
+    def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
+        return delv_direction(home, view, self, self.alphas(home, view), min_pairs=1 if self.heading is not None else 2,
+                              match=self.match)
+
+    def reads_start_view(self) -> bool:
+        return True
+
+    def reads_gray(self, channel: str) -> bool:
+        return bool(self.heading is not None and self.heading.reads_gray)

@@ -1,0 +1,82 @@
+"""Heading sources: the (noisy) compass and the visual compass (Labrosse 2006, Zeil 2003; docs/model.md §4.4).
+
+A heading source is a module called like a method, `source(home, view) -> h - alpha_r` (rad):
+the agent's estimate of its heading at the end of `view` relative to the home reference
+heading. Methods that need a heading own one (`ALV(heading=VisualCompass())`).
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+from jax import Array, lax
+from ..types import PerPoint, Scalar
+
+from ..geometry import TWO_PI, wrap
+from ..scene import Env
+from ..search import first_argmin
+from ..sensing import UnitMove, render
+from ..sensor import Sensor
+
+
+def visual_compass(home_gray: Array, view_gray: Array) -> Array:
+    """Estimate h - alpha_r from two gray ring images (docs/model.md §4.4).
+
+    The pixel shift k minimising sum_j |C[j + k] - S[j]| (first minimum) gives -2 pi k / n.
+    """
+    n = home_gray.shape[-1]
+    doubled = jnp.concatenate([view_gray, view_gray])
+
+    def cost(k: Array) -> Array:
+        return jnp.sum(jnp.abs(lax.dynamic_slice(doubled, (k,), (n,)) - home_gray))
+
+    # A scan over the n shifts (each step vectorised over whatever is vmapped outside)
+    # is 5x faster on CPU than materialising the (n, n) circulant by a gather.
+    costs = lax.map(cost, jnp.arange(n))
+    return wrap(-TWO_PI * first_argmin(costs) / n)
+
+
+class Compass(eqx.Module):
+    """The compass reading of h - alpha_r carried by the unit move (noise: `Noise.compass`)."""
+
+    reads_gray: ClassVar[bool] = False
+
+    def __call__(self, home: UnitMove, view: UnitMove) -> Scalar:
+        return view.compass
+
+
+class VisualCompass(eqx.Module):
+    """The visual compass: the gray home image against the current gray image (docs/model.md §4.4)."""
+
+    reads_gray: ClassVar[bool] = True
+
+    def __call__(self, home: UnitMove, view: UnitMove) -> Scalar:
+        return visual_compass(home.start.gray, view.end.gray)
+
+
+HeadingSource = Compass | VisualCompass
+
+
+def visual_compass_errors(env: Env, points: Array, headings: Array, sensor: Sensor) -> PerPoint:
+    """Heading error of the visual compass at each point (docs/model.md §4.4; thesis §5.3.2), (P,) rad.
+
+    The home image is taken at home with heading alpha_r, the current one at `points` with
+    `headings`; error = wrap(estimate - (h - alpha_r)). Rendering is noise-free.
+    """
+    return _visual_compass_errors(env.arrays(), jnp.asarray(points, jnp.float32), jnp.asarray(headings, jnp.float32),
+                                  sensor)
+
+
+@jax.jit
+def _visual_compass_errors(env: Env, points: Array, headings: Array, sensor: Sensor) -> Array:
+    visible = jnp.ones(env.landmarks.shape[0], bool)
+    _, home_gray = render(env, visible, env.home, jnp.asarray(sensor.alpha_r, jnp.float32), sensor)
+
+    def one(point, heading):
+        _, gray = render(env, visible, point, heading, sensor)
+        return wrap(visual_compass(home_gray, gray) - (heading - sensor.alpha_r))
+
+    return jax.vmap(one)(points, headings)

@@ -1,0 +1,143 @@
+"""Catchment area: a rollout from every grid point under every visibility mask (Figs 4.5, 5.5;
+Tables 5.1-5.4; docs/model.md §5)."""
+
+from __future__ import annotations
+
+import itertools
+from typing import Sequence
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+import numpy as np
+from jax import Array
+
+from ..errors import InputError
+from ..maps import grid_included, grid_points, random_headings
+from ..methods.base import HomingMethod
+from ..metrics import angular_error_deg, error_point_rates
+from ..scene import Env
+from ..sensor import Sensor
+from ..types import (GridFlag, GridFloat, GridPoints, MaskGridFlag, MaskGridFloat, MaskGridInt, MaskGridPoints,
+                     Masks)
+from .rules import DEFAULT_LANES, EXCLUDED, HOME_RADIUS, MAX_STEPS, OUTCOMES, SUCCESS, Outcomes
+from .trials import run_trials
+
+
+def occlusion_masks(env: Env, k: int) -> tuple[np.ndarray, list[tuple[int, ...]]]:
+    """All C(N, k) visibility masks (M, L) bool with k of the N landmarks hidden, and the hidden index tuples."""
+    n = env.n_landmarks
+    combos = list(itertools.combinations(range(n), k))
+    masks = np.tile(np.asarray(env.valid, bool), (len(combos), 1))
+    for m, hidden in enumerate(combos):  # input preparation: C(N, k) <= 20 small rows
+        masks[m, list(hidden)] = False
+    return masks, combos
+
+
+def hidden_masks(env: Env, hidden: Sequence[int] | None) -> tuple[np.ndarray, list[tuple[int, ...]]]:
+    """The single mask (1, L) hiding `hidden` (or none)."""
+    masks = np.asarray(env.valid, bool)[None, :].copy()
+    hidden = tuple(int(i) for i in (hidden or ()))
+    masks[0, list(hidden)] = False
+    return masks, [hidden]
+
+
+class Catchment(Outcomes):
+    """Catchment area of one method on the docs/model.md §5 grid under M visibility masks.
+
+    points: (P, 2) all grid cells; included: (P,); heading: (P,) release heading rad;
+    visible: (M, L) landmarks seen while homing; outcome, steps, invalid_steps: (M, P)
+    (outcome EXCLUDED for cells that are not grid points); end: (M, P, 2); the vector map
+    under each mask with the same headings and home record: direction (M, P) world rad
+    (NaN where invalid), valid (M, P), error_deg (M, P).
+    """
+
+    points: GridPoints
+    included: GridFlag
+    heading: GridFloat
+    visible: Masks
+    outcome: MaskGridInt
+    steps: MaskGridInt
+    end: MaskGridPoints
+    invalid_steps: MaskGridInt
+    direction: MaskGridFloat
+    valid: MaskGridFlag
+    error_deg: MaskGridFloat
+    hidden: tuple = eqx.field(static=True, default=((),))
+    first_move: str = eqx.field(static=True, default="homing")
+    collisions: str = eqx.field(static=True, default="ignore")
+
+    def catchment_pct(self) -> np.ndarray:
+        """% of grid points whose rollout succeeds, per mask (M,)."""
+        inc = np.asarray(self.included)
+        return 100.0 * np.asarray(self.success)[:, inc].mean(axis=1)
+
+
+def catchment_area(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = 25.0, heading: float | None = None,
+                   key: Array | None = None, clearance: float = 10.0, masks: np.ndarray | None = None,
+                   hidden: Sequence[tuple[int, ...]] = ((),), home_radius: float = HOME_RADIUS, max_steps: int = MAX_STEPS,
+                   lanes: int = DEFAULT_LANES, first_move: str = "homing", collisions: str = "ignore") -> Catchment:
+    """Rollouts from every grid point under every mask in `masks` (M, L), one program (docs/model.md §5).
+
+    Headings: fixed (rad) or per point from `key` as in `maps.random_headings`. The trial of
+    grid cell i uses noise stream i under every mask (common random numbers across masks).
+    The vector map under each mask comes from the same program (each trial's first direction).
+    """
+    key = jax.random.PRNGKey(0) if key is None else key
+    masks = np.asarray(env.valid, bool)[None, :] if masks is None else np.asarray(masks, bool)
+    # input preparation on the host (NumPy): eager device ops would compile once per shape
+    points = grid_points(env.arena, spacing)
+    n_cells = points.shape[0]
+    headings = np.asarray(random_headings(key, n_cells) if heading is None else np.full(n_cells, heading, np.float32))
+    included = np.asarray(grid_included(env, points, clearance))
+    cells = np.flatnonzero(included)  # which cells are released
+    if cells.size == 0:
+        raise InputError("spacing", spacing, "leaves no grid point clear of the landmarks (r + clearance)")
+    n_masks, n_inc = masks.shape[0], cells.size
+    trial_cell = np.tile(cells, n_masks).astype(np.int32)
+    trial_mask = np.repeat(np.arange(n_masks, dtype=np.int32), n_inc)
+    trials = run_trials(env, points[trial_cell], headings[trial_cell], trial_cell, trial_mask, masks, key, sensor, method,
+                        home_radius=home_radius, max_steps=max_steps, lanes=lanes, first_move=first_move,
+                        collisions=collisions)
+
+    def per_cell(values, fill):
+        values = np.asarray(values)
+        full = np.full((n_masks, n_cells) + values.shape[1:], fill, values.dtype)
+        full[:, cells] = values.reshape((n_masks, n_inc) + values.shape[1:])
+        return jax.device_put(full)  # host to device without an eager op (no compile per shape)
+
+    direction = per_cell(trials.first_direction, jnp.nan)  # the vector map under each mask
+    valid = per_cell(trials.first_valid, False)
+    error = angular_error_deg(direction, valid, points[None], env.home)
+    return Catchment(points=jax.device_put(points), included=jax.device_put(included), heading=jax.device_put(headings),
+                     visible=jax.device_put(masks),
+                     outcome=per_cell(trials.outcome, EXCLUDED), steps=per_cell(trials.steps, 0),
+                     end=per_cell(trials.end, jnp.nan), invalid_steps=per_cell(trials.invalid_steps, 0),
+                     direction=direction, valid=valid, error_deg=error,
+                     hidden=tuple(tuple(int(i) for i in h) for h in hidden), first_move=first_move,
+                     collisions=collisions)
+
+
+def catchment_summary(result: Catchment) -> dict:
+    """Headline numbers: catchment % and error point rates per mask, and their mean, min and max (Tables 5.1-5.4)."""
+    pct = result.catchment_pct()
+    inc = np.asarray(result.included)
+    outcome = np.asarray(result.outcome)[:, inc]
+    steps = np.asarray(result.steps)[:, inc]
+    per_mask = []
+    for m, hidden in enumerate(result.hidden):  # M <= 20 rows of post-processing
+        rates = error_point_rates(np.asarray(result.error_deg)[m], inc)
+        ok = outcome[m] == SUCCESS
+        per_mask.append({
+            "hidden": list(hidden), "catchment_pct": float(pct[m]), **rates,
+            "invalid_pct": 100.0 * float((~np.asarray(result.valid)[m][inc]).mean()),
+            "mean_steps_success": float(steps[m][ok].mean()) if ok.any() else float("nan"),
+            **{f"{name}_count": int((outcome[m] == code).sum()) for code, name in enumerate(OUTCOMES)},
+        })
+
+    def spread(field):
+        v = np.array([row[field] for row in per_mask])
+        return {"mean": float(v.mean()), "min": float(v.min()), "max": float(v.max())}
+
+    return {"rules": result.rules, "points": int(inc.sum()), "masks": len(per_mask), "catchment_pct": spread("catchment_pct"),
+            "gt45_pct": spread("gt45_pct"), "gt90_pct": spread("gt90_pct"), "per_mask": per_mask}

@@ -1,0 +1,118 @@
+"""The lane scheduler: a block of trials in one `lax.while_loop` (docs/reproduce.md, docs/model.md §5).
+
+`lanes` trials advance side by side (vmap over `Rollout.advance`); a lane whose trial ends is
+refilled with the next pending trial (one `tree.map` over the `Lanes` state), so a block costs
+about sum(steps + 1) / lanes iterations instead of max_steps per chunk. A lane first spends one
+iteration at its release point computing the vector map's direction there, then one move per
+iteration, so the method appears once in the program.
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+from jax import Array
+
+from .rules import RUNNING, position_status
+from .step import Rollout
+
+
+class Lanes(eqx.Module):
+    """State of the lanes: trial index t (n_trials when idle), position, heading, status, whether
+    the next iteration is the trial's first (at its release point), moves made, invalid moves."""
+
+    t: Array
+    pos: Array
+    heading: Array
+    status: Array
+    first: Array
+    step: Array
+    invalid: Array
+
+
+def _where(cond: Array, new, old):
+    """`new` on the lanes where `cond`, else `old`, leaf by leaf."""
+    return jax.tree.map(lambda a, b: jnp.where(cond.reshape(cond.shape + (1,) * (a.ndim - 1)), a, b), new, old)
+
+
+class Results(eqx.Module):
+    """Per-trial results of one block: outcome, steps, invalid moves, end point, first direction, its validity, path."""
+
+    outcome: Array
+    steps: Array
+    invalid: Array
+    end: Array
+    first_dir: Array
+    first_valid: Array
+    path: Array
+
+
+@partial(jax.jit, static_argnames=("lanes",))
+def run_block(rollout: Rollout, starts: Array, headings: Array, n_valid: Array, lanes: int) -> Results:
+    """Run the first `n_valid` trials of a block (the padding is never run)."""
+    n_trials = starts.shape[0]
+    n_lanes = max(1, min(lanes, n_trials))
+    max_steps = rollout.max_steps
+
+    def fresh(t):
+        """A lane starting trial t (t >= n_valid: idle)."""
+        ok = t < n_valid
+        ts = jnp.minimum(t, n_trials - 1)
+        status = jnp.where(ok, position_status(rollout.env, starts[ts], rollout.radius, rollout.collide), RUNNING)
+        zero = jnp.zeros((), jnp.int32)
+        return Lanes(t=t, pos=starts[ts], heading=headings[ts], status=status, first=jnp.ones((), bool),
+                     step=zero, invalid=zero)
+
+    lane_t = jnp.arange(n_lanes, dtype=jnp.int32)
+    lanes0 = jax.vmap(fresh)(jnp.where(lane_t < n_valid, lane_t, n_trials))
+    zeros_t = jnp.zeros(n_trials, jnp.int32)
+    out0 = Results(outcome=jnp.full(n_trials, RUNNING, jnp.int32), steps=zeros_t, invalid=zeros_t,
+                   end=jnp.zeros((n_trials, 2), jnp.float32), first_dir=jnp.full(n_trials, jnp.nan, jnp.float32),
+                   first_valid=jnp.zeros(n_trials, bool),
+                   path=jnp.full((n_trials, max_steps + 1, 2), jnp.nan, jnp.float32).at[:, 0].set(starts))
+
+    def cond(state):
+        return jnp.any(state[0].t < n_valid)
+
+    def body(state):
+        lane, out, next_t = state
+        # 1. every active lane: its first direction (at the release point) or one move
+        active = lane.t < n_valid
+        first = active & lane.first
+        moving = active & ~lane.first & (lane.status == RUNNING)
+        ts = jnp.minimum(lane.t, n_trials - 1)
+        end, new_heading, status, valid, direction = jax.vmap(rollout.advance)(
+            ts, lane.pos, lane.heading, lane.step, lane.first)
+        idx0 = jnp.where(first, lane.t, n_trials)
+        out = eqx.tree_at(lambda o: (o.first_dir, o.first_valid), out,
+                          (out.first_dir.at[idx0].set(direction, mode="drop"),
+                           out.first_valid.at[idx0].set(valid, mode="drop")))
+        lane = Lanes(
+            t=lane.t,
+            pos=jnp.where(moving[:, None], end, lane.pos),
+            heading=jnp.where(moving | first, new_heading, lane.heading),
+            status=jnp.where(moving, status, lane.status),
+            first=lane.first & ~active,
+            step=lane.step + moving.astype(jnp.int32),
+            invalid=lane.invalid + (moving & ~valid & (status == RUNNING)).astype(jnp.int32),
+        )
+        path = out.path.at[jnp.where(moving, lane.t, n_trials), lane.step].set(lane.pos, mode="drop")
+        # 2. write the lanes whose trial has ended (after its first direction)
+        done = active & ~lane.first & (lane.status != RUNNING)
+        idx = jnp.where(done, lane.t, n_trials)
+        out = Results(outcome=out.outcome.at[idx].set(lane.status, mode="drop"),
+                      steps=out.steps.at[idx].set(lane.step, mode="drop"),
+                      invalid=out.invalid.at[idx].set(lane.invalid, mode="drop"),
+                      end=out.end.at[idx].set(lane.pos, mode="drop"),
+                      first_dir=out.first_dir, first_valid=out.first_valid, path=path)
+        # 3. refill them from the queue
+        new_t = next_t + jnp.cumsum(done) - 1
+        new_t = jnp.where(new_t >= n_valid, n_trials, new_t).astype(jnp.int32)
+        lane = _where(done, jax.vmap(fresh)(jnp.where(done, new_t, lane.t)), lane)
+        return lane, out, next_t + jnp.sum(done).astype(jnp.int32)
+
+    _, out, _ = jax.lax.while_loop(cond, body, (lanes0, out0, jnp.minimum(jnp.int32(n_lanes), n_valid)))
+    return out

@@ -1,0 +1,100 @@
+"""Success rate vs release distance (Figs 4.10b, 5.7b; docs/model.md §5)."""
+
+from __future__ import annotations
+
+from functools import partial
+from typing import Sequence
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+import numpy as np
+from jax import Array
+from scipy import stats
+
+from ..methods.base import HomingMethod
+from ..scene import Env
+from ..sensor import Sensor
+from ..types import BinTrialFlag, BinTrialFloat, BinTrialInt, BinTrialPoints, Bins
+from .release import release_points
+from .rules import DEFAULT_DISTANCES, DEFAULT_LANES, EXCLUDED, HOME_RADIUS, MAX_STEPS, OUTCOMES, SUCCESS, Outcomes, rollout_keys
+from .trials import run_trials
+
+
+class SuccessRate(Outcomes):
+    """Success rate per release distance (Figs 4.10b, 5.7b).
+
+    distances: (D,) cm; start: (D, n, 2); heading: (D, n) rad; placed: (D, n) a release
+    point was found (docs/model.md §5: a start inside a landmark or outside the arena is redrawn);
+    outcome, steps: (D, n) (outcome EXCLUDED where not placed).
+    """
+
+    distances: Bins
+    start: BinTrialPoints
+    heading: BinTrialFloat
+    placed: BinTrialFlag
+    outcome: BinTrialInt
+    steps: BinTrialInt
+    first_move: str = eqx.field(static=True, default="homing")
+    collisions: str = eqx.field(static=True, default="ignore")
+
+    def table(self) -> list[dict]:
+        """Per-bin rows: distance_cm, trials, placed, successes, success_pct (of placed) with its 95% Wilson
+        interval (ci_lo_pct, ci_hi_pct), mean_steps_success, and a count per failure outcome."""
+        outcome, steps, placed = (np.asarray(v) for v in (self.outcome, self.steps, self.placed))
+        rows = []
+        for b, dist in enumerate(np.asarray(self.distances)):  # D <= a dozen bins: post-processing
+            ok = outcome[b] == SUCCESS
+            n_placed = int(placed[b].sum())
+            rows.append({
+                "distance_cm": float(dist), "trials": int(placed.shape[1]), "placed": n_placed,
+                "successes": int(ok.sum()),
+                "success_pct": 100.0 * float(ok.sum()) / n_placed if n_placed else float("nan"),
+                **wilson_interval_pct(int(ok.sum()), n_placed),
+                "mean_steps_success": float(steps[b][ok].mean()) if ok.any() else float("nan"),
+                **{f"{name}_count": int((outcome[b] == code).sum()) for code, name in enumerate(OUTCOMES)
+                   if code != SUCCESS},
+            })
+        return rows
+
+
+def wilson_interval_pct(successes: int, trials: int, confidence: float = 0.95) -> dict[str, float]:
+    """95% Wilson score interval of a success rate, in % (scipy's binomtest): ci_lo_pct, ci_hi_pct."""
+    if trials == 0:
+        return {"ci_lo_pct": float("nan"), "ci_hi_pct": float("nan")}
+    ci = stats.binomtest(successes, trials).proportion_ci(confidence_level=confidence, method="wilson")
+    return {"ci_lo_pct": 100.0 * ci.low, "ci_hi_pct": 100.0 * ci.high}
+
+
+def success_rate_trials(env: Env, method: HomingMethod, sensor: Sensor, distances: Sequence[float] = DEFAULT_DISTANCES,
+                        trials: int = 100, heading: float | None = None, key: Array | None = None,
+                        clearance: float = 10.0, visible: Array | None = None, home_radius: float = HOME_RADIUS,
+                        max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, first_move: str = "homing",
+                        collisions: str = "ignore") -> SuccessRate:
+    """`trials` rollouts per release distance: random direction from home, random heading (docs/model.md §5)."""
+    key = jax.random.PRNGKey(0) if key is None else key
+    dist = np.asarray(distances, np.float32)
+    n_bins = dist.shape[0]
+    starts, heads, placed = (np.asarray(a) for a in _release_bins(env.arrays(), key, dist, trials, clearance))
+    if heading is not None:
+        heads = np.full_like(heads, heading)
+    visible = np.asarray(env.valid if visible is None else visible, bool)
+    total = n_bins * trials
+    res = run_trials(env, starts.reshape(total, 2), heads.reshape(total), np.arange(total, dtype=np.int32),
+                     np.zeros(total, np.int32), visible[None, :], key, sensor, method,
+                     home_radius=home_radius, max_steps=max_steps, lanes=lanes, first_move=first_move,
+                     collisions=collisions)
+    placed_flat = placed.reshape(total)
+    outcome = np.where(placed_flat, np.asarray(res.outcome), EXCLUDED).reshape(n_bins, trials)
+    steps = np.where(placed_flat, np.asarray(res.steps), 0).reshape(n_bins, trials)
+    return SuccessRate(**{k: jax.device_put(v) for k, v in dict(distances=dist, start=starts, heading=heads, placed=placed,
+                                                                outcome=outcome, steps=steps).items()},
+                       first_move=first_move, collisions=collisions)
+
+
+@partial(jax.jit, static_argnames=("trials",))
+def _release_bins(env: Env, key: Array, distances: Array, trials: int, clearance: float) -> tuple[Array, Array, Array]:
+    """`release_points` for every distance bin b, from fold_in(key_start, b)."""
+    _, _, k_start = rollout_keys(key)
+    return jax.vmap(lambda b, r: release_points(env, jax.random.fold_in(k_start, b), trials, r, clearance))(
+        jnp.arange(distances.shape[0]), distances)

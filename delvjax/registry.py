@@ -1,0 +1,77 @@
+"""The names of the methods: CLI and API names -> method modules (the edge; docs/model.md §3-4).
+
+Nothing under jit takes a name: the edge looks a name up here once and passes the module on.
+A new method is one module file in `delvjax/core/methods/` and one line in METHODS.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from .core.errors import InputError
+from .core.methods import (ACV, ALV, DELV, MFDID, CartwrightCollett, Compass, DELVGap, HomingMethod, Program,
+                           VisualCompass, Warping)
+
+METHODS: dict[str, HomingMethod] = {
+    "delv": DELV(),
+    "delv-compass": DELV(heading=Compass()),
+    "delv-visual": DELV(heading=VisualCompass()),
+    "alv": ALV(),
+    "alv-visual": ALV(heading=VisualCompass()),
+    "acv": ACV(),
+    "acv-visual": ACV(heading=VisualCompass()),
+    "warping": Warping(),
+    "mfdid": MFDID(),
+    "cc": CartwrightCollett(),
+    "delv-gap": DELVGap(),
+    "delv-gap-compass": DELVGap(heading=Compass()),
+}
+
+DESCRIPTIONS: dict[str, str] = {
+    "delv": "DELV, no compass: all cyclic shifts x n_heading heading hypotheses (thesis ch. 3-4)",
+    "delv-compass": "DELV with a compass: only the cyclic shift is searched (thesis ch. 5)",
+    "delv-visual": "DELV with the visual compass of docs/model.md §4.4 (thesis 5.3.2)",
+    "alv": "average landmark vector with a compass (Lambrinos 2000; thesis 3.3.2)",
+    "alv-visual": "ALV with the visual compass (thesis 5.3.2)",
+    "acv": "average correction vector with a compass (Hong 1992; thesis Eq 5.2)",
+    "acv-visual": "ACV with the visual compass (thesis 5.3.2)",
+    "warping": "predictive image matching, 72 alpha x 15 rho x 72 psi, no compass (Franz 1998; thesis 4.2)",
+    "mfdid": "matched-filter descent in image distances with a compass (Moller & Vardy 2006)",
+    "cc": "snapshot model of Cartwright & Collett 1983 (landmarks only) with a compass (thesis ch. 2)",
+    "delv-gap": "DELV, no compass, gap-aware matching: pairings may skip landmarks (beyond the thesis)",
+    "delv-gap-compass": "DELV with a compass and gap-aware matching (beyond the thesis; Tables 5.1-5.4)",
+}
+
+
+def get_method(name: str) -> HomingMethod:
+    """The module registered under `name`; `InputError` naming the field otherwise."""
+    if not isinstance(name, str) or name not in METHODS:
+        raise InputError("method", name, f"unknown method (choose from {', '.join(METHODS)})")
+    return METHODS[name]
+
+
+def configure(method: HomingMethod, **settings) -> HomingMethod:
+    """`method` with those of `settings` that are its own fields replaced (a `Program`: each of its
+    methods); settings a method does not have are left to the others (e.g. `levels` is DELV's)."""
+    if isinstance(method, Program):
+        return dataclasses.replace(method, methods=tuple(configure(m, **settings) for m in method.methods))
+    own = {f.name for f in dataclasses.fields(method)}
+    changes = {k: v for k, v in settings.items() if k in own and v is not None}
+    return dataclasses.replace(method, **changes) if changes else method
+
+
+def program(method: str, names) -> tuple[Program, tuple[str, ...]]:
+    """The `Program` of the methods `names` (a list of registry names containing `method`) that runs
+    `method`; validated: `InputError` naming "program"."""
+    get_method(method)
+    if names is None:
+        names = (method,)
+    if isinstance(names, (str, bytes)) or not hasattr(names, "__iter__"):
+        raise InputError("program", names, "must be a list of method names")
+    names = tuple(names)
+    unknown = [m for m in names if m not in METHODS]
+    if unknown:
+        raise InputError("program", list(names), f"unknown method {unknown[0]!r} (choose from {', '.join(METHODS)})")
+    if method not in names:
+        raise InputError("program", list(names), f"must contain the method {method!r}")
+    return Program(methods=tuple(METHODS[m] for m in names), index=names.index(method)), names
