@@ -11,6 +11,7 @@ Every file is written under a temporary name and renamed (`io.atomic_path`).
 
 from __future__ import annotations
 
+import ast
 import hashlib
 import importlib
 import json
@@ -32,11 +33,28 @@ def _package_sources() -> list[Path]:
     return sorted(p for p in root.rglob("*.py") if "__pycache__" not in p.parts)
 
 
+def _sibling_imports(path: Path) -> set[Path]:
+    """The modules of the studies package that `path` imports, and theirs (`from .x import`, `from studies.x import`)."""
+    seen: set[Path] = set()
+    todo = [path]
+    while todo:  # a few files: the study's import closure within its package
+        current = todo.pop()
+        for node in ast.walk(ast.parse(current.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.module and (node.level == 1 or node.module.startswith("studies.")):
+                target = current.parent / (node.module.split(".")[-1] + ".py")
+                if target.is_file() and target not in seen:
+                    seen.add(target)
+                    todo.append(target)
+    return seen
+
+
 def study_hash(module, settings: Settings) -> str:
-    """Hash of the study's module, studies/common.py, every delvjax source, settings and versions."""
+    """Hash of the study's module and the study modules it imports (studies/common.py, another
+    study), the thesis's numbers, every delvjax source, settings and versions."""
     h = hashlib.sha256()
     folder = Path(module.__file__).parent
-    files = [Path(module.__file__), folder / "common.py", *sorted(folder.glob("thesis*.py"))]
+    own = Path(module.__file__)
+    files = [own, *sorted(_sibling_imports(own) | {folder / "common.py"} | set(folder.glob("thesis*.py")))]
     for path in files + _package_sources():
         if path.is_file():
             h.update(path.name.encode())

@@ -19,7 +19,8 @@ import reference_holistic as rh
 from conftest import random_landmarks
 from delvjax import cli
 from delvjax.core import maps
-from delvjax.config import Config
+from delvjax.core.methods import MFDID, Warping
+from delvjax.core.sensor import Sensor
 from delvjax.core.errors import InputError
 from delvjax.core.metrics import angular_error_deg
 from delvjax.core.methods import mfdid, warping
@@ -41,7 +42,7 @@ def random_points(env_lm: np.ndarray, n: int, seed: int) -> tuple[np.ndarray, np
     return np.array(pts, np.float32), rng.uniform(0, 2 * math.pi, n).astype(np.float32)
 
 
-def views(env, points, headings, cfg: Config) -> tuple[np.ndarray, np.ndarray]:
+def views(env, points, headings, cfg: Sensor) -> tuple[np.ndarray, np.ndarray]:
     """The library's ring images: home (n_pix,) and current (P, n_pix) in `cfg.channel`."""
     channel = 0 if cfg.channel == "mask" else 1
     everything = jnp.ones(env.landmarks.shape[0], bool)
@@ -53,15 +54,15 @@ def views(env, points, headings, cfg: Config) -> tuple[np.ndarray, np.ndarray]:
 # --- the warp table and its rounding rule ------------------------------------------------
 
 def test_warp_table_rounding_is_unambiguous_and_psi_is_a_pixel_shift():
-    cfg = Config()
-    n = cfg.n_pix
+    cfg = Warping()
+    n = Sensor().n_pix
     g = 2 * math.pi * np.arange(n) / n
     alpha = 2 * math.pi * np.arange(cfg.n_alpha) / cfg.n_alpha
     rho = rh.rho_values()
     assert np.allclose(warping.rho_values(cfg), np.arange(0.10, 0.80001, 0.05))
     x = (g[None, None] - np.arcsin(rho[None, :, None] * np.sin(g[None, None] - alpha[:, None, None]))) * n / (2 * math.pi)
     assert np.min(np.abs(np.abs(x - np.floor(x)) - 0.5)) > 1e-5  # no angle near a pixel boundary
-    table = warping.warp_indices(cfg).reshape(cfg.n_alpha, cfg.n_rho, n)
+    table = warping.warp_indices(cfg, n).reshape(cfg.n_alpha, cfg.n_rho, n)
     for a, r, m in [(0, 0, 0), (7, 3, 11), (71, 14, 71), (36, 8, 40)]:  # the twin's literal g = phi + psi
         gg = g + 2 * math.pi * m / cfg.n_psi
         literal = rh.nearest_pixel(gg - np.arcsin(rho[r] * np.sin(gg - alpha[a])), n)
@@ -88,7 +89,7 @@ def test_warping_is_accurate_where_every_landmark_is_equidistant_from_home():
     dist = np.hypot(*(pts - np.asarray(env.home)).T)
     pts = jnp.asarray(pts[dist <= 200.0])
     heads = jnp.round(maps.random_headings(KEY, pts.shape[0]) / np.radians(5)) * np.radians(5)
-    direction, valid = maps.homing_directions(env, pts, heads, KEY, Config(), "warping")
+    direction, valid = maps.homing_directions(env, pts, heads, KEY, Sensor(), Warping())
     err = np.asarray(angular_error_deg(direction, valid, pts, env.home))
     assert np.all(np.asarray(valid))
     assert err.mean() < 4.0 and err.max() <= 10.0, (err.mean(), err.max())
@@ -97,7 +98,7 @@ def test_warping_is_accurate_where_every_landmark_is_equidistant_from_home():
 def test_warping_invalid_when_the_home_image_is_uniform():
     env = delvjax.Env(landmarks=jnp.array([[300.0, 300.0, 20.0]]), valid=jnp.array([False]),  # nothing to see
                       home=jnp.array([500.0, 500.0]), arena=jnp.array([0.0, 0.0, 1000.0, 1000.0]))
-    d, v = maps.homing_directions(env, jnp.array([[300.0, 300.0]]), jnp.array([0.3]), KEY, Config(), "warping")
+    d, v = maps.homing_directions(env, jnp.array([[300.0, 300.0]]), jnp.array([0.3]), KEY, Sensor(), Warping())
     assert not bool(v[0]) and math.isnan(float(d[0]))
 
 
@@ -112,7 +113,7 @@ def test_mfdid_points_home_for_small_displacements(channel):
     offsets = np.array([[30, 0], [0, 30], [-30, 0], [0, -30]], np.float32)
     pts = jnp.asarray(home + offsets)
     heads = jnp.array([0.0, 1.0, 2.5, -2.0])
-    direction, valid = maps.homing_directions(env, pts, heads, KEY, Config(channel=channel), "mfdid")
+    direction, valid = maps.homing_directions(env, pts, heads, KEY, Sensor(channel=channel), MFDID())
     expected = np.arctan2(-offsets[:, 1], -offsets[:, 0])
     err = np.degrees(np.abs(wrap(np.asarray(direction) - expected)))
     assert np.all(np.asarray(valid)) and np.all(err < 20.0), err
@@ -149,7 +150,7 @@ COARSE = dict(n_alpha=24, n_psi=24, n_rho=5)  # same code paths, 27x fewer hypot
 def test_warping_mask_search_equals_the_twin_exactly(hyp, cases):
     """Same images in both: the minimum distance is exact; >= 90% of directions within 2 deg
     (ties between hypotheses are common on binary images)."""
-    cfg = Config(**hyp)
+    cfg, method = Sensor(), Warping(**hyp)
     n_total = agree = 0
     for seed, n in cases:
         lm = random_landmarks(seed)
@@ -158,25 +159,25 @@ def test_warping_mask_search_equals_the_twin_exactly(hyp, cases):
         S, C = views(env, pts, heads, cfg)
         s_ref, _ = ref_render(lm, np.asarray(env.home, float), 0.0, np.asarray(env.arena))
         assert np.array_equal(s_ref, S)  # the twin would render the same home image
-        dist = jax.vmap(lambda c: warping.search(jnp.asarray(S), c, cfg))(jnp.asarray(C))[0]
-        lib_dir, lib_valid = maps.homing_directions(env, jnp.asarray(pts), jnp.asarray(heads), KEY, cfg, "warping")
+        dist = jax.vmap(lambda c: warping.search(jnp.asarray(S), c, method))(jnp.asarray(C))[0]
+        lib_dir, lib_valid = maps.homing_directions(env, jnp.asarray(pts), jnp.asarray(heads), KEY, cfg, method)
         assert np.all(np.asarray(lib_valid))
         for i in range(n):
             ref_dist, ra, _, rm = rh.warping_search(S.astype(float), C[i].astype(float), **hyp)
             assert float(dist[i]) == ref_dist, (seed, i, float(dist[i]), ref_dist)
-            ref_dir = wrap(heads[i] + rh.TWO_PI * ra / cfg.n_alpha + math.pi - rh.TWO_PI * rm / cfg.n_psi)
+            ref_dir = wrap(heads[i] + rh.TWO_PI * ra / method.n_alpha + math.pi - rh.TWO_PI * rm / method.n_psi)
             agree += abs(wrap(float(lib_dir[i]) - ref_dir)) <= math.radians(2.0)
             n_total += 1
     assert agree >= 0.9 * n_total, (agree, n_total)
 
 
 def test_warping_gray_search_matches_the_twin():
-    cfg = Config(channel="gray")
+    cfg = Sensor(channel="gray")
     lm = random_landmarks(5)
     env = delvjax.make_env(lm)
     pts, heads = random_points(lm, 3, 5)
     S, C = views(env, pts, heads, cfg)
-    dist, a, r, m = jax.vmap(lambda c: warping.search(jnp.asarray(S), c, cfg))(jnp.asarray(C))
+    dist, a, r, m = jax.vmap(lambda c: warping.search(jnp.asarray(S), c, Warping()))(jnp.asarray(C))
     agree = 0
     for i in range(len(pts)):
         ref_dist, ra, rr, rm = rh.warping_search(S.astype(float), C[i].astype(float))
@@ -187,13 +188,13 @@ def test_warping_gray_search_matches_the_twin():
 
 @pytest.mark.parametrize("channel", ["mask", "gray"])
 def test_mfdid_matches_the_twin(channel):
-    cfg = Config(channel=channel)
+    cfg = Sensor(channel=channel)
     close = total = 0
     for seed in (0, 1, 2):
         lm = random_landmarks(seed)
         env = delvjax.make_env(lm)
         pts, heads = random_points(lm, 30, 100 + seed)
-        lib_dir, lib_valid = maps.homing_directions(env, jnp.asarray(pts), jnp.asarray(heads), KEY, cfg, "mfdid")
+        lib_dir, lib_valid = maps.homing_directions(env, jnp.asarray(pts), jnp.asarray(heads), KEY, cfg, MFDID())
         S, C = views(env, pts, heads, cfg)
         for i in range(len(pts)):
             ref_agent = rh.mfdid_direction(S.astype(float), C[i].astype(float), wrap(float(heads[i])))
@@ -207,7 +208,7 @@ def test_mfdid_matches_the_twin(channel):
 def test_predicted_images_stay_unbatched_under_vmap():
     """The (n_alpha * n_rho, n_pix) table of predicted images depends on the home image only:
     vmapping over current views must not batch it (it is built once per map)."""
-    cfg = Config()
+    cfg = Warping()
     S = jnp.zeros(360, bool).at[40:60].set(True)
     C = jnp.zeros((5, 360), bool).at[:, 100:130].set(True)
     jaxpr = jax.make_jaxpr(jax.vmap(lambda c: warping.search(S, c, cfg)))(C)
@@ -238,7 +239,7 @@ def test_cli_bad_input_exits_2_without_output(tmp_path, capsys, flags):
 
 def test_direct_config_errors_at_trace_time():
     with pytest.raises(InputError, match="n_psi"):
-        warping.search(jnp.zeros(360, bool), jnp.zeros(360, bool), Config(n_psi=7))
+        warping.search(jnp.zeros(360, bool), jnp.zeros(360, bool), Warping(n_psi=7))
     with pytest.raises(InputError, match="n_alpha"):
         delvjax.vector_map("env1", method="warping", n_alpha=0)
 

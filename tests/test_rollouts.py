@@ -29,10 +29,12 @@ from reference_rollouts import HomeRecord, reference_rollout, release_direction 
 
 import delvjax  # noqa: E402
 from delvjax.core import rollouts  # noqa: E402
+import delvjax.core.rollouts.trials  # noqa: E402
+from delvjax import registry  # noqa: E402
 from delvjax.cli import main  # noqa: E402
 from delvjax.core.errors import InputError  # noqa: E402
 from delvjax.core.maps import grid_included, grid_points, random_headings  # noqa: E402
-from delvjax.options import make_config  # noqa: E402
+from delvjax.options import make_sensor  # noqa: E402
 from delvjax.presets import make_env  # noqa: E402
 
 ARENA = [0.0, 0.0, 1000.0, 1000.0]
@@ -62,10 +64,12 @@ def run(env, starts, heads, method, config=None, lanes=rollouts.DEFAULT_LANES, k
     (so that these programs are the ones `catchment` and `success_rate` compile)."""
     n = starts.shape[0]
     masks = env.valid[None] if masks is None else masks
+    module = registry.METHODS[method] if program is None else registry.program(method, program)[0]
     return rollouts.run_trials(env, jnp.asarray(starts), jnp.asarray(heads), jnp.arange(n, dtype=jnp.int32),
-                               jnp.zeros(n, jnp.int32), masks, jax.random.PRNGKey(key), config or make_config(),
-                               method, lanes=lanes, record_paths=record_paths, first_move=first_move,
-                               collisions=collisions, program=program)
+                               jnp.zeros(n, jnp.int32), masks, jax.random.PRNGKey(key),
+                               make_sensor() if config is None else config,
+                               module, lanes=lanes, record_paths=record_paths, first_move=first_move,
+                               collisions=collisions)
 
 
 def angle_diff(a, b):
@@ -225,11 +229,11 @@ def test_collisions_fail_ends_inside_a_landmark_and_ignore_passes_through():
 def test_deterministic_and_independent_of_lanes_with_every_noise_source():
     env = make_env(random_landmarks(np.random.default_rng(1), 4))  # shapes of the reference test: one compile less
     starts, heads, _ = rollouts.release_points(env, jax.random.PRNGKey(3), 20, None, 10.0, 0.0)
-    noisy = make_config(**NOISE)
+    noisy = make_sensor(**NOISE)
     a = run(env, starts, heads, "delv-compass", noisy)
     b = run(env, starts, heads, "delv-compass", noisy, lanes=7)  # lanes refilled from the queue
     c = run(env, starts, heads, "delv-compass", noisy)
-    quiet = run(env, starts, heads, "delv-compass", make_config())
+    quiet = run(env, starts, heads, "delv-compass", make_sensor())
     assert np.asarray(a.success).any()
     for x, y in ((a, b), (a, c)):
         for field in ("outcome", "steps", "end", "invalid_steps", "first_direction", "first_valid"):
@@ -244,10 +248,10 @@ def test_results_do_not_depend_on_the_trial_blocks(monkeypatch):
     env = make_env(CROSSED)
     starts, heads, placed = rollouts.release_points(env, jax.random.PRNGKey(7), 120, None, 10.0, 0.0)
     assert np.asarray(placed).all()
-    noisy = make_config(**NOISE)
+    noisy = make_sensor(**NOISE)
     assert rollouts.trial_block(120) == rollouts.TRIAL_BLOCK
     whole = run(env, starts, heads, "alv", noisy, collisions="fail")
-    monkeypatch.setattr(rollouts, "TRIAL_BLOCK", 32)
+    monkeypatch.setattr(delvjax.core.rollouts.trials, "TRIAL_BLOCK", 32)
     assert rollouts.trial_block(120) == 32
     blocks = run(env, starts, heads, "alv", noisy, collisions="fail")
     outcome = np.asarray(whole.outcome)
@@ -263,7 +267,7 @@ def test_methods_sharing_one_program_give_the_same_numbers_as_their_own_programs
     env = make_env(random_landmarks(np.random.default_rng(1), 4))
     starts, heads, _ = rollouts.release_points(env, jax.random.PRNGKey(3), 20, None, 10.0, 0.0)
     masks = np.array([[True, True, True, True], [True, False, True, True]])
-    noisy = make_config(**NOISE)
+    noisy = make_sensor(**NOISE)
     family = ("delv", "delv-compass", "alv", "acv")
     for method in ("delv-compass", "alv"):
         own = run(env, starts, heads, method, noisy, masks=masks)
