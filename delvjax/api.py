@@ -14,6 +14,7 @@ import jax
 import numpy as np
 
 from .core import maps
+from .core.maps import CLEARANCE, SPACING
 from .core.errors import InputError
 from .core.methods import HomingMethod
 from .core.scene import Env
@@ -60,8 +61,8 @@ def scene_request(env: str | Path | Env, method: str, clearance: float, heading_
     return env, module, sensor, heading, key, clearance
 
 
-def map_request(env: str | Path | Env, method: str = "delv", spacing: float = 25.0, heading_deg: float | None = None,
-                seed: int = 0, clearance: float = 10.0, hidden: list[int] | None = None,
+def map_request(env: str | Path | Env, method: str = "delv", spacing: float = SPACING, heading_deg: float | None = None,
+                seed: int = 0, clearance: float = CLEARANCE, hidden: list[int] | None = None,
                 batch_size: int = maps.DEFAULT_BATCH, **options) -> dict:
     """Validate the public options of a vector map (before any array work): keyword
     arguments of `core.maps.vector_map`. Raises `InputError` naming the field and value."""
@@ -74,8 +75,8 @@ def map_request(env: str | Path | Env, method: str = "delv", spacing: float = 25
                 batch_size=batch_size)
 
 
-def vector_map(env: str | Path | Env, method: str = "delv", spacing: float = 25.0, heading_deg: float | None = None,
-               seed: int = 0, clearance: float = 10.0, hidden: list[int] | None = None,
+def vector_map(env: str | Path | Env, method: str = "delv", spacing: float = SPACING, heading_deg: float | None = None,
+               seed: int = 0, clearance: float = CLEARANCE, hidden: list[int] | None = None,
                batch_size: int = maps.DEFAULT_BATCH, **options) -> maps.VectorMap:
     """Homing direction of `method` (a registry name) at every docs/model.md §5 grid point, one
     jitted vmapped call.

@@ -13,6 +13,7 @@ from jax import Array
 
 from .api import scene_request, visible_mask
 from .core.errors import InputError
+from .core.maps import CLEARANCE, SPACING
 from .core.rollouts import (ARENA, DEFAULT_DISTANCES, DEFAULT_LANES, HOME_RADIUS, LANDMARK, MAX_STEPS, Catchment,
                             SuccessRate, Trajectories, catchment_area, check_rules, hidden_masks, occlusion_masks,
                             position_status, release_points, rollout_keys, success_rate_trials, trajectory_trials)
@@ -32,9 +33,9 @@ def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, head
     return env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance
 
 
-def catchment(env: str | Path | Env, method: str = "delv", spacing: float = 25.0, heading_deg: float | None = None,
+def catchment(env: str | Path | Env, method: str = "delv", spacing: float = SPACING, heading_deg: float | None = None,
               seed: int = 0, occlude: int | None = None, hidden: list[int] | None = None, max_steps: int = MAX_STEPS,
-              home_radius: float = HOME_RADIUS, clearance: float = 10.0, lanes: int = DEFAULT_LANES, first_move: str = "homing",
+              home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE, lanes: int = DEFAULT_LANES, first_move: str = "homing",
               collisions: str = "ignore", program: Sequence[str] | None = None, **options) -> Catchment:
     """Catchment area of `method` (Figs 4.5, 5.5; Tables 5.3/5.4): a rollout from every docs/model.md §5 grid point.
 
@@ -65,7 +66,7 @@ def catchment(env: str | Path | Env, method: str = "delv", spacing: float = 25.0
 
 def success_rate(env: str | Path | Env, method: str = "delv", distances: Sequence[float] = DEFAULT_DISTANCES,
                  trials: int = 100, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
-                 max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = 10.0,
+                 max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
                  lanes: int = DEFAULT_LANES, first_move: str = "homing",
                  collisions: str = "ignore", program: Sequence[str] | None = None, **options) -> SuccessRate:
     """Success rate vs release distance (Figs 4.10b, 5.7b): `trials` rollouts per distance from home.
@@ -89,7 +90,7 @@ def success_rate(env: str | Path | Env, method: str = "delv", distances: Sequenc
 
 def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[Sequence[float]] | None = None,
                  n_starts: int = 6, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
-                 max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = 10.0,
+                 max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
                  lanes: int = DEFAULT_LANES, first_move: str = "homing",
                  collisions: str = "ignore", program: Sequence[str] | None = None,
                  **options) -> Trajectories:

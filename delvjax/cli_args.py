@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from .core.maps import CLEARANCE, SPACING
 from .core.methods import DELV, Warping
 from .core.rollouts import DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
 from .core.sensor import BACKGROUNDS, CHANNELS, Sensor
@@ -28,8 +29,9 @@ def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
     p.add_argument("--method", default="delv", help=f"homing method: {', '.join(methods or METHODS)} (default delv)")
     p.add_argument("--levels", type=int, default=None, help="DELV distance quantization levels Q >= 1 (default: continuous)")
     p.add_argument("--d", type=float, default=None, help=f"unit-movement step d in cm (default {sensor['d']:g})")
-    p.add_argument("--spacing", type=float, default=25.0, help="grid spacing in cm (default 25: 40x40)")
-    p.add_argument("--clearance", type=float, default=10.0, help="grid points closer than r + clearance to a landmark are dropped (default 10)")
+    p.add_argument("--spacing", type=float, default=SPACING, help=f"grid spacing in cm (default {SPACING:g}: 40x40)")
+    p.add_argument("--clearance", type=float, default=CLEARANCE,
+                   help=f"grid points closer than r + clearance to a landmark are dropped (default {CLEARANCE:g})")
     p.add_argument("--heading-deg", type=float, default=None, help="fixed heading at every point (default: random per point from --seed)")
     p.add_argument("--seed", type=int, default=0, help="seed of random headings and all noise (default 0)")
     p.add_argument("--background", default="distant", help=f"{', '.join(BACKGROUNDS)} (default distant)")

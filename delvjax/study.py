@@ -12,6 +12,8 @@ from typing import Any, Callable
 
 import jax
 
+from .core.maps import SPACING
+from .core.rollouts import DEFAULT_LANES
 from .io import _jsonable, write_csv, write_figure, write_json, write_rows_csv
 
 STUDY_FILE = "study.json"
@@ -32,9 +34,9 @@ class Settings:
 
     quick: bool = False
     seed: int = 0
-    spacing: float = 25.0
+    spacing: float = SPACING
     trials: int = 100
-    lanes: int = 256
+    lanes: int = DEFAULT_LANES
 
     @classmethod
     def make(cls, quick: bool = False, seed: int = 0) -> "Settings":

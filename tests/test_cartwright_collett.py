@@ -4,11 +4,7 @@
 from __future__ import annotations
 
 import functools
-import importlib
 import math
-import sys
-import types
-from pathlib import Path
 
 import jax
 import jax.numpy as jnp
@@ -17,26 +13,12 @@ import pytest
 
 from reference_cc import cc_home_vector_ref, wrap
 
+from delvjax.core.methods.cartwright_collett import cc_home_vector
+
 TWO_PI = 2.0 * math.pi
 B = 6
 
 
-def _load_cc():
-    """The module, found wherever the package refactor has put it.  While the package's own
-    __init__ files cannot be imported, load it under stub parent packages so that its relative
-    imports (`..geometry`, `..search`) still resolve to its real siblings."""
-    pkg_root = Path(__file__).resolve().parents[1] / "delvjax"
-    (path,) = pkg_root.rglob("cartwright_collett.py")
-    try:
-        return importlib.import_module(".".join(path.relative_to(pkg_root.parent).with_suffix("").parts))
-    except ImportError:
-        for name, where in (("_cc_stub", path.parent.parent), ("_cc_stub.methods", path.parent)):
-            stub = sys.modules.setdefault(name, types.ModuleType(name))
-            stub.__path__ = [str(where)]
-        return importlib.import_module("_cc_stub.methods.cartwright_collett")
-
-
-cc_home_vector = _load_cc().cc_home_vector
 
 # home at the origin; cylinders (x, y, r) in cm, all on one side as in a bee's landmark array
 SCENE = np.array([[300.0, 50.0, 30.0], [120.0, 260.0, 25.0], [-60.0, 220.0, 40.0], [250.0, -150.0, 20.0]])

@@ -14,12 +14,8 @@ import pytest
 
 import reference_gap
 
-try:  # package layout during the core/ refactor; drop the fallback once it has settled
-    from delvjax.core.methods.delv import match_arrangement
-    from delvjax.core.methods.delv_gap import _hypotheses, _search, match_arrangement_gapped
-except ImportError:
-    from delvjax.methods.delv import match_arrangement
-    from delvjax.methods.delv_gap import _hypotheses, _search, match_arrangement_gapped
+from delvjax.core.methods.delv import match_arrangement
+from delvjax.core.methods.delv_gap import _hypotheses, _search, match_arrangement_gapped
 
 B = 6
 ALPHAS64 = np.asarray(2 * np.pi * np.arange(360, dtype=np.float32) / 360, dtype=np.float32).astype(np.float64)

@@ -25,6 +25,8 @@ from .sensor import Sensor
 from .types import BlobFlags, GridFlag, GridFloat, GridPoints, PerPoint, PerPointFlag, Points
 
 DEFAULT_BATCH = 2048
+SPACING = 25.0  # cm, grid spacing (docs/model.md §5: 40 x 40 in the 1000 cm arena)
+CLEARANCE = 10.0  # cm, grid points within r + clearance of a landmark are dropped (§5)
 
 
 class VectorMap(eqx.Module):
@@ -93,8 +95,8 @@ def homing_directions(env: Env, points: Points, headings: PerPoint, key: Array, 
     return jax.lax.map(one, (points, headings, index), batch_size=min(batch_size, points.shape[0]))
 
 
-def vector_map(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = 25.0, heading: float | None = None,
-               key: Array | None = None, clearance: float = 10.0, visible: Array | None = None,
+def vector_map(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = SPACING, heading: float | None = None,
+               key: Array | None = None, clearance: float = CLEARANCE, visible: Array | None = None,
                batch_size: int = DEFAULT_BATCH) -> VectorMap:
     """The vector map of `method` on the docs/model.md §5 grid; heading fixed (rad) or random per point from `key`."""
     key = jax.random.PRNGKey(0) if key is None else key
@@ -148,8 +150,8 @@ def replace_field(method: HomingMethod, sensor: Sensor, name: str, value) -> tup
     return method, eqx.tree_at(where, sensor, value, is_leaf=lambda x: x is None)
 
 
-def sweep(env: Env, method: HomingMethod, sensor: Sensor, name: str, values: Array, spacing: float = 25.0,
-          heading: float | None = None, key: Array | None = None, clearance: float = 10.0,
+def sweep(env: Env, method: HomingMethod, sensor: Sensor, name: str, values: Array, spacing: float = SPACING,
+          heading: float | None = None, key: Array | None = None, clearance: float = CLEARANCE,
           visible: Array | None = None, batch_size: int = DEFAULT_BATCH) -> VectorMap:
     """Vector maps for every value of one continuous setting, vmapped as one program.
 

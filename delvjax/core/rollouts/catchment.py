@@ -13,7 +13,7 @@ import numpy as np
 from jax import Array
 
 from ..errors import InputError
-from ..maps import grid_included, grid_points, random_headings
+from ..maps import CLEARANCE, SPACING, grid_included, grid_points, random_headings
 from ..methods.base import HomingMethod
 from ..metrics import angular_error_deg, error_point_rates
 from ..scene import Env
@@ -73,8 +73,8 @@ class Catchment(Outcomes):
         return 100.0 * np.asarray(self.success)[:, inc].mean(axis=1)
 
 
-def catchment_area(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = 25.0, heading: float | None = None,
-                   key: Array | None = None, clearance: float = 10.0, masks: np.ndarray | None = None,
+def catchment_area(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = SPACING, heading: float | None = None,
+                   key: Array | None = None, clearance: float = CLEARANCE, masks: np.ndarray | None = None,
                    hidden: Sequence[tuple[int, ...]] = ((),), home_radius: float = HOME_RADIUS, max_steps: int = MAX_STEPS,
                    lanes: int = DEFAULT_LANES, first_move: str = "homing", collisions: str = "ignore") -> Catchment:
     """Rollouts from every grid point under every mask in `masks` (M, L), one program (docs/model.md §5).

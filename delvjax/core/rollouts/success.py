@@ -12,6 +12,7 @@ import numpy as np
 from jax import Array
 from scipy import stats
 
+from ..maps import CLEARANCE
 from ..methods.base import HomingMethod
 from ..scene import Env
 from ..sensor import Sensor
@@ -68,7 +69,7 @@ def wilson_interval_pct(successes: int, trials: int, confidence: float = 0.95) -
 
 def success_rate_trials(env: Env, method: HomingMethod, sensor: Sensor, distances: Sequence[float] = DEFAULT_DISTANCES,
                         trials: int = 100, heading: float | None = None, key: Array | None = None,
-                        clearance: float = 10.0, visible: Array | None = None, home_radius: float = HOME_RADIUS,
+                        clearance: float = CLEARANCE, visible: Array | None = None, home_radius: float = HOME_RADIUS,
                         max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, first_move: str = "homing",
                         collisions: str = "ignore") -> SuccessRate:
     """`trials` rollouts per release distance: random direction from home, random heading (docs/model.md §5)."""
