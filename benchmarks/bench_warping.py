@@ -23,7 +23,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import reference_holistic as ref  # noqa: E402
 from timing import reference_seconds_per_point, time_map_program  # noqa: E402
 
-from delvjax.core.sensor import Sensor  # noqa: E402
+from delvjax.core.sensor import BACKGROUNDS, Sensor  # noqa: E402
 from delvjax.registry import METHODS  # noqa: E402
 
 LANES = 8  # 32-bit lanes per vector instruction in the code XLA emits here (256-bit AVX2/AVX-512VL)
@@ -72,7 +72,7 @@ def bench(env_name: str, method: str, channel: str, spacing: float, repeats: int
     run = time_map_program(env_name, method, cfg, spacing, repeats)
     compile_s, warm, cpu, points = run["compile_s"], run["warm"], run["cpu"], run["points"]
     ref_per_point = reference_seconds_per_point(ref.reference_direction, run, method, ref_points,
-                                                channel=channel, background=cfg.background)
+                                                channel=channel, background=BACKGROUNDS[int(cfg.background)])
     warm_s = min(warm)
     n = points.shape[0]
     out = {"method": method, "channel": channel, "points": n, "compile_s": compile_s, "warm_ms": 1e3 * warm_s,

@@ -38,3 +38,19 @@ def random_envs():
     import delvjax
 
     return [(lm, delvjax.make_env(lm, name="random", pad_to=6)) for lm in (random_landmarks(s) for s in range(20))]
+
+
+@pytest.fixture(scope="session")
+def run(tmp_path_factory):
+    """Every study once at the tiny size (`reproduce_cases.TINY`): (output folder, result of
+    reproduce(), seconds). Shared by test_reproduce.py and test_reproduce_runs.py, which run in
+    that order; tests that change the folder put it back before they end."""
+    import time
+
+    from delvjax import reproduce
+    from reproduce_cases import TINY
+
+    out = tmp_path_factory.mktemp("reproduce") / "results"
+    t0 = time.perf_counter()
+    result = reproduce.reproduce(out, settings=TINY, progress=False)
+    return out, result, time.perf_counter() - t0

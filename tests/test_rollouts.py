@@ -13,68 +13,26 @@ catchments) and 4 (recorded paths, lanes 4). Environments are explicit arrays, n
 built-in presets, unless only a count of points or lines is checked.
 """
 
-import csv
-import json
 import math
 import sys
 from pathlib import Path
 
 import jax
-import jax.numpy as jnp
 import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
 from reference_rollouts import HomeRecord, reference_rollout, release_direction  # noqa: E402
+from rollout_cases import (ARENA, DEFAULT, FOUR, HOME, NOISE, PHYSICAL, RULE_SETS, angle_diff,  # noqa: E402
+                           random_landmarks, run)
 
 import delvjax  # noqa: E402
 from delvjax.core import rollouts  # noqa: E402
 import delvjax.core.rollouts.trials  # noqa: E402
-from delvjax import registry  # noqa: E402
-from delvjax.cli import main  # noqa: E402
 from delvjax.core.errors import InputError  # noqa: E402
-from delvjax.core.maps import grid_included, grid_points, random_headings  # noqa: E402
+from delvjax.core.maps import grid_points, random_headings  # noqa: E402
 from delvjax.options import make_sensor  # noqa: E402
 from delvjax.presets import make_env  # noqa: E402
-
-ARENA = [0.0, 0.0, 1000.0, 1000.0]
-HOME = [500.0, 500.0]
-NOISE = dict(bearing_noise_deg=2.0, step_noise=0.05, turn_noise_deg=3.0, odometry_turn_noise_deg=1.0,
-             compass_noise_deg=2.0, motion_heading_noise_deg=5.0, motion_step_noise=0.1)
-# four cylinders [x, y, r] around the default home (explicit: the built-in layouts may change)
-FOUR = np.array([[330.0, 640.0, 30.0], [640.0, 720.0, 40.0], [720.0, 390.0, 25.0], [420.0, 300.0, 35.0]])
-DEFAULT, PHYSICAL = rollouts.DEFAULT_RULES, rollouts.PHYSICAL_RULES
-RULE_SETS = (DEFAULT, PHYSICAL)
-
-
-def random_landmarks(rng, n):
-    lms = []
-    while len(lms) < n:
-        r = rng.uniform(20, 40)
-        x, y = rng.uniform(150, 850, 2)
-        if math.hypot(x - 500, y - 500) < r + 60 or any(math.hypot(x - a, y - b) < r + c + 20 for a, b, c in lms):
-            continue
-        lms.append((x, y, r))
-    return np.array(lms)
-
-
-def run(env, starts, heads, method, config=None, lanes=rollouts.DEFAULT_LANES, key=0, masks=None,
-        record_paths=False, first_move="homing", collisions="ignore", program=None):
-    """`rollouts.run_trials` with trial i on noise stream i under one mask; lanes default as the public API
-    (so that these programs are the ones `catchment` and `success_rate` compile)."""
-    n = starts.shape[0]
-    masks = env.valid[None] if masks is None else masks
-    module = registry.METHODS[method] if program is None else registry.program(method, program)[0]
-    return rollouts.run_trials(env, jnp.asarray(starts), jnp.asarray(heads), jnp.arange(n, dtype=jnp.int32),
-                               jnp.zeros(n, jnp.int32), masks, jax.random.PRNGKey(key),
-                               make_sensor() if config is None else config,
-                               module, lanes=lanes, record_paths=record_paths, first_move=first_move,
-                               collisions=collisions)
-
-
-def angle_diff(a, b):
-    return np.abs((np.asarray(a, float) - np.asarray(b, float) + math.pi) % (2 * math.pi) - math.pi)
-
 
 # --- analytic -------------------------------------------------------------------------------
 
@@ -325,105 +283,3 @@ def test_success_rate_bins_and_seeding():
 
 
 # --- CLI and bad input --------------------------------------------------------------------------------
-
-def write_env(path, landmarks):
-    """A docs/model.md §7 environment file."""
-    path.write_text(json.dumps({"name": "four", "arena": ARENA, "home": HOME,
-                                "landmarks": [{"x": x, "y": y, "r": r} for x, y, r in landmarks.tolist()]}))
-    return str(path)
-
-
-def read_rows(path):
-    with open(path, newline="") as fh:
-        return list(csv.DictReader(fh))
-
-
-def test_cli_catchment_success_rate_trajectories(tmp_path):
-    out = tmp_path / "c.csv"
-    assert main(["catchment", "env1", "--method", "alv", "--spacing", "200", "--out", str(out), "--occlude", "1",
-                 "--summary", str(tmp_path / "c.json")]) == 0
-    header = out.read_text().splitlines()[0].split(",")
-    assert header[:5] == ["x", "y", "heading_deg", "success", "steps"] and "hidden" in header
-    env = delvjax.load_env("env1")
-    n_points = int(np.sum(np.asarray(grid_included(env, jnp.asarray(grid_points(env.arena, 200.0)), 10.0))))
-    assert len(out.read_text().splitlines()) == 1 + env.n_landmarks * n_points  # C(N, 1) masks
-    assert main(["success-rate", "ring4", "--method", "alv,acv", "--trials", "10", "--distances", "50", "250", "450",
-                 "--seed", "2", "--out", str(tmp_path / "s.csv")]) == 0
-    rows = read_rows(tmp_path / "s.csv")
-    assert len(rows) == 2 * 3 and all(r["first_move"] == "homing" and r["collisions"] == "ignore" for r in rows)
-    four = write_env(tmp_path / "four.json", FOUR)
-    assert main(["trajectories", four, "--method", "alv", "--start", "100", "100", "--start", "800", "300",
-                 "--start", "150", "850", "--start", "850", "850", "--out", str(tmp_path / "t.csv"),
-                 "--plot", str(tmp_path / "t.png")]) == 0
-    assert (tmp_path / "t.png").stat().st_size > 0
-    rows = read_rows(tmp_path / "t.csv")
-    assert rows and all(r["first_move"] == "homing" and r["collisions"] == "ignore" for r in rows)
-
-
-@pytest.mark.parametrize("flags, rules", [([], DEFAULT),
-                                          (["--first-move", "release", "--collisions", "fail"], PHYSICAL)],
-                         ids=["default", "physical"])
-def test_cli_catchment_records_the_rules(tmp_path, flags, rules):
-    """The rules are constant CSV columns and a "rules" dict in the summary JSON."""
-    out, summary = tmp_path / "c.csv", tmp_path / "c.json"
-    assert main(["catchment", "env1", "--method", "alv", "--spacing", "200", "--occlude", "1", "--out", str(out),
-                 "--summary", str(summary)] + flags) == 0
-    rows = read_rows(out)
-    assert rows and {(r["first_move"], r["collisions"]) for r in rows} == {(rules["first_move"], rules["collisions"])}
-    if rules["collisions"] == "ignore":
-        assert all(r["outcome"] != "landmark" for r in rows)
-    data = json.loads(summary.read_text())
-    assert data["rules"] == rules
-    assert all(row["landmark_count"] == 0 for row in data["per_mask"]) or rules["collisions"] == "fail"
-
-
-@pytest.mark.parametrize("argv, field", [
-    (["catchment", "env1", "--occlude", "99"], "occlude"),
-    (["catchment", "env1", "--bearing-noise-deg", "-1"], "bearing_noise_deg"),
-    (["catchment", "env1", "--max-steps", "0"], "max_steps"),
-    (["catchment", "env1", "--first-move", "bogus"], "first_move"),
-    (["catchment", "env1", "--collisions", "bounce"], "collisions"),
-    (["success-rate", "env1", "--motion-step-noise", "-0.1"], "motion_step_noise"),
-    (["success-rate", "env1", "--trials", "0"], "trials"),
-    (["success-rate", "env1", "--first-move", "bogus"], "first_move"),
-    (["trajectories", "env1", "--start", "1500", "500"], "starts[0]"),
-    (["trajectories", "env1", "--home-radius", "0"], "home_radius"),
-    (["trajectories", "env1", "--collisions", "bounce"], "collisions"),
-])
-def test_bad_input_exits_2_without_output(tmp_path, capsys, argv, field):
-    out = tmp_path / "o.csv"
-    assert main(argv + ["--out", str(out)]) == 2
-    last = capsys.readouterr().err.strip().splitlines()[-1]
-    assert last.startswith("delvjax: error: ") and field in last
-    assert not out.exists()
-
-
-def test_api_bad_input_raises_input_error():
-    with pytest.raises(InputError, match="occlude"):
-        delvjax.catchment("ring3", occlude=4)
-    with pytest.raises(InputError, match="occlude"):
-        delvjax.catchment("env1", occlude=1, hidden=[0])
-    with pytest.raises(InputError, match="max_steps"):
-        delvjax.success_rate("env1", max_steps=0)
-    with pytest.raises(InputError, match="distances"):
-        delvjax.success_rate("env1", distances=[])
-    with pytest.raises(InputError, match=r"starts\[0\]"):  # inside a landmark
-        delvjax.trajectories(make_env(FOUR), starts=[[330.0, 640.0]])
-
-
-@pytest.mark.parametrize("call", [delvjax.catchment, delvjax.success_rate, delvjax.trajectories])
-@pytest.mark.parametrize("field, value", [("first_move", "x"), ("collisions", "x"), ("first_move", "Homing"),
-                                          ("collisions", None)])
-def test_bad_rules_raise_input_error_naming_the_field(call, field, value):
-    with pytest.raises(InputError, match=field) as info:
-        call("env1", **{field: value})
-    assert info.value.field == field
-
-
-def test_run_trials_checks_the_rules():
-    env = make_env(FOUR)
-    starts = np.array([[150.0, 150.0]], np.float32)
-    with pytest.raises(InputError, match="first_move"):
-        run(env, starts, np.zeros(1, np.float32), "alv", first_move="straight")
-    with pytest.raises(InputError, match="collisions"):
-        run(env, starts, np.zeros(1, np.float32), "alv", collisions="bounce")
