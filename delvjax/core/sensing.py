@@ -199,16 +199,12 @@ def extract_blobs(mask: Array, max_blobs: int) -> tuple[Array, Array]:
 
 def sort_blobs(bearing: Array, valid: Array, *carried: Array) -> tuple[Array, ...]:
     """Sort blob bearings into [0, 2pi) ascending, invalid slots last (set to 0): (bearing, valid,
-    *carried), each array of `carried` (per-blob values, e.g. widths) permuted alike."""
+    *carried), each array of `carried` (per-blob values, e.g. widths) permuted alike. One variadic
+    sort keyed on the bearings: XLA drops a carried operand that nothing reads."""
     key = jnp.where(valid, wrap_positive(bearing), jnp.inf)
-    if not carried:
-        b = jnp.sort(key)
-        ok = jnp.isfinite(b)
-        return jnp.where(ok, b, 0.0), ok
-    order = jnp.argsort(key)
-    b = key[order]
+    b, *rest = jax.lax.sort((key, *carried), num_keys=1)
     ok = jnp.isfinite(b)
-    return (jnp.where(ok, b, 0.0), ok, *(jnp.where(ok, c[order], 0.0) for c in carried))
+    return (jnp.where(ok, b, 0.0), ok, *(jnp.where(ok, c, 0.0) for c in rest))
 
 
 def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, sensor: Sensor,

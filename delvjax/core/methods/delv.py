@@ -28,25 +28,38 @@ def match_arrangement(ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: A
     ref_v: (B, 2) home frame; cur_v: (B, 2) agent frame; alphas: (A,) radians.
     """
     ref_idx, cur_idx, pair_ok, shift_ok = shift_pairs(ref_valid, cur_valid)
-    w = pair_ok.astype(ref_v.dtype)[..., None]  # (K, S, 1)
     n = jnp.sum(pair_ok[0])
+    p, alpha, var = best_pairing(ref_v, cur_v, ref_idx, cur_idx, pair_ok, shift_ok, n, alphas)
+    return p, alpha, var, n
+
+
+def best_pairing(ref_v: Array, cur_v: Array, ref_idx: Array, cur_idx: Array, pair_ok: Array, row_ok: Array,
+                 n: Array, alphas: Array) -> tuple[Array, Array, Array]:
+    """The first minimum of var over pairings (rows) x heading hypotheses: (p (2,), alpha, var).
+
+    Row h pairs ref_v[ref_idx[h, s]] with cur_v[cur_idx[h, s]] where pair_ok[h, s]; rows that are
+    not row_ok are skipped; n is the number of pairs. With centred pair vectors a'_i, b'_i,
+    var(alpha) = sum |a'|^2 + |b'|^2 - 2 Re(e^{i alpha} sum conj(a') b'), so all alphas of one
+    row cost two multiply-adds each (Eqs 3.4-3.6; docs/model.md §3.4).
+    """
+    w = pair_ok.astype(ref_v.dtype)[..., None]  # (H, S, 1)
     n_safe = jnp.maximum(n, 1)
-    a = ref_v[ref_idx] * w  # (K, S, 2)
+    a = ref_v[ref_idx] * w  # (H, S, 2)
     b = cur_v[cur_idx] * w
-    a_mean = jnp.sum(a, axis=1) / n_safe  # (K, 2)
+    a_mean = jnp.sum(a, axis=1) / n_safe  # (H, 2)
     b_mean = jnp.sum(b, axis=1) / n_safe
     a_c = (a - a_mean[:, None]) * w
     b_c = (b - b_mean[:, None]) * w
-    const = jnp.sum(a_c * a_c + b_c * b_c, axis=(1, 2))  # (K,)
+    const = jnp.sum(a_c * a_c + b_c * b_c, axis=(1, 2))  # (H,)
     z_re = jnp.sum(a_c[..., 0] * b_c[..., 0] + a_c[..., 1] * b_c[..., 1], axis=1)
     z_im = jnp.sum(a_c[..., 0] * b_c[..., 1] - a_c[..., 1] * b_c[..., 0], axis=1)
     var = const[:, None] - 2.0 * (jnp.cos(alphas)[None, :] * z_re[:, None] - jnp.sin(alphas)[None, :] * z_im[:, None])
-    var = jnp.where(shift_ok[:, None], var, jnp.inf)
+    var = jnp.where(row_ok[:, None], var, jnp.inf)
     best = first_argmin(var.reshape(-1))
-    k_best, a_best = best // alphas.shape[0], best % alphas.shape[0]
+    h_best, a_best = best // alphas.shape[0], best % alphas.shape[0]
     alpha = alphas[a_best]
-    p = a_mean[k_best] - rotate(b_mean[k_best], alpha)
-    return p, alpha, var[k_best, a_best], n
+    p = a_mean[h_best] - rotate(b_mean[h_best], alpha)
+    return p, alpha, var[h_best, a_best]
 
 
 def delv_direction(home: UnitMove, view: UnitMove, settings: DistanceSettings, alphas: Array, min_pairs: int,

@@ -45,9 +45,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
-from ..geometry import rotate
-from ..search import first_argmin
-from .delv import DELV, match_arrangement
+from .delv import DELV, best_pairing, match_arrangement
 
 
 @functools.lru_cache(maxsize=None)
@@ -102,24 +100,8 @@ def _search(ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array,
     cur_idx = jnp.minimum(jnp.where(cur_fewer, s, big), cur_valid.shape[0] - 1)
     pair_ok = jnp.broadcast_to(s < n, big.shape)
     hyp_ok = (jnp.asarray(top_np)[n] < n_big) & (n_big > 0)
-    w = pair_ok.astype(ref_v.dtype)[..., None]  # (H, S, 1)
-    n_safe = jnp.maximum(n, 1)
-    a = ref_v[ref_idx] * w  # (H, S, 2)
-    b = cur_v[cur_idx] * w
-    a_mean = jnp.sum(a, axis=1) / n_safe  # (H, 2)
-    b_mean = jnp.sum(b, axis=1) / n_safe
-    a_c = (a - a_mean[:, None]) * w
-    b_c = (b - b_mean[:, None]) * w
-    const = jnp.sum(a_c * a_c + b_c * b_c, axis=(1, 2))  # (H,)
-    z_re = jnp.sum(a_c[..., 0] * b_c[..., 0] + a_c[..., 1] * b_c[..., 1], axis=1)
-    z_im = jnp.sum(a_c[..., 0] * b_c[..., 1] - a_c[..., 1] * b_c[..., 0], axis=1)
-    var = const[:, None] - 2.0 * (jnp.cos(alphas)[None, :] * z_re[:, None] - jnp.sin(alphas)[None, :] * z_im[:, None])
-    var = jnp.where(hyp_ok[:, None], var, jnp.inf)
-    best = first_argmin(var.reshape(-1))
-    h_best, a_best = best // alphas.shape[0], best % alphas.shape[0]
-    alpha = alphas[a_best]
-    p = a_mean[h_best] - rotate(b_mean[h_best], alpha)
-    return p, alpha, var[h_best, a_best], n
+    p, alpha, var = best_pairing(ref_v, cur_v, ref_idx, cur_idx, pair_ok, hyp_ok, n, alphas)
+    return p, alpha, var, n
 
 
 class DELVGap(DELV):
