@@ -25,7 +25,7 @@ from delvjax.plots import draw_env, draw_vector_map
 from delvjax.plots_rollouts import SQUARE, catchment_panel
 from delvjax.core.scene import Env
 from delvjax.presets import load_env
-from delvjax.tables import concat_columns, trajectory_columns
+from delvjax.tables import concat_columns, success_rows, trajectory_columns
 
 PAD = 6
 RULES = {"default": rollouts.DEFAULT_RULES, "physical": rollouts.PHYSICAL_RULES}
@@ -59,11 +59,12 @@ def catchment(ctx, e: Env, method: str, rules: str = "default", **options) -> ro
 
 
 def success_table(ctx, e: Env, method: str, rules: str = "default", **options) -> list[dict]:
-    """Success rate per release distance 50..450 cm (`settings.trials` per bin, Figs 4.10b, 5.7b)."""
+    """Success rate per release distance 50..450 cm (`settings.trials` per bin, Figs 4.10b, 5.7b): the
+    rows of `tables.success_rows` (the CLI's success-rate CSV)."""
     res = delvjax.success_rate(e.arrays(), method=method, trials=ctx.settings.trials, seed=ctx.settings.seed,
                                home_radius=HOME_RADIUS, program=PROGRAM, lanes=ctx.settings.lanes,
                                **RULES[rules], **options)
-    return res.table()
+    return success_rows(res, method)
 
 
 def inside_hull(e: Env, points: np.ndarray) -> np.ndarray:
