@@ -14,6 +14,5 @@ STUDIES = [
     "with_compass",
     "comparators",
     "occlusion",
-    "gap_matching",
     "visual_compass",
 ]

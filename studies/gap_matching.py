@@ -1,11 +1,12 @@
-"""Gap-aware matching under occlusion (beyond the thesis; Tables 5.1-5.4 for DELV with a compass).
+"""Gap-aware matching under occlusion (beyond the thesis), a section of the occlusion study:
+Tables 5.1-5.4 for DELV with a compass, linear vs gap-aware matching.
 
 The thesis admits that linear rotational matching suffers when the two views differ in
 landmark count (§3.2.4): with one landmark hidden, consecutive pairing cannot skip the gap it
 leaves, so every pair after it is wrong. `delv-gap-compass` searches every order-preserving
 cyclic pairing that may skip references (all C(N, M) subsets x shifts; docs/model.md §3.5).
-This study runs the occlusion study's layouts and every choice of k hidden landmarks for
-DELV (compass) with both matchings, from the same release points and noise streams, and
+The occlusion study runs its layouts and every choice of k hidden landmarks for DELV
+(compass) with both matchings, from the same release points and noise streams; this module
 reports what gap-aware matching changes in the error point rates (Tables 5.1/5.2) and the
 catchment (Tables 5.3/5.4), default rollout rules.
 """
@@ -20,44 +21,42 @@ from delvjax.core.sensor import Sensor
 from delvjax.plots import subplots
 from delvjax.registry import program
 
-from .common import HOME_RADIUS, PROGRAM, RULES, env
-from .occlusion import ENVS, RING_SPACING, fmt_spread, spread, stacked_masks
+from .common import HOME_RADIUS, PROGRAM, RULES
+from .occlusion_layouts import ENVS, RING_SPACING, fmt_spread, spread
 
-TITLE = "Gap-aware DELV matching under occlusion (beyond the thesis; Tables 5.1-5.4)"
 METHODS = ("delv-compass", "delv-gap-compass")
 LABELS = {"delv-compass": "linear matching (thesis)", "delv-gap-compass": "gap-aware matching"}
-STEPS = len(ENVS)
+FIELDS = {"catchment_pct": "catchment", "gt45_pct": "gt45", "gt90_pct": "gt90"}
 
 
-def run(ctx) -> None:
-    settings = ctx.settings
-    sensor, key = Sensor(), jax.random.PRNGKey(settings.seed)
+def gap_aware_summary(e, masks, hidden, spacing: float, settings) -> list[dict]:
+    """Per-mask catchment summaries (`rollouts.catchment_summary`) of gap-aware DELV with a compass
+    on the occlusion study's masks, grid, seed and default rules."""
+    c = rollouts.catchment_area(e.arrays(), program("delv-gap-compass", PROGRAM)[0], Sensor(), spacing=spacing,
+                                key=jax.random.PRNGKey(settings.seed), masks=masks, hidden=hidden,
+                                home_radius=HOME_RADIUS, lanes=settings.lanes, **RULES["default"])
+    return rollouts.catchment_summary(c)["per_mask"]
+
+
+def layout_rows(ctx, name: str, ks: np.ndarray, hidden, summary: dict[str, list[dict]]) -> tuple[list, list]:
+    """Per-k rows (mean, min, max over the choices) and per-choice rows of one layout; numbers
+    `gap:<env>:<method>:<catchment|gt45|gt90>` (a list over k). `summary`: method -> per-mask summaries."""
     rows, per_choice = [], []
-    for name, k_max in ENVS.items():  # six layouts x two matchings, one compiled program
-        e = env(name)
-        masks, hidden, ks = stacked_masks(e, k_max)
-        spacing = settings.spacing if name.startswith("env") else max(settings.spacing, RING_SPACING)
-        summary = {}
-        for m in METHODS:
-            c = rollouts.catchment_area(e.arrays(), program(m, PROGRAM)[0], sensor, spacing=spacing, key=key,
-                                        masks=masks, hidden=hidden, home_radius=HOME_RADIUS, lanes=settings.lanes,
-                                        **RULES["default"])
-            summary[m] = rollouts.catchment_summary(c)["per_mask"]
-        for i, h in enumerate(hidden):
-            per_choice.append({"env": name, "k": int(ks[i]), "hidden": " ".join(map(str, h)),
-                               **{f"{m}_{f}": summary[m][i][f] for m in METHODS
-                                  for f in ("catchment_pct", "gt45_pct", "gt90_pct")}})
-        for k in range(k_max + 1):
-            sel = np.flatnonzero(ks == k)
-            row = {"env": name, "k": k, "choices": len(sel)}
-            for m in METHODS:
-                for f in ("catchment_pct", "gt45_pct", "gt90_pct"):
-                    row[f"{m}:{f}"] = spread([summary[m][i][f] for i in sel])
-            rows.append(row)
-        for m in METHODS:
-            for f, label in (("catchment_pct", "catchment"), ("gt45_pct", "gt45"), ("gt90_pct", "gt90")):
-                ctx.number(f"gap:{name}:{m}:{label}", [r[f"{m}:{f}"]["mean"] for r in rows if r["env"] == name])
-        ctx.step(name)
+    for i, h in enumerate(hidden):
+        per_choice.append({"env": name, "k": int(ks[i]), "hidden": " ".join(map(str, h)),
+                           **{f"{m}_{f}": summary[m][i][f] for m in METHODS for f in FIELDS}})
+    for k in range(int(ks.max()) + 1):
+        sel = np.flatnonzero(ks == k)
+        rows.append({"env": name, "k": k, "choices": len(sel),
+                     **{f"{m}:{f}": spread([summary[m][i][f] for i in sel]) for m in METHODS for f in FIELDS}})
+    for m in METHODS:
+        for f, label in FIELDS.items():
+            ctx.number(f"gap:{name}:{m}:{label}", [r[f"{m}:{f}"]["mean"] for r in rows])
+    return rows, per_choice
+
+
+def report(ctx, rows: list[dict], per_choice: list[dict]) -> None:
+    """The table, the per-choice CSV and the figure."""
     table(ctx, rows)
     ctx.csv("gap_matching_per_choice.csv", rows=per_choice)
     figure(ctx, rows)

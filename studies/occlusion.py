@@ -9,7 +9,8 @@ choices beside the thesis's numbers, under the default rules and the physical ru
 ring4 (L = 4 equally spaced) is the same layout as env2, so its rows are env2's (k up to 3);
 the thesis's own L = 4 rows copy other rows (see the table notes). The ring layouts (Tables
 5.2/5.4: 75 masks against env1-3's 37) run on a grid of spacing at least RING_SPACING cm, to
-keep the full run within minutes; the tables say so.
+keep the full run within minutes; the tables say so. Beyond the thesis, DELV with gap-aware
+matching runs on the same masks (`gap_matching`: what it changes in Tables 5.1-5.4).
 """
 
 from __future__ import annotations
@@ -26,25 +27,14 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Patch
 from studies import thesis
 
+from . import gap_matching
 from .common import HOME_RADIUS, LABEL, PROGRAM, RULES, as_vector_map, env, panel_figure
+from .occlusion_layouts import ENVS, RING_SPACING, fmt_spread, spread, stacked_masks
 
-TITLE = "Occlusion: k landmarks hidden (Figs 5.9-5.10, Tables 5.1-5.4)"
+TITLE = "Occlusion: k landmarks hidden (Figs 5.9-5.10, Tables 5.1-5.4; and gap-aware DELV matching)"
 METHODS = ("delv-compass", "acv", "alv")
-ENVS = {"env1": 2, "env2": 3, "env3": 2, "ring3": 2, "ring5": 3, "ring6": 3}  # env -> largest k
 STEPS = len(ENVS) * len(METHODS)
 SAME_LAYOUT = {"ring4": "env2"}
-RING_SPACING = 50.0
-
-
-def stacked_masks(e, k_max: int):
-    """Masks of every k = 0..k_max stacked: (masks (M, L), hidden tuples, k of each mask)."""
-    masks, hidden, ks = [], [], []
-    for k in range(k_max + 1):  # input preparation: a handful of k
-        m, h = rollouts.occlusion_masks(e, k)
-        masks.append(m)
-        hidden += h
-        ks += [k] * len(h)
-    return np.concatenate(masks), hidden, np.array(ks)
 
 
 def thesis_row(table: str, name: str, method: str, k: int, field: str | None = None):
@@ -57,21 +47,16 @@ def thesis_row(table: str, name: str, method: str, k: int, field: str | None = N
     return values[k] if k < len(values) else None
 
 
-def spread(values) -> dict:
-    v = np.asarray(values, float)
-    return {"mean": float(v.mean()), "min": float(v.min()), "max": float(v.max())}
-
-
 def run(ctx) -> None:
     settings = ctx.settings
     sensor = Sensor()
     key = jax.random.PRNGKey(settings.seed)
-    per_k, mask_rows, fig5_10 = [], [], {}
-    for name, k_max in ENVS.items():  # six layouts x three methods
+    per_k, mask_rows, fig5_10, gap_rows, gap_choices = [], [], {}, [], []
+    for name, k_max in ENVS.items():  # six layouts x three methods (and gap-aware DELV)
         e = env(name)
         masks, hidden, ks = stacked_masks(e, k_max)
+        spacing = settings.spacing if name.startswith("env") else max(settings.spacing, RING_SPACING)
         for m in METHODS:
-            spacing = settings.spacing if name.startswith("env") else max(settings.spacing, RING_SPACING)
             res = {rules: rollouts.catchment_area(e.arrays(), program(m, PROGRAM)[0], sensor, spacing=spacing, key=key,
                                                   masks=masks, hidden=hidden, home_radius=HOME_RADIUS,
                                                   lanes=settings.lanes, **RULES[rules])
@@ -99,14 +84,16 @@ def run(ctx) -> None:
                 ctx.number(f"occlusion:{name}:{m}:{field}", [getter(r) for r in rows_m])
             if name == "env1" and m == "delv-compass":
                 fig5_10 = {"env": e, "result": res["default"], "ks": ks}
+            if m == "delv-compass":  # the same masks, grid and streams with gap-aware matching
+                summary = {m: summaries["default"],
+                           "delv-gap-compass": gap_matching.gap_aware_summary(e, masks, hidden, spacing, settings)}
+                rows, choices = gap_matching.layout_rows(ctx, name, ks, hidden, summary)
+                gap_rows, gap_choices = gap_rows + rows, gap_choices + choices
             ctx.step(f"{name} {m}")
     tables(ctx, per_k)
     ctx.csv("occlusion_per_choice.csv", rows=mask_rows)
     figures(ctx, per_k, fig5_10)
-
-
-def fmt_spread(s: dict) -> str:
-    return f"{s['mean']:.2f} [{s['min']:.2f}-{s['max']:.2f}]" if s["min"] != s["max"] else f"{s['mean']:.2f}"
+    gap_matching.report(ctx, gap_rows, gap_choices)
 
 
 def layout_rows(per_k: list[dict], envs) -> list[tuple[str, str, dict]]:
