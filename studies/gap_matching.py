@@ -73,8 +73,10 @@ def table(ctx, rows: list[dict]) -> None:
     ctx.table("gap_matching", "DELV with a compass: linear vs gap-aware matching under occlusion", out,
               source="Tables 5.1-5.4 (layouts and k); beyond the thesis",
               note="Mean [min-max] over the C(N, k) choices of hidden landmarks; default rollout rules; the same "
-                   "release points, headings and noise streams for both matchings. With k = 0 both matchings are "
-                   f"the same pairing (equal numbers). ring3, ring5, ring6: grid spacing max(spacing, {RING_SPACING:g}) cm.")
+                   "release points, headings and noise streams for both matchings. Where a view shows as many "
+                   "blobs as the home view both matchings pair alike (bitwise the same direction); with k = 0 they "
+                   "differ only where landmarks overlap in the view and merge into one blob. ring3, ring5, ring6: "
+                   f"grid spacing max(spacing, {RING_SPACING:g}) cm.")
 
 
 def figure(ctx, rows: list[dict]) -> None:
