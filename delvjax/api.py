@@ -49,7 +49,7 @@ def visible_mask(env: Env, hidden: list[int] | tuple[int, ...] | None) -> np.nda
     return mask
 
 
-def scene_request(env: str | Path | Env, method: str, clearance: float, heading_deg: float | None, seed: int,
+def scene_request(env: str | Path | Env, method: str | HomingMethod, clearance: float, heading_deg: float | None, seed: int,
                   program=None, **options) -> tuple[Env, HomingMethod, Sensor, float | None, jax.Array, float]:
     """The options every evaluation shares, validated before any work: method name and settings,
     sensor options, grid clearance, environment, heading/seed. Returns
@@ -61,7 +61,7 @@ def scene_request(env: str | Path | Env, method: str, clearance: float, heading_
     return env, module, sensor, heading, key, clearance
 
 
-def map_request(env: str | Path | Env, method: str = "delv", spacing: float = SPACING, heading_deg: float | None = None,
+def map_request(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
                 seed: int = 0, clearance: float = CLEARANCE, hidden: list[int] | None = None,
                 batch_size: int = maps.DEFAULT_BATCH, **options) -> dict:
     """Validate the public options of a vector map (before any array work): keyword
@@ -75,11 +75,13 @@ def map_request(env: str | Path | Env, method: str = "delv", spacing: float = SP
                 batch_size=batch_size)
 
 
-def vector_map(env: str | Path | Env, method: str = "delv", spacing: float = SPACING, heading_deg: float | None = None,
+def vector_map(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
                seed: int = 0, clearance: float = CLEARANCE, hidden: list[int] | None = None,
                batch_size: int = maps.DEFAULT_BATCH, **options) -> maps.VectorMap:
-    """Homing direction of `method` (a registry name) at every docs/model.md §5 grid point, one
-    jitted vmapped call.
+    """Homing direction of `method` at every docs/model.md §5 grid point, one jitted vmapped call.
+
+    `method`: a registry name (`"delv-compass"`) or a method module (`DELV(levels=3,
+    heading=Compass())`); `sensor=Sensor(...)` may replace the sensor options below.
 
     heading_deg fixes the heading at every point; otherwise headings are uniform random
     per point from `seed` (which also drives every noise source). `options`: sensor options

@@ -14,7 +14,9 @@ from jax import Array
 from .api import scene_request, visible_mask
 from .core.errors import InputError
 from .core.maps import CLEARANCE, SPACING
-from .core.rollouts import (ARENA, DEFAULT_DISTANCES, DEFAULT_LANES, HOME_RADIUS, LANDMARK, MAX_STEPS, Catchment,
+from .core.methods import HomingMethod
+from .core.rollouts import (ARENA, DEFAULT_DISTANCES, DEFAULT_LANES, HOME_RADIUS, LANDMARK, MAX_STEPS, N_STARTS,
+                            TRIALS_PER_DISTANCE, Catchment,
                             SuccessRate, Trajectories, catchment_area, check_rules, hidden_masks, occlusion_masks,
                             position_status, release_points, rollout_keys, success_rate_trials, trajectory_trials)
 from .core.scene import Env
@@ -33,7 +35,7 @@ def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, head
     return env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance
 
 
-def catchment(env: str | Path | Env, method: str = "delv", spacing: float = SPACING, heading_deg: float | None = None,
+def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
               seed: int = 0, occlude: int | None = None, hidden: list[int] | None = None, max_steps: int = MAX_STEPS,
               home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE, lanes: int = DEFAULT_LANES, first_move: str = "homing",
               collisions: str = "ignore", program: Sequence[str] | None = None, **options) -> Catchment:
@@ -64,8 +66,8 @@ def catchment(env: str | Path | Env, method: str = "delv", spacing: float = SPAC
                           first_move=first_move, collisions=collisions)
 
 
-def success_rate(env: str | Path | Env, method: str = "delv", distances: Sequence[float] = DEFAULT_DISTANCES,
-                 trials: int = 100, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
+def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", distances: Sequence[float] = DEFAULT_DISTANCES,
+                 trials: int = TRIALS_PER_DISTANCE, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
                  max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
                  lanes: int = DEFAULT_LANES, first_move: str = "homing",
                  collisions: str = "ignore", program: Sequence[str] | None = None, **options) -> SuccessRate:
@@ -88,8 +90,8 @@ def success_rate(env: str | Path | Env, method: str = "delv", distances: Sequenc
                                max_steps=max_steps, lanes=lanes, first_move=first_move, collisions=collisions)
 
 
-def trajectories(env: str | Path | Env, method: str = "delv", starts: Sequence[Sequence[float]] | None = None,
-                 n_starts: int = 6, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
+def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", starts: Sequence[Sequence[float]] | None = None,
+                 n_starts: int = N_STARTS, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
                  max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
                  lanes: int = DEFAULT_LANES, first_move: str = "homing",
                  collisions: str = "ignore", program: Sequence[str] | None = None,

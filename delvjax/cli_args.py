@@ -7,7 +7,7 @@ import argparse
 import sys
 
 from .core.maps import CLEARANCE, SPACING
-from .core.methods import DELV, Warping
+from .core.methods import DELV, MFDID, Warping
 from .core.rollouts import DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
 from .core.sensor import BACKGROUNDS, CHANNELS, Sensor
 from .io import check_output_path
@@ -34,7 +34,8 @@ def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
                    help=f"grid points closer than r + clearance to a landmark are dropped (default {CLEARANCE:g})")
     p.add_argument("--heading-deg", type=float, default=None, help="fixed heading at every point (default: random per point from --seed)")
     p.add_argument("--seed", type=int, default=0, help="seed of random headings and all noise (default 0)")
-    p.add_argument("--background", default="distant", help=f"{', '.join(BACKGROUNDS)} (default distant)")
+    p.add_argument("--background", default=None,
+                   help=f"{', '.join(BACKGROUNDS)} (default {BACKGROUNDS[sensor['background']]})")
     p.add_argument("--channel", default=sensor["channel"],
                    help=f"image channel of holistic methods: {', '.join(CHANNELS)} (default {sensor['channel']})")
     p.add_argument("--n-heading", type=int, default=None, help=f"DELV heading hypotheses (default {delv['n_heading']})")
@@ -42,11 +43,12 @@ def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
                    help="landmark indices invisible during homing (occlusion; the home record sees all)")
     w = p.add_argument_group("warping hypotheses (docs/model.md §4.3)")
     w.add_argument("--n-alpha", type=int, default=None, help=f"movement directions alpha (default {warping['n_alpha']})")
-    w.add_argument("--n-psi", type=int, default=None, help=f"rotations psi, must divide 360 (default {warping['n_psi']})")
+    w.add_argument("--n-psi", type=int, default=None, help=f"rotations psi, must divide the {sensor['n_pix']} pixels (default {warping['n_psi']})")
     w.add_argument("--n-rho", type=int, default=None, help=f"values of rho = d/r (default {warping['n_rho']})")
     w.add_argument("--rho-min", type=float, default=None, help=f"smallest rho (default {warping['rho_min']:.2f})")
     w.add_argument("--rho-max", type=float, default=None, help=f"largest rho, < 1 (default {warping['rho_max']:.2f})")
-    w.add_argument("--mfdid-blur-deg", type=float, default=None, help="MFDID: Gaussian low-pass of both images, deg (default 0)")
+    w.add_argument("--mfdid-blur-deg", type=float, default=None,
+                   help=f"MFDID: Gaussian low-pass of both images, deg (default {defaults(MFDID)['blur_deg']:g})")
     g = p.add_argument_group("noise (all default 0; angles in degrees)")
     for name in NOISE_OPTIONS:
         unit = "deg" if name in NOISE_FIELDS_DEG else "fraction of d"

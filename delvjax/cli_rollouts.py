@@ -14,7 +14,7 @@ from . import api, api_rollouts
 from .cli_args import (CSV, add_output_args, add_rollout_args, add_scene_args, check_outputs, progress,
                        rollout_kwargs)
 from .core.errors import InputError
-from .core.rollouts import DEFAULT_DISTANCES, catchment_summary, check_rules
+from .core.rollouts import DEFAULT_DISTANCES, N_STARTS, TRIALS_PER_DISTANCE, catchment_summary, check_rules
 from .io import check_output_path, write_figure, write_csv, write_json, write_rows_csv
 from .options import occlusion_count
 from .registry import get_method
@@ -91,7 +91,8 @@ def cmd_catchment(args: argparse.Namespace) -> int:
 def add_success_rate(sub) -> None:
     p = _rollout_parser(sub, "success-rate", "success rate vs release distance (docs/model.md §5; Figs 4.10b, 5.7b)",
                         "success-rate curve", "--method takes a comma-separated list (one curve each); --spacing is not used.")
-    p.add_argument("--trials", type=int, default=100, help="trials per distance bin (default 100)")
+    p.add_argument("--trials", type=int, default=TRIALS_PER_DISTANCE,
+                   help=f"trials per distance bin (default {TRIALS_PER_DISTANCE})")
     p.add_argument("--distances", type=float, nargs="+", default=list(DEFAULT_DISTANCES), metavar="CM",
                    help="release distances from home (default 50 100 ... 450)")
     p.add_argument("--trials-out", default=None, help="per-trial CSV (release point, heading, outcome, steps)")
@@ -143,7 +144,8 @@ def add_trajectories(sub) -> None:
                         "--method takes a comma-separated list (one panel each, same release points); --spacing is not used.")
     p.add_argument("--start", type=float, nargs=2, action="append", default=None, metavar=("X", "Y"),
                    help="a release point in cm (repeatable; default: --n-starts random points from --seed)")
-    p.add_argument("--n-starts", type=int, default=6, help="random release points when no --start is given (default 6)")
+    p.add_argument("--n-starts", type=int, default=N_STARTS,
+                   help=f"random release points when no --start is given (default {N_STARTS})")
     p.set_defaults(func=cmd_trajectories)
 
 

@@ -12,7 +12,7 @@ import inspect
 import math
 
 from .core.errors import InputError
-from .core.methods import HomingMethod, Warping
+from .core.methods import HomingMethod, Program, Warping
 from .core.sensor import BACKGROUNDS, CHANNELS, Noise, Sensor
 from .registry import configure, get_method
 from .registry import program as registry_program
@@ -105,13 +105,16 @@ def defaults(module_type) -> dict[str, object]:
     return {f.name: f.default for f in dataclasses.fields(module_type) if f.default is not dataclasses.MISSING}
 
 
-def make_sensor(d: float | None = None, background: str = "distant", channel: str = "mask",
-                alpha_r_deg: float = 0.0, n_pix: int | None = None, **noise: float) -> Sensor:
+def make_sensor(d: float | None = None, background: str | None = None, channel: str | None = None,
+                alpha_r_deg: float | None = None, n_pix: int | None = None, **noise: float) -> Sensor:
     """Validated `Sensor` from public options (None: the module's default); noise keywords as `make_noise`."""
-    fields: dict[str, object] = {"noise": make_noise(**noise),
-                                 "background": BACKGROUNDS.index(choice(background, "background", BACKGROUNDS)),
-                                 "channel": choice(channel, "channel", CHANNELS),
-                                 "alpha_r": math.radians(finite(alpha_r_deg, "alpha_r_deg"))}
+    fields: dict[str, object] = {"noise": make_noise(**noise)}
+    if background is not None:
+        fields["background"] = BACKGROUNDS.index(choice(background, "background", BACKGROUNDS))
+    if channel is not None:
+        fields["channel"] = choice(channel, "channel", CHANNELS)
+    if alpha_r_deg is not None:
+        fields["alpha_r"] = math.radians(finite(alpha_r_deg, "alpha_r_deg"))
     if d is not None:
         fields["d"] = positive(d, "d")
     if n_pix is not None:
@@ -159,13 +162,42 @@ METHOD_OPTIONS = tuple(inspect.signature(method_settings).parameters)
 SENSOR_OPTIONS = ("d", "background", "channel", "alpha_r_deg", "n_pix", *NOISE_OPTIONS)
 
 
-def make_setup(method: str, program=None, **options) -> tuple[HomingMethod, Sensor]:
-    """(method module, sensor) from a registry name and public options, validated before any work.
-    `program`: registry names compiled into one program with `method` (`registry.program`)."""
+PUBLIC_NAME = {"blur_deg": "mfdid_blur_deg"}  # method field -> public option, where they differ
+
+
+def owns(method: HomingMethod, field: str) -> bool:
+    """Whether `method` (or, for a `Program`, one of its methods) has the setting `field`."""
+    if isinstance(method, Program):
+        return any(owns(m, field) for m in method.methods)
+    return field in {f.name for f in dataclasses.fields(method)}
+
+
+def make_setup(method: str | HomingMethod, program=None, sensor: Sensor | None = None,
+               **options) -> tuple[HomingMethod, Sensor]:
+    """(method module, sensor), validated before any work. `method`: a registry name or a method
+    module (`DELV(levels=3, heading=Compass())`); `program`: registry names compiled into one
+    program with `method` (`registry.program`); `sensor`: a `Sensor` instead of sensor options.
+    A method setting that the method does not have is an error naming it."""
     unknown = sorted(set(options) - set(METHOD_OPTIONS) - set(SENSOR_OPTIONS))
     if unknown:
         raise InputError(unknown[0], options[unknown[0]], "unknown option")
-    sensor = make_sensor(**{k: v for k, v in options.items() if k in SENSOR_OPTIONS})
+    sensor_options = {k: v for k, v in options.items() if k in SENSOR_OPTIONS and v is not None}
+    if sensor is None:
+        sensor = make_sensor(**sensor_options)
+    elif not isinstance(sensor, Sensor):
+        raise InputError("sensor", sensor, "must be a delvjax.Sensor")
+    elif sensor_options:
+        name = sorted(sensor_options)[0]
+        raise InputError(name, sensor_options[name], "cannot be combined with sensor= (set it on the Sensor)")
     settings = method_settings(**{k: v for k, v in options.items() if k in METHOD_OPTIONS})
-    module = get_method(method) if program is None else registry_program(method, program)[0]
+    if isinstance(method, HomingMethod):
+        if program is not None:
+            raise InputError("program", program, "needs a registry name as the method")
+        module = method
+    else:
+        module = get_method(method) if program is None else registry_program(method, program)[0]
+    for field, value in settings.items():
+        if not owns(module, field):
+            label = method if isinstance(method, str) else type(method).__name__
+            raise InputError(PUBLIC_NAME.get(field, field), value, f"is not a setting of the method {label}")
     return configure(module, **settings), sensor

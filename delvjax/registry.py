@@ -1,7 +1,8 @@
 """The names of the methods: CLI and API names -> method modules (the edge; docs/model.md §3-4).
 
 Nothing under jit takes a name: the edge looks a name up here once and passes the module on.
-A new method is one module file in `delvjax/core/methods/` and one line in METHODS.
+A new method is one module file in `delvjax/core/methods/` and one line in REGISTRY (its import
+beside the others).
 """
 
 from __future__ import annotations
@@ -9,38 +10,34 @@ from __future__ import annotations
 import dataclasses
 
 from .core.errors import InputError
-from .core.methods import (ACV, ALV, DELV, MFDID, CartwrightCollett, Compass, DELVGap, HomingMethod, Program,
-                           VisualCompass, Warping)
+from .core.methods.acv import ACV
+from .core.methods.alv import ALV
+from .core.methods.base import HomingMethod
+from .core.methods.cartwright_collett import CartwrightCollett
+from .core.methods.delv import DELV
+from .core.methods.delv_gap import DELVGap
+from .core.methods.heading import Compass, VisualCompass
+from .core.methods.mfdid import MFDID
+from .core.methods.program import Program
+from .core.methods.warping import Warping
 
-METHODS: dict[str, HomingMethod] = {
-    "delv": DELV(),
-    "delv-compass": DELV(heading=Compass()),
-    "delv-visual": DELV(heading=VisualCompass()),
-    "alv": ALV(),
-    "alv-visual": ALV(heading=VisualCompass()),
-    "acv": ACV(),
-    "acv-visual": ACV(heading=VisualCompass()),
-    "warping": Warping(),
-    "mfdid": MFDID(),
-    "cc": CartwrightCollett(),
-    "delv-gap": DELVGap(),
-    "delv-gap-compass": DELVGap(heading=Compass()),
+# name: (module instance, one-line description). A new method is one line here.
+REGISTRY: dict[str, tuple[HomingMethod, str]] = {
+    "delv": (DELV(), "DELV, no compass: all cyclic shifts x n_heading heading hypotheses (thesis ch. 3-4)"),
+    "delv-compass": (DELV(heading=Compass()), "DELV with a compass: only the cyclic shift is searched (thesis ch. 5)"),
+    "delv-visual": (DELV(heading=VisualCompass()), "DELV with the visual compass of docs/model.md §4.4 (thesis 5.3.2)"),
+    "alv": (ALV(), "average landmark vector with a compass (Lambrinos 2000; thesis 3.3.2)"),
+    "alv-visual": (ALV(heading=VisualCompass()), "ALV with the visual compass (thesis 5.3.2)"),
+    "acv": (ACV(), "average correction vector with a compass (Hong 1992; thesis Eq 5.2)"),
+    "acv-visual": (ACV(heading=VisualCompass()), "ACV with the visual compass (thesis 5.3.2)"),
+    "warping": (Warping(), "predictive image matching over alpha x rho x psi, no compass (Franz 1998; thesis 4.2)"),
+    "mfdid": (MFDID(), "matched-filter descent in image distances with a compass (Moller & Vardy 2006)"),
+    "cc": (CartwrightCollett(), "snapshot model of Cartwright & Collett 1983 (landmarks only) with a compass"),
+    "delv-gap": (DELVGap(), "DELV, no compass, gap-aware matching: pairings may skip landmarks (beyond the thesis)"),
+    "delv-gap-compass": (DELVGap(heading=Compass()), "DELV with a compass and gap-aware matching (beyond the thesis)"),
 }
-
-DESCRIPTIONS: dict[str, str] = {
-    "delv": "DELV, no compass: all cyclic shifts x n_heading heading hypotheses (thesis ch. 3-4)",
-    "delv-compass": "DELV with a compass: only the cyclic shift is searched (thesis ch. 5)",
-    "delv-visual": "DELV with the visual compass of docs/model.md §4.4 (thesis 5.3.2)",
-    "alv": "average landmark vector with a compass (Lambrinos 2000; thesis 3.3.2)",
-    "alv-visual": "ALV with the visual compass (thesis 5.3.2)",
-    "acv": "average correction vector with a compass (Hong 1992; thesis Eq 5.2)",
-    "acv-visual": "ACV with the visual compass (thesis 5.3.2)",
-    "warping": "predictive image matching, 72 alpha x 15 rho x 72 psi, no compass (Franz 1998; thesis 4.2)",
-    "mfdid": "matched-filter descent in image distances with a compass (Moller & Vardy 2006)",
-    "cc": "snapshot model of Cartwright & Collett 1983 (landmarks only) with a compass (thesis ch. 2)",
-    "delv-gap": "DELV, no compass, gap-aware matching: pairings may skip landmarks (beyond the thesis)",
-    "delv-gap-compass": "DELV with a compass and gap-aware matching (beyond the thesis; Tables 5.1-5.4)",
-}
+METHODS: dict[str, HomingMethod] = {name: module for name, (module, _) in REGISTRY.items()}
+DESCRIPTIONS: dict[str, str] = {name: text for name, (_, text) in REGISTRY.items()}
 
 
 def get_method(name: str) -> HomingMethod:

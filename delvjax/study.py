@@ -13,7 +13,7 @@ from typing import Any, Callable
 import jax
 
 from .core.maps import SPACING
-from .core.rollouts import DEFAULT_LANES
+from .core.rollouts import DEFAULT_LANES, TRIALS_PER_DISTANCE
 from .io import _jsonable, write_csv, write_figure, write_json, write_rows_csv
 
 STUDY_FILE = "study.json"
@@ -35,12 +35,13 @@ class Settings:
     quick: bool = False
     seed: int = 0
     spacing: float = SPACING
-    trials: int = 100
+    trials: int = TRIALS_PER_DISTANCE
     lanes: int = DEFAULT_LANES
 
     @classmethod
     def make(cls, quick: bool = False, seed: int = 0) -> "Settings":
-        return cls(quick=quick, seed=seed, spacing=100.0 if quick else 25.0, trials=100, lanes=128 if quick else 256)
+        return cls(quick=quick, seed=seed, spacing=100.0 if quick else SPACING, trials=TRIALS_PER_DISTANCE,
+                   lanes=128 if quick else DEFAULT_LANES)
 
 
 def settings_record(settings: Settings) -> dict:

@@ -31,7 +31,7 @@ def run(ctx) -> None:
         items.append((f"{n} landmarks (layout seed {100 + n}): mean error {s['mean_error_deg']:.1f}°", e, vm))
         ctx.step(label)
     ctx.table("landmark_number", "DELV without compass in arbitrary layouts", rows, source="Fig 4.8",
-              note="Layouts are seeded random (delvjax.scene.random_env); the thesis's are not given.")
+              note="Layouts are seeded random (delvjax.presets.random_env); the thesis's are not given.")
     ctx.figure("fig4_8_landmark_numbers.png", panel_figure(items, ctx.settings.spacing,
                                                            title="DELV without compass, arbitrary layouts"),
                "Fig 4.8a-e: homing vectors of DELV without compass with 3, 4 and 5 landmarks.")

@@ -3,7 +3,7 @@
 DELV without compass with Q = 1..5 distance levels and with continuous distances on env1:
 vector maps (Fig 4.12), error curves (Fig 4.13a), catchment per level, success rate vs
 release distance (Fig 4.13b), and level 3 in other layouts (Fig 4.14). Q is a traced leaf
-of `Config`, so every level runs through the one compiled rollout program of DELV; the
+of the `DELV` module (`levels`), so every level runs through the one compiled rollout program; the
 vector maps are read from the catchment runs (`common.vector_map`).
 """
 

@@ -5,7 +5,7 @@ heading error at every grid point (release heading random per point), and the ca
 and mean angular error of DELV, ACV and ALV with the visual compass beside the true
 compass, on env1, under the default and the physical rollout rules. Then a compass-noise
 sweep (sigma 0-45 deg) of the catchment of DELV, ACV and ALV with the true compass: the
-one compiled rollout program, the sigma being a traced leaf of `Config`.
+one compiled rollout program, the sigma being a traced leaf of the `Sensor` (`noise.compass`).
 """
 
 from __future__ import annotations
@@ -54,7 +54,7 @@ def run(ctx) -> None:
         ctx.number(f"map:env1:{m}:mean_error_deg", true[m, "mean_error"])
     ctx.step("true compass")
     errors, compass_rows, catch_rows = {}, [], []
-    for bg in BACKGROUNDS:  # three settings (a static field: one program per setting)
+    for bg in BACKGROUNDS:  # three settings of a traced leaf: one compiled program
         err = np.degrees(np.asarray(visual_compass_errors(e.arrays(), points, headings, make_sensor(background=bg))))
         errors[bg] = err[included]
         stats = heading_error_stats(errors[bg])

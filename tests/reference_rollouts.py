@@ -23,7 +23,7 @@ from reference import acv_direction, alv_direction, delv_direction, extract_blob
 SUCCESS, TIMEOUT, LANDMARK, ARENA = range(4)
 FIRST_MOVES = ("homing", "release")
 COLLISIONS = ("ignore", "fail")
-HOME_TOLERANCE = 1e-3  # the library's inclusive "within home_radius" (delvjax.rollouts)
+HOME_TOLERANCE = 1e-3  # the library's inclusive "within home_radius" (delvjax.core.rollouts.rules)
 
 
 def _unit(a):

@@ -17,6 +17,7 @@ from jax import Array
 from .geometry import unit, wrap
 from .search import first_argmin
 from .sensing import UnitMove
+from .types import BlobFlags, BlobVectors, Blobs
 
 
 class DistanceSettings(Protocol):
@@ -60,7 +61,7 @@ def _sin_on_lattice(a: Array) -> Array:
     return jnp.where(jnp.abs(s) < 1e-6, 0.0, s)
 
 
-def end_distances(move: UnitMove, settings: DistanceSettings) -> Array:
+def end_distances(move: UnitMove, settings: DistanceSettings) -> Blobs:
     """R_C for every end (C) blob, Eq 3.2; (B,) cm, r_max where undefined."""
     beta = move.end.bearing + move.psi_hat
     theta_all = move.start.bearing
@@ -72,7 +73,7 @@ def end_distances(move: UnitMove, settings: DistanceSettings) -> Array:
     return jnp.where(jnp.any(move.start.valid), r, settings.r_max)
 
 
-def start_distances(move: UnitMove, settings: DistanceSettings) -> Array:
+def start_distances(move: UnitMove, settings: DistanceSettings) -> Blobs:
     """R_P for every start (P) blob, Eq 3.3 (each P-blob takes the nearest C-blob); (B,) cm."""
     theta = move.start.bearing
     beta = move.end.bearing + move.psi_hat
@@ -83,7 +84,7 @@ def start_distances(move: UnitMove, settings: DistanceSettings) -> Array:
     return jnp.where(jnp.any(move.end.valid), r, settings.r_max)
 
 
-def quantize(r: Array, levels: int | None, scale: Array) -> Array:
+def quantize(r: Blobs, levels: int | Array | None, scale: float | Array) -> Blobs:
     """Eq 3.17 / docs/model.md §3.2: R -> a * clip(ceil(R Q / a), 1, Q) / Q; `levels` 0 (or None) keeps R.
 
     `levels` may be traced: continuous and quantized distances share one compiled program."""
@@ -94,13 +95,13 @@ def quantize(r: Array, levels: int | None, scale: Array) -> Array:
     return jnp.where(jnp.asarray(levels) > 0, quantized, r)
 
 
-def reference_vectors(home: UnitMove, settings: DistanceSettings) -> tuple[Array, Array]:
+def reference_vectors(home: UnitMove, settings: DistanceSettings) -> tuple[BlobVectors, BlobFlags]:
     """Reference map V^R_i = R_P,i (cos theta_i, sin theta_i), home frame (docs/model.md §3.3): ((B, 2), (B,))."""
     r = quantize(start_distances(home, settings), settings.levels, settings.scale)
     return r[:, None] * unit(home.start.bearing), home.start.valid
 
 
-def current_vectors(view: UnitMove, settings: DistanceSettings) -> tuple[Array, Array]:
+def current_vectors(view: UnitMove, settings: DistanceSettings) -> tuple[BlobVectors, BlobFlags]:
     """Current vectors V_j = R_C,j (cos beta_j, sin beta_j), agent frame at C (docs/model.md §3.3): ((B, 2), (B,))."""
     r = quantize(end_distances(view, settings), settings.levels, settings.scale)
     return r[:, None] * unit(view.end.bearing), view.end.valid

@@ -3,7 +3,7 @@
 Both are equinox modules: continuous settings are pytree leaves (traced, vmapped in a sweep,
 differentiated), shapes and choices are static fields (changing them recompiles). The
 defaults written here are the model's (docs/model.md §8); the CLI and the API read them.
-Every random draw of the model is made by a `Noise` method, so maps, rollouts and
+Every noise draw of the model is made by a `Noise` method, so maps, rollouts and
 sensitivity studies sample the noise model the same way.
 """
 

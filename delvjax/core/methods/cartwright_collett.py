@@ -29,6 +29,7 @@ import jax.numpy as jnp
 from jax import Array
 
 from ..sensing import UnitMove
+from ..types import BlobFlags, Blobs, Flag, Point
 from .base import HomingMethod
 from .heading import Compass, HeadingSource
 
@@ -37,10 +38,10 @@ from ..search import first_argmin
 
 
 def cc_home_vector(
-    ref_bearing: Array, ref_width: Array, ref_valid: Array,
-    cur_bearing: Array, cur_width: Array, cur_valid: Array,
-    radial_weight: float = 1.0,
-) -> tuple[Array, Array]:
+    ref_bearing: Blobs, ref_width: Blobs, ref_valid: BlobFlags,
+    cur_bearing: Blobs, cur_width: Blobs, cur_valid: BlobFlags,
+    radial_weight: float | Array = 1.0,
+) -> tuple[Point, Flag]:
     """Home vector H (2,) of the snapshot model, and whether it is defined.
 
     Inputs are fixed-shape (B,) blob arrays (bearing, apparent width, validity mask) of the

@@ -12,13 +12,14 @@ from ..estimation import DistanceSettings, current_vectors, reference_vectors
 from ..search import first_argmin
 from ..geometry import TWO_PI, angle_of, rotate, safe_norm, wrap
 from ..sensing import UnitMove
+from ..types import BlobFlags, BlobVectors, Direction, Hypotheses, Pairing, PairingFlags, Point, RowFlags, Scalar
 from .base import HomingMethod
 from .heading import HeadingSource
 from .pairing import shift_pairs
 
 
-def match_arrangement(ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array,
-                      alphas: Array) -> tuple[Array, Array, Array, Array]:
+def match_arrangement(ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: BlobVectors, cur_valid: BlobFlags,
+                      alphas: Hypotheses) -> tuple[Point, Scalar, Scalar, Array]:
     """Best cyclic shift k and heading hypothesis alpha (Eqs 3.4-3.6): (p (2,), alpha, var, n_pairs).
 
     For each k and alpha: e_i = V^R_i - Rot(alpha) V_j(i), p = mean e_i, var = sum |e_i - p|^2;
@@ -33,8 +34,8 @@ def match_arrangement(ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: A
     return p, alpha, var, n
 
 
-def best_pairing(ref_v: Array, cur_v: Array, ref_idx: Array, cur_idx: Array, pair_ok: Array, row_ok: Array,
-                 n: Array, alphas: Array) -> tuple[Array, Array, Array]:
+def best_pairing(ref_v: BlobVectors, cur_v: BlobVectors, ref_idx: Pairing, cur_idx: Pairing, pair_ok: PairingFlags,
+                 row_ok: RowFlags, n: Array, alphas: Hypotheses) -> tuple[Point, Scalar, Scalar]:
     """The first minimum of var over pairings (rows) x heading hypotheses: (p (2,), alpha, var).
 
     Row h pairs ref_v[ref_idx[h, s]] with cur_v[cur_idx[h, s]] where pair_ok[h, s]; rows that are
@@ -62,8 +63,8 @@ def best_pairing(ref_v: Array, cur_v: Array, ref_idx: Array, cur_idx: Array, pai
     return p, alpha, var[h_best, a_best]
 
 
-def delv_direction(home: UnitMove, view: UnitMove, settings: DistanceSettings, alphas: Array, min_pairs: int,
-                   match: Callable = match_arrangement) -> tuple[Array, Array]:
+def delv_direction(home: UnitMove, view: UnitMove, settings: DistanceSettings, alphas: Hypotheses, min_pairs: int,
+                   match: Callable = match_arrangement) -> Direction:
     """Homing direction from the best (k, alpha) of `match`; invalid (NaN) when n < `min_pairs` or |p| = 0.
 
     `min_pairs` is static: 2 without a compass (one pair fits every heading), 1 with a
@@ -96,17 +97,18 @@ class DELV(HomingMethod):
     heading: HeadingSource | None = None
     n_heading: int = eqx.field(static=True, default=360)
 
-    def alphas(self, home: UnitMove, view: UnitMove) -> Array:
+    def alphas(self, home: UnitMove, view: UnitMove) -> Hypotheses:
         """The heading hypotheses: all n_heading of them, or the heading source's estimate."""
         if self.heading is None:
             return TWO_PI * jnp.arange(self.n_heading, dtype=jnp.float32) / self.n_heading
         return jnp.reshape(self.heading(home, view), (1,))
 
-    def match(self, ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array, alphas: Array):
+    def match(self, ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: BlobVectors, cur_valid: BlobFlags,
+              alphas: Hypotheses) -> tuple[Point, Scalar, Scalar, Array]:
         """The arrangement search (`match_arrangement`): (p, alpha, var, n)."""
         return match_arrangement(ref_v, ref_valid, cur_v, cur_valid, alphas)
 
-    def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
+    def __call__(self, home: UnitMove, view: UnitMove) -> Direction:
         return delv_direction(home, view, self, self.alphas(home, view), min_pairs=1 if self.heading is not None else 2,
                               match=self.match)
 

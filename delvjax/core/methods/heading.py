@@ -7,7 +7,7 @@ heading. Methods that need a heading own one (`ALV(heading=VisualCompass())`).
 
 from __future__ import annotations
 
-from typing import ClassVar
+from typing import ClassVar, Protocol, runtime_checkable
 
 import equinox as eqx
 import jax
@@ -57,7 +57,15 @@ class VisualCompass(eqx.Module):
         return visual_compass(home.start.gray, view.end.gray)
 
 
-HeadingSource = Compass | VisualCompass
+@runtime_checkable
+class HeadingSource(Protocol):
+    """What a heading source is: called like a method, it returns the estimate of h - alpha_r (rad);
+    `reads_gray` says whether it needs the gray channel (so rendering it is skipped otherwise).
+    `Compass` and `VisualCompass` are two; a new source is a module with these two members."""
+
+    reads_gray: bool
+
+    def __call__(self, home: UnitMove, view: UnitMove) -> Scalar: ...
 
 
 def visual_compass_errors(env: Env, points: Array, headings: Array, sensor: Sensor) -> PerPoint:

@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import jax.numpy as jnp
-from jax import Array
+
+from ..types import BlobFlags, Pairing, PairingFlags, RowFlags
 
 
-def shift_pairs(ref_valid: Array, cur_valid: Array) -> tuple[Array, Array, Array, Array]:
+def shift_pairs(ref_valid: BlobFlags, cur_valid: BlobFlags) -> tuple[Pairing, Pairing, PairingFlags, RowFlags]:
     """Index arrays of every cyclic shift k (thesis §3.2.4, Algorithm 3).
 
     N reference, M current entries (valid first), n = min(N, M) pairs and max(N, M)

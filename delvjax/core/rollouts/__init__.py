@@ -8,16 +8,16 @@ catchment, success (success rate vs distance), trajectories.
 from .catchment import Catchment, catchment_area, catchment_summary, hidden_masks, occlusion_masks
 from .release import START_TRIES, release_points
 from .rules import (ARENA, COLLISIONS, DEFAULT_DISTANCES, DEFAULT_LANES, DEFAULT_RULES, EXCLUDED, FIRST_MOVES,
-                    HOME_RADIUS, HOME_TOLERANCE, LANDMARK, MAX_STEPS, OUTCOMES, PHYSICAL_RULES, RUNNING, SUCCESS,
-                    TIMEOUT, check_rules, position_status, rollout_keys)
+                    HOME_RADIUS, HOME_TOLERANCE, LANDMARK, MAX_STEPS, N_STARTS, OUTCOMES, PHYSICAL_RULES, RUNNING,
+                    SUCCESS, TIMEOUT, TRIALS_PER_DISTANCE, check_rules, position_status, rollout_keys)
 from .step import move_poses
 from .success import SuccessRate, success_rate_trials, wilson_interval_pct
 from .trajectories import Trajectories, trajectory_trials
 from .trials import MASK_ROWS, TRIAL_BLOCK, Trials, home_record, run_trials, trial_block
 
 __all__ = ["ARENA", "COLLISIONS", "Catchment", "DEFAULT_DISTANCES", "DEFAULT_LANES", "DEFAULT_RULES", "EXCLUDED",
-           "FIRST_MOVES", "HOME_RADIUS", "HOME_TOLERANCE", "LANDMARK", "MASK_ROWS", "MAX_STEPS", "OUTCOMES",
-           "PHYSICAL_RULES", "RUNNING", "START_TRIES", "SUCCESS", "SuccessRate", "TIMEOUT", "TRIAL_BLOCK",
+           "FIRST_MOVES", "HOME_RADIUS", "HOME_TOLERANCE", "LANDMARK", "MASK_ROWS", "MAX_STEPS", "N_STARTS", "OUTCOMES",
+           "PHYSICAL_RULES", "RUNNING", "START_TRIES", "SUCCESS", "SuccessRate", "TIMEOUT", "TRIALS_PER_DISTANCE", "TRIAL_BLOCK",
            "Trajectories", "Trials", "catchment_area", "catchment_summary", "check_rules", "hidden_masks",
            "home_record", "move_poses", "occlusion_masks", "position_status", "release_points", "rollout_keys",
            "run_trials", "success_rate_trials", "trajectory_trials", "trial_block", "wilson_interval_pct"]

@@ -39,6 +39,8 @@ HOME_RADIUS = 50.0  # cm, docs/model.md §5
 MAX_STEPS = 50
 DEFAULT_LANES = 256
 DEFAULT_DISTANCES = tuple(float(v) for v in range(50, 451, 50))
+TRIALS_PER_DISTANCE = 100  # success rate, thesis §4.3
+N_STARTS = 6  # random release points of a trajectory figure
 
 
 def check_rules(first_move: str, collisions: str) -> dict[str, str]:

@@ -18,7 +18,8 @@ from ..scene import Env
 from ..sensor import Sensor
 from ..types import BinTrialFlag, BinTrialFloat, BinTrialInt, BinTrialPoints, Bins
 from .release import release_points
-from .rules import DEFAULT_DISTANCES, DEFAULT_LANES, EXCLUDED, HOME_RADIUS, MAX_STEPS, OUTCOMES, SUCCESS, Outcomes, rollout_keys
+from .rules import (DEFAULT_DISTANCES, DEFAULT_LANES, EXCLUDED, HOME_RADIUS, MAX_STEPS, OUTCOMES, SUCCESS,
+                    TRIALS_PER_DISTANCE, Outcomes, rollout_keys)
 from .trials import run_trials
 
 
@@ -68,7 +69,7 @@ def wilson_interval_pct(successes: int, trials: int, confidence: float = 0.95) -
 
 
 def success_rate_trials(env: Env, method: HomingMethod, sensor: Sensor, distances: Sequence[float] = DEFAULT_DISTANCES,
-                        trials: int = 100, heading: float | None = None, key: Array | None = None,
+                        trials: int = TRIALS_PER_DISTANCE, heading: float | None = None, key: Array | None = None,
                         clearance: float = CLEARANCE, visible: Array | None = None, home_radius: float = HOME_RADIUS,
                         max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, first_move: str = "homing",
                         collisions: str = "ignore") -> SuccessRate:
