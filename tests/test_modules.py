@@ -55,15 +55,22 @@ def test_a_program_switches_method_by_its_traced_index():
 
 
 def test_options_set_only_the_fields_a_method_has_and_name_the_bad_one():
-    method, sensor = make_setup("delv-compass", levels=4, n_alpha=36, d=30.0, bearing_noise_deg=2.0)
+    method, sensor = make_setup("delv-compass", levels=4, d=30.0, bearing_noise_deg=2.0)
     assert method.levels == 4 and sensor.d == 30.0 and math.isclose(sensor.noise.bearing, math.radians(2.0))
-    warping, _ = make_setup("warping", n_alpha=36, levels=4)
-    assert warping.n_alpha == 36 and not hasattr(warping, "levels")
-    assert configure(METHODS["alv"], levels=3) is METHODS["alv"]
-    for bad in (dict(levels=0), dict(d=-1.0), dict(n_psi=7), dict(unknown_option=1.0)):
+    warping, _ = make_setup("warping", n_alpha=36)
+    assert warping.n_alpha == 36
+    shared, _ = make_setup("alv", program=["delv-compass", "alv"], levels=4)  # DELV in the program takes it
+    assert shared.methods[0].levels == 4 and configure(METHODS["alv"], levels=3) is METHODS["alv"]
+    for method_name, bad in (("delv", dict(levels=0)), ("delv", dict(d=-1.0)), ("warping", dict(n_psi=7)),
+                             ("delv", dict(unknown_option=1.0)), ("alv", dict(levels=3)),
+                             ("delv", dict(n_alpha=36)), ("warping", dict(mfdid_blur_deg=2.0))):
         with pytest.raises(InputError) as err:
-            make_setup("delv", **bad)
+            make_setup(method_name, **bad)
         assert next(iter(bad)) in str(err.value)
+    module, _ = make_setup(DELV(levels=2), sensor=Sensor(d=20.0))
+    assert module.levels == 2
+    with pytest.raises(InputError, match="d"):
+        make_setup(DELV(), sensor=Sensor(), d=20.0)
 
 
 def test_blob_widths_are_the_apparent_sizes_of_the_cylinders():
