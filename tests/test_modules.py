@@ -29,6 +29,8 @@ def test_a_module_with_settings_gives_the_public_api_numbers_and_a_traced_settin
     vm = maps.vector_map(env, method, Sensor(d=50.0), spacing=100.0)
     api = delvjax.vector_map(env, method="delv-compass", levels=3, spacing=100.0)
     assert np.array_equal(np.asarray(vm.direction), np.asarray(api.direction), equal_nan=True)
+    module_api = delvjax.vector_map(env, method=method, sensor=Sensor(d=50.0), spacing=100.0)  # a module, no name
+    assert np.array_equal(np.asarray(module_api.direction), np.asarray(vm.direction), equal_nan=True)
     compiled = maps._vector_map._cache_size()
     finer = maps.vector_map(env, eqx.tree_at(lambda m: m.levels, method, 6), Sensor(d=50.0), spacing=100.0)
     assert maps._vector_map._cache_size() == compiled  # levels is a traced leaf: no new program
