@@ -27,7 +27,7 @@ def cmd_envs(args: argparse.Namespace) -> int:
         print(f"{name:7s} {env.n_landmarks} landmarks  {PRESET_DESCRIPTIONS[name]}")
     print("\nmethods:")
     for name, text in DESCRIPTIONS.items():
-        print(f"  {name:13s} {text}")
+        print(f"  {name:{max(map(len, DESCRIPTIONS))}s} {text}")
     return 0
 
 
