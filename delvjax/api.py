@@ -19,7 +19,7 @@ from .core.errors import InputError
 from .core.methods import HomingMethod
 from .core.scene import Env
 from .core.sensor import Sensor
-from .options import finite, make_setup, non_negative, positive, positive_int, seed_value
+from .options import angle_deg, make_setup, non_negative, positive, positive_int, seed_value
 from .presets import load_env as _load_env
 
 
@@ -33,7 +33,7 @@ def resolve_headings(heading_deg: float | None, seed: int) -> tuple[float | None
     key = jax.random.PRNGKey(seed_value(seed))
     if heading_deg is None:
         return None, key
-    return math.radians(finite(heading_deg, "heading_deg")), key
+    return math.radians(angle_deg(heading_deg, "heading_deg")), key
 
 
 def visible_mask(env: Env, hidden: list[int] | tuple[int, ...] | None) -> np.ndarray | None:

@@ -10,7 +10,7 @@ from typing import Callable
 
 from . import api
 from .cache import enable_compilation_cache
-from .cli_args import add_output_args, add_scene_args, check_outputs, progress, scene_kwargs
+from .cli_args import add_output_args, add_scene_args, check_outputs, progress, scene_kwargs, wrote
 from .cli_rollouts import ROLLOUT_COMMANDS
 from .core import maps
 from .core.errors import InputError
@@ -55,13 +55,14 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     progress(f"done in {summary['seconds']:.2f} s: {summary['points']} points, {summary['invalid']} invalid, "
              f"mean error {summary['mean_error_deg']:.2f} deg, >45: {summary['gt45_pct']:.2f} %, "
              f">90: {summary['gt90_pct']:.2f} %")
-    write_csv(args.out, vector_map_columns(vm))
+    if args.out:
+        write_csv(args.out, vector_map_columns(vm))
     if args.summary:
         write_json(args.summary, summary)
     if args.plot:
         title = f"{args.method} on {env.name}: mean error {summary['mean_error_deg']:.1f}°"
         write_figure(vector_map_figure(env, vm, args.spacing, title=title, classes=args.classes), args.plot)
-    print(f"wrote {args.out}" + (f", {args.plot}" if args.plot else "") + (f", {args.summary}" if args.summary else ""))
+    print(wrote(args.out, args.plot, args.summary))
     return 0
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from .core.errors import InputError
 from .core.maps import CLEARANCE, SPACING
 from .core.methods import DELV, MFDID, Warping
 from .core.rollouts import DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
@@ -17,6 +18,11 @@ from .registry import METHODS
 CSV = (".csv",)
 FIGURE = (".png", ".pdf", ".svg")
 JSON = (".json",)
+
+
+def wrote(*paths) -> str:
+    """The closing line of a command: the files it wrote."""
+    return "wrote " + ", ".join(str(p) for p in paths if p)
 
 
 def progress(msg: str) -> None:
@@ -47,12 +53,25 @@ def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
     w.add_argument("--n-rho", type=int, default=None, help=f"values of rho = d/r (default {warping['n_rho']})")
     w.add_argument("--rho-min", type=float, default=None, help=f"smallest rho (default {warping['rho_min']:.2f})")
     w.add_argument("--rho-max", type=float, default=None, help=f"largest rho, < 1 (default {warping['rho_max']:.2f})")
-    w.add_argument("--mfdid-blur-deg", type=float, default=None,
+    f = p.add_argument_group("MFDID (docs/model.md §4.5)")
+    f.add_argument("--mfdid-blur-deg", type=float, default=None,
                    help=f"MFDID: Gaussian low-pass of both images, deg (default {defaults(MFDID)['blur_deg']:g})")
-    g = p.add_argument_group("noise (all default 0; angles in degrees)")
+    g = p.add_argument_group("noise: standard deviations, all default 0, all drawn from --seed (docs/model.md §2.5)")
     for name in NOISE_OPTIONS:
         unit = "deg" if name in NOISE_FIELDS_DEG else "fraction of d"
-        g.add_argument("--" + name.replace("_", "-"), type=float, default=0.0, dest=name, help=f"sigma ({unit})")
+        g.add_argument("--" + name.replace("_", "-"), type=float, default=0.0, dest=name,
+                       help=f"{NOISE_HELP[name]} ({unit})")
+
+
+NOISE_HELP = {  # what each sigma perturbs (docs/model.md §2.5)
+    "bearing_noise_deg": "error of every blob bearing, in every snapshot",
+    "step_noise": "error of the unit move's length, d * (1 + N(0, s)); the agent believes it moved d",
+    "turn_noise_deg": "true body turn during the unit move; the end view is rotated by it",
+    "odometry_turn_noise_deg": "error of the odometry's report of that turn",
+    "compass_noise_deg": "error of every compass reading (compass methods only)",
+    "motion_heading_noise_deg": "rollouts only: error of the executed heading of every step",
+    "motion_step_noise": "rollouts only: error of every step's length, d * (1 + N(0, s))",
+}
 
 
 def scene_kwargs(args: argparse.Namespace) -> dict:
@@ -66,13 +85,17 @@ def scene_kwargs(args: argparse.Namespace) -> dict:
 
 
 def add_output_args(p: argparse.ArgumentParser, plot_help: str) -> None:
-    p.add_argument("--out", required=True, help="per-point CSV file")
+    p.add_argument("--out", default=None, help="per-point CSV file (at least one of --out, --plot, --summary)")
     p.add_argument("--plot", default=None, help=plot_help + " (.png, .pdf or .svg)")
     p.add_argument("--summary", default=None, help="JSON file with the headline numbers")
 
 
 def check_outputs(args: argparse.Namespace) -> None:
-    check_output_path(args.out, "--out", CSV)
+    """Validate every output path before any work; at least one output must be asked for."""
+    if not any(getattr(args, name, None) for name in ("out", "plot", "summary", "trials_out")):
+        raise InputError("--out", None, "no output asked for (give --out, --plot or --summary)")
+    if args.out is not None:
+        check_output_path(args.out, "--out", CSV)
     if args.plot is not None:
         check_output_path(args.plot, "--plot", FIGURE)
     if args.summary is not None:

@@ -12,7 +12,7 @@ import numpy as np
 
 from . import api, api_rollouts
 from .cli_args import (CSV, add_output_args, add_rollout_args, add_scene_args, check_outputs, progress,
-                       rollout_kwargs)
+                       rollout_kwargs, wrote)
 from .core.errors import InputError
 from .core.rollouts import DEFAULT_DISTANCES, N_STARTS, TRIALS_PER_DISTANCE, catchment_summary, check_rules
 from .io import check_output_path, write_figure, write_csv, write_json, write_rows_csv
@@ -75,14 +75,15 @@ def cmd_catchment(args: argparse.Namespace) -> int:
                 f"mean {c['mean']:.2f} %, min {c['min']:.2f} %, max {c['max']:.2f} %")
              + f"; >45: {summary['gt45_pct']['mean']:.2f} %, >90: {summary['gt90_pct']['mean']:.2f} %")
     columns = catchment_columns(res, with_hidden=args.occlude is not None or bool(args.hide))
-    write_csv(args.out, columns)
+    if args.out:
+        write_csv(args.out, columns)
     if args.summary:
         write_json(args.summary, summary)
     if args.plot:
         from .plots_rollouts import catchment_figure
 
         write_figure(catchment_figure(env, res, args.spacing, title=f"{args.method} on {env.name}"), args.plot)
-    print(f"wrote {args.out}" + (f", {args.plot}" if args.plot else "") + (f", {args.summary}" if args.summary else ""))
+    print(wrote(args.out, args.plot, args.summary))
     return 0
 
 
@@ -120,7 +121,8 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
         rows += success_rows(res, m)
         trial_cols.append(success_trial_columns(res, m))
     rules = check_rules(args.first_move, args.collisions)
-    write_rows_csv(args.out, rows)
+    if args.out:
+        write_rows_csv(args.out, rows)
     if args.trials_out:
         write_csv(args.trials_out, concat_columns(trial_cols))
     if args.summary:
@@ -132,7 +134,7 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
 
         fig = success_rate_figure(tables, title=f"success rate on {env.name} ({args.trials} trials per distance)")
         write_figure(fig, args.plot)
-    print(f"wrote {args.out}" + "".join(f", {p}" for p in (args.trials_out, args.plot, args.summary) if p))
+    print(wrote(args.out, args.trials_out, args.plot, args.summary))
     return 0
 
 
@@ -168,7 +170,8 @@ def cmd_trajectories(args: argparse.Namespace) -> int:
                                  "release_heading_deg": float(np.degrees(tr.heading[t])),
                                  "outcome": outcome[t], "steps": int(steps[t])} for t in range(path.shape[0])]
         progress(f"{int(np.asarray(tr.success).sum())}/{path.shape[0]} reach home")
-    write_csv(args.out, concat_columns(cols))
+    if args.out:
+        write_csv(args.out, concat_columns(cols))
     if args.summary:
         write_json(args.summary, summary)
     if args.plot:
@@ -176,7 +179,7 @@ def cmd_trajectories(args: argparse.Namespace) -> int:
 
         write_figure(trajectories_figure(env, results, args.home_radius, title=f"homing trajectories on {env.name}"),
                     args.plot)
-    print(f"wrote {args.out}" + "".join(f", {p}" for p in (args.plot, args.summary) if p))
+    print(wrote(args.out, args.plot, args.summary))
     return 0
 
 

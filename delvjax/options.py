@@ -78,10 +78,20 @@ def choice(value: object, field: str, options) -> str:
     return value  # type: ignore[return-value]
 
 
+SEED_LIMIT = 2**32  # PRNGKey keeps 32 bits of a seed (without x64): larger seeds would repeat smaller ones
+
+
 def seed_value(value: object) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < 0:
-        raise InputError("seed", value, "must be a non-negative integer")
+    """A seed in 0..2**32 - 1 (`InputError` otherwise, also for a seed too large for the key)."""
+    if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < SEED_LIMIT:
+        raise InputError("seed", value, f"must be an integer in 0..{SEED_LIMIT - 1}")
     return value
+
+
+def angle_deg(value: object, field: str) -> float:
+    """A finite angle in degrees reduced into (-360, 360) in float64 (exact: `math.fmod`), before the
+    core's float32 sees it: 1e30 deg is a heading, not a float32 overflow of its sine."""
+    return math.fmod(finite(value, field), 360.0)
 
 
 def make_noise(**kwargs: float) -> Noise:
@@ -114,7 +124,7 @@ def make_sensor(d: float | None = None, background: str | None = None, channel: 
     if channel is not None:
         fields["channel"] = choice(channel, "channel", CHANNELS)
     if alpha_r_deg is not None:
-        fields["alpha_r"] = math.radians(finite(alpha_r_deg, "alpha_r_deg"))
+        fields["alpha_r"] = math.radians(angle_deg(alpha_r_deg, "alpha_r_deg"))
     if d is not None:
         fields["d"] = positive(d, "d")
     if n_pix is not None:

@@ -27,6 +27,9 @@ def make_env(landmarks, home=DEFAULT_HOME, arena=DEFAULT_ARENA, name: str = "env
     return env_from_dict(spec, pad_to=pad_to)
 
 
+ENV_FIELDS = {"name", "arena", "home", "landmarks"}
+
+
 def _number(value, field: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise InputError(field, value, "must be a number")
@@ -48,6 +51,9 @@ def validate_env_dict(spec: object) -> dict:
     for key in ("arena", "home", "landmarks"):
         if key not in spec:
             raise InputError(key, None, "missing required field")
+    unknown = sorted(set(spec) - ENV_FIELDS)
+    if unknown:
+        raise InputError(unknown[0], spec[unknown[0]], f"unknown field (an environment has {', '.join(sorted(ENV_FIELDS))})")
     name = spec.get("name", "env")
     if not isinstance(name, str) or not name:
         raise InputError("name", name, "must be a non-empty string")
@@ -67,6 +73,9 @@ def validate_env_dict(spec: object) -> dict:
         for key in ("x", "y", "r"):
             if key not in lm:
                 raise InputError(f"landmarks[{i}].{key}", None, "missing required field")
+        extra = sorted(set(lm) - {"x", "y", "r"})
+        if extra:
+            raise InputError(f"landmarks[{i}].{extra[0]}", lm[extra[0]], "unknown field (a landmark has x, y, r)")
         x, y, r = (_number(lm[k], f"landmarks[{i}].{k}") for k in ("x", "y", "r"))
         if r <= 0:
             raise InputError(f"landmarks[{i}].r", lm["r"], "must be > 0")
