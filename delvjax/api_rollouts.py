@@ -4,7 +4,7 @@ the CLI (same names, same validation before any work)."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Sequence
+from typing import Callable, Sequence
 
 import jax
 import jax.numpy as jnp
@@ -38,7 +38,8 @@ def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, head
 def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
               seed: int = 0, occlude: int | None = None, hidden: list[int] | None = None, max_steps: int = MAX_STEPS,
               home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE, lanes: int = DEFAULT_LANES, first_move: str = "homing",
-              collisions: str = "ignore", program: Sequence[str] | None = None, **options) -> Catchment:
+              collisions: str = "ignore", program: Sequence[str] | None = None, announce: Callable[[], None] | None = None,
+              **options) -> Catchment:
     """Catchment area of `method` (Figs 4.5, 5.5; Tables 5.3/5.4): a rollout from every docs/model.md §5 grid point.
 
     heading_deg fixes the release heading; otherwise it is random per point from `seed`
@@ -48,7 +49,9 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
     and motion_step_noise, or any other `api.vector_map` option (e.g. warping's n_alpha).
     `first_move` ("homing" | "release") and `collisions` ("ignore" | "fail"): the rollout
     rules of `core.rollouts.rules` (defaults: docs/model.md §5). `program`: registry names compiled into
-    one rollout program with this one (`registry.program`). Returns a `Catchment` (see `catchment_summary`).
+    one rollout program with this one (`registry.program`). `announce`: called once every option is
+    valid, just before the work (the CLI prints its progress line there, so an error stays one line).
+    Returns a `Catchment` (see `catchment_summary`).
     """
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
@@ -61,6 +64,7 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
     else:
         visible_mask(env, hidden)  # validates the indices
         masks, combos = hidden_masks(env, hidden)
+    _announce(announce)
     return catchment_area(env, module, sensor, spacing=spacing, heading=heading, key=key, clearance=clearance,
                           masks=masks, hidden=combos, home_radius=home_radius, max_steps=max_steps, lanes=lanes,
                           first_move=first_move, collisions=collisions)
@@ -70,13 +74,14 @@ def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", dis
                  trials: int = TRIALS_PER_DISTANCE, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
                  max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
                  lanes: int = DEFAULT_LANES, first_move: str = "homing",
-                 collisions: str = "ignore", program: Sequence[str] | None = None, **options) -> SuccessRate:
+                 collisions: str = "ignore", program: Sequence[str] | None = None,
+                 announce: Callable[[], None] | None = None, **options) -> SuccessRate:
     """Success rate vs release distance (Figs 4.10b, 5.7b): `trials` rollouts per distance from home.
 
     Each trial: a random direction from home at that distance and a random heading (seeded);
     a release point inside a landmark's r + clearance or outside the arena is redrawn
     (deterministically, up to 64 times; else the trial is not placed and not counted).
-    `options`, `first_move`, `collisions` and `program` as in `catchment`.
+    `options`, `first_move`, `collisions`, `program` and `announce` as in `catchment`.
     """
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
@@ -85,8 +90,10 @@ def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", dis
     if isinstance(distances, (str, bytes)) or not hasattr(distances, "__len__") or len(distances) == 0:
         raise InputError("distances", distances, "must be a non-empty list of distances in cm")
     distances = [positive(v, "distances") for v in distances]
+    visible = visible_mask(env, hidden)
+    _announce(announce)
     return success_rate_trials(env, module, sensor, distances=distances, trials=trials, heading=heading, key=key,
-                               clearance=clearance, visible=visible_mask(env, hidden), home_radius=home_radius,
+                               clearance=clearance, visible=visible, home_radius=home_radius,
                                max_steps=max_steps, lanes=lanes, first_move=first_move, collisions=collisions)
 
 
@@ -95,7 +102,7 @@ def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", sta
                  max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
                  lanes: int = DEFAULT_LANES, first_move: str = "homing",
                  collisions: str = "ignore", program: Sequence[str] | None = None,
-                 **options) -> Trajectories:
+                 announce: Callable[[], None] | None = None, **options) -> Trajectories:
     """Homing paths (Figs 4.11, 5.8) from `starts` [(x, y), ...] or `n_starts` seeded random release points.
 
     Random release points are uniform in the arena, at least d from the walls, farther than
@@ -103,7 +110,7 @@ def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", sta
     along the random release heading, cannot end the trial) and at least 2 * home_radius
     from home; headings are
     random per trial from `seed` unless heading_deg is given. The same seed gives the same
-    release points for every method. `options`, `first_move`, `collisions` and `program` as in `catchment`.
+    release points for every method. `options`, `first_move`, `collisions`, `program` and `announce` as in `catchment`.
     """
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
@@ -120,8 +127,14 @@ def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", sta
         _, heads, _ = release_points(env.arrays(), k_start, pts.shape[0], None, clearance)
     if heading is not None:
         heads = jnp.full(pts.shape[0], heading, jnp.float32)
+    _announce(announce)
     return trajectory_trials(env, module, sensor, pts, heads, key=key, visible=visible, home_radius=home_radius,
                              max_steps=max_steps, lanes=lanes, first_move=first_move, collisions=collisions)
+
+
+def _announce(announce: Callable[[], None] | None) -> None:
+    if announce is not None:
+        announce()
 
 
 def _check_starts(env: Env, starts) -> Array:

@@ -16,10 +16,17 @@ from .cli_args import (CSV, add_output_args, add_rollout_args, add_scene_args, c
 from .core.errors import InputError
 from .core.rollouts import DEFAULT_DISTANCES, N_STARTS, TRIALS_PER_DISTANCE, catchment_summary, check_rules
 from .io import check_output_path, write_figure, write_csv, write_json, write_rows_csv
-from .options import occlusion_count
+from .options import METHOD_OPTIONS, SENSOR_OPTIONS, make_setup, occlusion_count
 from .registry import get_method
 from .tables import (catchment_columns, concat_columns, outcome_names, success_rows, success_trial_columns,
                      trajectory_columns)
+
+
+def _check_methods(methods: list[str], kw: dict) -> None:
+    """Every method of a comma-separated list with the options, validated before the first one runs."""
+    options = {k: v for k, v in kw.items() if k in METHOD_OPTIONS or k in SENSOR_OPTIONS}
+    for m in methods:
+        make_setup(m, **options)
 
 
 def _methods(text: str) -> list[str]:
@@ -62,9 +69,9 @@ def cmd_catchment(args: argparse.Namespace) -> int:
     if args.occlude is not None:
         occlusion_count(args.occlude, env.n_landmarks)
     t0 = time.perf_counter()
-    progress(f"catchment of {args.method} on {env.name} (spacing {args.spacing:g} cm"
-             + (f", {args.occlude} of {env.n_landmarks} landmarks hidden" if args.occlude else "") + ") ...")
-    res = api_rollouts.catchment(env, **kw)
+    res = api_rollouts.catchment(env, **kw, announce=lambda: progress(
+        f"catchment of {args.method} on {env.name} (spacing {args.spacing:g} cm"
+        + (f", {args.occlude} of {env.n_landmarks} landmarks hidden" if args.occlude else "") + ") ..."))
     res.outcome.block_until_ready()
     seconds = time.perf_counter() - t0
     summary = {"env": env.name, "method": args.method, "occlude": args.occlude or 0, "seconds": seconds,
@@ -108,11 +115,12 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
     env = api.load_env(args.env)
     kw = rollout_kwargs(args, drop=("spacing", "method"))
     kw.update(lanes=args.lanes, trials=args.trials, distances=args.distances)
+    _check_methods(methods, kw)
     tables, rows, trial_cols, timing = {}, [], [], {}
     for m in methods:  # one program per method (different methods are different programs)
         t0 = time.perf_counter()
-        progress(f"success rate of {m} on {env.name}: {args.trials} trials x {len(args.distances)} distances ...")
-        res = api_rollouts.success_rate(env, method=m, **kw)
+        res = api_rollouts.success_rate(env, method=m, **kw, announce=lambda: progress(
+            f"success rate of {m} on {env.name}: {args.trials} trials x {len(args.distances)} distances ..."))
         res.outcome.block_until_ready()
         timing[m] = time.perf_counter() - t0
         tables[m] = res.table()
@@ -159,9 +167,10 @@ def cmd_trajectories(args: argparse.Namespace) -> int:
     kw.update(starts=args.start, n_starts=args.n_starts)
     results, cols = {}, []
     summary = {"env": env.name, "rules": check_rules(args.first_move, args.collisions), "trials": {}}
+    _check_methods(methods, kw)
     for m in methods:  # one program per method
-        progress(f"trajectories of {m} on {env.name} ...")
-        tr = api_rollouts.trajectories(env, method=m, **kw)
+        tr = api_rollouts.trajectories(env, method=m, **kw,
+                                       announce=lambda: progress(f"trajectories of {m} on {env.name} ..."))
         results[m] = tr
         path, steps = np.asarray(tr.path), np.asarray(tr.steps)
         cols.append(trajectory_columns(tr, m))

@@ -86,3 +86,50 @@ def test_the_help_says_what_each_noise_perturbs(capsys):
         main(["vector-map", "--help"])
     text = capsys.readouterr().out
     assert "MFDID (docs/model.md" in text and "rollouts only: error of the executed heading" in text
+
+
+@pytest.mark.parametrize("argv", [
+    ["catchment", "env1", "--max-steps", "0"],
+    ["catchment", "env1", "--method", "alv", "--levels", "3"],
+    ["success-rate", "env1", "--method", "delv,alv", "--levels", "3", "--trials", "2"],
+    ["success-rate", "env1", "--trials", "0"],
+    ["trajectories", "env1", "--start", "330", "640", "--method", "alv", "--home-radius", "-1"],
+])
+def test_rollout_commands_validate_everything_before_announcing_work(tmp_path, capsys, argv):
+    out = tmp_path / "r.csv"
+    assert main(argv + ["--out", str(out)]) == 2
+    assert error_line(capsys).startswith("delvjax: error: ")  # no progress line before the error
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("argv, field", [
+    (["vector-map", "env1", "--spacing", "5000"], "spacing"),
+    (["catchment", "env1", "--spacing", "5000"], "spacing"),
+    (["success-rate", "env1", "--distances", "5000", "--trials", "2"], "distances"),
+])
+def test_what_cannot_produce_a_result_is_refused(tmp_path, capsys, argv, field):
+    out = tmp_path / "r.csv"
+    assert main(argv + ["--out", str(out)]) == 2
+    assert error_line(capsys).startswith(f"delvjax: error: {field}:")
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("argv", [
+    ["vector-map", "env1", "--method", "delv", "--hide", "0", "1", "2", "3", "--spacing", "200"],
+    ["catchment", "ring3", "--method", "delv", "--occlude", "3", "--spacing", "200"],
+])
+def test_a_result_with_every_point_invalid_warns_in_one_line(tmp_path, capsys, argv):
+    out = tmp_path / "r.csv"
+    assert main(argv + ["--out", str(out)]) == 0
+    warnings = [line for line in capsys.readouterr().err.splitlines() if line.startswith("delvjax: warning:")]
+    assert len(warnings) == 1 and "every" in warnings[0] and "invalid" in warnings[0]
+    assert out.exists()
+
+
+def test_a_channel_for_a_method_that_reads_no_image_is_refused(tmp_path, capsys):
+    out = tmp_path / "m.csv"
+    assert main(["vector-map", "env1", "--method", "delv", "--channel", "gray", "--out", str(out)]) == 2
+    assert error_line(capsys).startswith("delvjax: error: channel:")
+    assert not out.exists()
+    assert main(["vector-map", "env1", "--method", "warping", "--channel", "gray", "--spacing", "200",
+                 "--out", str(out)]) == 0
