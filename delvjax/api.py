@@ -61,6 +61,14 @@ def scene_request(env: str | Path | Env, method: str | HomingMethod, clearance: 
     return env, module, sensor, heading, key, clearance
 
 
+def check_grid(env: Env, spacing: float, clearance: float) -> None:
+    """`InputError` naming `spacing` when the docs/model.md §5 grid has no point clear of the landmarks."""
+    points = maps.grid_points(env.arena, spacing)
+    if points.shape[0] == 0 or not np.asarray(maps.grid_included(env.arrays(), jax.device_put(points),
+                                                                   clearance)).any():
+        raise InputError("spacing", spacing, "leaves no grid point in the arena clear of the landmarks (r + clearance)")
+
+
 def map_request(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
                 seed: int = 0, clearance: float = CLEARANCE, hidden: list[int] | None = None,
                 batch_size: int = maps.DEFAULT_BATCH, **options) -> dict:
@@ -68,6 +76,7 @@ def map_request(env: str | Path | Env, method: str | HomingMethod = "delv", spac
     arguments of `core.maps.vector_map`. Raises `InputError` naming the field and value."""
     env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **options)
     spacing = positive(spacing, "spacing")
+    check_grid(env, spacing, clearance)
     batch_size = positive_int(batch_size, "batch_size")
     visible = visible_mask(env, hidden)
     return dict(env=env, method=module, sensor=sensor, spacing=spacing, heading=heading, key=key,

@@ -11,7 +11,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
-from .api import scene_request, visible_mask
+from .api import check_grid, scene_request, visible_mask
 from .core.errors import InputError
 from .core.maps import CLEARANCE, SPACING
 from .core.methods import HomingMethod
@@ -57,6 +57,7 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         options, first_move, collisions, program)
     spacing = positive(spacing, "spacing")
+    check_grid(env, spacing, clearance)
     if occlude is not None and hidden:
         raise InputError("occlude", occlude, "cannot be combined with hidden")
     if occlude is not None:
@@ -90,6 +91,12 @@ def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", dis
     if isinstance(distances, (str, bytes)) or not hasattr(distances, "__len__") or len(distances) == 0:
         raise InputError("distances", distances, "must be a non-empty list of distances in cm")
     distances = [positive(v, "distances") for v in distances]
+    corners = np.asarray(env.arena, float)[[[0, 1], [2, 1], [2, 3], [0, 3]]]
+    reach = float(np.max(np.hypot(*(corners - np.asarray(env.home, float)).T)))
+    for v in distances:
+        if v >= reach:
+            raise InputError("distances", v, f"must be < {reach:.0f} cm: no release point that far from home lies "
+                                             "in the arena")
     visible = visible_mask(env, hidden)
     _announce(announce)
     return success_rate_trials(env, module, sensor, distances=distances, trials=trials, heading=heading, key=key,

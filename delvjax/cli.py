@@ -8,9 +8,11 @@ import time
 from typing import Callable
 
 
+import numpy as np
+
 from . import api
 from .cache import enable_compilation_cache
-from .cli_args import add_output_args, add_scene_args, check_outputs, progress, scene_kwargs, wrote
+from .cli_args import add_output_args, add_scene_args, check_outputs, progress, scene_kwargs, warn, wrote
 from .cli_rollouts import ROLLOUT_COMMANDS
 from .core import maps
 from .core.errors import InputError
@@ -55,6 +57,9 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     progress(f"done in {summary['seconds']:.2f} s: {summary['points']} points, {summary['invalid']} invalid, "
              f"mean error {summary['mean_error_deg']:.2f} deg, >45: {summary['gt45_pct']:.2f} %, "
              f">90: {summary['gt90_pct']:.2f} %")
+    if not bool(np.any(np.asarray(vm.valid) & np.asarray(vm.included))):
+        warn("every grid point is invalid: the method finds no homing direction anywhere (too few visible "
+             "landmarks?)")
     if args.out:
         write_csv(args.out, vector_map_columns(vm))
     if args.summary:

@@ -25,6 +25,11 @@ def wrote(*paths) -> str:
     return "wrote " + ", ".join(str(p) for p in paths if p)
 
 
+def warn(msg: str) -> None:
+    """One line on stderr for a result that is valid but probably not what was meant."""
+    print(f"delvjax: warning: {msg}", file=sys.stderr, flush=True)
+
+
 def progress(msg: str) -> None:
     print(f"[delvjax] {msg}", file=sys.stderr, flush=True)
 
@@ -42,8 +47,9 @@ def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
     p.add_argument("--seed", type=int, default=0, help="seed of random headings and all noise (default 0)")
     p.add_argument("--background", default=None,
                    help=f"{', '.join(BACKGROUNDS)} (default {BACKGROUNDS[sensor['background']]})")
-    p.add_argument("--channel", default=sensor["channel"],
-                   help=f"image channel of holistic methods: {', '.join(CHANNELS)} (default {sensor['channel']})")
+    p.add_argument("--channel", default=None,
+                   help=f"image channel of the image methods (warping, mfdid): {', '.join(CHANNELS)} "
+                        f"(default {sensor['channel']})")
     p.add_argument("--n-heading", type=int, default=None, help=f"DELV heading hypotheses (default {delv['n_heading']})")
     p.add_argument("--hide", type=int, nargs="+", default=None, metavar="I",
                    help="landmark indices invisible during homing (occlusion; the home record sees all)")

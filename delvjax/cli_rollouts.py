@@ -12,7 +12,7 @@ import numpy as np
 
 from . import api, api_rollouts
 from .cli_args import (CSV, add_output_args, add_rollout_args, add_scene_args, check_outputs, progress,
-                       rollout_kwargs, wrote)
+                       rollout_kwargs, warn, wrote)
 from .core.errors import InputError
 from .core.rollouts import DEFAULT_DISTANCES, N_STARTS, TRIALS_PER_DISTANCE, catchment_summary, check_rules
 from .io import check_output_path, write_figure, write_csv, write_json, write_rows_csv
@@ -81,6 +81,9 @@ def cmd_catchment(args: argparse.Namespace) -> int:
              + (f"{c['mean']:.2f} %" if summary["masks"] == 1 else
                 f"mean {c['mean']:.2f} %, min {c['min']:.2f} %, max {c['max']:.2f} %")
              + f"; >45: {summary['gt45_pct']['mean']:.2f} %, >90: {summary['gt90_pct']['mean']:.2f} %")
+    if not bool(np.any(np.asarray(res.valid)[:, np.asarray(res.included)])):
+        warn("every grid point is invalid under every mask: the method finds no homing direction anywhere "
+             "(too few visible landmarks?)")
     columns = catchment_columns(res, with_hidden=args.occlude is not None or bool(args.hide))
     if args.out:
         write_csv(args.out, columns)

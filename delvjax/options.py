@@ -182,6 +182,13 @@ def owns(method: HomingMethod, field: str) -> bool:
     return field in {f.name for f in dataclasses.fields(method)}
 
 
+def reads_channel(method: HomingMethod) -> bool:
+    """Whether the sensor's image channel changes what `method` reads (an image method)."""
+    if isinstance(method, Program):
+        return any(reads_channel(m) for m in method.methods)
+    return bool(method.reads_gray("gray")) != bool(method.reads_gray("mask"))
+
+
 def make_setup(method: str | HomingMethod, program=None, sensor: Sensor | None = None,
                **options) -> tuple[HomingMethod, Sensor]:
     """(method module, sensor), validated before any work. `method`: a registry name or a method
@@ -206,6 +213,10 @@ def make_setup(method: str | HomingMethod, program=None, sensor: Sensor | None =
         module = method
     else:
         module = get_method(method) if program is None else registry_program(method, program)[0]
+    if "channel" in sensor_options and not reads_channel(module):
+        label = method if isinstance(method, str) else type(method).__name__
+        raise InputError("channel", sensor_options["channel"], f"is read only by image methods (warping, mfdid), "
+                                                                f"not by {label}")
     for field, value in settings.items():
         if not owns(module, field):
             label = method if isinstance(method, str) else type(method).__name__
