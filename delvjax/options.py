@@ -14,7 +14,7 @@ import math
 from .core.errors import InputError
 from .core.methods import HomingMethod, Program, Warping
 from .core.sensor import BACKGROUNDS, CHANNELS, Noise, Sensor
-from .registry import configure, get_method
+from .registry import configure, get_method, owns
 from .registry import program as registry_program
 
 NOISE_FIELDS_DEG = {  # public name -> Noise field (degrees converted to radians)
@@ -132,6 +132,10 @@ def make_sensor(d: float | None = None, background: str | None = None, channel: 
     return Sensor(**fields)
 
 
+FIELD_OF_OPTION = {"mfdid_blur_deg": "blur_deg"}  # public option -> method field, where they differ
+PUBLIC_NAME = {field: option for option, field in FIELD_OF_OPTION.items()}
+
+
 def method_settings(levels: int | None = None, n_heading: int | None = None, scale: float | None = None,
                     r_max: float | None = None, n_alpha: int | None = None, n_psi: int | None = None,
                     n_rho: int | None = None, rho_min: float | None = None, rho_max: float | None = None,
@@ -149,7 +153,7 @@ def method_settings(levels: int | None = None, n_heading: int | None = None, sca
         if value is not None:
             out[name] = positive(value, name)
     if mfdid_blur_deg is not None:
-        out["blur_deg"] = non_negative(mfdid_blur_deg, "mfdid_blur_deg")
+        out[FIELD_OF_OPTION["mfdid_blur_deg"]] = non_negative(mfdid_blur_deg, "mfdid_blur_deg")
     warping = defaults(Warping)
     n_psi = out.get("n_psi", warping["n_psi"])
     n_pix = positive_int(n_pix, "n_pix") if n_pix is not None else defaults(Sensor)["n_pix"]
@@ -170,16 +174,6 @@ def method_settings(levels: int | None = None, n_heading: int | None = None, sca
 
 METHOD_OPTIONS = tuple(inspect.signature(method_settings).parameters)
 SENSOR_OPTIONS = ("d", "background", "channel", "alpha_r_deg", "n_pix", *NOISE_OPTIONS)
-
-
-PUBLIC_NAME = {"blur_deg": "mfdid_blur_deg"}  # method field -> public option, where they differ
-
-
-def owns(method: HomingMethod, field: str) -> bool:
-    """Whether `method` (or, for a `Program`, one of its methods) has the setting `field`."""
-    if isinstance(method, Program):
-        return any(owns(m, field) for m in method.methods)
-    return field in {f.name for f in dataclasses.fields(method)}
 
 
 def reads_channel(method: HomingMethod) -> bool:

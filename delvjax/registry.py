@@ -52,9 +52,15 @@ def configure(method: HomingMethod, **settings) -> HomingMethod:
     methods); settings a method does not have are left to the others (e.g. `levels` is DELV's)."""
     if isinstance(method, Program):
         return dataclasses.replace(method, methods=tuple(configure(m, **settings) for m in method.methods))
-    own = {f.name for f in dataclasses.fields(method)}
-    changes = {k: v for k, v in settings.items() if k in own and v is not None}
+    changes = {k: v for k, v in settings.items() if v is not None and owns(method, k)}
     return dataclasses.replace(method, **changes) if changes else method
+
+
+def owns(method: HomingMethod, field: str) -> bool:
+    """Whether `method` (or, for a `Program`, one of its methods) has the setting `field`."""
+    if isinstance(method, Program):
+        return any(owns(m, field) for m in method.methods)
+    return field in {f.name for f in dataclasses.fields(method)}
 
 
 def program(method: str, names) -> tuple[Program, tuple[str, ...]]:
