@@ -13,6 +13,7 @@ from pathlib import Path
 import jax
 import numpy as np
 
+from . import limits
 from .core import maps
 from .core.maps import CLEARANCE, SPACING
 from .core.errors import InputError
@@ -20,6 +21,7 @@ from .core.methods import HomingMethod
 from .core.scene import Env
 from .core.sensor import Sensor
 from .options import angle_deg, make_setup, non_negative, positive, positive_int, seed_value
+from .limits import MAX_POINTS, check_size
 from .presets import load_env as _load_env
 
 
@@ -61,8 +63,11 @@ def scene_request(env: str | Path | Env, method: str | HomingMethod, clearance: 
     return env, module, sensor, heading, key, clearance
 
 
-def check_grid(env: Env, spacing: float, clearance: float) -> None:
-    """`InputError` naming `spacing` when the docs/model.md §5 grid has no point clear of the landmarks."""
+def check_grid(env: Env, spacing: float, clearance: float, max_points: int = MAX_POINTS, copies: int = 1) -> None:
+    """`InputError` naming `spacing` when the docs/model.md §5 grid (times `copies`, e.g. occlusion masks)
+    has more than `max_points` points (`limits.check_size`, checked before the grid is built) or no
+    point clear of the landmarks."""
+    check_size(limits.grid_count(env.arena, spacing) * copies, max_points, "spacing", spacing)
     points = maps.grid_points(env.arena, spacing)
     if points.shape[0] == 0 or not np.asarray(maps.grid_included(env.arrays(), jax.device_put(points),
                                                                    clearance)).any():
@@ -71,12 +76,12 @@ def check_grid(env: Env, spacing: float, clearance: float) -> None:
 
 def map_request(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
                 seed: int = 0, clearance: float = CLEARANCE, hidden: list[int] | None = None,
-                batch_size: int = maps.DEFAULT_BATCH, **options) -> dict:
+                batch_size: int = maps.DEFAULT_BATCH, max_points: int = MAX_POINTS, **options) -> dict:
     """Validate the public options of a vector map (before any array work): keyword
     arguments of `core.maps.vector_map`. Raises `InputError` naming the field and value."""
     env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **options)
     spacing = positive(spacing, "spacing")
-    check_grid(env, spacing, clearance)
+    check_grid(env, spacing, clearance, max_points)
     batch_size = positive_int(batch_size, "batch_size")
     visible = visible_mask(env, hidden)
     return dict(env=env, method=module, sensor=sensor, spacing=spacing, heading=heading, key=key,
@@ -86,7 +91,7 @@ def map_request(env: str | Path | Env, method: str | HomingMethod = "delv", spac
 
 def vector_map(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
                seed: int = 0, clearance: float = CLEARANCE, hidden: list[int] | None = None,
-               batch_size: int = maps.DEFAULT_BATCH, **options) -> maps.VectorMap:
+               batch_size: int = maps.DEFAULT_BATCH, max_points: int = MAX_POINTS, **options) -> maps.VectorMap:
     """Homing direction of `method` at every docs/model.md §5 grid point, one jitted vmapped call.
 
     `method`: a registry name (`"delv-compass"`) or a method module (`DELV(levels=3,
@@ -98,8 +103,10 @@ def vector_map(env: str | Path | Env, method: str | HomingMethod = "delv", spaci
     step_noise, turn_noise_deg, odometry_turn_noise_deg, compass_noise_deg) and method settings
     (levels, n_heading, scale, r_max; the warping hypotheses n_alpha, n_psi, n_rho, rho_min,
     rho_max; mfdid_blur_deg); omitted ones take the modules' defaults.
-    `hidden` lists landmark indices invisible in the current views (occlusion).
+    `hidden` lists landmark indices invisible in the current views (occlusion). The grid runs in
+    host-side chunks of `batch_size` points (memory bounded by the chunk, the same numbers for every
+    chunk size); a grid of more than `max_points` points is refused with an estimate (`limits`).
     Returns a `VectorMap` pytree (points, included, heading, direction, valid, error_deg).
     """
     return maps.vector_map(**map_request(env, method, spacing, heading_deg, seed, clearance, hidden, batch_size,
-                                         **options))
+                                         max_points, **options))

@@ -20,6 +20,7 @@ from .core.rollouts import (ARENA, DEFAULT_DISTANCES, DEFAULT_LANES, HOME_RADIUS
                             SuccessRate, Trajectories, catchment_area, check_rules, hidden_masks, occlusion_masks,
                             position_status, release_points, rollout_keys, success_rate_trials, trajectory_trials)
 from .core.scene import Env
+from .limits import MAX_POINTS, check_size
 from .options import finite, occlusion_count, positive, positive_int
 
 
@@ -39,6 +40,7 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
               seed: int = 0, occlude: int | None = None, hidden: list[int] | None = None, max_steps: int = MAX_STEPS,
               home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE, lanes: int = DEFAULT_LANES, first_move: str = "homing",
               collisions: str = "ignore", program: Sequence[str] | None = None, announce: Callable[[], None] | None = None,
+              max_points: int = MAX_POINTS, progress: Callable[[int, int], None] | None = None,
               **options) -> Catchment:
     """Catchment area of `method` (Figs 4.5, 5.5; Tables 5.3/5.4): a rollout from every docs/model.md §5 grid point.
 
@@ -51,13 +53,14 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
     rules of `core.rollouts.rules` (defaults: docs/model.md §5). `program`: registry names compiled into
     one rollout program with this one (`registry.program`). `announce`: called once every option is
     valid, just before the work (the CLI prints its progress line there, so an error stays one line).
+    More than `max_points` trials (grid points x masks) are refused with an estimate (`limits`).
+    `progress(done, total)` is called after each block of trials.
     Returns a `Catchment` (see `catchment_summary`).
     """
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         options, first_move, collisions, program)
     spacing = positive(spacing, "spacing")
-    check_grid(env, spacing, clearance)
     if occlude is not None and hidden:
         raise InputError("occlude", occlude, "cannot be combined with hidden")
     if occlude is not None:
@@ -65,10 +68,11 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
     else:
         visible_mask(env, hidden)  # validates the indices
         masks, combos = hidden_masks(env, hidden)
+    check_grid(env, spacing, clearance, max_points, copies=len(masks))
     _announce(announce)
     return catchment_area(env, module, sensor, spacing=spacing, heading=heading, key=key, clearance=clearance,
                           masks=masks, hidden=combos, home_radius=home_radius, max_steps=max_steps, lanes=lanes,
-                          first_move=first_move, collisions=collisions)
+                          first_move=first_move, collisions=collisions, progress=progress)
 
 
 def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", distances: Sequence[float] = DEFAULT_DISTANCES,
@@ -76,13 +80,13 @@ def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", dis
                  max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
                  lanes: int = DEFAULT_LANES, first_move: str = "homing",
                  collisions: str = "ignore", program: Sequence[str] | None = None,
-                 announce: Callable[[], None] | None = None, **options) -> SuccessRate:
+                 announce: Callable[[], None] | None = None, max_points: int = MAX_POINTS, **options) -> SuccessRate:
     """Success rate vs release distance (Figs 4.10b, 5.7b): `trials` rollouts per distance from home.
 
     Each trial: a random direction from home at that distance and a random heading (seeded);
     a release point inside a landmark's r + clearance or outside the arena is redrawn
     (deterministically, up to 64 times; else the trial is not placed and not counted).
-    `options`, `first_move`, `collisions`, `program` and `announce` as in `catchment`.
+    `options`, `first_move`, `collisions`, `program`, `announce` and `max_points` as in `catchment`.
     """
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
@@ -91,6 +95,7 @@ def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", dis
     if isinstance(distances, (str, bytes)) or not hasattr(distances, "__len__") or len(distances) == 0:
         raise InputError("distances", distances, "must be a non-empty list of distances in cm")
     distances = [positive(v, "distances") for v in distances]
+    check_size(len(distances) * trials, max_points, "trials", trials, "trial")
     corners = np.asarray(env.arena, float)[[[0, 1], [2, 1], [2, 3], [0, 3]]]
     reach = float(np.max(np.hypot(*(corners - np.asarray(env.home, float)).T)))
     for v in distances:
@@ -109,7 +114,7 @@ def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", sta
                  max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
                  lanes: int = DEFAULT_LANES, first_move: str = "homing",
                  collisions: str = "ignore", program: Sequence[str] | None = None,
-                 announce: Callable[[], None] | None = None, **options) -> Trajectories:
+                 announce: Callable[[], None] | None = None, max_points: int = MAX_POINTS, **options) -> Trajectories:
     """Homing paths (Figs 4.11, 5.8) from `starts` [(x, y), ...] or `n_starts` seeded random release points.
 
     Random release points are uniform in the arena, at least d from the walls, farther than
@@ -117,15 +122,20 @@ def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", sta
     along the random release heading, cannot end the trial) and at least 2 * home_radius
     from home; headings are
     random per trial from `seed` unless heading_deg is given. The same seed gives the same
-    release points for every method. `options`, `first_move`, `collisions`, `program` and `announce` as in `catchment`.
+    release points for every method. `options`, `first_move`, `collisions`, `program` and `announce` as in
+    `catchment`. Every position is kept: more than 100 x `max_points` of them (trials x (max_steps + 1)) are refused.
     """
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         options, first_move, collisions, program)
     visible = visible_mask(env, hidden)
     _, _, k_start = rollout_keys(key)
+    count = positive_int(n_starts, "n_starts") if starts is None else len(starts) if hasattr(starts, "__len__") else 0
+    check_size(count, max_points, "starts" if starts is not None else "n_starts", count, "trial")
+    check_size(count * (max_steps + 1), 100 * positive_int(max_points, "max_points"), "max_steps", max_steps,
+               "path point")
     if starts is None:
-        n = positive_int(n_starts, "n_starts")
+        n = n_starts
         pts, heads, placed = release_points(env.arrays(), k_start, n, None, clearance, 2.0 * home_radius, sensor.d)
         if not bool(np.all(np.asarray(placed))):
             raise InputError("n_starts", n_starts, "could not place release points clear of landmarks")

@@ -12,11 +12,12 @@ import numpy as np
 
 from . import api
 from .cache import enable_compilation_cache
-from .cli_args import add_output_args, add_scene_args, check_outputs, progress, scene_kwargs, warn, wrote
+from .cli_args import ProgressBar, add_output_args, add_scene_args, check_outputs, progress, scene_kwargs, warn, wrote
 from .cli_rollouts import ROLLOUT_COMMANDS
 from .core import maps
 from .core.errors import InputError
-from .io import write_figure, write_csv, write_json
+from .io import output_set
+from .limits import grid_count
 from .presets import PRESET_DESCRIPTIONS, PRESETS
 from .registry import DESCRIPTIONS
 from .tables import vector_map_columns
@@ -49,8 +50,10 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     request = api.map_request(args.env, **scene_kwargs(args))
     env = request["env"]
     t0 = time.perf_counter()
-    progress(f"vector map of {args.method} on {env.name} (spacing {args.spacing:g} cm) ...")
-    vm = maps.vector_map(**request)
+    n_points = grid_count(env.arena, args.spacing)
+    progress(f"vector map of {args.method} on {env.name} (spacing {args.spacing:g} cm, {n_points} cells) ...")
+    with ProgressBar("pt", request["batch_size"]) as bar:  # a bar only when the grid runs in several chunks
+        vm = maps.vector_map(**request, progress=bar)
     vm.error_deg.block_until_ready()
     summary = {"env": env.name, "method": args.method, **summarize_map(vm.error_deg, vm.valid, vm.included),
                "seconds": time.perf_counter() - t0}
@@ -60,13 +63,15 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     if not bool(np.any(np.asarray(vm.valid) & np.asarray(vm.included))):
         warn("every grid point is invalid: the method finds no homing direction anywhere (too few visible "
              "landmarks?)")
-    if args.out:
-        write_csv(args.out, vector_map_columns(vm))
-    if args.summary:
-        write_json(args.summary, summary)
-    if args.plot:
-        title = f"{args.method} on {env.name}: mean error {summary['mean_error_deg']:.1f}°"
-        write_figure(vector_map_figure(env, vm, args.spacing, title=title, classes=args.classes), args.plot)
+    with output_set() as files:  # all or nothing
+        if args.out:
+            files.csv(args.out, vector_map_columns(vm), "--out")
+        if args.summary:
+            files.json(args.summary, summary, "--summary")
+        if args.plot:
+            title = f"{args.method} on {env.name}: mean error {summary['mean_error_deg']:.1f}°"
+            files.figure(vector_map_figure(env, vm, args.spacing, title=title, classes=args.classes), args.plot,
+                         "--plot")
     print(wrote(args.out, args.plot, args.summary))
     return 0
 

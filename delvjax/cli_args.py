@@ -5,13 +5,15 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 from .core.errors import InputError
 from .core.maps import CLEARANCE, SPACING
 from .core.methods import DELV, MFDID, Warping
 from .core.rollouts import DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
 from .core.sensor import BACKGROUNDS, CHANNELS, Sensor
-from .io import check_output_path
+from .io import check_distinct, check_output_path
+from .limits import MAX_POINTS
 from .options import NOISE_FIELDS_DEG, NOISE_OPTIONS, defaults
 from .registry import METHODS
 
@@ -34,13 +36,39 @@ def progress(msg: str) -> None:
     print(f"[delvjax] {msg}", file=sys.stderr, flush=True)
 
 
-def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
+class ProgressBar:
+    """A `progress(done, total)` callback: a bar on stderr with rate and ETA once the work runs in
+    more than one chunk (`total` > `single`); nothing for a run of one chunk."""
+
+    def __init__(self, unit: str, single: int):
+        self.unit, self.single, self.bar = unit, single, None
+
+    def __call__(self, done: int, total: int) -> None:
+        if self.bar is None:
+            from tqdm.auto import tqdm
+
+            self.bar = tqdm(total=total, unit=self.unit, unit_scale=True, file=sys.stderr, disable=total <= self.single)
+        self.bar.update(done)
+
+    def __enter__(self) -> "ProgressBar":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def add_scene_args(p: argparse.ArgumentParser, methods=None, grid: bool = True) -> None:
+    """The scene, method and noise options; `grid`: the command evaluates a grid (--spacing)."""
     sensor, delv, warping = defaults(Sensor), defaults(DELV), defaults(Warping)
     p.add_argument("env", help="preset name (see `delvjax envs`) or a docs/model.md §7 JSON file")
     p.add_argument("--method", default="delv", help=f"homing method: {', '.join(methods or METHODS)} (default delv)")
     p.add_argument("--levels", type=int, default=None, help="DELV distance quantization levels Q >= 1 (default: continuous)")
     p.add_argument("--d", type=float, default=None, help=f"unit-movement step d in cm (default {sensor['d']:g})")
-    p.add_argument("--spacing", type=float, default=SPACING, help=f"grid spacing in cm (default {SPACING:g}: 40x40)")
+    if grid:
+        p.add_argument("--spacing", type=float, default=SPACING, help=f"grid spacing in cm (default {SPACING:g}: 40x40)")
+    else:  # not offered; recognized only to refuse it in one line naming it (`scene_kwargs`)
+        p.add_argument("--spacing", type=float, default=None, dest="unused_spacing", help=argparse.SUPPRESS)
     p.add_argument("--clearance", type=float, default=CLEARANCE,
                    help=f"grid points closer than r + clearance to a landmark are dropped (default {CLEARANCE:g})")
     p.add_argument("--heading-deg", type=float, default=None, help="fixed heading at every point (default: random per point from --seed)")
@@ -51,6 +79,9 @@ def add_scene_args(p: argparse.ArgumentParser, methods=None) -> None:
                    help=f"image channel of the image methods (warping, mfdid): {', '.join(CHANNELS)} "
                         f"(default {sensor['channel']})")
     p.add_argument("--n-heading", type=int, default=None, help=f"DELV heading hypotheses (default {delv['n_heading']})")
+    p.add_argument("--max-points", type=int, default=MAX_POINTS,
+                   help=f"refuse a run of more grid points (x occlusion masks) or trials than this, with an estimate "
+                        f"of its memory and time (default {MAX_POINTS})")
     p.add_argument("--hide", type=int, nargs="+", default=None, metavar="I",
                    help="landmark indices invisible during homing (occlusion; the home record sees all)")
     w = p.add_argument_group("warping hypotheses (docs/model.md §4.3)")
@@ -81,8 +112,13 @@ NOISE_HELP = {  # what each sigma perturbs (docs/model.md §2.5)
 
 
 def scene_kwargs(args: argparse.Namespace) -> dict:
-    kw = dict(method=args.method, spacing=args.spacing, clearance=args.clearance, heading_deg=args.heading_deg,
-              seed=args.seed, background=args.background, channel=args.channel, hidden=args.hide)
+    kw = dict(method=args.method, clearance=args.clearance, heading_deg=args.heading_deg,
+              seed=args.seed, background=args.background, channel=args.channel, hidden=args.hide,
+              max_points=args.max_points)
+    if getattr(args, "unused_spacing", None) is not None:
+        raise InputError("--spacing", args.unused_spacing, f"is not used by {args.command} (it evaluates no grid)")
+    if hasattr(args, "spacing"):
+        kw["spacing"] = args.spacing
     settings = dict(levels=args.levels, d=args.d, n_heading=args.n_heading, n_alpha=args.n_alpha, n_psi=args.n_psi,
                     n_rho=args.n_rho, mfdid_blur_deg=args.mfdid_blur_deg, rho_min=args.rho_min, rho_max=args.rho_max)
     kw.update({k: v for k, v in settings.items() if v is not None})
@@ -96,16 +132,20 @@ def add_output_args(p: argparse.ArgumentParser, plot_help: str) -> None:
     p.add_argument("--summary", default=None, help="JSON file with the headline numbers")
 
 
+OUTPUTS = (("out", "--out", CSV), ("trials_out", "--trials-out", CSV), ("plot", "--plot", FIGURE),
+           ("summary", "--summary", JSON))  # attribute, option, suffixes of every output option
+
+
 def check_outputs(args: argparse.Namespace) -> None:
-    """Validate every output path before any work; at least one output must be asked for."""
-    if not any(getattr(args, name, None) for name in ("out", "plot", "summary", "trials_out")):
+    """Validate every output path before any work (`io.check_output_path`; no two the same file, none
+    the environment file); at least one output must be asked for."""
+    named = {flag: getattr(args, name) for name, flag, _ in OUTPUTS if getattr(args, name, None) is not None}
+    if not any(named.values()):
         raise InputError("--out", None, "no output asked for (give --out, --plot or --summary)")
-    if args.out is not None:
-        check_output_path(args.out, "--out", CSV)
-    if args.plot is not None:
-        check_output_path(args.plot, "--plot", FIGURE)
-    if args.summary is not None:
-        check_output_path(args.summary, "--summary", JSON)
+    for name, flag, suffixes in OUTPUTS:
+        if flag in named:
+            check_output_path(named[flag], flag, suffixes)
+    check_distinct({**({"env": args.env} if Path(args.env).is_file() else {}), **named})
 
 
 def add_rollout_args(p: argparse.ArgumentParser) -> None:
@@ -122,7 +162,7 @@ def add_rollout_args(p: argparse.ArgumentParser) -> None:
                    help="ignore (default): landmarks are no obstacles; fail: a move ending inside a landmark fails")
 
 
-def rollout_kwargs(args: argparse.Namespace, drop=("spacing",)) -> dict:
+def rollout_kwargs(args: argparse.Namespace, drop=()) -> dict:
     """`scene_kwargs` plus the rollout options, validated (rules) before any work or progress line."""
     kw = scene_kwargs(args)
     for name in drop:

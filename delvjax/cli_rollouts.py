@@ -11,11 +11,12 @@ import time
 import numpy as np
 
 from . import api, api_rollouts
-from .cli_args import (CSV, add_output_args, add_rollout_args, add_scene_args, check_outputs, progress,
-                       rollout_kwargs, warn, wrote)
+from .cli_args import (ProgressBar, add_output_args, add_rollout_args, add_scene_args, check_outputs, progress, rollout_kwargs,
+                       warn, wrote)
 from .core.errors import InputError
-from .core.rollouts import DEFAULT_DISTANCES, N_STARTS, TRIALS_PER_DISTANCE, catchment_summary, check_rules
-from .io import check_output_path, write_figure, write_csv, write_json, write_rows_csv
+from .core.rollouts import (DEFAULT_DISTANCES, N_STARTS, TRIAL_BLOCK, TRIALS_PER_DISTANCE, catchment_summary,
+                            check_rules)
+from .io import output_set
 from .options import METHOD_OPTIONS, SENSOR_OPTIONS, make_setup, occlusion_count
 from .registry import get_method
 from .tables import (catchment_columns, concat_columns, outcome_names, success_rows, success_trial_columns,
@@ -40,10 +41,11 @@ def _methods(text: str) -> list[str]:
 
 # --- catchment -------------------------------------------------------------------------------
 
-def _rollout_parser(sub, name: str, help_text: str, plot_help: str, epilog: str | None = None):
-    """A subcommand with the scene, output and rollout options every rollout command takes."""
+def _rollout_parser(sub, name: str, help_text: str, plot_help: str, epilog: str | None = None, grid: bool = False):
+    """A subcommand with the scene, output and rollout options every rollout command takes (--spacing
+    only where a grid is evaluated: an option a command does not use is not offered)."""
     p = sub.add_parser(name, help=help_text, epilog=epilog)
-    add_scene_args(p)
+    add_scene_args(p, grid=grid)
     add_output_args(p, plot_help)
     add_rollout_args(p)
     return p
@@ -51,7 +53,7 @@ def _rollout_parser(sub, name: str, help_text: str, plot_help: str, epilog: str 
 
 def add_catchment(sub) -> None:
     p = _rollout_parser(sub, "catchment", "catchment area: a rollout from every grid point (docs/model.md §5; Figs 4.5, 5.5)",
-                        "catchment map: squares on catchment points over the vector map")
+                        "catchment map: squares on catchment points over the vector map", grid=True)
     p.add_argument("--occlude", type=int, default=None, metavar="K",
                    help="evaluate every choice of K landmarks hidden during homing (Tables 5.3/5.4)")
     p.set_defaults(func=cmd_catchment)
@@ -69,9 +71,10 @@ def cmd_catchment(args: argparse.Namespace) -> int:
     if args.occlude is not None:
         occlusion_count(args.occlude, env.n_landmarks)
     t0 = time.perf_counter()
-    res = api_rollouts.catchment(env, **kw, announce=lambda: progress(
-        f"catchment of {args.method} on {env.name} (spacing {args.spacing:g} cm"
-        + (f", {args.occlude} of {env.n_landmarks} landmarks hidden" if args.occlude else "") + ") ..."))
+    with ProgressBar("trial", TRIAL_BLOCK) as bar:  # a bar once the trials run in several blocks
+        res = api_rollouts.catchment(env, **kw, progress=bar, announce=lambda: progress(
+            f"catchment of {args.method} on {env.name} (spacing {args.spacing:g} cm"
+            + (f", {args.occlude} of {env.n_landmarks} landmarks hidden" if args.occlude else "") + ") ..."))
     res.outcome.block_until_ready()
     seconds = time.perf_counter() - t0
     summary = {"env": env.name, "method": args.method, "occlude": args.occlude or 0, "seconds": seconds,
@@ -85,14 +88,16 @@ def cmd_catchment(args: argparse.Namespace) -> int:
         warn("every grid point is invalid under every mask: the method finds no homing direction anywhere "
              "(too few visible landmarks?)")
     columns = catchment_columns(res, with_hidden=args.occlude is not None or bool(args.hide))
-    if args.out:
-        write_csv(args.out, columns)
-    if args.summary:
-        write_json(args.summary, summary)
-    if args.plot:
-        from .plots_rollouts import catchment_figure
+    with output_set() as files:  # all or nothing
+        if args.out:
+            files.csv(args.out, columns, "--out")
+        if args.summary:
+            files.json(args.summary, summary, "--summary")
+        if args.plot:
+            from .plots_rollouts import catchment_figure
 
-        write_figure(catchment_figure(env, res, args.spacing, title=f"{args.method} on {env.name}"), args.plot)
+            files.figure(catchment_figure(env, res, args.spacing, title=f"{args.method} on {env.name}"), args.plot,
+                         "--plot")
     print(wrote(args.out, args.plot, args.summary))
     return 0
 
@@ -101,7 +106,7 @@ def cmd_catchment(args: argparse.Namespace) -> int:
 
 def add_success_rate(sub) -> None:
     p = _rollout_parser(sub, "success-rate", "success rate vs release distance (docs/model.md §5; Figs 4.10b, 5.7b)",
-                        "success-rate curve", "--method takes a comma-separated list (one curve each); --spacing is not used.")
+                        "success-rate curve", "--method takes a comma-separated list (one curve each).")
     p.add_argument("--trials", type=int, default=TRIALS_PER_DISTANCE,
                    help=f"trials per distance bin (default {TRIALS_PER_DISTANCE})")
     p.add_argument("--distances", type=float, nargs="+", default=list(DEFAULT_DISTANCES), metavar="CM",
@@ -112,11 +117,9 @@ def add_success_rate(sub) -> None:
 
 def cmd_success_rate(args: argparse.Namespace) -> int:
     check_outputs(args)
-    if args.trials_out is not None:
-        check_output_path(args.trials_out, "--trials-out", CSV)
     methods = _methods(args.method)
     env = api.load_env(args.env)
-    kw = rollout_kwargs(args, drop=("spacing", "method"))
+    kw = rollout_kwargs(args, drop=("method",))
     kw.update(lanes=args.lanes, trials=args.trials, distances=args.distances)
     _check_methods(methods, kw)
     tables, rows, trial_cols, timing = {}, [], [], {}
@@ -132,19 +135,20 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
         rows += success_rows(res, m)
         trial_cols.append(success_trial_columns(res, m))
     rules = check_rules(args.first_move, args.collisions)
-    if args.out:
-        write_rows_csv(args.out, rows)
-    if args.trials_out:
-        write_csv(args.trials_out, concat_columns(trial_cols))
-    if args.summary:
-        write_json(args.summary, {"env": env.name, "trials_per_bin": args.trials, "seed": args.seed,
-                                  "rules": rules, "max_steps": args.max_steps, "home_radius": args.home_radius,
-                                  "seconds": timing, "bins": tables})
-    if args.plot:
-        from .plots_rollouts import success_rate_figure
+    with output_set() as files:  # all or nothing
+        if args.out:
+            files.rows_csv(args.out, rows, "--out")
+        if args.trials_out:
+            files.csv(args.trials_out, concat_columns(trial_cols), "--trials-out")
+        if args.summary:
+            files.json(args.summary, {"env": env.name, "trials_per_bin": args.trials, "seed": args.seed,
+                                      "rules": rules, "max_steps": args.max_steps, "home_radius": args.home_radius,
+                                      "seconds": timing, "bins": tables}, "--summary")
+        if args.plot:
+            from .plots_rollouts import success_rate_figure
 
-        fig = success_rate_figure(tables, title=f"success rate on {env.name} ({args.trials} trials per distance)")
-        write_figure(fig, args.plot)
+            fig = success_rate_figure(tables, title=f"success rate on {env.name} ({args.trials} trials per distance)")
+            files.figure(fig, args.plot, "--plot")
     print(wrote(args.out, args.trials_out, args.plot, args.summary))
     return 0
 
@@ -154,20 +158,22 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
 def add_trajectories(sub) -> None:
     p = _rollout_parser(sub, "trajectories", "homing paths from chosen release points (docs/model.md §5; Figs 4.11, 5.8)",
                         "trajectory figure (one panel per method)",
-                        "--method takes a comma-separated list (one panel each, same release points); --spacing is not used.")
+                        "--method takes a comma-separated list (one panel each, same release points).")
     p.add_argument("--start", type=float, nargs=2, action="append", default=None, metavar=("X", "Y"),
                    help="a release point in cm (repeatable; default: --n-starts random points from --seed)")
-    p.add_argument("--n-starts", type=int, default=N_STARTS,
-                   help=f"random release points when no --start is given (default {N_STARTS})")
+    p.add_argument("--n-starts", type=int, default=None,
+                   help=f"random release points, instead of --start (default {N_STARTS})")
     p.set_defaults(func=cmd_trajectories)
 
 
 def cmd_trajectories(args: argparse.Namespace) -> int:
     check_outputs(args)
+    if args.start and args.n_starts is not None:
+        raise InputError("--n-starts", args.n_starts, "cannot be combined with --start")
     methods = _methods(args.method)
     env = api.load_env(args.env)
-    kw = rollout_kwargs(args, drop=("spacing", "method"))
-    kw.update(starts=args.start, n_starts=args.n_starts)
+    kw = rollout_kwargs(args, drop=("method",))
+    kw.update(starts=args.start, n_starts=N_STARTS if args.n_starts is None else args.n_starts, lanes=args.lanes)
     results, cols = {}, []
     summary = {"env": env.name, "rules": check_rules(args.first_move, args.collisions), "trials": {}}
     _check_methods(methods, kw)
@@ -182,15 +188,16 @@ def cmd_trajectories(args: argparse.Namespace) -> int:
                                  "release_heading_deg": float(np.degrees(tr.heading[t])),
                                  "outcome": outcome[t], "steps": int(steps[t])} for t in range(path.shape[0])]
         progress(f"{int(np.asarray(tr.success).sum())}/{path.shape[0]} reach home")
-    if args.out:
-        write_csv(args.out, concat_columns(cols))
-    if args.summary:
-        write_json(args.summary, summary)
-    if args.plot:
-        from .plots_rollouts import trajectories_figure
+    with output_set() as files:  # all or nothing
+        if args.out:
+            files.csv(args.out, concat_columns(cols), "--out")
+        if args.summary:
+            files.json(args.summary, summary, "--summary")
+        if args.plot:
+            from .plots_rollouts import trajectories_figure
 
-        write_figure(trajectories_figure(env, results, args.home_radius, title=f"homing trajectories on {env.name}"),
-                    args.plot)
+            files.figure(trajectories_figure(env, results, args.home_radius,
+                                             title=f"homing trajectories on {env.name}"), args.plot, "--plot")
     print(wrote(args.out, args.plot, args.summary))
     return 0
 

@@ -34,6 +34,8 @@ def finite(value: object, field: str) -> float:
         raise InputError(field, value, "must be a number")
     try:
         v = float(value)  # type: ignore[arg-type]
+    except OverflowError:  # an int beyond float range
+        v = math.inf
     except (TypeError, ValueError):
         raise InputError(field, value, "must be a number") from None
     if not math.isfinite(v):
@@ -55,17 +57,29 @@ def non_negative(value: object, field: str) -> float:
     return v
 
 
+INT_LIMIT = 2**31 - 1  # JAX computes in int32 (no x64): a larger integer overflows on entering jit
+
+
+def is_integer(value: object) -> bool:
+    """An int, or a float with an integer value (not inf or NaN); not a bool."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return False
+    return isinstance(value, int) or value.is_integer()
+
+
 def positive_int(value: object, field: str) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or int(value) != value:
+    if not is_integer(value):
         raise InputError(field, value, "must be an integer")
     if value < 1:
         raise InputError(field, value, "must be >= 1")
+    if value > INT_LIMIT:
+        raise InputError(field, value, f"must be <= {INT_LIMIT}")
     return int(value)
 
 
 def occlusion_count(value: object, n_landmarks: int) -> int:
     """Number k of landmarks hidden during homing (docs/model.md §5 occlusion): an integer in 0..N."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or int(value) != value:
+    if not is_integer(value):
         raise InputError("occlude", value, "must be an integer")
     if not 0 <= value <= n_landmarks:
         raise InputError("occlude", value, f"must be in 0..{n_landmarks} (the number of landmarks)")
@@ -129,11 +143,16 @@ def make_sensor(d: float | None = None, background: str | None = None, channel: 
         fields["d"] = positive(d, "d")
     if n_pix is not None:
         fields["n_pix"] = positive_int(n_pix, "n_pix")
+        if fields["n_pix"] > SHAPE_LIMITS["n_pix"]:
+            raise InputError("n_pix", n_pix, f"must be <= {SHAPE_LIMITS['n_pix']} (it sets an array size)")
     return Sensor(**fields)
 
 
 FIELD_OF_OPTION = {"mfdid_blur_deg": "blur_deg"}  # public option -> method field, where they differ
 PUBLIC_NAME = {field: option for option, field in FIELD_OF_OPTION.items()}
+
+
+SHAPE_LIMITS = {"n_heading": 36_000, "n_alpha": 3_600, "n_rho": 1_000, "n_pix": 36_000}  # 0.01 deg at most
 
 
 def method_settings(levels: int | None = None, n_heading: int | None = None, scale: float | None = None,
@@ -149,6 +168,8 @@ def method_settings(levels: int | None = None, n_heading: int | None = None, sca
                         ("n_rho", n_rho)):
         if value is not None:
             out[name] = positive_int(value, name)
+            if out[name] > SHAPE_LIMITS.get(name, out[name]):
+                raise InputError(name, value, f"must be <= {SHAPE_LIMITS[name]} (it sets an array size)")
     for name, value in (("scale", scale), ("r_max", r_max)):
         if value is not None:
             out[name] = positive(value, name)

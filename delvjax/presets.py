@@ -18,24 +18,42 @@ from .core.scene import DEFAULT_ARENA, DEFAULT_HOME, Env
 
 def make_env(landmarks, home=DEFAULT_HOME, arena=DEFAULT_ARENA, name: str = "env", pad_to: int | None = None) -> Env:
     """Build an `Env` from plain numbers (validated like a JSON file, docs/model.md §7)."""
+    try:
+        lms = np.asarray(landmarks, float).reshape(-1, 3)
+    except (TypeError, ValueError, OverflowError):
+        raise InputError("landmarks", landmarks, "must be rows of three numbers x, y, r") from None
     spec = {
         "name": name,
-        "arena": list(arena),
-        "home": list(home),
-        "landmarks": [{"x": float(x), "y": float(y), "r": float(r)} for x, y, r in np.asarray(landmarks, float).reshape(-1, 3)],
+        "arena": _plain(arena),
+        "home": _plain(home),
+        "landmarks": [{"x": float(x), "y": float(y), "r": float(r)} for x, y, r in lms],
     }
     return env_from_dict(spec, pad_to=pad_to)
 
 
+def _plain(value):
+    """A NumPy array or sequence as a list of Python scalars (validation takes plain numbers); else as is."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, (list, tuple)):
+        return [v.item() if isinstance(v, np.generic) else v for v in value]
+    return value
+
+
 ENV_FIELDS = {"name", "arena", "home", "landmarks"}
+FLOAT32_MAX = float(np.finfo(np.float32).max)  # an Env holds float32: larger numbers would become inf
 
 
 def _number(value, field: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise InputError(field, value, "must be a number")
-    if not math.isfinite(value):
-        raise InputError(field, value, "must be finite")
-    return float(value)
+    try:
+        v = float(value)  # an int beyond float range (JSON allows any number of digits) overflows
+    except OverflowError:
+        v = math.inf
+    if not math.isfinite(v) or abs(v) > FLOAT32_MAX:
+        raise InputError(field, value, f"must be finite (|value| <= {FLOAT32_MAX:.4g}, float32)")
+    return v
 
 
 def _pair(value, field: str, n: int) -> list[float]:
@@ -51,7 +69,7 @@ def validate_env_dict(spec: object) -> dict:
     for key in ("arena", "home", "landmarks"):
         if key not in spec:
             raise InputError(key, None, "missing required field")
-    unknown = sorted(set(spec) - ENV_FIELDS)
+    unknown = sorted(set(spec) - ENV_FIELDS, key=str)
     if unknown:
         raise InputError(unknown[0], spec[unknown[0]], f"unknown field (an environment has {', '.join(sorted(ENV_FIELDS))})")
     name = spec.get("name", "env")
@@ -73,7 +91,7 @@ def validate_env_dict(spec: object) -> dict:
         for key in ("x", "y", "r"):
             if key not in lm:
                 raise InputError(f"landmarks[{i}].{key}", None, "missing required field")
-        extra = sorted(set(lm) - {"x", "y", "r"})
+        extra = sorted(set(lm) - {"x", "y", "r"}, key=str)
         if extra:
             raise InputError(f"landmarks[{i}].{extra[0]}", lm[extra[0]], "unknown field (a landmark has x, y, r)")
         x, y, r = (_number(lm[k], f"landmarks[{i}].{k}") for k in ("x", "y", "r"))
@@ -107,14 +125,19 @@ def random_env(seed: int, n_landmarks: int, radius=(15.0, 45.0), region=(150.0, 
     return make_env(out, name=name or f"random{seed}-{n_landmarks}", pad_to=pad_to)
 
 
+MAX_PAD = 10_000  # landmark slots of a padded Env: a bound, so that a typo cannot ask for gigabytes
+
+
 def env_from_dict(spec: object, pad_to: int | None = None) -> Env:
     """Validated `Env` from a docs/model.md §7 dictionary, landmarks padded to `pad_to`."""
     s = validate_env_dict(spec)
     lms = np.asarray(s["landmarks"], dtype=np.float32).reshape(-1, 3)
     n = lms.shape[0]
     pad = n if pad_to is None else pad_to
-    if pad < n:
-        raise InputError("pad_to", pad_to, f"must be >= the number of landmarks ({n})")
+    if isinstance(pad, bool) or not isinstance(pad, (int, np.integer)):
+        raise InputError("pad_to", pad_to, "must be an integer")
+    if not n <= pad <= MAX_PAD:
+        raise InputError("pad_to", pad_to, f"must be in {n}..{MAX_PAD} (>= the number of landmarks)")
     # Padding rows sit far outside any arena with a tiny radius; the mask hides them.
     padded = np.tile(np.array([[1e9, 1e9, 1e-3]], np.float32), (pad, 1))
     padded[:n] = lms
@@ -203,6 +226,8 @@ def load_env(name_or_path: str | Path, pad_to: int | None = None) -> Env:
         raise InputError("env", str(path), f"is not valid JSON ({exc.msg} at line {exc.lineno})") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError("env", str(path), f"cannot be read ({exc})") from None
+    except (ValueError, RecursionError) as exc:  # a number of too many digits, arrays nested too deep
+        raise InputError("env", str(path), f"is not readable JSON ({type(exc).__name__}: {str(exc)[:80]})") from None
     if isinstance(spec, dict) and "name" not in spec:
         spec = {**spec, "name": path.stem}
     return env_from_dict(spec, pad_to=pad_to)

@@ -15,7 +15,6 @@ import ast
 import hashlib
 import importlib
 import json
-import os
 import sys
 import time
 from concurrent.futures import Future, ThreadPoolExecutor
@@ -25,7 +24,7 @@ from pathlib import Path
 from typing import Any, Iterator
 
 from .core.errors import InputError
-from .io import write_json
+from .io import check_folder, write_json
 from .study import STUDY_FILE, Settings, StudyContext, StudyRecord, compile_seconds, settings_record, versions
 
 def _package_sources() -> list[Path]:
@@ -106,13 +105,7 @@ def check_out_dir(out: str | Path) -> Path:
     path = Path(out)
     if path.exists() and not path.is_dir():
         raise InputError("--out", str(out), "exists and is not a directory")
-    probe_parent = path
-    while not probe_parent.exists():
-        probe_parent = probe_parent.parent
-    if not probe_parent.is_dir():
-        raise InputError("--out", str(out), f"lies under {probe_parent}, which is not a directory")
-    if not os.access(probe_parent, os.W_OK | os.X_OK):
-        raise InputError("--out", str(out), "is not writable")
+    check_folder(path, "--out", str(out))
     return path
 
 

@@ -43,7 +43,7 @@ def random_envs():
 @pytest.fixture(scope="session")
 def run(tmp_path_factory):
     """Every study once at the tiny size (`reproduce_cases.TINY`): (output folder, result of
-    reproduce(), seconds). Shared by test_reproduce.py and test_reproduce_runs.py, which run in
+    reproduce(), seconds). Shared by test_reproduce.py and reproduce_runs.py (collected through it), which run in
     that order; tests that change the folder put it back before they end."""
     import time
 
@@ -54,3 +54,4 @@ def run(tmp_path_factory):
     t0 = time.perf_counter()
     result = reproduce.reproduce(out, settings=TINY, progress=False)
     return out, result, time.perf_counter() - t0
+

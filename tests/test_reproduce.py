@@ -1,5 +1,5 @@
 """`delvjax reproduce`: every study at a tiny size, its numbers, tables and the claims table
-(the report, resume and bad input: test_reproduce_runs.py).
+(the report, resume and bad input: reproduce_runs.py, imported at the end).
 
 Compilation dominates, so the whole set of studies runs ONCE (session fixture `run`, conftest.py) on a
 5 x 5 grid (spacing 200 cm) with 10 trials per success-rate bin; the other tests reuse that
@@ -247,3 +247,6 @@ def test_claim_without_its_study_is_not_applicable(run, study, claim_ids):
         assert "needs" in rows[claim_id]["why"]
     full = {r["id"]: r["verdict"] for r in claims.evaluate(numbers_by_study(out))}
     assert all(full[c] != "n/a" for c in claim_ids)
+
+
+from reproduce_runs import *  # noqa: E402,F401,F403  the run tests, collected here: same worker, same `run`

@@ -1,13 +1,16 @@
-"""Vector maps: the homing direction at every grid point in one jitted, vmapped call (docs/model.md §5).
+"""Vector maps: the homing direction at every grid point, vmapped (docs/model.md §5).
 
 Every grid point gets its own PRNG key `fold_in(key_views, i)` and, when headings are
-random, its heading from `fold_in(key_headings, i)`: the numbers do not depend on how
-the points are chunked. Chunks (`lax.map(..., batch_size)`) bound the memory.
+random, its heading from `fold_in(key_headings, i)`; points are evaluated `batching.WIDTH`
+at a time. So the numbers do not depend on how the points are chunked: the grid runs in
+host-side chunks of `batch_size` points (one compiled program per chunk size), which bounds
+the memory however large the grid.
 """
 
 from __future__ import annotations
 
 from functools import partial
+from typing import Callable
 
 import equinox as eqx
 import jax
@@ -15,6 +18,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
+from .batching import fixed_width_map, local_mesh, n_devices, over_devices, padded
 from .geometry import TWO_PI
 from .kernel import direction_from, map_poses
 from .methods.base import HomingMethod
@@ -24,7 +28,7 @@ from .sensing import record_home
 from .sensor import Sensor
 from .types import BlobFlags, GridFlag, GridFloat, GridPoints, PerPoint, PerPointFlag, Points
 
-DEFAULT_BATCH = 2048
+DEFAULT_BATCH = 16384  # grid points per host-side chunk
 SPACING = 25.0  # cm, grid spacing (docs/model.md §5: 40 x 40 in the 1000 cm arena)
 CLEARANCE = 10.0  # cm, grid points within r + clearance of a landmark are dropped (§5)
 
@@ -67,21 +71,22 @@ def stream_keys(key: Array) -> tuple[Array, Array, Array]:
 
 
 @partial(jax.jit, static_argnums=1)
-def random_headings(key: Array, n: int) -> Array:
-    """Per-point uniform headings in [0, 2 pi), point i from fold_in(key_headings, i)."""
+def random_headings(key: Array, n: int, start: Array | int = 0) -> Array:
+    """Per-point uniform headings in [0, 2 pi), point i (counted from `start`) from fold_in(key_headings, i)."""
     _, _, k_head = stream_keys(key)
-    keys = jax.vmap(partial(jax.random.fold_in, k_head))(jnp.arange(n))
+    keys = jax.vmap(partial(jax.random.fold_in, k_head))(start + jnp.arange(n))
     return jax.vmap(lambda k: jax.random.uniform(k, (), minval=0.0, maxval=TWO_PI))(keys)
 
 
-@partial(jax.jit, static_argnames=("batch_size",))
+@jax.jit
 def homing_directions(env: Env, points: Points, headings: PerPoint, key: Array, sensor: Sensor,
                       method: HomingMethod, visible: BlobFlags | None = None,
-                      batch_size: int = DEFAULT_BATCH) -> tuple[PerPoint, PerPointFlag]:
+                      start: Array | int = 0) -> tuple[PerPoint, PerPointFlag]:
     """World homing directions (P,) and validity (P,) of `method` at `points` with `headings`.
 
     The home record sees every landmark; the current views see only `visible` ones
-    (occlusion, docs/model.md §5). One program: vmap over points inside chunks of `batch_size`.
+    (occlusion, docs/model.md §5). Point i uses the view stream of index `start + i`.
+    One program, `batching.WIDTH` points at a time.
     """
     k_home, k_views, _ = stream_keys(key)
     home = record_home(env, k_home, sensor)
@@ -91,29 +96,58 @@ def homing_directions(env: Env, points: Points, headings: PerPoint, key: Array, 
         point, heading, index = args
         return direction_from(env, seen, map_poses(point, heading, k_views, index, sensor), home, method, sensor)
 
-    index = jnp.arange(points.shape[0])
-    return jax.lax.map(one, (points, headings, index), batch_size=min(batch_size, points.shape[0]))
+    index = start + jnp.arange(points.shape[0])
+    return fixed_width_map(lambda *a: one(a), (points, headings, index))
 
 
 def vector_map(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = SPACING, heading: float | None = None,
                key: Array | None = None, clearance: float = CLEARANCE, visible: Array | None = None,
-               batch_size: int = DEFAULT_BATCH) -> VectorMap:
-    """The vector map of `method` on the docs/model.md §5 grid; heading fixed (rad) or random per point from `key`."""
+               batch_size: int = DEFAULT_BATCH, progress: Callable[[int, int], None] | None = None) -> VectorMap:
+    """The vector map of `method` on the docs/model.md §5 grid; heading fixed (rad) or random per point from `key`.
+
+    The grid runs in host-side chunks of `batch_size` points (the last one padded, so one
+    program), so memory is bounded by the chunk; `progress(n, P)` is called after each chunk of
+    n of the P points. The numbers are the same for every `batch_size`.
+    """
     key = jax.random.PRNGKey(0) if key is None else key
-    points = jnp.asarray(grid_points(env.arena, spacing))
+    points = grid_points(env.arena, spacing)
     heading = None if heading is None else jnp.asarray(heading, jnp.float32)
-    return _vector_map(env.arrays(), points, heading, key, sensor, method, clearance, visible, batch_size)
+    env = env.arrays()
+    n = points.shape[0]
+    mesh = local_mesh()
+    per_device = padded(-(-min(batch_size, n) // n_devices(mesh)))
+    chunk = per_device * n_devices(mesh)
+    parts = []
+    for start in range(0, n, chunk):  # chunked driver: every chunk is the same compiled program
+        rows = points[start:start + chunk]
+        rows = np.concatenate([rows, np.repeat(rows[:1], chunk - len(rows), axis=0)])
+        if mesh is None:
+            part = _vector_map(env, rows, heading, key, sensor, method, clearance, visible, np.int32(start))
+        else:  # device d evaluates grid points start + d * per_device ...: the same per-point program
+            starts = (start + per_device * np.arange(mesh.size)).astype(np.int32)
+            part = over_devices(_device_chunk, mesh, 7, env, heading, key, sensor, method, clearance, visible,
+                                rows, starts)
+        parts.append(jax.tree.map(lambda a: np.asarray(a)[:n - start], part))
+        if progress is not None:
+            progress(min(chunk, n - start), n)
+    return jax.tree.map(lambda *a: jnp.asarray(np.concatenate(a)), *parts)
 
 
-@partial(jax.jit, static_argnames=("batch_size",))
+def _device_chunk(env: Env, heading: Array | None, key: Array, sensor: Sensor, method: HomingMethod, clearance,
+                  visible: Array | None, points: Array, starts: Array) -> VectorMap:
+    """One device's part of a chunk (`batching.over_devices`): its points start at starts[0]."""
+    return _vector_map(env, points, heading, key, sensor, method, clearance, visible, starts[0])
+
+
+@jax.jit
 def _vector_map(env: Env, points: Array, heading: Array | None, key: Array, sensor: Sensor, method: HomingMethod,
-                clearance: float, visible: Array | None, batch_size: int) -> VectorMap:
-    """One program for the whole map: headings, directions, grid mask and errors."""
+                clearance: float, visible: Array | None, start: Array | int = 0) -> VectorMap:
+    """One program for a chunk of the map: headings, directions, grid mask and errors; point i is grid point start + i."""
     if heading is None:
-        headings = random_headings(key, points.shape[0])
+        headings = random_headings(key, points.shape[0], start)
     else:
         headings = jnp.full(points.shape[0], heading, jnp.float32)
-    direction, valid = homing_directions(env, points, headings, key, sensor, method, visible, batch_size)
+    direction, valid = homing_directions(env, points, headings, key, sensor, method, visible, start)
     return VectorMap(
         points=points,
         included=grid_included(env, points, clearance),
@@ -152,7 +186,7 @@ def replace_field(method: HomingMethod, sensor: Sensor, name: str, value) -> tup
 
 def sweep(env: Env, method: HomingMethod, sensor: Sensor, name: str, values: Array, spacing: float = SPACING,
           heading: float | None = None, key: Array | None = None, clearance: float = CLEARANCE,
-          visible: Array | None = None, batch_size: int = DEFAULT_BATCH) -> VectorMap:
+          visible: Array | None = None) -> VectorMap:
     """Vector maps for every value of one continuous setting, vmapped as one program.
 
     `name` names a leaf of the method or the sensor (`replace_field`: "levels", "d",
@@ -166,6 +200,6 @@ def sweep(env: Env, method: HomingMethod, sensor: Sensor, name: str, values: Arr
 
     def one(v):
         m, s = replace_field(method, sensor, name, v)
-        return _vector_map(env, points, heading, key, s, m, clearance, visible, batch_size)
+        return _vector_map(env, points, heading, key, s, m, clearance, visible)
 
     return jax.vmap(one)(jnp.asarray(values))

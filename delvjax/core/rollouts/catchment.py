@@ -4,7 +4,7 @@ Tables 5.1-5.4; docs/model.md §5)."""
 from __future__ import annotations
 
 import itertools
-from typing import Sequence
+from typing import Callable, Sequence
 
 import equinox as eqx
 import jax
@@ -76,12 +76,14 @@ class Catchment(Outcomes):
 def catchment_area(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = SPACING, heading: float | None = None,
                    key: Array | None = None, clearance: float = CLEARANCE, masks: np.ndarray | None = None,
                    hidden: Sequence[tuple[int, ...]] = ((),), home_radius: float = HOME_RADIUS, max_steps: int = MAX_STEPS,
-                   lanes: int = DEFAULT_LANES, first_move: str = "homing", collisions: str = "ignore") -> Catchment:
+                   lanes: int = DEFAULT_LANES, first_move: str = "homing", collisions: str = "ignore",
+                   progress: Callable[[int, int], None] | None = None) -> Catchment:
     """Rollouts from every grid point under every mask in `masks` (M, L), one program (docs/model.md §5).
 
     Headings: fixed (rad) or per point from `key` as in `maps.random_headings`. The trial of
     grid cell i uses noise stream i under every mask (common random numbers across masks).
     The vector map under each mask comes from the same program (each trial's first direction).
+    `progress(done, total)` after each block of trials.
     """
     key = jax.random.PRNGKey(0) if key is None else key
     masks = np.asarray(env.valid, bool)[None, :] if masks is None else np.asarray(masks, bool)
@@ -98,7 +100,7 @@ def catchment_area(env: Env, method: HomingMethod, sensor: Sensor, spacing: floa
     trial_mask = np.repeat(np.arange(n_masks, dtype=np.int32), n_inc)
     trials = run_trials(env, points[trial_cell], headings[trial_cell], trial_cell, trial_mask, masks, key, sensor, method,
                         home_radius=home_radius, max_steps=max_steps, lanes=lanes, first_move=first_move,
-                        collisions=collisions)
+                        collisions=collisions, progress=progress)
 
     def per_cell(values, fill):
         values = np.asarray(values)

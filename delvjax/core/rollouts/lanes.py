@@ -17,6 +17,7 @@ import jax.numpy as jnp
 from jax import Array
 
 from .rules import RUNNING, position_status
+from ..batching import fixed_width_map, padded
 from .step import Rollout
 
 
@@ -55,6 +56,7 @@ def run_block(rollout: Rollout, starts: Array, headings: Array, n_valid: Array, 
     """Run the first `n_valid` trials of a block (the padding is never run)."""
     n_trials = starts.shape[0]
     n_lanes = max(1, min(lanes, n_trials))
+    n_slots = padded(n_lanes)  # slots past n_lanes stay idle (core/batching.py: fixed width)
     max_steps = rollout.max_steps
 
     def fresh(t):
@@ -66,8 +68,8 @@ def run_block(rollout: Rollout, starts: Array, headings: Array, n_valid: Array, 
         return Lanes(t=t, pos=starts[ts], heading=headings[ts], status=status, first=jnp.ones((), bool),
                      step=zero, invalid=zero)
 
-    lane_t = jnp.arange(n_lanes, dtype=jnp.int32)
-    lanes0 = jax.vmap(fresh)(jnp.where(lane_t < n_valid, lane_t, n_trials))
+    lane_t = jnp.arange(n_slots, dtype=jnp.int32)
+    lanes0 = jax.vmap(fresh)(jnp.where((lane_t < n_valid) & (lane_t < n_lanes), lane_t, n_trials))
     zeros_t = jnp.zeros(n_trials, jnp.int32)
     out0 = Results(outcome=jnp.full(n_trials, RUNNING, jnp.int32), steps=zeros_t, invalid=zeros_t,
                    end=jnp.zeros((n_trials, 2), jnp.float32), first_dir=jnp.full(n_trials, jnp.nan, jnp.float32),
@@ -84,8 +86,8 @@ def run_block(rollout: Rollout, starts: Array, headings: Array, n_valid: Array, 
         first = active & lane.first
         moving = active & ~lane.first & (lane.status == RUNNING)
         ts = jnp.minimum(lane.t, n_trials - 1)
-        end, new_heading, status, valid, direction = jax.vmap(rollout.advance)(
-            ts, lane.pos, lane.heading, lane.step, lane.first)
+        end, new_heading, status, valid, direction = fixed_width_map(
+            rollout.advance, (ts, lane.pos, lane.heading, lane.step, lane.first), active)
         idx0 = jnp.where(first, lane.t, n_trials)
         out = eqx.tree_at(lambda o: (o.first_dir, o.first_valid), out,
                           (out.first_dir.at[idx0].set(direction, mode="drop"),

@@ -7,9 +7,13 @@ block. Each trial keeps its own noise streams, so the numbers do not depend on t
 
 from __future__ import annotations
 
+import functools
+
 import equinox as eqx
 import jax
 import numpy as np
+from typing import Callable
+
 from jax import Array
 
 from ..errors import InputError
@@ -19,6 +23,8 @@ from ..scene import Env
 from ..sensing import UnitMove, record_home
 from ..sensor import Sensor
 from ..types import Masks, PerTrial, PerTrialFlag, PerTrialInt, TrialPoints
+from ..batching import WIDTH, local_mesh, n_devices, over_devices
+from ..batching import padded as padded_width
 from .lanes import run_block
 from .rules import DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes, check_rules, rollout_keys
 from .step import Rollout
@@ -27,10 +33,17 @@ TRIAL_BLOCK = 16384
 MASK_ROWS = 64  # visibility masks are padded to this many rows (all k of 6 landmarks: 42; one program)
 
 
-def trial_block(n: int) -> int:
+PATH_BUDGET = 1 << 24  # positions kept per block when paths are recorded (128 MB)
+
+
+def trial_block(n: int, max_steps: int = MAX_STEPS, record_paths: bool = False) -> int:
     """Trials run in blocks of TRIAL_BLOCK (padded), so catchments of every environment and
-    occlusion, success-rate tables and trajectories share one compiled program."""
-    return TRIAL_BLOCK
+    occlusion and success-rate tables share one compiled program. With paths recorded
+    (trajectories) a block holds at most PATH_BUDGET positions and no more trials than asked."""
+    if not record_paths:
+        return TRIAL_BLOCK
+    fit = max(WIDTH, PATH_BUDGET // (max_steps + 1) // WIDTH * WIDTH)
+    return min(TRIAL_BLOCK, padded_width(n), fit)
 
 
 class Trials(Outcomes):
@@ -54,6 +67,29 @@ class Trials(Outcomes):
     collisions: str = eqx.field(static=True, default="ignore")
 
 
+def device_split(n_valid: int, n_dev: int, per_device: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Rows of a block for each device's slice (device d: trials d q .. d q + count_d - 1, then
+    padding), the counts (D,), and where the block's trials sit in the joined output."""
+    q = -(-n_valid // n_dev)
+    counts = np.clip(n_valid - q * np.arange(n_dev), 0, q).astype(np.int32)
+    slot = np.arange(per_device)
+    take = np.minimum(q * np.arange(n_dev)[:, None] + slot, n_valid - 1).ravel()
+    keep = np.flatnonzero(slot[None, :] < counts[:, None])
+    return take, counts, keep
+
+
+@functools.lru_cache(maxsize=None)
+def device_block(lanes: int):
+    """The per-device program of a block: one device's trials with `lanes` lanes (counts: (1,))."""
+
+    def run(shared: Rollout, key_index, mask_index, starts, headings, counts):
+        rollout = eqx.tree_at(lambda r: (r.key_index, r.mask_index), shared, (key_index, mask_index),
+                              is_leaf=lambda x: x is None)
+        return run_block(rollout, starts, headings, counts[0], lanes)
+
+    return run
+
+
 @jax.jit
 def home_record(env: Env, key: Array, sensor: Sensor) -> UnitMove:
     """The home record of a rollout seed (docs/model.md §3.3; the same as the vector map's of that seed)."""
@@ -63,7 +99,8 @@ def home_record(env: Env, key: Array, sensor: Sensor) -> UnitMove:
 def run_trials(env: Env, starts: TrialPoints, headings: PerTrial, key_index: PerTrialInt, mask_index: PerTrialInt, masks: Masks,
                key: Array, sensor: Sensor, method: HomingMethod, home_radius: float = HOME_RADIUS,
                max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, record_paths: bool = False,
-               first_move: str = "homing", collisions: str = "ignore") -> Trials:
+               first_move: str = "homing", collisions: str = "ignore",
+               progress: Callable[[int, int], None] | None = None) -> Trials:
     """Roll out T trials (docs/model.md §5), in blocks of one compiled program.
 
     starts: (T, 2) cm; headings: (T,) release headings rad; key_index: (T,) int, the trial's
@@ -73,14 +110,15 @@ def run_trials(env: Env, starts: TrialPoints, headings: PerTrial, key_index: Per
     `home_record(env, key, sensor)`, always sees all). `lanes` trials run side by side;
     finished lanes are refilled from the queue of pending trials. `first_move` and
     `collisions` are the rules of `rules`. Several methods share one compiled program as a
-    `methods.Program`.
+    `methods.Program`. `progress(done, T)` is called after each block.
     """
     check_rules(first_move, collisions)
     env = env.arrays()  # compile once per shape, not per environment name
     n = int(starts.shape[0])
     if n == 0:
         raise InputError("starts", 0, "no trials to run")
-    block = trial_block(n)
+    mesh = local_mesh()
+    block = -(-trial_block(n, max_steps, record_paths) // n_devices(mesh)) * n_devices(mesh)
     padded = -(-n // block) * block
     # host-side padding and slicing (NumPy): no eager device op, so no compilation per shape
     pad = lambda a, m, dtype: np.concatenate([np.asarray(a, dtype), np.repeat(np.asarray(a, dtype)[:1], m, axis=0)])  # noqa: E731
@@ -89,6 +127,7 @@ def run_trials(env: Env, starts: TrialPoints, headings: PerTrial, key_index: Per
     masks = pad(masks, max(0, MASK_ROWS - len(masks)), bool)  # C(N, k) masks of every k, padded likewise
     _, k_roll, _ = rollout_keys(key)
     _, k_views, _ = stream_keys(key)
+    per_device = block // n_devices(mesh)
     blocks = []
     for i in range(0, padded, block):  # chunked driver: every block is the same compiled program
         rows = slice(i, i + block)
@@ -96,9 +135,20 @@ def run_trials(env: Env, starts: TrialPoints, headings: PerTrial, key_index: Per
                           key_index=key_index[rows], mask_index=mask_index[rows], masks=masks, k_roll=k_roll,
                           k_views=k_views, radius=np.float32(home_radius), max_steps=max_steps,
                           homing_first=np.bool_(first_move == "homing"), collide=np.bool_(collisions == "fail"))
-        res = run_block(rollout, starts[rows], headings[rows], np.int32(min(block, n - i)), lanes)
-        blocks.append(res if record_paths else eqx.tree_at(lambda r: r.path, res, None, is_leaf=lambda x: x is None))
-    res = jax.tree.map(lambda *a: jax.device_put(np.concatenate([np.asarray(x) for x in a])[:n]), *blocks)
+        n_valid = min(block, n - i)
+        if mesh is None:
+            res = run_block(rollout, starts[rows], headings[rows], np.int32(n_valid), lanes)
+        else:  # device d runs trials [d q, (d + 1) q) of the block, q = ceil(n_valid / D): whole trials, same program
+            take, counts, keep = device_split(n_valid, mesh.size, per_device)
+            shared = eqx.tree_at(lambda r: (r.key_index, r.mask_index), rollout, (None, None), is_leaf=lambda x: x is None)
+            res = over_devices(device_block(-(-lanes // mesh.size)), mesh, 1, shared, rollout.key_index[take],
+                               rollout.mask_index[take], starts[rows][take], headings[rows][take], counts)
+            res = jax.tree.map(lambda a: np.asarray(a)[keep], res)
+        res = res if record_paths else eqx.tree_at(lambda r: r.path, res, None, is_leaf=lambda x: x is None)
+        blocks.append(jax.tree.map(np.asarray, res))  # waits for the block, so progress is real
+        if progress is not None:
+            progress(n_valid, n)
+    res = jax.tree.map(lambda *a: jax.device_put(np.concatenate(a)[:n]), *blocks)
     return Trials(outcome=res.outcome, steps=res.steps, end=res.end, invalid_steps=res.invalid,
                   first_direction=res.first_dir, first_valid=res.first_valid, path=res.path if record_paths else None,
                   first_move=first_move, collisions=collisions)

@@ -1,6 +1,7 @@
-"""`delvjax reproduce` as a run: the report, resume after a crash or a change, bad input. Uses the
-session fixture `run` (conftest.py) after test_reproduce.py; tests that change the folder put it
-back to "every study current under TINY" before they end."""
+"""`delvjax reproduce` as a run: the report, resume after a crash or a change, bad input. Collected
+through test_reproduce.py (which imports these tests after its own), so that under pytest-xdist
+both share one worker and one session fixture `run` (conftest.py); tests that change the folder
+put it back to "every study current under TINY" before they end."""
 
 from __future__ import annotations
 import base64

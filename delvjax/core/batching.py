@@ -1,0 +1,70 @@
+"""Fixed-width batches: the same numbers however the work is chunked (docs/reproduce.md "Chunking").
+
+XLA compiles a vmapped computation differently for different batch widths (fusion, the order of
+a reduction), so a point evaluated among 1, 7 or 1600 others may differ in the last bit, and a
+near-tie (DELV's best heading and ordering) may then flip. Every per-point and per-trial program
+therefore runs `WIDTH` items at a time (`lax.map` over groups of one `vmap` of width `WIDTH`):
+the compiled arithmetic of an item is the same whatever the grid size, chunk size, lane count or
+device count, and only the number of groups varies. Work split over the devices of a `local_mesh`
+(`over_devices`) gives every device whole items, so it too leaves the numbers unchanged.
+"""
+
+from __future__ import annotations
+
+from functools import partial
+from typing import Callable
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+from jax.sharding import Mesh, PartitionSpec as P
+
+WIDTH = 16  # items per vectorised step
+
+
+def padded(n: int) -> int:
+    """`n` rounded up to a whole number of groups."""
+    return -(-n // WIDTH) * WIDTH
+
+
+def fixed_width_map(fn: Callable, xs: tuple, active: jax.Array | None = None):
+    """`vmap(fn)(*xs)` over the leading axis of the arrays in `xs`, WIDTH items at a time.
+
+    The leading length is padded to a multiple of WIDTH (with copies of item 0) and the padding
+    dropped. With `active` (one flag per item), a group without an active item is skipped and
+    its outputs are zeros (they must not be used).
+    """
+    n = jax.tree.leaves(xs)[0].shape[0]
+    m = padded(n)
+    pad = lambda a: jnp.concatenate([a, jnp.repeat(a[:1], m - n, axis=0)]) if m > n else a  # noqa: E731
+    groups = jax.tree.map(lambda a: pad(a).reshape((m // WIDTH, WIDTH) + a.shape[1:]), xs)
+    batched = jax.vmap(fn)
+    if active is None:
+        out = jax.lax.map(lambda g: batched(*g), groups)
+    else:
+        flags = pad(active).reshape(m // WIDTH, WIDTH)
+        shapes = jax.eval_shape(lambda g: batched(*g), jax.tree.map(lambda a: a[0], groups))
+        idle = lambda g: jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), shapes)  # noqa: E731
+        out = jax.lax.map(lambda gf: jax.lax.cond(jnp.any(gf[1]), lambda g: batched(*g), idle, gf[0]),
+                          (groups, flags))
+    return jax.tree.map(lambda a: a.reshape((m,) + a.shape[2:])[:n], out)
+
+
+def local_mesh() -> Mesh | None:
+    """A one-axis mesh ("items") over this process's devices, or None with one device."""
+    devices = jax.local_devices()
+    return None if len(devices) == 1 else Mesh(np.array(devices), ("items",))
+
+
+def n_devices(mesh: Mesh | None) -> int:
+    """How many devices share the items."""
+    return 1 if mesh is None else mesh.size
+
+
+@partial(jax.jit, static_argnums=(0, 1, 2))
+def over_devices(fn: Callable, mesh: Mesh, n_replicated: int, *args):
+    """`fn(*args)` with every device given the replicated first `n_replicated` args and its own
+    contiguous slice of the leading axis of the others; the outputs' leading axes are joined.
+    Every device runs the same per-item program, so results equal the one-device ones."""
+    specs = (P(),) * n_replicated + (P("items"),) * (len(args) - n_replicated)
+    return jax.shard_map(fn, mesh=mesh, in_specs=specs, out_specs=P("items"), check_vma=False)(*args)
