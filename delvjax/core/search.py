@@ -17,4 +17,3 @@ def first_argmin(x: Array, axis: int = -1) -> Array:
     idx = jnp.arange(x.shape[axis]).reshape([-1 if a == axis % x.ndim else 1 for a in range(x.ndim)])
     first = jnp.min(jnp.where(x <= m, idx, x.shape[axis]), axis=axis)
     return jnp.minimum(first, x.shape[axis] - 1)
-

@@ -44,7 +44,8 @@ def best_pairing(ref_v: BlobVectors, cur_v: BlobVectors, ref_idx: Pairing, cur_i
     row cost two multiply-adds each (Eqs 3.4-3.6; docs/model.md §3.4).
     """
     w = pair_ok.astype(ref_v.dtype)[..., None]  # (H, S, 1)
-    inv_n = 1.0 / jnp.maximum(n, 1).astype(ref_v.dtype)  # one division: XLA may turn x / n into x * (1 / n) in some programs only
+    # one division, written out: XLA compiles x / n as x * (1 / n) in some programs only (docs/reproduce.md "Chunking")
+    inv_n = 1.0 / jnp.maximum(n, 1).astype(ref_v.dtype)
     a = ref_v[ref_idx] * w  # (H, S, 2)
     b = cur_v[cur_idx] * w
     a_mean = jnp.sum(a, axis=1) * inv_n  # (H, 2)
