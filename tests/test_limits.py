@@ -66,6 +66,15 @@ def test_a_grid_in_many_chunks_reports_progress_and_gives_the_one_chunk_numbers(
     vm = delvjax.vector_map("env1", spacing=50.0, batch_size=100)
     env = delvjax.load_env("env1")
     chunked = maps.vector_map(env, delvjax.DELV(), delvjax.Sensor(), spacing=50.0, key=jax.random.PRNGKey(0),
-                              batch_size=64, progress=lambda n, total: calls.append((n, total)))
-    assert [t for _, t in calls] == [400] * 7 and [n for n, _ in calls] == [64] * 6 + [16]  # chunks of 64, then 16
+                              batch_size=128, progress=lambda n, total: calls.append((n, total)))
+    assert [t for _, t in calls] == [400] * 4 and [n for n, _ in calls] == [128] * 3 + [16]  # chunks of 128, then 16
     assert np.array_equal(np.asarray(chunked.direction), np.asarray(vm.direction), equal_nan=True)
+
+
+def test_recorded_paths_stay_within_their_budget_and_the_usual_block_is_shared():
+    from delvjax.core.rollouts.trials import PATH_BUDGET, TRIAL_BLOCK, trial_block
+
+    assert trial_block(8, 50, True) == trial_block(10**6) == TRIAL_BLOCK  # one program for every rollout
+    for n, steps in [(6, 100_000), (10**6, 5_000), (1, 10**7)]:
+        block = trial_block(n, steps, True)
+        assert block % 128 == 0 and (block * (steps + 1) <= PATH_BUDGET or block == 128)

@@ -19,7 +19,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax.sharding import Mesh, PartitionSpec as P
 
-WIDTH = 16  # items per vectorised step
+WIDTH = 128  # items per vectorised step (a power of two: 256 lanes are two groups)
 
 
 def padded(n: int) -> int:

@@ -38,12 +38,13 @@ PATH_BUDGET = 1 << 24  # positions kept per block when paths are recorded (128 M
 
 def trial_block(n: int, max_steps: int = MAX_STEPS, record_paths: bool = False) -> int:
     """Trials run in blocks of TRIAL_BLOCK (padded), so catchments of every environment and
-    occlusion and success-rate tables share one compiled program. With paths recorded
-    (trajectories) a block holds at most PATH_BUDGET positions and no more trials than asked."""
-    if not record_paths:
+    occlusion, success-rate tables and trajectories share one compiled program. Only when the
+    recorded paths of such a block would exceed PATH_BUDGET positions (a large max_steps) is the
+    block cut to what fits, and to no more trials than asked."""
+    if not record_paths or TRIAL_BLOCK * (max_steps + 1) <= PATH_BUDGET:
         return TRIAL_BLOCK
     fit = max(WIDTH, PATH_BUDGET // (max_steps + 1) // WIDTH * WIDTH)
-    return min(TRIAL_BLOCK, padded_width(n), fit)
+    return min(padded_width(n), fit)
 
 
 class Trials(Outcomes):
