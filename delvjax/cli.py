@@ -12,11 +12,11 @@ import numpy as np
 
 from . import api
 from .cache import enable_compilation_cache
-from .cli_args import ProgressBar, add_output_args, add_scene_args, check_outputs, progress, scene_kwargs, warn, wrote
+from .cli_args import (ProgressBar, add_output_args, add_scene_args, check_outputs, progress, scene_kwargs, warn,
+                       write_outputs)
 from .cli_rollouts import ROLLOUT_COMMANDS
 from .core import maps
 from .core.errors import InputError
-from .io import output_set
 from .limits import grid_count
 from .presets import PRESET_DESCRIPTIONS, PRESETS
 from .registry import DESCRIPTIONS
@@ -63,16 +63,9 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     if not bool(np.any(np.asarray(vm.valid) & np.asarray(vm.included))):
         warn("every grid point is invalid: the method finds no homing direction anywhere (too few visible "
              "landmarks?)")
-    with output_set() as files:  # all or nothing
-        if args.out:
-            files.csv(args.out, vector_map_columns(vm), "--out")
-        if args.summary:
-            files.json(args.summary, summary, "--summary")
-        if args.plot:
-            title = f"{args.method} on {env.name}: mean error {summary['mean_error_deg']:.1f}°"
-            files.figure(vector_map_figure(env, vm, args.spacing, title=title, classes=args.classes), args.plot,
-                         "--plot")
-    print(wrote(args.out, args.plot, args.summary))
+    title = f"{args.method} on {env.name}: mean error {summary['mean_error_deg']:.1f}°"
+    write_outputs(args, vector_map_columns(vm), summary,
+                  lambda: vector_map_figure(env, vm, args.spacing, title=title, classes=args.classes))
     return 0
 
 

@@ -12,7 +12,7 @@ from .core.maps import CLEARANCE, SPACING
 from .core.methods import DELV, MFDID, Warping
 from .core.rollouts import DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
 from .core.sensor import BACKGROUNDS, CHANNELS, Sensor
-from .io import check_distinct, check_output_path
+from .io import check_distinct, check_output_path, output_set
 from .limits import MAX_POINTS
 from .options import NOISE_FIELDS_DEG, NOISE_OPTIONS, defaults
 from .registry import METHODS
@@ -146,6 +146,22 @@ def check_outputs(args: argparse.Namespace) -> None:
         if flag in named:
             check_output_path(named[flag], flag, suffixes)
     check_distinct({**({"env": args.env} if Path(args.env).is_file() else {}), **named})
+
+
+def write_outputs(args: argparse.Namespace, columns, summary: dict, figure, trials_columns=None) -> None:
+    """Write the outputs asked for as a unit (`io.output_set`), then the closing line: --out (a dict of
+    columns or a list of row dicts), --trials-out, --summary, --plot (`figure()` is built only then)."""
+    trials_out = getattr(args, "trials_out", None)
+    with output_set() as files:  # all or nothing
+        if args.out:
+            (files.rows_csv if isinstance(columns, list) else files.csv)(args.out, columns, "--out")
+        if trials_out:
+            files.csv(trials_out, trials_columns, "--trials-out")
+        if args.summary:
+            files.json(args.summary, summary, "--summary")
+        if args.plot:
+            files.figure(figure(), args.plot, "--plot")
+    print(wrote(args.out, trials_out, args.plot, args.summary))
 
 
 def add_rollout_args(p: argparse.ArgumentParser) -> None:

@@ -12,11 +12,10 @@ import numpy as np
 
 from . import api, api_rollouts
 from .cli_args import (ProgressBar, add_output_args, add_rollout_args, add_scene_args, check_outputs, progress, rollout_kwargs,
-                       warn, wrote)
+                       warn, write_outputs)
 from .core.errors import InputError
 from .core.rollouts import (DEFAULT_DISTANCES, N_STARTS, TRIAL_BLOCK, TRIALS_PER_DISTANCE, catchment_summary,
                             check_rules)
-from .io import output_set
 from .options import METHOD_OPTIONS, SENSOR_OPTIONS, make_setup, occlusion_count
 from .registry import get_method
 from .tables import (catchment_columns, concat_columns, outcome_names, success_rows, success_trial_columns,
@@ -87,18 +86,10 @@ def cmd_catchment(args: argparse.Namespace) -> int:
     if not bool(np.any(np.asarray(res.valid)[:, np.asarray(res.included)])):
         warn("every grid point is invalid under every mask: the method finds no homing direction anywhere "
              "(too few visible landmarks?)")
-    columns = catchment_columns(res, with_hidden=args.occlude is not None or bool(args.hide))
-    with output_set() as files:  # all or nothing
-        if args.out:
-            files.csv(args.out, columns, "--out")
-        if args.summary:
-            files.json(args.summary, summary, "--summary")
-        if args.plot:
-            from .plots_rollouts import catchment_figure
+    from .plots_rollouts import catchment_figure
 
-            files.figure(catchment_figure(env, res, args.spacing, title=f"{args.method} on {env.name}"), args.plot,
-                         "--plot")
-    print(wrote(args.out, args.plot, args.summary))
+    write_outputs(args, catchment_columns(res, with_hidden=args.occlude is not None or bool(args.hide)), summary,
+                  lambda: catchment_figure(env, res, args.spacing, title=f"{args.method} on {env.name}"))
     return 0
 
 
@@ -135,21 +126,12 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
         rows += success_rows(res, m)
         trial_cols.append(success_trial_columns(res, m))
     rules = check_rules(args.first_move, args.collisions)
-    with output_set() as files:  # all or nothing
-        if args.out:
-            files.rows_csv(args.out, rows, "--out")
-        if args.trials_out:
-            files.csv(args.trials_out, concat_columns(trial_cols), "--trials-out")
-        if args.summary:
-            files.json(args.summary, {"env": env.name, "trials_per_bin": args.trials, "seed": args.seed,
-                                      "rules": rules, "max_steps": args.max_steps, "home_radius": args.home_radius,
-                                      "seconds": timing, "bins": tables}, "--summary")
-        if args.plot:
-            from .plots_rollouts import success_rate_figure
+    from .plots_rollouts import success_rate_figure
 
-            fig = success_rate_figure(tables, title=f"success rate on {env.name} ({args.trials} trials per distance)")
-            files.figure(fig, args.plot, "--plot")
-    print(wrote(args.out, args.trials_out, args.plot, args.summary))
+    summary = {"env": env.name, "trials_per_bin": args.trials, "seed": args.seed, "rules": rules,
+               "max_steps": args.max_steps, "home_radius": args.home_radius, "seconds": timing, "bins": tables}
+    write_outputs(args, rows, summary, lambda: success_rate_figure(
+        tables, title=f"success rate on {env.name} ({args.trials} trials per distance)"), concat_columns(trial_cols))
     return 0
 
 
@@ -188,17 +170,10 @@ def cmd_trajectories(args: argparse.Namespace) -> int:
                                  "release_heading_deg": float(np.degrees(tr.heading[t])),
                                  "outcome": outcome[t], "steps": int(steps[t])} for t in range(path.shape[0])]
         progress(f"{int(np.asarray(tr.success).sum())}/{path.shape[0]} reach home")
-    with output_set() as files:  # all or nothing
-        if args.out:
-            files.csv(args.out, concat_columns(cols), "--out")
-        if args.summary:
-            files.json(args.summary, summary, "--summary")
-        if args.plot:
-            from .plots_rollouts import trajectories_figure
+    from .plots_rollouts import trajectories_figure
 
-            files.figure(trajectories_figure(env, results, args.home_radius,
-                                             title=f"homing trajectories on {env.name}"), args.plot, "--plot")
-    print(wrote(args.out, args.plot, args.summary))
+    write_outputs(args, concat_columns(cols), summary, lambda: trajectories_figure(
+        env, results, args.home_radius, title=f"homing trajectories on {env.name}"))
     return 0
 
 
