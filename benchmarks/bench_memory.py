@@ -6,8 +6,8 @@ Each size runs in a fresh process (peak RSS is per process, `resource.getrusage`
 landmarks and home in a square arena grown so that the docs/model.md §5 grid at 25 cm spacing has
 about N cells. The grid runs in host-side chunks of --batch points (`core.maps.vector_map`), so
 peak memory should stay flat: the per-point results (about 30 bytes a point) are the only part
-that grows. Each process maps twice (new seed): compile = first minus second call, warm = second. The last column is the same run with one chunk for the whole grid (the old driver),
-where the intermediates of every point are alive at once ("-" when it was not run: above 1e5).
+that grows. Each process maps twice (new seed): compile = first minus second call, warm = second.
+The last column is the same run with one chunk for the whole grid ("-" above 1e5 points).
 """
 
 from __future__ import annotations
