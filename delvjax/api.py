@@ -63,11 +63,12 @@ def scene_request(env: str | Path | Env, method: str | HomingMethod, clearance: 
     return env, module, sensor, heading, key, clearance
 
 
-def check_grid(env: Env, spacing: float, clearance: float, max_points: int = MAX_POINTS, copies: int = 1) -> None:
+def check_grid(env: Env, spacing: float, clearance: float, max_points: int = MAX_POINTS, copies: int = 1,
+               what: str = "grid point") -> None:
     """`InputError` naming `spacing` when the docs/model.md §5 grid (times `copies`, e.g. occlusion masks)
-    has more than `max_points` points (`limits.check_size`, checked before the grid is built) or no
-    point clear of the landmarks."""
-    check_size(limits.grid_count(env.arena, spacing) * copies, max_points, "spacing", spacing)
+    has more than `max_points` points (`limits.check_size`, checked before the grid is built; `what`
+    they are: grid points, or trials of a catchment) or no point clear of the landmarks."""
+    check_size(limits.grid_count(env.arena, spacing) * copies, max_points, "spacing", spacing, what)
     points = maps.grid_points(env.arena, spacing)
     if points.shape[0] == 0 or not np.asarray(maps.grid_included(env.arrays(), jax.device_put(points),
                                                                    clearance)).any():

@@ -68,7 +68,7 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
     else:
         visible_mask(env, hidden)  # validates the indices
         masks, combos = hidden_masks(env, hidden)
-    check_grid(env, spacing, clearance, max_points, copies=len(masks))
+    check_grid(env, spacing, clearance, max_points, copies=len(masks), what="trial")
     _announce(announce)
     return catchment_area(env, module, sensor, spacing=spacing, heading=heading, key=key, clearance=clearance,
                           masks=masks, hidden=combos, home_radius=home_radius, max_steps=max_steps, lanes=lanes,
