@@ -18,11 +18,12 @@ from .core.sensing import Snapshot, UnitMove
 from .core.sensor import Noise, Sensor
 from .presets import make_env
 from .registry import METHODS
+from .sweeps import load_sweep, run_sweep
 
 __all__ = [
     "ACV", "ALV", "CartwrightCollett", "Compass", "DELV", "DELVGap", "Env", "HomingMethod", "InputError", "METHODS", "MFDID",
     "Method", "Noise", "Program", "Sensor", "Snapshot", "UnitMove", "VectorMap", "VisualCompass", "Warping",
     "catchment", "error_curve", "error_point_rates", "load_env", "make_env", "success_rate", "summarize_map",
-    "trajectories", "vector_map",
+    "load_sweep", "run_sweep", "trajectories", "vector_map",
 ]
 __version__ = "0.1.0"

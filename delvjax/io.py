@@ -32,6 +32,15 @@ def check_folder(folder: str | Path, field: str, value: object) -> Path:
     return base
 
 
+def check_out_dir(out: str | Path) -> Path:
+    """An output folder, checked before any work: a folder or creatable, writable (else InputError naming --out)."""
+    path = Path(out)
+    if path.exists() and not path.is_dir():
+        raise InputError("--out", str(out), "exists and is not a directory")
+    check_folder(path, "--out", str(out))
+    return path
+
+
 def check_output_path(path: str | Path, field: str, suffixes: Sequence[str]) -> Path:
     """Validate an output path before any work: known suffix, not a directory or other non-file, a
     folder that is (or can be created) writable, an existing file writable."""
@@ -201,6 +210,10 @@ class OutputSet:
             write(tmp)
         except errors as exc:
             raise _failed(field, path, exc) from None
+
+    def file(self, path: str | Path, write: Callable[[Path], None], field: str) -> None:
+        """Stage a file written by `write(temporary_path)` (e.g. a netCDF dataset)."""
+        self._stage(path, field, write, errors=(Exception,))
 
     def csv(self, path: str | Path, columns: dict[str, Sequence], field: str) -> None:
         """Stage columns as CSV (`write_csv`)."""

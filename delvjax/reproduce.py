@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any, Iterator
 
 from .core.errors import InputError
-from .io import check_folder, write_json
+from .io import check_out_dir, write_json
 from .study import STUDY_FILE, Settings, StudyContext, StudyRecord, compile_seconds, settings_record, versions
 
 def _package_sources() -> list[Path]:
@@ -98,15 +98,6 @@ def select(only: str | None) -> list[str]:
         if s not in names:
             raise InputError("--only", s, f"unknown study (choose from {', '.join(names)})")
     return [n for n in names if n in wanted]
-
-
-def check_out_dir(out: str | Path) -> Path:
-    """The output folder, created if needed and checked writable before any work (else InputError)."""
-    path = Path(out)
-    if path.exists() and not path.is_dir():
-        raise InputError("--out", str(out), "exists and is not a directory")
-    check_folder(path, "--out", str(out))
-    return path
 
 
 @contextmanager

@@ -1,0 +1,145 @@
+"""Running a sweep: cells grouped by shape, one compiled program per shape, labelled results
+(`xarray.Dataset`, netCDF and a tidy CSV); docs/sweeps.md."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Callable
+
+import jax
+import numpy as np
+
+from . import api
+from .core.cells import map_cells
+from .core.errors import InputError
+from .core.maps import grid_included, grid_points
+from .io import output_set
+from .presets import load_env
+from .sweep_spec import SweepSpec
+
+if TYPE_CHECKING:
+    import xarray
+
+CELL_CHUNK = 64  # cells per call of a group's program (the last chunk padded): bounds memory
+FILES = ("sweep.nc", "sweep.csv", "sweep.toml")
+
+
+def _cell_setups(spec: SweepSpec, max_points: int) -> list[dict]:
+    """Every cell's validated setup (`api.map_request`), before any work; an error names the cell."""
+    envs = {}
+    for name in spec.axes["env"]:
+        envs[name] = load_env(name)
+    slots = max(int(e.landmarks.shape[0]) for e in envs.values())
+    envs = {name: load_env(name, pad_to=slots) for name in envs}  # equal slots: one program for every env
+    setups = []
+    for cell in spec.cells():  # input preparation, one small pytree per cell
+        options = {k: v for k, v in cell.items() if k not in ("env", "method", "spacing", "seed")}
+        try:
+            req = api.map_request(envs[cell["env"]], method=cell["method"], spacing=float(cell["spacing"]),
+                                  seed=cell["seed"], max_points=max_points, **options)
+        except InputError as exc:
+            where = ", ".join(f"{k}={v}" for k, v in cell.items())
+            raise InputError(f"cell ({where})", exc.value, f"{exc.field}: {exc.expected}") from None
+        setups.append(req)
+    return setups
+
+
+def _group_key(req: dict) -> tuple:
+    """Cells with equal keys stack into one program: pytree structure, leaf shapes, grid."""
+    tree = (req["env"].arrays(), req["method"], req["sensor"])
+    leaves, treedef = jax.tree.flatten(tree)
+    shapes = tuple((np.shape(x), np.asarray(x).dtype.str) for x in leaves)
+    return treedef, shapes, req["spacing"], tuple(np.asarray(req["env"].arena).tolist())
+
+
+def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Callable[[int, int], None] | None = None,
+              announce: Callable[[], None] | None = None) -> xarray.Dataset:
+    """Every cell of `spec`: metrics as an `xarray.Dataset` (one dimension per axis). Every cell is
+    validated before any work; `announce()` is called then; `progress(done, total)` after each chunk."""
+    import xarray as xr
+
+    setups = _cell_setups(spec, max_points)
+    if announce is not None:
+        announce()
+    groups: dict[tuple, list[int]] = {}
+    for i, req in enumerate(setups):
+        groups.setdefault(_group_key(req), []).append(i)
+    n = len(setups)
+    sums = {k: np.zeros(n) for k in ("points", "invalid", "gt45", "gt90", "error_sum", "error_sq_sum")}
+    compiled = map_cells._cache_size()
+    for cells in groups.values():
+        first = setups[cells[0]]
+        points = grid_points(first["env"].arena, first["spacing"])
+        for start in range(0, len(cells), CELL_CHUNK):
+            chunk = cells[start:start + CELL_CHUNK]
+            rows = chunk + [chunk[0]] * (CELL_CHUNK - len(chunk)) if len(cells) > CELL_CHUNK else chunk
+            stack = lambda *xs: np.stack([np.asarray(x) for x in xs])  # noqa: E731
+            envs = jax.tree.map(stack, *[setups[i]["env"].arrays() for i in rows])
+            included = np.stack([np.asarray(grid_included(setups[i]["env"].arrays(), points, setups[i]["clearance"]))
+                                 for i in rows])
+            methods = jax.tree.map(stack, *[setups[i]["method"] for i in rows])
+            sensors = jax.tree.map(stack, *[setups[i]["sensor"] for i in rows])
+            keys = stack(*[setups[i]["key"] for i in rows])
+            out = map_cells(envs, points, included, methods, sensors, keys)
+            for k in sums:
+                sums[k][chunk] = np.asarray(getattr(out, k))[:len(chunk)]
+            if progress is not None:
+                progress(len(chunk), n)
+    programs = map_cells._cache_size() - compiled
+    return _dataset(spec, sums, programs, xr)
+
+
+def _dataset(spec: SweepSpec, sums: dict, programs: int, xr):
+    """Per-cell sums -> the requested metrics, labelled by the axes."""
+    pts = np.maximum(sums["points"], 1)
+    mean = sums["error_sum"] / pts
+    var = np.maximum(sums["error_sq_sum"] - pts * mean ** 2, 0.0) / np.maximum(pts - 1, 1)
+    half = _t(pts) * np.sqrt(var / pts)
+    values = {"gt45_pct": 100 * sums["gt45"] / pts, "gt90_pct": 100 * sums["gt90"] / pts, "mean_error_deg": mean,
+              "mean_error_ci95_deg": np.where(sums["points"] >= 2, half, np.nan),
+              "invalid_pct": 100 * sums["invalid"] / pts, "points": sums["points"].astype(np.int64)}
+    dims = list(spec.axes)
+    coords = {name: np.asarray(v) for name, v in spec.axes.items()}
+    ds = xr.Dataset({m: (dims, np.asarray(values[m]).reshape(spec.shape)) for m in spec.metrics}, coords=coords)
+    ds.attrs.update(sweep_toml=spec.text, kind=spec.kind, programs_compiled=programs, cells=int(np.prod(spec.shape)),
+                    delvjax_version=_version("delvjax"), jax_version=jax.__version__, jaxlib_version=_version("jaxlib"))
+    return ds
+
+
+def _t(n: np.ndarray) -> np.ndarray:
+    """Student-t 97.5 % quantile with n - 1 degrees of freedom (NaN for n < 2), as `metrics.t_interval`."""
+    from scipy import stats
+
+    return np.where(n >= 2, stats.t.ppf(0.975, np.maximum(n - 1, 1)), np.nan)
+
+
+def _version(package: str) -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version(package)
+    except PackageNotFoundError:
+        return "unknown"
+
+
+def save_sweep(ds, out: str | Path) -> list[Path]:
+    """sweep.nc (netCDF, every attribute), sweep.csv (one row per cell) and sweep.toml, as a unit."""
+    out = Path(out)
+    paths = [out / f for f in FILES]
+    table = ds.to_dataframe().reset_index()
+    with output_set() as files:
+        files.file(paths[0], lambda tmp: ds.to_netcdf(tmp, engine="scipy"), "--out")
+        files.file(paths[1], lambda tmp: table.to_csv(tmp, index=False, float_format="%.6g"), "--out")
+        files.file(paths[2], lambda tmp: Path(tmp).write_text(ds.attrs["sweep_toml"]), "--out")
+    return paths
+
+
+def load_sweep(out: str | Path):
+    """The `xarray.Dataset` of a finished sweep folder (`delvjax sweep ... --out DIR`)."""
+    import xarray as xr
+
+    path = Path(out) / FILES[0]
+    if not path.is_file():
+        raise InputError("out", str(out), f"has no {FILES[0]} (not a finished sweep folder)")
+    with xr.open_dataset(path, engine="scipy") as ds:
+        return ds.load()

@@ -1,0 +1,104 @@
+"""Sweep files (docs/sweeps.md): validation before any work, one program per shape, cells equal to
+`delvjax.vector_map`, the same numbers however cells are chunked, labelled results."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import delvjax
+from delvjax import sweeps
+from delvjax.cli import main
+from delvjax.core.errors import InputError
+from delvjax.sweep_spec import EXAMPLE, parse_sweep
+
+SMALL = """
+[sweep]
+metrics = ["gt45_pct", "gt90_pct", "mean_error_deg", "mean_error_ci95_deg", "invalid_pct", "points"]
+[axes]
+method = ["delv", "alv"]
+d = [30, 60]
+bearing_noise_deg = [0.0, 3.0]
+seed = {start = 0, stop = 1}
+spacing = [90]
+"""
+
+
+@pytest.fixture(scope="module")
+def small():
+    return sweeps.run_sweep(parse_sweep(SMALL))
+
+
+def test_the_example_file_is_valid_and_printed(capsys):
+    spec = parse_sweep(EXAMPLE)
+    assert spec.shape == (2, 2, 4, 2, 3, 1, ) and list(spec.axes)[:3] == ["env", "method", "d"]
+    assert spec.axes["d"] == [10, 40, 70, 100] and spec.axes["seed"] == [0, 1, 2]
+    assert main(["sweep", "--example"]) == 0
+    assert capsys.readouterr().out == EXAMPLE
+
+
+def test_every_cell_equals_the_vector_map_of_its_settings(small):
+    assert dict(small.sizes) == {"method": 2, "d": 2, "bearing_noise_deg": 2, "seed": 2, "env": 1, "spacing": 1}
+    assert 0 <= small.attrs["programs_compiled"] <= 2  # one per method (fewer if compiled by an earlier test)
+    for method in ("delv", "alv"):
+        for seed in (0, 1):
+            vm = delvjax.vector_map("env1", method=method, d=60, bearing_noise_deg=3.0, seed=seed, spacing=90.0)
+            s = delvjax.summarize_map(vm.error_deg, vm.valid, vm.included)
+            cell = small.sel({"method": method, "d": 60, "bearing_noise_deg": 3.0, "seed": seed}).squeeze()
+            assert int(cell.points) == s["points"] and float(cell.invalid_pct) == 100 * s["invalid"] / s["points"]
+            assert float(cell.gt45_pct) == s["gt45_pct"] and float(cell.gt90_pct) == s["gt90_pct"]
+            assert float(cell.mean_error_deg) == pytest.approx(s["mean_error_deg"], rel=1e-6)
+            assert 0 < float(cell.mean_error_ci95_deg) < 30
+    noisy, exact = small.sel({"bearing_noise_deg": 3.0}), small.sel({"bearing_noise_deg": 0.0})
+    assert float(noisy.mean_error_deg.mean()) > float(exact.mean_error_deg.mean())  # the axis reaches the cells
+
+
+def test_the_numbers_do_not_depend_on_how_cells_are_chunked(small, monkeypatch):
+    monkeypatch.setattr(sweeps, "CELL_CHUNK", 3)
+    chunked = sweeps.run_sweep(parse_sweep(SMALL))
+    for name in small.data_vars:
+        assert np.array_equal(small[name].values, chunked[name].values, equal_nan=True), name
+
+
+@pytest.mark.parametrize("text, field", [
+    ("[axes]\nd = []", "axes.d"),
+    ("[axes]\nd = {start = 5, stop = 1}", "axes.d"),
+    ("[axes]\nd = [1, 1]", "axes.d"),
+    ("[axes]\nlevls = [1]", "axes.levls"),
+    ("[axes]\nmotion_step_noise = [0.1]", "axes.motion_step_noise"),
+    ("[axes]\nmethod = [1]", "axes.method"),
+    ("[sweep]\nmetrics = ['catchment']", "sweep.metrics[0]"),
+    ("[sweep]\nkind = 'catchment'", "sweep.kind"),
+    ("[sweep]\nmetric = ['gt45_pct']", "sweep.metric"),
+    ("[axis]\nd = [1]", "axis"),
+    ("d = [", "sweep"),
+])
+def test_a_bad_sweep_file_names_its_field(text, field):
+    with pytest.raises(InputError) as exc:
+        parse_sweep(text)
+    assert exc.value.field == field
+
+
+def test_an_incompatible_cell_is_refused_before_any_work(tmp_path, capsys):
+    path = tmp_path / "s.toml"
+    path.write_text("[axes]\nmethod = ['delv', 'alv']\nlevels = [2]\nspacing = [200]\n")
+    out = tmp_path / "out"
+    assert main(["sweep", str(path), "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "method=alv" in err[0] and "levels: is not a setting of the method alv" in err[0]
+    assert not out.exists()
+
+
+def test_the_cli_writes_netcdf_csv_and_the_file_and_load_sweep_reads_them(tmp_path, capsys):
+    path = tmp_path / "s.toml"
+    path.write_text("[axes]\nd = [40, 80]\nseed = [3]\nspacing = [200]\n")
+    out = tmp_path / "out"
+    assert main(["sweep", str(path), "--out", str(out)]) == 0
+    assert sorted(p.name for p in out.iterdir()) == ["sweep.csv", "sweep.nc", "sweep.toml"]
+    ds = delvjax.load_sweep(out)
+    assert dict(ds.sizes) == {"env": 1, "method": 1, "spacing": 1, "seed": 1, "d": 2} or ds.sizes["d"] == 2
+    assert ds.attrs["sweep_toml"] == path.read_text() and "jax_version" in ds.attrs
+    rows = (out / "sweep.csv").read_text().splitlines()
+    assert len(rows) == 3 and rows[0].startswith("d,seed,spacing,env,method,gt45_pct")
+    with pytest.raises(InputError, match="sweep.nc"):
+        delvjax.load_sweep(tmp_path)
