@@ -10,6 +10,7 @@ import jax
 import numpy as np
 
 from . import api
+from .core.batching import local_mesh, n_devices, over_devices
 from .core.cells import map_cells
 from .core.errors import InputError
 from .core.maps import grid_included, grid_points
@@ -66,13 +67,16 @@ def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Calla
         groups.setdefault(_group_key(req), []).append(i)
     n = len(setups)
     sums = {k: np.zeros(n) for k in ("points", "invalid", "gt45", "gt90", "error_sum", "error_sq_sum")}
-    compiled = map_cells._cache_size()
+    compiled = _programs()
+    mesh = local_mesh()
+    width = -(-CELL_CHUNK // n_devices(mesh)) * n_devices(mesh)  # cells per call, a multiple of the devices
     for cells in groups.values():
         first = setups[cells[0]]
         points = grid_points(first["env"].arena, first["spacing"])
-        for start in range(0, len(cells), CELL_CHUNK):
-            chunk = cells[start:start + CELL_CHUNK]
-            rows = chunk + [chunk[0]] * (CELL_CHUNK - len(chunk)) if len(cells) > CELL_CHUNK else chunk
+        for start in range(0, len(cells), width):
+            chunk = cells[start:start + width]
+            size = width if len(cells) > width else -(-len(chunk) // n_devices(mesh)) * n_devices(mesh)
+            rows = chunk + [chunk[0]] * (size - len(chunk))
             stack = lambda *xs: np.stack([np.asarray(x) for x in xs])  # noqa: E731
             envs = jax.tree.map(stack, *[setups[i]["env"].arrays() for i in rows])
             included = np.stack([np.asarray(grid_included(setups[i]["env"].arrays(), points, setups[i]["clearance"]))
@@ -80,13 +84,26 @@ def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Calla
             methods = jax.tree.map(stack, *[setups[i]["method"] for i in rows])
             sensors = jax.tree.map(stack, *[setups[i]["sensor"] for i in rows])
             keys = stack(*[setups[i]["key"] for i in rows])
-            out = map_cells(envs, points, included, methods, sensors, keys)
+            if mesh is None:
+                out = map_cells(envs, points, included, methods, sensors, keys)
+            else:  # each device evaluates its own cells, with the one-device per-cell program
+                out = over_devices(_cells_on_device, mesh, 1, points, envs, included, methods, sensors, keys)
             for k in sums:
                 sums[k][chunk] = np.asarray(getattr(out, k))[:len(chunk)]
             if progress is not None:
                 progress(len(chunk), n)
-    programs = map_cells._cache_size() - compiled
+    programs = _programs() - compiled
     return _dataset(spec, sums, programs, xr)
+
+
+def _cells_on_device(points, envs, included, methods, sensors, keys):
+    """`map_cells` with the shared grid first (`batching.over_devices` replicates the first argument)."""
+    return map_cells(envs, points, included, methods, sensors, keys)
+
+
+def _programs() -> int:
+    """Programs compiled so far for cells (one device, or split over the local devices)."""
+    return map_cells._cache_size() + over_devices._cache_size()
 
 
 def _dataset(spec: SweepSpec, sums: dict, programs: int, xr):

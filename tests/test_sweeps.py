@@ -102,3 +102,31 @@ def test_the_cli_writes_netcdf_csv_and_the_file_and_load_sweep_reads_them(tmp_pa
     assert len(rows) == 3 and rows[0].startswith("d,seed,spacing,env,method,gt45_pct")
     with pytest.raises(InputError, match="sweep.nc"):
         delvjax.load_sweep(tmp_path)
+
+
+FOUR = """
+import sys, numpy as np, jax
+from delvjax.sweep_spec import parse_sweep
+from delvjax.sweeps import run_sweep
+assert jax.local_device_count() == 4
+ds = run_sweep(parse_sweep(sys.argv[2]))
+np.savez(sys.argv[1], **{k: ds[k].values for k in ds.data_vars})
+"""
+TINY = "[axes]\nd = [30, 60]\nseed = [0, 1, 2]\nbearing_noise_deg = [2.0]\nspacing = [150]\n"
+
+
+def test_cells_split_over_four_devices_give_the_one_device_numbers(tmp_path):
+    """6 cells over 4 forced host devices (padded to 8, two a device): every metric bitwise equal."""
+    import os
+    import subprocess
+    import sys
+
+    out = tmp_path / "four.npz"
+    env = dict(os.environ, XLA_FLAGS="--xla_force_host_platform_device_count=4", JAX_PLATFORMS="cpu")
+    run = subprocess.run([sys.executable, "-c", FOUR, str(out), TINY], env=env,
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr[-2000:]
+    four = np.load(out)
+    one = sweeps.run_sweep(parse_sweep(TINY))
+    for name in one.data_vars:
+        assert np.array_equal(one[name].values, four[name], equal_nan=True), name
