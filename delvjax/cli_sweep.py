@@ -40,11 +40,11 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     n = len(spec.cells())
     with ProgressBar("cell", 0) as bar:
-        ds = run_sweep(spec, max_points=args.max_points, progress=bar,
+        ds = run_sweep(spec, max_points=args.max_points, progress=bar, out=out,
                        announce=lambda: progress(f"sweep of {n} cells ({' x '.join(map(str, spec.shape))}: "
                                                  f"{', '.join(spec.axes)}) ..."))
-    progress(f"done in {time.perf_counter() - t0:.1f} s: {n} cells, {ds.attrs['programs_compiled']} program(s) "
-             "compiled")
+    progress(f"done in {time.perf_counter() - t0:.1f} s: {n} cells ({ds.attrs['cells_reused']} finished before), "
+             f"{ds.attrs['programs_compiled']} program(s) compiled")
     paths = save_sweep(ds, out)
     print("wrote " + ", ".join(str(p) for p in paths))
     return 0

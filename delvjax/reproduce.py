@@ -27,7 +27,8 @@ from .core.errors import InputError
 from .io import check_out_dir, write_json
 from .study import STUDY_FILE, Settings, StudyContext, StudyRecord, compile_seconds, settings_record, versions
 
-def _package_sources() -> list[Path]:
+def package_sources() -> list[Path]:
+    """Every source file of the delvjax package (study hashes, sweep cell digests)."""
     root = Path(__file__).resolve().parent
     return sorted(p for p in root.rglob("*.py") if "__pycache__" not in p.parts)
 
@@ -54,7 +55,7 @@ def study_hash(module, settings: Settings) -> str:
     folder = Path(module.__file__).parent
     own = Path(module.__file__)
     files = [own, *sorted(_sibling_imports(own) | {folder / "common.py"} | set(folder.glob("thesis*.py")))]
-    for path in files + _package_sources():
+    for path in files + package_sources():
         if path.is_file():
             h.update(path.name.encode())
             h.update(path.read_bytes())

@@ -11,6 +11,8 @@ import numpy as np
 
 from . import api
 from .core.batching import local_mesh, n_devices, over_devices
+from .cell_store import cell_digest, code_digest, load_cells, save_cells
+from .core import cells as core_cells
 from .core.cells import map_cells
 from .core.errors import InputError
 from .core.maps import grid_included, grid_points
@@ -21,6 +23,7 @@ from .sweep_spec import SweepSpec
 if TYPE_CHECKING:
     import xarray
 
+SUMS = ("points", "invalid", "gt45", "gt90", "error_sum", "error_sq_sum")  # per cell, see core.cells.CellMetrics
 CELL_CHUNK = 64  # cells per call of a group's program (the last chunk padded): bounds memory
 FILES = ("sweep.nc", "sweep.csv", "sweep.toml")
 
@@ -54,19 +57,32 @@ def _group_key(req: dict) -> tuple:
 
 
 def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Callable[[int, int], None] | None = None,
-              announce: Callable[[], None] | None = None) -> xarray.Dataset:
+              announce: Callable[[], None] | None = None, out: str | Path | None = None) -> xarray.Dataset:
     """Every cell of `spec`: metrics as an `xarray.Dataset` (one dimension per axis). Every cell is
-    validated before any work; `announce()` is called then; `progress(done, total)` after each chunk."""
+    validated before any work; `announce()` is called then; `progress(done, total)` after each chunk.
+    With `out`, finished chunks are kept in out/.cells and cells found there are not computed again
+    (`cell_store`: a killed or changed sweep resumes)."""
     import xarray as xr
 
     setups = _cell_setups(spec, max_points)
+    n = len(setups)
+    sums = {k: np.zeros(n) for k in SUMS}
+    digests, todo = [""] * n, list(range(n))
+    if out is not None:
+        code = code_digest()
+        digests = [cell_digest(req, code) for req in setups]
+        done = load_cells(Path(out))
+        todo = [i for i in range(n) if digests[i] not in done]
+        for i in set(range(n)) - set(todo):
+            for k in SUMS:
+                sums[k][i] = done[digests[i]][k]
     if announce is not None:
         announce()
+    if progress is not None and len(todo) < n:
+        progress(n - len(todo), n)
     groups: dict[tuple, list[int]] = {}
-    for i, req in enumerate(setups):
-        groups.setdefault(_group_key(req), []).append(i)
-    n = len(setups)
-    sums = {k: np.zeros(n) for k in ("points", "invalid", "gt45", "gt90", "error_sum", "error_sq_sum")}
+    for i in todo:
+        groups.setdefault(_group_key(setups[i]), []).append(i)
     compiled = _programs()
     mesh = local_mesh()
     width = -(-CELL_CHUNK // n_devices(mesh)) * n_devices(mesh)  # cells per call, a multiple of the devices
@@ -85,15 +101,18 @@ def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Calla
             sensors = jax.tree.map(stack, *[setups[i]["sensor"] for i in rows])
             keys = stack(*[setups[i]["key"] for i in rows])
             if mesh is None:
-                out = map_cells(envs, points, included, methods, sensors, keys)
+                res = map_cells(envs, points, included, methods, sensors, keys)
             else:  # each device evaluates its own cells, with the one-device per-cell program
-                out = over_devices(_cells_on_device, mesh, 1, points, envs, included, methods, sensors, keys)
+                res = over_devices(_cells_on_device, mesh, 1, points, envs, included, methods, sensors, keys)
             for k in sums:
-                sums[k][chunk] = np.asarray(getattr(out, k))[:len(chunk)]
+                sums[k][chunk] = np.asarray(getattr(res, k))[:len(chunk)]
+            if out is not None:
+                save_cells(Path(out), [digests[i] for i in chunk], {k: sums[k][chunk] for k in SUMS})
             if progress is not None:
                 progress(len(chunk), n)
-    programs = _programs() - compiled
-    return _dataset(spec, sums, programs, xr)
+    ds = _dataset(spec, sums, _programs() - compiled, xr)
+    ds.attrs["cells_reused"] = n - len(todo)
+    return ds
 
 
 def _cells_on_device(points, envs, included, methods, sensors, keys):
@@ -103,7 +122,7 @@ def _cells_on_device(points, envs, included, methods, sensors, keys):
 
 def _programs() -> int:
     """Programs compiled so far for cells (one device, or split over the local devices)."""
-    return map_cells._cache_size() + over_devices._cache_size()
+    return core_cells.map_cells._cache_size() + over_devices._cache_size()
 
 
 def _dataset(spec: SweepSpec, sums: dict, programs: int, xr):

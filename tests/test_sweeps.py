@@ -94,7 +94,7 @@ def test_the_cli_writes_netcdf_csv_and_the_file_and_load_sweep_reads_them(tmp_pa
     path.write_text("[axes]\nd = [40, 80]\nseed = [3]\nspacing = [200]\n")
     out = tmp_path / "out"
     assert main(["sweep", str(path), "--out", str(out)]) == 0
-    assert sorted(p.name for p in out.iterdir()) == ["sweep.csv", "sweep.nc", "sweep.toml"]
+    assert sorted(p.name for p in out.iterdir()) == [".cells", "sweep.csv", "sweep.nc", "sweep.toml"]
     ds = delvjax.load_sweep(out)
     assert dict(ds.sizes) == {"env": 1, "method": 1, "spacing": 1, "seed": 1, "d": 2} or ds.sizes["d"] == 2
     assert ds.attrs["sweep_toml"] == path.read_text() and "jax_version" in ds.attrs
@@ -130,3 +130,30 @@ def test_cells_split_over_four_devices_give_the_one_device_numbers(tmp_path):
     one = sweeps.run_sweep(parse_sweep(TINY))
     for name in one.data_vars:
         assert np.array_equal(one[name].values, four[name], equal_nan=True), name
+
+
+def test_a_killed_sweep_resumes_and_a_changed_file_computes_only_its_new_cells(tmp_path, monkeypatch):
+    text = "[axes]\nd = [30, 60]\nseed = [0, 1]\nspacing = [150]\n"
+    monkeypatch.setattr(sweeps, "CELL_CHUNK", 2)
+    real, calls = sweeps.map_cells, []
+
+    def counted(envs, points, included, methods, sensors, keys):
+        calls.append(len(keys))
+        if len(calls) == 2 and kill:
+            raise KeyboardInterrupt  # killed after the first chunk
+        return real(envs, points, included, methods, sensors, keys)
+
+    monkeypatch.setattr(sweeps, "map_cells", counted)
+    kill, out = True, tmp_path / "out"
+    with pytest.raises(KeyboardInterrupt):
+        sweeps.run_sweep(parse_sweep(text), out=out)
+    assert len(list((out / ".cells").glob("*.npz"))) == 1  # the finished chunk, nothing partial
+    kill, calls[:] = False, []
+    resumed = sweeps.run_sweep(parse_sweep(text), out=out)
+    assert calls == [2] and resumed.attrs["cells_reused"] == 2
+    fresh = sweeps.run_sweep(parse_sweep(text))
+    for name in fresh.data_vars:
+        assert np.array_equal(fresh[name].values, resumed[name].values, equal_nan=True), name
+    calls[:] = []
+    changed = sweeps.run_sweep(parse_sweep(text.replace("[30, 60]", "[30, 60, 90]")), out=out)
+    assert calls == [2] and changed.attrs["cells_reused"] == 4  # only d = 90 (two seeds) is new
