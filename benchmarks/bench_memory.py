@@ -13,10 +13,9 @@ The last column is the same run with one chunk for the whole grid ("-" above 1e5
 from __future__ import annotations
 
 import argparse
-import json
 import math
-import subprocess
-import sys
+
+from child import run_child
 
 CHILD = r"""
 import json, resource, sys, time
@@ -39,10 +38,7 @@ print(json.dumps({"points": int(vm.points.shape[0]), "seconds": times[1], "compi
 
 
 def run(n: float, method: str, batch: int) -> dict:
-    out = subprocess.run([sys.executable, "-c", CHILD, str(n), method, str(batch)], capture_output=True, text=True)
-    if out.returncode != 0:
-        raise SystemExit(out.stderr[-3000:])
-    return json.loads(out.stdout.strip().splitlines()[-1])
+    return run_child(CHILD, n, method, batch)
 
 
 def main() -> None:

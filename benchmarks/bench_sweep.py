@@ -13,10 +13,9 @@ machine the same script measures the GPU (one device). Catchment sweeps are not 
 from __future__ import annotations
 
 import argparse
-import json
 import os
-import subprocess
-import sys
+
+from child import run_child
 
 CHILD = r"""
 import json, sys, time
@@ -40,11 +39,7 @@ print(json.dumps({"devices": jax.local_device_count(), "platform": jax.devices()
 
 
 def run(devices: int, seeds: int) -> dict:
-    env = dict(os.environ, XLA_FLAGS=f"--xla_force_host_platform_device_count={devices}", DELVJAX_CACHE_DIR="")
-    out = subprocess.run([sys.executable, "-c", CHILD, str(seeds)], env=env, capture_output=True, text=True)
-    if out.returncode != 0:
-        raise SystemExit(out.stderr[-3000:])
-    return json.loads(out.stdout.strip().splitlines()[-1])
+    return run_child(CHILD, seeds, XLA_FLAGS=f"--xla_force_host_platform_device_count={devices}", DELVJAX_CACHE_DIR="")
 
 
 def main() -> None:
