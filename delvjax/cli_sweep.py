@@ -48,3 +48,37 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     paths = save_sweep(ds, out)
     print("wrote " + ", ".join(str(p) for p in paths))
     return 0
+
+
+def add_plot_sweep(sub) -> None:
+    p = sub.add_parser("plot-sweep", help="heat maps or line plots (95 % intervals over seeds) of a finished sweep",
+                       description="Draw a metric of a sweep folder over one axis (--x: lines with 95 % intervals "
+                                   "over the seeds) or two (--x and --y: heat maps, mean over the seeds); one panel "
+                                   "per combination of the remaining axes. Writes the figure and a CSV of the "
+                                   "numbers drawn (same name, .csv).")
+    p.add_argument("dir", help="a folder written by `delvjax sweep`")
+    p.add_argument("--x", required=True, help="axis along x")
+    p.add_argument("--y", default=None, help="axis along y (a heat map)")
+    p.add_argument("--metric", default="mean_error_deg", help="metric to draw (default mean_error_deg)")
+    p.add_argument("--out", default=None, help="figure file (.png, .pdf or .svg; default DIR/METRIC.png)")
+    p.set_defaults(func=cmd_plot_sweep)
+
+
+def cmd_plot_sweep(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from .cli_args import FIGURE
+    from .io import check_output_path, output_set
+    from .plots_sweep import check_plot, sweep_figure
+    from .sweeps import load_sweep
+
+    ds = load_sweep(args.dir)
+    check_plot(ds, args.x, args.y, args.metric)
+    fig_path = check_output_path(args.out or Path(args.dir) / f"{args.metric}.png", "--out", FIGURE)
+    csv_path = fig_path.with_suffix(".csv")
+    fig, rows = sweep_figure(ds, args.x, args.y, args.metric)
+    with output_set() as files:
+        files.figure(fig, fig_path, "--out")
+        files.rows_csv(csv_path, rows, "--out")
+    print(f"wrote {fig_path}, {csv_path}")
+    return 0

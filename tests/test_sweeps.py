@@ -157,3 +157,30 @@ def test_a_killed_sweep_resumes_and_a_changed_file_computes_only_its_new_cells(t
     calls[:] = []
     changed = sweeps.run_sweep(parse_sweep(text.replace("[30, 60]", "[30, 60, 90]")), out=out)
     assert calls == [2] and changed.attrs["cells_reused"] == 4  # only d = 90 (two seeds) is new
+
+
+def test_sweep_figures_heat_maps_and_lines_with_intervals_over_seeds(small, tmp_path):
+    from delvjax.plots_sweep import check_plot, sweep_figure
+
+    fig, rows = sweep_figure(small, "d", "bearing_noise_deg", "gt45_pct")  # one panel per method
+    assert len([a for a in fig.axes if a.get_visible() and a.get_title()]) == 2 and len(rows) == 2 * 2 * 2
+    cell = small.gt45_pct.sel({"method": "alv", "d": 60, "bearing_noise_deg": 3.0}).values.mean()
+    assert [r["gt45_pct"] for r in rows if r["panel"] == "method=alv" and r["d"] == 60
+            and r["bearing_noise_deg"] == 3.0] == [pytest.approx(cell)]
+    _, lines = sweep_figure(small, "d", None, "mean_error_deg")  # two seeds: a finite 95 % interval
+    assert len(lines) == 2 * 2 * 2 and all(np.isfinite(r["ci95_half"]) for r in lines)
+    for args, flag in [(("dd", None, "gt45_pct"), "--x"), (("d", "d", "gt45_pct"), "--y"), (("d", None, "x"), "--metric")]:
+        with pytest.raises(InputError) as exc:
+            check_plot(small, *args)
+        assert exc.value.field == flag
+
+
+def test_plot_sweep_writes_the_figure_and_its_numbers(tmp_path, capsys):
+    path = tmp_path / "s.toml"
+    path.write_text("[axes]\nd = [40, 80]\nseed = [0, 1]\nspacing = [200]\n")
+    out = tmp_path / "out"
+    assert main(["sweep", str(path), "--out", str(out)]) == 0
+    assert main(["plot-sweep", str(out), "--x", "d", "--metric", "gt45_pct"]) == 0
+    assert (out / "gt45_pct.png").stat().st_size > 1000 and len((out / "gt45_pct.csv").read_text().splitlines()) == 3
+    assert main(["plot-sweep", str(out), "--x", "levels"]) == 2
+    assert "--x: is not an axis" in capsys.readouterr().err
