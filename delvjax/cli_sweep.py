@@ -20,7 +20,36 @@ def add_sweep(sub) -> None:
     p.add_argument("--example", action="store_true", help="print a documented example sweep file and exit")
     p.add_argument("--max-points", type=int, default=MAX_POINTS,
                    help=f"refuse a cell of more grid points than this (default {MAX_POINTS})")
+    g = p.add_argument_group("several processes or machines (jax.distributed; docs/sweeps.md)")
+    g.add_argument("--coordinator", default=None, metavar="HOST:PORT", help="address of process 0")
+    g.add_argument("--num-processes", type=int, default=None, help="number of processes")
+    g.add_argument("--process-id", type=int, default=None, help="this process, 0 .. num-processes - 1")
+    g.add_argument("--distributed", action="store_true",
+                   help="let jax.distributed.initialize() read the cluster (SLURM, Open MPI) from the environment")
     p.set_defaults(func=cmd_sweep)
+
+
+def start_processes(args: argparse.Namespace) -> None:
+    """Join the other processes (`jax.distributed.initialize`) before any JAX work, if asked to."""
+    given = [args.coordinator, args.num_processes, args.process_id]
+    if not args.distributed and all(v is None for v in given):
+        return
+    if not args.distributed:
+        if any(v is None for v in given):
+            raise InputError("--coordinator", args.coordinator, "needs --num-processes and --process-id too")
+        host, _, port = args.coordinator.rpartition(":")
+        if not host or not port.isdigit():
+            raise InputError("--coordinator", args.coordinator, "must be HOST:PORT")
+        if args.num_processes < 1:
+            raise InputError("--num-processes", args.num_processes, "must be >= 1")
+        if not 0 <= args.process_id < args.num_processes:
+            raise InputError("--process-id", args.process_id, f"must be in 0..{args.num_processes - 1}")
+    import jax
+
+    jax.config.update("jax_cpu_collectives_implementation", "gloo")  # CPU processes exchange results
+    kw = {} if args.distributed else dict(coordinator_address=args.coordinator, num_processes=args.num_processes,
+                                          process_id=args.process_id)
+    jax.distributed.initialize(**kw)
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
@@ -37,12 +66,19 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         raise InputError("--out", None, "give an output folder")
     spec = read_sweep(args.file)
     out = check_out_dir(args.out)
+    start_processes(args)
+    import jax
+
+    lead = jax.process_index() == 0  # process 0 reports and writes
     t0 = time.perf_counter()
     n = len(spec.cells())
-    with ProgressBar("cell", 0) as bar:
+    with ProgressBar("cell", 0 if lead else n) as bar:
         ds = run_sweep(spec, max_points=args.max_points, progress=bar, out=out,
-                       announce=lambda: progress(f"sweep of {n} cells ({' x '.join(map(str, spec.shape))}: "
-                                                 f"{', '.join(spec.axes)}) ..."))
+                       announce=lambda: lead and progress(f"sweep of {n} cells ({' x '.join(map(str, spec.shape))}: "
+                                                          f"{', '.join(spec.axes)}) on {jax.process_count()} "
+                                                          f"process(es), {jax.device_count()} device(s) ..."))
+    if not lead:
+        return 0
     progress(f"done in {time.perf_counter() - t0:.1f} s: {n} cells ({ds.attrs['cells_reused']} finished before), "
              f"{ds.attrs['programs_compiled']} program(s) compiled")
     paths = save_sweep(ds, out)
@@ -51,7 +87,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
 
 
 def add_plot_sweep(sub) -> None:
-    p = sub.add_parser("plot-sweep", help="heat maps or line plots (95 % intervals over seeds) of a finished sweep",
+    p = sub.add_parser("plot-sweep", help="heat maps or line plots (95 %% intervals over seeds) of a finished sweep",
                        description="Draw a metric of a sweep folder over one axis (--x: lines with 95 % intervals "
                                    "over the seeds) or two (--x and --y: heat maps, mean over the seeds); one panel "
                                    "per combination of the remaining axes. Writes the figure and a CSV of the "

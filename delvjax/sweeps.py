@@ -13,7 +13,7 @@ from . import api
 from .core.batching import local_mesh, n_devices, over_devices
 from .cell_store import cell_digest, code_digest, load_cells, save_cells
 from .core import cells as core_cells
-from .core.cells import map_cells
+from .core.cells import CellMetrics, map_cells
 from .core.errors import InputError
 from .core.maps import grid_included, grid_points
 from .io import output_set
@@ -86,33 +86,54 @@ def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Calla
     compiled = _programs()
     mesh = local_mesh()
     width = -(-CELL_CHUNK // n_devices(mesh)) * n_devices(mesh)  # cells per call, a multiple of the devices
-    for cells in groups.values():
-        first = setups[cells[0]]
-        points = grid_points(first["env"].arena, first["spacing"])
-        for start in range(0, len(cells), width):
-            chunk = cells[start:start + width]
-            size = width if len(cells) > width else -(-len(chunk) // n_devices(mesh)) * n_devices(mesh)
-            rows = chunk + [chunk[0]] * (size - len(chunk))
-            stack = lambda *xs: np.stack([np.asarray(x) for x in xs])  # noqa: E731
-            envs = jax.tree.map(stack, *[setups[i]["env"].arrays() for i in rows])
-            included = np.stack([np.asarray(grid_included(setups[i]["env"].arrays(), points, setups[i]["clearance"]))
-                                 for i in rows])
-            methods = jax.tree.map(stack, *[setups[i]["method"] for i in rows])
-            sensors = jax.tree.map(stack, *[setups[i]["sensor"] for i in rows])
-            keys = stack(*[setups[i]["key"] for i in rows])
-            if mesh is None:
-                res = map_cells(envs, points, included, methods, sensors, keys)
-            else:  # each device evaluates its own cells, with the one-device per-cell program
-                res = over_devices(_cells_on_device, mesh, 1, points, envs, included, methods, sensors, keys)
-            for k in sums:
-                sums[k][chunk] = np.asarray(getattr(res, k))[:len(chunk)]
-            if out is not None:
-                save_cells(Path(out), [digests[i] for i in chunk], {k: sums[k][chunk] for k in SUMS})
-            if progress is not None:
-                progress(len(chunk), n)
+    jobs = [(cells[start:start + width], width if len(cells) > width else
+             -(-len(cells[start:start + width]) // n_devices(mesh)) * n_devices(mesh))
+            for cells in groups.values() for start in range(0, len(cells), width)]
+    mine = jobs[jax.process_index()::jax.process_count()]  # several processes: every P-th chunk is ours
+    for chunk, size in mine:
+        res = _evaluate(setups, chunk + [chunk[0]] * (size - len(chunk)), mesh)
+        for k in sums:
+            sums[k][chunk] = np.asarray(getattr(res, k))[:len(chunk)]
+        if out is not None:
+            save_cells(Path(out), [digests[i] for i in chunk], {k: sums[k][chunk] for k in SUMS})
+        if progress is not None:
+            progress(len(chunk) * jax.process_count(), n)
+    if jax.process_count() > 1:
+        sums = _merge(sums, [i for chunk, _ in mine for i in chunk])
     ds = _dataset(spec, sums, _programs() - compiled, xr)
     ds.attrs["cells_reused"] = n - len(todo)
     return ds
+
+
+def _evaluate(setups: list[dict], rows: list[int], mesh) -> CellMetrics:
+    """The cells `rows` (one shape) as one call of their program, split over `mesh`'s devices if any."""
+    points = grid_points(setups[rows[0]]["env"].arena, setups[rows[0]]["spacing"])
+    stack = lambda *xs: np.stack([np.asarray(x) for x in xs])  # noqa: E731
+    envs = jax.tree.map(stack, *[setups[i]["env"].arrays() for i in rows])
+    included = np.stack([np.asarray(grid_included(setups[i]["env"].arrays(), points, setups[i]["clearance"]))
+                         for i in rows])
+    methods = jax.tree.map(stack, *[setups[i]["method"] for i in rows])
+    sensors = jax.tree.map(stack, *[setups[i]["sensor"] for i in rows])
+    keys = stack(*[setups[i]["key"] for i in rows])
+    if mesh is None:
+        return map_cells(envs, points, included, methods, sensors, keys)
+    # each device evaluates its own cells, with the one-device per-cell program
+    return over_devices(_cells_on_device, mesh, 1, points, envs, included, methods, sensors, keys)
+
+
+def _merge(sums: dict, mine: list[int]) -> dict:
+    """Every process's cells (`jax.distributed`): gathered, each cell from the process that computed it."""
+    from jax.experimental import multihost_utils
+
+    owned = np.zeros(len(sums["points"]), bool)
+    owned[mine] = True
+    table = np.stack([sums[k] for k in SUMS])
+    tables = multihost_utils.process_allgather(table)  # (P, metrics, cells)
+    owners = multihost_utils.process_allgather(owned)  # (P, cells)
+    merged = table.copy()
+    for p in range(tables.shape[0]):  # a few processes
+        merged[:, owners[p]] = tables[p][:, owners[p]]
+    return {k: merged[i] for i, k in enumerate(SUMS)}
 
 
 def _cells_on_device(points, envs, included, methods, sensors, keys):

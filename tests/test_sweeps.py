@@ -184,3 +184,12 @@ def test_plot_sweep_writes_the_figure_and_its_numbers(tmp_path, capsys):
     assert (out / "gt45_pct.png").stat().st_size > 1000 and len((out / "gt45_pct.csv").read_text().splitlines()) == 3
     assert main(["plot-sweep", str(out), "--x", "levels"]) == 2
     assert "--x: is not an axis" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", [None, "envs", "vector-map", "catchment", "success-rate", "trajectories",
+                                     "reproduce", "sweep", "plot-sweep"])
+def test_every_help_text_prints(command, capsys):
+    """argparse %-formats help strings: a bare "95 %" once broke `delvjax --help`."""
+    with pytest.raises(SystemExit) as exc:
+        main([command, "--help"] if command else ["--help"])
+    assert exc.value.code == 0 and "usage: delvjax" in capsys.readouterr().out
