@@ -135,8 +135,7 @@ def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", sta
     check_size(count * (max_steps + 1), 100 * positive_int(max_points, "max_points"), "max_steps", max_steps,
                "path point")
     if starts is None:
-        n = n_starts
-        pts, heads, placed = release_points(env.arrays(), k_start, n, None, clearance, 2.0 * home_radius, sensor.d)
+        pts, heads, placed = release_points(env.arrays(), k_start, count, None, clearance, 2.0 * home_radius, sensor.d)
         if not bool(np.all(np.asarray(placed))):
             raise InputError("n_starts", n_starts, "could not place release points clear of landmarks")
     else:

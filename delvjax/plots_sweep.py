@@ -47,6 +47,11 @@ def summarize(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return mean, stats.t.ppf(0.975, n - 1) * values.std(axis=-1, ddof=1) / np.sqrt(n)
 
 
+def _labels(ds, axis: str) -> list[str]:
+    """Tick labels of an axis's values (numbers in %g)."""
+    return [f"{v:g}" if isinstance(v, float) else str(v) for v in ds[axis].values.tolist()]
+
+
 def sweep_figure(ds, x: str, y: str | None, metric: str):
     """(figure, rows): heat maps of `metric` over (x, y), or lines over x with 95 % intervals over seeds."""
     items = panels(ds, x, y)
@@ -72,8 +77,8 @@ def sweep_figure(ds, x: str, y: str | None, metric: str):
         else:
             mean, _ = summarize(da.transpose(y, x, "seed").values)
             im = ax.imshow(mean, origin="lower", aspect="auto", cmap="viridis")
-            ax.set_xticks(range(ds.sizes[x]), [f"{v:g}" if isinstance(v, float) else str(v) for v in ds[x].values.tolist()])
-            ax.set_yticks(range(ds.sizes[y]), [f"{v:g}" if isinstance(v, float) else str(v) for v in ds[y].values.tolist()])
+            ax.set_xticks(range(ds.sizes[x]), _labels(ds, x))
+            ax.set_yticks(range(ds.sizes[y]), _labels(ds, y))
             ax.set_xlabel(x)
             ax.set_ylabel(y)
             fig.colorbar(im, ax=ax, label=metric)

@@ -29,6 +29,13 @@ def small():
     return sweeps.run_sweep(parse_sweep(SMALL))
 
 
+def cli_sweep(tmp_path, text: str) -> tuple[int, object, object]:
+    """Write `text` as a sweep file and run `delvjax sweep` into tmp_path/out: (exit, file, out)."""
+    path, out = tmp_path / "s.toml", tmp_path / "out"
+    path.write_text(text)
+    return main(["sweep", str(path), "--out", str(out)]), path, out
+
+
 def test_the_example_file_is_valid_and_printed(capsys):
     spec = parse_sweep(EXAMPLE)
     assert spec.shape == (2, 2, 4, 2, 3, 1, ) and list(spec.axes)[:3] == ["env", "method", "d"]
@@ -80,20 +87,16 @@ def test_a_bad_sweep_file_names_its_field(text, field):
 
 
 def test_an_incompatible_cell_is_refused_before_any_work(tmp_path, capsys):
-    path = tmp_path / "s.toml"
-    path.write_text("[axes]\nmethod = ['delv', 'alv']\nlevels = [2]\nspacing = [200]\n")
-    out = tmp_path / "out"
-    assert main(["sweep", str(path), "--out", str(out)]) == 2
+    code, _, out = cli_sweep(tmp_path, "[axes]\nmethod = ['delv', 'alv']\nlevels = [2]\nspacing = [200]\n")
+    assert code == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "method=alv" in err[0] and "levels: is not a setting of the method alv" in err[0]
     assert not out.exists()
 
 
 def test_the_cli_writes_netcdf_csv_and_the_file_and_load_sweep_reads_them(tmp_path, capsys):
-    path = tmp_path / "s.toml"
-    path.write_text("[axes]\nd = [40, 80]\nseed = [3]\nspacing = [200]\n")
-    out = tmp_path / "out"
-    assert main(["sweep", str(path), "--out", str(out)]) == 0
+    code, path, out = cli_sweep(tmp_path, "[axes]\nd = [40, 80]\nseed = [3]\nspacing = [200]\n")
+    assert code == 0
     assert sorted(p.name for p in out.iterdir()) == [".cells", "sweep.csv", "sweep.nc", "sweep.toml"]
     ds = delvjax.load_sweep(out)
     assert dict(ds.sizes) == {"env": 1, "method": 1, "spacing": 1, "seed": 1, "d": 2} or ds.sizes["d"] == 2
@@ -176,10 +179,8 @@ def test_sweep_figures_heat_maps_and_lines_with_intervals_over_seeds(small, tmp_
 
 
 def test_plot_sweep_writes_the_figure_and_its_numbers(tmp_path, capsys):
-    path = tmp_path / "s.toml"
-    path.write_text("[axes]\nd = [40, 80]\nseed = [0, 1]\nspacing = [200]\n")
-    out = tmp_path / "out"
-    assert main(["sweep", str(path), "--out", str(out)]) == 0
+    code, _, out = cli_sweep(tmp_path, "[axes]\nd = [40, 80]\nseed = [0, 1]\nspacing = [200]\n")
+    assert code == 0
     assert main(["plot-sweep", str(out), "--x", "d", "--metric", "gt45_pct"]) == 0
     assert (out / "gt45_pct.png").stat().st_size > 1000 and len((out / "gt45_pct.csv").read_text().splitlines()) == 3
     assert main(["plot-sweep", str(out), "--x", "levels"]) == 2

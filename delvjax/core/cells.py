@@ -47,7 +47,7 @@ def map_cells(envs: Env, points: Array, included: Array, methods: HomingMethod, 
         direction, valid = homing_directions(env, points, headings, key, sensor, method)
         err = angular_error_deg(direction, valid, points, env.home)
         count = lambda m: jnp.sum(m & inc).astype(jnp.int32)  # noqa: E731
-        e = jnp.where(inc, err, 0.0).astype(jnp.float64 if jax.config.jax_enable_x64 else jnp.float32)
+        e = jnp.where(inc, err, 0.0)
         return CellMetrics(points=count(jnp.ones_like(inc)), invalid=count(~valid), gt45=count(err > 45.0),
                            gt90=count(err > 90.0), error_sum=jnp.sum(e), error_sq_sum=jnp.sum(e * e))
 
