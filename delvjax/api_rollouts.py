@@ -61,13 +61,7 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         options, first_move, collisions, program)
     spacing = positive(spacing, "spacing")
-    if occlude is not None and hidden:
-        raise InputError("occlude", occlude, "cannot be combined with hidden")
-    if occlude is not None:
-        masks, combos = occlusion_masks(env, occlusion_count(occlude, env.n_landmarks))
-    else:
-        visible_mask(env, hidden)  # validates the indices
-        masks, combos = hidden_masks(env, hidden)
+    masks, combos = _masks(env, occlude, hidden)
     check_grid(env, spacing, clearance, max_points, copies=len(masks), what="trial")
     _announce(announce)
     return catchment_area(env, module, sensor, spacing=spacing, heading=heading, key=key, clearance=clearance,
@@ -91,17 +85,7 @@ def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", dis
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         options, first_move, collisions, program)
-    trials = positive_int(trials, "trials")
-    if isinstance(distances, (str, bytes)) or not hasattr(distances, "__len__") or len(distances) == 0:
-        raise InputError("distances", distances, "must be a non-empty list of distances in cm")
-    distances = [positive(v, "distances") for v in distances]
-    check_size(len(distances) * trials, max_points, "trials", trials, "trial")
-    corners = np.asarray(env.arena, float)[[[0, 1], [2, 1], [2, 3], [0, 3]]]
-    reach = float(np.max(np.hypot(*(corners - np.asarray(env.home, float)).T)))
-    for v in distances:
-        if v >= reach:
-            raise InputError("distances", v, f"must be < {reach:.0f} cm: no release point that far from home lies "
-                                             "in the arena")
+    distances, trials = _distances(env, distances, trials, max_points)
     visible = visible_mask(env, hidden)
     _announce(announce)
     return success_rate_trials(env, module, sensor, distances=distances, trials=trials, heading=heading, key=key,
@@ -146,6 +130,54 @@ def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", sta
     _announce(announce)
     return trajectory_trials(env, module, sensor, pts, heads, key=key, visible=visible, home_radius=home_radius,
                              max_steps=max_steps, lanes=lanes, first_move=first_move, collisions=collisions)
+
+
+def _masks(env: Env, occlude: int | None, hidden: list[int] | None) -> tuple[np.ndarray, list[tuple[int, ...]]]:
+    """The visibility masks (M, L) of `occlude=k` (every choice of k hidden landmarks) or of `hidden`."""
+    if occlude is not None and hidden:
+        raise InputError("occlude", occlude, "cannot be combined with hidden")
+    if occlude is not None:
+        return occlusion_masks(env, occlusion_count(occlude, env.n_landmarks))
+    visible_mask(env, hidden)  # validates the indices
+    return hidden_masks(env, hidden)
+
+
+def _distances(env: Env, distances: Sequence[float], trials: int, max_points: int, copies: int = 1) -> tuple[list[float], int]:
+    """Validated release distances (each < the farthest arena corner from home) and trials per distance."""
+    trials = positive_int(trials, "trials")
+    if isinstance(distances, (str, bytes)) or not hasattr(distances, "__len__") or len(distances) == 0:
+        raise InputError("distances", distances, "must be a non-empty list of distances in cm")
+    distances = [positive(v, "distances") for v in distances]
+    check_size(len(distances) * trials * copies, max_points, "trials", trials, "trial")
+    corners = np.asarray(env.arena, float)[[[0, 1], [2, 1], [2, 3], [0, 3]]]
+    reach = float(np.max(np.hypot(*(corners - np.asarray(env.home, float)).T)))
+    for v in distances:
+        if v >= reach:
+            raise InputError("distances", v, f"must be < {reach:.0f} cm: no release point that far from home lies "
+                                             "in the arena")
+    return distances, trials
+
+
+def rollout_request(env: str | Path | Env, kind: str = "catchment", method: str | HomingMethod = "delv",
+                    spacing: float = SPACING, seed: int = 0, occlude: int | None = None, max_steps: int = MAX_STEPS,
+                    home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE, first_move: str = "homing",
+                    collisions: str = "ignore", distances: Sequence[float] = DEFAULT_DISTANCES,
+                    trials: int = TRIALS_PER_DISTANCE, max_points: int = MAX_POINTS, **options) -> dict:
+    """Validate one rollout configuration of a sweep (docs/sweeps.md) as `catchment` (kind "catchment")
+    or `success_rate` (kind "success-rate", under every mask of `occlude`) validate theirs, before any
+    work; release headings are random from `seed`. Returns the setup (env, method, sensor, key, masks,
+    ...) that `core.rollouts.cells` evaluates."""
+    env, module, sensor, _, key, max_steps, home_radius, _, clearance = _rollout_options(
+        env, method, max_steps, home_radius, DEFAULT_LANES, clearance, None, seed, options, first_move, collisions)
+    masks, _ = _masks(env, occlude, None)
+    if kind == "catchment":
+        spacing = positive(spacing, "spacing")
+        check_grid(env, spacing, clearance, max_points, copies=len(masks), what="trial")
+    else:
+        distances, trials = _distances(env, distances, trials, max_points, copies=len(masks))
+    return dict(kind=kind, env=env, method=module, sensor=sensor, key=key, masks=masks, spacing=spacing,
+                clearance=clearance, max_steps=max_steps, home_radius=home_radius, first_move=first_move,
+                collisions=collisions, distances=tuple(distances), trials=trials)
 
 
 def _announce(announce: Callable[[], None] | None) -> None:

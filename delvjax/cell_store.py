@@ -27,14 +27,13 @@ def code_digest() -> str:
 
 
 def cell_digest(req: dict, code: str) -> str:
-    """Digest of one cell's setup (`api.map_request`'s result) under `code`."""
+    """Digest of one cell's setup (`sweep_kinds.cell_setup`'s result: every leaf and setting) under `code`."""
     h = hashlib.sha256(code.encode())
-    leaves, treedef = jax.tree.flatten((req["env"].arrays(), req["method"], req["sensor"], req["key"]))
+    leaves, treedef = jax.tree.flatten({k: v.arrays() if hasattr(v, "arrays") else v for k, v in req.items()})
     h.update(str(treedef).encode())
     for leaf in leaves:
         a = np.asarray(leaf)
         h.update(a.dtype.str.encode() + str(a.shape).encode() + a.tobytes())
-    h.update(np.asarray([req["spacing"], req["clearance"]], np.float64).tobytes())
     return h.hexdigest()[:32]
 
 

@@ -12,12 +12,14 @@ from .limits import MAX_POINTS
 
 def add_sweep(sub) -> None:
     p = sub.add_parser("sweep", help="every combination of the axes of a sweep file (TOML), one program per shape",
-                       description="Evaluate every cell of a sweep file and write sweep.nc (xarray/netCDF), "
+                       description="Evaluate every cell of a sweep file (a vector map, a catchment or a success-rate table "
+                                   "per cell) and write sweep.nc (xarray/netCDF), "
                                    "sweep.csv (one row per cell) and sweep.toml into --out. "
                                    "`delvjax sweep --example` prints a documented example file.")
     p.add_argument("file", nargs="?", help="the sweep file (TOML)")
     p.add_argument("--out", default=None, help="output folder")
-    p.add_argument("--example", action="store_true", help="print a documented example sweep file and exit")
+    p.add_argument("--example", nargs="?", const="vector-map", default=None, choices=("vector-map", "catchment", "success-rate"),
+                   help="print a documented example sweep file of that kind (default vector-map) and exit")
     p.add_argument("--max-points", type=int, default=MAX_POINTS,
                    help=f"refuse a cell of more grid points than this (default {MAX_POINTS})")
     g = p.add_argument_group("several processes or machines (jax.distributed; docs/sweeps.md)")
@@ -53,12 +55,12 @@ def start_processes(args: argparse.Namespace) -> None:
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
-    from .sweep_spec import EXAMPLE, read_sweep
+    from .sweep_spec import EXAMPLES, read_sweep
     from .io import check_out_dir
     from .sweeps import run_sweep, save_sweep
 
     if args.example:
-        print(EXAMPLE, end="")
+        print(EXAMPLES[args.example], end="")
         return 0
     if args.file is None:
         raise InputError("file", None, "give a sweep file (or --example)")
@@ -71,7 +73,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
 
     lead = jax.process_index() == 0  # process 0 reports and writes
     t0 = time.perf_counter()
-    n = len(spec.cells())
+    n = spec.n_cells
     with ProgressBar("cell", 0 if lead else n) as bar:
         ds = run_sweep(spec, max_points=args.max_points, progress=bar, out=out,
                        announce=lambda: lead and progress(f"sweep of {n} cells ({' x '.join(map(str, spec.shape))}: "

@@ -7,16 +7,19 @@ import math
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Iterator
+
+import numpy as np
 
 from .core.errors import InputError
 
-KINDS = ("vector-map",)
-# axis -> what it sets (the public option of `delvjax.vector_map` of the same name)
-AXES = {
+KINDS = ("vector-map", "catchment", "success-rate")
+# axis -> what it sets (the public option of `delvjax.vector_map` / `catchment` / `success_rate` of the same name)
+MAP_AXES = {
     "env": "environment: preset name or JSON path",
     "method": "registry name",
     "spacing": "grid spacing, cm",
-    "seed": "seed of headings and noise, 0..2^32-1",
+    "seed": "seed of headings, release points and noise, 0..2^32-1",
     "d": "unit-movement step, cm",
     "levels": "DELV quantization levels Q (0 = continuous)",
     "n_heading": "DELV heading hypotheses",
@@ -27,9 +30,20 @@ AXES = {
     "odometry_turn_noise_deg": "sigma of the odometry's report of that turn, deg",
     "compass_noise_deg": "sigma of every compass reading, deg",
 }
-ROLLOUT_ONLY = ("motion_heading_noise_deg", "motion_step_noise", "max_steps", "home_radius", "first_move",
-                "collisions", "occlude", "trials")
-METRICS = {
+ROLLOUT_AXES = {
+    "occlude": "landmarks hidden while homing: every choice of k (the metrics pool the C(N, k) masks)",
+    "first_move": "homing | release (rollout rule)",
+    "collisions": "ignore | fail (rollout rule)",
+    "motion_heading_noise_deg": "sigma of the executed heading of every rollout move, deg",
+    "motion_step_noise": "sigma of every rollout move's length, fraction of d",
+    "home_radius": "success radius, cm",
+    "max_steps": "moves before a trial times out",
+}
+AXES = {**MAP_AXES, **ROLLOUT_AXES}
+KIND_AXES = {"vector-map": tuple(MAP_AXES), "catchment": tuple(AXES),
+             "success-rate": tuple(a for a in AXES if a != "spacing")}
+NAME_AXES = ("env", "method", "background", "first_move", "collisions")  # the axes whose values are strings
+ERROR_METRICS = {
     "gt45_pct": "% of grid points with angular error > 45 deg (Tables 5.1/5.2)",
     "gt90_pct": "% of grid points with angular error > 90 deg",
     "mean_error_deg": "mean angular error over the grid points, invalid = 180 deg",
@@ -37,10 +51,33 @@ METRICS = {
     "invalid_pct": "% of grid points without a homing direction",
     "points": "grid points evaluated",
 }
+CATCHMENT_METRICS = {
+    "catchment_pct": "% of released grid points whose rollout reaches home, mean over the masks (Tables 5.3/5.4)",
+    "catchment_min_pct": "the same under the worst mask",
+    "catchment_max_pct": "the same under the best mask",
+    "timeout_pct": "% of trials (points x masks) that ran out of moves",
+    "landmark_pct": "% of trials that ended inside a landmark (collisions = fail)",
+    "arena_pct": "% of trials that left the arena",
+    "mean_steps_success": "mean moves of the successful trials",
+}
+SUCCESS_METRICS = {
+    "success_pct": "% of placed trials that reach home, per release distance (Figs 4.10b, 5.7b)",
+    "success_ci95_lo_pct": "lower end of its 95 % Wilson interval",
+    "success_ci95_hi_pct": "upper end of its 95 % Wilson interval",
+    "placed": "trials placed per distance (over every mask)",
+}
+KIND_METRICS = {"vector-map": ERROR_METRICS,
+                "catchment": {**CATCHMENT_METRICS, **{k: v.replace("grid points", "first directions (points x masks)")
+                                                     for k, v in ERROR_METRICS.items()}},
+                "success-rate": SUCCESS_METRICS}
+METRICS = {**ERROR_METRICS, **CATCHMENT_METRICS, **SUCCESS_METRICS}
 DEFAULTS = {"env": ["env1"], "method": ["delv"], "spacing": [25.0], "seed": [0]}
+DISTANCES = tuple(float(v) for v in range(50, 451, 50))  # success-rate release distances, cm (core.rollouts)
+TRIALS = 100  # success-rate trials per distance
 
-EXAMPLE = '''# delvjax sweep file: every combination of the axes is one cell (docs/sweeps.md).
+EXAMPLES = {"vector-map": '''# delvjax sweep file: every combination of the axes is one cell (docs/sweeps.md).
 # Run: delvjax sweep this.toml --out results/sweep ; read: delvjax.load_sweep("results/sweep")
+# Other kinds: delvjax sweep --example catchment | success-rate
 
 [sweep]
 kind = "vector-map"                  # vector-map metrics of every cell
@@ -55,30 +92,76 @@ seed = { start = 0, stop = 2 }       # integer range, step 1 (default [0])
 # spacing = [25]                     # grid spacing, cm (default 25)
 # levels, n_heading, background, step_noise, turn_noise_deg, odometry_turn_noise_deg,
 # compass_noise_deg: the options of `delvjax vector-map` of the same name
-'''
+''',
+            "catchment": '''# delvjax sweep file: a catchment area per cell (docs/sweeps.md "Rollout sweeps").
+# Run: delvjax sweep this.toml --out results/catchment
+
+[sweep]
+kind = "catchment"                   # a rollout from every grid point of every cell (Tables 5.3/5.4)
+metrics = ["catchment_pct", "catchment_min_pct", "gt45_pct", "mean_steps_success"]
+
+[axes]
+env = ["env1"]
+method = ["delv", "alv"]
+occlude = [0, 1, 2]                  # every choice of k hidden landmarks; metrics pool the masks
+first_move = ["homing", "release"]   # rollout rules (docs/model.md section 5)
+collisions = ["ignore", "fail"]
+seed = [0, 1]
+# d, levels, the noise sigmas, motion_heading_noise_deg, motion_step_noise, home_radius,
+# max_steps and spacing: the options of `delvjax catchment` of the same name
+''',
+            "success-rate": '''# delvjax sweep file: success rate per release distance (docs/sweeps.md "Rollout sweeps").
+# Run: delvjax sweep this.toml --out results/success
+
+[sweep]
+kind = "success-rate"                # Figs 4.10b, 5.7b: a "distance_cm" dimension is added
+metrics = ["success_pct", "success_ci95_lo_pct", "success_ci95_hi_pct"]
+distances = [50, 150, 250, 350]      # cm from home (default 50, 100, ..., 450)
+trials = 50                          # release points per distance and cell (default 100)
+
+[axes]
+method = ["delv", "alv"]
+bearing_noise_deg = { start = 0, stop = 4, step = 2 }
+motion_heading_noise_deg = [0, 10]
+seed = [0, 1]
+'''}
+EXAMPLE = EXAMPLES["vector-map"]
 
 
 @dataclass(frozen=True)
 class SweepSpec:
-    """A validated sweep: axes in file order (name -> values), metrics, the file's text."""
+    """A validated sweep: axes in file order (name -> values), metrics, the file's text, and for
+    success-rate sweeps the release distances and trials per distance."""
 
     kind: str
     axes: dict[str, list]
     metrics: list[str]
     text: str
+    distances: tuple[float, ...] = DISTANCES
+    trials: int = TRIALS
 
-    def cells(self) -> list[dict]:
-        """Every combination of the axes (the last axis varies fastest)."""
+    def cells(self) -> Iterator[dict]:
+        """Every combination of the axes (the last axis varies fastest), one at a time."""
         names = list(self.axes)
-        return [dict(zip(names, combo)) for combo in itertools.product(*self.axes.values())]
+        return (dict(zip(names, combo)) for combo in itertools.product(*self.axes.values()))
+
+    def cell(self, i: int) -> dict:
+        """Cell `i` of `cells()`."""
+        index = np.unravel_index(i, self.shape)
+        return {name: values[int(j)] for (name, values), j in zip(self.axes.items(), index)}
+
+    @property
+    def n_cells(self) -> int:
+        return math.prod(self.shape)
 
     @property
     def shape(self) -> tuple[int, ...]:
         return tuple(len(v) for v in self.axes.values())
 
 
-def _values(name: str, raw) -> list:
-    field = f"axes.{name}"
+def _values(name: str, raw, field: str | None = None) -> list:
+    """An axis's values: a list, one value, or an inclusive range (`field` names it in errors)."""
+    field = field or f"axes.{name}"
     if isinstance(raw, dict):
         unknown = sorted(set(raw) - {"start", "stop", "step", "num"})
         if unknown or "start" not in raw or "stop" not in raw or ("step" in raw and "num" in raw):
@@ -106,9 +189,9 @@ def _values(name: str, raw) -> list:
     if len(set(map(repr, values))) != len(values):
         raise InputError(field, raw, "repeats a value")
     kinds = {type(v) for v in values} - {bool}
-    if name in ("env", "method", "background") and kinds != {str}:
+    if name in NAME_AXES and kinds != {str}:
         raise InputError(field, raw, "must be names (strings)")
-    if name not in ("env", "method", "background") and not kinds <= {int, float}:
+    if name not in NAME_AXES and not kinds <= {int, float}:
         raise InputError(field, raw, "must be numbers")
     return values
 
@@ -125,27 +208,44 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
     head, axes = data.get("sweep", {}), data.get("axes", {})
     if not isinstance(head, dict) or not isinstance(axes, dict):
         raise InputError("sweep", source, "[sweep] and [axes] must be tables")
-    for key in sorted(set(head) - {"kind", "metrics"}):
-        raise InputError(f"sweep.{key}", head[key], "unknown field (kind, metrics)")
+    for key in sorted(set(head) - {"kind", "metrics", "distances", "trials"}):
+        raise InputError(f"sweep.{key}", head[key], "unknown field (kind, metrics, distances, trials)")
     kind = head.get("kind", "vector-map")
     if kind not in KINDS:
-        raise InputError("sweep.kind", kind, f"must be one of {', '.join(KINDS)} (catchment and success-rate "
-                                             "sweeps are not implemented yet)")
-    metrics = head.get("metrics", list(METRICS))
+        raise InputError("sweep.kind", kind, f"must be one of {', '.join(KINDS)}")
+    for key in ("distances", "trials"):
+        if key in head and kind != "success-rate":
+            raise InputError(f"sweep.{key}", head[key], 'is a setting of kind = "success-rate" only')
+    known = KIND_METRICS[kind]
+    metrics = head.get("metrics", list(known))
     if not isinstance(metrics, list) or not metrics:
         raise InputError("sweep.metrics", metrics, "must be a non-empty list")
     for i, m in enumerate(metrics):
-        if m not in METRICS:
-            raise InputError(f"sweep.metrics[{i}]", m, f"unknown metric (choose from {', '.join(METRICS)})")
+        if m not in known:
+            other = [k for k in KINDS if m in KIND_METRICS[k]]
+            hint = f' (a metric of kind = "{other[0]}")' if other else ""
+            raise InputError(f"sweep.metrics[{i}]", m, f"unknown metric of kind = \"{kind}\"{hint} (choose from "
+                                                       f"{', '.join(known)})")
     for name in axes:
-        if name in ROLLOUT_ONLY:
-            raise InputError(f"axes.{name}", axes[name], "belongs to rollouts (not a vector-map sweep)")
         if name not in AXES:
             raise InputError(f"axes.{name}", axes[name], f"unknown axis (choose from {', '.join(AXES)})")
+        if name not in KIND_AXES[kind]:
+            users = [k for k in KINDS if name in KIND_AXES[k]]
+            raise InputError(f"axes.{name}", axes[name], f'is not an axis of kind = "{kind}" (an axis of kind = '
+                                                         f'{" or ".join(repr(k) for k in users)})')
     values = {name: _values(name, raw) for name, raw in axes.items()}
     for name, default in DEFAULTS.items():
-        values.setdefault(name, default)
-    return SweepSpec(kind=kind, axes=values, metrics=list(dict.fromkeys(metrics)), text=text)
+        if name in KIND_AXES[kind]:
+            values.setdefault(name, default)
+    extra = {}
+    if kind == "success-rate":
+        extra["distances"] = tuple(float(v) for v in _values("distances", head.get("distances", list(DISTANCES)),
+                                                               "sweep.distances"))
+        trials = head.get("trials", TRIALS)
+        if isinstance(trials, bool) or not isinstance(trials, int) or trials < 1:
+            raise InputError("sweep.trials", trials, "must be an integer >= 1")
+        extra["trials"] = trials
+    return SweepSpec(kind=kind, axes=values, metrics=list(dict.fromkeys(metrics)), text=text, **extra)
 
 
 def read_sweep(path: str | Path) -> SweepSpec:

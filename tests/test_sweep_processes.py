@@ -9,11 +9,14 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 
 import delvjax
 from delvjax.cli import main
 
 SWEEP = "[axes]\nmethod = ['delv', 'alv']\nd = [30, 60]\nseed = [0, 1]\nspacing = [200]\n"
+CATCHMENT = ("[sweep]\nkind = 'catchment'\n[axes]\nmethod = ['alv']\nocclude = [0, 1]\nseed = [0, 1, 2]\n"
+             "bearing_noise_deg = [4.0]\nspacing = [150]\n")
 
 
 def free_port() -> int:
@@ -22,9 +25,10 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
-def test_two_processes_give_the_one_process_numbers(tmp_path):
+@pytest.mark.parametrize("text", [SWEEP, CATCHMENT], ids=["vector-map", "catchment"])
+def test_two_processes_give_the_one_process_numbers(tmp_path, text):
     path = tmp_path / "s.toml"
-    path.write_text(SWEEP)
+    path.write_text(text)
     assert main(["sweep", str(path), "--out", str(tmp_path / "one")]) == 0
     port, two = free_port(), tmp_path / "two"
     env = dict(os.environ, JAX_PLATFORMS="cpu", DELVJAX_CACHE_DIR="")

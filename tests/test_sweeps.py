@@ -72,10 +72,18 @@ def test_the_numbers_do_not_depend_on_how_cells_are_chunked(small, monkeypatch):
     ("[axes]\nd = {start = 5, stop = 1}", "axes.d"),
     ("[axes]\nd = [1, 1]", "axes.d"),
     ("[axes]\nlevls = [1]", "axes.levls"),
-    ("[axes]\nmotion_step_noise = [0.1]", "axes.motion_step_noise"),
+    ("[axes]\nmotion_step_noise = [0.1]", "axes.motion_step_noise"),  # a rollout axis in a vector-map sweep
+    ("[sweep]\nkind = 'success-rate'\n[axes]\nspacing = [10]", "axes.spacing"),
     ("[axes]\nmethod = [1]", "axes.method"),
+    ("[axes]\nfirst_move = [1]", "axes.first_move"),
     ("[sweep]\nmetrics = ['catchment']", "sweep.metrics[0]"),
-    ("[sweep]\nkind = 'catchment'", "sweep.kind"),
+    ("[sweep]\nmetrics = ['catchment_pct']", "sweep.metrics[0]"),  # a catchment metric in a vector-map sweep
+    ("[sweep]\nkind = 'catchment'\nmetrics = ['success_pct']", "sweep.metrics[0]"),
+    ("[sweep]\nkind = 'catchments'", "sweep.kind"),
+    ("[sweep]\ntrials = 5", "sweep.trials"),
+    ("[sweep]\nkind = 'success-rate'\ntrials = 0", "sweep.trials"),
+    ("[sweep]\nkind = 'success-rate'\ndistances = []", "sweep.distances"),
+    ("[sweep]\nkind = 'success-rate'\ndistances = ['a']", "sweep.distances"),
     ("[sweep]\nmetric = ['gt45_pct']", "sweep.metric"),
     ("[axis]\nd = [1]", "axis"),
     ("d = [", "sweep"),
@@ -112,41 +120,49 @@ import sys, numpy as np, jax
 from delvjax.sweep_spec import parse_sweep
 from delvjax.sweeps import run_sweep
 assert jax.local_device_count() == 4
-ds = run_sweep(parse_sweep(sys.argv[2]))
-np.savez(sys.argv[1], **{k: ds[k].values for k in ds.data_vars})
+results = {}
+for i, text in enumerate(sys.argv[2:]):
+    ds = run_sweep(parse_sweep(text))
+    results.update({f"{i}/{k}": ds[k].values for k in ds.data_vars})
+np.savez(sys.argv[1], **results)
 """
 TINY = "[axes]\nd = [30, 60]\nseed = [0, 1, 2]\nbearing_noise_deg = [2.0]\nspacing = [150]\n"
+TINY_CATCHMENT = ("[sweep]\nkind = 'catchment'\n[axes]\nocclude = [0, 1]\nseed = [0, 1, 2]\n"
+                  "bearing_noise_deg = [4.0]\nmethod = ['alv']\nspacing = [150]\n")
 
 
 def test_cells_split_over_four_devices_give_the_one_device_numbers(tmp_path):
-    """6 cells over 4 forced host devices (padded to 8, two a device): every metric bitwise equal."""
+    """6 cells over 4 forced host devices (padded to 8, two a device): every metric bitwise equal,
+    for a vector-map and a catchment sweep."""
     import os
     import subprocess
     import sys
 
     out = tmp_path / "four.npz"
     env = dict(os.environ, XLA_FLAGS="--xla_force_host_platform_device_count=4", JAX_PLATFORMS="cpu")
-    run = subprocess.run([sys.executable, "-c", FOUR, str(out), TINY], env=env,
+    run = subprocess.run([sys.executable, "-c", FOUR, str(out), TINY, TINY_CATCHMENT], env=env,
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stderr[-2000:]
     four = np.load(out)
-    one = sweeps.run_sweep(parse_sweep(TINY))
-    for name in one.data_vars:
-        assert np.array_equal(one[name].values, four[name], equal_nan=True), name
+    for i, text in enumerate((TINY, TINY_CATCHMENT)):
+        one = sweeps.run_sweep(parse_sweep(text))
+        for name in one.data_vars:
+            assert np.array_equal(one[name].values, four[f"{i}/{name}"], equal_nan=True), name
+        assert i == 0 or 0 < float(one.catchment_pct.min()) < 100  # a catchment that can differ
 
 
 def test_a_killed_sweep_resumes_and_a_changed_file_computes_only_its_new_cells(tmp_path, monkeypatch):
     text = "[axes]\nd = [30, 60]\nseed = [0, 1]\nspacing = [150]\n"
     monkeypatch.setattr(sweeps, "CELL_CHUNK", 2)
-    real, calls = sweeps.map_cells, []
+    real, calls = sweeps.evaluate, []
 
-    def counted(envs, points, included, methods, sensors, keys):
-        calls.append(len(keys))
+    def counted(kind, setups, mesh, rows):
+        calls.append(len(setups))
         if len(calls) == 2 and kill:
             raise KeyboardInterrupt  # killed after the first chunk
-        return real(envs, points, included, methods, sensors, keys)
+        return real(kind, setups, mesh, rows)
 
-    monkeypatch.setattr(sweeps, "map_cells", counted)
+    monkeypatch.setattr(sweeps, "evaluate", counted)
     kill, out = True, tmp_path / "out"
     with pytest.raises(KeyboardInterrupt):
         sweeps.run_sweep(parse_sweep(text), out=out)

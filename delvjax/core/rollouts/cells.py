@@ -1,0 +1,145 @@
+"""Many rollout configurations ("cells") of one shape as one program: catchment and success-rate
+sweeps (docs/sweeps.md "Rollout sweeps").
+
+As `core.cells.map_cells` does for vector maps, cells that share every static field are stacked
+along a leading axis and run one after the other inside one compiled program (`lax.map`). Each
+cell's trials run through the lane scheduler of `catchment_area` / `success_rate_trials`
+(`lanes.run_block`, the same per-trial program), so a cell's outcomes are those of the single
+run with the same options, and do not depend on which cells share its chunk or device.
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+from jax import Array
+
+from ..maps import random_headings, stream_keys
+from ..metrics import angular_error_deg
+from ..sensing import record_home
+from .lanes import run_block
+from .release import release_points
+from .rules import ARENA, LANDMARK, SUCCESS, TIMEOUT, rollout_keys
+from .step import Rollout
+
+
+class RolloutCell(eqx.Module):
+    """One cell's traced setup (a sweep stacks C of them): the scene, method, sensor and seed key,
+    the visibility masks (M, L) of which the first `n_masks` are used (cells with other occlusion
+    counts share the program), the success radius and the two rules as flags."""
+
+    env: object
+    method: object
+    sensor: object
+    key: Array
+    masks: Array
+    n_masks: Array
+    radius: Array
+    homing_first: Array
+    collide: Array
+
+
+class CatchmentSums(eqx.Module):
+    """Per-cell counts and sums, (C,) each: released grid points (per mask), trials (points x masks),
+    successes in total and under the worst and best mask, failures by outcome, moves of the successful
+    trials, and the first directions' (the vector map under each mask) invalid count, errors > 45 and
+    > 90 degrees, sum and sum of squares of the errors (degrees; invalid = 180)."""
+
+    points: Array
+    trials: Array
+    successes: Array
+    success_min: Array
+    success_max: Array
+    timeout: Array
+    landmark: Array
+    arena: Array
+    steps_success: Array
+    invalid: Array
+    gt45: Array
+    gt90: Array
+    error_sum: Array
+    error_sq_sum: Array
+
+
+class SuccessSums(eqx.Module):
+    """Per-cell, per-distance counts, (C, D) each: trials placed (over every mask) and successes."""
+
+    placed: Array
+    successes: Array
+
+
+def _trials(cell: RolloutCell, starts, headings, key_index, mask_index, n_valid, max_steps: int, lanes: int):
+    """`run_trials`' block program for one cell's trials (the first `n_valid` are run)."""
+    k_home, k_roll, _ = rollout_keys(cell.key)
+    _, k_views, _ = stream_keys(cell.key)
+    rollout = Rollout(env=cell.env, home=record_home(cell.env, k_home, cell.sensor), method=cell.method,
+                      sensor=cell.sensor, key_index=key_index, mask_index=mask_index, masks=cell.masks, k_roll=k_roll,
+                      k_views=k_views, radius=cell.radius, max_steps=max_steps, homing_first=cell.homing_first,
+                      collide=cell.collide)
+    return run_block(rollout, starts, headings, n_valid, lanes)
+
+
+@partial(jax.jit, static_argnames=("max_steps", "lanes"))
+def catchment_cells(cells: RolloutCell, points: Array, included: Array, max_steps: int, lanes: int) -> CatchmentSums:
+    """Catchment sums of C stacked cells (`catchment_area`'s trials: every included grid point of
+    `points` (P, 2) under every mask, random release headings per point from each cell's key).
+    `included`: (C, P)."""
+    n_points = points.shape[0]
+
+    def one(args):
+        cell, inc = args
+        rows = cell.masks.shape[0]
+        n_inc = jnp.sum(inc).astype(jnp.int32)
+        order = jnp.argsort(~inc, stable=True).astype(jnp.int32)  # included points first, in grid order
+        t = jnp.arange(rows * n_points, dtype=jnp.int32)
+        mask = t // jnp.maximum(n_inc, 1)
+        point = order[t % jnp.maximum(n_inc, 1)]
+        n_valid = cell.n_masks * n_inc
+        headings = random_headings(cell.key, n_points)
+        res = _trials(cell, points[point], headings[point], point, mask, n_valid, max_steps, lanes)
+        run = t < n_valid
+        err = angular_error_deg(res.first_dir, res.first_valid, points[point], cell.env.home)
+        ok = run & (res.outcome == SUCCESS)
+        per_mask = jax.ops.segment_sum(ok.astype(jnp.int32), jnp.where(run, mask, rows), rows + 1)[:rows]
+        used = jnp.arange(rows) < cell.n_masks
+        count = lambda m: jnp.sum(m & run).astype(jnp.int32)  # noqa: E731
+        e = jnp.where(run, err, 0.0)
+        return CatchmentSums(points=n_inc, trials=n_valid, successes=jnp.sum(per_mask),
+                             success_min=jnp.min(jnp.where(used, per_mask, n_inc)),
+                             success_max=jnp.max(jnp.where(used, per_mask, 0)), timeout=count(res.outcome == TIMEOUT),
+                             landmark=count(res.outcome == LANDMARK), arena=count(res.outcome == ARENA),
+                             steps_success=jnp.sum(jnp.where(ok, res.steps, 0)), invalid=count(~res.first_valid),
+                             gt45=count(err > 45.0), gt90=count(err > 90.0), error_sum=jnp.sum(e),
+                             error_sq_sum=jnp.sum(e * e))
+
+    return jax.lax.map(one, (cells, included))
+
+
+@partial(jax.jit, static_argnames=("trials", "max_steps", "lanes"))
+def success_cells(cells: RolloutCell, distances: Array, clearance: Array, trials: int, max_steps: int,
+                  lanes: int) -> SuccessSums:
+    """Success-rate sums of C stacked cells: `success_rate_trials`' `trials` release points per
+    distance (D,), each run under every mask of the cell (common random numbers across masks)."""
+    n_bins = distances.shape[0]
+
+    def one(cell):
+        _, _, k_start = rollout_keys(cell.key)
+        starts, heads, placed = jax.vmap(
+            lambda b, r: release_points(cell.env, jax.random.fold_in(k_start, b), trials, r, clearance))(
+            jnp.arange(n_bins), distances)
+        rows, n_items = cell.masks.shape[0], n_bins * trials
+        t = jnp.arange(rows * n_items, dtype=jnp.int32)
+        item = t % n_items
+        n_valid = cell.n_masks * n_items
+        res = _trials(cell, starts.reshape(n_items, 2)[item], heads.reshape(n_items)[item], item, t // n_items,
+                      n_valid, max_steps, lanes)
+        placed = placed.reshape(n_items)[item] & (t < n_valid)
+        ok = placed & (res.outcome == SUCCESS)
+        bins = item // trials
+        return SuccessSums(placed=jax.ops.segment_sum(placed.astype(jnp.int32), bins, n_bins),
+                           successes=jax.ops.segment_sum(ok.astype(jnp.int32), bins, n_bins))
+
+    return jax.lax.map(one, cells)
