@@ -69,10 +69,24 @@ def check_grid(env: Env, spacing: float, clearance: float, max_points: int = MAX
     has more than `max_points` points (`limits.check_size`, checked before the grid is built; `what`
     they are: grid points, or trials of a catchment) or no point clear of the landmarks."""
     check_size(limits.grid_count(env.arena, spacing) * copies, max_points, "spacing", spacing, what)
-    points = maps.grid_points(env.arena, spacing)
-    if points.shape[0] == 0 or not np.asarray(maps.grid_included(env.arrays(), jax.device_put(points),
-                                                                   clearance)).any():
+    if not _has_clear_point(env, spacing, clearance):
         raise InputError("spacing", spacing, "leaves no grid point in the arena clear of the landmarks (r + clearance)")
+
+
+_CLEAR: dict[tuple, bool] = {}  # (scene numbers, spacing, clearance) -> answer: a sweep asks again per cell
+
+
+def _has_clear_point(env: Env, spacing: float, clearance: float) -> bool:
+    """Whether some docs/model.md §5 grid point is clear of every landmark (r + clearance)."""
+    key = (np.asarray(env.landmarks).tobytes(), np.asarray(env.valid).tobytes(), np.asarray(env.arena).tobytes(),
+           float(spacing), float(clearance))
+    if key not in _CLEAR:
+        points = maps.grid_points(env.arena, spacing)
+        _CLEAR[key] = points.shape[0] > 0 and bool(np.asarray(
+            maps.grid_included(env.arrays(), jax.device_put(points), clearance)).any())
+        if len(_CLEAR) > 4096:
+            _CLEAR.pop(next(iter(_CLEAR)))
+    return _CLEAR[key]
 
 
 def map_request(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,

@@ -52,6 +52,19 @@ def _labels(ds, axis: str) -> list[str]:
     return [f"{v:g}" if isinstance(v, float) else str(v) for v in ds[axis].values.tolist()]
 
 
+def _wilson(ds, sel: dict, x: str, metric: str) -> tuple[np.ndarray, np.ndarray] | None:
+    """The Wilson interval of a success rate along x (one seed), if the sweep kept it."""
+    names = ("success_ci95_lo_pct", "success_ci95_hi_pct")
+    if metric != "success_pct" or not all(n in ds.data_vars for n in names):
+        return None
+    bounds = []
+    for n in names:
+        da = ds[n].sel(sel)
+        da = da.squeeze([d for d in da.dims if d != x], drop=True)
+        bounds.append(da.values)
+    return bounds[0], bounds[1]
+
+
 def sweep_figure(ds, x: str, y: str | None, metric: str):
     """(figure, rows): heat maps of `metric` over (x, y), or lines over x with 95 % intervals over seeds."""
     items = panels(ds, x, y)
@@ -68,12 +81,17 @@ def sweep_figure(ds, x: str, y: str | None, metric: str):
         if y is None:
             mean, half = summarize(da.transpose(x, "seed").values)
             xs = ds[x].values
+            lo, hi, what = mean - half, mean + half, "95 % interval over seeds"
+            wilson = _wilson(ds, sel, x, metric)
+            if not np.isfinite(half).any() and wilson is not None:  # one seed: the trials' own interval
+                (lo, hi), what = wilson, "95 % Wilson interval"
             ax.plot(xs, mean, marker="o", color="tab:blue")
-            if np.isfinite(half).any():
-                ax.fill_between(xs, mean - half, mean + half, color="tab:blue", alpha=0.25, label="95 % interval")
+            if np.isfinite(lo).any():
+                ax.fill_between(xs, lo, hi, color="tab:blue", alpha=0.25, label=what)
             ax.set_xlabel(x)
             ax.set_ylabel(metric)
-            rows += [{"panel": title, x: v, metric: m, "ci95_half": h} for v, m, h in zip(xs.tolist(), mean, half)]
+            rows += [{"panel": title, x: v, metric: m, "ci95_lo": a, "ci95_hi": b, "interval": what}
+                     for v, m, a, b in zip(xs.tolist(), mean, lo, hi)]
         else:
             mean, _ = summarize(da.transpose(y, x, "seed").values)
             im = ax.imshow(mean, origin="lower", aspect="auto", cmap="viridis")

@@ -13,7 +13,7 @@ import numpy as np
 
 from . import api, api_rollouts
 from .core import cells as map_program
-from .core.batching import over_devices
+from .core.batching import over_devices, over_processes
 from .core.errors import InputError
 from .core.maps import grid_included, grid_points
 from .core.rollouts import DEFAULT_LANES
@@ -72,10 +72,11 @@ def group_key(req: dict) -> tuple:
             tuple(np.asarray(req["env"].arena).tolist()))
 
 
-def evaluate(kind: str, setups: list[dict], mesh, rows: int = 1) -> dict[str, np.ndarray]:
+def evaluate(kind: str, setups: list[dict], mesh, rows: int = 1, total: int | None = None) -> dict[str, np.ndarray]:
     """The cells `setups` (one group) as one call of their program, split over `mesh`'s devices if
     any (every device runs whole cells with the one-device program); rollout masks padded to `rows`.
-    Returns the sums by name."""
+    With `total`, `mesh` spans every process and `setups` are this process's rows of a chunk of
+    `total` cells (`batching.over_processes`). Returns the sums (of `setups`) by name."""
     first = setups[0]
     stack = lambda *xs: np.stack([np.asarray(x) for x in xs])  # noqa: E731
     traced = jax.tree.map(stack, *[_traced(req, rows) for req in setups])
@@ -87,7 +88,12 @@ def evaluate(kind: str, setups: list[dict], mesh, rows: int = 1) -> dict[str, np
                              for req in setups])
         shared, traced = (points,), traced + (included,)
     program = _program(kind, first.get("max_steps"), DEFAULT_LANES, first.get("trials"))
-    res = program(*shared, *traced) if mesh is None else over_devices(program, mesh, len(shared), *shared, *traced)
+    if total is not None:
+        res = over_processes(program, mesh, len(shared), total, *shared, *traced)
+    elif mesh is None:
+        res = program(*shared, *traced)
+    else:
+        res = over_devices(program, mesh, len(shared), *shared, *traced)
     return {name: np.asarray(getattr(res, name)) for name in sum_names(kind)}
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import itertools
 import math
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterator
 
@@ -16,7 +16,7 @@ from .core.errors import InputError
 KINDS = ("vector-map", "catchment", "success-rate")
 # axis -> what it sets (the public option of `delvjax.vector_map` / `catchment` / `success_rate` of the same name)
 MAP_AXES = {
-    "env": "environment: preset name or JSON path",
+    "env": "environment: preset name, JSON path, or {random = COUNT, landmarks = N | [N, ...], seed = S}",
     "method": "registry name",
     "spacing": "grid spacing, cm",
     "seed": "seed of headings, release points and noise, 0..2^32-1",
@@ -85,6 +85,7 @@ metrics = ["gt45_pct", "gt90_pct", "mean_error_deg", "mean_error_ci95_deg", "inv
 
 [axes]                               # a list, or an inclusive range {start, stop, step} / {start, stop, num}
 env = ["env1", "env2"]               # presets or JSON paths (default ["env1"])
+# env = ["env1", {random = 20, landmarks = [3, 6], seed = 0}]  # + 20 seeded random layouts of 3 and of 6
 method = ["delv", "delv-compass"]    # registry names (default ["delv"])
 d = { start = 10, stop = 100, step = 30 }
 bearing_noise_deg = [0.0, 2.0]
@@ -139,6 +140,7 @@ class SweepSpec:
     text: str
     distances: tuple[float, ...] = DISTANCES
     trials: int = TRIALS
+    random_envs: dict[str, tuple[int, int]] = field(default_factory=dict)  # env label -> (seed, landmarks)
 
     def cells(self) -> Iterator[dict]:
         """Every combination of the axes (the last axis varies fastest), one at a time."""
@@ -196,6 +198,38 @@ def _values(name: str, raw, field: str | None = None) -> list:
     return values
 
 
+RANDOM_ENVS = 10_000  # seeded random layouts one sweep file may ask for
+
+
+def _env_labels(raw, random_envs: dict[str, tuple[int, int]]) -> list:
+    """The env axis with every table {random = COUNT, landmarks = N or [N, ...], seed = S} replaced by
+    the labels of its seeded random layouts (`presets.random_env(S + i, N)`: "random<S+i>-<N>"),
+    recorded in `random_envs`."""
+    items = raw if isinstance(raw, list) else [raw]
+    labels = []
+    for item in items:
+        if not isinstance(item, dict):
+            labels.append(item)
+            continue
+        field_ = "axes.env"
+        if sorted(set(item) - {"random", "landmarks", "seed"}) or "random" not in item or "landmarks" not in item:
+            raise InputError(field_, item, "a random table is {random = COUNT, landmarks = N or [N, ...], seed = S}")
+        count, seed = item["random"], item.get("seed", 0)
+        counts = item["landmarks"] if isinstance(item["landmarks"], list) else [item["landmarks"]]
+        ints = [count, seed, *counts]
+        if not all(isinstance(v, int) and not isinstance(v, bool) for v in ints) or count < 1 or seed < 0 \
+                or not counts or min(counts) < 1 or max(counts) > 12:
+            raise InputError(field_, item, "random and seed must be integers >= 1 and >= 0, landmarks in 1..12")
+        if count * len(counts) + len(random_envs) > RANDOM_ENVS:
+            raise InputError(field_, item, f"asks for more than {RANDOM_ENVS} random layouts")
+        for n in counts:
+            for s_ in range(seed, seed + count):
+                label = f"random{s_}-{n}"
+                random_envs[label] = (s_, n)
+                labels.append(label)
+    return labels
+
+
 def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
     """Validate a sweep file's text (structure, axes, metrics); `InputError` naming the field."""
     try:
@@ -233,6 +267,9 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
             users = [k for k in KINDS if name in KIND_AXES[k]]
             raise InputError(f"axes.{name}", axes[name], f'is not an axis of kind = "{kind}" (an axis of kind = '
                                                          f'{" or ".join(repr(k) for k in users)})')
+    random_envs: dict[str, tuple[int, int]] = {}
+    if "env" in axes:
+        axes = {**axes, "env": _env_labels(axes["env"], random_envs)}
     values = {name: _values(name, raw) for name, raw in axes.items()}
     for name, default in DEFAULTS.items():
         if name in KIND_AXES[kind]:
@@ -245,7 +282,8 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
         if isinstance(trials, bool) or not isinstance(trials, int) or trials < 1:
             raise InputError("sweep.trials", trials, "must be an integer >= 1")
         extra["trials"] = trials
-    return SweepSpec(kind=kind, axes=values, metrics=list(dict.fromkeys(metrics)), text=text, **extra)
+    return SweepSpec(kind=kind, axes=values, metrics=list(dict.fromkeys(metrics)), text=text, random_envs=random_envs,
+                     **extra)
 
 
 def read_sweep(path: str | Path) -> SweepSpec:

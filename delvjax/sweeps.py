@@ -12,8 +12,8 @@ import numpy as np
 
 from . import api
 from .cell_store import cell_digest, code_digest, load_cells, save_cells
-from .core.batching import local_mesh, n_devices
-from .presets import load_env
+from .core.batching import global_mesh, local_mesh, n_devices, process_rows
+from .presets import load_env, random_env
 from .sweep_kinds import cell_setup, evaluate, group_key, mask_rows, programs_compiled, sum_names
 from .sweep_results import dataset, load_sweep, save_sweep
 from .sweep_spec import SweepSpec
@@ -28,9 +28,14 @@ CELL_CHUNK = 64  # cells per call of a group's program (the last chunk padded): 
 
 def _envs(spec: SweepSpec) -> dict:
     """The sweep's environments, padded to equal landmark slots (one program for every environment)."""
-    envs = {name: load_env(name) for name in spec.axes["env"]}
+    def env(name: str, pad_to: int | None = None):
+        if name in spec.random_envs:
+            return random_env(*spec.random_envs[name], pad_to=pad_to)
+        return load_env(name, pad_to=pad_to)
+
+    envs = {name: env(name) for name in spec.axes["env"]}
     slots = max(int(e.landmarks.shape[0]) for e in envs.values())
-    return {name: load_env(name, pad_to=slots) for name in envs}
+    return {name: env(name, pad_to=slots) for name in envs}
 
 
 def _plan(spec: SweepSpec, envs: dict, max_points: int, code: str | None) -> tuple[list[list[int]], list[str], int]:
@@ -72,30 +77,39 @@ def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Calla
                 todo[i] = False
                 for k in names:
                     sums[k][i] = done[digest][k]
+    processes = jax.process_count()
+    if processes > 1:  # a cell is computed again unless every process found it (--out need not be shared)
+        from jax.experimental import multihost_utils
+
+        todo = multihost_utils.process_allgather(todo).any(axis=0)
     if announce is not None:
         announce()
     if progress is not None and not todo.all():
         progress(int((~todo).sum()), n)
     compiled = programs_compiled()
-    mesh = local_mesh()
+    mesh = local_mesh() if processes == 1 else global_mesh()  # one mesh over every device of every process
     per_call = n_devices(mesh)
     width = -(-CELL_CHUNK // per_call) * per_call  # cells per call, a multiple of the devices
     jobs = []  # (cells, padded size): a group of more than one chunk pads every chunk to `width`
     for cells in ([i for i in g if todo[i]] for g in groups):
         size = width if len(cells) > width else -(-len(cells) // per_call) * per_call
         jobs += [(cells[start:start + width], size) for start in range(0, len(cells), width)]
-    mine = jobs[jax.process_index()::jax.process_count()]  # several processes: every P-th chunk is ours
-    for chunk, size in mine:
-        setups = [cell_setup(spec, envs, spec.cell(i), max_points) for i in chunk]
-        res = evaluate(spec.kind, setups + [setups[0]] * (size - len(chunk)), mesh, rows)
+    mine: list[int] = []  # the cells this process computed
+    for chunk, size in jobs:
+        padded = chunk + [chunk[0]] * (size - len(chunk))
+        start, stop = (0, size) if processes == 1 else process_rows(mesh, size)  # this process's rows
+        setups = [cell_setup(spec, envs, spec.cell(i), max_points) for i in padded[start:stop]]
+        res = evaluate(spec.kind, setups, mesh, rows, None if processes == 1 else size)
+        own = [(row, i) for row, i in enumerate(chunk[start:stop])]
         for k in names:
-            sums[k][chunk] = res[k][:len(chunk)]
-        if out is not None:
-            save_cells(Path(out), [digests[i] for i in chunk], {k: sums[k][chunk] for k in names})
+            sums[k][[i for _, i in own]] = res[k][:len(own)]
+        mine += [i for _, i in own]
+        if out is not None and own:
+            save_cells(Path(out), [digests[i] for _, i in own], {k: sums[k][[i for _, i in own]] for k in names})
         if progress is not None:
-            progress(len(chunk) * jax.process_count(), n)
-    if jax.process_count() > 1:
-        sums = _merge(sums, [i for chunk, _ in mine for i in chunk])
+            progress(len(chunk), n)
+    if processes > 1:
+        sums = _merge(sums, mine)
     ds = dataset(spec, sums, programs_compiled() - compiled)
     ds.attrs["cells_reused"] = int((~todo).sum())
     return ds

@@ -69,6 +69,8 @@ def test_a_catchment_cell_equals_the_catchment_run_with_its_options(catchments):
 
 
 def test_a_success_rate_cell_equals_the_runs_under_each_hidden_landmark():
+    from delvjax.plots_sweep import sweep_figure
+
     ds = run_sweep(parse_sweep(SUCCESS))
     assert ds.sizes["distance_cm"] == 2 and ds.attrs["trials_per_distance"] == 12
     kw = dict(distances=[100, 250], trials=12, seed=2, motion_heading_noise_deg=15.0)
@@ -85,6 +87,11 @@ def test_a_success_rate_cell_equals_the_runs_under_each_hidden_landmark():
     assert np.allclose(cell.success_pct.values, 100 * successes / placed)
     lo, hi = wilson_pct(successes, placed)
     assert np.allclose(cell.success_ci95_lo_pct.values, lo) and np.allclose(cell.success_ci95_hi_pct.values, hi)
+    # one seed: the figure's band is the Wilson interval of each distance
+    _, rows = sweep_figure(ds, "distance_cm", None, "success_pct")
+    drawn = [r for r in rows if r["panel"] == "occlude=1"]
+    assert [r["interval"] for r in drawn] == ["95 % Wilson interval"] * 2
+    assert np.allclose([r["ci95_lo"] for r in drawn], lo) and np.allclose([r["ci95_hi"] for r in drawn], hi)
 
 
 @pytest.mark.parametrize("k, n", [(0, 1), (3, 10), (7, 10), (10, 10), (50, 100), (0, 0)])
@@ -112,3 +119,37 @@ def test_an_impossible_rollout_cell_is_refused_before_any_work(text, field):
     with pytest.raises(InputError) as exc:
         run_sweep(parse_sweep(text))
     assert exc.value.field == field
+
+
+def test_the_readme_sweep_file_is_valid():
+    import re
+    from pathlib import Path
+
+    readme = (Path(__file__).parent.parent / "README.md").read_text()
+    blocks = re.findall(r"```toml\n(.*?)```", readme, re.S)
+    assert blocks
+    for text in blocks:
+        spec = parse_sweep(text)
+        assert spec.kind == "catchment" and spec.n_cells == 2 * 3 * 2 * 2 * 5
+
+
+def test_random_layouts_on_the_env_axis_are_the_seeded_random_envs():
+    from delvjax.presets import random_env
+
+    spec = parse_sweep("[axes]\nenv = ['env1', {random = 2, landmarks = [3, 5], seed = 7}]\nspacing = [150]\n")
+    assert spec.axes["env"] == ["env1", "random7-3", "random8-3", "random7-5", "random8-5"]
+    ds = run_sweep(spec)
+    assert ds.attrs["programs_compiled"] <= 1  # 4 and 3 or 5 landmarks padded to one shape
+    for label, (seed, n) in spec.random_envs.items():
+        ref = delvjax.summarize_map(*(lambda v: (v.error_deg, v.valid, v.included))(
+            delvjax.vector_map(random_env(seed, n), spacing=150)))
+        assert float(ds.gt45_pct.sel({"env": label}).squeeze()) == pytest.approx(ref["gt45_pct"], abs=1e-9), label
+
+
+@pytest.mark.parametrize("raw", ["{random = 0, landmarks = 3}", "{random = 2}", "{random = 2, landmarks = 99}",
+                                 "{random = 2, landmarks = 3, seed = -1}", "{random = 2, landmarks = 3, colour = 1}",
+                                 "{random = 100000, landmarks = 3}"])
+def test_a_bad_random_layout_table_names_the_env_axis(raw):
+    with pytest.raises(InputError) as exc:
+        parse_sweep(f"[axes]\nenv = [{raw}]\n")
+    assert exc.value.field == "axes.env"

@@ -187,7 +187,7 @@ def test_sweep_figures_heat_maps_and_lines_with_intervals_over_seeds(small, tmp_
     assert [r["gt45_pct"] for r in rows if r["panel"] == "method=alv" and r["d"] == 60
             and r["bearing_noise_deg"] == 3.0] == [pytest.approx(cell)]
     _, lines = sweep_figure(small, "d", None, "mean_error_deg")  # two seeds: a finite 95 % interval
-    assert len(lines) == 2 * 2 * 2 and all(np.isfinite(r["ci95_half"]) for r in lines)
+    assert len(lines) == 2 * 2 * 2 and all(r["ci95_lo"] < r["mean_error_deg"] < r["ci95_hi"] for r in lines)
     for args, flag in [(("dd", None, "gt45_pct"), "--x"), (("d", "d", "gt45_pct"), "--y"), (("d", None, "x"), "--metric")]:
         with pytest.raises(InputError) as exc:
             check_plot(small, *args)

@@ -17,7 +17,7 @@ from typing import Callable
 import jax
 import jax.numpy as jnp
 import numpy as np
-from jax.sharding import Mesh, PartitionSpec as P
+from jax.sharding import Mesh, NamedSharding, PartitionSpec as P
 
 WIDTH = 128  # items per vectorised step (a power of two: 256 lanes are two groups)
 
@@ -68,3 +68,38 @@ def over_devices(fn: Callable, mesh: Mesh, n_replicated: int, *args):
     Every device runs the same per-item program, so results equal the one-device ones."""
     specs = (P(),) * n_replicated + (P("items"),) * (len(args) - n_replicated)
     return jax.shard_map(fn, mesh=mesh, in_specs=specs, out_specs=P("items"), check_vma=False)(*args)
+
+
+def global_mesh() -> Mesh:
+    """A one-axis mesh ("items") over every device of every process (`jax.distributed`)."""
+    return Mesh(np.array(jax.devices()), ("items",))
+
+
+def process_rows(mesh: Mesh, total: int) -> tuple[int, int]:
+    """The rows [start, stop) of a leading axis of length `total` (a multiple of the mesh size) that
+    this process's devices hold when it is split over `mesh` (contiguous: a device's slice each)."""
+    spans = NamedSharding(mesh, P("items")).addressable_devices_indices_map((total,)).values()
+    starts, stops = zip(*[(s[0].start or 0, total if s[0].stop is None else s[0].stop) for s in spans])
+    start, stop = min(starts), max(stops)
+    if stop - start != total * len(spans) // mesh.size:
+        raise RuntimeError("this process's devices do not hold contiguous rows of the mesh")
+    return start, stop
+
+
+def over_processes(fn: Callable, mesh: Mesh, n_replicated: int, total: int, *args):
+    """`over_devices` on a mesh spanning processes (one program over every device of every process):
+    each process passes the whole replicated args and only its own rows (`process_rows`) of the split
+    ones, and gets its own rows of the outputs back (NumPy)."""
+    replicated, split = NamedSharding(mesh, P()), NamedSharding(mesh, P("items"))
+    glob = [jax.tree.map(lambda a: jax.make_array_from_process_local_data(replicated, np.asarray(a)), x)
+            for x in args[:n_replicated]]
+    glob += [jax.tree.map(lambda a: jax.make_array_from_process_local_data(split, np.asarray(a),
+                                                                           (total,) + np.shape(a)[1:]), x)
+             for x in args[n_replicated:]]
+    out = over_devices(fn, mesh, n_replicated, *glob)
+
+    def mine(a):
+        shards = sorted(a.addressable_shards, key=lambda s: s.index[0].start or 0)
+        return np.concatenate([np.asarray(s.data) for s in shards])
+
+    return jax.tree.map(mine, out)
