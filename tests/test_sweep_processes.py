@@ -25,13 +25,15 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
-@pytest.mark.parametrize("text", [SWEEP, CATCHMENT], ids=["vector-map", "catchment"])
-def test_two_processes_give_the_one_process_numbers(tmp_path, text):
+@pytest.mark.parametrize("text, devices", [(SWEEP, 2), (CATCHMENT, 1)], ids=["vector-map-2x2", "catchment-2x1"])
+def test_two_processes_give_the_one_process_numbers(tmp_path, text, devices):
+    """One mesh over 2 processes x `devices` forced host devices each."""
     path = tmp_path / "s.toml"
     path.write_text(text)
     assert main(["sweep", str(path), "--out", str(tmp_path / "one")]) == 0
     port, two = free_port(), tmp_path / "two"
-    env = dict(os.environ, JAX_PLATFORMS="cpu", DELVJAX_CACHE_DIR="")
+    env = dict(os.environ, JAX_PLATFORMS="cpu", DELVJAX_CACHE_DIR="",
+               XLA_FLAGS=f"--xla_force_host_platform_device_count={devices}")
     cmd = [sys.executable, "-m", "delvjax.cli", "sweep", str(path), "--out", str(two),
            "--coordinator", f"127.0.0.1:{port}", "--num-processes", "2", "--process-id"]
     procs = [subprocess.Popen(cmd + [str(i)], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -39,6 +41,7 @@ def test_two_processes_give_the_one_process_numbers(tmp_path, text):
     outs = [p.communicate(timeout=240) for p in procs]
     assert [p.returncode for p in procs] == [0, 0], [o[1][-1500:] for o in outs]
     assert "wrote" in outs[0][0] and "wrote" not in outs[1][0]  # process 0 writes, process 1 only computes
+    assert f"on 2 process(es), {2 * devices} device(s)" in outs[0][1]  # one mesh over all of them
     one, merged = delvjax.load_sweep(tmp_path / "one"), delvjax.load_sweep(two)
     for name in one.data_vars:
         assert np.array_equal(one[name].values, merged[name].values, equal_nan=True), name

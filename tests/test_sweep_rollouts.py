@@ -153,3 +153,11 @@ def test_a_bad_random_layout_table_names_the_env_axis(raw):
     with pytest.raises(InputError) as exc:
         parse_sweep(f"[axes]\nenv = [{raw}]\n")
     assert exc.value.field == "axes.env"
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_sweep_example_prints_the_example_of_a_kind(kind, capsys):
+    from delvjax.cli import main
+
+    assert main(["sweep", "--example", kind]) == 0
+    assert parse_sweep(capsys.readouterr().out).kind == kind
