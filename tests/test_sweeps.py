@@ -156,11 +156,11 @@ def test_a_killed_sweep_resumes_and_a_changed_file_computes_only_its_new_cells(t
     monkeypatch.setattr(sweeps, "CELL_CHUNK", 2)
     real, calls = sweeps.evaluate, []
 
-    def counted(kind, setups, mesh, rows):
+    def counted(kind, setups, *args):
         calls.append(len(setups))
         if len(calls) == 2 and kill:
             raise KeyboardInterrupt  # killed after the first chunk
-        return real(kind, setups, mesh, rows)
+        return real(kind, setups, *args)
 
     monkeypatch.setattr(sweeps, "evaluate", counted)
     kill, out = True, tmp_path / "out"
