@@ -10,6 +10,7 @@ from pathlib import Path
 import jax
 import numpy as np
 
+from .core.errors import InputError
 from .io import atomic_path
 
 STORE = ".cells"  # folder inside the sweep's --out
@@ -53,5 +54,8 @@ def load_cells(out: Path) -> dict[str, dict[str, float]]:
 
 def save_cells(out: Path, digests: list[str], sums: dict[str, np.ndarray]) -> None:
     """One finished chunk, written atomically (a killed run leaves whole chunks or none)."""
-    with atomic_path(Path(out) / STORE / f"{digests[0]}-{len(digests)}.npz") as tmp:
-        np.savez(tmp, digest=np.asarray(digests), **sums)
+    try:
+        with atomic_path(Path(out) / STORE / f"{digests[0]}-{len(digests)}.npz") as tmp:
+            np.savez(tmp, digest=np.asarray(digests), **sums)
+    except OSError as exc:  # e.g. the disk filled up during the sweep: finished chunks stay
+        raise InputError("--out", str(out), f"cannot be written ({exc.strerror or exc})") from None

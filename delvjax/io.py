@@ -29,6 +29,10 @@ def check_folder(folder: str | Path, field: str, value: object) -> Path:
         raise InputError(field, value, f"cannot be checked ({exc.strerror or exc})") from None
     if not os.access(base, os.W_OK | os.X_OK):
         raise InputError(field, value, f"is not writable (folder {base})")
+    try:  # os.access trusts the permission bits: a read-only or virtual file system (/proc) says yes
+        os.rmdir(tempfile.mkdtemp(prefix=".delvjax-probe-", dir=base))
+    except OSError as exc:
+        raise InputError(field, value, f"is not writable (folder {base}: {exc.strerror or exc})") from None
     return base
 
 

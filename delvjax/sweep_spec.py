@@ -74,6 +74,9 @@ METRICS = {**ERROR_METRICS, **CATCHMENT_METRICS, **SUCCESS_METRICS}
 DEFAULTS = {"env": ["env1"], "method": ["delv"], "spacing": [25.0], "seed": [0]}
 DISTANCES = tuple(float(v) for v in range(50, 451, 50))  # success-rate release distances, cm (core.rollouts)
 TRIALS = 100  # success-rate trials per distance
+RANDOM_ENVS = 10_000  # seeded random layouts one sweep file may ask for
+MAX_VALUES = 100_000  # values of one axis
+MAX_CELLS = 10_000_000  # cells of one sweep (each is validated before any work: about 1 ms a cell)
 
 EXAMPLES = {"vector-map": '''# delvjax sweep file: every combination of the axes is one cell (docs/sweeps.md).
 # Run: delvjax sweep this.toml --out results/sweep ; read: delvjax.load_sweep("results/sweep")
@@ -176,12 +179,17 @@ def _values(name: str, raw, field: str | None = None) -> list:
             num = raw["num"]
             if not isinstance(num, int) or num < 1:
                 raise InputError(field, raw, "num must be an integer >= 1")
+            if num > MAX_VALUES:
+                raise InputError(field, raw, f"has {num} values, more than {MAX_VALUES}")
             values = [start + (stop - start) * i / max(num - 1, 1) for i in range(num)]
         else:
             step = raw.get("step", 1)
             if step <= 0 or stop < start:
                 raise InputError(field, raw, "is empty (need start <= stop and step > 0)")
-            values = [start + i * step for i in range(int(math.floor((stop - start) / step + 1e-9)) + 1)]
+            count = math.floor((stop - start) / step + 1e-9) + 1
+            if count > MAX_VALUES:
+                raise InputError(field, raw, f"has {count:.3g} values, more than {MAX_VALUES}")
+            values = [start + i * step for i in range(count)]
     elif isinstance(raw, list):
         values = raw
     else:
@@ -198,7 +206,6 @@ def _values(name: str, raw, field: str | None = None) -> list:
     return values
 
 
-RANDOM_ENVS = 10_000  # seeded random layouts one sweep file may ask for
 
 
 def _env_labels(raw, random_envs: dict[str, tuple[int, int]]) -> list:
@@ -282,6 +289,10 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
         if isinstance(trials, bool) or not isinstance(trials, int) or trials < 1:
             raise InputError("sweep.trials", trials, "must be an integer >= 1")
         extra["trials"] = trials
+    cells = math.prod(len(v) for v in values.values())
+    if cells > MAX_CELLS:
+        raise InputError("axes", " x ".join(str(len(v)) for v in values.values()),
+                         f"give {cells:.3g} cells, more than {MAX_CELLS:.0e}: split the sweep")
     return SweepSpec(kind=kind, axes=values, metrics=list(dict.fromkeys(metrics)), text=text, random_envs=random_envs,
                      **extra)
 

@@ -161,3 +161,30 @@ def test_sweep_example_prints_the_example_of_a_kind(kind, capsys):
 
     assert main(["sweep", "--example", kind]) == 0
     assert parse_sweep(capsys.readouterr().out).kind == kind
+
+
+@pytest.mark.parametrize("text, field", [
+    ("[axes]\nd = {start = 1, stop = 1e12, step = 1}", "axes.d"),
+    ("[axes]\nd = {start = 1, stop = 2, num = 1000000000}", "axes.d"),
+    ("[axes]\nd = {start = 1, stop = 1000, num = 1000}\nseed = {start = 0, stop = 99999}", "axes"),
+])
+def test_a_huge_sweep_is_refused_at_once(text, field):
+    import time
+
+    t = time.perf_counter()
+    with pytest.raises(InputError) as exc:
+        parse_sweep(text)
+    assert exc.value.field == field and time.perf_counter() - t < 1.0
+
+
+def test_an_output_folder_on_a_file_system_that_refuses_writes_is_refused_before_any_work(tmp_path, capsys):
+    from pathlib import Path
+
+    from delvjax.cli import main
+
+    if not Path("/proc/self").is_dir():
+        pytest.skip("no /proc")
+    sweep = tmp_path / "s.toml"
+    sweep.write_text("[axes]\nspacing = [200]\n")
+    assert main(["sweep", str(sweep), "--out", "/proc/delvjax-out"]) == 2
+    assert capsys.readouterr().err.startswith("delvjax: error: --out: is not writable (folder /proc")
