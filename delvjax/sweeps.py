@@ -100,12 +100,12 @@ def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Calla
         start, stop = (0, size) if processes == 1 else process_rows(mesh, size)  # this process's rows
         setups = [cell_setup(spec, envs, spec.cell(i), max_points) for i in padded[start:stop]]
         res = evaluate(spec.kind, setups, mesh, rows, None if processes == 1 else size)
-        own = [(row, i) for row, i in enumerate(chunk[start:stop])]
+        own = chunk[start:stop]  # this process's real cells (the rest of its rows are padding)
         for k in names:
-            sums[k][[i for _, i in own]] = res[k][:len(own)]
-        mine += [i for _, i in own]
+            sums[k][own] = res[k][:len(own)]
+        mine += own
         if out is not None and own:
-            save_cells(Path(out), [digests[i] for _, i in own], {k: sums[k][[i for _, i in own]] for k in names})
+            save_cells(Path(out), [digests[i] for i in own], {k: sums[k][own] for k in names})
         if progress is not None:
             progress(len(chunk), n)
     if processes > 1:
