@@ -8,6 +8,7 @@ rollouts); this top level is the edge: names, options, files, figures, CLI and t
 
 from .api import load_env, vector_map
 from .api_rollouts import catchment, success_rate, trajectories
+from .api_soft import homing_quality, homing_quality_grad
 from .core.errors import InputError
 from .core.maps import VectorMap
 from .core.methods import (ACV, ALV, DELV, MFDID, CartwrightCollett, Compass, DELVGap, HomingMethod, Method, Program,
@@ -23,7 +24,7 @@ from .sweeps import load_sweep, run_sweep
 __all__ = [
     "ACV", "ALV", "CartwrightCollett", "Compass", "DELV", "DELVGap", "Env", "HomingMethod", "InputError", "METHODS", "MFDID",
     "Method", "Noise", "Program", "Sensor", "Snapshot", "UnitMove", "VectorMap", "VisualCompass", "Warping",
-    "catchment", "error_curve", "error_point_rates", "load_env", "make_env", "success_rate", "summarize_map",
+    "catchment", "error_curve", "homing_quality", "homing_quality_grad", "error_point_rates", "load_env", "make_env", "success_rate", "summarize_map",
     "load_sweep", "run_sweep", "trajectories", "vector_map",
 ]
 __version__ = "0.1.0"

@@ -1,0 +1,120 @@
+"""Python API of the differentiable path (docs/differentiable.md): homing quality and its gradient
+with respect to the world (landmarks, home), the agent (d, the quantization scale) and the noise.
+
+    delvjax.homing_quality("env1", "delv", tau=0.01)            -> float (lower is better)
+    value, grads = delvjax.homing_quality_grad("env1", "delv")   -> grads["landmarks"] (N, 3), ...
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from .api import check_grid, scene_request
+from .core.maps import CLEARANCE, SPACING, grid_included, grid_points, random_headings
+from .core.methods import HomingMethod
+from .core.scene import Env
+from .core.soft.methods import check_differentiable
+from .core.soft.quality import soft_quality
+from .core.soft.sensing import VISIBILITY_WIDTH
+from .limits import MAX_POINTS
+from .options import NOISE_FIELDS_DEG, NOISE_FIELDS_FRACTION, positive
+
+TAU = 0.01  # default softmin temperature (docs/differentiable.md)
+NOISE_NAMES = {**{f: name for name, f in NOISE_FIELDS_DEG.items()}, **{f: name for name, f in NOISE_FIELDS_FRACTION.items()}}
+
+
+def _setup(env, method, spacing, seed, clearance, heading_deg, max_points, options):
+    env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **options)
+    spacing = positive(spacing, "spacing")
+    check_grid(env, spacing, clearance, max_points)
+    points = grid_points(env.arena, spacing)
+    included = np.asarray(grid_included(env.arrays(), points, clearance))
+    headings = (np.asarray(random_headings(key, points.shape[0])) if heading is None
+                else np.full(points.shape[0], heading, np.float32))
+    return env, module, sensor, key, points, included, headings
+
+
+def _floats(tree):
+    """Every float leaf as a float32 array (python floats are not differentiable leaves)."""
+    return jax.tree.map(lambda x: jnp.asarray(x, jnp.float32) if isinstance(x, float) else x, tree)
+
+
+def _check_soft(tau, sharpness) -> tuple[float, float]:
+    tau = positive(tau, "tau")
+    sharpness = positive(sharpness, "sharpness")
+    return tau, sharpness
+
+
+def homing_quality(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, seed: int = 0,
+                   soft: bool = True, tau: float = TAU, sharpness: float = VISIBILITY_WIDTH,
+                   heading_deg: float | None = None, clearance: float = CLEARANCE, max_points: int = MAX_POINTS,
+                   **options) -> float:
+    """Mean of 1 - cos(angular error) over the docs/model.md §5 grid (0 perfect, 2 = every direction
+    reversed; a point without a direction counts 2). soft=True: the analytic views and softmin
+    matching of docs/differentiable.md with temperature `tau` and visibility width `sharpness` (rad);
+    soft=False: the ordinary (pixel) vector map. `options` as in `delvjax.vector_map`."""
+    if soft:
+        tau, sharpness = _check_soft(tau, sharpness)
+    env, module, sensor, key, points, included, headings = _setup(env, method, spacing, seed, clearance, heading_deg,
+                                                                  max_points, options)
+    if not soft:
+        from .core.maps import vector_map
+
+        vm = vector_map(env=env, method=module, sensor=sensor, spacing=spacing, key=key, clearance=clearance,
+                        heading=None if heading_deg is None else math.radians(heading_deg))
+        err = np.radians(np.asarray(vm.error_deg))[np.asarray(vm.included)]
+        return float(np.mean(1.0 - np.cos(err)))
+    check_differentiable(module)
+    return float(_quality(env.arrays(), points, included, headings, key, sensor, module, jnp.float32(tau),
+                          jnp.float32(sharpness)))
+
+
+_quality = jax.jit(soft_quality)
+
+
+@jax.jit
+def _value_and_grad(params: dict, env: Env, points, included, headings, key, sensor, method, tau, sharpness):
+    def loss(p):
+        e = eqx.tree_at(lambda x: (x.landmarks, x.home), env, (p["landmarks"], p["home"]))
+        s = eqx.tree_at(lambda x: (x.d, x.noise), sensor, (p["d"], p["noise"]))
+        m = eqx.tree_at(lambda x: x.scale, method, p["scale"]) if "scale" in p else method
+        return soft_quality(e, points, included, headings, key, s, m, tau, sharpness)
+
+    return jax.value_and_grad(loss)(params)
+
+
+def homing_quality_grad(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING,
+                        seed: int = 0, tau: float = TAU, sharpness: float = VISIBILITY_WIDTH,
+                        heading_deg: float | None = None, clearance: float = CLEARANCE, max_points: int = MAX_POINTS,
+                        **options) -> tuple[float, dict]:
+    """`homing_quality` (soft) and its gradient by reverse mode in one program: a dict with
+    landmarks (N, 3) per [x, y, r] cm, home (2,) per cm, d per cm, scale per cm (DELV only) and
+    each noise sigma under its option name (per degree for *_deg, per unit for the step factors).
+    The grid points and their headings are held fixed; noise is differentiated pathwise."""
+    tau, sharpness = _check_soft(tau, sharpness)
+    env, module, sensor, key, points, included, headings = _setup(env, method, spacing, seed, clearance, heading_deg,
+                                                                  max_points, options)
+    check_differentiable(module)
+    sensor, module = _floats(sensor), _floats(module)
+    arrays = env.arrays()
+    params = {"landmarks": jnp.asarray(arrays.landmarks, jnp.float32), "home": jnp.asarray(arrays.home, jnp.float32),
+              "d": sensor.d, "noise": sensor.noise}
+    if hasattr(module, "scale"):
+        params["scale"] = module.scale
+    value, grads = _value_and_grad(params, arrays, points, included, headings, key, sensor, module, jnp.float32(tau),
+                                   jnp.float32(sharpness))
+    n = env.n_landmarks
+    out = {"landmarks": np.asarray(grads["landmarks"])[:n], "home": np.asarray(grads["home"]),
+           "d": float(grads["d"])}
+    if "scale" in grads:
+        out["scale"] = float(grads["scale"])
+    for field, name in NOISE_NAMES.items():
+        g = float(getattr(grads["noise"], field))
+        out[name] = g * math.pi / 180.0 if name.endswith("_deg") else g
+    return float(value), out

@@ -1,0 +1,155 @@
+"""The differentiable path (docs/differentiable.md): analytic views against the pixel path, the
+soft methods against the hard ones as tau -> 0, gradients against central finite differences."""
+
+from __future__ import annotations
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+import pytest
+
+import delvjax
+from delvjax.api import scene_request
+from delvjax.core.errors import InputError
+from delvjax.core.kernel import map_poses
+from delvjax.core.maps import stream_keys
+from delvjax.core.scene import Env
+from delvjax.core.sensing import blob_runs, render
+from delvjax.core.soft.methods import soft_direction
+from delvjax.core.soft.sensing import analytic_blobs, as_unit_move, soft_home, soft_observe
+from delvjax.presets import load_env, random_env
+
+PIXEL = 2 * np.pi / 360
+
+
+def test_analytic_views_agree_with_the_pixel_path_to_a_pixel_on_random_scenes():
+    rng = np.random.default_rng(0)
+    compared = 0
+    for seed in range(6):
+        env = random_env(seed, 3 + seed % 4).arrays()
+        pts = rng.uniform(50, 950, (200, 2)).astype(np.float32)
+        heads = rng.uniform(0, 2 * np.pi, 200).astype(np.float32)
+        visible = jnp.ones(env.landmarks.shape[0], bool)
+        sensor = delvjax.Sensor()
+
+        @jax.vmap
+        def both(p, h):
+            mask, _ = render(env, visible, p, h, sensor, with_gray=False)
+            return blob_runs(mask, env.landmarks.shape[0]), analytic_blobs(env, visible, p, h)
+
+        (pb, pw, pv), (ab, aw, weight) = (tuple(np.asarray(x) for x in t) for t in both(pts, heads))
+        for i in range(len(pts)):
+            seen = weight[i] > 0.5
+            lo, hi = ab[i][seen] - aw[i][seen] / 2, ab[i][seen] + aw[i][seen] / 2
+            order = np.argsort(ab[i][seen])
+            gaps = np.diff(np.concatenate([lo[order], [lo[order][0] + 2 * np.pi]])) - aw[i][seen][order]
+            inside = np.any(np.hypot(*(env.landmarks[:, :2] - pts[i]).T) <= np.asarray(env.landmarks[:, 2]) + 1)
+            partly = np.any(np.asarray(env.valid) & (weight[i] < 0.99))  # a landmark (partly) behind another
+            if inside or partly or gaps.min() < 3 * PIXEL or (hi - lo).min() < 2 * PIXEL:
+                continue  # touching, overlapping or sub-pixel blobs merge or vanish in the pixel path
+            compared += 1
+            assert pv[i].sum() == seen.sum(), (seed, i)
+            gap = np.abs(np.angle(np.exp(1j * (ab[i][seen][:, None] - pb[i][pv[i]][None, :]))))  # (analytic, pixel)
+            match = gap.argmin(axis=1)
+            assert len(set(match)) == seen.sum() and gap.min(axis=1).max() <= PIXEL, (seed, i)
+            assert np.abs(pw[i][pv[i]][match] - aw[i][seen]).max() <= 2 * PIXEL, (seed, i)
+    assert compared > 400  # of 1200 points (478 measured)
+
+
+def _soft_and_hard(name: str, tau: float, sharpness: float, **options):
+    """Soft and hard directions of `name` on the same analytic views over env1 (50 cm grid)."""
+    env, module, sensor, _, key, _ = scene_request("env1", name, 10.0, None, 0, **options)
+    env = env.arrays()
+    vm = delvjax.vector_map("env1", name, spacing=50, seed=0)
+    k_home, k_views, _ = stream_keys(key)
+
+    @jax.jit
+    def run(tau):
+        home = soft_home(env, k_home, sensor, sharpness)
+
+        def one(p, h, i):
+            view = soft_observe(env, jnp.ones(env.landmarks.shape[0], bool), map_poses(p, h, k_views, i, sensor),
+                                sensor, sharpness)
+            _, a, v = soft_direction(module, home, view, tau)
+            b, w = module(as_unit_move(home, 360), as_unit_move(view, 360))
+            return a, v, b, w, jnp.sum(view.end.valid)
+
+        return jax.vmap(one)(vm.points, vm.heading, jnp.arange(vm.points.shape[0]))
+
+    a, v, b, w, n = (np.asarray(x) for x in run(jnp.float32(tau)))
+    inc = np.asarray(vm.included)
+    assert np.array_equal(v[inc], w[inc])
+    ok = inc & w & (n >= 2)
+    return np.degrees(np.abs(np.angle(np.exp(1j * (a - b)))))[ok]
+
+
+def test_soft_delv_tends_to_hard_delv_as_tau_goes_to_zero():
+    means = [_soft_and_hard("delv", tau, 1e-5, bearing_noise_deg=1.0).mean() for tau in (0.1, 0.01, 1e-3, 1e-4)]
+    assert all(a > b for a, b in zip(means, means[1:])), means  # measured: 7.6, 1.1, 0.12, 0.034 deg
+    last = _soft_and_hard("delv", 1e-4, 1e-5, bearing_noise_deg=1.0)
+    assert last.mean() < 0.1 and np.mean(last < 0.5) > 0.98
+
+
+@pytest.mark.parametrize("name", ["alv", "acv"])
+def test_soft_alv_and_acv_equal_the_hard_ones_at_small_tau_and_sharp_visibility(name):
+    assert _soft_and_hard(name, 1e-3, 1e-5, bearing_noise_deg=1.0).max() < 1e-3
+
+
+def _quality_at(name: str, landmarks=None, home=None, **options) -> float:
+    base = load_env("env1")
+    env = Env(jnp.asarray(base.landmarks if landmarks is None else landmarks, jnp.float32), base.valid,
+              jnp.asarray(base.home if home is None else home, jnp.float32), base.arena, name="fd")
+    return delvjax.homing_quality(env, name, spacing=100, tau=0.05, **options)
+
+
+@pytest.mark.parametrize("name, options, scalars", [
+    ("delv", {"bearing_noise_deg": 1.0}, {"d": 50.0, "bearing_noise_deg": 1.0}),
+    ("delv", {"levels": 4, "scale": 1000.0}, {"scale": 1000.0}),
+    ("alv", {"compass_noise_deg": 2.0}, {"compass_noise_deg": 2.0}),
+    ("acv", {"bearing_noise_deg": 1.0}, {"bearing_noise_deg": 1.0}),
+])
+def test_gradients_match_central_finite_differences(name, options, scalars):
+    value, grads = delvjax.homing_quality_grad("env1", name, spacing=100, tau=0.05, **options)
+    assert value == pytest.approx(_quality_at(name, **options), rel=1e-5)
+    lm = np.asarray(load_env("env1").landmarks, np.float64)
+    h = 0.05
+    checks = []
+    for i, j in [(0, 0), (1, 1), (3, 0), (2, 2)]:  # x, y and a radius
+        a, b = lm.copy(), lm.copy()
+        a[i, j] += h
+        b[i, j] -= h
+        checks.append(((_quality_at(name, a, **options) - _quality_at(name, b, **options)) / (2 * h),
+                       grads["landmarks"][i, j], f"landmarks[{i}, {j}]"))
+    home = np.asarray(load_env("env1").home, np.float64)
+    checks.append(((_quality_at(name, home=home + [0, h], **options) - _quality_at(name, home=home - [0, h], **options))
+                   / (2 * h), grads["home"][1], "home[1]"))
+    for key, x0 in scalars.items():
+        step = {"scale": 1e-3 * x0, "d": 0.05}.get(key, 0.005)  # sigmas: the quality has kinks (guards) 0.05 deg away
+        fd = (_quality_at(name, **{**options, key: x0 + step}) - _quality_at(name, **{**options, key: x0 - step})) / (2 * step)
+        checks.append((fd, grads[key], key))
+    for fd, g, what in checks:
+        assert np.isfinite(g), what
+        assert abs(fd - g) <= 0.1 * max(abs(fd), abs(g)) + 2e-6, (what, fd, g)
+    assert all(np.isfinite(np.asarray(grads["landmarks"])).ravel())
+
+
+@pytest.mark.parametrize("method", ["warping", "mfdid", "cc", "delv-gap", "delv-visual", "alv-visual"])
+def test_methods_without_a_soft_version_say_so(method):
+    with pytest.raises(InputError) as exc:
+        delvjax.homing_quality_grad("env1", method, spacing=200)
+    assert exc.value.field == "method" and "soft" in exc.value.expected
+
+
+@pytest.mark.parametrize("tau", [0, -1, float("nan"), float("inf")])
+def test_a_non_positive_tau_is_refused(tau):
+    with pytest.raises(InputError) as exc:
+        delvjax.homing_quality("env1", tau=tau)
+    assert exc.value.field == "tau"
+
+
+def test_the_hard_quality_is_the_vector_map_error():
+    vm = delvjax.vector_map("env1", "alv", spacing=100)
+    err = np.radians(np.asarray(vm.error_deg))[np.asarray(vm.included)]
+    assert delvjax.homing_quality("env1", "alv", spacing=100, soft=False) == pytest.approx(np.mean(1 - np.cos(err)))
+    # the soft quality of a smooth method is close to the hard one (the views differ by half a pixel)
+    assert delvjax.homing_quality("env1", "alv", spacing=100) == pytest.approx(np.mean(1 - np.cos(err)), abs=0.01)
