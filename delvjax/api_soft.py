@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import NamedTuple
 
 import equinox as eqx
 import jax
@@ -78,25 +79,27 @@ def homing_quality(env: str | Path | Env, method: str | HomingMethod = "delv", s
 _quality = jax.jit(soft_quality)
 
 
-@jax.jit
-def _value_and_grad(params: dict, env: Env, points, included, headings, key, sensor, method, tau, sharpness):
-    def loss(p):
-        e = eqx.tree_at(lambda x: (x.landmarks, x.home), env, (p["landmarks"], p["home"]))
-        s = eqx.tree_at(lambda x: (x.d, x.noise), sensor, (p["d"], p["noise"]))
-        m = eqx.tree_at(lambda x: x.scale, method, p["scale"]) if "scale" in p else method
-        return soft_quality(e, points, included, headings, key, s, m, tau, sharpness)
+class QualityProblem(NamedTuple):
+    """A soft homing-quality evaluation ready to run: the differentiable parameters (`params`:
+    landmarks (L, 3), home (2,), d, noise (a `Noise`), scale for DELV) and everything held fixed."""
 
-    return jax.value_and_grad(loss)(params)
+    params: dict
+    env: Env
+    points: np.ndarray
+    included: np.ndarray
+    headings: np.ndarray
+    key: jax.Array
+    sensor: object
+    method: HomingMethod
+    tau: jax.Array
+    sharpness: jax.Array
+    n_landmarks: int
 
 
-def homing_quality_grad(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING,
-                        seed: int = 0, tau: float = TAU, sharpness: float = VISIBILITY_WIDTH,
-                        heading_deg: float | None = None, clearance: float = CLEARANCE, max_points: int = MAX_POINTS,
-                        **options) -> tuple[float, dict]:
-    """`homing_quality` (soft) and its gradient by reverse mode in one program: a dict with
-    landmarks (N, 3) per [x, y, r] cm, home (2,) per cm, d per cm, scale per cm (DELV only) and
-    each noise sigma under its option name (per degree for *_deg, per unit for the step factors).
-    The grid points and their headings are held fixed; noise is differentiated pathwise."""
+def quality_problem(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, seed: int = 0,
+                    tau: float = TAU, sharpness: float = VISIBILITY_WIDTH, heading_deg: float | None = None,
+                    clearance: float = CLEARANCE, max_points: int = MAX_POINTS, **options) -> QualityProblem:
+    """Validate the options of `homing_quality_grad` (before any work) and set the problem up."""
     tau, sharpness = _check_soft(tau, sharpness)
     env, module, sensor, key, points, included, headings = _setup(env, method, spacing, seed, clearance, heading_deg,
                                                                   max_points, options)
@@ -107,14 +110,45 @@ def homing_quality_grad(env: str | Path | Env, method: str | HomingMethod = "del
               "d": sensor.d, "noise": sensor.noise}
     if hasattr(module, "scale"):
         params["scale"] = module.scale
-    value, grads = _value_and_grad(params, arrays, points, included, headings, key, sensor, module, jnp.float32(tau),
-                                   jnp.float32(sharpness))
-    n = env.n_landmarks
-    out = {"landmarks": np.asarray(grads["landmarks"])[:n], "home": np.asarray(grads["home"]),
+    return QualityProblem(params, arrays, points, included, headings, key, sensor, module, jnp.float32(tau),
+                          jnp.float32(sharpness), env.n_landmarks)
+
+
+def problem_loss(params: dict, problem: QualityProblem) -> jax.Array:
+    """The soft quality of `problem` with `params` in place of its own (a pure, differentiable function)."""
+    e = eqx.tree_at(lambda x: (x.landmarks, x.home), problem.env, (params["landmarks"], params["home"]))
+    s = eqx.tree_at(lambda x: (x.d, x.noise), problem.sensor, (params["d"], params["noise"]))
+    m = eqx.tree_at(lambda x: x.scale, problem.method, params["scale"]) if "scale" in params else problem.method
+    return soft_quality(e, problem.points, problem.included, problem.headings, problem.key, s, m, problem.tau,
+                        problem.sharpness)
+
+
+@jax.jit
+def problem_value_and_grad(problem: QualityProblem) -> tuple[jax.Array, dict]:
+    """Quality and its gradient with respect to every parameter, reverse mode, one program."""
+    return jax.value_and_grad(problem_loss)(problem.params, problem)
+
+
+def homing_quality_grad(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING,
+                        seed: int = 0, tau: float = TAU, sharpness: float = VISIBILITY_WIDTH,
+                        heading_deg: float | None = None, clearance: float = CLEARANCE, max_points: int = MAX_POINTS,
+                        **options) -> tuple[float, dict]:
+    """`homing_quality` (soft) and its gradient by reverse mode in one program: a dict with
+    landmarks (N, 3) per [x, y, r] cm, home (2,) per cm, d per cm, scale per cm (DELV only) and
+    each noise sigma under its option name (per degree for *_deg, per unit for the step factors).
+    The grid points and their headings are held fixed; noise is differentiated pathwise."""
+    problem = quality_problem(env, method, spacing, seed, tau, sharpness, heading_deg, clearance, max_points, **options)
+    value, grads = problem_value_and_grad(problem)
+    return float(value), readable_grads(grads, problem.n_landmarks)
+
+
+def readable_grads(grads: dict, n_landmarks: int) -> dict:
+    """Gradients by public name: landmarks (N, 3), home, d, scale, and the noise options (per degree)."""
+    out = {"landmarks": np.asarray(grads["landmarks"])[:n_landmarks], "home": np.asarray(grads["home"]),
            "d": float(grads["d"])}
     if "scale" in grads:
         out["scale"] = float(grads["scale"])
     for field, name in NOISE_NAMES.items():
         g = float(getattr(grads["noise"], field))
         out[name] = g * math.pi / 180.0 if name.endswith("_deg") else g
-    return float(value), out
+    return out

@@ -15,6 +15,7 @@ from .cache import enable_compilation_cache
 from .cli_args import (ProgressBar, add_output_args, add_scene_args, check_outputs, progress, scene_kwargs, warn,
                        write_outputs)
 from .cli_rollouts import ROLLOUT_COMMANDS
+from .cli_gradients import GRADIENT_COMMANDS
 from .cli_sweep import add_plot_sweep, add_sweep
 from .core import maps
 from .core.errors import InputError
@@ -101,7 +102,8 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
 
 
 # Each entry adds one subcommand; a new command is one function here or in its own module.
-COMMANDS: list[Callable] = [add_vector_map, add_reproduce, *ROLLOUT_COMMANDS, add_sweep, add_plot_sweep]
+COMMANDS: list[Callable] = [add_vector_map, add_reproduce, *ROLLOUT_COMMANDS, add_sweep, add_plot_sweep,
+                            *GRADIENT_COMMANDS]
 
 
 def build_parser() -> argparse.ArgumentParser:

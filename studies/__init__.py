@@ -15,4 +15,5 @@ STUDIES = [
     "comparators",
     "occlusion",
     "visual_compass",
+    "sensitivity",
 ]

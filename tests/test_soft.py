@@ -153,3 +153,37 @@ def test_the_hard_quality_is_the_vector_map_error():
     assert delvjax.homing_quality("env1", "alv", spacing=100, soft=False) == pytest.approx(np.mean(1 - np.cos(err)))
     # the soft quality of a smooth method is close to the hard one (the views differ by half a pixel)
     assert delvjax.homing_quality("env1", "alv", spacing=100) == pytest.approx(np.mean(1 - np.cos(err)), abs=0.01)
+
+
+def test_delvjax_sensitivity_writes_figures_and_numbers(tmp_path, capsys):
+    import csv
+    import json
+
+    from delvjax.cli import main
+
+    out = tmp_path / "sens"
+    assert main(["sensitivity", "env1", "--out", str(out), "--spacing", "200", "--methods", "alv", "warping"]) == 0
+    names = sorted(p.name for p in out.iterdir())
+    assert names == ["landmarks.csv", "parameters.csv", "sensitivity.json", "sensitivity_landmarks.png",
+                     "sensitivity_parameters.png"]
+    rows = list(csv.DictReader((out / "landmarks.csv").open()))
+    value, grads = delvjax.homing_quality_grad("env1", "alv", spacing=200, bearing_noise_deg=1.0,
+                                               odometry_turn_noise_deg=1.0, compass_noise_deg=2.0)
+    assert [float(r["dq_dx_per_cm"]) for r in rows] == pytest.approx(grads["landmarks"][:, 0].tolist(), rel=1e-4)
+    summary = json.loads((out / "sensitivity.json").read_text())
+    assert summary["methods"]["alv"]["quality"] == pytest.approx(value, rel=1e-5)
+    assert summary["methods"]["warping"]["per_unit"]["d"] == 0.0  # warping reads no unit movement
+
+
+@pytest.mark.parametrize("args, field", [
+    (["--methods", "mfdid"], "methods"),
+    (["--tau", "0"], "tau"),
+    (["--spacing", "-1"], "spacing"),
+])
+def test_delvjax_sensitivity_refuses_bad_input_before_any_work(tmp_path, capsys, args, field):
+    from delvjax.cli import main
+
+    out = tmp_path / "sens"
+    assert main(["sensitivity", "env1", "--out", str(out)] + args) == 2
+    assert capsys.readouterr().err.startswith(f"delvjax: error: {field}:")
+    assert not out.exists()

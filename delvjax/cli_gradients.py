@@ -1,0 +1,54 @@
+"""The commands of the differentiable path (docs/differentiable.md): `delvjax sensitivity`."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from .cli_args import progress
+from .core.maps import SPACING
+
+
+def add_sensitivity(sub) -> None:
+    from .api_soft import TAU
+    from .sensitivities import METHODS
+
+    p = sub.add_parser("sensitivity", help="which landmark matters most, and the sensitivity of homing quality to d "
+                                           "and the noise (gradients; docs/differentiable.md)",
+                       description="Gradients of the soft homing quality (mean 1 - cos angular error over the grid) "
+                                   "with respect to every landmark and to d, bearing, odometry and compass noise, for "
+                                   "DELV, ALV and ACV; central differences of the ordinary quality for warping. "
+                                   "Writes two figures, two CSVs and sensitivity.json into --out.")
+    p.add_argument("env", help="preset name or environment JSON")
+    p.add_argument("--out", required=True, help="output folder")
+    p.add_argument("--methods", nargs="+", default=list(METHODS), help=f"among {', '.join(METHODS)} (default all)")
+    p.add_argument("--spacing", type=float, default=SPACING, help=f"grid spacing, cm (default {SPACING:g})")
+    p.add_argument("--seed", type=int, default=0, help="seed of headings and noise draws (default 0)")
+    p.add_argument("--tau", type=float, default=TAU, help=f"softmin temperature of the soft methods (default {TAU:g})")
+    p.set_defaults(func=cmd_sensitivity)
+
+
+def cmd_sensitivity(args: argparse.Namespace) -> int:
+    from .io import check_out_dir, output_set
+    from .sensitivities import check_sensitivity, landmark_figure, parameter_figure, sensitivity
+
+    out = check_out_dir(args.out)
+    env = check_sensitivity(args.env, args.methods, args.spacing, args.seed, args.tau)
+    result = sensitivity(env, args.methods, args.spacing, args.seed, args.tau,
+                         progress=lambda m: progress(f"sensitivity of {m} on {env.name} ..."))
+    summary = {"env": env.name, "spacing": args.spacing, "seed": args.seed, "tau": args.tau,
+               "methods": {m: {"quality": r["quality"], "how": r["how"], "per_unit": r["per_unit"]}
+                           for m, r in result["methods"].items()}}
+    paths = [Path(out) / name for name in ("sensitivity_landmarks.png", "sensitivity_parameters.png", "landmarks.csv",
+                                           "parameters.csv", "sensitivity.json")]
+    with output_set() as files:
+        files.figure(landmark_figure(result), paths[0], "--out")
+        files.figure(parameter_figure(result), paths[1], "--out")
+        files.rows_csv(paths[2], result["landmark_rows"], "--out")
+        files.rows_csv(paths[3], result["parameter_rows"], "--out")
+        files.json(paths[4], summary, "--out")
+    print("wrote " + ", ".join(str(p) for p in paths))
+    return 0
+
+
+GRADIENT_COMMANDS = [add_sensitivity]
