@@ -51,4 +51,54 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
     return 0
 
 
-GRADIENT_COMMANDS = [add_sensitivity]
+
+
+
+def add_traps(sub) -> None:
+    from .api_soft import TAU
+    from .options import NOISE_FIELDS_DEG, NOISE_OPTIONS
+
+    p = sub.add_parser("traps", help="trap points (sinks, saddles, sources) of a homing field near its failed "
+                                     "rollouts (optimistix; docs/differentiable.md)",
+                       description="Run the catchment, then root-find the zeros of the soft homing field from the end "
+                                   "points of the timed-out rollouts, classify them from the Jacobian, and report how "
+                                   "many failed rollouts end within --near cm of a sink. Writes traps.png, traps.csv "
+                                   "and traps.json into --out.")
+    p.add_argument("env", help="preset name or environment JSON")
+    p.add_argument("--method", default="delv", help="delv, delv-compass, alv or acv (default delv)")
+    p.add_argument("--out", required=True, help="output folder")
+    p.add_argument("--spacing", type=float, default=SPACING, help=f"grid spacing, cm (default {SPACING:g})")
+    p.add_argument("--seed", type=int, default=0, help="seed of headings and noise (default 0)")
+    p.add_argument("--tau", type=float, default=TAU, help=f"softmin temperature (default {TAU:g})")
+    p.add_argument("--near", type=float, default=None, help="a failed rollout ending this close to a sink counts as "
+                                                            "trapped, cm (default d)")
+    p.add_argument("--levels", type=int, default=None, help="DELV quantization levels Q (default continuous)")
+    p.add_argument("--d", type=float, default=None, help="unit-movement step, cm (default 50)")
+    for name in NOISE_OPTIONS:
+        p.add_argument("--" + name.replace("_", "-"), type=float, default=None, dest=name,
+                       help=f"noise sigma ({'deg' if name in NOISE_FIELDS_DEG else 'fraction of d'}; default 0)")
+    p.set_defaults(func=cmd_traps)
+
+
+def cmd_traps(args: argparse.Namespace) -> int:
+    from .io import check_out_dir, output_set
+    from .options import NOISE_OPTIONS
+    from .traps import find_traps, trap_figure
+
+    out = check_out_dir(args.out)
+    options = {k: getattr(args, k) for k in ("levels", "d", *NOISE_OPTIONS) if getattr(args, k) is not None}
+    report = find_traps(args.env, args.method, spacing=args.spacing, seed=args.seed, tau=args.tau, near=args.near,
+                        announce=lambda: progress(f"catchment of {args.method} on {args.env}, then its trap points ..."),
+                        **options)
+    s = report.summary
+    progress(f"{s['timed_out']} rollouts timed out; {s['sinks']} sink(s) besides home, {s['saddles']} saddle(s), "
+             f"{s['discontinuities']} discontinuity point(s); {s['timed_out_within_near_of_a_sink']} timed-out "
+             f"rollouts end within {s['near_cm']:g} cm of a sink")
+    paths = [Path(out) / name for name in ("traps.png", "traps.csv", "traps.json")]
+    with output_set() as files:
+        files.figure(trap_figure(report, args.spacing), paths[0], "--out")
+        files.rows_csv(paths[1], report.points, "--out")
+        files.json(paths[2], {**s, "points": report.points}, "--out")
+    print("wrote " + ", ".join(str(p) for p in paths))
+    return 0
+GRADIENT_COMMANDS = [add_sensitivity, add_traps]
