@@ -101,4 +101,58 @@ def cmd_traps(args: argparse.Namespace) -> int:
         files.json(paths[2], {**s, "points": report.points}, "--out")
     print("wrote " + ", ".join(str(p) for p in paths))
     return 0
-GRADIENT_COMMANDS = [add_sensitivity, add_traps]
+
+
+def add_optimise_layout(sub) -> None:
+    from .api_soft import TAU
+    from .layout import STEPS
+
+    p = sub.add_parser("optimise-layout", help="move the landmarks to maximise homing quality (optimistix BFGS), "
+                                               "compare by catchment (docs/differentiable.md)",
+                       description="Optimise the landmark positions of ENV (or of --landmarks N seeded random ones) "
+                                   "for a method, with or without occlusion (the mean over every choice of --occlude "
+                                   "hidden landmarks), then compare start and result by the ordinary catchment and "
+                                   "error rates. Writes layout.png, comparison.csv, optimised_env.json (an environment "
+                                   "file) and layout.json into --out.")
+    p.add_argument("env", nargs="?", default=None, help="preset name or environment JSON (or use --landmarks)")
+    p.add_argument("--landmarks", type=int, default=None, help="start from N seeded random landmarks instead")
+    p.add_argument("--seed", type=int, default=0, help="seed of the random layout, headings and noise (default 0)")
+    p.add_argument("--method", default="delv", help="delv, delv-compass, alv or acv (default delv)")
+    p.add_argument("--occlude", type=int, default=0, help="optimise the mean over every choice of k hidden landmarks")
+    p.add_argument("--steps", type=int, default=STEPS, help=f"BFGS steps at most (default {STEPS})")
+    p.add_argument("--spacing", type=float, default=SPACING, help=f"grid of the comparison, cm (default {SPACING:g})")
+    p.add_argument("--tau", type=float, default=TAU, help=f"softmin temperature (default {TAU:g})")
+    p.add_argument("--out", required=True, help="output folder")
+    p.set_defaults(func=cmd_optimise_layout)
+
+
+def cmd_optimise_layout(args: argparse.Namespace) -> int:
+    from .cli_args import ProgressBar
+    from .io import check_out_dir, output_set
+    from .layout import layout_figure, optimise_layout, start_layout
+    from .presets import env_to_dict
+
+    out = check_out_dir(args.out)
+    env = start_layout(args.env, args.landmarks, args.seed)
+    with ProgressBar("step", 0) as bar:
+        result = optimise_layout(env, args.method, args.occlude, args.spacing, args.seed, args.tau, args.steps,
+                                 progress=lambda i, n, v: bar(1, n),
+                                 announce=lambda: progress(f"optimising the {env.n_landmarks} landmarks of {env.name} "
+                                                           f"for {args.method} ..."))
+    start, end = result.rows
+    progress(f"catchment {start['catchment_pct']:.1f} % -> {end['catchment_pct']:.1f} %, e>45° {start['gt45_pct']:.1f} % "
+             f"-> {end['gt45_pct']:.1f} % ({len(result.objective) - 1} steps, {result.seconds:.1f} s)")
+    paths = [Path(out) / name for name in ("layout.png", "comparison.csv", "optimised_env.json", "layout.json")]
+    with output_set() as files:
+        files.figure(layout_figure(result, args.spacing, args.seed), paths[0], "--out")
+        files.rows_csv(paths[1], result.rows, "--out")
+        files.json(paths[2], env_to_dict(result.optimised), "--out")
+        files.json(paths[3], {"method": args.method, "occlude": result.occlude, "seconds": result.seconds,
+                              "objective": result.objective, "rows": result.rows,
+                              "start_env": env_to_dict(result.start), "optimised_env": env_to_dict(result.optimised)},
+                   "--out")
+    print("wrote " + ", ".join(str(p) for p in paths))
+    return 0
+
+
+GRADIENT_COMMANDS = [add_sensitivity, add_traps, add_optimise_layout]

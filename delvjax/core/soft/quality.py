@@ -25,12 +25,13 @@ from .sensing import soft_home, soft_observe
 
 
 def soft_field(env: Env, points: Array, headings: Array, key: Array, sensor: Sensor, method: HomingMethod,
-               tau: Array, sharpness: Array) -> tuple[Array, Array]:
+               tau: Array, sharpness: Array, visible: Array | None = None) -> tuple[Array, Array]:
     """Soft homing vectors in the world frame (P, 2) and validity (P,) at `points` (the vector map's
-    unit moves ending there with `headings`, streams of `key`)."""
+    unit moves ending there with `headings`, streams of `key`); `visible` (L,) the landmarks the
+    current views see (occlusion; the home record sees all)."""
     k_home, k_views, _ = stream_keys(key)
     home = soft_home(env, k_home, sensor, sharpness)
-    visible = jnp.ones(env.landmarks.shape[0], bool)
+    visible = jnp.ones(env.landmarks.shape[0], bool) if visible is None else visible
 
     def one(point, heading, index):
         poses = map_poses(point, heading, k_views, index, sensor)
@@ -49,8 +50,8 @@ def alignment_loss(vectors: Array, valid: Array, points: Array, home: Array) -> 
 
 
 def soft_quality(env: Env, points: Array, included: Array, headings: Array, key: Array, sensor: Sensor,
-                 method: HomingMethod, tau: Array, sharpness: Array) -> Array:
+                 method: HomingMethod, tau: Array, sharpness: Array, visible: Array | None = None) -> Array:
     """Mean `alignment_loss` of the soft field over the included grid points (lower is better)."""
-    vec, valid = soft_field(env, points, headings, key, sensor, method, tau, sharpness)
+    vec, valid = soft_field(env, points, headings, key, sensor, method, tau, sharpness, visible)
     loss = alignment_loss(vec, valid, points, env.home)
     return jnp.sum(jnp.where(included, loss, 0.0)) / jnp.maximum(jnp.sum(included), 1)
