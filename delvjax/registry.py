@@ -16,6 +16,7 @@ from .core.methods.base import HomingMethod
 from .core.methods.cartwright_collett import CartwrightCollett
 from .core.methods.delv import DELV
 from .core.methods.delv_gap import DELVGap
+from .core.methods.delv_refined import DELVRefined
 from .core.methods.heading import Compass, VisualCompass
 from .core.methods.mfdid import MFDID
 from .core.methods.program import Program
@@ -35,6 +36,8 @@ REGISTRY: dict[str, tuple[HomingMethod, str]] = {
     "cc": (CartwrightCollett(), "snapshot model of Cartwright & Collett 1983 (landmarks only) with a compass"),
     "delv-gap": (DELVGap(), "DELV, no compass, gap-aware matching: pairings may skip landmarks (beyond the thesis)"),
     "delv-gap-compass": (DELVGap(heading=Compass()), "DELV with a compass and gap-aware matching (beyond the thesis)"),
+    "delv-refined": (DELVRefined(), "DELV, no compass, heading and home vector refined by least squares after the "
+                                    "1 deg search (beyond the thesis)"),
 }
 METHODS: dict[str, HomingMethod] = {name: module for name, (module, _) in REGISTRY.items()}
 DESCRIPTIONS: dict[str, str] = {name: text for name, (_, text) in REGISTRY.items()}

@@ -16,4 +16,5 @@ STUDIES = [
     "occlusion",
     "visual_compass",
     "sensitivity",
+    "layouts",
 ]

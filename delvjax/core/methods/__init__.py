@@ -10,10 +10,11 @@ from .base import HomingMethod, Method
 from .cartwright_collett import CartwrightCollett
 from .delv import DELV
 from .delv_gap import DELVGap
+from .delv_refined import DELVRefined
 from .heading import Compass, HeadingSource, VisualCompass
 from .mfdid import MFDID
 from .program import Program
 from .warping import Warping
 
-__all__ = ["ACV", "ALV", "CartwrightCollett", "Compass", "DELV", "DELVGap", "HeadingSource", "HomingMethod", "MFDID", "Method", "Program",
+__all__ = ["ACV", "ALV", "CartwrightCollett", "Compass", "DELV", "DELVGap", "DELVRefined", "HeadingSource", "HomingMethod", "MFDID", "Method", "Program",
            "VisualCompass", "Warping"]

@@ -34,14 +34,15 @@ def match_arrangement(ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: BlobVecto
     return p, alpha, var, n
 
 
-def best_pairing(ref_v: BlobVectors, cur_v: BlobVectors, ref_idx: Pairing, cur_idx: Pairing, pair_ok: PairingFlags,
-                 row_ok: RowFlags, n: Array, alphas: Hypotheses) -> tuple[Point, Scalar, Scalar]:
-    """The first minimum of var over pairings (rows) x heading hypotheses: (p (2,), alpha, var).
+def pairing_table(ref_v: BlobVectors, cur_v: BlobVectors, ref_idx: Pairing, cur_idx: Pairing, pair_ok: PairingFlags,
+                  row_ok: RowFlags, n: Array, alphas: Hypotheses) -> tuple[Array, Array, Array]:
+    """var of every pairing (row) x heading hypothesis, (H, A) (inf on rows that are not row_ok), and
+    the rows' mean reference and current vectors (H, 2) each.
 
-    Row h pairs ref_v[ref_idx[h, s]] with cur_v[cur_idx[h, s]] where pair_ok[h, s]; rows that are
-    not row_ok are skipped; n is the number of pairs. With centred pair vectors a'_i, b'_i,
-    var(alpha) = sum |a'|^2 + |b'|^2 - 2 Re(e^{i alpha} sum conj(a') b'), so all alphas of one
-    row cost two multiply-adds each (Eqs 3.4-3.6; docs/model.md §3.4).
+    Row h pairs ref_v[ref_idx[h, s]] with cur_v[cur_idx[h, s]] where pair_ok[h, s]; n is the number
+    of pairs. With centred pair vectors a'_i, b'_i, var(alpha) = sum |a'|^2 + |b'|^2 -
+    2 Re(e^{i alpha} sum conj(a') b'), so all alphas of one row cost two multiply-adds each
+    (Eqs 3.4-3.6; docs/model.md §3.4).
     """
     w = pair_ok.astype(ref_v.dtype)[..., None]  # (H, S, 1)
     # one division, written out: XLA compiles x / n as x * (1 / n) in some programs only (docs/reproduce.md "Chunking")
@@ -56,9 +57,20 @@ def best_pairing(ref_v: BlobVectors, cur_v: BlobVectors, ref_idx: Pairing, cur_i
     z_re = jnp.sum(a_c[..., 0] * b_c[..., 0] + a_c[..., 1] * b_c[..., 1], axis=1)
     z_im = jnp.sum(a_c[..., 0] * b_c[..., 1] - a_c[..., 1] * b_c[..., 0], axis=1)
     var = const[:, None] - 2.0 * (jnp.cos(alphas)[None, :] * z_re[:, None] - jnp.sin(alphas)[None, :] * z_im[:, None])
-    var = jnp.where(row_ok[:, None], var, jnp.inf)
+    return jnp.where(row_ok[:, None], var, jnp.inf), a_mean, b_mean
+
+
+def best_index(var: Array) -> tuple[Array, Array]:
+    """(row, hypothesis) of the first minimum of a `pairing_table` var, in row-major order."""
     best = first_argmin(var.reshape(-1))
-    h_best, a_best = best // alphas.shape[0], best % alphas.shape[0]
+    return best // var.shape[1], best % var.shape[1]
+
+
+def best_pairing(ref_v: BlobVectors, cur_v: BlobVectors, ref_idx: Pairing, cur_idx: Pairing, pair_ok: PairingFlags,
+                 row_ok: RowFlags, n: Array, alphas: Hypotheses) -> tuple[Point, Scalar, Scalar]:
+    """The first minimum of var over pairings (rows) x heading hypotheses (`pairing_table`): (p (2,), alpha, var)."""
+    var, a_mean, b_mean = pairing_table(ref_v, cur_v, ref_idx, cur_idx, pair_ok, row_ok, n, alphas)
+    h_best, a_best = best_index(var)
     alpha = alphas[a_best]
     p = a_mean[h_best] - rotate(b_mean[h_best], alpha)
     return p, alpha, var[h_best, a_best]
