@@ -9,9 +9,13 @@ rollouts); this top level is the edge: names, options, files, figures, CLI and t
 from .api import load_env, vector_map
 from .api_rollouts import catchment, success_rate, trajectories
 from .api_soft import homing_quality, homing_quality_grad
+from .layout import optimise_layout
+from .sensitivities import sensitivity
+from .traps import find_traps
 from .core.errors import InputError
 from .core.maps import VectorMap
-from .core.methods import (ACV, ALV, DELV, MFDID, CartwrightCollett, Compass, DELVGap, HomingMethod, Method, Program,
+from .core.methods import (ACV, ALV, DELV, MFDID, CartwrightCollett, Compass, DELVGap, DELVRefined,
+                           HomingMethod, Method, Program,
                            VisualCompass, Warping)
 from .core.metrics import error_curve, error_point_rates, summarize_map
 from .core.scene import Env
@@ -22,9 +26,9 @@ from .registry import METHODS
 from .sweeps import load_sweep, run_sweep
 
 __all__ = [
-    "ACV", "ALV", "CartwrightCollett", "Compass", "DELV", "DELVGap", "Env", "HomingMethod", "InputError", "METHODS", "MFDID",
+    "ACV", "ALV", "CartwrightCollett", "Compass", "DELV", "DELVGap", "DELVRefined", "Env", "HomingMethod", "InputError", "METHODS", "MFDID",
     "Method", "Noise", "Program", "Sensor", "Snapshot", "UnitMove", "VectorMap", "VisualCompass", "Warping",
-    "catchment", "error_curve", "homing_quality", "homing_quality_grad", "error_point_rates", "load_env", "make_env", "success_rate", "summarize_map",
+    "catchment", "error_curve", "homing_quality", "homing_quality_grad", "find_traps", "optimise_layout", "sensitivity", "error_point_rates", "load_env", "make_env", "success_rate", "summarize_map",
     "load_sweep", "run_sweep", "trajectories", "vector_map",
 ]
 __version__ = "0.1.0"

@@ -55,7 +55,8 @@ def start_processes(args: argparse.Namespace) -> None:
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
-    from .sweep_spec import EXAMPLES, read_sweep
+    from .sweep_examples import EXAMPLES
+    from .sweep_spec import read_sweep
     from .io import check_out_dir
     from .sweeps import run_sweep, save_sweep
 

@@ -116,12 +116,13 @@ def start_layout(env: str | Path | Env | None = None, landmarks: int | None = No
     return random_env(seed, n)
 
 
-def optimise_layout(env: Env, method: str = "delv", occlude: int = 0, spacing: float = SPACING, seed: int = 0,
+def optimise_layout(env: str | Path | Env, method: str = "delv", occlude: int = 0, spacing: float = SPACING, seed: int = 0,
                     tau: float = TAU, steps: int = STEPS, progress: Callable[[int, int, float], None] | None = None,
                     announce: Callable[[], None] | None = None, **options) -> LayoutResult:
     """Optimise the landmark positions of `env` for `method` (module docstring); compare the start and
     the result by catchment and error rates on the `spacing` grid under every choice of `occlude`
     hidden landmarks."""
+    env = load_env(env)
     problem: QualityProblem = quality_problem(env, method, spacing=OPT_SPACING, seed=seed, tau=tau, **options)
     k = occlusion_count(occlude, env.n_landmarks) if occlude else 0
     steps = positive_int(steps, "steps")

@@ -11,7 +11,8 @@ import delvjax
 from delvjax.core.errors import InputError
 from delvjax.core.rollouts import catchment_summary, wilson_interval_pct
 from delvjax.sweep_results import wilson_pct
-from delvjax.sweep_spec import EXAMPLES, KINDS, parse_sweep
+from delvjax.sweep_examples import EXAMPLES
+from delvjax.sweep_spec import KINDS, parse_sweep
 from delvjax.sweeps import run_sweep
 
 CATCHMENT = """

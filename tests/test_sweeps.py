@@ -10,7 +10,8 @@ import delvjax
 from delvjax import sweeps
 from delvjax.cli import main
 from delvjax.core.errors import InputError
-from delvjax.sweep_spec import EXAMPLE, parse_sweep
+from delvjax.sweep_examples import EXAMPLE
+from delvjax.sweep_spec import parse_sweep
 
 SMALL = """
 [sweep]
