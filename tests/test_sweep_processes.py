@@ -56,3 +56,12 @@ def test_process_options_are_checked_before_any_work(tmp_path, capsys):
         assert main(["sweep", str(path), "--out", str(tmp_path / "o")] + extra) == 2
         assert capsys.readouterr().err.startswith(f"delvjax: error: {field}:")
     assert not (tmp_path / "o").exists()
+
+
+def test_importing_delvjax_leaves_the_jax_backend_alone():
+    """jax.distributed.initialize must run before JAX starts its backend, so importing delvjax (the CLI,
+    every method, the studies) must not start it (an optimistix solver built at import time did)."""
+    code = ("from jax._src import xla_bridge as xb; import delvjax, delvjax.cli, studies; "
+            "import sys; sys.exit(1 if xb._backends else 0)")
+    assert subprocess.run([sys.executable, "-c", code], env=dict(os.environ, JAX_PLATFORMS="cpu")).returncode == 0
+

@@ -14,6 +14,8 @@ heading is refined too: the landmarks then correct a noisy compass reading.
 
 from __future__ import annotations
 
+import functools
+
 import jax.numpy as jnp
 import optimistix as optx
 from jax import Array
@@ -23,8 +25,14 @@ from ..types import BlobFlags, BlobVectors, Hypotheses, Point, Scalar
 from .delv import DELV, best_index, pairing_table
 from .pairing import shift_pairs
 
-SOLVER = optx.GaussNewton(rtol=1e-6, atol=1e-6)  # nearly linear: 8 steps where Levenberg-Marquardt took 23
 STEPS = 32
+
+
+@functools.cache
+def solver() -> optx.GaussNewton:
+    """Gauss-Newton (nearly linear: 8 steps where Levenberg-Marquardt took 23). Built on first use:
+    constructing an optimistix solver starts JAX's backend, which must wait for jax.distributed."""
+    return optx.GaussNewton(rtol=1e-6, atol=1e-6)
 
 
 def refined_match(ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: BlobVectors, cur_valid: BlobFlags,
@@ -42,7 +50,7 @@ def refined_match(ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: BlobVectors, 
         return (w * (ref - rotate(cur, y[0]) - y[1:])).ravel()
 
     y0 = jnp.concatenate([alpha0[None], p0])
-    sol = optx.least_squares(residuals, SOLVER, y0, max_steps=STEPS, throw=False)
+    sol = optx.least_squares(residuals, solver(), y0, max_steps=STEPS, throw=False)
     cost = lambda y: jnp.sum(residuals(y, None) ** 2)  # noqa: E731
     ok = jnp.all(jnp.isfinite(sol.value)) & (cost(sol.value) <= cost(y0))  # never worse than the search
     y = jnp.where(ok, sol.value, y0)

@@ -15,6 +15,8 @@ field), with the vector map's noise streams of `key`.
 
 from __future__ import annotations
 
+import functools
+
 import jax
 import jax.numpy as jnp
 import optimistix as optx
@@ -31,7 +33,13 @@ from .sensing import soft_home, soft_observe
 
 FIELD_HEADINGS = 8
 KINDS = ("sink", "saddle", "source", "degenerate")
-SOLVER = optx.LevenbergMarquardt(rtol=1e-6, atol=1e-6)  # damped: Newton overshoots where the field is flat
+
+
+@functools.cache
+def solver() -> optx.LevenbergMarquardt:
+    """Damped Newton (Newton overshoots where the field is flat). Built on first use: constructing an
+    optimistix solver starts JAX's backend, which must wait for jax.distributed."""
+    return optx.LevenbergMarquardt(rtol=1e-6, atol=1e-6)
 
 
 def soft_vector(x: Array, env: Env, sensor: Sensor, method: HomingMethod, key: Array, tau: Array,
@@ -64,11 +72,10 @@ def field_zeros(env: Env, starts: Array, sensor: Sensor, method: HomingMethod, k
     solver converged (S,), kind (S,) into KINDS, Jacobian (S, 2, 2), residual |H| at the point
     relative to the median |H| at the starts (S,)). A point with a residual that is not small is a
     minimum of |H| but no zero: a discontinuity of the field (e.g. a blob that appears)."""
-    solver = SOLVER
     field = lambda x, _: soft_vector(x, env, sensor, method, key, tau, sharpness)  # noqa: E731
 
     def one(y0):
-        sol = optx.root_find(field, solver, y0, max_steps=64, throw=False)
+        sol = optx.root_find(field, solver(), y0, max_steps=64, throw=False)
         jac = jax.jacfwd(lambda x: field(x, None))(sol.value)
         return sol.value, sol.result == optx.RESULTS.successful, classify(jac), jac, jnp.linalg.norm(field(sol.value, None))
 
