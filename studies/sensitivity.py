@@ -3,7 +3,7 @@
 Which landmark's position matters most (arrows on the landmarks scaled by the gradient of the
 soft homing quality), and how homing quality responds to d, bearing, odometry and compass noise,
 for DELV, ALV, ACV (reverse mode) and warping (central differences of the ordinary quality).
-Also (not under --quick) the bearing-noise gain maps: ||d direction / d current bearings|| at every
+Also (in a full run, not under --quick) the bearing-noise gain maps: ||d direction / d current bearings|| at every
 grid point.
 Run alone: python -m studies.sensitivity --out results/sensitivity [--env env1]
 """
@@ -69,7 +69,7 @@ def run(ctx) -> None:
                "Arrows on the landmarks: moving a landmark that way improves homing quality; numbers: |dQ/dx| per metre.")
     ctx.figure("sensitivity_parameters.png", parameter_figure(result),
                "Change of homing quality per 10 cm of d and per degree of each noise sigma.")
-    if ctx.settings.quick:  # four more compiled programs for a preview: only in the full run
+    if ctx.settings.quick or ctx.settings.spacing >= 100:  # four more compiled programs: only in a full run
         return
     fig, rows = gain_figure(e, ctx.settings.spacing, ctx.settings.seed)
     ctx.csv("bearing_gain.csv", rows=rows)

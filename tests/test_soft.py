@@ -25,7 +25,7 @@ PIXEL = 2 * np.pi / 360
 def test_analytic_views_agree_with_the_pixel_path_to_a_pixel_on_random_scenes():
     rng = np.random.default_rng(0)
     compared = 0
-    for seed in range(6):
+    for seed in range(3):
         env = random_env(seed, 3 + seed % 4).arrays()
         pts = rng.uniform(50, 950, (200, 2)).astype(np.float32)
         heads = rng.uniform(0, 2 * np.pi, 200).astype(np.float32)
@@ -53,7 +53,7 @@ def test_analytic_views_agree_with_the_pixel_path_to_a_pixel_on_random_scenes():
             match = gap.argmin(axis=1)
             assert len(set(match)) == seen.sum() and gap.min(axis=1).max() <= PIXEL, (seed, i)
             assert np.abs(pw[i][pv[i]][match] - aw[i][seen]).max() <= 2 * PIXEL, (seed, i)
-    assert compared > 400  # of 1200 points (478 measured)
+    assert compared > 200  # of 600 points (268 measured)
 
 
 def _soft_and_hard(name: str, tau: float, sharpness: float, **options):
@@ -191,8 +191,8 @@ def test_delvjax_sensitivity_refuses_bad_input_before_any_work(tmp_path, capsys,
 
 def test_least_squares_refinement_removes_the_heading_grid():
     """docs/differentiable.md "Sub-degree refinement": with 10 degree hypotheses the search is 2.7 degrees
-    off the true heading; least squares on (alpha, p) lands within the pixel error; on a whole map the
-    refined 36-hypothesis DELV matches the 360-hypothesis one."""
+    off the true heading; least squares on (alpha, p) lands within the pixel error (whole maps:
+    benchmarks/bench_refine.py)."""
     from delvjax.core.estimation import current_vectors, reference_vectors
     from delvjax.core.methods.delv import match_arrangement
     from delvjax.core.methods.delv_refined import refined_match
@@ -207,11 +207,7 @@ def test_least_squares_refinement_removes_the_heading_grid():
     _, coarse, var0, _ = match_arrangement(*args)
     _, fine, var1, _ = refined_match(*args)
     assert abs(float(coarse) - 1.0) > 0.04 and abs(float(fine) - 1.0) < 0.01 and float(var1) < float(var0)
-    corner = delvjax.make_env([[800, 800, 30], [880, 690, 25], [690, 880, 20], [900, 900, 15]], name="corner")
-    errors = {}
-    for name, n in [("delv", 36), ("delv-refined", 36), ("delv", 360)]:
-        vm = delvjax.vector_map(corner, name, spacing=50, n_heading=n)
-        errors[name, n] = np.asarray(vm.error_deg)[np.asarray(vm.included)]
-    gap_coarse = np.abs(errors["delv", 36] - errors["delv", 360]).mean()
-    gap_refined = np.abs(errors["delv-refined", 36] - errors["delv", 360]).mean()
-    assert gap_refined < gap_coarse / 3, (gap_refined, gap_coarse)
+    # maps of two shapes in one process (an optimistix solver shared by both traces once ran the wrong program)
+    for n in (360, 36):
+        vm = delvjax.vector_map("env1", "delv-refined", spacing=200, n_heading=n)
+        assert np.asarray(vm.valid)[np.asarray(vm.included)].all()

@@ -14,7 +14,6 @@ heading is refined too: the landmarks then correct a noisy compass reading.
 
 from __future__ import annotations
 
-import functools
 
 import jax.numpy as jnp
 import optimistix as optx
@@ -28,10 +27,10 @@ from .pairing import shift_pairs
 STEPS = 32
 
 
-@functools.cache
 def solver() -> optx.GaussNewton:
-    """Gauss-Newton (nearly linear: 8 steps where Levenberg-Marquardt took 23). Built on first use:
-    constructing an optimistix solver starts JAX's backend, which must wait for jax.distributed."""
+    """Gauss-Newton (nearly linear: 8 steps where Levenberg-Marquardt took 23). Built at each trace:
+    constructing one at import starts JAX's backend (which must wait for jax.distributed), and one
+    instance shared by traces of other shapes made jit run a program compiled for another shape."""
     return optx.GaussNewton(rtol=1e-6, atol=1e-6)
 
 

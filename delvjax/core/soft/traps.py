@@ -15,7 +15,6 @@ field), with the vector map's noise streams of `key`.
 
 from __future__ import annotations
 
-import functools
 
 import jax
 import jax.numpy as jnp
@@ -35,10 +34,10 @@ FIELD_HEADINGS = 8
 KINDS = ("sink", "saddle", "source", "degenerate")
 
 
-@functools.cache
 def solver() -> optx.LevenbergMarquardt:
-    """Damped Newton (Newton overshoots where the field is flat). Built on first use: constructing an
-    optimistix solver starts JAX's backend, which must wait for jax.distributed."""
+    """Damped Newton (Newton overshoots where the field is flat). Built at each trace: constructing one
+    at import starts JAX's backend (which must wait for jax.distributed), and one instance shared by
+    traces of other shapes made jit run a program compiled for another shape."""
     return optx.LevenbergMarquardt(rtol=1e-6, atol=1e-6)
 
 
