@@ -7,7 +7,7 @@
 The catchment (the ordinary, hard rollouts) gives the failed rollouts; their end points seed
 optimistix's root finder on the soft field (`core.soft.traps`); zeros are merged within
 MERGE_CM and classified from the Jacobian. A minimum of |H| that is not a zero is reported as a
-discontinuity of the field.
+discontinuity of the field; period-2 orbits of the rollout step (`two_cycles`) as limit cycles.
 """
 
 from __future__ import annotations
@@ -25,10 +25,12 @@ from .core.maps import SPACING
 from .core.rollouts import TIMEOUT, Catchment
 from .core.rollouts.rules import HOME_RADIUS
 from .core.scene import Env
-from .core.soft.traps import KINDS, field_zeros
+from .core.soft.traps import KINDS, field_zeros, two_cycles
 from .options import positive, positive_int
 
 MERGE_CM = 2.0  # zeros closer than this are one
+CYCLE_CM = 1.0  # a period-2 orbit closes within this
+CYCLE_MERGE_CM = 10.0  # orbits come in families along a line where the field flips: one row per 10 cm
 RESIDUAL = 1e-3  # |H| at a zero, relative to the median |H| at the starts
 START_CELL_CM = 5.0  # failed end points closer than this seed one start
 MAX_STARTS = 256
@@ -59,12 +61,12 @@ def _starts(ends: np.ndarray, home: np.ndarray, max_starts: int) -> np.ndarray:
     return np.concatenate([cells, home[None]]).astype(np.float32)
 
 
-def _merge(points: np.ndarray) -> list[list[int]]:
-    """Groups of indices of points within MERGE_CM of the group's first point (greedy, a few dozen points)."""
+def _merge(points: np.ndarray, radius: float = MERGE_CM) -> list[list[int]]:
+    """Groups of indices of points within `radius` of the group's first point (greedy, a few dozen points)."""
     groups: list[list[int]] = []
     for i, p in enumerate(points):  # post-processing of at most MAX_STARTS points
         for g in groups:
-            if np.hypot(*(points[g[0]] - p)) <= MERGE_CM:
+            if np.hypot(*(points[g[0]] - p)) <= radius:
                 g.append(i)
                 break
         else:
@@ -117,14 +119,30 @@ def find_traps(env: str | Path | Env, method: str = "delv", spacing: float = SPA
                      "home": bool(np.hypot(*(z[i] - home)) <= home_radius),
                      "det_jacobian": float(np.linalg.det(jac[i])), "trace_jacobian": float(np.trace(jac[i])),
                      "relative_residual": float(residual[i]), "starts": len(group)})
+    cx, cy, cres = (np.asarray(a) for a in two_cycles(problem.env, starts, problem.sensor, problem.method, problem.key,
+                                                       problem.tau, problem.sharpness))
+    away = (np.hypot(*(cx - home).T) > home_radius) & (np.hypot(*(cy - home).T) > home_radius)  # else: home reached
+    closed = np.all(np.isfinite(cx), axis=1) & (cres < CYCLE_CM) & away
+    for group in _merge(np.where(closed[:, None], cx, np.nan), CYCLE_MERGE_CM):  # a family of orbits: one row
+        i = group[0]
+        if closed[i] and not any(r["kind"] == "2-cycle" and np.hypot(r["x"] - cy[i, 0], r["y"] - cy[i, 1])
+                                 <= CYCLE_MERGE_CM for r in rows):
+            rows.append({"x": float(cx[i, 0]), "y": float(cx[i, 1]), "kind": "2-cycle", "zero": False, "home": False,
+                         "partner_x": float(cy[i, 0]), "partner_y": float(cy[i, 1]), "relative_residual": float(cres[i]),
+                         "starts": len(group)})
     nearest = _nearest(ends, rows, lambda r: r["kind"] == "sink" and not r["home"])
     near_jump = _nearest(ends, rows, lambda r: r["kind"] == "discontinuity")
+    near_cycle = np.minimum(_nearest(ends, rows, lambda r: r["kind"] == "2-cycle"),
+                            _nearest(ends, [{"x": r["partner_x"], "y": r["partner_y"]} for r in rows
+                                            if r["kind"] == "2-cycle"], lambda r: True))
     summary = {"env": env.name, "method": method,
                "grid_points": int(inc.sum()), "catchment_pct": float(c.catchment_pct()[0]),
                "failed_rollouts": int((inc & ~np.asarray(c.success)[0]).sum()), "timed_out": int(timeout.sum()),
                "starts": int(len(starts)), "near_cm": near,
                "timed_out_within_near_of_a_sink": int((nearest <= near).sum()),
                "timed_out_within_near_of_a_discontinuity": int(((near_jump <= near) & (nearest > near)).sum()),
+               "timed_out_on_a_2_cycle": int((near_cycle <= near).sum()),
+               "two_cycles": sum(r["kind"] == "2-cycle" for r in rows),
                "sinks": sum(r["kind"] == "sink" and not r["home"] for r in rows),
                "home_sinks": sum(r["kind"] == "sink" and r["home"] for r in rows),
                "saddles": sum(r["kind"] == "saddle" for r in rows), "sources": sum(r["kind"] == "source" for r in rows),
@@ -150,7 +168,7 @@ def trap_figure(report: TrapReport, spacing: float):
         ax.plot(report.failed_ends[:, 0], report.failed_ends[:, 1], ".", color="tab:red", markersize=3, zorder=5,
                 label="timed-out ends")
     style = {"sink": ("o", "tab:red"), "saddle": ("X", "tab:orange"), "source": ("^", "tab:blue"),
-             "degenerate": ("s", "tab:purple"), "discontinuity": ("D", "0.5")}
+             "degenerate": ("s", "tab:purple"), "discontinuity": ("D", "0.5"), "2-cycle": ("P", "tab:green")}
     for kind, (marker, color) in style.items():
         pts = np.array([[r["x"], r["y"]] for r in report.points if r["kind"] == kind and not r["home"]]).reshape(-1, 2)
         if len(pts):

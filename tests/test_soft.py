@@ -25,7 +25,7 @@ PIXEL = 2 * np.pi / 360
 def test_analytic_views_agree_with_the_pixel_path_to_a_pixel_on_random_scenes():
     rng = np.random.default_rng(0)
     compared = 0
-    for seed in range(3):
+    for seed in range(2):
         env = random_env(seed, 3 + seed % 4).arrays()
         pts = rng.uniform(50, 950, (200, 2)).astype(np.float32)
         heads = rng.uniform(0, 2 * np.pi, 200).astype(np.float32)
@@ -53,11 +53,13 @@ def test_analytic_views_agree_with_the_pixel_path_to_a_pixel_on_random_scenes():
             match = gap.argmin(axis=1)
             assert len(set(match)) == seen.sum() and gap.min(axis=1).max() <= PIXEL, (seed, i)
             assert np.abs(pw[i][pv[i]][match] - aw[i][seen]).max() <= 2 * PIXEL, (seed, i)
-    assert compared > 200  # of 600 points (268 measured)
+    assert compared > 120  # of 400 points
 
 
-def _soft_and_hard(name: str, tau: float, sharpness: float, **options):
-    """Soft and hard directions of `name` on the same analytic views over env1 (50 cm grid)."""
+def _soft_and_hard(name: str, sharpness: float, **options):
+    """A function of tau: the difference between the soft and the hard directions of `name` on the same
+    analytic views over env1 (50 cm grid), in degrees, where the hard method has a direction from at
+    least two blobs (one compiled program for every tau)."""
     env, module, sensor, _, key, _ = scene_request("env1", name, 10.0, None, 0, **options)
     env = env.arrays()
     vm = delvjax.vector_map("env1", name, spacing=50, seed=0)
@@ -76,23 +78,27 @@ def _soft_and_hard(name: str, tau: float, sharpness: float, **options):
 
         return jax.vmap(one)(vm.points, vm.heading, jnp.arange(vm.points.shape[0]))
 
-    a, v, b, w, n = (np.asarray(x) for x in run(jnp.float32(tau)))
-    inc = np.asarray(vm.included)
-    assert np.array_equal(v[inc], w[inc])
-    ok = inc & w & (n >= 2)
-    return np.degrees(np.abs(np.angle(np.exp(1j * (a - b)))))[ok]
+    def differences(tau: float) -> np.ndarray:
+        a, v, b, w, n = (np.asarray(x) for x in run(jnp.float32(tau)))
+        inc = np.asarray(vm.included)
+        assert np.array_equal(v[inc], w[inc])
+        ok = inc & w & (n >= 2)
+        return np.degrees(np.abs(np.angle(np.exp(1j * (a - b)))))[ok]
+
+    return differences
 
 
 def test_soft_delv_tends_to_hard_delv_as_tau_goes_to_zero():
-    means = [_soft_and_hard("delv", tau, 1e-5, bearing_noise_deg=1.0).mean() for tau in (0.1, 0.01, 1e-3, 1e-4)]
+    differences = _soft_and_hard("delv", 1e-5, bearing_noise_deg=1.0)
+    runs = [differences(tau) for tau in (0.1, 0.01, 1e-3, 1e-4)]
+    means = [d.mean() for d in runs]
     assert all(a > b for a, b in zip(means, means[1:])), means  # measured: 7.6, 1.1, 0.12, 0.034 deg
-    last = _soft_and_hard("delv", 1e-4, 1e-5, bearing_noise_deg=1.0)
-    assert last.mean() < 0.1 and np.mean(last < 0.5) > 0.98
+    assert runs[-1].mean() < 0.1 and np.mean(runs[-1] < 0.5) > 0.98
 
 
 @pytest.mark.parametrize("name", ["alv", "acv"])
 def test_soft_alv_and_acv_equal_the_hard_ones_at_small_tau_and_sharp_visibility(name):
-    assert _soft_and_hard(name, 1e-3, 1e-5, bearing_noise_deg=1.0).max() < 1e-3
+    assert _soft_and_hard(name, 1e-5, bearing_noise_deg=1.0)(1e-3).max() < 1e-3
 
 
 def _quality_at(name: str, landmarks=None, home=None, **options) -> float:
@@ -207,7 +213,9 @@ def test_least_squares_refinement_removes_the_heading_grid():
     _, coarse, var0, _ = match_arrangement(*args)
     _, fine, var1, _ = refined_match(*args)
     assert abs(float(coarse) - 1.0) > 0.04 and abs(float(fine) - 1.0) < 0.01 and float(var1) < float(var0)
-    # maps of two shapes in one process (an optimistix solver shared by both traces once ran the wrong program)
-    for n in (360, 36):
-        vm = delvjax.vector_map("env1", "delv-refined", spacing=200, n_heading=n)
-        assert np.asarray(vm.valid)[np.asarray(vm.included)].all()
+    # two shapes in one process (an optimistix solver shared by both traces once ran the other's program)
+    jitted = jax.jit(refined_match)
+    for n in (36, 18):
+        alphas = 2 * np.pi * jnp.arange(n, dtype=jnp.float32) / n
+        _, alpha, _, _ = jitted(*args[:4], alphas)
+        assert abs(float(alpha) - 1.0) < 0.01

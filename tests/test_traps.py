@@ -32,7 +32,7 @@ def test_the_alv_field_flows_to_home_only():
 def test_quantized_delv_on_env1_has_a_trap_where_its_rollouts_fail():
     """DELV with Q = 2 on env1 loses 22 of 99 rollouts; a false home (sink) lies west of home at about
     (402, 437), a saddle between it and home, and every timed-out rollout ends near the sink or near a
-    discontinuity of the field it oscillates across."""
+    discontinuity of the field it oscillates across, on period-2 orbits of the rollout step."""
     r = find_traps("env1", "delv", spacing=100, levels=2)
     s = r.summary
     assert s["timed_out"] > 0 and s["sinks"] >= 1 and s["home_sinks"] == 1 and s["saddles"] >= 1
@@ -40,11 +40,15 @@ def test_quantized_delv_on_env1_has_a_trap_where_its_rollouts_fail():
     assert min(np.hypot(x - 402.3, y - 436.6) for x, y in sinks) < 5.0
     assert s["timed_out_within_near_of_a_sink"] >= 1
     assert s["timed_out_within_near_of_a_sink"] + s["timed_out_within_near_of_a_discontinuity"] == s["timed_out"]
+    cycles = [p for p in r.points if p["kind"] == "2-cycle"]  # period-2 orbits of the rollout step
+    assert cycles and s["timed_out_on_a_2_cycle"] >= s["timed_out"] // 2
+    for p in cycles:  # each end is a step d = 50 cm from the other
+        assert abs(np.hypot(p["x"] - p["partner_x"], p["y"] - p["partner_y"]) - 50.0) < 1.0
 
 
 def test_delvjax_traps_writes_and_refuses(tmp_path, capsys):
     out = tmp_path / "t"
-    assert main(["traps", "env1", "--method", "alv", "--spacing", "200", "--out", str(out)]) == 0
+    assert main(["traps", "env1", "--levels", "2", "--spacing", "100", "--out", str(out)]) == 0  # the programs above
     assert sorted(p.name for p in out.iterdir()) == ["traps.csv", "traps.json", "traps.png"]
     for args, field in [(["--method", "warping"], "method"), (["--tau", "-1"], "tau"), (["--near", "0"], "near")]:
         bad = tmp_path / field

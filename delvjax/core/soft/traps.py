@@ -11,6 +11,10 @@ Newton step): plain Newton overshoots where H is flat and left most starts on en
 H at x averages the soft vectors of unit moves ending at x along FIELD_HEADINGS headings (the
 field of a rollout depends on the heading it arrives with; the average is the heading-free
 field), with the vector map's noise streams of `key`.
+
+Limit cycles: a rollout moves x -> S(x) = x + d H(x) / |H(x)|. Period-2 orbits of S (zeros of
+S(S(x)) - x, `two_cycles`) are where timed-out rollouts step back and forth across a line where the
+field flips.
 """
 
 from __future__ import annotations
@@ -81,3 +85,22 @@ def field_zeros(env: Env, starts: Array, sensor: Sensor, method: HomingMethod, k
     zeros, ok, kind, jac, residual = jax.vmap(one)(starts)
     scale = jnp.median(jax.vmap(lambda x: jnp.linalg.norm(field(x, None)))(starts))
     return zeros, ok, kind, jac, residual / jnp.maximum(scale, 1e-12)
+
+
+@jax.jit
+def two_cycles(env: Env, starts: Array, sensor: Sensor, method: HomingMethod, key: Array, tau: Array,
+               sharpness: Array) -> tuple[Array, Array, Array]:
+    """Period-2 orbits of the rollout map x -> x + d H(x) / |H(x)| (a unit step along the soft field):
+    zeros of S(S(x)) - x, root-found from every start. Returns (x (S, 2), its partner S(x) (S, 2),
+    residual |S(S(x)) - x| in cm (S,)). An agent on such an orbit steps back and forth between x and
+    S(x) across a line where the field flips: the limit cycles of the timed-out rollouts."""
+
+    def step(x):
+        h = soft_vector(x, env, sensor, method, key, tau, sharpness)
+        return x + sensor.d * h / jnp.maximum(jnp.linalg.norm(h), 1e-12)
+
+    def one(y0):
+        sol = optx.root_find(lambda x, _: step(step(x)) - x, solver(), y0, max_steps=64, throw=False)
+        return sol.value, step(sol.value), jnp.linalg.norm(step(step(sol.value)) - sol.value)
+
+    return jax.vmap(one)(starts)
