@@ -111,6 +111,7 @@ def _quality_at(name: str, landmarks=None, home=None, **options) -> float:
 @pytest.mark.parametrize("name, options, scalars", [
     ("delv", {"bearing_noise_deg": 1.0}, {"d": 50.0, "bearing_noise_deg": 1.0}),
     ("delv", {"levels": 4, "scale": 1000.0}, {"scale": 1000.0}),
+    ("delv-compass", {"compass_noise_deg": 2.0, "bearing_noise_deg": 0.5}, {"compass_noise_deg": 2.0}),
     ("alv", {"compass_noise_deg": 2.0}, {"compass_noise_deg": 2.0}),
     ("acv", {"bearing_noise_deg": 1.0}, {"bearing_noise_deg": 1.0}),
 ])
