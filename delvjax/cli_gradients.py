@@ -51,9 +51,6 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
     return 0
 
 
-
-
-
 def add_traps(sub) -> None:
     from .api_soft import TAU
     from .options import NOISE_FIELDS_DEG, NOISE_OPTIONS
