@@ -141,7 +141,7 @@ def cmd_optimise_layout(args: argparse.Namespace) -> int:
              f"-> {end['gt45_pct']:.1f} % ({len(result.objective) - 1} steps, {result.seconds:.1f} s)")
     paths = [Path(out) / name for name in ("layout.png", "comparison.csv", "optimised_env.json", "layout.json")]
     with output_set() as files:
-        files.figure(layout_figure(result, args.spacing, args.seed), paths[0], "--out")
+        files.figure(layout_figure(result, args.spacing), paths[0], "--out")
         files.rows_csv(paths[1], result.rows, "--out")
         files.json(paths[2], env_to_dict(result.optimised), "--out")
         files.json(paths[3], {"method": args.method, "occlude": result.occlude, "seconds": result.seconds,

@@ -30,7 +30,7 @@ from .api_rollouts import catchment
 from .api_soft import TAU, QualityProblem, quality_problem
 from .core.errors import InputError
 from .core.maps import SPACING
-from .core.rollouts import catchment_summary, occlusion_masks
+from .core.rollouts import Catchment, catchment_summary, occlusion_masks
 from .core.scene import Env
 from .core.soft.quality import soft_quality
 from .options import occlusion_count, positive_int
@@ -46,8 +46,8 @@ STEPS = 60
 
 @dataclass
 class LayoutResult:
-    """The start and optimised environments, the soft objective along the way, and the hard
-    comparison rows (catchment and error rates of both layouts)."""
+    """The start and optimised environments, the soft objective along the way, the hard comparison
+    rows (catchment and error rates of both layouts) and the two catchments they come from."""
 
     start: Env
     optimised: Env
@@ -56,6 +56,7 @@ class LayoutResult:
     seconds: float
     method: str
     occlude: int
+    catchments: tuple[Catchment, Catchment]
 
 
 def _bounds(env: Env) -> tuple[np.ndarray, np.ndarray]:
@@ -143,30 +144,30 @@ def optimise_layout(env: str | Path | Env, method: str = "delv", occlude: int = 
                          home=np.asarray(env.home).tolist(), arena=np.asarray(env.arena).tolist(),
                          name=f"{env.name}-optimised-{method}" + (f"-occlude{k}" if k else ""))
     seconds = time.perf_counter() - t0
-    rows = [_hard_row(label, e, method, k, spacing, seed, options) for label, e in (("start", env), ("optimised", optimised))]
-    for row, q in zip(rows, (history[0], history[-1])):
-        row["soft_objective"] = q
+    catchments = tuple(catchment(e, method, spacing=spacing, seed=seed, occlude=k or None, **options)
+                       for e in (env, optimised))
+    rows = [_hard_row(label, e, c, method, k, q) for label, e, c, q in
+            zip(("start", "optimised"), (env, optimised), catchments, (history[0], history[-1]))]
     return LayoutResult(start=env, optimised=optimised, objective=history, rows=rows, seconds=seconds, method=method,
-                        occlude=k)
+                        occlude=k, catchments=catchments)
 
 
-def _hard_row(label: str, env: Env, method: str, k: int, spacing: float, seed: int, options: dict) -> dict:
+def _hard_row(label: str, env: Env, c: Catchment, method: str, k: int, soft_objective: float) -> dict:
     """Catchment and error rates of `env` (mean over the C(N, k) masks), the ordinary evaluation."""
-    s = catchment_summary(catchment(env, method, spacing=spacing, seed=seed, occlude=k or None, **options))
+    s = catchment_summary(c)
     return {"layout": label, "env": env.name, "method": method, "occlude": k, "catchment_pct": s["catchment_pct"]["mean"],
             "catchment_min_pct": s["catchment_pct"]["min"], "gt45_pct": s["gt45_pct"]["mean"],
-            "gt90_pct": s["gt90_pct"]["mean"], "points": s["points"]}
+            "gt90_pct": s["gt90_pct"]["mean"], "points": s["points"], "soft_objective": soft_objective}
 
 
-def layout_figure(result: LayoutResult, spacing: float, seed: int = 0):
-    """Start and optimised layouts side by side: each one's vector map and catchment (mask 0 = all
-    visible when occlude is 0, else the worst mask), and the soft objective per step."""
+def layout_figure(result: LayoutResult, spacing: float):
+    """Start and optimised layouts side by side: each one's vector map and catchment (the comparison's
+    own runs; the worst mask under occlusion), and the soft objective per step."""
     from .plots import subplots
     from .plots_rollouts import catchment_panel
 
     fig, axes = subplots(1, 3, figsize=(15.5, 5.2), squeeze=False)
-    for ax, env, row in zip(axes[0][:2], (result.start, result.optimised), result.rows):
-        c = catchment(env, result.method, spacing=spacing, seed=seed, occlude=result.occlude or None)
+    for ax, env, row, c in zip(axes[0][:2], (result.start, result.optimised), result.rows, result.catchments):
         worst = int(np.argmin(c.catchment_pct()))
         catchment_panel(ax, env, c, worst, spacing, f"{row['layout']}: catchment {row['catchment_pct']:.1f} % "
                                                     f"(worst mask {row['catchment_min_pct']:.1f} %)\n"

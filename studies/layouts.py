@@ -37,8 +37,7 @@ def run(ctx) -> None:
         layouts[key] = {"start": env_to_dict(r.start), "optimised": env_to_dict(r.optimised),
                         "moved_cm": np.hypot(*(np.asarray(r.optimised.landmarks)[:, :2]
                                                - np.asarray(r.start.landmarks)[np.asarray(r.start.valid), :2]).T).tolist()}
-        ctx.figure(f"layout_{name}{'_occlude' + str(k) if k else ''}.png", layout_figure(r, ctx.settings.spacing,
-                                                                                      ctx.settings.seed),
+        ctx.figure(f"layout_{name}{'_occlude' + str(k) if k else ''}.png", layout_figure(r, ctx.settings.spacing),
                    f"{name}, DELV{' with ' + str(k) + ' landmark(s) hidden' if k else ''}: the thesis's layout and the "
                    "optimised one (catchment squares, vector map), and the soft objective per BFGS step.")
         ctx.step(key)
