@@ -16,6 +16,7 @@ from .cli_args import (ProgressBar, add_output_args, add_scene_args, check_outpu
                        write_outputs)
 from .cli_rollouts import ROLLOUT_COMMANDS
 from .cli_gradients import GRADIENT_COMMANDS
+from .cli_images import IMAGE_COMMANDS, add_image_args, cmd_vector_map_images
 from .cli_sweep import add_plot_sweep, add_sweep
 from .core import maps
 from .core.errors import InputError
@@ -38,9 +39,10 @@ def cmd_envs(args: argparse.Namespace) -> int:
 
 def add_vector_map(sub) -> None:
     p = sub.add_parser("vector-map", help="homing direction at every grid point (docs/model.md §5; Figs 4.2/4.3)")
-    add_scene_args(p)
+    add_scene_args(p, images=True)
     add_output_args(p, "vector-map figure")
     p.add_argument("--classes", action="store_true", help="mark error classes < 45 / 45-90 / > 90 deg (Fig 4.3)")
+    add_image_args(p)
     p.set_defaults(func=cmd_vector_map)
 
 
@@ -48,6 +50,8 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     from .core.metrics import summarize_map
     from .plots import vector_map_figure
 
+    if args.images is not None:
+        return cmd_vector_map_images(args)
     check_outputs(args)
     request = api.map_request(args.env, **scene_kwargs(args))
     env = request["env"]
@@ -103,7 +107,7 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
 
 # Each entry adds one subcommand; a new command is one function here or in its own module.
 COMMANDS: list[Callable] = [add_vector_map, add_reproduce, *ROLLOUT_COMMANDS, add_sweep, add_plot_sweep,
-                            *GRADIENT_COMMANDS]
+                            *GRADIENT_COMMANDS, *IMAGE_COMMANDS]
 
 
 def build_parser() -> argparse.ArgumentParser:

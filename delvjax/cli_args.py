@@ -58,10 +58,13 @@ class ProgressBar:
             self.bar.close()
 
 
-def add_scene_args(p: argparse.ArgumentParser, methods=None, grid: bool = True) -> None:
-    """The scene, method and noise options; `grid`: the command evaluates a grid (--spacing)."""
+def add_scene_args(p: argparse.ArgumentParser, methods=None, grid: bool = True, images: bool = False) -> None:
+    """The scene, method and noise options; `grid`: the command evaluates a grid (--spacing); `images`:
+    it can run on an image database instead (`cli_images.add_image_args`; the environment is optional)."""
     sensor, delv, warping = defaults(Sensor), defaults(DELV), defaults(Warping)
-    p.add_argument("env", help="preset name (see `delvjax envs`) or a docs/model.md §7 JSON file")
+    p.add_argument("env", nargs="?" if images else None, default=None,
+                   help="preset name (see `delvjax envs`) or a docs/model.md §7 JSON file"
+                        + (" (or --images DIR)" if images else ""))
     p.add_argument("--method", default="delv", help=f"homing method: {', '.join(methods or METHODS)} (default delv)")
     p.add_argument("--levels", type=int, default=None, help="DELV distance quantization levels Q >= 1 (default: continuous)")
     p.add_argument("--d", type=float, default=None, help=f"unit-movement step d in cm (default {sensor['d']:g})")
@@ -138,14 +141,16 @@ OUTPUTS = (("out", "--out", CSV), ("trials_out", "--trials-out", CSV), ("plot", 
 
 def check_outputs(args: argparse.Namespace) -> None:
     """Validate every output path before any work (`io.check_output_path`; no two the same file, none
-    the environment file); at least one output must be asked for."""
+    the environment file); at least one output must be asked for; an environment (or --images)."""
+    if args.env is None and getattr(args, "images", None) is None:
+        raise InputError("env", None, "give an environment (preset name or JSON file) or --images DIR")
     named = {flag: getattr(args, name) for name, flag, _ in OUTPUTS if getattr(args, name, None) is not None}
     if not any(named.values()):
         raise InputError("--out", None, "no output asked for (give --out, --plot or --summary)")
     for name, flag, suffixes in OUTPUTS:
         if flag in named:
             check_output_path(named[flag], flag, suffixes)
-    check_distinct({**({"env": args.env} if Path(args.env).is_file() else {}), **named})
+    check_distinct({**({"env": args.env} if args.env and Path(args.env).is_file() else {}), **named})
 
 
 def write_outputs(args: argparse.Namespace, columns, summary: dict, figure, trials_columns=None) -> None:

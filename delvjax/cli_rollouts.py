@@ -11,6 +11,7 @@ import time
 import numpy as np
 
 from . import api, api_rollouts
+from .cli_images import add_image_args, cmd_catchment_images
 from .cli_args import (ProgressBar, add_output_args, add_rollout_args, add_scene_args, check_outputs, progress, rollout_kwargs,
                        warn, write_outputs)
 from .core.errors import InputError
@@ -44,7 +45,7 @@ def _rollout_parser(sub, name: str, help_text: str, plot_help: str, epilog: str 
     """A subcommand with the scene, output and rollout options every rollout command takes (--spacing
     only where a grid is evaluated: an option a command does not use is not offered)."""
     p = sub.add_parser(name, help=help_text, epilog=epilog)
-    add_scene_args(p, grid=grid)
+    add_scene_args(p, grid=grid, images=grid)
     add_output_args(p, plot_help)
     add_rollout_args(p)
     return p
@@ -55,10 +56,13 @@ def add_catchment(sub) -> None:
                         "catchment map: squares on catchment points over the vector map", grid=True)
     p.add_argument("--occlude", type=int, default=None, metavar="K",
                    help="evaluate every choice of K landmarks hidden during homing (Tables 5.3/5.4)")
+    add_image_args(p)
     p.set_defaults(func=cmd_catchment)
 
 
 def cmd_catchment(args: argparse.Namespace) -> int:
+    if args.images is not None:
+        return cmd_catchment_images(args)
     check_outputs(args)
     kw = rollout_kwargs(args, drop=())
     kw["lanes"] = args.lanes

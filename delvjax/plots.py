@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.figure import Figure
-from matplotlib.patches import Circle
+from matplotlib.patches import Circle, Rectangle
 
 from .core.metrics import error_class
 from .core.scene import Env
@@ -25,13 +25,26 @@ CLASS_STYLE = (  # Fig 4.3: dot < 45, star 45-90, triangle > 90
 
 def draw_env(ax, env: Env, perceived_radius: float | None = None) -> None:
     """Arena box, landmarks to scale (filled discs), home as a black square."""
-    xmin, ymin, xmax, ymax = (float(v) for v in np.asarray(env.arena))
+    lm = np.asarray(env.landmarks)[np.asarray(env.valid)]
+    draw_world(ax, env.arena, env.home, {"cylinders": lm.tolist()})
+
+
+def draw_world(ax, arena, home, obstacles: dict, perceived=None) -> None:
+    """Arena, cylinders [x, y, r] (discs) and boxes [xmin, ymin, xmax, ymax] (rectangles) to scale, home
+    as a black square; `perceived` (K, 2) landmark positions as white circles (Fig 4.20)."""
+    xmin, ymin, xmax, ymax = (float(v) for v in np.asarray(arena))
     ax.set_xlim(xmin, xmax)
     ax.set_ylim(ymin, ymax)
     ax.set_aspect("equal")
-    for x, y, r in np.asarray(env.landmarks)[np.asarray(env.valid)]:
+    for x, y, r in obstacles.get("cylinders", []):
         ax.add_patch(Circle((x, y), r, facecolor="0.15", edgecolor="black", zorder=3))
-    hx, hy = np.asarray(env.home)
+    for x0, y0, x1, y1 in obstacles.get("boxes", []):
+        ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, facecolor="0.15", edgecolor="black", zorder=3))
+    if perceived is not None and len(perceived):
+        r = 0.02 * (xmax - xmin)
+        for x, y in np.asarray(perceived):
+            ax.add_patch(Circle((x, y), r, facecolor="white", edgecolor="black", zorder=4))
+    hx, hy = np.asarray(home)[:2]
     ax.plot([hx], [hy], marker="s", color="black", markersize=7, zorder=4, label="home")
     ax.set_xlabel("x (cm)")
     ax.set_ylabel("y (cm)")

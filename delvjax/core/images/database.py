@@ -1,0 +1,143 @@
+"""Homing on an image database (docs/images.md §6): every snapshot reduced to a ring `Snapshot`,
+unit moves between grid neighbours, and the vector map of any method over the database.
+
+As in the thesis's robot experiments (§4.4.1: snapshots every 20 cm, unit move 20 cm), the unit
+movement that ends at a database point C starts at a neighbour P one spacing away: the first of
+the four axis neighbours (west, south, east, north of C; the agent moved east, north, west or
+south) that is in the database. Both snapshots are turned into the agent frame of that move by
+one whole-pixel roll (exact for axis moves and headings that are multiples of the pixel size);
+the odometry reports the true distance |C - P| and the turn h_C - h_P between the snapshots'
+headings, and the compass reads the heading exactly.
+"""
+
+from __future__ import annotations
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+import numpy as np
+from jax import Array
+
+from ..batching import fixed_width_map
+from ..geometry import wrap
+from ..kernel import world_direction
+from ..methods.base import HomingMethod
+from ..metrics import angular_error_deg
+from ..sensing import Snapshot, UnitMove, sort_blobs
+
+# the agent moved east, north, west, south: the start is one spacing west, south, east, north
+MOVES = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]], np.float32)
+TOLERANCE = 0.25  # a neighbour within 0.25 spacing of the expected place counts
+
+
+class RingDatabase(eqx.Module):
+    """snapshots: a `Snapshot` with a leading axis N (one per image); positions: (N, 2) cm;
+    headings: (N,) rad, world heading of every image's column 0."""
+
+    snapshots: Snapshot
+    positions: Array
+    headings: Array
+
+
+class MovePlan(eqx.Module):
+    """The unit move that ends at every database point (host arrays of length N, `move_plan`):
+    start, end: indices; shift: whole-pixel roll into the move's frame; d_hat: |C - P| cm;
+    ok: the point has a neighbour (else its direction is invalid)."""
+
+    start: Array
+    end: Array
+    shift: Array
+    d_hat: Array
+    ok: Array
+
+
+def neighbour(positions: np.ndarray, targets: np.ndarray, spacing: float) -> np.ndarray:
+    """Index of the database point within TOLERANCE * spacing of each target, else -1 (k-d tree)."""
+    from scipy.spatial import cKDTree
+
+    dist, idx = cKDTree(positions).query(targets, distance_upper_bound=TOLERANCE * spacing)
+    return np.where(np.isfinite(dist), idx, -1)
+
+
+def _plan(positions: np.ndarray, headings: np.ndarray, start: np.ndarray, end: np.ndarray, ok: np.ndarray,
+          n_pix: int) -> MovePlan:
+    """The `MovePlan` of moves start -> end: the roll turns column 0 of the start view to the move."""
+    delta = positions[end] - positions[start]
+    move_dir = np.arctan2(delta[:, 1], delta[:, 0])
+    shift = np.round((move_dir - np.asarray(headings)[start]) / (2 * np.pi / n_pix)).astype(np.int64) % n_pix
+    return MovePlan(start=start.astype(np.int32), end=end.astype(np.int32), shift=shift.astype(np.int32),
+                    d_hat=np.linalg.norm(delta, axis=-1).astype(np.float32), ok=ok)
+
+
+def first_neighbours(positions: np.ndarray, points: np.ndarray, offsets: np.ndarray, spacing: float
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """For each point index: the first of `points + spacing * offset` (in `offsets` order) in the
+    database (the point itself where none is) and whether one was."""
+    cands = np.stack([neighbour(positions, positions[points] + spacing * o, spacing) for o in offsets], -1)
+    has = cands >= 0
+    first = cands[np.arange(len(points)), np.argmax(has, -1)]
+    return np.where(has.any(-1), first, points), has.any(-1)
+
+
+def move_plan(positions: np.ndarray, headings: np.ndarray, spacing: float, n_pix: int) -> MovePlan:
+    """The unit move ending at every database point (module docstring)."""
+    positions = np.asarray(positions, np.float64)
+    ends = np.arange(len(positions))
+    start, ok = first_neighbours(positions, ends, -MOVES, spacing)
+    return _plan(positions, headings, start, ends, ok, n_pix)
+
+
+def home_plan(positions: np.ndarray, headings: np.ndarray, home_index: int, spacing: float, n_pix: int) -> MovePlan:
+    """The home record's unit move (docs/model.md §3.3): from home to its first axis neighbour
+    (east, north, west, south) in the database; its start view's heading is alpha_r."""
+    positions = np.asarray(positions, np.float64)
+    home = np.array([home_index])
+    end, ok = first_neighbours(positions, home, MOVES, spacing)
+    return _plan(positions, headings, home, end, ok, n_pix)
+
+
+def rolled(snap: Snapshot, shift: Array) -> Snapshot:
+    """The snapshot seen with column `shift` as column 0 (rings rolled, bearings turned, re-sorted)."""
+    n = snap.mask.shape[-1]
+    turn = shift.astype(jnp.float32) * jnp.float32(2 * np.pi / n)
+    bearing, valid, width = sort_blobs(snap.bearing - turn, snap.valid, snap.width)
+    return Snapshot(mask=jnp.roll(snap.mask, -shift), gray=jnp.roll(snap.gray, -shift), bearing=bearing,
+                    width=width, valid=valid, channel=snap.channel)
+
+
+def view_of(db: RingDatabase, start: Array, end: Array, shift: Array, d_hat: Array, alpha_r: Array
+            ) -> tuple[UnitMove, Array]:
+    """The unit move from database point `start` to `end` in the frame rolled by `shift`, and the
+    world heading of its end view's column 0."""
+    pick = lambda i: rolled(jax.tree.map(lambda a: a[i], db.snapshots), shift)  # noqa: E731
+    turn = shift.astype(jnp.float32) * jnp.float32(2 * np.pi / db.snapshots.mask.shape[-1])
+    heading_end = db.headings[end] + turn
+    view = UnitMove(start=pick(start), end=pick(end), d_hat=d_hat, psi_hat=wrap(db.headings[end] - db.headings[start]),
+                    compass=wrap(heading_end - alpha_r))
+    return view, heading_end
+
+
+def home_view(db: RingDatabase, plan: MovePlan) -> tuple[UnitMove, Array]:
+    """(home record, alpha_r): the home move of `home_plan`; alpha_r is its start view's heading."""
+    n = db.snapshots.mask.shape[-1]
+    alpha_r = db.headings[plan.start[0]] + plan.shift[0] * jnp.float32(2 * np.pi / n)
+    view, _ = view_of(db, plan.start[0], plan.end[0], plan.shift[0], plan.d_hat[0], alpha_r)
+    return view, alpha_r
+
+
+@jax.jit
+def database_directions(db: RingDatabase, plan: MovePlan, home_db: RingDatabase, home: MovePlan,
+                        method: HomingMethod, home_point: Array) -> tuple[Array, Array, Array]:
+    """World homing direction (rad, NaN where invalid), validity and angular error (deg, 180 where
+    invalid) at every point of `plan` (docs/images.md §6), `batching.WIDTH` points at a time. The home
+    record is the move `home` in `home_db` (the same database, or another rendering of it)."""
+    record, alpha_r = home_view(home_db, home)
+
+    def one(start, end, shift, d_hat, ok):
+        view, heading_end = view_of(db, start, end, shift, d_hat, alpha_r)
+        direction, valid = world_direction(method, record, view, heading_end)
+        valid = valid & ok
+        return jnp.where(valid, direction, jnp.nan), valid
+
+    direction, valid = fixed_width_map(one, (plan.start, plan.end, plan.shift, plan.d_hat, plan.ok))
+    return direction, valid, angular_error_deg(direction, valid, db.positions[plan.end], home_point)

@@ -1,0 +1,106 @@
+"""The omnidirectional image pipeline as array programs (docs/images.md §5; thesis §4.4.1):
+camera noise, unwrapping a donut into a panorama, RGB -> HSV, threshold segmentation, band
+averaging into a 1D ring, and blob extraction into the `Snapshot` every homing method reads.
+Written for ONE image; callers `vmap` it.
+"""
+
+from __future__ import annotations
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+from jax import Array
+from jax.scipy.ndimage import map_coordinates
+
+from ..sensing import Snapshot, blob_runs
+from .world import Camera, Catadioptric
+
+
+def camera_noise(key: Array, image: Array, sigma: Array, gain_sigma: Array = 0.0) -> Array:
+    """docs/images.md §5.1: a global brightness gain 1 + N(0, gain_sigma) (flicker, exposure) and
+    independent N(0, sigma) per pixel and channel, clipped to [0, 1]."""
+    k_gain, k_pix = jax.random.split(key)
+    gain = 1.0 + gain_sigma * jax.random.normal(k_gain)
+    return jnp.clip(image * gain + sigma * jax.random.normal(k_pix, image.shape), 0.0, 1.0)
+
+
+def to_uint8(image: Array) -> Array:
+    """8-bit quantization, as stored in a PNG (round half up)."""
+    return jnp.floor(jnp.clip(image, 0.0, 1.0) * 255.0 + 0.5).astype(jnp.uint8)
+
+
+def unwrap(image: Array, mirror: Catadioptric, camera: Camera) -> Array:
+    """Donut (S, S, 3) -> panorama (camera.rows, camera.cols, 3) by bilinear sampling
+    (`map_coordinates`, order 1) at the donut pixel of every panorama pixel (docs/images.md §2)."""
+    elevation, azimuth = camera.elevations(), camera.azimuths()
+    rho = mirror.radius_px(elevation)[:, None]  # (rows, 1)
+    theta = azimuth[None, :] + jnp.pi / 2
+    c = (mirror.size - 1) / 2.0
+    rows, cols = c - rho * jnp.sin(theta), c + rho * jnp.cos(theta)
+    channel = lambda ch: map_coordinates(ch, [rows, cols], order=1, mode="constant", cval=0.0)  # noqa: E731
+    return jax.vmap(channel, in_axes=-1, out_axes=-1)(image.astype(jnp.float32))
+
+
+def rgb_to_hsv(rgb: Array) -> Array:
+    """(..., 3) RGB in [0, 1] -> (..., 3) HSV: hue in [0, 1) (red 0), saturation, value (the usual hexcone)."""
+    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    v = jnp.max(rgb, -1)
+    c = v - jnp.min(rgb, -1)
+    s = jnp.where(v > 0, c / jnp.where(v > 0, v, 1.0), 0.0)
+    safe = jnp.where(c > 0, c, 1.0)
+    h = jnp.where(v == r, (g - b) / safe, jnp.where(v == g, 2.0 + (b - r) / safe, 4.0 + (r - g) / safe))
+    h = jnp.where(c > 0, jnp.mod(h / 6.0, 1.0), 0.0)
+    return jnp.stack([h, s, v], -1)
+
+
+def segment(hsv: Array, hue_deg: Array, hue_width_deg: Array, sat_min: Array, val_min: Array) -> Array:
+    """Landmark pixels (docs/images.md §5.3): hue within hue_width_deg / 2 of hue_deg (circularly),
+    saturation >= sat_min, value >= val_min."""
+    dh = jnp.abs(jnp.mod(hsv[..., 0] * 360.0 - hue_deg + 180.0, 360.0) - 180.0)
+    return (dh <= hue_width_deg / 2) & (hsv[..., 1] >= sat_min) & (hsv[..., 2] >= val_min)
+
+
+class Extractor(eqx.Module):
+    """From a panorama to a `Snapshot` (docs/images.md §5; thesis §4.4.1). Numbers are traced leaves
+    (a sweep or a gradient reaches them), the blob count and channel are static.
+
+    hue_deg, hue_width_deg, sat_min, val_min: the HSV threshold (red landmarks by default);
+    band_deg, band_height_deg: the band of rows averaged into the ring (centre elevation and
+    height, deg; the thesis averaged 10 rows); fill: a ring pixel is landmark where at least this
+    share of its band is; max_blobs: blob slots; channel: the ring the image methods read.
+    """
+
+    hue_deg: float = 0.0
+    hue_width_deg: float = 40.0
+    sat_min: float = 0.5
+    val_min: float = 0.15
+    band_deg: float = 0.0
+    band_height_deg: float = 10.0
+    fill: float = 0.5
+    max_blobs: int = eqx.field(static=True, default=8)
+    channel: str = eqx.field(static=True, default="mask")
+
+    def band_weights(self, camera: Camera) -> Array:
+        """(rows,) 1 for the rows whose centre lies in the band, else 0 (at least the nearest row)."""
+        e = jnp.degrees(camera.elevations())
+        off = jnp.abs(e - self.band_deg)
+        w = (off <= self.band_height_deg / 2).astype(jnp.float32)
+        return jnp.where(jnp.sum(w) > 0, w, (off == jnp.min(off)).astype(jnp.float32))
+
+    def rings(self, image: Array, camera: Camera) -> tuple[Array, Array]:
+        """(landmark share of the band (cols,), mean value of the band (cols,)) of a panorama."""
+        hsv = rgb_to_hsv(image.astype(jnp.float32))
+        mask = segment(hsv, self.hue_deg, self.hue_width_deg, self.sat_min, self.val_min)
+        w = self.band_weights(camera)[:, None]
+        total = jnp.sum(w)
+        return jnp.sum(w * mask, 0) / total, jnp.sum(w * hsv[..., 2], 0) / total
+
+    def __call__(self, image: Array, camera: Camera) -> Snapshot:
+        return ring_snapshot(*self.rings(image, camera), self)
+
+
+def ring_snapshot(share: Array, gray: Array, extractor: Extractor) -> Snapshot:
+    """The `Snapshot` of band rings: mask where the landmark share >= fill, blobs of that mask."""
+    mask = share >= extractor.fill
+    bearing, width, valid = blob_runs(mask, extractor.max_blobs)
+    return Snapshot(mask=mask, gray=gray, bearing=bearing, width=width, valid=valid, channel=extractor.channel)
