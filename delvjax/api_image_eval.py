@@ -13,10 +13,10 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from .api_images import DEFAULT_CHUNK, chunks, extract_rings
+from .api_images import DEFAULT_CHUNK, chunks, extract_rings, full, head
 from .core.errors import InputError
 from .core.images import Camera, Catadioptric, Extractor
-from .core.images.database import RingDatabase, database_directions, home_plan, move_plan
+from .core.images.database import RingDatabase, database_directions, home_plan, move_plan, perceived_landmarks
 from .core.images.rollouts import OUTCOMES, Field, Paths, nearest_snapshot_rollouts
 from .core.maps import VectorMap
 from .core.rollouts import MAX_STEPS
@@ -140,9 +140,10 @@ def load_database(src: str | Path, home=None, arena=None, spacing: float | None 
     if not mirror and cam.cols % 4:
         raise InputError("image", str(index.files[0]), f"is {cam.cols} columns wide: it must be a multiple of 4")
     parts = []
-    for lo, hi in chunks(len(index.files), chunk):
+    size = min(chunk, len(index.files))
+    for lo, hi in chunks(len(index.files), size):
         images = read_images(index, range(lo, hi), shape)
-        parts.append(extract_rings(jnp.asarray(images), cam, mirror, ex))
+        parts.append(head(extract_rings(jnp.asarray(full(images, size)), cam, mirror, ex), hi - lo))
         if sink:
             sink(images, slice(lo, hi))
         if progress:
@@ -162,18 +163,31 @@ def with_channel(db: RingDatabase, channel: str) -> RingDatabase:
     return RingDatabase(snap, db.positions, db.headings)
 
 
-def database_vector_map(db: LoadedDatabase, method="delv", home_rings: RingDatabase | None = None, **options
-                        ) -> VectorMap:
+def plans(db: LoadedDatabase):
+    """(the unit move ending at every point, the home record's move) of a database (docs/images.md §6)."""
+    pos, head = np.asarray(db.rings.positions), np.asarray(db.rings.headings)
+    plan = jax.tree.map(jnp.asarray, move_plan(pos, head, db.spacing, db.camera.cols))
+    home = jax.tree.map(jnp.asarray, home_plan(pos, head, db.home_index, db.spacing, db.camera.cols))
+    return plan, home
+
+
+def perceived(db: LoadedDatabase, delv) -> np.ndarray:
+    """World positions of the landmarks in the reference map of `delv` (a `DELV` module; Fig 4.20)."""
+    xy, valid = perceived_landmarks(db.rings, plans(db)[1], delv)
+    return np.asarray(xy)[np.asarray(valid)]
+
+
+def database_vector_map(db: LoadedDatabase, method="delv", home_rings: RingDatabase | None = None, program=None,
+                        **options) -> VectorMap:
     """The homing direction of `method` at every database point (docs/images.md §6). `options`: method
     settings and `channel` as in `api.vector_map`; `home_rings`: take the home record from another
-    rendering of the same positions (e.g. other lighting). The home point itself is not included."""
-    module, sensor = make_setup(method, **options)
+    rendering of the same positions (e.g. other lighting); `program`: registry names compiled into one
+    program with `method` (`registry.program`). The home point itself is not included."""
+    module, sensor = make_setup(method, program, n_pix=db.camera.cols, **options)
     rings = with_channel(db.rings, sensor.channel)
     home_db = rings if home_rings is None else with_channel(home_rings, sensor.channel)
-    pos, head = np.asarray(db.rings.positions), np.asarray(db.rings.headings)
-    n_pix = db.camera.cols
-    plan = jax.tree.map(jnp.asarray, move_plan(pos, head, db.spacing, n_pix))
-    home = jax.tree.map(jnp.asarray, home_plan(pos, head, db.home_index, db.spacing, n_pix))
+    plan, home = plans(db)
+    pos = np.asarray(db.rings.positions)
     direction, valid, error = database_directions(rings, plan, home_db, home, module, jnp.asarray(db.home, jnp.float32))
     included = np.arange(len(pos)) != db.home_index
     return VectorMap(points=jnp.asarray(pos), included=jnp.asarray(included), heading=jnp.asarray(
@@ -181,28 +195,36 @@ def database_vector_map(db: LoadedDatabase, method="delv", home_rings: RingDatab
         direction=direction, valid=valid, error_deg=error)
 
 
-def database_catchment(db: LoadedDatabase, vm: VectorMap, step: float | None = None, home_radius: float | None = None,
-                       max_steps: int = MAX_STEPS, motion_heading_noise_deg: float = 0.0, motion_step_noise: float = 0.0,
-                       seed: int = 0, collisions: bool = True) -> tuple[np.ndarray, Paths]:
-    """Nearest-snapshot rollouts (docs/images.md §7) from every database point farther than `home_radius`
-    from home, on the directions of `vm`: (release points (T, 2), Paths). step and home_radius default
-    to the spacing; obstacles are the database's (rendered databases list them) where `collisions`."""
+def database_rollouts(db: LoadedDatabase, vm: VectorMap, starts, step: float | None = None,
+                      home_radius: float | None = None, max_steps: int = MAX_STEPS,
+                      motion_heading_noise_deg: float = 0.0, motion_step_noise: float = 0.0, seed: int = 0,
+                      collisions: bool = True) -> Paths:
+    """Nearest-snapshot rollouts (docs/images.md §7) from `starts` (T, 2) cm on the directions of `vm`.
+    step and home_radius default to the spacing; the database's obstacles (rendered databases list
+    them) end a trial where `collisions`."""
     step = db.spacing if step is None else positive(step, "step")
     home_radius = db.spacing if home_radius is None else non_negative(home_radius, "home_radius")
     max_steps = positive_int(max_steps, "max_steps")
     noise = jnp.asarray([math.radians(non_negative(motion_heading_noise_deg, "motion_heading_noise_deg")),
                          non_negative(motion_step_noise, "motion_step_noise")], jnp.float32)
     key = jax.random.fold_in(jax.random.PRNGKey(seed_value(seed)), 3)
-    pos = np.asarray(db.rings.positions)
-    starts = pos[np.linalg.norm(pos - db.home, axis=-1) > home_radius]
     obs = db.obstacles if collisions else {}
     cyl = np.asarray(obs.get("cylinders") or np.zeros((0, 3)), np.float32).reshape(-1, 3)
     box = np.asarray(obs.get("boxes") or np.zeros((0, 4)), np.float32).reshape(-1, 4)
-    f = Field(jnp.asarray(pos), vm.direction, vm.valid, jnp.asarray(db.home, jnp.float32), jnp.asarray(db.arena,
-              jnp.float32), jnp.asarray(cyl), jnp.asarray(box))
-    paths = nearest_snapshot_rollouts(f, jnp.asarray(starts, jnp.float32), key, jnp.float32(step),
-                                      jnp.float32(home_radius), noise, max_steps)
-    return starts, paths
+    f = Field(db.rings.positions, vm.direction, vm.valid, jnp.asarray(db.home, jnp.float32),
+              jnp.asarray(db.arena, jnp.float32), jnp.asarray(cyl), jnp.asarray(box))
+    return nearest_snapshot_rollouts(f, jnp.asarray(starts, jnp.float32).reshape(-1, 2), key, jnp.float32(step),
+                                     jnp.float32(home_radius), noise, max_steps)
+
+
+def database_catchment(db: LoadedDatabase, vm: VectorMap, home_radius: float | None = None, **options
+                       ) -> tuple[np.ndarray, Paths]:
+    """Catchment (docs/images.md §7): `database_rollouts` from every database point farther than
+    `home_radius` (default: the spacing) from home: (release points (T, 2), Paths)."""
+    radius = db.spacing if home_radius is None else non_negative(home_radius, "home_radius")
+    pos = np.asarray(db.rings.positions)
+    starts = pos[np.linalg.norm(pos - db.home, axis=-1) > radius]
+    return starts, database_rollouts(db, vm, starts, home_radius=radius, **options)
 
 
 def catchment_numbers(paths: Paths) -> dict:
@@ -241,3 +263,21 @@ def import_database(src: str | Path, out: str | Path, **options) -> LoadedDataba
         writer.discard()
         raise
     return db
+
+
+def rendered_database(env: str, spacing: float | None = None, settings=None, seed: int = 0,
+                      extractor: Extractor | None = None, chunk: int = DEFAULT_CHUNK) -> LoadedDatabase:
+    """The database `render_database` would write, rendered and reduced to rings in memory (no files;
+    ring for ring what `load_database` reads back from them, docs/images.md §5)."""
+    from .api_images import ImageSettings, check_render, render_rings, world_grid
+    from .limits import MAX_POINTS
+
+    settings = settings or ImageSettings()
+    iw, spacing = check_render(env, spacing, settings, seed, MAX_POINTS, chunk)
+    pts, _ = world_grid(iw, spacing)
+    ex = extractor or iw.extractor
+    rings = render_rings(iw, settings, pts, np.zeros(len(pts), np.float32), jax.random.PRNGKey(seed), ex, chunk)
+    home_index = int(np.argmin(np.linalg.norm(pts - np.asarray(iw.home), axis=-1)))
+    return LoadedDatabase(iw.name, rings, [], pts[home_index].astype(np.float64), home_index,
+                          np.asarray(iw.world.arena, np.float64), spacing, settings.camera, ex, iw.obstacles(),
+                          settings.mirror)

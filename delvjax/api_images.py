@@ -92,8 +92,32 @@ def extract_rings(images, cam: Camera, mirror: Catadioptric | None, extractor: E
 
 
 def chunks(n: int, chunk: int):
+    """(lo, hi) of the host-side chunks of n items, `chunk` at a time."""
     for lo in range(0, n, chunk):
         yield lo, min(n, lo + chunk)
+
+
+def full(a, size: int):
+    """The rows of `a` padded to `size` with copies of row 0: every chunk has one shape, so one program
+    serves the last chunk too (the padding's results are dropped)."""
+    a = np.asarray(a)
+    return a if len(a) == size else np.concatenate([a, np.repeat(a[:1], size - len(a), axis=0)])
+
+
+def head(tree, n: int):
+    """The first n rows of every array of a pytree (a chunk without its padding)."""
+    return jax.tree.map(lambda a: a[:n], tree)
+
+
+def rendered_chunks(world, settings: "ImageSettings", positions, headings, key, chunk: int):
+    """(lo, hi, uint8 images (size, H, W, 3)) of every chunk of poses (`render_images`); every chunk has
+    the same size (`full`): rows from hi - lo on are padding."""
+    size = min(chunk, len(positions))
+    for lo, hi in chunks(len(positions), size):
+        imgs = render_images(world, settings.camera, settings.mirror, jnp.asarray(full(positions[lo:hi], size)),
+                             jnp.asarray(full(headings[lo:hi], size)), jnp.arange(lo, lo + size), key,
+                             settings.pixel_noise, settings.gain_noise)
+        yield lo, hi, imgs
 
 
 def world_grid(iw: ImageWorld, spacing: float) -> tuple[np.ndarray, np.ndarray]:
@@ -117,12 +141,8 @@ def render_rings(iw: ImageWorld, settings: ImageSettings, positions: np.ndarray,
     """Render and reduce to rings in memory (no files): the database `render_database` would write and
     `load_database` read back, ring for ring (docs/images.md §6)."""
     world, ex = lit(iw.world, settings.light_azimuth_deg), extractor or iw.extractor
-    parts = []
-    for lo, hi in chunks(len(positions), chunk):
-        imgs = render_images(world, settings.camera, settings.mirror, jnp.asarray(positions[lo:hi]),
-                             jnp.asarray(headings[lo:hi]), jnp.arange(lo, hi), key, settings.pixel_noise,
-                             settings.gain_noise)
-        parts.append(extract_rings(imgs, settings.camera, settings.mirror, ex))
+    parts = [head(extract_rings(imgs, settings.camera, settings.mirror, ex), hi - lo)
+             for lo, hi, imgs in rendered_chunks(world, settings, positions, headings, key, chunk)]
     snaps = jax.tree.map(lambda *a: jnp.concatenate(a), *parts)
     return RingDatabase(snaps, jnp.asarray(positions, jnp.float32), jnp.asarray(headings, jnp.float32))
 
@@ -172,11 +192,8 @@ def render_database(env: str, out: str | Path, spacing: float | None = None, set
     world, key = lit(iw.world, settings.light_azimuth_deg), jax.random.PRNGKey(seed)
     writer = DatabaseWriter(out)
     try:
-        for lo, hi in chunks(len(pts), chunk):
-            imgs = render_images(world, settings.camera, settings.mirror, jnp.asarray(pts[lo:hi]),
-                                 jnp.asarray(headings[lo:hi]), jnp.arange(lo, hi), key, settings.pixel_noise,
-                                 settings.gain_noise)
-            writer.add(np.asarray(imgs), pts[lo:hi], headings[lo:hi], grid[lo:hi], donut=settings.mirror is not None)
+        for lo, hi, imgs in rendered_chunks(world, settings, pts, headings, key, chunk):
+            writer.add(np.asarray(imgs[: hi - lo]), pts[lo:hi], headings[lo:hi], grid[lo:hi], donut=settings.mirror is not None)
             if progress:
                 progress(hi - lo, len(pts))
         writer.commit(database_metadata(iw.name, iw.world.arena, iw.home, spacing, settings.camera, settings.mirror,

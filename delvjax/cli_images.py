@@ -10,7 +10,7 @@ import time
 
 import numpy as np
 
-from .cli_args import ProgressBar, add_output_args, check_outputs, progress, wrote, write_outputs
+from .cli_args import ProgressBar, check_outputs, progress, wrote, write_outputs
 from .core.errors import InputError
 from .io import check_out_dir
 from .limits import MAX_POINTS

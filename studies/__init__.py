@@ -17,4 +17,7 @@ STUDIES = [
     "visual_compass",
     "sensitivity",
     "layouts",
+    "robot_images",
+    "natural_images",
+    "image_effects",
 ]

@@ -141,3 +141,14 @@ def database_directions(db: RingDatabase, plan: MovePlan, home_db: RingDatabase,
 
     direction, valid = fixed_width_map(one, (plan.start, plan.end, plan.shift, plan.d_hat, plan.ok))
     return direction, valid, angular_error_deg(direction, valid, db.positions[plan.end], home_point)
+
+
+def perceived_landmarks(home_db: RingDatabase, home: MovePlan, settings) -> tuple[Array, Array]:
+    """World positions of the landmarks in DELV's reference map (docs/model.md §3.3; thesis Fig 4.20):
+    home + Rot(alpha_r) V^R_i with `settings` (a `DELV`: levels, scale, r_max): ((B, 2), (B,))."""
+    from ..estimation import reference_vectors
+    from ..geometry import rotate
+
+    record, alpha_r = home_view(home_db, home)
+    vectors, valid = reference_vectors(record, settings)
+    return home_db.positions[home.start[0]] + rotate(vectors, alpha_r), valid

@@ -9,6 +9,7 @@ from __future__ import annotations
 import equinox as eqx
 import jax
 import jax.numpy as jnp
+import numpy as np
 from jax import Array
 from jax.scipy.ndimage import map_coordinates
 
@@ -16,12 +17,35 @@ from ..sensing import Snapshot, blob_runs
 from .world import Camera, Catadioptric
 
 
+def _lowbias32(x: Array) -> Array:
+    """A 32-bit integer hash with good avalanche (C. Wellons' lowbias32)."""
+    x = x ^ (x >> 16)
+    x = x * jnp.uint32(0x7FEB352D)
+    x = x ^ (x >> 15)
+    x = x * jnp.uint32(0x846CA68B)
+    return x ^ (x >> 16)
+
+
+def pixel_normals(key: Array, shape: tuple[int, ...]) -> Array:
+    """Approximately standard normal draws, one per element of `shape` (docs/images.md §5.1): the
+    Irwin-Hall sum of the four bytes of a counter-based hash of (element index, a 32-bit seed drawn
+    from `key`), centred and scaled to unit variance (bounded at +-3.45). Eight times faster than
+    `jax.random.normal` on the CPU, where it dominated the cost of a rendered database."""
+    seed = jax.random.bits(key, (), jnp.uint32)
+    n = 1
+    for s in shape:
+        n *= s
+    h = _lowbias32(jax.lax.iota(jnp.uint32, n).reshape(shape) * jnp.uint32(0x9E3779B9) + seed)
+    total = (h & 255) + ((h >> 8) & 255) + ((h >> 16) & 255) + (h >> 24)
+    return (total.astype(jnp.float32) - 510.0) * jnp.float32(1.0 / np.sqrt(4 * (256.0**2 - 1) / 12))
+
+
 def camera_noise(key: Array, image: Array, sigma: Array, gain_sigma: Array = 0.0) -> Array:
     """docs/images.md §5.1: a global brightness gain 1 + N(0, gain_sigma) (flicker, exposure) and
-    independent N(0, sigma) per pixel and channel, clipped to [0, 1]."""
+    independent noise of standard deviation sigma per pixel and channel (`pixel_normals`), clipped to [0, 1]."""
     k_gain, k_pix = jax.random.split(key)
     gain = 1.0 + gain_sigma * jax.random.normal(k_gain)
-    return jnp.clip(image * gain + sigma * jax.random.normal(k_pix, image.shape), 0.0, 1.0)
+    return jnp.clip(image * gain + sigma * pixel_normals(k_pix, image.shape), 0.0, 1.0)
 
 
 def to_uint8(image: Array) -> Array:
