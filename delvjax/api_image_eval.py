@@ -116,6 +116,14 @@ def _camera(index: DatabaseIndex, shape: tuple[int, ...]) -> tuple[Camera, Catad
                   cols=int(cols)), mirror
 
 
+def check_home_move(positions: np.ndarray, home_index: int, spacing: float, field: str, value) -> None:
+    """`InputError` when home has no image one spacing away along an axis (the home record's unit move,
+    docs/images.md §6)."""
+    if not home_plan(positions, np.zeros(len(positions)), home_index, spacing, 4).ok[0]:
+        raise InputError(field, str(value), f"has no image {spacing:g} cm (one spacing) east, north, west or south "
+                                            "of it: the home record needs that unit move")
+
+
 def load_database(src: str | Path, home=None, arena=None, spacing: float | None = None, channel: str | None = None,
                   extractor: dict | None = None, max_blobs: int | None = None, chunk: int = DEFAULT_CHUNK,
                   progress: Callable[[int, int], None] | None = None,
@@ -135,6 +143,7 @@ def load_database(src: str | Path, home=None, arena=None, spacing: float | None 
     home_index = int(np.argmin(dist))
     if home is not None and dist[home_index] > spacing / 2:
         raise InputError("home", list(target), f"has no image within spacing / 2 = {spacing / 2:g} cm")
+    check_home_move(index.positions, home_index, spacing, "home", index.files[home_index])
     shape = read_image(index.files[0]).shape
     cam, mirror = _camera(index, shape)
     if not mirror and cam.cols % 4:
@@ -278,6 +287,7 @@ def rendered_database(env: str, spacing: float | None = None, settings=None, see
     ex = extractor or iw.extractor
     rings = render_rings(iw, settings, pts, np.zeros(len(pts), np.float32), jax.random.PRNGKey(seed), ex, chunk)
     home_index = int(np.argmin(np.linalg.norm(pts - np.asarray(iw.home), axis=-1)))
+    check_home_move(pts, home_index, spacing, "env", env)
     return LoadedDatabase(iw.name, rings, [], pts[home_index].astype(np.float64), home_index,
                           np.asarray(iw.world.arena, np.float64), spacing, settings.camera, ex, iw.obstacles(),
                           settings.mirror)

@@ -10,7 +10,9 @@ import time
 
 import numpy as np
 
-from .cli_args import ProgressBar, check_outputs, progress, wrote, write_outputs
+from .cli_args import ProgressBar, check_outputs, progress, warn, wrote, write_outputs
+from .core.rollouts import check_rules
+from .options import non_negative, positive_int
 from .core.errors import InputError
 from .io import check_out_dir
 from .limits import MAX_POINTS
@@ -61,7 +63,11 @@ def load(args: argparse.Namespace):
     from .options import make_setup
 
     opts = _method_options(args)
-    make_setup(args.method, n_pix=None, **opts)  # method and settings checked before any image is read
+    make_setup(args.method, **opts)  # method and settings checked before any image is read
+    positive_int(args.chunk, "--chunk")
+    if args.max_blobs is not None:
+        positive_int(args.max_blobs, "--max-blobs")
+    progress(f"reading {args.images} ...")
     spacing = None if args.spacing == args.parser_defaults.get("spacing") else args.spacing
     ex = {k: getattr(args, k) for k in EXTRACTOR_OPTIONS if getattr(args, k) is not None}
     with ProgressBar("img", args.chunk) as bar:
@@ -72,6 +78,16 @@ def load(args: argparse.Namespace):
     return db, opts
 
 
+def warn_empty(vm) -> None:
+    """A warning for a map with nothing to evaluate, or no valid direction anywhere."""
+    included = np.asarray(vm.included)
+    if not included.any():
+        warn("the database has no point besides home: nothing to evaluate")
+    elif not bool(np.any(np.asarray(vm.valid) & included)):
+        warn("every database point is invalid: the method finds no homing direction anywhere (no landmark "
+             "found by the threshold, or no neighbour one spacing away?)")
+
+
 def cmd_vector_map_images(args: argparse.Namespace) -> int:
     from .api_image_eval import database_vector_map
     from .core.metrics import summarize_map
@@ -80,7 +96,6 @@ def cmd_vector_map_images(args: argparse.Namespace) -> int:
     _refuse_unused(args)
     check_outputs(args)
     t0 = time.perf_counter()
-    progress(f"reading {args.images} ...")
     db, opts = load(args)
     progress(f"vector map of {args.method} on {len(db.files)} images ({db.camera.cols} x {db.camera.rows}, "
              f"unit move {db.spacing:g} cm) ...")
@@ -89,6 +104,7 @@ def cmd_vector_map_images(args: argparse.Namespace) -> int:
                **summarize_map(vm.error_deg, vm.valid, vm.included), "seconds": time.perf_counter() - t0}
     progress(f"done in {summary['seconds']:.2f} s: mean error {summary['mean_error_deg']:.2f} deg, "
              f"{summary['invalid']} invalid")
+    warn_empty(vm)
     write_outputs(args, vector_map_columns(vm), summary, lambda: database_map_figure(
         db, vm, f"{args.method} on {db.name}: mean error {summary['mean_error_deg']:.1f}°", classes=args.classes))
     return 0
@@ -99,6 +115,10 @@ def cmd_catchment_images(args: argparse.Namespace) -> int:
     from .plots_images import database_catchment_figure
 
     _refuse_unused(args, extra=("lanes",))
+    check_rules(args.first_move, args.collisions)
+    positive_int(args.max_steps, "--max-steps")
+    for name in ("home_radius", "motion_heading_noise_deg", "motion_step_noise"):
+        non_negative(getattr(args, name), "--" + name.replace("_", "-"))
     if args.first_move != "homing":
         raise InputError("--first-move", args.first_move, "is not used with --images (every move follows the "
                                                           "direction at the nearest snapshot)")
@@ -107,6 +127,7 @@ def cmd_catchment_images(args: argparse.Namespace) -> int:
     db, opts = load(args)
     radius = None if args.home_radius == args.parser_defaults.get("home_radius") else args.home_radius
     vm = database_vector_map(db, args.method, **opts)
+    warn_empty(vm)
     starts, paths = database_catchment(db, vm, home_radius=radius, max_steps=args.max_steps,
                                        motion_heading_noise_deg=args.motion_heading_noise_deg,
                                        motion_step_noise=args.motion_step_noise, seed=args.seed,

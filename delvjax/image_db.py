@@ -118,7 +118,8 @@ def read_index(src: str | Path) -> DatabaseIndex:
 
 
 def read_image(path: Path) -> np.ndarray:
-    """An RGB uint8 array (H, W, 3) of an image file (Pillow), in memory column order unless a donut."""
+    """An RGB uint8 array (H, W, 3) of an image file (Pillow), as stored (file column order; `read_images`
+    turns panoramas into memory order)."""
     from PIL import Image, UnidentifiedImageError
 
     if not path.is_file():
@@ -169,12 +170,22 @@ class DatabaseWriter:
 
         names = [bob_filename(int(gx), int(gy)) for gx, gy in grid]
         files = images if donut else file_columns(images)
-        list(self.pool.map(lambda a: Image.fromarray(a[0]).save(self.tmp / a[1], compress_level=1), zip(files, names)))
+        try:
+            list(self.pool.map(lambda a: Image.fromarray(a[0]).save(self.tmp / a[1], compress_level=1),
+                               zip(files, names)))
+        except OSError as exc:
+            raise InputError("--out", str(self.out), f"could not be written ({exc.strerror or exc})") from None
         for (x, y), h, (gx, gy), name in zip(positions, headings, grid, names):
             self.rows.append([round(float(x) * 10, 3), round(float(y) * 10, 3), 0, round(math.degrees(float(h)), 6),
                               name, int(gx), int(gy), 0])
 
     def commit(self, metadata: dict) -> None:
+        try:
+            self._commit(metadata)
+        except OSError as exc:
+            raise InputError("--out", str(self.out), f"could not be written ({exc.strerror or exc})") from None
+
+    def _commit(self, metadata: dict) -> None:
         import yaml
 
         with open(self.tmp / ENTRIES, "w", newline="") as fh:

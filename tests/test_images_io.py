@@ -526,8 +526,6 @@ def test_neither_an_environment_nor_images_is_an_error(tmp_path, capsys, command
     assert not out.exists()
 
 
-@pytest.mark.xfail(strict=True, reason="bug: cmd_catchment_images never calls check_rules: --collisions maybe runs as "
-                                     "ignore and is written into the summary")
 def test_catchment_images_refuses_an_unknown_collision_rule(small_db, tmp_path, capsys):
     out = tmp_path / "s.json"
     assert main(["catchment", "--images", str(small_db), "--collisions", "maybe", "--summary", str(out)]) == 2
@@ -535,8 +533,6 @@ def test_catchment_images_refuses_an_unknown_collision_rule(small_db, tmp_path, 
     assert not out.exists()
 
 
-@pytest.mark.xfail(strict=True, reason="vector-map --images announces 'reading DIR ...' before the method and its "
-                                     "settings are checked (test_hardening: validate before announcing work)")
 @pytest.mark.parametrize("flags", [["--method", "magic"], ["--levels", "0"], ["--chunk", "0"]])
 def test_vector_map_images_checks_options_before_announcing_work(small_db, tmp_path, capsys, flags):
     out = tmp_path / "m.csv"
@@ -546,8 +542,6 @@ def test_vector_map_images_checks_options_before_announcing_work(small_db, tmp_p
     assert len(err) == 1 and err[0].startswith("delvjax: error: "), err
 
 
-@pytest.mark.xfail(strict=True, reason="vector-map --images does not warn when every point is invalid (the "
-                                     "environment mode does: test_hardening)")
 def test_a_database_map_with_every_point_invalid_warns(small_db, tmp_path, capsys):
     out = tmp_path / "m.csv"
     assert main(["vector-map", "--images", str(small_db), "--hue-deg", "180", "--out", str(out)]) == 0  # no red
@@ -608,14 +602,13 @@ def test_a_database_of_one_image(small_db, tmp_path, capsys):
     assert main(["vector-map", "--images", str(one), "--summary", str(tmp_path / "s.json")]) == 2
     assert "spacing" in error_line(capsys)
     assert not (tmp_path / "s.json").exists()
-    assert main(["images", "import", str(one), "--out", str(out), "--spacing", "20"]) == 0
-    db = load_database(out)
-    assert len(db.files) == 1 and db.spacing == 20 and db.home.tolist() == [90, 90]
-    assert db.arena.tolist() == [80, 80, 100, 100]  # the positions' extent plus half a spacing
+    # with a spacing, the lone image is home and has no neighbour for the home record's unit move
+    assert main(["images", "import", str(one), "--out", str(out), "--spacing", "20"]) == 2
+    line = error_line(capsys)
+    assert line.startswith("delvjax: error: home:") and "unit move" in line and "home" in line, line
+    no_leftovers(out)
 
 
-@pytest.mark.xfail(strict=True, reason="bug: home_plan's `ok` is ignored; a home without an axis neighbour gives a "
-                                     "home record of a zero-length move home -> home and a valid-looking map")
 def test_a_home_without_an_axis_neighbour_does_not_pass_silently(small_db, tmp_path, capsys):
     """docs/images.md §6: the home record is the move from home to its first axis neighbour. Here home
     has none; a home record of a zero-length move (home -> home) must not give a valid-looking map: an
