@@ -9,6 +9,9 @@ rollouts); this top level is the edge: names, options, files, figures, CLI and t
 from .api import load_env, vector_map
 from .api_rollouts import catchment, success_rate, trajectories
 from .api_soft import homing_quality, homing_quality_grad
+from .api_images import ImageSettings, render_database
+from .api_image_eval import (database_catchment, database_rollouts, database_vector_map, import_database,
+                             load_database, rendered_database)
 from .layout import optimise_layout
 from .sensitivities import sensitivity
 from .traps import find_traps
@@ -30,5 +33,7 @@ __all__ = [
     "Method", "Noise", "Program", "Sensor", "Snapshot", "UnitMove", "VectorMap", "VisualCompass", "Warping",
     "catchment", "error_curve", "homing_quality", "homing_quality_grad", "find_traps", "optimise_layout", "sensitivity", "error_point_rates", "load_env", "make_env", "success_rate", "summarize_map",
     "load_sweep", "run_sweep", "trajectories", "vector_map",
+    "ImageSettings", "render_database", "rendered_database", "load_database", "import_database", "database_vector_map",
+    "database_catchment", "database_rollouts",
 ]
 __version__ = "0.1.0"

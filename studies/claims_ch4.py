@@ -126,3 +126,25 @@ def _(get):
     lower = [v < edge for v in sur.values()]
     ours = f"3 levels, mean error env2 {_n(sur['env2'])}°, ring6 {_n(sur['ring6'])}° vs env3 (one side) {_n(edge)}°"
     return ours, _verdict(lower), ""
+
+
+@check("robot_images_delv_errs_more_but_homes")
+def _(get):
+    img, ideal = get("robot_images:delv:mean_error_deg"), get("robot_images:delv:ideal_mean_error_deg")
+    catch = get("robot_images:delv:catchment_pct")
+    more, homes = img > ideal, catch >= 75.0
+    ours = f"mean error {_n(img)}° on images, {_n(ideal)}° on ideal rings; catchment {_n(catch)} %"
+    why = "" if more and homes else ("rendered images carry no detection error beyond pixel noise: their rings "
+                                     "are the ring model's, so DELV errs as on ideal rings" if homes
+                                     else "the catchment on images is below 75 %")
+    return ours, _verdict([more and homes, homes]), why
+
+
+@check("robot_images_quantized_similar")
+def _(get):
+    base = get("robot_images:delv:mean_error_deg")
+    levels = {q: get(f"robot_images:delv:Q{q}:mean_error_deg") for q in (1, 2, 4, 5)}
+    close = [abs(v - base) <= 10.0 for v in levels.values()]
+    ours = "mean error, 1/2/4/5 levels: " + _n(list(levels.values())) + f"°; continuous {_n(base)}°"
+    verdict = "holds" if all(close) else "partly" if _share(close) >= 0.5 else "fails"
+    return ours, verdict, "" if verdict == "holds" else "some levels differ by more than 10°"

@@ -17,7 +17,7 @@ from delvjax.api_images import ImageSettings, camera
 from delvjax.image_worlds import image_world
 from delvjax.plots import subplots
 
-from .images_common import CAMERA_NOISE, LABEL, METHODS, database, ideal_map, image_map, numbers
+from .images_common import CAMERA_NOISE, LABEL, METHODS, database, ideal_map, image_map, numbers, preview
 
 TITLE = "The image path: resolution, band, threshold, noise and lighting (beyond the thesis)"
 STEPS = 5
@@ -49,7 +49,7 @@ def _database(factor: str, value, seed: int):
 
 
 def run(ctx) -> None:
-    quick = ctx.settings.quick
+    quick = preview(ctx)
     ideal = {m: numbers(ideal_map("robot", m))["mean_error_deg"] for m in METHODS}
     rows = []
     for factor, (values, label, quick_values) in FACTORS.items():

@@ -24,6 +24,11 @@ ROBOT_SCALE = 180.0  # cm: DELV's quantization scale a in the 1.8 m arena (1000 
 CAMERA_NOISE = ImageSettings(pixel_noise=0.02, gain_noise=0.03)  # "realistic camera noise" of the studies
 
 
+def preview(ctx) -> bool:
+    """A preview run (`--quick`, or the tests' coarse settings): fewer settings, the same programs."""
+    return ctx.settings.quick or ctx.settings.spacing >= 100
+
+
 def database(name: str, settings: ImageSettings = CAMERA_NOISE, seed: int = 0, **kw) -> LoadedDatabase:
     """A built-in world rendered in memory (ring for ring what its files would give)."""
     return rendered_database(name, settings=settings, seed=seed, **kw)

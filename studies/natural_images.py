@@ -14,7 +14,7 @@ from delvjax.api_image_eval import catchment_numbers, database_catchment, databa
 from delvjax.core.images.rollouts import OUTCOMES
 from delvjax.plots_images import paths_figure
 
-from .images_common import LABEL, database, image_map, numbers
+from .images_common import LABEL, database, image_map, numbers, preview
 
 TITLE = "Robot experiments with natural landmarks, on rendered images (Fig 4.24)"
 STEPS = 2
@@ -24,7 +24,7 @@ STARTS = ((380.0, 860.0), (620.0, 860.0), (900.0, 460.0), (460.0, 140.0))  # two
 def run(ctx) -> None:
     db = database("natural", seed=ctx.settings.seed)
     rows = []
-    for m in ("delv", "alv", "warping"):
+    for m in ("delv",) if preview(ctx) else ("delv", "alv", "warping"):
         vm = image_map(db, m)
         s = numbers(vm)
         _, paths = database_catchment(db, vm, seed=ctx.settings.seed, collisions=True)

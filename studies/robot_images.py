@@ -20,7 +20,7 @@ from delvjax.plots import error_curve_figure, subplots
 from delvjax.plots_images import database_map_figure, pipeline_figure
 
 from .common import curves_rows
-from .images_common import LABEL, ROBOT_SCALE, curve, database, ideal_map, image_map, numbers
+from .images_common import LABEL, ROBOT_SCALE, curve, database, ideal_map, image_map, numbers, preview
 
 TITLE = "Robot experiments with artificial landmarks, on rendered images (Figs 4.16-4.21)"
 STEPS = 3
@@ -50,7 +50,8 @@ def run(ctx) -> None:
                "Figs 4.16b-4.17: catadioptric image at home, unwrapped panorama, red pixels found by the HSV "
                "threshold, and the 1D ring of the 10° band (columns in the file order: unmirrored).")
     rows, curves, maps = [], {}, {}
-    for m, channel in (("delv", "gray"), ("warping", "gray"), ("warping", "mask")):
+    runs = (("delv", "gray"), ("warping", "gray")) + ((("warping", "mask"),) if not preview(ctx) else ())
+    for m, channel in runs:  # (the mask ring is another program: the full run only)
         vm, ideal = image_map(db, m, channel=channel), ideal_map("robot", m, channel=channel)
         s, si = numbers(vm), numbers(ideal)
         starts, paths = database_catchment(db, vm, seed=ctx.settings.seed)

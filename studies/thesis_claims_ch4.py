@@ -151,4 +151,27 @@ CLAIMS_CH4 = [
         "needs": ["mean_error:ring3:delv:Q=3", "mean_error:ring5:delv:Q=3",
                   "mean_error:env3:delv:Q=3"],
     },
+    {
+        "id": "robot_images_delv_errs_more_but_homes",
+        "section": "§4.4.1, Figs 4.18-4.19",
+        "line": 664,
+        "quote": "The angular errors of DELV in real environment were greater than those in the simulation "
+                 "environments, most likely due to the landmark detection error from the snapshot images. "
+                 "However, the method still showed good performance in terms of returning to the target location "
+                 "because the angular errors were relatively small to allow for navigation to the nest.",
+        "statement": "On images of the robot arena DELV errs more than on the ideal rings of the same layout, and "
+                     "still homes from most release points (nearest-snapshot catchment >= 75 %).",
+        "needs": ["robot_images:delv:mean_error_deg", "robot_images:delv:ideal_mean_error_deg",
+                  "robot_images:delv:catchment_pct"],
+    },
+    {
+        "id": "robot_images_quantized_similar",
+        "section": "§4.4.1, Figs 4.20-4.21",
+        "line": 689,
+        "quote": "The error level compared to those in Figure 4.19 did not show significant increase, however, "
+                 "and maintained similar level of errors with respect to the quantization level.",
+        "statement": "On the robot images, DELV with 1, 2, 4 and 5 distance levels errs about as much as with "
+                     "continuous distances (mean error within 10 deg of it).",
+        "needs": ["robot_images:delv:Q=1,2,4,5:mean_error_deg", "robot_images:delv:mean_error_deg"],
+    },
 ]

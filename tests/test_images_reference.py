@@ -19,7 +19,7 @@ from delvjax import api
 from delvjax.api_image_eval import LoadedDatabase, database_vector_map
 from delvjax.api_images import ImageSettings, render_rings, world_grid
 from delvjax.core.images import pipeline, render
-from delvjax.core.images.database import database_directions, home_plan, move_plan
+from delvjax.core.images.database import home_plan, move_plan
 from delvjax.core.images.rollouts import Field, nearest_snapshot_rollouts
 from delvjax.core.images.world import Camera, Catadioptric, make_world
 from delvjax.core.sensing import Snapshot, UnitMove

@@ -55,7 +55,8 @@ def neighbour(positions: np.ndarray, targets: np.ndarray, spacing: float) -> np.
     """Index of the database point within TOLERANCE * spacing of each target, else -1 (k-d tree)."""
     from scipy.spatial import cKDTree
 
-    dist, idx = cKDTree(positions).query(targets, distance_upper_bound=TOLERANCE * spacing)
+    # the k-d tree counts strictly nearer points: the bound is nudged up so "within" includes it
+    dist, idx = cKDTree(positions).query(targets, distance_upper_bound=np.nextafter(TOLERANCE * spacing, np.inf))
     return np.where(np.isfinite(dist), idx, -1)
 
 
