@@ -41,7 +41,8 @@ import shutil
 t1 = time.perf_counter(); db, vm = run(); first = time.perf_counter() - t1
 t2 = time.perf_counter(); db, vm = run(); warm = time.perf_counter() - t2
 inc = np.asarray(vm.included)
-print(json.dumps({"images": len(np.asarray(db.rings.positions)), "cols": db.camera.cols, "rows": db.camera.rows,
+import resource
+print(json.dumps({"peak_rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,"images": len(np.asarray(db.rings.positions)), "cols": db.camera.cols, "rows": db.camera.rows,
                   "import_s": t_import, "first_s": first, "warm_s": warm,
                   "mean_error_deg": float(np.asarray(vm.error_deg)[inc].mean())}))
 """
@@ -59,26 +60,22 @@ def child(env: str, spacing: float, method: str, mode: str) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def reference_seconds_per_image(env: str, n: int) -> float | None:
-    """Per-image wall time of the NumPy reference renderer + pipeline, if the reference is there."""
+def reference_seconds_per_image(env: str, n: int) -> float:
+    """Per-image wall time of the NumPy reference (tests/reference_images.py): render a 360 x 60
+    panorama, then band rings and blobs, at `n` poses."""
     sys.path.insert(0, str(ROOT / "tests"))
-    try:
-        import reference_images as ref
-    except ImportError:
-        return None
     import numpy as np
+    import reference_images as ref
 
     from delvjax.image_worlds import image_world
 
     iw = image_world(env)
-    fn = getattr(ref, "reference_panorama", None)
-    if fn is None:
-        return None
     a = np.asarray(iw.world.arena)
     pts = np.stack([np.linspace(a[0] + 50, a[2] - 50, n), np.linspace(a[1] + 60, a[3] - 40, n)], -1)
     t0 = time.perf_counter()
     for p in pts:  # the reference is per pixel by design
-        fn(iw.world, p, 0.0)
+        share, _ = ref.band_rings(ref.panorama(iw.world, p, 0.0, 60, 360))
+        ref.ring_blobs(share)
     return (time.perf_counter() - t0) / n
 
 
@@ -88,22 +85,22 @@ def main() -> None:
     p.add_argument("--spacing", type=float, default=25.0)
     p.add_argument("--methods", nargs="+", default=["delv"])
     p.add_argument("--ref-images", type=int, default=2)
+    p.add_argument("--modes", nargs="+", default=["memory", "files"], choices=["memory", "files"])
     a = p.parse_args()
     print(f"env {a.env}, spacing {a.spacing:g} cm (fresh process per row; first run includes compilation)")
     print(f"{'method':10s} {'mode':7s} {'images':>6s} {'size':>7s} {'first s':>8s} {'warm s':>7s} {'ms/img':>7s} "
-          f"{'error':>6s}")
+          f"{'error':>6s} {'RSS MB':>7s}")
     warm_per_image = None
     for m in a.methods:
-        for mode in ("memory", "files"):
+        for mode in a.modes:
             r = child(a.env, a.spacing, m, mode)
             ms = 1e3 * r["warm_s"] / r["images"]
             warm_per_image = warm_per_image or r["warm_s"] / r["images"]
             print(f"{m:10s} {mode:7s} {r['images']:6d} {r['cols']:3d}x{r['rows']:<3d} {r['first_s']:8.2f} "
-                  f"{r['warm_s']:7.2f} {ms:7.2f} {r['mean_error_deg']:6.1f}", flush=True)
+                  f"{r['warm_s']:7.2f} {ms:7.2f} {r['mean_error_deg']:6.1f} {r['peak_rss_mb']:7.0f}", flush=True)
     ref = reference_seconds_per_image(a.env, a.ref_images)
-    if ref is not None:
-        print(f"NumPy reference: {ref * 1e3:.0f} ms per panorama (render only); ratio to the whole in-memory "
-              f"path per image: {ref / warm_per_image:.0f}x")
+    print(f"NumPy reference: {ref * 1e3:.0f} ms per image (render, band rings, blobs); the whole path above "
+          f"(render, rings, vector map) per image, warm: {warm_per_image * 1e3:.2f} ms; ratio {ref / warm_per_image:.0f}x")
 
 
 if __name__ == "__main__":

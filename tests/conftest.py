@@ -55,3 +55,42 @@ def run(tmp_path_factory):
     result = reproduce.reproduce(out, settings=TINY, progress=False)
     return out, result, time.perf_counter() - t0
 
+
+# --- image databases (test_images_io.py, test_images_errors.py, test_images_cli.py) ---------------
+
+from images_io_helpers import SEED, SMALL, entries, render_db, write_plain  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def default_db(tmp_path_factory) -> Path:
+    """The robot world at the default size (360 x 60)."""
+    return render_db(tmp_path_factory.mktemp("default") / "robot")
+
+
+@pytest.fixture(scope="module")
+def small_db(tmp_path_factory) -> Path:
+    return render_db(tmp_path_factory.mktemp("small") / "robot", *SMALL, "--seed", str(SEED))
+
+
+@pytest.fixture(scope="module")
+def donut_db(tmp_path_factory) -> Path:
+    return render_db(tmp_path_factory.mktemp("donut") / "robot", *SMALL, "--donut", "--seed", str(SEED))
+
+
+@pytest.fixture(scope="module")
+def plain_db(tmp_path_factory, small_db) -> Path:
+    """The small database as a plain folder: shuffled rows, other file names, positions.csv in cm."""
+    rows = entries(small_db)
+    order = np.random.default_rng(0).permutation(len(rows))
+    return write_plain(tmp_path_factory.mktemp("plain") / "panos", small_db, [rows[i] for i in order],
+                       rename=lambda i, f: f"pano {i:03d}.png")
+
+
+@pytest.fixture(scope="module")
+def plain9(tmp_path_factory, small_db) -> Path:
+    """A 3 x 3 plain folder (centre (90, 90)), the template the error cases break."""
+    rows = [r for r in entries(small_db) if max(abs(float(r["X [mm]"]) - 900), abs(float(r["Y [mm]"]) - 900)) <= 200]
+    assert len(rows) == 9
+    return write_plain(tmp_path_factory.mktemp("plain9") / "nine", small_db, rows, rename=lambda i, f: f"p{i}.png")
+
+
