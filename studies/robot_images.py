@@ -10,6 +10,7 @@ the ring model on the same layout.
 
 from __future__ import annotations
 
+import jax
 import jax.numpy as jnp
 import numpy as np
 
@@ -33,10 +34,14 @@ def pipeline_panels(db) -> object:
     from delvjax.image_worlds import image_world
 
     iw, mirror, cam = image_world("robot"), Catadioptric(), Camera()
-    img = donut(iw.world, mirror, jnp.asarray(iw.home, jnp.float32), jnp.float32(0.0))
-    pano = unwrap(img, mirror, cam)
-    ex = iw.extractor
-    mask = segment(rgb_to_hsv(pano), ex.hue_deg, ex.hue_width_deg, ex.sat_min, ex.val_min)
+
+    @jax.jit  # one program, not one per operation
+    def images(world, ex):
+        img = donut(world, mirror, jnp.asarray(iw.home, jnp.float32), jnp.float32(0.0))
+        pano = unwrap(img, mirror, cam)
+        return img, pano, segment(rgb_to_hsv(pano), ex.hue_deg, ex.hue_width_deg, ex.sat_min, ex.val_min)
+
+    img, pano, mask = images(iw.world, iw.extractor)
     ring = np.asarray(db.rings.snapshots.mask)[db.home_index]
     flip = lambda a: np.roll(np.flip(np.asarray(a), 1), 1, 1)  # noqa: E731 (file column order: unmirrored)
     return pipeline_figure(np.asarray(img), flip(pano), flip(mask), flip(ring[None])[0],

@@ -144,6 +144,7 @@ def database_directions(db: RingDatabase, plan: MovePlan, home_db: RingDatabase,
     return direction, valid, angular_error_deg(direction, valid, db.positions[plan.end], home_point)
 
 
+@jax.jit
 def perceived_landmarks(home_db: RingDatabase, home: MovePlan, settings) -> tuple[Array, Array]:
     """World positions of the landmarks in DELV's reference map (docs/model.md §3.3; thesis Fig 4.20):
     home + Rot(alpha_r) V^R_i with `settings` (a `DELV`: levels, scale, r_max): ((B, 2), (B,))."""
