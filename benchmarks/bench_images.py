@@ -74,7 +74,7 @@ def reference_seconds_per_image(env: str, n: int) -> float:
     pts = np.stack([np.linspace(a[0] + 50, a[2] - 50, n), np.linspace(a[1] + 60, a[3] - 40, n)], -1)
     t0 = time.perf_counter()
     for p in pts:  # the reference is per pixel by design
-        share, _ = ref.band_rings(ref.panorama(iw.world, p, 0.0, 60, 360))
+        share, _ = ref.band_rings(ref.panorama(ref.world_dict(iw.world), p, 0.0, 60, 360))
         ref.ring_blobs(share)
     return (time.perf_counter() - t0) / n
 
