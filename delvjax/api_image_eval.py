@@ -259,10 +259,12 @@ def import_database(src: str | Path, out: str | Path, **options) -> LoadedDataba
     arena = _arena(index, options.get("arena"), spacing)
     writer = DatabaseWriter(out)
 
+    grid = np.round((index.positions - arena[:2] - spacing / 2) / spacing).astype(int)
+    on_cells = len(np.unique(grid, axis=0)) == len(grid)  # else (a route, a jittered grid) files by entry number
+
     def sink(images: np.ndarray, rows: slice) -> None:
-        pos = index.positions[rows]
-        grid = np.round((pos - arena[:2] - spacing / 2) / spacing).astype(int)
-        writer.add(images, pos, index.headings[rows], grid, donut=index.needs_unwrapping)
+        writer.add(images, index.positions[rows], index.headings[rows], grid[rows], donut=index.needs_unwrapping,
+                   first=None if on_cells else rows.start)
 
     try:
         db = load_database(src, sink=sink, **options)

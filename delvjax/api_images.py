@@ -162,6 +162,25 @@ def check_render(env: str, spacing: float | None, settings: ImageSettings, seed:
     return iw, spacing
 
 
+PNG_SHARE = 0.75  # a noisy rendered image compresses to about this share of its raw size
+
+
+def check_disk(out: str | Path, n: int, settings: ImageSettings) -> None:
+    """`InputError` naming --out when n images would not fit on its disk (estimated before any work)."""
+    import shutil
+
+    from .io import check_folder
+
+    base = check_folder(out, "--out", str(out))
+    cam, mirror = settings.camera, settings.mirror
+    raw = 3 * (cam.rows * cam.cols if mirror is None else mirror.size ** 2)
+    need = n * (PNG_SHARE * raw + 200)
+    free = shutil.disk_usage(base).free
+    if need > free:
+        raise InputError("--out", str(out), f"would need about {need / 1e9:.3g} GB for {n} images, and its disk has "
+                                            f"{free / 1e9:.3g} GB free")
+
+
 def database_metadata(name: str, arena, home, spacing: float, cam: Camera, mirror: Catadioptric | None,
                       ex: Extractor, obstacles: dict, **extra) -> dict:
     """The database_metadata.yaml block: BoB's camera fields plus `delvjax:` (docs/images.md §4)."""
@@ -188,6 +207,7 @@ def render_database(env: str, out: str | Path, spacing: float | None = None, set
     settings = settings or ImageSettings()
     iw, spacing = check_render(env, spacing, settings, seed, max_points, chunk)
     pts, grid = world_grid(iw, spacing)
+    check_disk(out, len(pts), settings)
     headings = np.zeros(len(pts), np.float32)
     world, key = lit(iw.world, settings.light_azimuth_deg), jax.random.PRNGKey(seed)
     writer = DatabaseWriter(out)

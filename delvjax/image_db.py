@@ -164,11 +164,14 @@ class DatabaseWriter:
         self.pool = ThreadPoolExecutor(THREADS)
 
     def add(self, images: np.ndarray, positions: np.ndarray, headings: np.ndarray, grid: np.ndarray,
-            donut: bool = False) -> None:
-        """Images (k, H, W, 3) uint8 in memory order, positions (k, 2) cm, headings (k,) rad, grid (k, 2) int."""
+            donut: bool = False, first: int | None = None) -> None:
+        """Images (k, H, W, 3) uint8 in memory order, positions (k, 2) cm, headings (k,) rad, grid (k, 2) int.
+        Files are named by grid cell; with `first` (entries not on distinct grid cells, e.g. a route) by
+        entry number, `image_{first + i:05d}.png`, as BoB names route images."""
         from PIL import Image
 
-        names = [bob_filename(int(gx), int(gy)) for gx, gy in grid]
+        names = ([bob_filename(int(gx), int(gy)) for gx, gy in grid] if first is None
+                 else [f"image_{first + i:05d}.png" for i in range(len(grid))])
         files = images if donut else file_columns(images)
         try:
             list(self.pool.map(lambda a: Image.fromarray(a[0]).save(self.tmp / a[1], compress_level=1),

@@ -205,3 +205,16 @@ def test_render_db_of_an_unknown_world_and_images_of_no_folder(tmp_path, capsys)
     assert main(["images", "import", str(tmp_path / "nowhere"), "--out", str(tmp_path / "db")]) == 2
     assert "nowhere" in error_line(capsys)
     assert not list(tmp_path.iterdir())
+
+
+def test_a_render_that_would_not_fit_on_the_disk_is_refused(tmp_path, capsys, monkeypatch):
+    import shutil
+    from collections import namedtuple
+
+    usage = namedtuple("usage", "total used free")
+    monkeypatch.setattr(shutil, "disk_usage", lambda path: usage(10**6, 0, 10**6))  # 1 MB free
+    out = tmp_path / "db"
+    assert main(["images", "render-db", "robot", "--out", str(out)]) == 2
+    line = error_line(capsys)
+    assert line.startswith("delvjax: error: --out:") and "GB free" in line and "71 images" in line, line
+    assert not out.exists() and not list(tmp_path.glob(".db.*"))

@@ -19,7 +19,7 @@ from delvjax.core.images import Catadioptric
 from delvjax.image_db import BOB_COLUMNS, ENTRIES, METADATA, POSITIONS, file_columns, read_index
 from delvjax.image_worlds import image_world
 
-from images_io_helpers import render_db, entries, leaves_equal, read_csv, by_position, summary_numbers, SMALL, SEED, HEADER, CYLINDERS
+from images_io_helpers import render_db, entries, write_plain, leaves_equal, read_csv, by_position, summary_numbers, SMALL, SEED, HEADER, CYLINDERS
 
 
 # --- the BoB layout --------------------------------------------------------------------------------
@@ -184,3 +184,19 @@ def test_a_plain_folder_is_imported_and_evaluated_to_the_same_numbers(small_db, 
         rows, summary = results[name]
         assert summary == bob_summary, name
         assert rows == bob_rows, name
+
+
+def test_a_route_of_images_keeps_every_image(small_db, tmp_path):
+    """Images closer than the spacing (a route) share grid cells: import names them by entry number
+    (BoB's route names) instead of overwriting one with another."""
+    rows = [dict(r) for r in entries(small_db)[:6]]
+    for i, r in enumerate(rows):  # 5 cm apart along y = 90, spacing 20
+        r["X [mm]"], r["Y [mm]"] = str(1000 + 50 * i), "900"
+    plain = write_plain(tmp_path / "route", small_db, rows, rename=lambda i, f: f"r{i}.png")
+    out = tmp_path / "db"
+    assert main(["images", "import", str(plain), "--out", str(out), "--spacing", "20", "--home", "100", "90"]) == 0
+    names = [r["Filename"] for r in entries(out)]
+    assert names == [f"image_{i:05d}.png" for i in range(6)]
+    assert all((out / n).is_file() for n in names)
+    a, b = load_database(plain, spacing=20, home=(100, 90)), load_database(out)
+    assert np.array_equal(np.asarray(a.rings.snapshots.mask), np.asarray(b.rings.snapshots.mask))
