@@ -11,6 +11,13 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
 
+# Compiled programs go to the persistent cache of $DELVJAX_CACHE_DIR (as for the command line): the two
+# pytest-xdist workers and the command-line subprocesses then compile a shared program once. CI points it
+# at a fresh, empty folder (a cold run); "" disables it.
+from delvjax.cache import enable_compilation_cache  # noqa: E402
+
+enable_compilation_cache()
+
 ARENA = (0.0, 0.0, 1000.0, 1000.0)
 HOME = (500.0, 500.0)
 
