@@ -22,7 +22,7 @@ from .images_common import CAMERA_NOISE, LABEL, METHODS, database, ideal_map, im
 TITLE = "The image path: resolution, band, threshold, noise and lighting (beyond the thesis)"
 STEPS = 5
 FACTORS = {  # factor -> (values, label, values of --quick)
-    "cols": ((72, 144, 360, 720), "panorama width (pixels)", (72, 360)),
+    "cols": ((72, 144, 360, 720), "panorama width (pixels)", (360,)),  # another width is another program
     "band_height_deg": ((2.0, 5.0, 10.0, 20.0, 40.0), "band height (deg)", (2.0, 10.0, 40.0)),
     "hue_width_deg": ((10.0, 20.0, 40.0, 80.0), "hue window (deg)", (10.0, 40.0)),
     "pixel_noise": ((0.0, 0.02, 0.05, 0.1, 0.2), "camera noise (of full scale)", (0.0, 0.05, 0.2)),
