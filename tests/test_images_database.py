@@ -14,7 +14,7 @@ import pytest
 
 from reference_sensing import wrap
 from delvjax import api
-from delvjax.api_image_eval import LoadedDatabase, database_vector_map
+from delvjax.api_image_eval import LoadedDatabase, database_vector_map, rendered_database
 from delvjax.api_images import ImageSettings, render_rings, world_grid
 from delvjax.core.images import pipeline, render
 from delvjax.core.images.database import home_plan, move_plan
@@ -259,3 +259,21 @@ def test_nearest_snapshot_rollouts_match_reference_trials():
         np.testing.assert_allclose(np.asarray(paths.path[i]), path, atol=2e-3)
         outcomes.append(code)
     assert len(set(outcomes)) >= 4, outcomes  # success, arena, landmark, undefined, timeout: most of them
+
+
+def test_every_registered_method_runs_on_image_rings():
+    """docs/images.md §5: the pipeline's `Snapshot` is what every method reads. Each registry method, in
+    one program (`registry.program`), gives a finite direction at every point of a small database."""
+    from delvjax.api_images import camera
+    from delvjax.registry import METHODS
+
+    cam = camera(rows=12, cols=72, elev_top_deg=6.0, elev_bottom_deg=-6.0)  # the default 10° band: 10 rows
+    db = rendered_database("robot", settings=ImageSettings(camera=cam))
+    names = tuple(METHODS)
+    for name in names:  # a traced index picks the method: one compiled program
+        vm = database_vector_map(db, name, program=names, channel="gray")
+        inc = np.asarray(vm.included)
+        assert np.asarray(vm.valid)[inc].all(), name
+        assert np.isfinite(np.asarray(vm.direction)[inc]).all(), name
+        if name in ("delv-compass", "alv"):
+            assert np.asarray(vm.error_deg)[inc].mean() < 20.0, name
