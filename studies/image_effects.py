@@ -63,7 +63,7 @@ def run(ctx) -> None:
                 ctx.number(f"image_effects:{factor}={v}:{m}:mean_error_deg", s["mean_error_deg"])
         ctx.step(factor)
     ctx.table("image_effects", "Mean angular error on rendered robot images as one setting of the image path changes",
-              rows, source="beyond the thesis (thesis §4.4: robot errors exceed simulation ones)",
+              rows, source="beyond the thesis",
               note="Defaults: 360 x 60 panorama, 10° band, red ±20°, camera noise 0.02 with 3 % gain noise, light at "
                    "45°. The ideal-ring column is the ring model on the same layout and grid.")
     fig, axes = subplots(1, len(FACTORS), figsize=(3.6 * len(FACTORS), 3.6), sharey=True)

@@ -43,7 +43,7 @@ def run(ctx) -> None:
                 {"start": i, "step": t, "x": float(x), "y": float(y), "outcome": OUTCOMES[int(trips.outcome[i])]}
                 for i in range(len(STARTS)) for t, (x, y) in enumerate(np.asarray(trips.path[i]))])
         ctx.step(m)
-    ctx.table("natural_images", "Homing with natural landmarks on rendered images (Fig 4.24)", rows,
+    ctx.table("natural_images", "Homing with natural landmarks on rendered images", rows,
               source="Fig 4.24",
               note="Landmarks: every saturated colour (the walls, floor and ceiling are grey; the thesis used "
                    "mean-shift segmentation). Catchment: nearest-snapshot rollouts every 40 cm, a trial that walks "

@@ -86,7 +86,7 @@ def run(ctx) -> None:
                                                                       "(Fig 4.19)"),
                "Fig 4.19: mean angular error vs distance from home (95 % t intervals), images and ideal rings.")
     ctx.csv("fig4_19_robot_errors.csv", rows=curves_rows(curves))
-    ctx.table("robot_images", "DELV and image matching on rendered robot images (Figs 4.18-4.19)", rows,
+    ctx.table("robot_images", "DELV and image matching on rendered robot images", rows,
               source="Figs 4.18-4.19",
               note="The thesis prints no numbers: its robot errors were larger than in simulation, 'most likely due "
                    "to the landmark detection error'. Catchment: nearest-snapshot rollouts, landmarks ignored. Image "
@@ -115,7 +115,7 @@ def run(ctx) -> None:
                                                                      "(Fig 4.21)"),
                "Fig 4.21: error curves with 1, 2 and 5 levels (95 % t intervals).")
     ctx.csv("fig4_21_robot_quantized_errors.csv", rows=curves_rows(qcurves))
-    ctx.table("robot_images_quantized", "DELV with quantized distances on rendered robot images (Figs 4.20-4.21)",
+    ctx.table("robot_images_quantized", "DELV with quantized distances on rendered robot images",
               qrows, source="Figs 4.20-4.21",
               note="The thesis: the robot errors 'maintained similar level of errors with respect to the quantization "
                    "level' as in simulation.")
