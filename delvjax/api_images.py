@@ -28,6 +28,7 @@ from .limits import MAX_POINTS, check_size, grid_count
 from .options import non_negative, positive, positive_int, seed_value
 
 DEFAULT_CHUNK = 256  # images per host-side chunk
+IMAGE_WIDTH = 16  # images rendered or reduced side by side (`fixed_width_map`): bounds a group's memory
 PIXEL_NOISE = 0.02  # default camera noise of rendered databases, per pixel (docs/images.md §5.1)
 
 
@@ -77,7 +78,7 @@ def render_images(world, settings_camera: Camera, mirror: Catadioptric | None, p
         img = panorama(world, settings_camera, pos, heading) if mirror is None else donut(world, mirror, pos, heading)
         return to_uint8(camera_noise(jax.random.fold_in(key, i), img, pixel_noise, gain_noise))
 
-    return fixed_width_map(one, (positions, headings, index))
+    return fixed_width_map(one, (positions, headings, index), width=IMAGE_WIDTH)
 
 
 @eqx.filter_jit
@@ -88,7 +89,7 @@ def extract_rings(images, cam: Camera, mirror: Catadioptric | None, extractor: E
         img = image.astype(jnp.float32) / 255.0
         return extractor(img if mirror is None else unwrap(img, mirror, cam), cam)
 
-    return fixed_width_map(one, (images,))
+    return fixed_width_map(one, (images,), width=IMAGE_WIDTH)
 
 
 def chunks(n: int, chunk: int):

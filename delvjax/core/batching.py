@@ -22,27 +22,28 @@ from jax.sharding import Mesh, NamedSharding, PartitionSpec as P
 WIDTH = 128  # items per vectorised step (a power of two: 256 lanes are two groups)
 
 
-def padded(n: int) -> int:
+def padded(n: int, width: int = WIDTH) -> int:
     """`n` rounded up to a whole number of groups."""
-    return -(-n // WIDTH) * WIDTH
+    return -(-n // width) * width
 
 
-def fixed_width_map(fn: Callable, xs: tuple, active: jax.Array | None = None):
-    """`vmap(fn)(*xs)` over the leading axis of the arrays in `xs`, WIDTH items at a time.
+def fixed_width_map(fn: Callable, xs: tuple, active: jax.Array | None = None, width: int = WIDTH):
+    """`vmap(fn)(*xs)` over the leading axis of the arrays in `xs`, `width` items at a time.
 
-    The leading length is padded to a multiple of WIDTH (with copies of item 0) and the padding
+    The leading length is padded to a multiple of `width` (with copies of item 0) and the padding
     dropped. With `active` (one flag per item), a group without an active item is skipped and
-    its outputs are zeros (they must not be used).
+    its outputs are zeros (they must not be used). A large item (a rendered image) takes a
+    smaller `width`, which bounds the memory of a group.
     """
     n = jax.tree.leaves(xs)[0].shape[0]
-    m = padded(n)
+    m = padded(n, width)
     pad = lambda a: jnp.concatenate([a, jnp.repeat(a[:1], m - n, axis=0)]) if m > n else a  # noqa: E731
-    groups = jax.tree.map(lambda a: pad(a).reshape((m // WIDTH, WIDTH) + a.shape[1:]), xs)
+    groups = jax.tree.map(lambda a: pad(a).reshape((m // width, width) + a.shape[1:]), xs)
     batched = jax.vmap(fn)
     if active is None:
         out = jax.lax.map(lambda g: batched(*g), groups)
     else:
-        flags = pad(active).reshape(m // WIDTH, WIDTH)
+        flags = pad(active).reshape(m // width, width)
         shapes = jax.eval_shape(lambda g: batched(*g), jax.tree.map(lambda a: a[0], groups))
         idle = lambda g: jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), shapes)  # noqa: E731
         out = jax.lax.map(lambda gf: jax.lax.cond(jnp.any(gf[1]), lambda g: batched(*g), idle, gf[0]),
