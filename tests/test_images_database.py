@@ -4,7 +4,6 @@ rollouts (reference_image_db.py)."""
 
 from __future__ import annotations
 
-import math
 
 import equinox as eqx
 import jax
@@ -16,10 +15,9 @@ from reference_sensing import wrap
 from delvjax import api
 from delvjax.api_image_eval import LoadedDatabase, database_vector_map, rendered_database
 from delvjax.api_images import ImageSettings, render_rings, world_grid
-from delvjax.core.images import pipeline, render
 from delvjax.core.images.database import home_plan, move_plan
 from delvjax.core.images.rollouts import Field, nearest_snapshot_rollouts
-from delvjax.core.images.world import Camera, make_world
+from delvjax.core.images.world import Camera
 from delvjax.core.sensing import Snapshot, UnitMove
 from delvjax.core.sensing import render as ring_render
 from delvjax.core.sensor import Sensor
@@ -28,43 +26,8 @@ from delvjax.presets import make_env
 from delvjax.registry import get_method
 
 import reference_image_db as ref_db
-RED = (0.8, 0.1, 0.1)
-panorama = eqx.filter_jit(render.panorama)
-panoramas = eqx.filter_jit(render.panoramas)
-donut = eqx.filter_jit(render.donut)
-unwrap = eqx.filter_jit(pipeline.unwrap)
+
 call_method = eqx.filter_jit(lambda method, home, view: method(home, view))
-extract = eqx.filter_jit(lambda extractor, image, cam: extractor(pipeline.to_uint8(image).astype(jnp.float32) / 255.0,
-                                                                 cam))
-
-
-def _random_world(rng):
-    """2-4 cylinders and 0-2 boxes (padded to 4 and 3) of random colours in a 600 cm arena, random light."""
-    cyl = [(*rng.uniform(100, 500, 2), rng.uniform(10, 40), rng.uniform(20, 150)) for _ in range(rng.integers(2, 5))]
-    boxes = []
-    for _ in range(rng.integers(0, 3)):
-        x0, y0 = rng.uniform(100, 450, 2)
-        boxes.append((x0, y0, x0 + rng.uniform(20, 80), y0 + rng.uniform(20, 80), rng.uniform(20, 150)))
-    cyl += [(0.0,) * 4] * (4 - len(cyl))
-    boxes += [(0.0,) * 5] * (3 - len(boxes))
-    return make_world(cylinders=cyl, cylinder_rgb=rng.uniform(0, 1, (4, 3)), boxes=boxes,
-                      box_rgb=rng.uniform(0, 1, (3, 3)), arena=(0.0, 0.0, 600.0, 600.0),
-                      wall_height=rng.uniform(40, 200), light_azimuth_deg=rng.uniform(0, 360),
-                      light_elevation_deg=rng.uniform(10, 80), ambient=rng.uniform(0.2, 0.6),
-                      texture=rng.uniform(0, 1)), np.array(cyl), np.array(boxes)
-
-
-def _free_poses(rng, cyl, boxes, n):
-    """n poses in the arena outside every object (by 2 cm), random headings."""
-    out = []
-    while len(out) < n:
-        p = rng.uniform(20, 580, 2)
-        if any(h > 0 and math.hypot(p[0] - x, p[1] - y) < r + 2 for x, y, r, h in cyl):
-            continue
-        if any(b[4] > 0 and b[0] - 2 < p[0] < b[2] + 2 and b[1] - 2 < p[1] < b[3] + 2 for b in boxes):
-            continue
-        out.append(p)
-    return np.array(out), rng.uniform(0, 2 * np.pi, n)
 
 
 # ----------------------------------------------------------------------------- §6 databases
