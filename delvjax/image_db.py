@@ -32,9 +32,10 @@ BOB_COLUMNS = ("X [mm]", "Y [mm]", "Z [mm]", "Heading [degrees]", "Filename", "G
 THREADS = 8  # image decoding and encoding (Pillow releases the GIL)
 
 
-def file_columns(images: np.ndarray) -> np.ndarray:
-    """Memory <-> file column order of panoramas (..., H, W, 3) (self-inverse: column j <-> -j mod W)."""
-    return np.roll(np.flip(images, axis=-2), 1, axis=-2)
+def file_columns(images: np.ndarray, axis: int = -2) -> np.ndarray:
+    """Memory <-> file column order of panoramas (..., H, W, 3), or of any array whose columns are
+    `axis` (a mask (H, W), a ring (W,): axis=-1). Self-inverse: column j <-> -j mod W."""
+    return np.roll(np.flip(images, axis=axis), 1, axis=axis)
 
 
 @dataclass

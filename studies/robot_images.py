@@ -17,6 +17,7 @@ import numpy as np
 from delvjax.api_image_eval import catchment_numbers, database_catchment, perceived
 from delvjax.core.images import Camera, Catadioptric, donut, rgb_to_hsv, segment, unwrap
 from delvjax.core.methods import DELV
+from delvjax.image_db import file_columns
 from delvjax.plots import error_curve_figure, subplots
 from delvjax.plots_images import database_map_figure, pipeline_figure
 
@@ -43,8 +44,8 @@ def pipeline_panels(db) -> object:
 
     img, pano, mask = images(iw.world, iw.extractor)
     ring = np.asarray(db.rings.snapshots.mask)[db.home_index]
-    flip = lambda a: np.roll(np.flip(np.asarray(a), 1), 1, 1)  # noqa: E731 (file column order: unmirrored)
-    return pipeline_figure(np.asarray(img), flip(pano), flip(mask), flip(ring[None])[0],
+    return pipeline_figure(np.asarray(img), file_columns(np.asarray(pano)), file_columns(np.asarray(mask), axis=-1),
+                           file_columns(ring, axis=-1),
                            "The image pipeline at home (robot world)")
 
 

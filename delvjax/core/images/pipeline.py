@@ -6,6 +6,8 @@ Written for ONE image; callers `vmap` it.
 
 from __future__ import annotations
 
+import math
+
 import equinox as eqx
 import jax
 import jax.numpy as jnp
@@ -32,10 +34,7 @@ def pixel_normals(key: Array, shape: tuple[int, ...]) -> Array:
     from `key`), centred and scaled to unit variance (bounded at +-3.45). Eight times faster than
     `jax.random.normal` on the CPU, where it dominated the cost of a rendered database."""
     seed = jax.random.bits(key, (), jnp.uint32)
-    n = 1
-    for s in shape:
-        n *= s
-    h = _lowbias32(jax.lax.iota(jnp.uint32, n).reshape(shape) * jnp.uint32(0x9E3779B9) + seed)
+    h = _lowbias32(jax.lax.iota(jnp.uint32, math.prod(shape)).reshape(shape) * jnp.uint32(0x9E3779B9) + seed)
     total = (h & 255) + ((h >> 8) & 255) + ((h >> 16) & 255) + (h >> 24)
     return (total.astype(jnp.float32) - 510.0) * jnp.float32(1.0 / np.sqrt(4 * (256.0**2 - 1) / 12))
 
