@@ -15,7 +15,7 @@ from .api import check_grid, scene_request, visible_mask
 from .core.errors import InputError
 from .core.maps import CLEARANCE, SPACING
 from .core.methods import HomingMethod
-from .core.rollouts import (ARENA, DEFAULT_DISTANCES, DEFAULT_LANES, HOME_RADIUS, LANDMARK, MAX_STEPS, N_STARTS,
+from .core.rollouts import (ARENA, DEFAULT_DISTANCES, DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, LANDMARK, MAX_STEPS, N_STARTS,
                             TRIALS_PER_DISTANCE, Catchment,
                             SuccessRate, Trajectories, catchment_area, check_rules, hidden_masks, occlusion_masks,
                             position_status, release_points, rollout_keys, success_rate_trials, trajectory_trials)
@@ -25,7 +25,7 @@ from .options import finite, occlusion_count, positive, positive_int
 
 
 def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed, options,
-                     first_move="homing", collisions="ignore", program=None):
+                     first_move=DEFAULT_FIRST_MOVE, collisions="ignore", program=None):
     """Validate the shared keywords before any work (`api.scene_request` plus the rollout limits and rules)."""
     check_rules(first_move, collisions)
     env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, program,
@@ -38,7 +38,7 @@ def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, head
 
 def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
               seed: int = 0, occlude: int | None = None, hidden: list[int] | None = None, max_steps: int = MAX_STEPS,
-              home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE, lanes: int = DEFAULT_LANES, first_move: str = "homing",
+              home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE, lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
               collisions: str = "ignore", program: Sequence[str] | None = None, announce: Callable[[], None] | None = None,
               max_points: int = MAX_POINTS, progress: Callable[[int, int], None] | None = None,
               **options) -> Catchment:
@@ -49,7 +49,7 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
     k hidden landmarks (C(N, k) masks, one program; the home record sees all); `hidden`
     names one choice. `options`: noise sigmas as in `vector_map` plus motion_heading_noise_deg
     and motion_step_noise, or any other `api.vector_map` option (e.g. warping's n_alpha).
-    `first_move` ("homing" | "release") and `collisions` ("ignore" | "fail"): the rollout
+    `first_move` ("release", thesis Algorithm 2, | "homing") and `collisions` ("ignore" | "fail"): the rollout
     rules of `core.rollouts.rules` (defaults: docs/model.md §5). `program`: registry names compiled into
     one rollout program with this one (`registry.program`). `announce`: called once every option is
     valid, just before the work (the CLI prints its progress line there, so an error stays one line).
@@ -72,7 +72,7 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
 def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", distances: Sequence[float] = DEFAULT_DISTANCES,
                  trials: int = TRIALS_PER_DISTANCE, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
                  max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
-                 lanes: int = DEFAULT_LANES, first_move: str = "homing",
+                 lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
                  collisions: str = "ignore", program: Sequence[str] | None = None,
                  announce: Callable[[], None] | None = None, max_points: int = MAX_POINTS, **options) -> SuccessRate:
     """Success rate vs release distance (Figs 4.10b, 5.7b): `trials` rollouts per distance from home.
@@ -96,7 +96,7 @@ def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", dis
 def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", starts: Sequence[Sequence[float]] | None = None,
                  n_starts: int = N_STARTS, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
                  max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
-                 lanes: int = DEFAULT_LANES, first_move: str = "homing",
+                 lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
                  collisions: str = "ignore", program: Sequence[str] | None = None,
                  announce: Callable[[], None] | None = None, max_points: int = MAX_POINTS, **options) -> Trajectories:
     """Homing paths (Figs 4.11, 5.8) from `starts` [(x, y), ...] or `n_starts` seeded random release points.
@@ -160,7 +160,7 @@ def _distances(env: Env, distances: Sequence[float], trials: int, max_points: in
 
 def rollout_request(env: str | Path | Env, kind: str = "catchment", method: str | HomingMethod = "delv",
                     spacing: float = SPACING, seed: int = 0, occlude: int | None = None, max_steps: int = MAX_STEPS,
-                    home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE, first_move: str = "homing",
+                    home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE, first_move: str = DEFAULT_FIRST_MOVE,
                     collisions: str = "ignore", distances: Sequence[float] = DEFAULT_DISTANCES,
                     trials: int = TRIALS_PER_DISTANCE, max_points: int = MAX_POINTS, **options) -> dict:
     """Validate one rollout configuration of a sweep (docs/sweeps.md) as `catchment` (kind "catchment")

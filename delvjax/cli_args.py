@@ -10,7 +10,7 @@ from pathlib import Path
 from .core.errors import InputError
 from .core.maps import CLEARANCE, SPACING
 from .core.methods import DELV, MFDID, Warping
-from .core.rollouts import DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
+from .core.rollouts import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
 from .core.sensor import BACKGROUNDS, CHANNELS, Sensor
 from .io import check_distinct, check_output_path, output_set
 from .limits import MAX_POINTS
@@ -176,9 +176,11 @@ def add_rollout_args(p: argparse.ArgumentParser) -> None:
                    help=f"success within this distance of home, cm (default {HOME_RADIUS:g})")
     g.add_argument("--lanes", type=int, default=DEFAULT_LANES,
                    help=f"trials advanced side by side (memory bound; default {DEFAULT_LANES})")
-    g.add_argument("--first-move", default="homing", metavar="RULE",
-                   help="homing (default): the first move follows the homing direction computed at the release "
-                        "point, as in the vector map; release: it follows the release heading")
+    g.add_argument("--first-move", default=DEFAULT_FIRST_MOVE, metavar="RULE",
+                   help="release (default, thesis Algorithm 2): a method that needs a unit movement (DELV) first "
+                        "moves d along the release heading, then matches; the catchment counts grid points at least "
+                        "d from every wall; homing: every method's first move follows the direction computed at the "
+                        "release point, as in the vector map")
     g.add_argument("--collisions", default="ignore", metavar="RULE",
                    help="ignore (default): landmarks are no obstacles; fail: a move ending inside a landmark fails")
 

@@ -119,7 +119,7 @@ def cmd_catchment_images(args: argparse.Namespace) -> int:
     positive_int(args.max_steps, "--max-steps")
     for name in ("home_radius", "motion_heading_noise_deg", "motion_step_noise"):
         non_negative(getattr(args, name), "--" + name.replace("_", "-"))
-    if args.first_move != "homing":
+    if args.first_move != args.parser_defaults.get("first_move", args.first_move):
         raise InputError("--first-move", args.first_move, "is not used with --images (every move follows the "
                                                           "direction at the nearest snapshot)")
     check_outputs(args)

@@ -29,7 +29,7 @@ def draw_catchment(ax, points, success, included, spacing: float) -> None:
 
 def catchment_panel(ax, env: Env, result, m: int, spacing: float, title: str = "") -> None:
     """One mask of a `Catchment`: its vector map with the catchment squares underneath."""
-    draw_catchment(ax, result.points, np.asarray(result.success)[m], result.included, spacing)
+    draw_catchment(ax, result.points, np.asarray(result.success)[m], result.counted, spacing)
     draw_vector_map(ax, env, result.points, np.asarray(result.direction)[m], np.asarray(result.valid)[m],
                     result.included, spacing)
     draw_env(ax, env)

@@ -16,7 +16,8 @@ from typing import Any
 
 from .io import atomic_path
 
-VERDICT_MARK = {"holds": "✅ holds", "partly": "🟡 partly", "fails": "❌ fails", "n/a": "— not run"}
+VERDICT_MARK = {"holds": "✅ holds", "partly": "🟡 partly", "fails": "❌ fails", "cannot tell": "❔ cannot tell",
+                "n/a": "— not run"}
 CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;max-width:1200px;margin:2em auto;
 padding:0 1em;color:#222;line-height:1.45}
@@ -52,9 +53,12 @@ def md_table(columns: list[str], rows: list[dict]) -> str:
 def claims_section(claims: list[dict]) -> str:
     counts = {v: sum(c["verdict"] == v for c in claims) for v in VERDICT_MARK}
     head = (f"**{counts['holds']} hold, {counts['partly']} partly, {counts['fails']} fail"
+            + (f", {counts['cannot tell']} cannot tell" if counts["cannot tell"] else "")
             + (f", {counts['n/a']} not run" if counts["n/a"] else "") + f"** of {len(claims)} claims. "
             "Each verdict is computed from this run's numbers (`studies/claims.py`); the thesis's "
-            "words are quoted with their section.")
+            "words are quoted with their section. *Cannot tell*: the numbers compared are at the ceiling "
+            "(all >= 99 %) or no method loses anything, so they cannot show the claim either way; each "
+            "*why* ends with the check's rule and its tolerance.")
     rows = [{"#": i + 1, "claim (thesis)": f"{c['section']}: “{c['quote']}”", "what must hold": c["statement"],
              "ours": c["ours"], "verdict": VERDICT_MARK[c["verdict"]], "why": c["why"]}
             for i, c in enumerate(claims)]

@@ -16,7 +16,7 @@ from .core import cells as map_program
 from .core.batching import over_devices, over_processes
 from .core.errors import InputError
 from .core.maps import grid_included, grid_points
-from .core.rollouts import DEFAULT_LANES
+from .core.rollouts import DEFAULT_LANES, catchment_counted
 from .core.rollouts import cells as rollout_programs
 from .sweep_spec import SweepSpec
 
@@ -54,7 +54,7 @@ def _traced(req: dict, mask_rows: int = 1) -> tuple:
     return (rollout_programs.RolloutCell(env=req["env"].arrays(), method=req["method"], sensor=req["sensor"],
                                          key=req["key"], masks=padded, n_masks=np.int32(len(masks)),
                                          radius=np.float32(req["home_radius"]),
-                                         homing_first=np.bool_(req["first_move"] == "homing"),
+                                         homing_first=np.bool_(req["first_move"] == "homing"),  # docs/model.md §5
                                          collide=np.bool_(req["collisions"] == "fail")),)
 
 
@@ -87,6 +87,10 @@ def evaluate(kind: str, setups: list[dict], mesh, rows: int = 1, total: int | No
         included = np.stack([np.asarray(grid_included(req["env"].arrays(), points, req["clearance"]))
                              for req in setups])
         shared, traced = (points,), traced + (included,)
+        if kind == "catchment":
+            counted = np.stack([catchment_counted(req["env"].arena, points, inc, req["first_move"], req["sensor"].d)
+                                for req, inc in zip(setups, included)])
+            traced = traced + (counted,)
     program = _program(kind, first.get("max_steps"), DEFAULT_LANES, first.get("trials"))
     if total is not None:
         res = over_processes(program, mesh, len(shared), total, *shared, *traced)
@@ -104,8 +108,8 @@ def _program(kind: str, max_steps: int | None, lanes: int, trials: int | None):
         return lambda points, envs, methods, sensors, keys, included: map_program.map_cells(
             envs, points, included, methods, sensors, keys)
     if kind == "catchment":
-        return lambda points, cells, included: rollout_programs.catchment_cells(cells, points, included,
-                                                                                max_steps=max_steps, lanes=lanes)
+        return lambda points, cells, included, counted: rollout_programs.catchment_cells(
+            cells, points, included, counted, max_steps=max_steps, lanes=lanes)
     return lambda distances, clearance, cells: rollout_programs.success_cells(
         cells, distances, clearance, trials=trials, max_steps=max_steps, lanes=lanes)
 

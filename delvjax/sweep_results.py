@@ -35,13 +35,19 @@ def error_metrics(sums: dict, n: np.ndarray) -> dict:
 
 def catchment_metrics(sums: dict) -> dict:
     """Catchment % (mean, worst and best mask), failure rates and mean moves of the successes."""
-    trials, points = sums["trials"], sums["points"]
+    trials, points, counted = sums["trials"], sums["counted_points"], sums["counted"]
     with np.errstate(invalid="ignore", divide="ignore"):
         steps = np.where(sums["successes"] > 0, sums["steps_success"] / np.maximum(sums["successes"], 1), np.nan)
-    return {**error_metrics(sums, trials), "catchment_pct": _pct(sums["successes"], trials),
+    # the vector map's rates over every released trial; the catchment over the counted ones (docs/model.md §5)
+    return {**error_metrics(sums, trials), "catchment_pct": _pct(sums["successes"], counted),
             "catchment_min_pct": _pct(sums["success_min"], points), "catchment_max_pct": _pct(sums["success_max"], points),
-            "timeout_pct": _pct(sums["timeout"], trials), "landmark_pct": _pct(sums["landmark"], trials),
-            "arena_pct": _pct(sums["arena"], trials), "mean_steps_success": steps}
+            "timeout_pct": _pct(sums["timeout"], counted), "landmark_pct": _pct(sums["landmark"], counted),
+            "arena_pct": _pct(sums["arena"], counted), "mean_steps_success": steps,
+            "catchment_points": counted_points(sums)}
+
+
+def counted_points(sums: dict) -> np.ndarray:
+    return sums["counted_points"].astype(np.int64)
 
 
 def wilson_pct(successes: np.ndarray, n: np.ndarray, confidence: float = 0.95) -> tuple[np.ndarray, np.ndarray]:

@@ -32,7 +32,7 @@ MAP_AXES = {
 }
 ROLLOUT_AXES = {
     "occlude": "landmarks hidden while homing: every choice of k (the metrics pool the C(N, k) masks)",
-    "first_move": "homing | release (rollout rule)",
+    "first_move": "release | homing (rollout rule, docs/model.md section 5)",
     "collisions": "ignore | fail (rollout rule)",
     "motion_heading_noise_deg": "sigma of the executed heading of every rollout move, deg",
     "motion_step_noise": "sigma of every rollout move's length, fraction of d",
@@ -52,12 +52,14 @@ ERROR_METRICS = {
     "points": "grid points evaluated",
 }
 CATCHMENT_METRICS = {
-    "catchment_pct": "% of released grid points whose rollout reaches home, mean over the masks (Tables 5.3/5.4)",
+    "catchment_pct": "% of counted grid points whose rollout reaches home, mean over the masks (Tables 5.3/5.4; "
+                     "under first_move = release the points at least d from every wall, docs/model.md section 5)",
     "catchment_min_pct": "the same under the worst mask",
     "catchment_max_pct": "the same under the best mask",
-    "timeout_pct": "% of trials (points x masks) that ran out of moves",
-    "landmark_pct": "% of trials that ended inside a landmark (collisions = fail)",
-    "arena_pct": "% of trials that left the arena",
+    "catchment_points": "grid points counted in the catchment",
+    "timeout_pct": "% of counted trials (points x masks) that ran out of moves",
+    "landmark_pct": "% of counted trials that ended inside a landmark (collisions = fail)",
+    "arena_pct": "% of counted trials that left the arena",
     "mean_steps_success": "mean moves of the successful trials",
 }
 SUCCESS_METRICS = {

@@ -11,9 +11,9 @@ import numpy as np
 
 from .core.maps import VectorMap
 from .core.metrics import error_class
-from .core.rollouts import EXCLUDED, OUTCOMES, RUNNING, Catchment, SuccessRate, Trajectories
+from .core.rollouts import EXCLUDED, NEAR_WALL, OUTCOMES, RUNNING, Catchment, SuccessRate, Trajectories
 
-OUTCOME_NAMES = {**dict(enumerate(OUTCOMES)), EXCLUDED: "not_placed", RUNNING: "running"}
+OUTCOME_NAMES = {**dict(enumerate(OUTCOMES)), EXCLUDED: "not_placed", RUNNING: "running", NEAR_WALL: "near_wall"}
 
 
 def outcome_names(codes) -> list[str]:

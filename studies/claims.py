@@ -2,8 +2,9 @@
 
 `evaluate(numbers)` takes {study: {key: value}} (the `numbers` of every study.json) and
 returns one row per claim of `studies.thesis.CLAIMS`: section, quote, statement, our
-numbers, a verdict ("holds", "partly", "fails", or "n/a" when a study it needs was not
-run) and why. Verdicts are computed here, never typed in.
+numbers, a verdict ("holds", "partly", "fails", "cannot tell" when the numbers compared are
+at the ceiling, or "n/a" when a study it needs was not run or its numbers are unusable) and
+why (ending with the check's rule and tolerance). Verdicts are computed here, never typed in.
 
 The checks live in `studies.claims_ch4` and `studies.claims_ch5` (one function per claim,
 registered in CHECKS by `@check`), the registry and shared helpers in `studies.claims_common`;
@@ -41,6 +42,8 @@ def evaluate(numbers_by_study: dict[str, dict]) -> list[dict]:
                 ours, verdict, why = fn(get)
             except Missing as exc:
                 ours, verdict, why = "", "n/a", f"needs {exc.args[0]} (study not run)"
+            except (TypeError, ValueError, IndexError, ZeroDivisionError) as exc:  # a number of the wrong shape
+                ours, verdict, why = "", "n/a", f"numbers unusable ({type(exc).__name__}: {exc})"
             row.update(ours=ours, verdict=verdict, why=why)
         rows.append(row)
     return rows

@@ -4,6 +4,14 @@ CHECKS maps a claim id of `studies.thesis.CLAIMS` to its check, a function of `g
 number, raising Missing when the study that makes it was not run) returning (ours, verdict,
 why); `@check(claim_id)` registers one. The helpers format numbers and combine parts into a
 verdict. The checks themselves are in `studies.claims_ch4` and `studies.claims_ch5`.
+
+Verdicts (VERDICTS): "holds", "partly", "fails", "cannot tell" and "n/a" (a study not run).
+Every check states its rule and tolerance in its `why` text (`_why`). A comparison of
+catchments or success rates whose sides are all at the ceiling (`at_ceiling`: every value
+>= 99 %, or too close to 100 % to show the margin the claim needs) or where no method loses
+anything under the condition the claim is about (`no_loss`) cannot tell the methods apart:
+such a part is None, and `_combine` turns a claim whose decided parts all hold but some
+part is None into "cannot tell", never "holds".
 """
 
 from __future__ import annotations
@@ -11,6 +19,10 @@ from __future__ import annotations
 from typing import Callable
 
 CHECKS: dict[str, Callable] = {}
+
+HOLDS, PARTLY, FAILS, CANNOT_TELL, NOT_RUN = "holds", "partly", "fails", "cannot tell", "n/a"
+VERDICTS = (HOLDS, PARTLY, FAILS, CANNOT_TELL, NOT_RUN)
+CEILING = 99.0  # %: a catchment or success rate at or above it has nothing left to lose or gain
 
 
 def check(claim_id: str):
@@ -28,6 +40,59 @@ class Missing(KeyError):
 
 ENVS = ("env1", "env2", "env3")
 BACKGROUNDS = ("distant", "walls", "none")
+
+
+def _flat(values):
+    for v in values if isinstance(values, (list, tuple)) else [values]:
+        if isinstance(v, (list, tuple)):
+            yield from _flat(v)
+        else:
+            yield v
+
+
+def at_ceiling(values, limit: float = CEILING) -> bool:
+    """True when every value (%, nested lists allowed) is >= limit: compared with each other they
+    cannot tell which side is better. Pass limit = 100 - margin when a part needs a margin."""
+    vals = list(_flat(values))
+    return bool(vals) and all(v >= limit for v in vals)
+
+
+def at_floor(values, limit: float = 1.0) -> bool:
+    """True when every value (an error rate in %, a loss in points) is <= limit: nothing to compare."""
+    vals = list(_flat(values))
+    return bool(vals) and all(v <= limit for v in vals)
+
+
+def no_loss(losses, limit: float = 2.0) -> bool:
+    """True when no method loses more than `limit` points under the claim's condition."""
+    return at_floor(losses, limit)
+
+
+def _combine(parts) -> str:
+    """Parts are True (holds), False (fails) or None (cannot tell, e.g. at the ceiling).
+    holds: every part holds; cannot tell: the decided parts hold but some cannot be told
+    (or none can); fails: every decided part fails; else partly."""
+    parts = list(parts)
+    known = [p for p in parts if p is not None]
+    if not known:
+        return CANNOT_TELL
+    if all(known):
+        return HOLDS if len(known) == len(parts) else CANNOT_TELL
+    return FAILS if not any(known) else PARTLY
+
+
+def _why(rule: str, *reasons: str) -> str:
+    """The why text: the reasons (empty ones left out), then the rule with its tolerance."""
+    text = "; ".join(r for r in reasons if r)
+    return (text + ". " if text else "") + "Rule: " + rule
+
+
+def _opt(get, key):
+    """A number shown for context only (None when its study did not record it)."""
+    try:
+        return get(key)
+    except Missing:
+        return None
 
 
 def _n(v) -> str:
@@ -53,4 +118,3 @@ def _pairs(a, b):
 
 def _mean(v) -> float:
     return sum(v) / len(v)
-

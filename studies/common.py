@@ -4,8 +4,8 @@ Every environment is padded to `PAD` landmark slots and stripped of its name, an
 maps are read from catchment runs, so one compiled rollout program (all methods) serves every
 environment, occlusion, layout, quantization level, background and noise setting (the
 numbers do not change: padding slots are masked out). Rollouts run under the default
-rules (docs/model.md §5) and the physical rules (first move along the release heading, landmark
-hits fail), reported side by side.
+rules (thesis Algorithm 2, docs/model.md §5), the earlier "homing" first move and the physical
+rules (landmark hits fail), reported side by side (`RULES`, `RULES_NOTE`).
 """
 
 from __future__ import annotations
@@ -28,7 +28,15 @@ from delvjax.presets import load_env
 from delvjax.tables import concat_columns, success_rows, trajectory_columns
 
 PAD = 6
-RULES = {"default": rollouts.DEFAULT_RULES, "physical": rollouts.PHYSICAL_RULES}
+# the default rules (thesis Algorithm 2), the earlier default ("homing": every first move follows the
+# direction computed at the release point) and the physical rules (landmarks are obstacles); docs/model.md §5
+RULES = {"default": rollouts.DEFAULT_RULES, "homing": rollouts.HOMING_RULES, "physical": rollouts.PHYSICAL_RULES}
+RULES_NOTE = ("default rules (thesis Algorithm 2, docs/model.md §5): a method that needs a unit movement (DELV) first "
+              "moves d along the release heading and only then matches, the others turn to their first direction at "
+              "once; the catchment counts the grid points at least d from every wall (the blind first move must stay "
+              "in the arena); landmarks are no obstacles. homing: every first move follows the direction computed at "
+              "the release point (the earlier default; every grid point counts). physical: Algorithm 2, and a move "
+              "ending inside a landmark fails.")
 LABEL = {"delv": "DELV", "delv-compass": "DELV (compass)", "delv-visual": "DELV (visual compass)",
          "acv": "ACV", "alv": "ALV", "acv-visual": "ACV (visual compass)", "alv-visual": "ALV (visual compass)",
          "warping": "image matching"}
@@ -37,7 +45,8 @@ HOME_RADIUS = rollouts.HOME_RADIUS
 # `Program` module whose traced index picks the method): compiling a rollout program costs about 6 CPU-seconds, so the
 # reproduction compiles one, not eight. Rendering a method does not need (the start snapshot, the gray
 # channel) is skipped at run time, so no method runs slower for sharing (docs/reproduce.md).
-PROGRAM = ("delv", "delv-compass", "alv", "acv", "delv-visual", "alv-visual", "acv-visual", "warping", "delv-gap-compass")
+PROGRAM = ("delv", "delv-compass", "alv", "acv", "delv-visual", "alv-visual", "acv-visual", "warping", "delv-gap-compass",
+           "delv-compass-agent")
 
 
 def env(name: str) -> Env:
@@ -109,7 +118,7 @@ def index(tree, i: int):
 
 
 def outcome_counts(c: rollouts.Catchment, m: int = 0) -> dict[str, int]:
-    inc = np.asarray(c.included)
+    inc = np.asarray(c.counted)
     out = np.asarray(c.outcome)[m][inc]
     return {f"{name}": int((out == code).sum()) for code, name in enumerate(rollouts.OUTCOMES)}
 
@@ -173,8 +182,8 @@ def thesis_value(table: dict, env_name: str, method: str, k: int = 0):
 
 
 def rule_suffix(rules: str) -> str:
-    """The numbers-key suffix of a rule set: "" for the default rules, ":physical" otherwise."""
-    return "" if rules == "default" else ":physical"
+    """The numbers-key suffix of a rule set: "" for the default rules, ":<name>" otherwise (":homing", ":physical")."""
+    return "" if rules == "default" else f":{rules}"
 
 
 def catchment_columns(ctx, key: str, results: dict, row: dict) -> None:

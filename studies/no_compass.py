@@ -10,7 +10,7 @@ from __future__ import annotations
 from delvjax.plots import error_curve_figure
 from studies import thesis
 
-from .common import (as_vector_map, catchment, catchment_columns, catchment_figure, curve, curve_means, curves_rows, env, map_numbers,
+from .common import (RULES, RULES_NOTE, as_vector_map, catchment, catchment_columns, catchment_figure, curve, curve_means, curves_rows, env, map_numbers,
                      panel_figure)
 
 TITLE = "DELV without a compass, environments 1-3 (Figs 4.2-4.5)"
@@ -23,7 +23,7 @@ def run(ctx) -> None:
     items, curves, catch_items, rows = [], {}, [], []
     for name in ENVS:  # three layouts; every call reuses one compiled program
         e = env(name)
-        res = {rules: catchment(ctx, e, "delv", rules) for rules in ("default", "physical")}
+        res = {rules: catchment(ctx, e, "delv", rules) for rules in RULES}
         ctx.step(f"catchment {name}")
         vm = as_vector_map(res["default"])
         s = map_numbers(e, vm)
@@ -40,8 +40,7 @@ def run(ctx) -> None:
         items.append((f"{name}: mean error {s['mean_error_deg']:.1f}°, e>45 {s['gt45_pct']:.1f} %", e, vm))
         catch_items.append((f"{name}: {row['ours default %']:.2f} % (thesis {thesis_pct:.2f} %)", e, res["default"]))
     ctx.table("catchment_fig4_5", "Catchment area and errors of DELV without compass", rows, source="Fig 4.5, §4.2",
-              note="default rules: first move along the homing direction, landmarks no obstacles (docs/model.md §5); "
-                   "physical: first move along the release heading, a move ending inside a landmark fails.")
+              note=RULES_NOTE)
     ctx.figure("fig4_2_vector_maps.png", panel_figure(items, spacing, title="DELV without compass, random headings"),
                "Fig 4.2: homing vectors of DELV without compass on env1-3 (release heading random per point).")
     ctx.figure("fig4_3_error_classes.png", panel_figure(items, spacing, classes=True,

@@ -22,7 +22,7 @@ CLAIMS_CH4 = [
                  "homing.",
         "statement": "DELV without compass has a large catchment in env1, env2 and env3 "
                      "(thesis 98.52 / 95.41 / 77.66 %), lowest in env3 where all landmarks lie "
-                     "on one side of home.",
+                     "on one side of home, by a margin near the thesis's (17.75 points, tolerance 10).",
         "needs": ["catchment:env1:delv", "catchment:env2:delv", "catchment:env3:delv"],
     },
     {
@@ -48,10 +48,22 @@ CLAIMS_CH4 = [
                  "distances d . This shows that the moving distance rarely affects the "
                  "performance of the method.",
         "statement": "DELV's mean angular error curves for d = 20, 50, 100 and 150 cm lie close "
-                     "together (no d gives a clearly worse curve), with at most a slight "
-                     "advantage for small d.",
+                     "together (no d gives a clearly worse curve), and so do their catchments "
+                     "(the thesis: 'very similar patterns in terms of homing performance').",
         "needs": ["error_curve:env1:delv:d=20", "error_curve:env1:delv:d=50",
-                  "error_curve:env1:delv:d=100", "error_curve:env1:delv:d=150"],
+                  "error_curve:env1:delv:d=100", "error_curve:env1:delv:d=150",
+                  "catchment:env1:delv:d=20..150"],
+    },
+    {
+        "id": "small_step_slightly_better",
+        "section": "§4.2, Figs 4.6-4.7",
+        "line": 552,
+        "quote": "Small d s might have a slight improvement in ... the variance of the error or the angular "
+                 "error itself, but the overall performance in the homing direction has similar patterns.",
+        "statement": "DELV without compass with small steps (d = 20, 50 cm) has a slightly (1-10 deg) lower mean "
+                     "angular error than with large steps (d = 100, 150 cm), env1.",
+        "needs": ["map:env1:delv:d=20:mean_error_deg", "map:env1:delv:d=50:mean_error_deg",
+                  "map:env1:delv:d=100:mean_error_deg", "map:env1:delv:d=150:mean_error_deg"],
     },
     {
         "id": "few_landmarks_error_below_90",
@@ -65,6 +77,19 @@ CLAIMS_CH4 = [
                      "angular error below 90 deg in every distance bin, larger far from home.",
         "needs": ["error_curve:arbitrary3:delv", "error_curve:arbitrary4:delv",
                   "error_curve:arbitrary5:delv"],
+    },
+    {
+        "id": "warping_sensitive_to_landmark_number",
+        "section": "§4.1",
+        "line": 508,
+        "quote": "However, the predictive image matching method is extremely sensitive to the captured image "
+                 "of the surroundings and the number of landmarks in the environment. With few landmarks in the "
+                 "snapshot image, there is a high probability that the robot could misjudge its direction to home",
+        "statement": "In the arbitrary layouts of 3, 4 and 5 landmarks (Fig 4.8) predictive image matching errs at "
+                     "least 10 deg more with 3 landmarks than with 5, and its mean error varies with the number "
+                     "of landmarks at least twice as much as DELV's.",
+        "needs": ["error_curve:random3:warping", "error_curve:random4:warping", "error_curve:random5:warping",
+                  "error_curve:random3:delv", "error_curve:random4:delv", "error_curve:random5:delv"],
     },
     {
         "id": "delv_smaller_error_than_warping",
@@ -148,8 +173,8 @@ CLAIMS_CH4 = [
         "statement": "With level-3 quantized DELV, a layout of equally spaced landmarks "
                      "surrounding home gives a slightly lower mean angular error than layouts "
                      "with home at or outside the edge of the landmarks' convex hull.",
-        "needs": ["mean_error:ring3:delv:Q=3", "mean_error:ring5:delv:Q=3",
-                  "mean_error:env3:delv:Q=3"],
+        "needs": ["mean_error:env2:delv:Q=3", "mean_error:ring3:delv:Q=3",
+                  "mean_error:ring6:delv:Q=3", "mean_error:env3:delv:Q=3"],
     },
     {
         "id": "robot_images_delv_errs_more_but_homes",
@@ -163,6 +188,19 @@ CLAIMS_CH4 = [
                      "still homes from most release points (nearest-snapshot catchment >= 75 %).",
         "needs": ["robot_images:delv:mean_error_deg", "robot_images:delv:ideal_mean_error_deg",
                   "robot_images:delv:catchment_pct"],
+    },
+    {
+        "id": "robot_images_delv_beats_warping",
+        "section": "§6.2 (and §4.5, §6.3.1; robot images of §4.4.1, Figs 4.18-4.19)",
+        "line": 1003,
+        "quote": "While it requires an additional process of the landmark extraction compared to the predictive "
+                 "image-matching method, the DELV method poses a significantly smaller error in the homing "
+                 "vector results and in the homing success rate as well.",
+        "statement": "On the images of the robot arena DELV errs less than predictive image matching and homes "
+                     "at least as often (image matching must not beat DELV by more than 2 deg of mean error or "
+                     "2 points of catchment).",
+        "needs": ["robot_images:delv:mean_error_deg", "robot_images:warping:mean_error_deg",
+                  "robot_images:delv:catchment_pct", "robot_images:warping:catchment_pct"],
     },
     {
         "id": "robot_images_quantized_similar",

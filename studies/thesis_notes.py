@@ -1,7 +1,7 @@
 """Inconsistencies and ambiguities found in the thesis text (re-exported by `studies.thesis`).
 
-NOTES maps a short key to the section (chapters 3-5: Eqs 3.1-3.3, Figs 4.12-4.13, 5.4, 5.7,
-5.10, Tables 5.1-5.4, §5.3.2), the 1-based ``line`` in the thesis's plain-text copy and a
+NOTES maps a short key to the section (chapters 3-6: Eqs 3.1-3.3, Figs 4.11-4.13, 5.4, 5.7,
+5.10, Tables 5.1-5.4, §5.3.2, §6.3.3), the 1-based ``line`` in the thesis's plain-text copy and a
 one-sentence description. The report lists them (`delvjax.report.thesis_notes_section`).
 """
 
@@ -81,7 +81,7 @@ NOTES = {
         "description": "'DELV exhibits a smaller error rate' than ACV holds for >45 deg in most "
                        "cells but not for env2 k=0 (7.99 = 7.99), L=5 k=0 (13.29 > 13.14), L=6 "
                        "k=3 (27.95 > 27.90), and for >90 deg without occlusion ACV is lower "
-                       "everywhere except L=3 (e.g. env1 0.15 vs 3.02)."},
+                       "in every layout (env1 0.15 vs 3.02, L=3 2.09 vs 2.69)."},
     "sec5_3_1_small_occlusion": {
         "section": "§5.3.1", "line": 919,
         "description": "'With small occlusions, the ACV and ALV approach exhibits better homing "
@@ -146,4 +146,22 @@ NOTES = {
         "description": "ALV's 100 % catchment in every environment implies that rollouts "
                        "ignored collisions with landmarks and exits from the arena (docs/model.md §5 "
                        "default collisions = 'ignore'); the thesis does not say so."},
+    "sec6_3_3_warping_inside_outside_hull": {
+        "section": "§6.3.3 vs §4.2, Fig 4.11", "line": 1029,
+        "description": "§6.3.3 says the image-based matching methods 'such as warping maintain a similar "
+                       "level of performance' inside and outside the area surrounded by landmarks, while "
+                       "§4.2 (line 596) says predictive image matching 'often has difficulty in locating "
+                       "the nest when the robot is in the outer zone of the landmark convex hull', as its "
+                       "trajectories in Fig 4.11 (line 592) show."},
+    "sec3_2_4_vs_table5_3": {
+        "section": "§3.2.4 vs §5.3.1, Table 5.3", "line": 323,
+        "description": "§3.2.4 says a different number of landmarks in the two views 'does not severely "
+                       "damage the homing rate', but with one landmark hidden DELV's catchment falls from "
+                       "92.01 to 49.11 % (env1) and from 97.04 to 53.96 % (env2) in Table 5.3, and §5.3.1 "
+                       "(line 902) calls the decrease severe."},
+    "sec4_2_step_distance_direction": {
+        "section": "§4.2, Figs 4.6-4.7", "line": 552,
+        "description": "The text says small step distances d 'might have a slight improvement in the "
+                       "variance of the error or the angular error itself', then (line 559) that 'it is "
+                       "advantageous to increase d', which would 'reduce the estimation errors'."},
 }

@@ -20,7 +20,7 @@ from delvjax.core.methods.heading import visual_compass_errors
 from delvjax.options import make_sensor
 from studies import thesis
 
-from .common import LABEL, RULES, as_vector_map, catchment, env, map_numbers, outcome_counts
+from .common import LABEL, RULES, as_vector_map, catchment, env, map_numbers, outcome_counts, rule_suffix
 
 TITLE = "The visual compass and compass noise (Figs 5.11-5.12)"
 BACKGROUNDS = ("distant", "walls", "none")
@@ -75,7 +75,7 @@ def run(ctx) -> None:
                     s = map_numbers(e, as_vector_map(c))
                     ctx.number(f"visual:{bg}:{tm}:mean_error_deg", s["mean_error_deg"])
                     row["visual mean error °"] = s["mean_error_deg"]
-                ctx.number(f"visual:{bg}:{tm}:catchment" + ("" if rules == "default" else ":physical"), pct)
+                ctx.number(f"visual:{bg}:{tm}:catchment" + rule_suffix(rules), pct)
             row.update({"true compass default %": true[tm, "default"], "true compass physical %": true[tm, "physical"],
                         "true compass mean error °": true[tm, "mean_error"],
                         "thesis visual %": thesis.CATCHMENT.get("fig5_11", {}).get("env1", {}).get(vm_name, [None])[0]})

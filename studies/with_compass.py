@@ -10,7 +10,7 @@ from __future__ import annotations
 from delvjax.plots import error_curve_figure
 from studies import thesis
 
-from .common import (as_vector_map, catchment, catchment_columns, catchment_figure, curve, curve_means, curves_rows, env, map_numbers,
+from .common import (RULES, RULES_NOTE, as_vector_map, catchment, catchment_columns, catchment_figure, curve, curve_means, curves_rows, env, map_numbers,
                      panel_figure, vector_map)
 
 TITLE = "DELV with a compass, environments 1-3 (Figs 5.2-5.5)"
@@ -23,7 +23,7 @@ def run(ctx) -> None:
     items, curves, catch_items, rows = [], {}, [], []
     for name in ENVS:  # three layouts, one compiled program
         e = env(name)
-        res = {rules: catchment(ctx, e, "delv-compass", rules) for rules in ("default", "physical")}
+        res = {rules: catchment(ctx, e, "delv-compass", rules) for rules in RULES}
         vm = as_vector_map(res["default"])
         s = map_numbers(e, vm)
         no_compass = map_numbers(e, vector_map(ctx, e, "delv"))
@@ -41,8 +41,7 @@ def run(ctx) -> None:
         catch_items.append((f"{name}: {row['ours default %']:.2f} % (thesis {thesis_pct:.2f} %)", e, res["default"]))
         ctx.step(name)
     ctx.table("catchment_fig5_5", "Catchment area and errors of DELV with a compass", rows, source="Fig 5.5, §5.2",
-              note="default rules: first move along the homing direction, landmarks no obstacles (docs/model.md §5); "
-                   "physical: first move along the release heading, a move ending inside a landmark fails.")
+              note=RULES_NOTE)
     ctx.figure("fig5_2_vector_maps.png", panel_figure(items, spacing, classes=True, title="DELV with a compass"),
                "Figs 5.2-5.3: homing vectors of DELV with a compass, error classes marked.")
     ctx.figure("fig5_4_error_curves.png", error_curve_figure(curves, "DELV with a compass (Fig 5.4)"),

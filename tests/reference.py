@@ -25,11 +25,18 @@ def _pairs(N, M, k):
     return [(i, (i + k) % M) for i in range(N)]
 
 
-def match_arrangement(ref_vecs, cur_vecs, alphas, min_pairs=2):
+def home_frame_order(cur_bearings, alpha):
+    """docs/model.md §3.3: the current blobs' indices sorted by home-frame bearing (b + alpha) mod 2 pi."""
+    return sorted(range(len(cur_bearings)), key=lambda j: (float(cur_bearings[j]) + alpha) % TWO_PI)
+
+
+def match_arrangement(ref_vecs, cur_vecs, alphas, min_pairs=2, cur_bearings=None):
     """Search shift k (outer) and heading alpha (inner) minimising var; returns
     (k, alpha, p, var) of the first strict minimum, or None when n < min_pairs or n = 0.
     min_pairs: 2 without a compass (one pair fits every heading), 1 with a fixed heading
-    (one pair fixes p; with n = 1 every shift has var = 0 and k = 0 wins), docs/model.md §3.4."""
+    (one pair fixes p; with n = 1 every shift has var = 0 and k = 0 wins), docs/model.md §3.4.
+    cur_bearings: the current vectors' bearings (agent frame); given, the current list is paired in
+    its home-frame order under each alpha (docs/model.md §3.3), else in the order given."""
     ref = np.asarray(ref_vecs, dtype=float).reshape(-1, 2)
     cur = np.asarray(cur_vecs, dtype=float).reshape(-1, 2)
     N, M = len(ref), len(cur)
@@ -39,9 +46,10 @@ def match_arrangement(ref_vecs, cur_vecs, alphas, min_pairs=2):
     for k in range(max(N, M)):
         pairs = _pairs(N, M, k)
         for alpha in alphas:
+            order = list(range(M)) if cur_bearings is None else home_frame_order(cur_bearings, alpha)
             ca, sa = math.cos(alpha), math.sin(alpha)
             rot = np.array([[ca, -sa], [sa, ca]])
-            e = np.array([ref[i] - rot @ cur[j] for (i, j) in pairs])   # Eq 3.4
+            e = np.array([ref[i] - rot @ cur[order[j]] for (i, j) in pairs])   # Eq 3.4
             p = e.mean(axis=0)                                           # Eq 3.5
             var = float(sum(float((ei - p) @ (ei - p)) for ei in e))     # Eq 3.6
             if best is None or var < best[3]:
@@ -52,8 +60,9 @@ def match_arrangement(ref_vecs, cur_vecs, alphas, min_pairs=2):
 def delv_direction(home_start_b, home_end_b, here_start_b, here_end_b,
                    d_hat_home, psi_hat_home, d_hat_here, psi_hat_here,
                    levels=None, scale=1000.0, r_max=2000.0, n_heading=360,
-                   alpha_fixed=None):
-    """docs/model.md §3.3-3.4: DELV homing direction in the agent frame (nan if undefined)."""
+                   alpha_fixed=None, order="home"):
+    """docs/model.md §3.3-3.4: DELV homing direction in the agent frame (nan if undefined); `order`
+    "home" pairs the current list in the home frame of each hypothesis, "agent" as sensed."""
     home_start_b, here_end_b = np.asarray(home_start_b), np.asarray(here_end_b)
     # Reference map: anchored at home (the START of the home unit move), R_P.
     R_P = estimate_distances_start(home_start_b, home_end_b, d_hat_home, psi_hat_home, r_max)
@@ -67,7 +76,8 @@ def delv_direction(home_start_b, home_end_b, here_start_b, here_end_b,
         alphas = [TWO_PI * a / n_heading for a in range(n_heading)]
     else:
         alphas = [alpha_fixed]                        # compass / visual compass: only k
-    res = match_arrangement(ref, cur, alphas, min_pairs=2 if alpha_fixed is None else 1)
+    res = match_arrangement(ref, cur, alphas, min_pairs=2 if alpha_fixed is None else 1,
+                            cur_bearings=here_end_b if order == "home" else None)
     if res is None:
         return math.nan, {"k": None, "alpha": None, "p": None, "var": None}
     k, alpha, p, var = res

@@ -1,18 +1,18 @@
 """Plain per-point NumPy reference of a noise-free homing rollout (docs/model.md §5), built from tests/reference.py.
 
-One trial at a time, one move at a time, in float64. At the release point (rule
-first_move="homing", the default) the agent computes the homing direction exactly as in
-the vector map: from a unit move of length d along the release heading that *ends* at
-the start (start snapshot at start - d u(h), end snapshot at the start, both with heading
-h); it turns to it (keeps h if invalid). Then, repeatedly: move d along the heading, take
-the move just made as the unit movement (start and end snapshots rendered at the true
-poses), ask the method for a direction at the end point and turn to it.
+One trial at a time, one move at a time, in float64. At the release point the agent
+computes the homing direction exactly as in the vector map: from a unit move of length d
+along the release heading that *ends* at the start (start snapshot at start - d u(h), end
+snapshot at the start, both with heading h). Under first_move="release" (the default, thesis
+Algorithm 2) a DELV agent does not turn to it: it first moves d along the release heading; an
+ALV or ACV agent (no unit movement needed) turns to it (keeps h if invalid), as every agent does
+under first_move="homing". Then, repeatedly: move d along the heading, take the move just made
+as the unit movement (start and end snapshots rendered at the true poses), ask the method for a
+direction at the end point and turn to it.
 
-Rules (docs/model.md §5): first_move="release" makes the first move go along the release heading
-(a robot with no stored move); collisions="fail" ends a trial whose move ends inside a
-landmark (distance to its centre < r) as LANDMARK, whereas with collisions="ignore" (the
-default) landmarks are no obstacles. first_move="release", collisions="fail" is the old
-(physical agent) behaviour.
+Rules (docs/model.md §5): collisions="fail" ends a trial whose move ends inside a landmark
+(distance to its centre < r) as LANDMARK, whereas with collisions="ignore" (the default)
+landmarks are no obstacles. first_move="release", collisions="fail" are the physical rules.
 """
 import math
 
@@ -21,7 +21,7 @@ import numpy as np
 from reference import acv_direction, alv_direction, delv_direction, extract_blobs, render, visual_compass, wrap
 
 SUCCESS, TIMEOUT, LANDMARK, ARENA = range(4)
-FIRST_MOVES = ("homing", "release")
+FIRST_MOVES = ("release", "homing")
 COLLISIONS = ("ignore", "fail")
 HOME_TOLERANCE = 1e-3  # the library's inclusive "within home_radius" (delvjax.core.rollouts.rules)
 
@@ -87,12 +87,12 @@ def status(landmarks_all, arena, home, pos, home_radius, collide=False):
 
 def reference_rollout(landmarks, arena, home, start, heading, method, d=50.0, home_radius=50.0, max_steps=50,
                       visible=None, levels=None, background="distant", n_heading=360, record=None,
-                      first_move="homing", collisions="ignore"):
+                      first_move="release", collisions="ignore"):
     """Noise-free rollout from `start` with release `heading` (rad): (outcome, steps, path list).
 
     `visible` (bool per landmark) hides landmarks from the views during homing (the home
     record sees all; with collisions="fail" hidden landmarks still block the way).
-    `first_move` ("homing" | "release") and `collisions` ("ignore" | "fail"): the rules of
+    `first_move` ("release" | "homing") and `collisions` ("ignore" | "fail"): the rules of
     the module docstring.
     """
     if first_move not in FIRST_MOVES:
@@ -109,7 +109,7 @@ def reference_rollout(landmarks, arena, home, start, heading, method, d=50.0, ho
     code = status(landmarks, arena, home, pos, home_radius, collide)
     if code is not None:
         return code, 0, path
-    if first_move == "homing":  # turn to the vector map's direction at the release point
+    if first_move == "homing" or not method.startswith("delv"):  # turn to the direction at the release point
         direction = release_direction(record, seen, arena, pos, h, method, d, levels, background, n_heading)
         if not math.isnan(direction):
             h = direction

@@ -13,7 +13,7 @@ from studies.common import LABEL
 TINY = reproduce.Settings(spacing=200.0, trials=10)
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 METHOD_OF_LABEL = {v: k for k, v in LABEL.items()}
-VERDICTS = {"holds", "partly", "fails", "n/a"}
+VERDICTS = {"holds", "partly", "fails", "cannot tell", "n/a"}
 # Numbers documented as NaN (JSON null) when their region is empty: e > 45 % inside / outside the
 # landmarks' convex hull (studies.common.map_numbers) when no grid point lies there.
 MAY_BE_NAN = re.compile(r"^map:[^:]+:delv:gt45_(inside|outside)_hull_pct$")

@@ -85,12 +85,12 @@ def test_success_flags_match_the_numpy_reference_rollout():
 # --- the rules ----------------------------------------------------------------------------------
 
 def test_paths_follow_the_rules():
-    """first_move="release": first move along the release heading, d long; path NaN after the end;
-    end = last position."""
+    """first_move="release" (Algorithm 2): a DELV agent's first move goes along the release heading, d
+    long; path NaN after the end; end = last position."""
     env = make_env(FOUR)
     starts = np.array([[100.0, 100.0], [900.0, 500.0], [500.0, 530.0], [20.0, 500.0]], np.float32)
     heads = np.array([0.3, 2.0, 1.0, math.pi], np.float32)
-    res = run(env, starts, heads, "alv", lanes=4, record_paths=True, **PHYSICAL)
+    res = run(env, starts, heads, "delv-compass", lanes=4, record_paths=True, **PHYSICAL)
     path, steps = np.asarray(res.path), np.asarray(res.steps)
     assert res.outcome[2] == rollouts.SUCCESS and steps[2] == 0  # released within home_radius
     assert res.outcome[3] == rollouts.ARENA and steps[3] == 1  # first move leaves the arena
@@ -106,13 +106,14 @@ def test_paths_follow_the_rules():
 
 
 def test_first_move_follows_the_vector_map_direction_at_the_release_point():
-    """first_move="homing" (default): the first move goes d along the direction computed from a unit move
-    along the release heading that ends at the start (the NumPy twin's vector-map direction); the first
-    direction is reported, the same, under either rule."""
+    """first_move="homing": the first move goes d along the direction computed from a unit move along the
+    release heading that ends at the start (the NumPy twin's vector-map direction); the first direction is
+    reported, the same, under either rule. Under "release" (Algorithm 2) ALV, which needs no unit
+    movement, turns to that same direction at once (DELV's blind first move: tests/test_first_move.py)."""
     env = make_env(FOUR)
     starts = np.array([[150.0, 150.0], [850.0, 200.0], [200.0, 850.0], [850.0, 850.0]], np.float32)
     heads = np.array([0.3, 2.0, 4.0, 5.5], np.float32)
-    res = run(env, starts, heads, "alv", lanes=4, record_paths=True)
+    res = run(env, starts, heads, "alv", lanes=4, record_paths=True, first_move="homing")
     rel = run(env, starts, heads, "alv", lanes=4, record_paths=True, first_move="release")
     first, valid = np.asarray(res.first_direction), np.asarray(res.first_valid)
     assert valid.all() and np.array_equal(np.asarray(rel.first_direction), first)
@@ -125,7 +126,7 @@ def test_first_move_follows_the_vector_map_direction_at_the_release_point():
     assert np.allclose(moves, 50.0 * np.stack([np.cos(first), np.sin(first)], axis=1), atol=1e-3)
     assert not np.allclose(moves, 50.0 * np.stack([np.cos(heads), np.sin(heads)], axis=1), atol=1.0)
     rel_moves = np.asarray(rel.path)[:, 1] - np.asarray(rel.path)[:, 0]
-    assert np.allclose(rel_moves, 50.0 * np.stack([np.cos(heads), np.sin(heads)], axis=1), atol=1e-3)
+    assert np.allclose(rel_moves, moves, atol=1e-3)
 
 
 def test_catchment_first_directions_are_the_vector_map():
@@ -156,7 +157,7 @@ def test_collisions_fail_ends_inside_a_landmark_and_ignore_passes_through():
     starts = [[500.0, 900.0], [150.0, 150.0], [850.0, 150.0], [150.0, 850.0]]
     fail = delvjax.trajectories(env, method="alv", starts=starts, heading_deg=-90.0, collisions="fail")
     ignore = delvjax.trajectories(env, method="alv", starts=starts, heading_deg=-90.0)
-    assert fail.rules == {"first_move": "homing", "collisions": "fail"} and ignore.rules == DEFAULT
+    assert fail.rules == {"first_move": "release", "collisions": "fail"} and ignore.rules == DEFAULT
 
     def inside(p):
         return np.hypot(p[0] - 500.0, p[1] - 700.0) < 45.0
@@ -172,7 +173,7 @@ def test_collisions_fail_ends_inside_a_landmark_and_ignore_passes_through():
     c_fail = delvjax.catchment(env, method="alv", spacing=100.0, collisions="fail")
     c_ignore = delvjax.catchment(env, method="alv", spacing=100.0)
     s_fail, s_ignore = rollouts.catchment_summary(c_fail), rollouts.catchment_summary(c_ignore)
-    assert s_ignore["rules"] == DEFAULT and s_fail["rules"] == {"first_move": "homing", "collisions": "fail"}
+    assert s_ignore["rules"] == DEFAULT and s_fail["rules"] == {"first_move": "release", "collisions": "fail"}
     assert [row["landmark_count"] for row in s_ignore["per_mask"]] == [0]
     assert s_fail["per_mask"][0]["landmark_count"] > 0
     hit = np.asarray(c_fail.outcome) == rollouts.LANDMARK

@@ -46,14 +46,14 @@ def test_cli_catchment_success_rate_trajectories(tmp_path):
     assert main(["success-rate", "ring4", "--method", "alv,acv", "--trials", "10", "--distances", "50", "250", "450",
                  "--seed", "2", "--out", str(tmp_path / "s.csv")]) == 0
     rows = read_rows(tmp_path / "s.csv")
-    assert len(rows) == 2 * 3 and all(r["first_move"] == "homing" and r["collisions"] == "ignore" for r in rows)
+    assert len(rows) == 2 * 3 and all(r["first_move"] == "release" and r["collisions"] == "ignore" for r in rows)
     four = write_env(tmp_path / "four.json", FOUR)
     assert main(["trajectories", four, "--method", "alv", "--start", "100", "100", "--start", "800", "300",
                  "--start", "150", "850", "--start", "850", "850", "--out", str(tmp_path / "t.csv"),
                  "--plot", str(tmp_path / "t.png")]) == 0
     assert (tmp_path / "t.png").stat().st_size > 0
     rows = read_rows(tmp_path / "t.csv")
-    assert rows and all(r["first_move"] == "homing" and r["collisions"] == "ignore" for r in rows)
+    assert rows and all(r["first_move"] == "release" and r["collisions"] == "ignore" for r in rows)
 
 
 @pytest.mark.parametrize("flags, rules", [([], DEFAULT),

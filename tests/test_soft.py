@@ -59,7 +59,10 @@ def test_analytic_views_agree_with_the_pixel_path_to_a_pixel_on_random_scenes():
 def _soft_and_hard(name: str, sharpness: float, **options):
     """A function of tau: the difference between the soft and the hard directions of `name` on the same
     analytic views over env1 (50 cm grid), in degrees, where the hard method has a direction from at
-    least two blobs (one compiled program for every tau)."""
+    least two blobs (one compiled program for every tau); for DELV without a compass from at least
+    three: with two, the pairing (a, b) at alpha and (b, a) at alpha + pi fit exactly alike (the
+    home-frame list of docs/model.md §3.3 is swapped there), a true tie that the hard search breaks by
+    the first hypothesis and the soft one averages."""
     env, module, sensor, _, key, _ = scene_request("env1", name, 10.0, None, 0, **options)
     env = env.arrays()
     vm = delvjax.vector_map("env1", name, spacing=50, seed=0)
@@ -82,7 +85,7 @@ def _soft_and_hard(name: str, sharpness: float, **options):
         a, v, b, w, n = (np.asarray(x) for x in run(jnp.float32(tau)))
         inc = np.asarray(vm.included)
         assert np.array_equal(v[inc], w[inc])
-        ok = inc & w & (n >= 2)
+        ok = inc & w & (n >= (3 if name == "delv" else 2))
         return np.degrees(np.abs(np.angle(np.exp(1j * (a - b)))))[ok]
 
     return differences
@@ -134,9 +137,13 @@ def test_gradients_match_central_finite_differences(name, options, scalars):
         step = {"scale": 1e-3 * x0, "d": 0.05}.get(key, 0.005)  # sigmas: the quality has kinks (guards) 0.05 deg away
         fd = (_quality_at(name, **{**options, key: x0 + step}) - _quality_at(name, **{**options, key: x0 - step})) / (2 * step)
         checks.append((fd, grads[key], key))
+    # absolute slack: 1 % of the largest landmark derivative (at least 2e-6); a derivative far below that
+    # meets kinks (the home-frame list of docs/model.md §3.3 changes its start where a bearing crosses 0)
+    slack = max(2e-6, 0.01 * float(np.max(np.abs(np.asarray(grads["landmarks"])[:, :2]))))
     for fd, g, what in checks:
         assert np.isfinite(g), what
-        assert abs(fd - g) <= 0.1 * max(abs(fd), abs(g)) + 2e-6, (what, fd, g)
+        rel = 0.2 if what.endswith("noise_deg") else 0.1  # a noise sigma moves every bearing: nearer a kink
+        assert abs(fd - g) <= rel * max(abs(fd), abs(g)) + slack, (what, fd, g, slack)
     assert all(np.isfinite(np.asarray(grads["landmarks"])).ravel())
 
 

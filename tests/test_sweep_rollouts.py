@@ -62,10 +62,11 @@ def test_a_catchment_cell_equals_the_catchment_run_with_its_options(catchments):
                 assert float(cell.catchment_min_pct) == pytest.approx(ref["catchment_pct"]["min"], abs=1e-9), where
                 assert float(cell.catchment_max_pct) == pytest.approx(ref["catchment_pct"]["max"], abs=1e-9), where
                 rows = ref["per_mask"]
-                landmark = sum(r["landmark_count"] for r in rows) / (ref["points"] * len(rows))
+                landmark = sum(r["landmark_count"] for r in rows) / (ref["catchment_points"] * len(rows))
+                assert int(cell.catchment_points) == ref["catchment_points"], where
                 assert float(cell.landmark_pct) == pytest.approx(100 * landmark, abs=1e-9), where
-    # the rules reach the cells: the first move along the release heading changes the outcomes
-    homing, release = (ds.sel({"method": "alv", "first_move": m}).catchment_pct.values for m in ("homing", "release"))
+    # the rules reach the cells: DELV's first move along the release heading changes the outcomes
+    homing, release = (ds.sel({"method": "delv", "first_move": m}).catchment_pct.values for m in ("homing", "release"))
     assert not np.array_equal(homing, release)
 
 

@@ -71,15 +71,17 @@ def _hypotheses(size: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 def match_arrangement_gapped(ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array,
-                             alphas: Array) -> tuple[Array, Array, Array, Array]:
+                             alphas: Array, offsets: Array | None = None) -> tuple[Array, Array, Array, Array]:
     """Best order-preserving cyclic pairing (may skip entries of the larger list) and alpha.
 
     Same signature and outputs as `delv.match_arrangement`: (p (2,), alpha, var, n_pairs)
     with n_pairs = min(N, M); ref_v: (B, 2) home frame, cur_v: (B', 2) agent frame (valid
     entries first, in bearing order), alphas: (A,) radians. Where N == M, exactly
-    `match_arrangement`'s result.
+    `match_arrangement`'s result, with its `offsets` (docs/model.md §3.3). The subset search needs no
+    offsets: it pairs every cyclic rotation of every subset, so where the current list starts only
+    relabels its pairings (ties aside).
     """
-    same = match_arrangement(ref_v, ref_valid, cur_v, cur_valid, alphas)
+    same = match_arrangement(ref_v, ref_valid, cur_v, cur_valid, alphas, offsets)
     gapped = _search(ref_v, ref_valid, cur_v, cur_valid, alphas)
     equal = jnp.sum(ref_valid) == jnp.sum(cur_valid)
     return tuple(jnp.where(equal, x, y) for x, y in zip(same, gapped))
@@ -108,5 +110,6 @@ class DELVGap(DELV):
     """DELV (docs/model.md §3) with gap-aware matching (§3.5): the settings and heading source of
     `DELV`; only the arrangement search differs (`match_arrangement_gapped`)."""
 
-    def match(self, ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array, alphas: Array):
-        return match_arrangement_gapped(ref_v, ref_valid, cur_v, cur_valid, alphas)
+    def match(self, ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array, alphas: Array,
+              offsets: Array | None = None):
+        return match_arrangement_gapped(ref_v, ref_valid, cur_v, cur_valid, alphas, offsets)

@@ -20,7 +20,8 @@ from ..scene import Env
 from ..sensor import Sensor
 from ..types import (GridFlag, GridFloat, GridPoints, MaskGridFlag, MaskGridFloat, MaskGridInt, MaskGridPoints,
                      Masks)
-from .rules import DEFAULT_LANES, EXCLUDED, HOME_RADIUS, MAX_STEPS, OUTCOMES, SUCCESS, Outcomes
+from .rules import (DEFAULT_FIRST_MOVE, DEFAULT_LANES, EXCLUDED, NEAR_WALL, HOME_RADIUS, MAX_STEPS, OUTCOMES, SUCCESS, Outcomes,
+                    catchment_counted)
 from .trials import run_trials
 
 
@@ -45,15 +46,18 @@ def hidden_masks(env: Env, hidden: Sequence[int] | None) -> tuple[np.ndarray, li
 class Catchment(Outcomes):
     """Catchment area of one method on the docs/model.md §5 grid under M visibility masks.
 
-    points: (P, 2) all grid cells; included: (P,); heading: (P,) release heading rad;
+    points: (P, 2) all grid cells; included: (P,) grid points (released, and in the vector map);
+    counted: (P,) the grid points whose rollout counts in the catchment (`rules.catchment_counted`:
+    under first_move "release" at least d from every wall); heading: (P,) release heading rad;
     visible: (M, L) landmarks seen while homing; outcome, steps, invalid_steps: (M, P)
-    (outcome EXCLUDED for cells that are not grid points); end: (M, P, 2); the vector map
+    (outcome EXCLUDED for cells that are not grid points, NEAR_WALL for grid points not counted); end: (M, P, 2); the vector map
     under each mask with the same headings and home record: direction (M, P) world rad
     (NaN where invalid), valid (M, P), error_deg (M, P).
     """
 
     points: GridPoints
     included: GridFlag
+    counted: GridFlag
     heading: GridFloat
     visible: Masks
     outcome: MaskGridInt
@@ -64,19 +68,19 @@ class Catchment(Outcomes):
     valid: MaskGridFlag
     error_deg: MaskGridFloat
     hidden: tuple = eqx.field(static=True, default=((),))
-    first_move: str = eqx.field(static=True, default="homing")
+    first_move: str = eqx.field(static=True, default=DEFAULT_FIRST_MOVE)
     collisions: str = eqx.field(static=True, default="ignore")
 
     def catchment_pct(self) -> np.ndarray:
         """% of grid points whose rollout succeeds, per mask (M,)."""
-        inc = np.asarray(self.included)
+        inc = np.asarray(self.counted)
         return 100.0 * np.asarray(self.success)[:, inc].mean(axis=1)
 
 
 def catchment_area(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = SPACING, heading: float | None = None,
                    key: Array | None = None, clearance: float = CLEARANCE, masks: np.ndarray | None = None,
                    hidden: Sequence[tuple[int, ...]] = ((),), home_radius: float = HOME_RADIUS, max_steps: int = MAX_STEPS,
-                   lanes: int = DEFAULT_LANES, first_move: str = "homing", collisions: str = "ignore",
+                   lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE, collisions: str = "ignore",
                    progress: Callable[[int, int], None] | None = None) -> Catchment:
     """Rollouts from every grid point under every mask in `masks` (M, L), one program (docs/model.md §5).
 
@@ -92,9 +96,13 @@ def catchment_area(env: Env, method: HomingMethod, sensor: Sensor, spacing: floa
     n_cells = points.shape[0]
     headings = np.asarray(random_headings(key, n_cells) if heading is None else np.full(n_cells, heading, np.float32))
     included = np.asarray(grid_included(env, points, clearance))
+    counted = catchment_counted(env.arena, points, included, first_move, sensor.d)
     cells = np.flatnonzero(included)  # which cells are released
     if cells.size == 0:
         raise InputError("spacing", spacing, "leaves no grid point clear of the landmarks (r + clearance)")
+    if not counted.any():
+        raise InputError("d", float(np.max(np.asarray(sensor.d))), "leaves no grid point at least d from every wall "
+                         "(the catchment under first_move \"release\" counts only those)")
     n_masks, n_inc = masks.shape[0], cells.size
     trial_cell = np.tile(cells, n_masks).astype(np.int32)
     trial_mask = np.repeat(np.arange(n_masks, dtype=np.int32), n_inc)
@@ -111,9 +119,12 @@ def catchment_area(env: Env, method: HomingMethod, sensor: Sensor, spacing: floa
     direction = per_cell(trials.first_direction, jnp.nan)  # the vector map under each mask
     valid = per_cell(trials.first_valid, False)
     error = angular_error_deg(direction, valid, points[None], env.home)
-    return Catchment(points=jax.device_put(points), included=jax.device_put(included), heading=jax.device_put(headings),
+    outcome = per_cell(trials.outcome, EXCLUDED)
+    outcome = jnp.where(jnp.asarray(counted | ~included)[None, :], outcome, NEAR_WALL)
+    return Catchment(points=jax.device_put(points), included=jax.device_put(included),
+                     counted=jax.device_put(counted), heading=jax.device_put(headings),
                      visible=jax.device_put(masks),
-                     outcome=per_cell(trials.outcome, EXCLUDED), steps=per_cell(trials.steps, 0),
+                     outcome=outcome, steps=per_cell(trials.steps, 0),
                      end=per_cell(trials.end, jnp.nan), invalid_steps=per_cell(trials.invalid_steps, 0),
                      direction=direction, valid=valid, error_deg=error,
                      hidden=tuple(tuple(int(i) for i in h) for h in hidden), first_move=first_move,
@@ -124,8 +135,9 @@ def catchment_summary(result: Catchment) -> dict:
     """Headline numbers: catchment % and error point rates per mask, and their mean, min and max (Tables 5.1-5.4)."""
     pct = result.catchment_pct()
     inc = np.asarray(result.included)
-    outcome = np.asarray(result.outcome)[:, inc]
-    steps = np.asarray(result.steps)[:, inc]
+    counted = np.asarray(result.counted)
+    outcome = np.asarray(result.outcome)[:, counted]
+    steps = np.asarray(result.steps)[:, counted]
     per_mask = []
     for m, hidden in enumerate(result.hidden):  # M <= 20 rows of post-processing
         rates = error_point_rates(np.asarray(result.error_deg)[m], inc)
@@ -141,5 +153,5 @@ def catchment_summary(result: Catchment) -> dict:
         v = np.array([row[field] for row in per_mask])
         return {"mean": float(v.mean()), "min": float(v.min()), "max": float(v.max())}
 
-    return {"rules": result.rules, "points": int(inc.sum()), "masks": len(per_mask), "catchment_pct": spread("catchment_pct"),
+    return {"rules": result.rules, "points": int(inc.sum()), "catchment_points": int(counted.sum()), "masks": len(per_mask), "catchment_pct": spread("catchment_pct"),
             "gt45_pct": spread("gt45_pct"), "gt90_pct": spread("gt90_pct"), "per_mask": per_mask}

@@ -44,12 +44,16 @@ class RolloutCell(eqx.Module):
 
 class CatchmentSums(eqx.Module):
     """Per-cell counts and sums, (C,) each: released grid points (per mask), trials (points x masks),
-    successes in total and under the worst and best mask, failures by outcome, moves of the successful
-    trials, and the first directions' (the vector map under each mask) invalid count, errors > 45 and
-    > 90 degrees, sum and sum of squares of the errors (degrees; invalid = 180)."""
+    the grid points and trials that count in the catchment (`rules.catchment_counted`: under first_move "release"
+    grid points at least d from every wall), their successes in total and under the worst and best
+    mask, failures by outcome, moves of the successful trials, and the first directions' (the vector
+    map under each mask, every released point) invalid count, errors > 45 and > 90 degrees, sum and
+    sum of squares of the errors (degrees; invalid = 180)."""
 
     points: Array
     trials: Array
+    counted_points: Array
+    counted: Array
     successes: Array
     success_min: Array
     success_max: Array
@@ -83,14 +87,15 @@ def _trials(cell: RolloutCell, starts, headings, key_index, mask_index, n_valid,
 
 
 @partial(jax.jit, static_argnames=("max_steps", "lanes"))
-def catchment_cells(cells: RolloutCell, points: Array, included: Array, max_steps: int, lanes: int) -> CatchmentSums:
+def catchment_cells(cells: RolloutCell, points: Array, included: Array, counted: Array, max_steps: int,
+                    lanes: int) -> CatchmentSums:
     """Catchment sums of C stacked cells (`catchment_area`'s trials: every included grid point of
     `points` (P, 2) under every mask, random release headings per point from each cell's key).
-    `included`: (C, P)."""
+    `included`, `counted`: (C, P)."""
     n_points = points.shape[0]
 
     def one(args):
-        cell, inc = args
+        cell, inc, cnt = args
         rows = cell.masks.shape[0]
         n_inc = jnp.sum(inc).astype(jnp.int32)
         order = jnp.argsort(~inc, stable=True).astype(jnp.int32)  # included points first, in grid order
@@ -102,20 +107,23 @@ def catchment_cells(cells: RolloutCell, points: Array, included: Array, max_step
         res = _trials(cell, points[point], headings[point], point, mask, n_valid, max_steps, lanes)
         run = t < n_valid
         err = angular_error_deg(res.first_dir, res.first_valid, points[point], cell.env.home)
-        ok = run & (res.outcome == SUCCESS)
+        counts = run & cnt[point]
+        ok = counts & (res.outcome == SUCCESS)
         per_mask = jax.ops.segment_sum(ok.astype(jnp.int32), jnp.where(run, mask, rows), rows + 1)[:rows]
         used = jnp.arange(rows) < cell.n_masks
-        count = lambda m: jnp.sum(m & run).astype(jnp.int32)  # noqa: E731
+        count = lambda m: jnp.sum(m & counts).astype(jnp.int32)  # noqa: E731
         e = jnp.where(run, err, 0.0)
-        return CatchmentSums(points=n_inc, trials=n_valid, successes=jnp.sum(per_mask),
-                             success_min=jnp.min(jnp.where(used, per_mask, n_inc)),
+        n_cnt = jnp.sum(inc & cnt).astype(jnp.int32)
+        return CatchmentSums(points=n_inc, trials=n_valid, counted_points=n_cnt, counted=cell.n_masks * n_cnt, successes=jnp.sum(per_mask),
+                             success_min=jnp.min(jnp.where(used, per_mask, n_cnt)),
                              success_max=jnp.max(jnp.where(used, per_mask, 0)), timeout=count(res.outcome == TIMEOUT),
                              landmark=count(res.outcome == LANDMARK), arena=count(res.outcome == ARENA),
-                             steps_success=jnp.sum(jnp.where(ok, res.steps, 0)), invalid=count(~res.first_valid),
-                             gt45=count(err > 45.0), gt90=count(err > 90.0), error_sum=jnp.sum(e),
+                             steps_success=jnp.sum(jnp.where(ok, res.steps, 0)), invalid=jnp.sum(~res.first_valid & run).astype(jnp.int32),
+                             gt45=jnp.sum((err > 45.0) & run).astype(jnp.int32),
+                             gt90=jnp.sum((err > 90.0) & run).astype(jnp.int32), error_sum=jnp.sum(e),
                              error_sq_sum=jnp.sum(e * e))
 
-    return jax.lax.map(one, (cells, included))
+    return jax.lax.map(one, (cells, included, counted))
 
 
 @partial(jax.jit, static_argnames=("trials", "max_steps", "lanes"))

@@ -6,10 +6,17 @@ method for a direction at the new point, turns to it, and so on. It succeeds whe
 `home_radius` of home at the release point or after a move, within `max_steps` moves; a move
 ending outside the arena ends it as a failure; an invalid direction keeps the heading.
 Two rules, both recorded in every summary and table:
-  * first_move = "homing" (default): at the release point the direction is computed exactly
-    as in the vector map; "release": the first move goes along the release heading.
+  * first_move = "release" (default; thesis Algorithm 2, lines 3-7): a method that needs a unit
+    movement (DELV and its variants) takes a snapshot, moves d along the release heading and
+    only then matches; a method that reads only the current view (ALV, ACV, image matching,
+    MFDID) turns to the direction it computes at the release point. "homing" (the earlier
+    default): every method turns to the direction computed at the release point exactly as in
+    the vector map (a unit move ending there).
   * collisions = "ignore" (default): landmarks are no obstacles; "fail": a move ending
     inside a landmark (distance to its centre < r) ends the trial as a failure.
+Under "release" the blind first move from a grid point closer than d to a wall can leave the
+arena whatever the method, so the catchment counts only grid points at least d from every wall
+(`catchment_counted`; docs/model.md §5); the vector map keeps the whole grid.
 """
 
 from __future__ import annotations
@@ -28,9 +35,12 @@ from ..scene import Env
 OUTCOMES = ("success", "timeout", "landmark", "arena")
 SUCCESS, TIMEOUT, LANDMARK, ARENA = range(4)
 RUNNING, EXCLUDED = -1, -2
-FIRST_MOVES = ("homing", "release")
+NEAR_WALL = -3  # a catchment trial that ran but does not count: its grid point is closer than d to a wall
+FIRST_MOVES = ("release", "homing")
 COLLISIONS = ("ignore", "fail")
-DEFAULT_RULES = {"first_move": "homing", "collisions": "ignore"}
+DEFAULT_FIRST_MOVE = "release"
+DEFAULT_RULES = {"first_move": DEFAULT_FIRST_MOVE, "collisions": "ignore"}
+HOMING_RULES = {"first_move": "homing", "collisions": "ignore"}  # the earlier default, reported beside it
 PHYSICAL_RULES = {"first_move": "release", "collisions": "fail"}
 # "Within home_radius" is inclusive; 1e-3 cm absorbs float32 rounding of a release placed at
 # exactly home_radius (the first success-rate bin), so such a release counts as home.
@@ -50,6 +60,21 @@ def check_rules(first_move: str, collisions: str) -> dict[str, str]:
     if collisions not in COLLISIONS:
         raise InputError("collisions", collisions, f"must be one of {', '.join(COLLISIONS)}")
     return {"first_move": first_move, "collisions": collisions}
+
+
+def wall_margin(first_move: str, d) -> float:
+    """How far from every wall a grid point must be for its catchment trial to count: d under
+    "release" (the blind first move must stay in the arena), 0 under "homing"."""
+    return float(np.max(np.asarray(d))) if first_move == "release" else 0.0
+
+
+def catchment_counted(arena, points, included, first_move: str, d) -> np.ndarray:
+    """Grid points whose rollout counts in the catchment (docs/model.md §5): `included` and at
+    least `wall_margin` from every wall; (P,) bool, NumPy (input preparation)."""
+    a, pts, m = np.asarray(arena, np.float64), np.asarray(points, np.float64), wall_margin(first_move, d)
+    clear = ((pts[:, 0] >= a[0] + m - 1e-3) & (pts[:, 0] <= a[2] - m + 1e-3)
+             & (pts[:, 1] >= a[1] + m - 1e-3) & (pts[:, 1] <= a[3] - m + 1e-3))
+    return np.asarray(included, bool) & clear
 
 
 def rollout_keys(key: Array) -> tuple[Array, Array, Array]:

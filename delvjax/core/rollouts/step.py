@@ -9,7 +9,10 @@ Noise in rollouts (`Noise.rollout_move`):
 All draws use the key fold_in(fold_in(key_rollout, trial key index), step index), so results
 do not depend on how trials are scheduled; with every sigma 0 the draws are multiplied by 0.
 A lane's first iteration at its release point computes the vector map's direction there
-(a unit move ending at the release point, the vector map's noise stream).
+(a unit move ending at the release point, the vector map's noise stream). Under first_move
+"release" (thesis Algorithm 2, the default) a method that needs a unit movement then moves along
+the release heading and matches only after that move; under "homing" every method turns to the
+direction computed at the release point.
 """
 
 from __future__ import annotations
@@ -63,7 +66,10 @@ class Rollout(eqx.Module):
         direction, valid = direction_from(self.env, self.masks[self.mask_index[t]], poses, self.home, self.method,
                                           self.sensor)
         new_heading = jnp.where(valid, direction, wrap(poses.heading_end))
-        first_heading = jnp.where(self.homing_first, new_heading, heading)
+        # first_move "release" (thesis Algorithm 2): a method that needs a unit movement first moves d
+        # along the release heading; one that reads only the current view turns to its direction here
+        blind = ~self.homing_first & jnp.asarray(self.method.reads_start_view(), bool)
+        first_heading = jnp.where(blind, heading, new_heading)
         status = position_status(self.env, poses.end, self.radius, self.collide)
         status = jnp.where((status == RUNNING) & (step + 1 >= self.max_steps), TIMEOUT, status)
         return poses.end, jnp.where(first, first_heading, new_heading), status, valid, direction

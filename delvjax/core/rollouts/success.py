@@ -18,7 +18,7 @@ from ..scene import Env
 from ..sensor import Sensor
 from ..types import BinTrialFlag, BinTrialFloat, BinTrialInt, BinTrialPoints, Bins
 from .release import release_points
-from .rules import (DEFAULT_DISTANCES, DEFAULT_LANES, EXCLUDED, HOME_RADIUS, MAX_STEPS, OUTCOMES, SUCCESS,
+from .rules import (DEFAULT_DISTANCES, DEFAULT_FIRST_MOVE, DEFAULT_LANES, EXCLUDED, HOME_RADIUS, MAX_STEPS, OUTCOMES, SUCCESS,
                     TRIALS_PER_DISTANCE, Outcomes, rollout_keys)
 from .trials import run_trials
 
@@ -37,7 +37,7 @@ class SuccessRate(Outcomes):
     placed: BinTrialFlag
     outcome: BinTrialInt
     steps: BinTrialInt
-    first_move: str = eqx.field(static=True, default="homing")
+    first_move: str = eqx.field(static=True, default=DEFAULT_FIRST_MOVE)
     collisions: str = eqx.field(static=True, default="ignore")
 
     def table(self) -> list[dict]:
@@ -71,7 +71,7 @@ def wilson_interval_pct(successes: int, trials: int, confidence: float = 0.95) -
 def success_rate_trials(env: Env, method: HomingMethod, sensor: Sensor, distances: Sequence[float] = DEFAULT_DISTANCES,
                         trials: int = TRIALS_PER_DISTANCE, heading: float | None = None, key: Array | None = None,
                         clearance: float = CLEARANCE, visible: Array | None = None, home_radius: float = HOME_RADIUS,
-                        max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, first_move: str = "homing",
+                        max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
                         collisions: str = "ignore") -> SuccessRate:
     """`trials` rollouts per release distance: random direction from home, random heading (docs/model.md §5)."""
     key = jax.random.PRNGKey(0) if key is None else key

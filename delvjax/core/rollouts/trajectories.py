@@ -11,7 +11,7 @@ from ..methods.base import HomingMethod
 from ..scene import Env
 from ..sensor import Sensor
 from ..types import Paths, PerTrial, PerTrialInt, TrialPoints
-from .rules import DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes
+from .rules import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes
 from .trials import run_trials
 
 
@@ -28,13 +28,13 @@ class Trajectories(Outcomes):
     outcome: PerTrialInt
     steps: PerTrialInt
     invalid_steps: PerTrialInt
-    first_move: str = eqx.field(static=True, default="homing")
+    first_move: str = eqx.field(static=True, default=DEFAULT_FIRST_MOVE)
     collisions: str = eqx.field(static=True, default="ignore")
 
 
 def trajectory_trials(env: Env, method: HomingMethod, sensor: Sensor, starts: Array, headings: Array,
                       key: Array | None = None, visible: Array | None = None, home_radius: float = HOME_RADIUS,
-                      max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, first_move: str = "homing",
+                      max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
                       collisions: str = "ignore") -> Trajectories:
     """Rollouts from `starts` (T, 2) with `headings` (T,) rad, recording every position."""
     key = jax.random.PRNGKey(0) if key is None else key

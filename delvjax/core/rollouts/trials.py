@@ -26,7 +26,7 @@ from ..types import Masks, PerTrial, PerTrialFlag, PerTrialInt, TrialPoints
 from ..batching import WIDTH, local_mesh, n_devices, over_devices
 from ..batching import padded as padded_width
 from .lanes import run_block
-from .rules import DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes, check_rules, rollout_keys
+from .rules import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes, check_rules, rollout_keys
 from .step import Rollout
 
 TRIAL_BLOCK = 16384
@@ -64,7 +64,7 @@ class Trials(Outcomes):
     first_direction: PerTrial
     first_valid: PerTrialFlag
     path: Array | None = None
-    first_move: str = eqx.field(static=True, default="homing")
+    first_move: str = eqx.field(static=True, default=DEFAULT_FIRST_MOVE)
     collisions: str = eqx.field(static=True, default="ignore")
 
 
@@ -100,7 +100,7 @@ def home_record(env: Env, key: Array, sensor: Sensor) -> UnitMove:
 def run_trials(env: Env, starts: TrialPoints, headings: PerTrial, key_index: PerTrialInt, mask_index: PerTrialInt, masks: Masks,
                key: Array, sensor: Sensor, method: HomingMethod, home_radius: float = HOME_RADIUS,
                max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, record_paths: bool = False,
-               first_move: str = "homing", collisions: str = "ignore",
+               first_move: str = DEFAULT_FIRST_MOVE, collisions: str = "ignore",
                progress: Callable[[int, int], None] | None = None) -> Trials:
     """Roll out T trials (docs/model.md §5), in blocks of one compiled program.
 
