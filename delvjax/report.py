@@ -98,6 +98,15 @@ def settings_section(settings, versions: dict, records: dict, wall_seconds: floa
         md_table(["study", "wall s", "compile s", "this run"], timing)])
 
 
+def choices_section(numbers: dict) -> str:
+    """What we chose where the thesis is silent, each with the number it changes (`studies.choices`)."""
+    from studies import choices
+
+    return ("Where the thesis is silent or ambiguous we had to choose; each choice below with the number it "
+            "changes in this run (or, where no study recomputes it, where it was measured). docs/model.md has the "
+            "reasons.\n\n" + md_table(["choice", "ours", "alternative", "what it changes"], choices.rows(numbers)))
+
+
 def thesis_notes_section() -> str:
     from studies import thesis
 
@@ -110,13 +119,15 @@ def build_markdown(records: dict, settings, versions: dict, wall_seconds: float,
     from studies.claims import evaluate
 
     claims = evaluate({n: r.numbers for n, r in records.items()})
+    flat = {k: v for r in records.values() for k, v in r.numbers.items()}
     parts = ["# delvjax: reproduction of the thesis's simulation experiments",
              "The thesis is *Distance-Estimated Landmark Vector Model for Vision-Based Homing Navigation* "
              "(chapters 4-5). It gives no landmark coordinates, grid spacing or home radius, so the claims "
              "to check are the trends (who beats whom, how fast each degrades), not the digits. "
              "Our environments, frames and every decision where the thesis is ambiguous: `docs/model.md`.",
              "## Run settings", settings_section(settings, versions, records, wall_seconds, ran),
-             "## Claims of the thesis", claims_section(claims)]
+             "## Claims of the thesis", claims_section(claims),
+             "## What we chose", choices_section(flat)]
     parts += [study_section(r) for r in records.values()]
     parts += ["## Inconsistencies within the thesis", thesis_notes_section()]
     return "\n\n".join(parts) + "\n"

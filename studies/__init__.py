@@ -14,6 +14,7 @@ STUDIES = [
     "with_compass",
     "comparators",
     "occlusion",
+    "fit",
     "visual_compass",
     "sensitivity",
     "layouts",

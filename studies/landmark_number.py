@@ -1,7 +1,8 @@
 """Number of landmarks in arbitrary layouts (thesis §4.2, Fig 4.8).
 
 DELV without compass in seeded random layouts of 3, 4 and 5 landmarks (padded to one
-shape: one compiled program), vector maps and error curves.
+shape: one compiled program), vector maps and error curves; image matching on the same layouts
+(§4.1: it is "extremely sensitive to ... the number of landmarks").
 """
 
 from __future__ import annotations
@@ -25,12 +26,17 @@ def run(ctx) -> None:
         label = f"{n} landmarks"
         curves[label] = curve(e, vm)
         ctx.number(f"error_curve:random{n}:delv", curve_means(curves[label]))
+        w = vector_map(ctx, e, "warping")
+        sw = map_numbers(e, w)
+        ctx.number(f"error_curve:random{n}:warping", curve_means(curve(e, w)))
         rows.append({"landmarks": n, "layout seed": 100 + n, "mean error °": s["mean_error_deg"],
                      "e>45 %": s["gt45_pct"], "e>90 %": s["gt90_pct"],
-                     "largest bin mean error °": max(curve_means(curves[label]))})
+                     "largest bin mean error °": max(curve_means(curves[label])),
+                     "image matching mean error °": sw["mean_error_deg"], "image matching e>45 %": sw["gt45_pct"]})
         items.append((f"{n} landmarks (layout seed {100 + n}): mean error {s['mean_error_deg']:.1f}°", e, vm))
         ctx.step(label)
-    ctx.table("landmark_number", "DELV without compass in arbitrary layouts", rows, source="Fig 4.8",
+    ctx.table("landmark_number", "DELV without compass (and image matching) in arbitrary layouts", rows,
+              source="Fig 4.8, §4.1",
               note="Layouts are seeded random (delvjax.presets.random_env); the thesis's are not given.")
     ctx.figure("fig4_8_landmark_numbers.png", panel_figure(items, ctx.settings.spacing,
                                                            title="DELV without compass, arbitrary layouts"),

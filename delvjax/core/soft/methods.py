@@ -32,7 +32,6 @@ from ..methods.alv import ALV
 from ..methods.base import HomingMethod
 from ..methods.delv import DELV
 from ..methods.heading import Compass
-from ..methods.delv import list_offsets, rotated_rows
 from ..methods.pairing import shift_pairs
 from .sensing import SoftMove, _sorted
 
@@ -93,27 +92,21 @@ def soft_delv(method: DELV, home: SoftMove, view: SoftMove, tau: Array) -> tuple
     cur_v, cur_ok, cur_w = soft_vectors(view, method, tau, False), view.end.valid, view.end.weight
     alphas = method.alphas(home, view)
     ref_idx, cur_idx, pair_ok, row_ok = shift_pairs(ref_ok, cur_ok)
-    # the current list in the home frame of each hypothesis (docs/model.md §3.3), as in `DELV`
-    offsets = list_offsets(view.end.bearing, cur_ok, alphas) if method.order == "home" else None
-    rows, row_of = rotated_rows(cur_idx, cur_ok, alphas, offsets)  # (R, H, S), (A,)
-    w = pair_ok[None] * ref_w[ref_idx][None] * cur_w[rows]  # (R, H, S)
-    total = jnp.maximum(jnp.sum(w, axis=2), 1e-12)[..., None]  # (R, H, 1)
-    a, b = ref_v[ref_idx][None], cur_v[rows]  # (1, H, S, 2), (R, H, S, 2)
-    a_mean = jnp.sum(w[..., None] * a, axis=2) / total  # (R, H, 2)
-    b_mean = jnp.sum(w[..., None] * b, axis=2) / total
-    a_c, b_c = a - a_mean[:, :, None], b - b_mean[:, :, None]
-    const = jnp.sum(w * jnp.sum(a_c * a_c + b_c * b_c, axis=-1), axis=2)  # (R, H)
-    z_re = jnp.sum(w * (a_c[..., 0] * b_c[..., 0] + a_c[..., 1] * b_c[..., 1]), axis=2)
-    z_im = jnp.sum(w * (a_c[..., 0] * b_c[..., 1] - a_c[..., 1] * b_c[..., 0]), axis=2)
-    const, z_re, z_im = const[row_of].T, z_re[row_of].T, z_im[row_of].T  # (H, A): alpha a reads block row_of[a]
-    a_mean, b_mean = jnp.swapaxes(a_mean[row_of], 0, 1), jnp.swapaxes(b_mean[row_of], 0, 1)  # (H, A, 2)
-    var = const - 2.0 * (jnp.cos(alphas)[None, :] * z_re - jnp.sin(alphas)[None, :] * z_im)
-    scale = jnp.maximum(jnp.sum(jnp.where(row_ok[:, None], const, 0.0)) / jnp.maximum(jnp.sum(row_ok) * alphas.shape[0], 1),
-                        1e-6)
+    w = pair_ok * ref_w[ref_idx] * cur_w[cur_idx]  # (H, S)
+    total = jnp.maximum(jnp.sum(w, axis=1), 1e-12)[:, None]  # (H, 1)
+    a, b = ref_v[ref_idx], cur_v[cur_idx]  # (H, S, 2)
+    a_mean = jnp.sum(w[..., None] * a, axis=1) / total
+    b_mean = jnp.sum(w[..., None] * b, axis=1) / total
+    a_c, b_c = a - a_mean[:, None], b - b_mean[:, None]
+    const = jnp.sum(w * jnp.sum(a_c * a_c + b_c * b_c, axis=-1), axis=1)  # (H,)
+    z_re = jnp.sum(w * (a_c[..., 0] * b_c[..., 0] + a_c[..., 1] * b_c[..., 1]), axis=1)
+    z_im = jnp.sum(w * (a_c[..., 0] * b_c[..., 1] - a_c[..., 1] * b_c[..., 0]), axis=1)
+    var = const[:, None] - 2.0 * (jnp.cos(alphas)[None, :] * z_re[:, None] - jnp.sin(alphas)[None, :] * z_im[:, None])
+    scale = jnp.maximum(jnp.sum(jnp.where(row_ok, const, 0.0)) / jnp.maximum(jnp.sum(row_ok), 1), 1e-6)
     logits = jnp.where(row_ok[:, None], -(var - jnp.min(jnp.where(row_ok[:, None], var, jnp.inf))) / (tau * scale),
                        -jnp.inf)
     sel = jax.nn.softmax(jnp.where(jnp.any(row_ok), logits, 0.0).reshape(-1)).reshape(var.shape)
-    p = a_mean - rotate(b_mean, alphas[None, :])  # (H, A, 2)
+    p = a_mean[:, None, :] - rotate(b_mean[:, None, :], alphas[None, :])  # (H, A, 2)
     v = rotate(-p, -alphas[None, :])
     vec = jnp.sum(sel[..., None] * v, axis=(0, 1))
     n = jnp.sum(pair_ok[0])
