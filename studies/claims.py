@@ -13,12 +13,12 @@ this module imports them all and is the one to import from.
 
 from __future__ import annotations
 
-from . import claims_ch4, claims_ch5, thesis
+from . import claims_ch4, claims_ch4_more, claims_ch5, claims_ch5_occlusion, thesis
 from .claims_common import BACKGROUNDS, CHECKS, ENVS, Missing, check
 
 __all__ = ["BACKGROUNDS", "CHECKS", "ENVS", "Missing", "check", "evaluate"]
 
-_CHECK_MODULES = (claims_ch4, claims_ch5)  # importing them fills CHECKS, chapter 4 first
+_CHECK_MODULES = (claims_ch4, claims_ch4_more, claims_ch5, claims_ch5_occlusion)  # importing them fills CHECKS, chapter 4 first
 
 
 def evaluate(numbers_by_study: dict[str, dict]) -> list[dict]:

@@ -27,7 +27,7 @@ def _pairs(N, M, k):
 
 def home_frame_order(cur_bearings, alpha):
     """docs/model.md §3.3: the current blobs' indices sorted by home-frame bearing (b + alpha) mod 2 pi."""
-    return sorted(range(len(cur_bearings)), key=lambda j: (float(cur_bearings[j]) + alpha) % TWO_PI)
+    return sorted(range(len(cur_bearings)), key=lambda j: (float(cur_bearings[j]) + alpha + 1e-5) % TWO_PI)
 
 
 def match_arrangement(ref_vecs, cur_vecs, alphas, min_pairs=2, cur_bearings=None):

@@ -24,7 +24,7 @@ from images_io_helpers import error_line, no_leftovers, entries, read_csv, summa
     ("vector-map", ["--turn-noise-deg", "3"], "--turn-noise-deg"),
     ("vector-map", ["robot"], "env"),
     ("catchment", ["--lanes", "8"], "--lanes"),
-    ("catchment", ["--first-move", "release"], "--first-move"),
+    ("catchment", ["--first-move", "homing"], "--first-move"),
     ("catchment", ["--step-noise", "0.1"], "--step-noise"),
     ("catchment", ["env1"], "env"),
 ])

@@ -9,6 +9,7 @@ import jax.numpy as jnp
 from jax import Array
 
 from ..errors import InputError
+from ..estimation import TIE_RAD
 from ..estimation import DistanceSettings, current_vectors, reference_vectors
 from ..search import first_argmin
 from ..geometry import TWO_PI, angle_of, rotate, safe_norm, wrap
@@ -28,7 +29,9 @@ def list_offsets(bearing: Blobs, valid: BlobFlags, alphas: Hypotheses) -> Array:
 
     The blobs are sorted by agent-frame bearing beta in [0, 2 pi), so the home-frame list is the
     agent-frame list rotated to start at this index: (A,) int (0 where no blob is valid)."""
-    home_frame = jnp.mod(bearing[None, :] + alphas[:, None], TWO_PI)
+    # + TIE_RAD: bearings (half-pixel lattice) plus a whole-degree heading often land exactly on 2 pi;
+    # float rounding must not decide whether such a blob starts or ends the list
+    home_frame = jnp.mod(bearing[None, :] + alphas[:, None] + TIE_RAD, TWO_PI)
     return first_argmin(jnp.where(valid[None, :], home_frame, jnp.inf), axis=-1)
 
 
