@@ -5,24 +5,11 @@ from __future__ import annotations
 from .claims_common import (CANNOT_TELL, CEILING, ENVS, _combine, _mean, _n, _opt, _pairs, _share, _verdict,
                             _why, at_ceiling, at_floor, check)
 
-THIRD = 3  # release-distance bins of the near / far third of a success-rate curve (9 bins: 50..450 cm)
 
 from . import claims_ch4 as _first
 
 # the helpers and tolerances of the first part (module-level names of `claims_ch4`)
 globals().update({k: v for k, v in vars(_first).items() if not k.startswith("__") and k not in globals()})
-
-
-def _physical(get, keys) -> str:
-    vals = [_opt(get, k + ":physical") for k in keys]
-    return "" if all(v is None for v in vals) else f"; physical rules {_n(vals)} %"
-
-
-# --- chapter 4 ----------------------------------------------------------------------------------
-
-FIG4_5 = {"env1": 98.52, "env2": 95.41, "env3": 77.66}  # thesis catchment %, DELV without compass
-LARGE = 75.0       # % "sufficient level of success" (the thesis's lowest, env3 77.66, within 3 points)
-GAP_TOL = 10.0     # points of tolerance on the env3 gap
 
 
 @check("delv_success_over_90")
