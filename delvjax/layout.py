@@ -84,20 +84,31 @@ def _objective(u, args):
     return quality + PENALTY * penalty
 
 
+SOLVER = optx.BFGS(rtol=1e-5, atol=1e-6)
+F_STRUCT = jax.ShapeDtypeStruct((), jnp.float32)
+
+
+def _fn(u, args):
+    """The objective as optimistix's solvers take it: (value, aux)."""
+    return _objective(u, args), None
+
+
+# module-level programs: every layout of one shape reuses them (a lambda per call would recompile)
+_init = eqx.filter_jit(lambda u, a: SOLVER.init(_fn, u, a, {}, F_STRUCT, None, frozenset()))
+_step = eqx.filter_jit(lambda u, s, a: SOLVER.step(_fn, u, a, {}, s, frozenset()))
+_done = eqx.filter_jit(lambda u, s, a: SOLVER.terminate(_fn, u, a, {}, s, frozenset())[0])
+_value = eqx.filter_jit(_objective)
+
+
 def _minimise(args, u0, steps: int, progress: Callable[[int, int, float], None] | None) -> tuple[jax.Array, list[float]]:
     """optimistix BFGS, stepped by hand: (u, objective after each step). A step returns the last
     accepted point (the line search rejects a worse one), so the last u is the best."""
-    solver = optx.BFGS(rtol=1e-5, atol=1e-6)
-    fn = lambda u, a: (_objective(u, a), None)  # noqa: E731  (optimistix's solvers take fn -> (f, aux))
-    f_struct = jax.ShapeDtypeStruct((), jnp.float32)
-    state = eqx.filter_jit(lambda u, a: solver.init(fn, u, a, {}, f_struct, None, frozenset()))(u0, args)
-    step = eqx.filter_jit(lambda u, s, a: solver.step(fn, u, a, {}, s, frozenset()))
-    done = eqx.filter_jit(lambda u, s, a: solver.terminate(fn, u, a, {}, s, frozenset())[0])
-    u, history = u0, [float(eqx.filter_jit(_objective)(u0, args))]
+    state = _init(u0, args)
+    u, history = u0, [float(_value(u0, args))]
     for i in range(steps):  # one optimisation step per iteration: a progress report between them
-        if i > 0 and bool(done(u, state, args)):
+        if i > 0 and bool(_done(u, state, args)):
             break
-        u, state, _ = step(u, state, args)
+        u, state, _ = _step(u, state, args)
         if i > 0:  # the first step only evaluates its trial point
             history.append(float(state.f_info.f))
         if progress is not None:
@@ -142,7 +153,8 @@ def optimise_layout(env: str | Path | Env, method: str = "delv", occlude: int = 
     radii = np.asarray(env.landmarks, np.float64)[np.asarray(env.valid), 2]
     optimised = make_env([[float(x), float(y), float(r)] for (x, y), r in zip(pos, radii)],
                          home=np.asarray(env.home).tolist(), arena=np.asarray(env.arena).tolist(),
-                         name=f"{env.name}-optimised-{method}" + (f"-occlude{k}" if k else ""))
+                         name=f"{env.name}-optimised-{method}" + (f"-occlude{k}" if k else ""),
+                         pad_to=env.landmarks.shape[0])  # the start's shape: its compiled programs serve both
     seconds = time.perf_counter() - t0
     catchments = tuple(catchment(e, method, spacing=spacing, seed=seed, occlude=k or None, **options)
                        for e in (env, optimised))

@@ -29,6 +29,7 @@ from delvjax.plots import subplots
 
 from .fit_model import TABLES, Setting, align, cells, describe, objective, point_key, search, targets
 from .common import LABEL
+from .fit_causes import likely_cause
 from .fit_cells import DEFAULTS, Evaluator
 
 TITLE = "Fit of the thesis's unstated settings: noise, home radius, home move, landmark radii (beyond the thesis)"
@@ -181,7 +182,8 @@ def unreached_table(ctx, items, found, results, grid, default) -> None:
     rows = [{"table": TABLES[t.table], "env": t.env, "method": LABEL[t.method], "k": t.k,
              "quantity": "catchment %" if t.field == "catchment" else f"e>{t.field[2:]} %", "thesis": t.value,
              "ours defaults": float(results[point_key(default, grid)]["ours"][i]),
-             "nearest ours": float(ours[nearest[i], i]), "at": describe(points[nearest[i]], default)}
+             "nearest ours": float(ours[nearest[i], i]), "at": describe(points[nearest[i]], default),
+             "likely cause": likely_cause(t, float(results[point_key(default, grid)]["ours"][i]))}
             for i, t in enumerate(items) if gap[nearest[i], i] > TOLERANCE]
     ctx.number("fit:unreached", len(rows))
     ctx.table("fit_unreached", f"Thesis numbers that no setting tried comes within {TOLERANCE:g} points of",

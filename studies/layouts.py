@@ -35,7 +35,7 @@ def run(ctx) -> None:
         ctx.number(f"layout:{key}:catchment_pct", [before["catchment_pct"], after["catchment_pct"]])
         ctx.number(f"layout:{key}:gt45_pct", [before["gt45_pct"], after["gt45_pct"]])
         layouts[key] = {"start": env_to_dict(r.start), "optimised": env_to_dict(r.optimised),
-                        "moved_cm": np.hypot(*(np.asarray(r.optimised.landmarks)[:, :2]
+                        "moved_cm": np.hypot(*(np.asarray(r.optimised.landmarks)[np.asarray(r.optimised.valid), :2]
                                                - np.asarray(r.start.landmarks)[np.asarray(r.start.valid), :2]).T).tolist()}
         ctx.figure(f"layout_{name}{'_occlude' + str(k) if k else ''}.png", layout_figure(r, ctx.settings.spacing),
                    f"{name}, DELV{' with ' + str(k) + ' landmark(s) hidden' if k else ''}: the thesis's layout and the "

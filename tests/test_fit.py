@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 from delvjax import reproduce
-from studies import fit, fit_cells, fit_model, thesis
+from studies import fit, fit_causes, fit_cells, fit_model, thesis
+from studies.thesis_notes import NOTES
 
 
 def test_targets_are_the_thesis_numbers_of_the_seven_tables_without_the_copied_rows():
@@ -110,6 +111,21 @@ def test_the_fitted_point_is_the_best_evaluated_and_never_worse_than_the_default
     assert res.fitted == best["point"] and best["objective"] <= f(DEFAULT)
     assert fit_model.describe(DEFAULT, DEFAULT) == "defaults"
     assert fit_model.describe({**DEFAULT, "a": 2.0, "c": 20.0}, DEFAULT) == "a=2, c=20"
+
+
+def test_every_unreached_number_gets_the_cause_its_case_calls_for():
+    T = fit_model.Target
+    assert fit_causes.likely_cause(T("table5_4", "ring5", "delv-compass", 3, "catchment", 2.96), 44.7).endswith(
+        "(thesis note table5_4_k3_delv_equal)")
+    assert all(note in NOTES for note in fit_causes.NOTED.values())
+    assert fit_causes.likely_cause(T("fig5_5", "env3", "delv-compass", 0, "catchment", 84.91), 100.0).startswith("ceiling")
+    assert not fit_causes.likely_cause(T("fig5_5", "env3", "delv-compass", 0, "catchment", 84.91), 97.0).startswith(
+        "ceiling")  # below the ceiling under the defaults: another cause
+    assert "per-choice" in fit_causes.likely_cause(T("table5_3", "env1", "delv-compass", 1, "catchment", 49.11), 75.4)
+    assert fit_causes.likely_cause(T("table5_3", "env3", "delv-compass", 1, "catchment", 69.08), 99.6).startswith(
+        "not explained")
+    assert "rings" in fit_causes.likely_cause(T("table5_4", "ring6", "acv", 1, "catchment", 77.96), 39.6)
+    assert fit_causes.likely_cause(T("table5_1", "env3", "acv", 0, "gt45", 33.33), 57.8).startswith("not explained")
 
 
 def test_scaled_environments_keep_centres_and_scale_radii():
