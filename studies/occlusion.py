@@ -57,10 +57,7 @@ def run(ctx) -> None:
         masks, hidden, ks = stacked_masks(e, k_max)
         spacing = settings.spacing if name.startswith("env") else max(settings.spacing, RING_SPACING)
         for m in METHODS:
-            res = {rules: rollouts.catchment_area(e.arrays(), program(m, PROGRAM)[0], sensor, spacing=spacing, key=key,
-                                                  masks=masks, hidden=hidden, home_radius=HOME_RADIUS,
-                                                  lanes=settings.lanes, **RULES[rules])
-                   for rules in RULES}
+            res = rule_catchments(e, m, sensor, spacing, key, masks, hidden, settings.lanes)
             summaries = {rules: rollouts.catchment_summary(c)["per_mask"] for rules, c in res.items()}
             for i, row in enumerate(summaries["default"]):
                 mask_rows.append({"env": name, "method": m, "k": int(ks[i]), "hidden": " ".join(map(str, row["hidden"])),
@@ -97,6 +94,20 @@ def run(ctx) -> None:
     ctx.csv("occlusion_per_choice.csv", rows=mask_rows)
     figures(ctx, per_k, fig5_10)
     gap_matching.report(ctx, gap_rows, gap_choices)
+
+
+def rule_catchments(e, m: str, sensor: Sensor, spacing: float, key, masks, hidden, lanes: int) -> dict:
+    """The catchments of `m` under every rule set of `RULES`. A method that reads only the current
+    view (ACV, ALV) makes the same trials under the default and the "homing" rules (docs/model.md
+    §5): its default catchment is its "homing" run restated (`rollouts.under_release`), one run fewer."""
+    method = program(m, PROGRAM)[0]
+    view_only = not bool(np.asarray(method.reads_start_view()))
+    res = {rules: rollouts.catchment_area(e.arrays(), method, sensor, spacing=spacing, key=key, masks=masks, hidden=hidden,
+                                          home_radius=HOME_RADIUS, lanes=lanes, **RULES[rules])
+           for rules in RULES if not (view_only and rules == "default")}
+    if view_only:
+        res["default"] = rollouts.under_release(res["homing"], e.arena, sensor.d)
+    return {rules: res[rules] for rules in RULES}
 
 
 def layout_rows(per_k: list[dict], envs) -> list[tuple[str, str, dict]]:

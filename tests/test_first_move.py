@@ -9,6 +9,7 @@ import pytest
 
 import delvjax
 from delvjax.core import rollouts
+from delvjax.registry import get_method
 from delvjax.tables import catchment_columns
 from rollout_cases import run
 
@@ -67,3 +68,23 @@ def test_catchment_counts_points_at_least_d_from_the_walls():
 def test_a_step_too_long_for_the_arena_is_refused():
     with pytest.raises(ValueError, match="d"):
         delvjax.catchment("env1", "delv", spacing=100, d=600)
+
+
+@pytest.mark.parametrize("method", ["alv", "acv"])
+def test_a_view_only_homing_run_restated_under_release_is_the_release_run(method):
+    """The occlusion study runs ACV and ALV once for the default and the "homing" rules (`under_release`)."""
+    from delvjax.core.sensor import Sensor
+
+    env = delvjax.load_env("env1")
+    masks, hidden = rollouts.occlusion_masks(env, 1)
+    runs = {fm: rollouts.catchment_area(env.arrays(), get_method(method), Sensor(), spacing=80, masks=masks,
+                                        hidden=hidden, first_move=fm) for fm in ("release", "homing")}
+    restated = rollouts.under_release(runs["homing"], env.arena, Sensor().d)
+    assert restated.first_move == "release"
+    for field in ("counted", "outcome", "steps", "end", "invalid_steps", "direction", "valid", "error_deg"):
+        np.testing.assert_array_equal(np.asarray(getattr(restated, field)), np.asarray(getattr(runs["release"], field)),
+                                      err_msg=field)
+    assert (np.asarray(runs["homing"].counted) != np.asarray(restated.counted)).any()  # the wall cells changed
+    with pytest.raises(delvjax.InputError) as exc:
+        rollouts.under_release(runs["release"], env.arena, Sensor().d)
+    assert exc.value.field == "first_move"

@@ -5,7 +5,7 @@ scheduler), trials (blocks of trials as one program), release (seeded release po
 catchment, success (success rate vs distance), trajectories.
 """
 
-from .catchment import Catchment, catchment_area, catchment_summary, hidden_masks, occlusion_masks
+from .catchment import Catchment, catchment_area, catchment_summary, hidden_masks, occlusion_masks, under_release
 from .release import START_TRIES, release_points
 from .rules import (ARENA, COLLISIONS, DEFAULT_DISTANCES, DEFAULT_FIRST_MOVE, DEFAULT_LANES, DEFAULT_RULES, EXCLUDED,
                     FIRST_MOVES, HOMING_RULES, HOME_RADIUS, HOME_TOLERANCE, LANDMARK, MAX_STEPS, NEAR_WALL, N_STARTS, OUTCOMES, PHYSICAL_RULES, RUNNING,
@@ -20,6 +20,6 @@ __all__ = ["ARENA", "COLLISIONS", "Catchment", "DEFAULT_DISTANCES", "DEFAULT_FIR
            "catchment_counted", "wall_margin", "NEAR_WALL", "DEFAULT_RULES", "EXCLUDED",
            "FIRST_MOVES", "HOME_RADIUS", "HOME_TOLERANCE", "LANDMARK", "MASK_ROWS", "MAX_STEPS", "N_STARTS", "OUTCOMES",
            "PHYSICAL_RULES", "RUNNING", "START_TRIES", "SUCCESS", "SuccessRate", "TIMEOUT", "TRIALS_PER_DISTANCE", "TRIAL_BLOCK",
-           "Trajectories", "Trials", "catchment_area", "catchment_summary", "check_rules", "hidden_masks",
+           "Trajectories", "Trials", "catchment_area", "catchment_summary", "check_rules", "hidden_masks", "under_release",
            "home_record", "move_poses", "occlusion_masks", "position_status", "release_points", "rollout_keys",
            "run_trials", "success_rate_trials", "trajectory_trials", "trial_block", "wilson_interval_pct"]

@@ -3,6 +3,7 @@ Tables 5.1-5.4; docs/model.md §5)."""
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 from typing import Callable, Sequence
 
@@ -129,6 +130,19 @@ def catchment_area(env: Env, method: HomingMethod, sensor: Sensor, spacing: floa
                      direction=direction, valid=valid, error_deg=error,
                      hidden=tuple(tuple(int(i) for i in h) for h in hidden), first_move=first_move,
                      collisions=collisions)
+
+
+def under_release(result: Catchment, arena, d) -> Catchment:
+    """A catchment run under first_move "homing" restated under "release" (the default), for a method
+    that reads only the current view: such a method turns at once under either rule (docs/model.md
+    §5), so the trials are the same and only the cells that count change (`catchment_counted`; the
+    others become NEAR_WALL). The caller vouches for the method; `d` is the step distance."""
+    if result.first_move != "homing":
+        raise InputError("first_move", result.first_move, 'must be "homing" (the run to restate)')
+    included = np.asarray(result.included)
+    counted = catchment_counted(arena, np.asarray(result.points), included, "release", d)
+    outcome = jnp.where(jnp.asarray(counted | ~included)[None, :], result.outcome, NEAR_WALL)
+    return dataclasses.replace(result, counted=jax.device_put(counted), outcome=outcome, first_move="release")
 
 
 def catchment_summary(result: Catchment) -> dict:
