@@ -177,9 +177,9 @@ def _(get):
             f">= that on both for holds")
     if ew < ed - ROBOT_BEAT or cw > cd + ROBOT_BEAT:
         return ours, "fails", _why(rule, "image matching " + ("errs less" if ew < ed - ROBOT_BEAT else "homes more")
-                                   + ": the rendered arena has uniform light, no clutter and exact poses, the conditions "
-                                   "where comparing pixels works best; the thesis's camera images had none of them "
-                                   "(the image_effects study varies light and noise)")
+                                   + ": the rendered arena has uniform light, no clutter and exact poses, the "
+                                   "conditions where comparing pixels works best; the thesis's camera images had none "
+                                   "of these advantages (the image_effects study varies light and noise)")
     parts = [ed <= ew - ROBOT_BEAT, None if at_ceiling([cd, cw]) else cd >= cw + ROBOT_BEAT]
     verdict = _combine(parts)
     verdict = "partly" if verdict == "fails" else verdict  # ties: not beaten, not better
