@@ -2,21 +2,10 @@
 
 from __future__ import annotations
 
-from .claims_common import (BACKGROUNDS, CANNOT_TELL, CEILING, ENVS, _combine, _mean, _n, _opt, _pairs, _share,
-                            _verdict, _why, Missing, at_ceiling, at_floor, check, no_loss)
-
-from .claims_ch5 import BEYOND_TIE, GAP_TOL_OCCL, SEVERE, SMALL_OCCL, TIE_DEG, _occl  # the first part's tolerances and helpers
-
-OCCLUSION_LAYOUTS = ("env1", "env2", "env3", "ring3", "ring5", "ring6")
-
-
-def _short(m: str) -> str:
-    return m.split("-")[0].upper()
-
-
-# --- chapter 5 ----------------------------------------------------------------------------------
-
-SLIGHTLY = 10.0  # degrees
+from .claims_common import (BACKGROUNDS, CANNOT_TELL, CEILING, ENVS, _combine, _n, _share, _verdict, _why, Missing,
+                            at_ceiling, at_floor, check, no_loss)
+from .claims_ch5 import (BEYOND_TIE, GAP_TOL_OCCL, OCCLUSION_LAYOUTS, SEVERE, SMALL_OCCL, TIE_DEG,  # the first part's
+                         _occl, _short)  # tolerances and helpers
 
 
 @check("acv_larger_catchment_small_occlusion")
