@@ -114,18 +114,21 @@ def _bars(total: int, enabled: bool) -> Iterator[Any]:
 
 
 def run_study(name: str, module, out: Path, settings: Settings, force: bool = False,
-              progress: bool = True, painter: ThreadPoolExecutor | None = None
+              progress: bool = True, painter: ThreadPoolExecutor | None = None, digest: str | None = None
               ) -> tuple[StudyRecord, bool, Future | None]:
     """Run one study unless current; returns (record, ran, future of its completion).
 
     `painter`: one thread that renders the figures while the next study computes; the
     study.json is then written by that thread after the figures (`StudyContext.finish`).
     `record.seconds` is the study's computation; rendering its figures overlaps the next one.
+    `digest`: the study's hash taken when its code was imported (`reproduce` takes every study's
+    before the first runs, so a source edited during a run marks the studies it changes as stale
+    instead of stamping code that did not run with the new hash); None: taken now.
     """
     from tqdm.auto import tqdm
 
     folder = out / name
-    digest = study_hash(module, settings)
+    digest = study_hash(module, settings) if digest is None else digest
     if not force and is_current(folder, digest):
         return load_record(folder), False, None  # type: ignore[return-value]
     record = StudyRecord(name=name, title=module.TITLE, hash=digest, settings=settings_record(settings),
@@ -162,6 +165,7 @@ def reproduce(out: str | Path = "results", quick: bool = False, only: str | None
     enable_compilation_cache()
     compile_seconds()
     modules = registry(names)
+    digests = {name: study_hash(module, settings) for name, module in modules.items()}  # the code that runs
     records, ran = {}, []
     t0 = time.perf_counter()
     completions = []
@@ -169,7 +173,7 @@ def reproduce(out: str | Path = "results", quick: bool = False, only: str | None
         for name in names:  # a dozen heterogeneous studies: the driver, not a hot path
             bar.set_postfix_str(name)
             rec, did, done = run_study(name, modules[name], out, settings, force=force, progress=progress,
-                                       painter=painter)
+                                       painter=painter, digest=digests[name])
             records[name] = rec
             completions.append(done)
             if did:

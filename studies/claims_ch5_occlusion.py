@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from .claims_common import (BACKGROUNDS, CANNOT_TELL, CEILING, ENVS, _combine, _n, _share, _verdict, _why, Missing,
                             at_ceiling, at_floor, check, no_loss)
-from .claims_ch5 import (BEYOND_TIE, GAP_TOL_OCCL, OCCLUSION_LAYOUTS, SEVERE, SMALL_OCCL, TIE_DEG,  # the first part's
+from .claims_ch5 import (ACV_LAYOUT, BEYOND_TIE, GAP_TOL_OCCL, OCCLUSION_LAYOUTS, SEVERE, SMALL_OCCL, TIE_DEG,  # the first part's
                          _occl, _short)  # tolerances and helpers
 
 
@@ -161,7 +161,9 @@ def _(get):
                      + "/".join(_n(r) for r, _ in rise.values()) + "°")
     rule = f"> 5° at >= {WRONG_MIN:.0f} % of points and each rise >= max({RISE_MIN:.0f}°, 10 %), per background"
     return "; ".join(parts) + " (DELV/ACV/ALV)", _verdict(ok), _why(
-        rule, "" if all(ok) else "exact or harmless under some background settings")
+        rule, "" if all(ok) else "exact or harmless under some background settings" + (
+            " (distant: a background at infinity looks the same from every position, so the rotation that best aligns "
+            "the two panoramas is the true one)" if not ok[BACKGROUNDS.index("distant")] else ""))
 
 
 ORDER_GAP = 2.0  # points
@@ -258,5 +260,7 @@ def _(get):
     verdict = _combine(parts)
     return "; ".join(cells), verdict, _why(f"errors within {SIMILAR_ERR:.0f}°, catchments within {SIMILAR_CATCH:.0f} "
                                            "points", "" if all(p is not False for p in parts[::2])
-                                           else "ACV errs far more somewhere",
+                                           else "ACV errs far more somewhere: its corrections are tangential to "
+                                           "the bearings only (Eq 5.2, no distance), so its error grows with the "
+                                           "distance from home; " + ACV_LAYOUT,
                                            "" if None not in parts[1::2] else "catchments at the ceiling")

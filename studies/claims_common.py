@@ -95,6 +95,13 @@ def _opt(get, key):
         return None
 
 
+def _failures(get, key: str) -> dict | None:
+    """Failure counts by outcome (`<key>:timeout|landmark|arena`, `studies.common.record_failures`), or
+    None when the run did not record them."""
+    counts = {o: _opt(get, f"{key}:{o}") for o in ("timeout", "landmark", "arena")}
+    return None if any(v is None for v in counts.values()) else {o: int(v) for o, v in counts.items()}
+
+
 def _n(v) -> str:
     """A number or a list of numbers, 1 decimal."""
     if isinstance(v, (list, tuple)):

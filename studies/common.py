@@ -61,9 +61,10 @@ def vector_map(ctx, e: Env, method: str, **options) -> VectorMap:
     return as_vector_map(catchment(ctx, e, method, **options))
 
 
-def catchment(ctx, e: Env, method: str, rules: str = "default", **options) -> rollouts.Catchment:
+def catchment(ctx, e: Env, method: str, rules: str = "default", home_radius: float = HOME_RADIUS,
+              **options) -> rollouts.Catchment:
     return delvjax.catchment(e.arrays(), method=method, spacing=ctx.settings.spacing, seed=ctx.settings.seed,
-                             home_radius=HOME_RADIUS, program=PROGRAM, lanes=ctx.settings.lanes,
+                             home_radius=home_radius, program=PROGRAM, lanes=ctx.settings.lanes,
                              **RULES[rules], **options)
 
 
@@ -121,6 +122,24 @@ def outcome_counts(c: rollouts.Catchment, m: int = 0) -> dict[str, int]:
     inc = np.asarray(c.counted)
     out = np.asarray(c.outcome)[m][inc]
     return {f"{name}": int((out == code).sum()) for code, name in enumerate(rollouts.OUTCOMES)}
+
+
+FAILURES = ("timeout", "landmark", "arena")  # the failure outcomes of a rollout (docs/model.md §5)
+FAR_BINS = 3  # the far third of the nine release distances (50..450 cm): the claims' "far from home"
+
+
+def failure_counts(rows: list[dict], last: int | None = None) -> dict[str, int]:
+    """Failed trials of a success table (`success_table` rows) by outcome: timeout, landmark (a move
+    ending inside a landmark), arena; over the `last` release distances only when given."""
+    rows = rows if last is None else rows[-last:]
+    return {o: int(sum(r[f"{o}_count"] for r in rows)) for o in FAILURES}
+
+
+def record_failures(ctx, key: str, counts: dict[str, int]) -> None:
+    """Failure counts by outcome as numbers `<key>:timeout`, `<key>:landmark`, `<key>:arena` (read back by
+    `claims_common._failures`)."""
+    for outcome in FAILURES:
+        ctx.number(f"{key}:{outcome}", int(counts[outcome]))
 
 
 def success_summary(rows: list[dict]) -> dict:
@@ -209,6 +228,8 @@ def success_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, s
             summ = success_summary(t)
             ctx.number(f"success:env1:{m}{rule_suffix(rules)}", summ["by_distance"])
             ctx.number(f"success_overall:env1:{m}{rule_suffix(rules)}", summ["overall"])
+            record_failures(ctx, f"success_failures:env1:{m}{rule_suffix(rules)}", failure_counts(t))
+            record_failures(ctx, f"success_failures_far:env1:{m}{rule_suffix(rules)}", failure_counts(t, last=FAR_BINS))
             ctx.step(f"success {m} {rules}")
     ctx.table("success_rate", f"Success rate (%) by release distance, {title}", [
         {"method (rules)": k, **{f"{r['distance_cm']:g} cm": r["success_pct"] for r in v},

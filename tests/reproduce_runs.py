@@ -119,6 +119,28 @@ def test_crash_mid_study_leaves_it_incomplete_then_resumes(run, monkeypatch):
     assert reproduce.is_current(out / "environments", reproduce.study_hash(module, TINY))
 
 
+def test_a_source_edited_during_the_run_leaves_the_study_stale(run, monkeypatch):
+    """The hash a record gets is that of the code that ran, taken before the first study: a source
+    edited mid-run (here: the hash changes while `environments` runs) makes the study run again next
+    time instead of stamping the old results with the new code's hash."""
+    out, _, _ = run
+    module = reproduce.registry(["environments"])["environments"]
+    real_hash, real_run, edited = reproduce.study_hash, module.run, []
+    monkeypatch.setattr(reproduce, "study_hash", lambda m, s: real_hash(m, s) + ("-edited" if edited else ""))
+
+    def edit_then_run(ctx):
+        edited.append(True)  # the sources change on disk while the study computes
+        real_run(ctx)
+
+    monkeypatch.setattr(module, "run", edit_then_run)
+    assert reproduce.reproduce(out, only="environments", force=True, settings=TINY, progress=False)["ran"] == [
+        "environments"]
+    assert read_record(out, "environments")["hash"] == real_hash(module, TINY)  # the code that ran
+    assert not reproduce.is_current(out / "environments", reproduce.study_hash(module, TINY))  # stale for the edit
+    monkeypatch.undo()
+    assert reproduce.is_current(out / "environments", reproduce.study_hash(module, TINY))
+
+
 def test_a_figure_that_fails_leaves_its_study_incomplete(run, monkeypatch):
     """Figures are drawn on a second thread and study.json is written after them: a figure that
     cannot be drawn raises from reproduce(), and its study has no study.json (it runs again)."""
