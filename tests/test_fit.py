@@ -202,3 +202,17 @@ def test_env3_variants_keep_the_description_and_are_reproducible():
         assert np.all(lm[:, 0] + lm[:, 2] <= 1000.0) and np.all(lm[:, 1] - lm[:, 2] >= 0.0)
     moved = np.asarray(a[0].landmarks)[np.asarray(a[0].valid)]
     assert not np.allclose(moved, np.asarray(fit_cells.scaled_env("env3", 1.0).landmarks)[:4])
+
+
+def test_the_cause_probe_runs_and_reports_per_layout_numbers():
+    """`python -m studies.causes_probe` at a tiny size (the README's promise): numbers per layout and
+    per ring width, percentages in range; env3 unmoved (jitter 0) gives our env3's values."""
+    from studies import causes_probe
+
+    lay = causes_probe.env3_layouts(n=2, spacing=250.0, acv_jitter=0.0, delv_jitter=0.0, delv_variants=1)
+    assert len(lay["acv_gt45_k0_pct"]) == 2 and len(lay["delv_compass_catchment_k1_pct"]) == 1
+    assert lay["acv_gt45_k0_pct"][0] == lay["acv_gt45_k0_pct"][1]  # the same layout twice
+    assert all(0.0 <= v <= 100.0 for v in lay["acv_gt45_k0_pct"] + lay["delv_compass_catchment_k1_pct"])
+    px = causes_probe.pixels(spacing=250.0, ds=(50.0,), widths=(360,))
+    assert set(px["env1_mean_error_deg"][360]) == {"d=50"} and 0.0 <= px["env1_mean_error_deg"][360]["d=50"] < 180.0
+    assert px["random3_curve_deg"][360] and all(0.0 <= v <= 180.0 for v in px["random3_curve_deg"][360])
