@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from .claims_common import (CANNOT_TELL, CEILING, ENVS, _combine, _failures, _mean, _n, _opt, _pairs, _share, _verdict,
-                            _why, at_ceiling, at_floor, check)
+from .claims_common import (CANNOT_TELL, CEILING, _combine, _failures, _mean, _n, _pairs, _share, _verdict, _why,
+                            at_ceiling, check)
 from .claims_ch4 import FAR_DROP, LARGE, THIRD, _over90_far, _physical  # the first part's tolerances and helpers
 
 

@@ -10,8 +10,8 @@ is "cannot tell".
 
 from __future__ import annotations
 
-from .claims_common import (BACKGROUNDS, CANNOT_TELL, CEILING, ENVS, _combine, _failures, _mean, _n, _opt, _pairs, _share,
-                            _verdict, _why, Missing, at_ceiling, at_floor, check, no_loss)
+from .claims_common import (ENVS, _combine, _failures, _mean, _n, _opt, _pairs, _share, _verdict, _why, at_ceiling,
+                            at_floor, check)
 
 OCCLUSION_LAYOUTS = ("env1", "env2", "env3", "ring3", "ring5", "ring6")
 
