@@ -103,7 +103,7 @@ def _step_loss_cause(get, catch: dict, cspread: float) -> str:
     fails = _failures(get, f"catchment_failures:env1:delv:d={low}")
     if not fails or not sum(fails.values()):
         return text
-    total, timeouts = sum(fails.values()), fails.get("timeout", 0)
+    total, timeouts = sum(fails.values()), fails["timeout"]
     text += f" (d = {low} cm: {timeouts} of its {total} failures time out"
     radius = _opt(get, "step_distance:home_radius_cm")
     wide = _opt(get, f"catchment:env1:delv:d={low}:home_radius={0.5 * low:g}")

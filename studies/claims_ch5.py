@@ -10,8 +10,8 @@ is "cannot tell".
 
 from __future__ import annotations
 
-from .claims_common import (ENVS, _combine, _failures, _mean, _n, _opt, _pairs, _share, _verdict, _why, at_ceiling,
-                            at_floor, check)
+from .claims_common import (ENVS, FAILURES, _combine, _failures, _mean, _n, _opt, _pairs, _share, _verdict, _why,
+                            at_ceiling, at_floor, check)
 
 OCCLUSION_LAYOUTS = ("env1", "env2", "env3", "ring3", "ring5", "ring6")
 
@@ -161,7 +161,7 @@ def _far_failures(get, method: str) -> str:
     d, o = (_failures(get, f"success_failures_far:env1:{m}") for m in ("delv-compass", method))
     if not d or not o:
         return ""
-    fmt = lambda f: "/".join(str(f[k]) for k in ("timeout", "landmark", "arena"))  # noqa: E731
+    fmt = lambda f: "/".join(str(f[k]) for k in FAILURES)  # noqa: E731
     return (f" (failures timeout/landmark/arena of the far {NEAR_FAR} distances: DELV {fmt(d)}, {_short(method)} "
             f"{fmt(o)}; our DELV senses without noise, so a poor first estimate far away sharpens with every step "
             "towards home)")

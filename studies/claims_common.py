@@ -95,10 +95,13 @@ def _opt(get, key):
         return None
 
 
+FAILURES = ("timeout", "landmark", "arena")  # failure outcomes, as studies.common.FAILURES (no JAX import here)
+
+
 def _failures(get, key: str) -> dict | None:
     """Failure counts by outcome (`<key>:timeout|landmark|arena`, `studies.common.record_failures`), or
     None when the run did not record them."""
-    counts = {o: _opt(get, f"{key}:{o}") for o in ("timeout", "landmark", "arena")}
+    counts = {o: _opt(get, f"{key}:{o}") for o in FAILURES}
     return None if any(v is None for v in counts.values()) else {o: int(v) for o, v in counts.items()}
 
 

@@ -135,6 +135,11 @@ def failure_counts(rows: list[dict], last: int | None = None) -> dict[str, int]:
     return {o: int(sum(r[f"{o}_count"] for r in rows)) for o in FAILURES}
 
 
+def failures_text(counts: dict[str, int]) -> str:
+    """Failure counts as a table cell "timeout/landmark/arena"."""
+    return "/".join(str(counts[o]) for o in FAILURES)
+
+
 def record_failures(ctx, key: str, counts: dict[str, int]) -> None:
     """Failure counts by outcome as numbers `<key>:timeout`, `<key>:landmark`, `<key>:arena` (read back by
     `claims_common._failures`)."""
@@ -213,7 +218,7 @@ def catchment_columns(ctx, key: str, results: dict, row: dict) -> None:
         ctx.number(key + rule_suffix(rules), pct)
         counts = outcome_counts(c)
         row[f"ours {rules} %"] = pct
-        row[f"{rules} failures (timeout/landmark/arena)"] = f"{counts['timeout']}/{counts['landmark']}/{counts['arena']}"
+        row[f"{rules} failures (timeout/landmark/arena)"] = failures_text(counts)
 
 
 def success_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, source: str, note: str) -> dict:
@@ -233,8 +238,7 @@ def success_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, s
             ctx.step(f"success {m} {rules}")
     ctx.table("success_rate", f"Success rate (%) by release distance, {title}", [
         {"method (rules)": k, **{f"{r['distance_cm']:g} cm": r["success_pct"] for r in v},
-         "failures timeout/landmark/arena": "/".join(str(sum(r[f"{o}_count"] for r in v))
-                                                     for o in ("timeout", "landmark", "arena"))}
+         "failures timeout/landmark/arena": failures_text(failure_counts(v))}
         for k, v in tables.items()], source=source, note=note)
     ctx.figure(f"{fig_file}.png", success_rate_figure(
         tables, f"Success rate, {title} ({ctx.settings.trials} trials per distance; {source})"), caption)

@@ -11,7 +11,7 @@ from __future__ import annotations
 from delvjax.plots import error_curve_figure
 
 from .common import (FAILURES, HOME_RADIUS, as_vector_map, catchment, curve, curve_means, curves_rows, env,
-                     map_numbers, outcome_counts, panel_figure, record_failures)
+                     failures_text, map_numbers, outcome_counts, panel_figure, record_failures)
 
 TITLE = "Step distance d of the unit movement (Figs 4.6-4.7)"
 STEPS = 1
@@ -35,7 +35,7 @@ def run(ctx) -> None:
         record_failures(ctx, f"catchment_failures:env1:delv:d={d:g}", fails)
         rows.append({"d cm": d, "mean error °": s["mean_error_deg"], "e>45 %": s["gt45_pct"], "e>90 %": s["gt90_pct"],
                      "invalid points": s["invalid"], "catchment %": pct,
-                     "failures timeout/landmark/arena": "/".join(str(fails[k]) for k in FAILURES)})
+                     "failures timeout/landmark/arena": failures_text(fails)})
         items.append((f"d = {d:g} cm: mean error {s['mean_error_deg']:.1f}°", e, vm))
     # the longest step with a home radius of half the step: is a step that jumps over the home disc the loss?
     wide = catchment(ctx, e, "delv", d=DS[-1], home_radius=WIDE_RADIUS)
