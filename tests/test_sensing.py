@@ -84,3 +84,40 @@ def test_visual_compass_matches_reference_and_recovers_rotation(random_envs):
         _, rg = ref.render(lm, env.home, h, [0, 0, 1000, 1000])
         _, rhome = ref.render(lm, env.home, 0.0, [0, 0, 1000, 1000])
         assert abs(ref.wrap(est - ref.visual_compass(rhome, rg))) < 1e-6
+
+
+def test_cylinder_blobs_equal_the_blobs_of_the_rendered_ring():
+    """The closed-form blobs (core/cylinder_blobs.py) are exactly blob_runs of the rendered ring, on
+    random scenes with overlapping, hidden, sub-pixel and surrounding cylinders and viewpoints inside one."""
+    from delvjax.core.cylinder_blobs import blobs_of_cylinders
+    from delvjax.core.sensing import blob_runs, ray_hits, sort_blobs
+
+    rng = np.random.default_rng(7)
+    n_views, n_lm, n_pix = 20000, 6, 360
+    lms = np.zeros((n_views, n_lm, 3), np.float32)
+    lms[..., :2] = rng.uniform(-300, 300, (n_views, n_lm, 2))
+    lms[..., 2] = rng.choice([0.2, 5.0, 30.0, 80.0], (n_views, n_lm)) * rng.uniform(0.5, 1.5, (n_views, n_lm))
+    half = n_views // 2  # clustered: blobs merge and hide each other
+    lms[:half, 1:, :2] = lms[:half, :1, :2] + rng.uniform(-50, 50, (half, n_lm - 1, 2))
+    visible = rng.uniform(size=(n_views, n_lm)) < 0.85
+    origin = rng.uniform(-300, 300, (n_views, 2)).astype(np.float32)
+    origin[:200] = lms[:200, 0, :2]  # inside a cylinder: the whole ring
+    origin[200:400] = 0.0  # a ring of big cylinders around the origin covers it all
+    ring = np.stack([np.cos(np.arange(n_lm)), np.sin(np.arange(n_lm))], -1) * 60.0
+    lms[200:400, :, :2], lms[200:400, :, 2], visible[200:400] = ring, 45.0, True
+    heading = rng.uniform(-7, 7, n_views).astype(np.float32)
+
+    def rendered(lm, vis, o, h):
+        return blob_runs(ray_hits(lm, vis, o, h, n_pix), n_lm)
+
+    def closed_form(lm, vis, o, h):
+        b, w, ok = blobs_of_cylinders(lm, vis, o, h, n_pix)
+        b, ok, w = sort_blobs(b, ok, w)
+        return b, w, ok
+
+    old = [np.asarray(a) for a in jax.jit(jax.vmap(rendered))(lms, visible, origin, heading)]
+    new = [np.asarray(a) for a in jax.jit(jax.vmap(closed_form))(lms, visible, origin, heading)]
+    counts = old[2].sum(1)
+    assert (counts == 0).any() and (counts >= 4).any() and (old[1][:, 0] > 6.28).sum() >= 300  # the cases occur
+    for a, b in zip(old, new):
+        np.testing.assert_array_equal(a, b)

@@ -21,7 +21,8 @@ from .sensor import Sensor
 
 def sense(env: Env, visible: Array, poses: MovePoses, method: HomingMethod, sensor: Sensor) -> UnitMove:
     """The unit move `poses` as the agent senses it, rendering only what `method` reads."""
-    return observe_poses(env, visible, poses, sensor, method.reads_start_view(), method.reads_gray(sensor.channel))
+    return observe_poses(env, visible, poses, sensor, method.reads_start_view(), method.reads_gray(sensor.channel),
+                         method.reads_image())
 
 
 def world_direction(method: HomingMethod, home: UnitMove, view: UnitMove,

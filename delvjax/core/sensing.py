@@ -15,6 +15,7 @@ from .types import BlobFlags, Blobs, Point, Ring, RingMask, Scalar
 from .sensor import Sensor
 from .geometry import TWO_PI, rotate, unit, wrap, wrap_positive
 from .scene import Env
+from .cylinder_blobs import blobs_of_cylinders, pixel_directions
 
 
 class Snapshot(eqx.Module):
@@ -79,12 +80,6 @@ def wall_coordinate(origin: Array, direction: Array, arena: Array) -> Array:
     s_left = 2 * w + h + (ymax - qy)
     s = jnp.where(tx < ty, jnp.where(ux > 0, s_right, s_left), jnp.where(uy > 0, s_top, s_bottom))
     return jnp.mod(s / (2 * (w + h)), 1.0)
-
-
-def pixel_directions(n_pix: int) -> np.ndarray:
-    """Agent-frame unit vectors of the n_pix pixel rays (a trace-time constant), (n_pix, 2)."""
-    a = 2.0 * np.pi * np.arange(n_pix) / n_pix
-    return np.stack([np.cos(a), np.sin(a)], axis=-1).astype(np.float32)
 
 
 def ray_hits(landmarks: Array, visible: Array, origin: Array, heading: Array, n_pix: int) -> Array:
@@ -208,30 +203,37 @@ def sort_blobs(bearing: Array, valid: Array, *carried: Array) -> tuple[Array, ..
 
 
 def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, sensor: Sensor,
-             with_gray: Array | bool = True) -> Snapshot:
-    """Render, extract blobs and add bearing noise (docs/model.md §2.5) for one viewpoint."""
-    mask, gray = render(env, visible, pos, heading, sensor, with_gray)
-    bearing, width, valid = blob_runs(mask, env.landmarks.shape[0])
+             with_gray: Array | bool = True, with_mask: Array | bool = True) -> Snapshot:
+    """Render, extract blobs and add bearing noise (docs/model.md §2.5) for one viewpoint.
+
+    The blobs come from the cylinders (`cylinder_blobs`: those of the rendered ring); the ring itself
+    is rendered only for a method that reads it (`with_mask` or `with_gray`; otherwise zero).
+    """
+    needed = with_gray if with_mask is False else (with_mask if with_gray is False else with_mask | with_gray)
+    mask, gray = computed_if(needed, lambda: render(env, visible, pos, heading, sensor, with_gray))
+    bearing, width, valid = blobs_of_cylinders(env.landmarks, visible & env.valid, pos, heading, sensor.n_pix)
     bearing, valid, width = sort_blobs(bearing + sensor.noise.bearing_errors(key, bearing.shape), valid, width)
     return Snapshot(mask=mask, gray=gray, bearing=bearing, width=width, valid=valid, channel=sensor.channel)
 
 
 def observe_move(env: Env, visible: Array, start: Array, end: Array, heading_start: Array, heading_end: Array,
                  d_hat: Array, psi_hat: Array, key: Array, sensor: Sensor,
-                 with_start: Array | bool = True, with_gray: Array | bool = True) -> UnitMove:
+                 with_start: Array | bool = True, with_gray: Array | bool = True,
+                 with_mask: Array | bool = True) -> UnitMove:
     """Snapshots at `start` and `end` of a move already made (true poses given), plus the
     agent's readings: odometry (d_hat, psi_hat) and a compass reading of heading_end - alpha_r
     with N(0, noise.compass) error. Rollouts use this for the step just made.
 
     `with_start` False leaves the start snapshot zero (a method that reads only the current
-    view), `with_gray` False the gray channels (`computed_if`; a traced flag skips the work at
-    run time). No noise draw depends on them.
+    view), `with_gray` False the gray channels, `with_mask` and `with_gray` both False the ring
+    images (`computed_if`; a traced flag skips the work at run time). No noise draw depends on them.
     """
     k_compass, k_start, k_end = sensor.noise.observation_keys(key)
     compass = wrap(heading_end - sensor.alpha_r + sensor.noise.compass_error(k_compass))
     return UnitMove(
-        start=computed_if(with_start, lambda: snapshot(env, visible, start, heading_start, k_start, sensor, with_gray)),
-        end=snapshot(env, visible, end, heading_end, k_end, sensor, with_gray),
+        start=computed_if(with_start, lambda: snapshot(env, visible, start, heading_start, k_start, sensor, with_gray,
+                                                       with_mask)),
+        end=snapshot(env, visible, end, heading_end, k_end, sensor, with_gray, with_mask),
         d_hat=jnp.asarray(d_hat, jnp.float32),
         psi_hat=jnp.asarray(psi_hat, jnp.float32),
         compass=compass,
@@ -269,10 +271,11 @@ def unit_move_poses(start: Array, heading: Array, key: Array, sensor: Sensor,
 
 
 def observe_poses(env: Env, visible: Array, poses: MovePoses, sensor: Sensor,
-                  with_start: Array | bool = True, with_gray: Array | bool = True) -> UnitMove:
+                  with_start: Array | bool = True, with_gray: Array | bool = True,
+                  with_mask: Array | bool = True) -> UnitMove:
     """`observe_move` of a `MovePoses` (the odometry reports d_hat = d)."""
     return observe_move(env, visible, poses.start, poses.end, poses.heading_start, poses.heading_end, sensor.d,
-                        poses.psi_hat, poses.key, sensor, with_start, with_gray)
+                        poses.psi_hat, poses.key, sensor, with_start, with_gray, with_mask)
 
 
 def unit_move(env: Env, start: Array, heading: Array, key: Array, sensor: Sensor,

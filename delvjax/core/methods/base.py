@@ -42,6 +42,11 @@ class HomingMethod(eqx.Module):
         (DELV's motion parallax, docs/model.md §3.1); most read only the current view."""
         return False
 
+    def reads_image(self) -> bool | Array:
+        """Whether the method reads the ring image of a view (`Snapshot.image`, either channel); the
+        blob-reading methods do not, so their rollouts skip rendering it (`sensing.snapshot`)."""
+        return False
+
     def reads_gray(self, channel: str) -> bool | Array:
         """Whether the method reads the gray channel of the current view (docs/model.md §2.2)
         when the sensor's image channel is `channel`."""

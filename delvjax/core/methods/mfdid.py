@@ -82,5 +82,8 @@ class MFDID(HomingMethod):
         valid = safe_norm(h) > 0
         return jnp.where(valid, wrap(angle_of(h) - heading), jnp.nan), valid
 
+    def reads_image(self) -> bool:
+        return True
+
     def reads_gray(self, channel: str) -> bool:
         return channel == "gray" or self.heading.reads_gray

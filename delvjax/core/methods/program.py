@@ -42,5 +42,8 @@ class Program(HomingMethod):
     def reads_start_view(self) -> bool | Array:
         return self._flag([bool(m.reads_start_view()) for m in self.methods])
 
+    def reads_image(self) -> bool | Array:
+        return self._flag([bool(m.reads_image()) for m in self.methods])
+
     def reads_gray(self, channel: str) -> bool | Array:
         return self._flag([bool(m.reads_gray(channel)) for m in self.methods])

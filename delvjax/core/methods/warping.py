@@ -209,5 +209,8 @@ class Warping(HomingMethod):
         valid = jnp.any(s != s[0])
         return jnp.where(valid, angle, jnp.nan), valid
 
+    def reads_image(self) -> bool:
+        return True
+
     def reads_gray(self, channel: str) -> bool:
         return channel == "gray"
