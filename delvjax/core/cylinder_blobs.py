@@ -23,6 +23,13 @@ def pixel_directions(n_pix: int) -> np.ndarray:
     return np.stack([np.cos(a), np.sin(a)], axis=-1).astype(np.float32)
 
 
+def cylinder_offsets(landmarks: Array, origin: Array, heading: Array) -> tuple[Array, Array]:
+    """Cylinder centres in the agent frame (L, 2) and |offset|^2 - r^2 (L,): what a pixel ray is tested
+    against (`sensing.ray_hits`, and `_pixel_hits` here); c2 <= 0 where the viewpoint is inside."""
+    rel = rotate(landmarks[:, :2] - origin, -heading)
+    return rel, jnp.sum(rel * rel, axis=-1) - landmarks[:, 2] ** 2
+
+
 def _pixel_hits(rel: Array, c2: Array, dirs: Array, j: Array) -> Array:
     """The renderer's test (`sensing.ray_hits`) of pixel j (any integer, taken mod n) against each cylinder, (L,)."""
     d = dirs[jnp.mod(j, dirs.shape[0])]  # (L, 2)
@@ -38,13 +45,11 @@ def cylinder_runs(landmarks: Array, visible: Array, origin: Array, heading: Arra
     ray hits (narrower than a pixel's spacing) is inactive.
     """
     dirs = jnp.asarray(pixel_directions(n_pix))
-    rel = rotate(landmarks[:, :2] - origin, -heading)  # (L, 2), agent frame, as the renderer
-    d2 = jnp.sum(rel * rel, axis=-1)
+    rel, c2 = cylinder_offsets(landmarks, origin, heading)
     r = landmarks[:, 2]
-    c2 = d2 - r ** 2
     inside = c2 <= 0
     phi = jnp.arctan2(rel[:, 1], rel[:, 0])
-    beta = jnp.arcsin(jnp.clip(r / jnp.sqrt(jnp.maximum(d2, 1e-30)), 0.0, 1.0))
+    beta = jnp.arcsin(jnp.clip(r / jnp.sqrt(jnp.maximum(c2 + r ** 2, 1e-30)), 0.0, 1.0))
     step = np.float32(2.0 * np.pi / n_pix)
     s0 = jnp.ceil((phi - beta) / step).astype(jnp.int32)
     e0 = jnp.floor((phi + beta) / step).astype(jnp.int32)

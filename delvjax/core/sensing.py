@@ -15,7 +15,7 @@ from .types import BlobFlags, Blobs, Point, Ring, RingMask, Scalar
 from .sensor import Sensor
 from .geometry import TWO_PI, rotate, unit, wrap, wrap_positive
 from .scene import Env
-from .cylinder_blobs import blobs_of_cylinders, pixel_directions
+from .cylinder_blobs import blobs_of_cylinders, cylinder_offsets, pixel_directions
 
 
 class Snapshot(eqx.Module):
@@ -89,8 +89,7 @@ def ray_hits(landmarks: Array, visible: Array, origin: Array, heading: Array, n_
     into the agent frame once, so the per-pixel work is two dot products and compares;
     a ray starting inside a cylinder hits it.
     """
-    rel = rotate(landmarks[:, :2] - origin, -heading)  # (L, 2), agent frame
-    c2 = jnp.sum(rel * rel, axis=-1) - landmarks[:, 2] ** 2  # (L,)
+    rel, c2 = cylinder_offsets(landmarks, origin, heading)  # (L, 2) agent frame, (L,)
     b = jnp.asarray(pixel_directions(n_pix)) @ rel.T  # (n_pix, L)
     hit = visible & ((c2 <= 0) | ((b * b >= c2) & (b > 0)))
     return jnp.any(hit, axis=-1)
@@ -209,7 +208,8 @@ def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, s
     The blobs come from the cylinders (`cylinder_blobs`: those of the rendered ring); the ring itself
     is rendered only for a method that reads it (`with_mask` or `with_gray`; otherwise zero).
     """
-    needed = with_gray if with_mask is False else (with_mask if with_gray is False else with_mask | with_gray)
+    plain = isinstance(with_mask, bool) and isinstance(with_gray, bool)
+    needed = (with_mask or with_gray) if plain else jnp.logical_or(with_mask, with_gray)
     mask, gray = computed_if(needed, lambda: render(env, visible, pos, heading, sensor, with_gray))
     bearing, width, valid = blobs_of_cylinders(env.landmarks, visible & env.valid, pos, heading, sensor.n_pix)
     bearing, valid, width = sort_blobs(bearing + sensor.noise.bearing_errors(key, bearing.shape), valid, width)
