@@ -79,12 +79,17 @@ def add_reproduce(sub) -> None:
     p = sub.add_parser("reproduce", help="every simulation study of the thesis, a report beside the thesis's numbers",
                        description="Run the thesis's studies (skipping those whose code and settings are unchanged) "
                                    "and write figures, CSV/JSON, report.md and report.html into --out.")
-    p.add_argument("--quick", action="store_true", help="coarse 10 x 10 grid (spacing 100 cm): a preview in about a minute")
+    p.add_argument("--quick", action="store_true",
+                   help="a preview of the thesis's simulation studies on a coarse 10 x 10 grid (spacing 100 cm); the "
+                        "studies beyond the thesis and on rendered images run in a full run or when --only names them")
     p.add_argument("--out", default="results", help="output folder (default results/)")
     p.add_argument("--only", default=None, metavar="STUDY[,STUDY]", help="run only these studies")
     p.add_argument("--list", action="store_true", help="list the studies and exit")
     p.add_argument("--force", action="store_true", help="recompute even studies that are up to date")
     p.add_argument("--seed", type=int, default=0, help="seed of every random heading, release point and noise")
+    p.add_argument("--workers", type=int, default=None, metavar="N",
+                   help="studies run side by side (default: one per CPU core, at most 4; 1: one at a time); "
+                        "the numbers do not depend on it")
     p.set_defaults(func=cmd_reproduce)
 
 
@@ -96,9 +101,12 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
             print(f"{name:16s} {module.TITLE}")
         return 0
     reproduce.select(args.only)  # validate before any work
+    if args.workers is not None and args.workers < 1:
+        raise InputError("--workers", args.workers, "must be at least 1")
     reproduce.check_out_dir(args.out)
     t0 = time.perf_counter()
-    result = reproduce.reproduce(args.out, quick=args.quick, only=args.only, force=args.force, seed=args.seed)
+    result = reproduce.reproduce(args.out, quick=args.quick, only=args.only, force=args.force, seed=args.seed,
+                                 workers=args.workers)
     skipped = [n for n in result["records"] if n not in result["ran"]]
     print(f"ran {len(result['ran'])} studies" + (f", {len(skipped)} unchanged (skipped)" if skipped else "")
           + f" in {time.perf_counter() - t0:.1f} s; report: {result['report']}")

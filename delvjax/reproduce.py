@@ -15,7 +15,9 @@ import ast
 import hashlib
 import importlib
 import json
+import os
 import sys
+import threading
 import time
 from concurrent.futures import Future, ThreadPoolExecutor
 from contextlib import contextmanager
@@ -87,11 +89,13 @@ def registry(names: list[str] | None = None) -> dict[str, Any]:
     return {name: importlib.import_module(f"studies.{name}") for name in names}
 
 
-def select(only: str | None) -> list[str]:
-    """Validated study names (`--only a,b`), in registry order."""
-    names = list(importlib.import_module("studies").STUDIES)
+def select(only: str | None, quick: bool = False) -> list[str]:
+    """Validated study names (`--only a,b`), in registry order. Without `--only`, a quick run leaves
+    out the studies of `studies.FULL_RUN_ONLY`; `--only` runs what it names, also under `--quick`."""
+    package = importlib.import_module("studies")
+    names = list(package.STUDIES)
     if only is None:
-        return names
+        return [n for n in names if not (quick and n in package.FULL_RUN_ONLY)]
     wanted = [s.strip() for s in only.split(",") if s.strip()]
     if not wanted:
         raise InputError("--only", only, "must name at least one study")
@@ -99,6 +103,24 @@ def select(only: str | None) -> list[str]:
         if s not in names:
             raise InputError("--only", s, f"unknown study (choose from {', '.join(names)})")
     return [n for n in names if n in wanted]
+
+
+def default_workers() -> int:
+    """Studies run side by side: one per CPU core, at most MAX_WORKERS (each holds its programs and results)."""
+    return max(1, min(MAX_WORKERS, os.cpu_count() or 1))
+
+
+MAX_WORKERS = 4
+
+
+def schedule(names: list[str]) -> tuple[list[str], list[str]]:
+    """(studies run first, one at a time; the rest, longest first): `studies.FIRST` compiles the programs
+    the others share, then `studies.FULL_RUN_SECONDS` orders the others (docs/reproduce.md "Speed")."""
+    package = importlib.import_module("studies")
+    first = [n for n in names if n in package.FIRST]
+    rest = [n for n in names if n not in first]
+    rest.sort(key=lambda n: -package.FULL_RUN_SECONDS.get(n, 0))  # stable: registry order among equals
+    return first, rest
 
 
 @contextmanager
@@ -147,21 +169,28 @@ def run_study(name: str, module, out: Path, settings: Settings, force: bool = Fa
 
 
 def reproduce(out: str | Path = "results", quick: bool = False, only: str | None = None, force: bool = False,
-              seed: int = 0, progress: bool = True, settings: Settings | None = None) -> dict:
+              seed: int = 0, progress: bool = True, settings: Settings | None = None,
+              workers: int | None = None) -> dict:
     """Run the selected studies (skipping current ones), then write report.md / report.html.
 
     `settings` overrides quick/seed (e.g. a tiny grid for tests: Settings(spacing=200.0, trials=10)).
+    `workers`: studies run side by side in threads (default `default_workers()`; 1: one at a time).
+    Each study's numbers are the same either way: a study reads only its own inputs and keys, and
+    the programs are the same (docs/reproduce.md "Speed"; tested).
     Returns {"records": {name: StudyRecord}, "ran": [names], "report": path of report.html}.
     """
     from .cache import enable_compilation_cache
     from .options import seed_value
     from .report import write_report
 
-    names = select(only)
     seed = seed_value(seed)
+    settings = settings or Settings.make(quick=quick, seed=seed)
+    names = select(only, settings.quick)
+    workers = default_workers() if workers is None else int(workers)
+    if workers < 1:
+        raise InputError("workers", workers, "must be at least 1")
     out = check_out_dir(out)
     out.mkdir(parents=True, exist_ok=True)
-    settings = settings or Settings.make(quick=quick, seed=seed)
     enable_compilation_cache()
     compile_seconds()
     modules = registry(names)
@@ -169,19 +198,27 @@ def reproduce(out: str | Path = "results", quick: bool = False, only: str | None
     records, ran = {}, []
     t0 = time.perf_counter()
     completions = []
+    first, rest = schedule(names)
+
+    def one(name: str) -> None:
+        rec, did, done = run_study(name, modules[name], out, settings, force=force, progress=progress,
+                                   painter=painter, digest=digests[name])
+        records[name] = rec
+        completions.append(done)
+        if did:
+            ran.append(name)
+        bar.update(1)
+
     with _bars(len(names), progress) as bar, ThreadPoolExecutor(1, thread_name_prefix="figures") as painter:
-        for name in names:  # a dozen heterogeneous studies: the driver, not a hot path
+        for name in first:  # compiles the shared programs alone
             bar.set_postfix_str(name)
-            rec, did, done = run_study(name, modules[name], out, settings, force=force, progress=progress,
-                                       painter=painter, digest=digests[name])
-            records[name] = rec
-            completions.append(done)
-            if did:
-                ran.append(name)
-            bar.update(1)
+            one(name)
+        bar.set_postfix_str(f"{min(workers, len(rest))} side by side" if rest else "")
+        _side_by_side(one, rest, workers)
         for done in completions:  # figures and study.json files written; a failure is raised here
             if done is not None:
                 done.result()
+    ran = [n for n in names if n in ran]  # registry order, however they finished
     order = importlib.import_module("studies").STUDIES
     for name in order:  # studies of an earlier run (other --only) still appear in the report
         if name not in records:
@@ -191,3 +228,34 @@ def reproduce(out: str | Path = "results", quick: bool = False, only: str | None
     ordered = {n: records[n] for n in order if n in records}
     report = write_report(out, ordered, settings, versions(), wall_seconds=time.perf_counter() - t0, ran=ran)
     return {"records": ordered, "ran": ran, "report": report}
+
+
+def _side_by_side(fn, names: list[str], workers: int) -> None:
+    """`fn(name)` for every name, `workers` at a time in threads (XLA runs and compiles outside the
+    GIL, so two studies use two cores). The first failure stops the studies not yet started and is
+    raised once the running ones end; a study that failed leaves no study.json, so it runs again."""
+    if workers == 1:
+        for name in names:  # a dozen heterogeneous studies: the driver, not a hot path
+            fn(name)
+        return
+    stop = threading.Event()
+
+    def guarded(name: str) -> None:
+        if stop.is_set():  # a study failed: start no other
+            return
+        try:
+            fn(name)
+        except BaseException:
+            stop.set()
+            raise
+
+    with ThreadPoolExecutor(workers, thread_name_prefix="study") as pool:
+        futures = [pool.submit(guarded, name) for name in names]
+        try:
+            for f in futures:  # in submission order: the first failure is raised once the running ones end
+                f.result()
+        except BaseException:
+            stop.set()
+            for f in futures:
+                f.cancel()
+            raise

@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 import platform
+import threading
 from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -62,23 +63,25 @@ def versions() -> dict[str, str]:
 
 # --- compile-time accounting -------------------------------------------------------------
 
-_COMPILE_SECONDS = [0.0]
+_COMPILE_SECONDS: dict[int, float] = {}  # thread id -> seconds: studies run side by side (reproduce.py)
 
 
 def _on_duration(event: str, duration: float, **_: Any) -> None:
-    if event in COMPILE_EVENTS:
-        _COMPILE_SECONDS[0] += duration
+    if event in COMPILE_EVENTS:  # reported in the thread that traces and compiles
+        ident = threading.get_ident()
+        _COMPILE_SECONDS[ident] = _COMPILE_SECONDS.get(ident, 0.0) + duration
 
 
 _LISTENING = []
 
 
 def compile_seconds() -> float:
-    """Seconds spent tracing, lowering and compiling XLA programs in this process so far."""
+    """Seconds this thread has spent tracing, lowering and compiling XLA programs so far (each
+    study runs in one thread, so a study's compile time is not mixed with its neighbour's)."""
     if not _LISTENING:
         jax.monitoring.register_event_duration_secs_listener(_on_duration)
         _LISTENING.append(True)
-    return _COMPILE_SECONDS[0]
+    return _COMPILE_SECONDS.get(threading.get_ident(), 0.0)
 
 
 # --- one study's context -----------------------------------------------------------------

@@ -22,3 +22,21 @@ STUDIES = [
     "natural_images",
     "image_effects",
 ]
+
+# Studies beyond the thesis's simulations (the fit, gradients, layout design, image effects) and the
+# two on rendered images: a full run has them, `--quick` (a preview of the thesis's simulation
+# experiments) leaves them out unless `--only` names them. Together they were 177 of the 331 s of a
+# cold `--quick` on 2 CPU cores, 150 s of it compilation (docs/reproduce.md "Speed").
+FULL_RUN_ONLY = ("fit", "sensitivity", "layouts", "robot_images", "natural_images", "image_effects")
+
+# The study that compiles the rollout program every other simulation study shares (`common.PROGRAM`):
+# it runs before the others start side by side, so that two of them do not compile it at once.
+FIRST = ("no_compass",)
+
+# Rough seconds of each study in a full run on 2 CPU cores, one at a time (occlusion, fit and layouts
+# measured; the others scaled from --quick): only the order in which studies side by side are started,
+# the longest first, so that a long one does not start last. A study missing here starts last.
+FULL_RUN_SECONDS = {"occlusion": 620, "fit": 240, "layouts": 145, "quantization": 120, "visual_compass": 100,
+                    "image_matching": 80, "sensitivity": 60, "landmark_number": 50, "robot_images": 45,
+                    "comparators": 40, "with_compass": 35, "natural_images": 30, "image_effects": 30,
+                    "step_distance": 25, "no_compass": 25, "environments": 1}

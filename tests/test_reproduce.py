@@ -255,3 +255,4 @@ def test_claim_without_its_study_is_not_applicable(run, study, claim_ids):
 
 
 from reproduce_runs import *  # noqa: E402,F401,F403  the run tests, collected here: same worker, same `run`
+from reproduce_schedule import *  # noqa: E402,F401,F403  side by side and --quick: same worker, same `run`
