@@ -2,7 +2,8 @@
 changed, per-study wall and compile seconds, and peak memory (issue targets: full < 5 min,
 --quick < 60 s, second run < 10 s, peak < 4 GB on 2 CPU cores).
 
-Run: python benchmarks/bench_reproduce.py [--quick] [--out DIR]
+Run: python benchmarks/bench_reproduce.py [--quick] [--out DIR] [--workers N]
+(--workers 1 against the default, one run after the other, shows what studies side by side save.)
 Each run is a subprocess (`python -m delvjax.cli reproduce`); peak memory is the largest
 resident set of those children (getrusage). This is a benchmark, not a test.
 """
@@ -20,8 +21,9 @@ import time
 from pathlib import Path
 
 
-def run(out: Path, quick: bool, cache: str) -> float:
+def run(out: Path, quick: bool, cache: str, workers: int | None = None) -> float:
     cmd = [sys.executable, "-m", "delvjax.cli", "reproduce", "--out", str(out)] + (["--quick"] if quick else [])
+    cmd += [] if workers is None else ["--workers", str(workers)]
     env = {**os.environ, "DELVJAX_CACHE_DIR": cache}
     t0 = time.perf_counter()
     subprocess.run(cmd, check=True, env=env, stderr=subprocess.DEVNULL)
@@ -32,13 +34,14 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true")
     p.add_argument("--out", default=None, help="output folder (default: a temporary one)")
+    p.add_argument("--workers", type=int, default=None, help="studies side by side (default: reproduce's)")
     a = p.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(a.out or Path(tmp) / "results")
-        cold = run(out, a.quick, cache="")  # no persistent compilation cache: everything compiles
-        again = run(out, a.quick, cache="")
+        cold = run(out, a.quick, cache="", workers=a.workers)  # no persistent compilation cache: all compiles
+        again = run(out, a.quick, cache="", workers=a.workers)
         peak_gb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024 ** 2
-        print(f"reproduce{' --quick' if a.quick else ''}: cold {cold:.1f} s, second run {again:.1f} s, "
+        print(f"reproduce{' --quick' if a.quick else ''} (workers {a.workers or 'default'}): cold {cold:.1f} s, second run {again:.1f} s, "
               f"peak RSS {peak_gb:.2f} GB")
         print(f"{'study':16s} {'wall s':>8s} {'compile s':>10s}")
         for f in sorted(out.glob("*/study.json")):
