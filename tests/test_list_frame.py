@@ -104,3 +104,40 @@ def test_agent_frame_order_depends_on_the_turn(heading):
 def test_order_is_validated():
     with pytest.raises(ValueError, match="order"):
         DELV(order="camera")
+
+
+def _offsets_by_remainder(bearing, valid, alphas):
+    """list_offsets as first written: one float remainder per (hypothesis, blob), (A, B) layout."""
+    from delvjax.core.estimation import TIE_RAD
+    from delvjax.core.geometry import TWO_PI
+    from delvjax.core.search import first_argmin
+
+    home_frame = jnp.mod(bearing[None, :] + alphas[:, None] + TIE_RAD, TWO_PI)
+    return first_argmin(jnp.where(valid[None, :], home_frame, jnp.inf), axis=-1)
+
+
+def test_home_frame_offsets_equal_the_remainder_formula_bit_for_bit():
+    """`mod_two_pi_of_sum` (two exact subtractions) is `jnp.mod` bit for bit on sorted blob bearings in
+    [0, 2 pi): uniform ones, the half-pixel lattice, both ends of the range; and the offsets equal the
+    first formula's for 360 hypotheses and for one heading estimate of any sign."""
+    from delvjax.core.estimation import TIE_RAD
+    from delvjax.core.geometry import TWO_PI
+    from delvjax.core.methods.delv import list_offsets, mod_two_pi_of_sum
+
+    rng = np.random.default_rng(7)
+    alphas = TWO_PI * jnp.arange(360, dtype=jnp.float32) / 360
+    top = np.nextafter(np.float32(TWO_PI), np.float32(0))
+    views = np.concatenate([rng.uniform(0, TWO_PI, (200, 6)), (rng.integers(0, 720, (200, 6)) + 0.5) * np.pi / 360,
+                            np.tile([0.0, top, np.pi, 1e-7, top - 1e-6, 3.0], (1, 1))]).astype(np.float32)
+    views = np.sort(views, axis=1)
+    valid = rng.random(views.shape) < 0.8
+    remainder = jax.jit(jax.vmap(lambda b: jnp.mod(b[:, None] + alphas[None, :] + TIE_RAD, TWO_PI)))
+    exact = jax.jit(jax.vmap(lambda b: mod_two_pi_of_sum(b, alphas, TIE_RAD)))
+    a, b = np.asarray(remainder(views)), np.asarray(exact(views))
+    assert a.shape == b.shape == (views.shape[0], 6, 360)
+    assert np.array_equal(a.view(np.int32), b.view(np.int32))
+    for hyps in (alphas, jnp.asarray([-0.3], jnp.float32), jnp.asarray([7.5], jnp.float32)):
+        new = jax.jit(jax.vmap(lambda b, v: list_offsets(b, v, hyps)))(views, valid)
+        old = jax.jit(jax.vmap(lambda b, v: _offsets_by_remainder(b, v, hyps)))(views, valid)
+        assert np.array_equal(np.asarray(new), np.asarray(old))
+        assert np.asarray(new).max() < 6
