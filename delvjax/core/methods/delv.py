@@ -32,7 +32,7 @@ def list_offsets(bearing: Blobs, valid: BlobFlags, alphas: Hypotheses) -> Array:
     agent-frame list rotated to start at this index: (A,) int (0 where no blob is valid).
     The table is laid out (B, A) and reduced over the blobs: a reduction over a short minor axis
     does not vectorise on XLA's CPU (with the (A, B) layout this function took 60 us of 128-wide
-    vmap per item, now about 9; benchmarks/bench_delv_offsets.py)."""
+    vmap per item, now about 5; benchmarks/bench_delv_offsets.py)."""
     # + TIE_RAD: bearings (half-pixel lattice) plus a whole-degree heading often land exactly on 2 pi;
     # float rounding must not decide whether such a blob starts or ends the list
     if alphas.shape[0] == 1:  # a heading estimate (any angle): one remainder per blob
@@ -45,7 +45,8 @@ def list_offsets(bearing: Blobs, valid: BlobFlags, alphas: Hypotheses) -> Array:
 def mod_two_pi_of_sum(bearing: Blobs, alphas: Hypotheses, tie: float) -> Array:
     """`jnp.mod(bearing[:, None] + alphas[None, :] + tie, TWO_PI)`, (B, A), bit for bit where the
     bearings and hypotheses lie in [0, 2 pi) (sorted blobs, `sensing.sort_blobs`; the no-compass
-    grid), without a (B, A) float remainder (a libm call per element on XLA's CPU: 27 us of 128-wide vmap per item against 2).
+    grid), without a (B, A) float remainder (a libm call per element on XLA's CPU: 27 us of a
+    128-wide vmap per item against 2).
     Both inputs are first reduced to [0, 2 pi] (B + A remainders, the identity on that range), so
     the sum x lies in [0, 3 * 2 pi) for a tie below 2 pi, where fmod(x, y) is x - y or x - 2 y, each
     subtraction exact (Sterbenz: y <= x <= 2 y), and x >= 0, so `jnp.mod` adds nothing to the
