@@ -96,17 +96,14 @@ def settings_section(settings, versions: dict, records: dict, wall_seconds: floa
              f"This invocation took {wall_seconds:.1f} s; the studies' own recorded wall times add up to {total:.1f} s "
              "(studies run side by side, `--workers`).",
              md_table(["study", "wall s", "compile s", "this run"], timing)]
-    missing = [n for n in full_run_only() if n not in records]
+    from studies import FULL_RUN_ONLY
+
+    missing = [n for n in FULL_RUN_ONLY if n not in records]
     if settings.quick and missing:
         parts.append("**A preview (`--quick`)**: a 10 x 10 grid, and these studies are left to a full run (or "
                      f"`--only`): {', '.join(f'`{n}`' for n in missing)}; claims that read them say *not run*.")
     return "\n\n".join(parts)
 
-
-def full_run_only() -> tuple[str, ...]:
-    from studies import FULL_RUN_ONLY
-
-    return FULL_RUN_ONLY
 
 
 def choices_section(numbers: dict) -> str:
