@@ -29,7 +29,7 @@ method, repeats = sys.argv[1], int(sys.argv[2])
 try:  # methods as modules
     from delvjax.core import maps
     from delvjax.core.sensor import Sensor
-    from delvjax.registry import METHODS
+    from delvjax.options._registry import METHODS
     args = (Sensor(), METHODS[method])
 except ImportError:  # before: one Config, the method name static under jit
     from delvjax import maps

@@ -15,15 +15,15 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-import reference as ref  # noqa: E402
-from conftest import random_landmarks  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository root: tests.twins
+from tests.twins import methods as ref
+from conftest import random_landmarks
 
-import delvjax  # noqa: E402
-from delvjax.core.sensor import Sensor  # noqa: E402
-from delvjax.registry import METHODS  # noqa: E402
-from delvjax.core.maps import grid_included, grid_points, homing_directions, random_headings  # noqa: E402
-from delvjax.core.scene import stack_envs  # noqa: E402
+import delvjax
+from delvjax.core.sensor import Sensor
+from delvjax.options._registry import METHODS
+from delvjax.core.maps import grid_included, grid_points, homing_directions, random_headings
+from delvjax.core.scene import stack_envs
 
 ARENA, HOME = [0, 0, 1000, 1000], [500, 500]
 

@@ -3,7 +3,7 @@ extracting its runs (sensing.blob_runs of ray_hits), and against the NumPy refer
 
 Run: python benchmarks/bench_blobs.py [--views N]
 Prints compile seconds and warm microseconds per view of each path and the ratios. A benchmark,
-not a test (tests/test_sensing.py checks that the two JAX paths agree bit for bit).
+not a test (tests/core/test_sensing.py checks that the two JAX paths agree bit for bit).
 """
 
 from __future__ import annotations
@@ -20,8 +20,8 @@ from delvjax.core.batching import fixed_width_map
 from delvjax.core.cylinder_blobs import blobs_of_cylinders
 from delvjax.core.sensing import blob_runs, ray_hits
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-import reference_sensing as ref  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository root: tests.twins
+from tests.twins import sensing as ref
 
 
 def timed(fn, *args, repeats: int = 5) -> tuple[float, float]:

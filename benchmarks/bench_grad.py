@@ -17,7 +17,7 @@ import time
 
 import jax
 
-from delvjax.api_soft import problem_loss, problem_value_and_grad, quality_problem
+from delvjax.gradients._quality import problem_loss, problem_value_and_grad, quality_problem
 from delvjax.core import maps
 
 forward = jax.jit(problem_loss)

@@ -4,7 +4,7 @@ evaluate a method on the database, in a fresh process so the first run includes 
 
 Rows: in memory (render -> rings -> vector map, no files), and through files (render-db writes the
 BoB database, load_database reads it back, vector map). The per-image time of the plain NumPy
-reference (tests/reference_images.py) on a few images gives the ratio.
+reference (tests/twins/images.py) on a few images gives the ratio.
 Run: python benchmarks/bench_images.py [--env env1] [--spacing 25] [--methods delv alv acv warping]
 """
 
@@ -61,13 +61,13 @@ def child(env: str, spacing: float, method: str, mode: str) -> dict:
 
 
 def reference_seconds_per_image(env: str, n: int) -> float:
-    """Per-image wall time of the NumPy reference (tests/reference_images.py): render a 360 x 60
+    """Per-image wall time of the NumPy reference (tests/twins/images.py): render a 360 x 60
     panorama, then band rings and blobs, at `n` poses."""
-    sys.path.insert(0, str(ROOT / "tests"))
+    sys.path.insert(0, str(ROOT))  # the repository root: tests.twins
     import numpy as np
-    import reference_images as ref
+    from tests.twins import images as ref
 
-    from delvjax.image_worlds import image_world
+    from delvjax.images._worlds import image_world
 
     iw = image_world(env)
     a = np.asarray(iw.world.arena)

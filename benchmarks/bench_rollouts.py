@@ -7,7 +7,7 @@ Times (2-core CPU target: DELV catchment on env1 at spacing 25 < 2 s warm):
   * the rollouts alone (`run_trials`, 40 x 40 starts, up to 50 moves) and the whole
     `catchment` (rollouts + the vector map drawn under the squares);
   * warping's catchment if the "warping" method is registered;
-  * the per-point NumPy reference rollout (tests/reference_rollouts.py) on --ref-points
+  * the per-point NumPy reference rollout (tests/twins/rollouts.py) on --ref-points
     grid points, extrapolated to the grid, and the ratio reference / JAX warm;
   * with --strategies: lanes refilled from a queue (the library) vs chunks that each run
     until their slowest trial ends (no refill).
@@ -24,14 +24,14 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-from reference_rollouts import HomeRecord, reference_rollout  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository root: tests.twins
+from tests.twins.rollouts import HomeRecord, reference_rollout
 
-from delvjax.core import rollouts  # noqa: E402
-from delvjax.core.maps import grid_included, grid_points, random_headings  # noqa: E402
-from delvjax.registry import METHODS  # noqa: E402
-from delvjax.core.sensor import Sensor  # noqa: E402
-from delvjax.presets import load_env  # noqa: E402
+from delvjax.core import rollouts
+from delvjax.core.maps import grid_included, grid_points, random_headings
+from delvjax.options._registry import METHODS
+from delvjax.core.sensor import Sensor
+from delvjax.envs._presets import load_env
 
 
 def timed(fn, *args, **kw):

@@ -33,7 +33,7 @@ kind, seeds, process, processes, port = sys.argv[1], int(sys.argv[2]), int(sys.a
 if processes > 1:
     jax.config.update("jax_cpu_collectives_implementation", "gloo")
     jax.distributed.initialize(f"127.0.0.1:{port}", processes, process)
-from delvjax.sweep_spec import parse_sweep
+from delvjax.sweeps._spec import parse_sweep
 from delvjax.sweeps import run_sweep
 def spec(first):
     if kind == "vector-map":

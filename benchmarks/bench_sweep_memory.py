@@ -17,7 +17,7 @@ from child import run_child
 
 CHILD = r"""
 import json, resource, sys, time
-from delvjax.sweep_spec import parse_sweep
+from delvjax.sweeps._spec import parse_sweep
 from delvjax.sweeps import CELL_CHUNK, run_sweep
 cells, spacing = int(sys.argv[1]), float(sys.argv[2])
 spec = parse_sweep(f"[axes]\nd = {{start = 10, stop = 100, num = 100}}\nseed = {{start = 0, stop = {cells // 100 - 1}}}\n"

@@ -1,7 +1,7 @@
 """Time vector maps (issue: DELV no-compass on env1, spacing 25 = 40x40 grid) against the NumPy twin.
 
 Prints compile time and warm time (median; best) separately, the per-point time of the plain NumPy
-reference (tests/reference.py) on a subset of the same points, and the per-point ratio.
+reference (tests/twins/methods.py) on a subset of the same points, and the per-point ratio.
 Run: python benchmarks/bench_vector_map.py [--methods delv alv ...] [--env env1] [--ref-points 20]
 """
 
@@ -15,13 +15,13 @@ from pathlib import Path
 
 import jax
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository root: tests.twins
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import reference as ref  # noqa: E402
-from timing import reference_seconds_per_point, time_map_program  # noqa: E402
+from tests.twins import methods as ref
+from timing import reference_seconds_per_point, time_map_program
 
-import delvjax  # noqa: E402
-from delvjax.core.sensor import Sensor  # noqa: E402
+import delvjax
+from delvjax.core.sensor import Sensor
 
 
 def bench(env_name: str, method: str, spacing: float, repeats: int, ref_points: int) -> dict:

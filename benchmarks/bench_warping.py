@@ -2,7 +2,7 @@
 
 For each (method, channel): compile time and warm time of the jitted map program
 (`maps.homing_directions`, all cells of the grid: 40 x 40 on env1 at spacing 25), the
-per-point time of the plain NumPy twin (tests/reference_holistic.py) on a few of the
+per-point time of the plain NumPy twin (tests/twins/holistic.py) on a few of the
 same points, the ratio, and for warping the operation/byte count and the floor it
 implies on this CPU (see `floor`).
 Run: python benchmarks/bench_warping.py [--env env1] [--spacing 25] [--ref-points 3]
@@ -18,13 +18,13 @@ from pathlib import Path
 
 import jax
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository root: tests.twins
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import reference_holistic as ref  # noqa: E402
-from timing import reference_seconds_per_point, time_map_program  # noqa: E402
+from tests.twins import holistic as ref
+from timing import reference_seconds_per_point, time_map_program
 
-from delvjax.core.sensor import BACKGROUNDS, Sensor  # noqa: E402
-from delvjax.registry import METHODS  # noqa: E402
+from delvjax.core.sensor import BACKGROUNDS, Sensor
+from delvjax.options._registry import METHODS
 
 LANES = 8  # 32-bit lanes per vector instruction in the code XLA emits here (256-bit AVX2/AVX-512VL)
 

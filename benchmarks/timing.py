@@ -10,7 +10,7 @@ import numpy as np
 import delvjax
 from delvjax.core import maps
 from delvjax.core.sensor import Sensor
-from delvjax.registry import METHODS
+from delvjax.options._registry import METHODS
 
 
 def time_map_program(env_name: str, method: str, sensor: Sensor, spacing: float, repeats: int) -> dict:

@@ -1,7 +1,7 @@
 """The thesis's simulation studies, one module per figure set; `delvjax reproduce` runs them.
 
 Each module has `TITLE`, optionally `STEPS` (progress ticks), and `run(ctx)` with a
-`delvjax.study.StudyContext`. `STUDIES` is the registry, in report order.
+`delvjax.reproduce._study.StudyContext`. `STUDIES` is the registry, in report order.
 """
 
 STUDIES = [

@@ -1,20 +1,19 @@
-"""Shared fixtures: random environments (seeded NumPy), the reference twin on sys.path."""
+"""Shared fixtures: random environments (seeded NumPy), the reproduce run, image databases; every test
+file is one xdist group (its compiled programs stay in one worker), the reproduce tests one group."""
 
 from __future__ import annotations
 
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).parent))
 
 # Compiled programs go to the persistent cache of $DELVJAX_CACHE_DIR (as for the command line): the two
 # pytest-xdist workers and the command-line subprocesses then compile a shared program once. CI points it
 # at a fresh, empty folder (a cold run); "" disables it.
-from delvjax.cache import enable_compilation_cache  # noqa: E402
+from delvjax.outputs._cache import enable_compilation_cache
 
 enable_compilation_cache()
 
@@ -50,12 +49,12 @@ def random_envs():
 @pytest.fixture(scope="session")
 def run(tmp_path_factory):
     """Every study once at the tiny size (`reproduce_cases.TINY`): (output folder, result of
-    reproduce(), seconds). Shared by test_reproduce.py and reproduce_runs.py (collected through it), which run in
-    that order; tests that change the folder put it back before they end."""
+    reproduce(), seconds). Shared by tests/reproduce/ (one xdist group: one worker, one run), whose files run in name
+    order; tests that change the folder put it back before they end."""
     import time
 
-    from delvjax import reproduce
-    from reproduce_cases import TINY
+    from delvjax.reproduce import _run as reproduce
+    from tests.cases.reproduce import TINY
 
     out = tmp_path_factory.mktemp("reproduce") / "results"
     t0 = time.perf_counter()
@@ -65,7 +64,7 @@ def run(tmp_path_factory):
 
 # --- image databases (test_images_io.py, test_images_errors.py, test_images_cli.py) ---------------
 
-from images_io_helpers import SEED, SMALL, entries, render_db, write_plain  # noqa: E402
+from tests.cases.images_io import SEED, SMALL, entries, render_db, write_plain
 
 
 @pytest.fixture(scope="module")
@@ -101,3 +100,12 @@ def plain9(tmp_path_factory, small_db) -> Path:
     return write_plain(tmp_path_factory.mktemp("plain9") / "nine", small_db, rows, rename=lambda i, f: f"p{i}.png")
 
 
+
+
+def pytest_collection_modifyitems(items):
+    """`--dist loadgroup` with one group per test file (its tests share one worker and its compiled
+    programs), except tests/reproduce/, whose three files share the session fixture `run`."""
+    for item in items:
+        path = Path(str(item.fspath))
+        group = "reproduce" if path.parent.name == "reproduce" else str(path)
+        item.add_marker(pytest.mark.xdist_group(group))

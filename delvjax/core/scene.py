@@ -3,7 +3,7 @@
 An `Env` is a pytree. Landmarks are an `(L, 3)` array of `[x, y, r]` (cm) with a validity
 mask, so environments with different counts can be padded to one shape and batched.
 Building one from user input (presets, JSON files, validation) is the edge's job:
-`delvjax.presets`.
+`delvjax.envs._presets`.
 """
 
 from __future__ import annotations

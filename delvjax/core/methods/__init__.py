@@ -1,7 +1,7 @@
 """Homing methods as equinox modules (docs/model.md §3-4; the protocol: `base.Method`).
 
 A new method is one module file here (a `HomingMethod` subclass) plus one line in the
-registry of names, `delvjax/registry.py`.
+registry of names, `delvjax/options/_registry.py`.
 """
 
 from .acv import ACV

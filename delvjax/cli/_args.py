@@ -1,0 +1,196 @@
+"""Argument groups shared by the CLI commands (`cli`, `cli_rollouts`). Defaults are read from the
+modules (`options.defaults`), so they are written once."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from ..core.errors import InputError
+from ..core.maps import CLEARANCE, SPACING
+from ..core.methods import DELV, MFDID, Warping
+from ..core.rollouts import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
+from ..core.sensor import BACKGROUNDS, CHANNELS, Sensor
+from ..outputs._files import check_distinct, check_output_path, output_set
+from ..options._limits import MAX_POINTS
+from ..options._settings import NOISE_FIELDS_DEG, NOISE_OPTIONS, defaults
+from ..options._registry import METHODS
+
+CSV = (".csv",)
+FIGURE = (".png", ".pdf", ".svg")
+JSON = (".json",)
+
+
+def wrote(*paths) -> str:
+    """The closing line of a command: the files it wrote."""
+    return "wrote " + ", ".join(str(p) for p in paths if p)
+
+
+def warn(msg: str) -> None:
+    """One line on stderr for a result that is valid but probably not what was meant."""
+    print(f"delvjax: warning: {msg}", file=sys.stderr, flush=True)
+
+
+def progress(msg: str) -> None:
+    print(f"[delvjax] {msg}", file=sys.stderr, flush=True)
+
+
+class ProgressBar:
+    """A `progress(done, total)` callback: a bar on stderr with rate and ETA once the work runs in
+    more than one chunk (`total` > `single`); nothing for a run of one chunk."""
+
+    def __init__(self, unit: str, single: int):
+        self.unit, self.single, self.bar = unit, single, None
+
+    def __call__(self, done: int, total: int) -> None:
+        if self.bar is None:
+            from tqdm.auto import tqdm
+
+            self.bar = tqdm(total=total, unit=self.unit, unit_scale=True, file=sys.stderr, disable=total <= self.single)
+        self.bar.update(done)
+
+    def __enter__(self) -> "ProgressBar":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def add_scene_args(p: argparse.ArgumentParser, methods=None, grid: bool = True, images: bool = False) -> None:
+    """The scene, method and noise options; `grid`: the command evaluates a grid (--spacing); `images`:
+    it can run on an image database instead (`cli_images.add_image_args`; the environment is optional)."""
+    sensor, delv, warping = defaults(Sensor), defaults(DELV), defaults(Warping)
+    p.add_argument("env", nargs="?" if images else None, default=None,
+                   help="preset name (see `delvjax envs`) or a docs/model.md §7 JSON file"
+                        + (" (or --images DIR)" if images else ""))
+    p.add_argument("--method", default="delv", help=f"homing method: {', '.join(methods or METHODS)} (default delv)")
+    p.add_argument("--levels", type=int, default=None, help="DELV distance quantization levels Q >= 1 (default: continuous)")
+    p.add_argument("--d", type=float, default=None, help=f"unit-movement step d in cm (default {sensor['d']:g})")
+    if grid:
+        p.add_argument("--spacing", type=float, default=SPACING, help=f"grid spacing in cm (default {SPACING:g}: 40x40)")
+    else:  # not offered; recognized only to refuse it in one line naming it (`scene_kwargs`)
+        p.add_argument("--spacing", type=float, default=None, dest="unused_spacing", help=argparse.SUPPRESS)
+    p.add_argument("--clearance", type=float, default=CLEARANCE,
+                   help=f"grid points closer than r + clearance to a landmark are dropped (default {CLEARANCE:g})")
+    p.add_argument("--heading-deg", type=float, default=None, help="fixed heading at every point (default: random per point from --seed)")
+    p.add_argument("--seed", type=int, default=0, help="seed of random headings and all noise (default 0)")
+    p.add_argument("--background", default=None,
+                   help=f"{', '.join(BACKGROUNDS)} (default {BACKGROUNDS[sensor['background']]})")
+    p.add_argument("--channel", default=None,
+                   help=f"image channel of the image methods (warping, mfdid): {', '.join(CHANNELS)} "
+                        f"(default {sensor['channel']})")
+    p.add_argument("--n-heading", type=int, default=None, help=f"DELV heading hypotheses (default {delv['n_heading']})")
+    p.add_argument("--max-points", type=int, default=MAX_POINTS,
+                   help=f"refuse a run of more grid points (x occlusion masks) or trials than this, with an estimate "
+                        f"of its memory and time (default {MAX_POINTS})")
+    p.add_argument("--hide", type=int, nargs="+", default=None, metavar="I",
+                   help="landmark indices invisible during homing (occlusion; the home record sees all)")
+    w = p.add_argument_group("warping hypotheses (docs/model.md §4.3)")
+    w.add_argument("--n-alpha", type=int, default=None, help=f"movement directions alpha (default {warping['n_alpha']})")
+    w.add_argument("--n-psi", type=int, default=None, help=f"rotations psi, must divide the {sensor['n_pix']} pixels (default {warping['n_psi']})")
+    w.add_argument("--n-rho", type=int, default=None, help=f"values of rho = d/r (default {warping['n_rho']})")
+    w.add_argument("--rho-min", type=float, default=None, help=f"smallest rho (default {warping['rho_min']:.2f})")
+    w.add_argument("--rho-max", type=float, default=None, help=f"largest rho, < 1 (default {warping['rho_max']:.2f})")
+    f = p.add_argument_group("MFDID (docs/model.md §4.5)")
+    f.add_argument("--mfdid-blur-deg", type=float, default=None,
+                   help=f"MFDID: Gaussian low-pass of both images, deg (default {defaults(MFDID)['blur_deg']:g})")
+    g = p.add_argument_group("noise: standard deviations, all default 0, all drawn from --seed (docs/model.md §2.5)")
+    for name in NOISE_OPTIONS:
+        unit = "deg" if name in NOISE_FIELDS_DEG else "fraction of d"
+        g.add_argument("--" + name.replace("_", "-"), type=float, default=0.0, dest=name,
+                       help=f"{NOISE_HELP[name]} ({unit})")
+
+
+NOISE_HELP = {  # what each sigma perturbs (docs/model.md §2.5)
+    "bearing_noise_deg": "error of every blob bearing, in every snapshot",
+    "step_noise": "error of the unit move's length, d * (1 + N(0, s)); the agent believes it moved d",
+    "turn_noise_deg": "true body turn during the unit move; the end view is rotated by it",
+    "odometry_turn_noise_deg": "error of the odometry's report of that turn",
+    "compass_noise_deg": "error of every compass reading (compass methods only)",
+    "motion_heading_noise_deg": "rollouts only: error of the executed heading of every step",
+    "motion_step_noise": "rollouts only: error of every step's length, d * (1 + N(0, s))",
+}
+
+
+def scene_kwargs(args: argparse.Namespace) -> dict:
+    kw = dict(method=args.method, clearance=args.clearance, heading_deg=args.heading_deg,
+              seed=args.seed, background=args.background, channel=args.channel, hidden=args.hide,
+              max_points=args.max_points)
+    if getattr(args, "unused_spacing", None) is not None:
+        raise InputError("--spacing", args.unused_spacing, f"is not used by {args.command} (it evaluates no grid)")
+    if hasattr(args, "spacing"):
+        kw["spacing"] = args.spacing
+    settings = dict(levels=args.levels, d=args.d, n_heading=args.n_heading, n_alpha=args.n_alpha, n_psi=args.n_psi,
+                    n_rho=args.n_rho, mfdid_blur_deg=args.mfdid_blur_deg, rho_min=args.rho_min, rho_max=args.rho_max)
+    kw.update({k: v for k, v in settings.items() if v is not None})
+    kw.update({name: getattr(args, name) for name in NOISE_OPTIONS if getattr(args, name) != 0.0})
+    return kw
+
+
+def add_output_args(p: argparse.ArgumentParser, plot_help: str) -> None:
+    p.add_argument("--out", default=None, help="per-point CSV file (at least one of --out, --plot, --summary)")
+    p.add_argument("--plot", default=None, help=plot_help + " (.png, .pdf or .svg)")
+    p.add_argument("--summary", default=None, help="JSON file with the headline numbers")
+
+
+OUTPUTS = (("out", "--out", CSV), ("trials_out", "--trials-out", CSV), ("plot", "--plot", FIGURE),
+           ("summary", "--summary", JSON))  # attribute, option, suffixes of every output option
+
+
+def check_outputs(args: argparse.Namespace) -> None:
+    """Validate every output path before any work (`io.check_output_path`; no two the same file, none
+    the environment file); at least one output must be asked for; an environment (or --images)."""
+    if args.env is None and getattr(args, "images", None) is None:
+        raise InputError("env", None, "give an environment (preset name or JSON file) or --images DIR")
+    named = {flag: getattr(args, name) for name, flag, _ in OUTPUTS if getattr(args, name, None) is not None}
+    if not any(named.values()):
+        raise InputError("--out", None, "no output asked for (give --out, --plot or --summary)")
+    for name, flag, suffixes in OUTPUTS:
+        if flag in named:
+            check_output_path(named[flag], flag, suffixes)
+    check_distinct({**({"env": args.env} if args.env and Path(args.env).is_file() else {}), **named})
+
+
+def write_outputs(args: argparse.Namespace, columns, summary: dict, figure, trials_columns=None) -> None:
+    """Write the outputs asked for as a unit (`io.output_set`), then the closing line: --out (a dict of
+    columns or a list of row dicts), --trials-out, --summary, --plot (`figure()` is built only then)."""
+    trials_out = getattr(args, "trials_out", None)
+    with output_set() as files:  # all or nothing
+        if args.out:
+            (files.rows_csv if isinstance(columns, list) else files.csv)(args.out, columns, "--out")
+        if trials_out:
+            files.csv(trials_out, trials_columns, "--trials-out")
+        if args.summary:
+            files.json(args.summary, summary, "--summary")
+        if args.plot:
+            files.figure(figure(), args.plot, "--plot")
+    print(wrote(args.out, trials_out, args.plot, args.summary))
+
+
+def add_rollout_args(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("rollouts (docs/model.md §5)")
+    g.add_argument("--max-steps", type=int, default=MAX_STEPS, help=f"moves allowed to reach home (default {MAX_STEPS})")
+    g.add_argument("--home-radius", type=float, default=HOME_RADIUS,
+                   help=f"success within this distance of home, cm (default {HOME_RADIUS:g})")
+    g.add_argument("--lanes", type=int, default=DEFAULT_LANES,
+                   help=f"trials advanced side by side (memory bound; default {DEFAULT_LANES})")
+    g.add_argument("--first-move", default=DEFAULT_FIRST_MOVE, metavar="RULE",
+                   help="release (default, thesis Algorithm 2): a method that needs a unit movement (DELV) first "
+                        "moves d along the release heading, then matches; the catchment counts grid points at least "
+                        "d from every wall; homing: every method's first move follows the direction computed at the "
+                        "release point, as in the vector map")
+    g.add_argument("--collisions", default="ignore", metavar="RULE",
+                   help="ignore (default): landmarks are no obstacles; fail: a move ending inside a landmark fails")
+
+
+def rollout_kwargs(args: argparse.Namespace, drop=()) -> dict:
+    """`scene_kwargs` plus the rollout options, validated (rules) before any work or progress line."""
+    kw = scene_kwargs(args)
+    for name in drop:
+        kw.pop(name, None)
+    check_rules(args.first_move, args.collisions)
+    kw.update(max_steps=args.max_steps, home_radius=args.home_radius, first_move=args.first_move,
+              collisions=args.collisions)
+    return kw

@@ -1,0 +1,209 @@
+"""CLI for image databases (docs/images.md): `images render-db`, `images import`, and the `--images`
+mode of `vector-map` and `catchment`. Every option is checked before any work; bad input (a
+missing or unreadable image, a position outside the arena: the message names the file) -> exit 2,
+no output file."""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+
+from ._args import ProgressBar, check_outputs, progress, warn, wrote, write_outputs
+from ..core.rollouts import check_rules
+from ..options._settings import non_negative, positive_int
+from ..core.errors import InputError
+from ..outputs._files import check_out_dir
+from ..options._limits import MAX_POINTS
+from ..outputs._tables import vector_map_columns
+
+# scene options that mean nothing for a database (its images fix the scene, the poses and the unit move)
+UNUSED_WITH_IMAGES = ("d", "clearance", "heading_deg", "background", "hide", "bearing_noise_deg", "step_noise",
+                      "turn_noise_deg", "odometry_turn_noise_deg", "compass_noise_deg", "occlude")
+EXTRACTOR_OPTIONS = ("hue_deg", "hue_width_deg", "sat_min", "val_min", "band_deg", "band_height_deg", "fill")
+
+
+def add_image_args(p: argparse.ArgumentParser) -> None:
+    """--images and the options that read a database (docs/images.md §4-5)."""
+    g = p.add_argument_group("image database (docs/images.md): evaluate on images instead of an environment")
+    g.add_argument("--images", default=None, metavar="DIR",
+                   help="a BoB database or a folder of panoramas with positions.csv; replaces the environment, "
+                        "--spacing then sets the unit move (default: the database's spacing)")
+    g.add_argument("--home", type=float, nargs=2, default=None, metavar=("X", "Y"),
+                   help="home in cm (default: the database's metadata, else the image nearest the arena centre)")
+    g.add_argument("--arena", type=float, nargs=4, default=None, metavar=("XMIN", "YMIN", "XMAX", "YMAX"),
+                   help="arena in cm (default: the metadata, else the extent of the positions)")
+    g.add_argument("--max-blobs", type=int, default=None, help="landmark blob slots (default: the metadata, else 8)")
+    for name in EXTRACTOR_OPTIONS:
+        g.add_argument("--" + name.replace("_", "-"), type=float, default=None, help=argparse.SUPPRESS)
+    g.add_argument("--chunk", type=int, default=256, help="images read and reduced at a time (memory bound)")
+    p.set_defaults(parser_defaults={a.dest: a.default for a in p._actions})
+
+
+def _refuse_unused(args: argparse.Namespace, extra=()) -> None:
+    defaults = args.parser_defaults
+    for dest in (*UNUSED_WITH_IMAGES, *extra):
+        if hasattr(args, dest) and getattr(args, dest) != defaults.get(dest):
+            raise InputError("--" + dest.replace("_", "-"), getattr(args, dest), "is not used with --images")
+    if args.env is not None:
+        raise InputError("env", args.env, "cannot be combined with --images (the database is the scene)")
+
+
+def _method_options(args: argparse.Namespace) -> dict:
+    settings = dict(levels=args.levels, n_heading=args.n_heading, n_alpha=args.n_alpha, n_psi=args.n_psi,
+                    n_rho=args.n_rho, mfdid_blur_deg=args.mfdid_blur_deg, rho_min=args.rho_min, rho_max=args.rho_max,
+                    channel=args.channel)
+    return {k: v for k, v in settings.items() if v is not None}
+
+
+def load(args: argparse.Namespace):
+    """The database of --images with the reading options, after every option is checked."""
+    from ..images._evaluate import load_database
+    from ..options._settings import make_setup
+
+    opts = _method_options(args)
+    make_setup(args.method, **opts)  # method and settings checked before any image is read
+    positive_int(args.chunk, "--chunk")
+    if args.max_blobs is not None:
+        positive_int(args.max_blobs, "--max-blobs")
+    progress(f"reading {args.images} ...")
+    spacing = None if args.spacing == args.parser_defaults.get("spacing") else args.spacing
+    ex = {k: getattr(args, k) for k in EXTRACTOR_OPTIONS if getattr(args, k) is not None}
+    with ProgressBar("img", args.chunk) as bar:
+        db = load_database(args.images, home=args.home, arena=args.arena, spacing=spacing, channel=args.channel,
+                           extractor=ex, max_blobs=args.max_blobs, chunk=args.chunk, progress=bar)
+    if len(db.files) > args.max_points:
+        raise InputError("--images", args.images, f"has {len(db.files)} images, more than --max-points {args.max_points}")
+    return db, opts
+
+
+def warn_empty(vm) -> None:
+    """A warning for a map with nothing to evaluate, or no valid direction anywhere."""
+    included = np.asarray(vm.included)
+    if not included.any():
+        warn("the database has no point besides home: nothing to evaluate")
+    elif not bool(np.any(np.asarray(vm.valid) & included)):
+        warn("every database point is invalid: the method finds no homing direction anywhere (no landmark "
+             "found by the threshold, or no neighbour one spacing away?)")
+
+
+def cmd_vector_map_images(args: argparse.Namespace) -> int:
+    from ..images._evaluate import database_vector_map
+    from ..core.metrics import summarize_map
+    from ..plots._images import database_map_figure
+
+    _refuse_unused(args)
+    check_outputs(args)
+    t0 = time.perf_counter()
+    db, opts = load(args)
+    progress(f"vector map of {args.method} on {len(db.files)} images ({db.camera.cols} x {db.camera.rows}, "
+             f"unit move {db.spacing:g} cm) ...")
+    vm = database_vector_map(db, args.method, **opts)
+    summary = {"images": args.images, "method": args.method, "home": db.home.tolist(), "spacing_cm": db.spacing,
+               **summarize_map(vm.error_deg, vm.valid, vm.included), "seconds": time.perf_counter() - t0}
+    progress(f"done in {summary['seconds']:.2f} s: mean error {summary['mean_error_deg']:.2f} deg, "
+             f"{summary['invalid']} invalid")
+    warn_empty(vm)
+    write_outputs(args, vector_map_columns(vm), summary, lambda: database_map_figure(
+        db, vm, f"{args.method} on {db.name}: mean error {summary['mean_error_deg']:.1f}°", classes=args.classes))
+    return 0
+
+
+def cmd_catchment_images(args: argparse.Namespace) -> int:
+    from ..images._evaluate import catchment_numbers, database_catchment, database_vector_map
+    from ..plots._images import database_catchment_figure
+
+    _refuse_unused(args, extra=("lanes",))
+    check_rules(args.first_move, args.collisions)
+    positive_int(args.max_steps, "--max-steps")
+    for name in ("home_radius", "motion_heading_noise_deg", "motion_step_noise"):
+        non_negative(getattr(args, name), "--" + name.replace("_", "-"))
+    if args.first_move != args.parser_defaults.get("first_move", args.first_move):
+        raise InputError("--first-move", args.first_move, "is not used with --images (every move follows the "
+                                                          "direction at the nearest snapshot)")
+    check_outputs(args)
+    t0 = time.perf_counter()
+    db, opts = load(args)
+    radius = None if args.home_radius == args.parser_defaults.get("home_radius") else args.home_radius
+    vm = database_vector_map(db, args.method, **opts)
+    warn_empty(vm)
+    starts, paths = database_catchment(db, vm, home_radius=radius, max_steps=args.max_steps,
+                                       motion_heading_noise_deg=args.motion_heading_noise_deg,
+                                       motion_step_noise=args.motion_step_noise, seed=args.seed,
+                                       collisions=args.collisions == "fail")
+    from ..core.images.rollouts import OUTCOMES
+
+    summary = {"images": args.images, "method": args.method, **catchment_numbers(paths),
+               "home_radius_cm": db.spacing if radius is None else radius, "step_cm": db.spacing,
+               "collisions": args.collisions, "seconds": time.perf_counter() - t0}
+    progress(f"done in {summary['seconds']:.2f} s: catchment {summary['catchment_pct']:.2f} % of "
+             f"{summary['releases']} releases")
+    code = np.asarray(paths.outcome)
+    columns = {"x": starts[:, 0], "y": starts[:, 1], "outcome": [OUTCOMES[c] for c in code],
+               "steps": np.asarray(paths.steps)}
+    write_outputs(args, columns, summary, lambda: database_catchment_figure(
+        db, vm, starts, paths, f"{args.method} on {db.name}: catchment {summary['catchment_pct']:.1f} %"))
+    return 0
+
+
+# --- images render-db / import ------------------------------------------------------------------
+
+def add_images(sub) -> None:
+    p = sub.add_parser("images", help="image databases: render one from a world, import one (docs/images.md)")
+    isub = p.add_subparsers(dest="images_command", required=True)
+    r = isub.add_parser("render-db", help="render a grid database of colour panoramas in the BoB layout")
+    r.add_argument("env", help="image world (robot, natural), preset or environment JSON file")
+    r.add_argument("--out", required=True, help="database folder (must not exist or be empty)")
+    r.add_argument("--spacing", type=float, default=None, help="grid spacing = unit move, cm (default: the world's)")
+    r.add_argument("--cols", type=int, default=360, help="panorama width in pixels (default 360)")
+    r.add_argument("--rows", type=int, default=60, help="panorama height in pixels (default 60: 30 to -30 deg)")
+    r.add_argument("--donut", action="store_true", help="store catadioptric (donut) images instead of panoramas")
+    r.add_argument("--pixel-noise", type=float, default=0.02, help="camera noise per pixel, of full scale (default 0.02)")
+    r.add_argument("--gain-noise", type=float, default=0.0, help="per-image brightness gain noise (default 0)")
+    r.add_argument("--light-deg", type=float, default=None, help="light azimuth, deg (default: the world's, 45)")
+    r.add_argument("--seed", type=int, default=0, help="seed of the camera noise (default 0)")
+    r.add_argument("--max-points", type=int, default=MAX_POINTS, help="refuse more images than this")
+    r.add_argument("--chunk", type=int, default=256, help="images rendered at a time (memory bound)")
+    r.set_defaults(func=cmd_render_db)
+    i = isub.add_parser("import", help="check a database (BoB, or panoramas + positions.csv) and write it as BoB")
+    i.add_argument("src", help="database folder")
+    i.add_argument("--out", required=True, help="new database folder (must not exist or be empty)")
+    i.add_argument("--home", type=float, nargs=2, default=None, metavar=("X", "Y"), help="home, cm")
+    i.add_argument("--arena", type=float, nargs=4, default=None, metavar=("XMIN", "YMIN", "XMAX", "YMAX"),
+                   help="arena, cm")
+    i.add_argument("--spacing", type=float, default=None, help="grid spacing = unit move, cm")
+    i.set_defaults(func=cmd_import)
+
+
+def cmd_render_db(args: argparse.Namespace) -> int:
+    from ..images._render import ImageSettings, camera, check_render, render_database
+    from ..core.images import Catadioptric
+
+    check_out_dir(args.out)
+    settings = ImageSettings(camera=camera(args.rows, args.cols), mirror=Catadioptric() if args.donut else None,
+                             pixel_noise=args.pixel_noise, gain_noise=args.gain_noise, light_azimuth_deg=args.light_deg)
+    iw, spacing = check_render(args.env, args.spacing, settings, args.seed, args.max_points, args.chunk)
+    t0 = time.perf_counter()
+    progress(f"rendering {iw.name} every {spacing:g} cm into {args.out} ...")
+    with ProgressBar("img", args.chunk) as bar:
+        summary = render_database(args.env, args.out, spacing, settings, args.seed, args.chunk, args.max_points, bar)
+    progress(f"{summary['images']} images in {time.perf_counter() - t0:.2f} s")
+    print(wrote(args.out))
+    return 0
+
+
+def cmd_import(args: argparse.Namespace) -> int:
+    from ..images._evaluate import import_database
+
+    check_out_dir(args.out)
+    t0 = time.perf_counter()
+    db = import_database(args.src, args.out, home=args.home, arena=args.arena, spacing=args.spacing)
+    blobs = np.asarray(db.rings.snapshots.valid).sum(-1)
+    progress(f"{len(db.files)} images in {time.perf_counter() - t0:.2f} s; landmark blobs per image: min {blobs.min()}, "
+             f"mean {blobs.mean():.2f}, max {blobs.max()}; home {db.home.tolist()}, spacing {db.spacing:g} cm")
+    print(wrote(args.out))
+    return 0
+
+
+IMAGE_COMMANDS = [add_images]

@@ -1,0 +1,123 @@
+"""`delvjax sweep`: a sweep file -> labelled results in a folder (docs/sweeps.md)."""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+from ._args import ProgressBar, progress
+from ..core.errors import InputError
+from ..options._limits import MAX_POINTS
+
+
+def add_sweep(sub) -> None:
+    p = sub.add_parser("sweep", help="every combination of the axes of a sweep file (TOML), one program per shape",
+                       description="Evaluate every cell of a sweep file (a vector map, a catchment or a success-rate table "
+                                   "per cell) and write sweep.nc (xarray/netCDF), "
+                                   "sweep.csv (one row per cell) and sweep.toml into --out. "
+                                   "`delvjax sweep --example` prints a documented example file.")
+    p.add_argument("file", nargs="?", help="the sweep file (TOML)")
+    p.add_argument("--out", default=None, help="output folder")
+    p.add_argument("--example", nargs="?", const="vector-map", default=None, choices=("vector-map", "catchment", "success-rate"),
+                   help="print a documented example sweep file of that kind (default vector-map) and exit")
+    p.add_argument("--max-points", type=int, default=MAX_POINTS,
+                   help=f"refuse a cell of more grid points than this (default {MAX_POINTS})")
+    g = p.add_argument_group("several processes or machines (jax.distributed; docs/sweeps.md)")
+    g.add_argument("--coordinator", default=None, metavar="HOST:PORT", help="address of process 0")
+    g.add_argument("--num-processes", type=int, default=None, help="number of processes")
+    g.add_argument("--process-id", type=int, default=None, help="this process, 0 .. num-processes - 1")
+    g.add_argument("--distributed", action="store_true",
+                   help="let jax.distributed.initialize() read the cluster (SLURM, Open MPI) from the environment")
+    p.set_defaults(func=cmd_sweep)
+
+
+def start_processes(args: argparse.Namespace) -> None:
+    """Join the other processes (`jax.distributed.initialize`) before any JAX work, if asked to."""
+    given = [args.coordinator, args.num_processes, args.process_id]
+    if not args.distributed and all(v is None for v in given):
+        return
+    if not args.distributed:
+        if any(v is None for v in given):
+            raise InputError("--coordinator", args.coordinator, "needs --num-processes and --process-id too")
+        host, _, port = args.coordinator.rpartition(":")
+        if not host or not port.isdigit():
+            raise InputError("--coordinator", args.coordinator, "must be HOST:PORT")
+        if args.num_processes < 1:
+            raise InputError("--num-processes", args.num_processes, "must be >= 1")
+        if not 0 <= args.process_id < args.num_processes:
+            raise InputError("--process-id", args.process_id, f"must be in 0..{args.num_processes - 1}")
+    import jax
+
+    jax.config.update("jax_cpu_collectives_implementation", "gloo")  # CPU processes exchange results
+    kw = {} if args.distributed else dict(coordinator_address=args.coordinator, num_processes=args.num_processes,
+                                          process_id=args.process_id)
+    jax.distributed.initialize(**kw)
+
+
+def cmd_sweep(args: argparse.Namespace) -> int:
+    from ..sweeps._examples import EXAMPLES
+    from ..sweeps._spec import read_sweep
+    from ..outputs._files import check_out_dir
+    from ..sweeps._run import run_sweep, save_sweep
+
+    if args.example:
+        print(EXAMPLES[args.example], end="")
+        return 0
+    if args.file is None:
+        raise InputError("file", None, "give a sweep file (or --example)")
+    if args.out is None:
+        raise InputError("--out", None, "give an output folder")
+    spec = read_sweep(args.file)
+    out = check_out_dir(args.out)
+    start_processes(args)
+    import jax
+
+    lead = jax.process_index() == 0  # process 0 reports and writes
+    t0 = time.perf_counter()
+    n = spec.n_cells
+    with ProgressBar("cell", 0 if lead else n) as bar:
+        ds = run_sweep(spec, max_points=args.max_points, progress=bar, out=out,
+                       announce=lambda: lead and progress(f"sweep of {n} cells ({' x '.join(map(str, spec.shape))}: "
+                                                          f"{', '.join(spec.axes)}) on {jax.process_count()} "
+                                                          f"process(es), {jax.device_count()} device(s) ..."))
+    if not lead:
+        return 0
+    progress(f"done in {time.perf_counter() - t0:.1f} s: {n} cells ({ds.attrs['cells_reused']} finished before), "
+             f"{ds.attrs['programs_compiled']} program(s) compiled")
+    paths = save_sweep(ds, out)
+    print("wrote " + ", ".join(str(p) for p in paths))
+    return 0
+
+
+def add_plot_sweep(sub) -> None:
+    p = sub.add_parser("plot-sweep", help="heat maps or line plots (95 %% intervals over seeds) of a finished sweep",
+                       description="Draw a metric of a sweep folder over one axis (--x: lines with 95 % intervals "
+                                   "over the seeds) or two (--x and --y: heat maps, mean over the seeds); one panel "
+                                   "per combination of the remaining axes. Writes the figure and a CSV of the "
+                                   "numbers drawn (same name, .csv).")
+    p.add_argument("dir", help="a folder written by `delvjax sweep`")
+    p.add_argument("--x", required=True, help="axis along x")
+    p.add_argument("--y", default=None, help="axis along y (a heat map)")
+    p.add_argument("--metric", default="mean_error_deg", help="metric to draw (default mean_error_deg)")
+    p.add_argument("--out", default=None, help="figure file (.png, .pdf or .svg; default DIR/METRIC.png)")
+    p.set_defaults(func=cmd_plot_sweep)
+
+
+def cmd_plot_sweep(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from ._args import FIGURE
+    from ..outputs._files import check_output_path, output_set
+    from ..plots._sweep import check_plot, sweep_figure
+    from ..sweeps._run import load_sweep
+
+    ds = load_sweep(args.dir)
+    check_plot(ds, args.x, args.y, args.metric)
+    fig_path = check_output_path(args.out or Path(args.dir) / f"{args.metric}.png", "--out", FIGURE)
+    csv_path = fig_path.with_suffix(".csv")
+    fig, rows = sweep_figure(ds, args.x, args.y, args.metric)
+    with output_set() as files:
+        files.figure(fig, fig_path, "--out")
+        files.rows_csv(csv_path, rows, "--out")
+    print(f"wrote {fig_path}, {csv_path}")
+    return 0

@@ -1,0 +1,127 @@
+"""Python API for notebooks and scripts; mirrors the CLI (same names, same validation).
+
+Every function validates all its options before any array work (`InputError` naming the
+field and value), builds the method module and the `Sensor` (`options.make_setup`; None
+means the module's default) and calls the core.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import jax
+import numpy as np
+
+from ..options import _limits as limits
+from ..core import maps
+from ..core.maps import CLEARANCE, SPACING
+from ..core.errors import InputError
+from ..core.methods import HomingMethod
+from ..core.scene import Env
+from ..core.sensor import Sensor
+from ..options._settings import angle_deg, make_setup, non_negative, positive, positive_int, seed_value
+from ..options._limits import MAX_POINTS, check_size
+from ..envs._presets import load_env as _load_env
+
+
+def load_env(name_or_path: str | Path | Env) -> Env:
+    """A preset (`env1`, `env2`, `env3`, `ring3`..`ring6`), a docs/model.md §7 JSON path, or an `Env` as is."""
+    return name_or_path if isinstance(name_or_path, Env) else _load_env(name_or_path)
+
+
+def resolve_headings(heading_deg: float | None, seed: int) -> tuple[float | None, jax.Array]:
+    """(fixed heading in radians or None for seeded random headings, PRNG key)."""
+    key = jax.random.PRNGKey(seed_value(seed))
+    if heading_deg is None:
+        return None, key
+    return math.radians(angle_deg(heading_deg, "heading_deg")), key
+
+
+def visible_mask(env: Env, hidden: list[int] | tuple[int, ...] | None) -> np.ndarray | None:
+    """Boolean (L,) mask of the landmarks seen during homing, `hidden` ones occluded (docs/model.md §5)."""
+    if not hidden:
+        return None
+    n = env.n_landmarks
+    for i in hidden:
+        if isinstance(i, bool) or not isinstance(i, int) or not 0 <= i < n:
+            raise InputError("hide", i, f"must be a landmark index in 0..{n - 1}")
+    mask = np.ones(env.landmarks.shape[0], bool)
+    mask[list(hidden)] = False
+    return mask
+
+
+def scene_request(env: str | Path | Env, method: str | HomingMethod, clearance: float, heading_deg: float | None, seed: int,
+                  program=None, **options) -> tuple[Env, HomingMethod, Sensor, float | None, jax.Array, float]:
+    """The options every evaluation shares, validated before any work: method name and settings,
+    sensor options, grid clearance, environment, heading/seed. Returns
+    (env, method module, sensor, heading rad | None, key, clearance)."""
+    module, sensor = make_setup(method, program, **options)
+    clearance = non_negative(clearance, "clearance")
+    env = load_env(env)
+    heading, key = resolve_headings(heading_deg, seed)
+    return env, module, sensor, heading, key, clearance
+
+
+def check_grid(env: Env, spacing: float, clearance: float, max_points: int = MAX_POINTS, copies: int = 1,
+               what: str = "grid point") -> None:
+    """`InputError` naming `spacing` when the docs/model.md §5 grid (times `copies`, e.g. occlusion masks)
+    has more than `max_points` points (`limits.check_size`, checked before the grid is built; `what`
+    they are: grid points, or trials of a catchment) or no point clear of the landmarks."""
+    check_size(limits.grid_count(env.arena, spacing) * copies, max_points, "spacing", spacing, what)
+    if not _has_clear_point(env, spacing, clearance):
+        raise InputError("spacing", spacing, "leaves no grid point in the arena clear of the landmarks (r + clearance)")
+
+
+_CLEAR: dict[tuple, bool] = {}  # (scene numbers, spacing, clearance) -> answer: a sweep asks again per cell
+
+
+def _has_clear_point(env: Env, spacing: float, clearance: float) -> bool:
+    """Whether some docs/model.md §5 grid point is clear of every landmark (r + clearance)."""
+    key = (np.asarray(env.landmarks).tobytes(), np.asarray(env.valid).tobytes(), np.asarray(env.arena).tobytes(),
+           float(spacing), float(clearance))
+    if key not in _CLEAR:
+        points = maps.grid_points(env.arena, spacing)
+        _CLEAR[key] = points.shape[0] > 0 and bool(np.asarray(
+            maps.grid_included(env.arrays(), jax.device_put(points), clearance)).any())
+        if len(_CLEAR) > 4096:
+            _CLEAR.pop(next(iter(_CLEAR)))
+    return _CLEAR[key]
+
+
+def map_request(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
+                seed: int = 0, clearance: float = CLEARANCE, hidden: list[int] | None = None,
+                batch_size: int = maps.DEFAULT_BATCH, max_points: int = MAX_POINTS, **options) -> dict:
+    """Validate the public options of a vector map (before any array work): keyword
+    arguments of `core.maps.vector_map`. Raises `InputError` naming the field and value."""
+    env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **options)
+    spacing = positive(spacing, "spacing")
+    check_grid(env, spacing, clearance, max_points)
+    batch_size = positive_int(batch_size, "batch_size")
+    visible = visible_mask(env, hidden)
+    return dict(env=env, method=module, sensor=sensor, spacing=spacing, heading=heading, key=key,
+                clearance=clearance, visible=None if visible is None else jax.device_put(visible),
+                batch_size=batch_size)
+
+
+def vector_map(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
+               seed: int = 0, clearance: float = CLEARANCE, hidden: list[int] | None = None,
+               batch_size: int = maps.DEFAULT_BATCH, max_points: int = MAX_POINTS, **options) -> maps.VectorMap:
+    """Homing direction of `method` at every docs/model.md §5 grid point, one jitted vmapped call.
+
+    `method`: a registry name (`"delv-compass"`) or a method module (`DELV(levels=3,
+    heading=Compass())`); `sensor=Sensor(...)` may replace the sensor options below.
+
+    heading_deg fixes the heading at every point; otherwise headings are uniform random
+    per point from `seed` (which also drives every noise source). `options`: sensor options
+    (d, background, channel, alpha_r_deg, n_pix, and the noise keywords bearing_noise_deg,
+    step_noise, turn_noise_deg, odometry_turn_noise_deg, compass_noise_deg) and method settings
+    (levels, n_heading, scale, r_max; the warping hypotheses n_alpha, n_psi, n_rho, rho_min,
+    rho_max; mfdid_blur_deg); omitted ones take the modules' defaults.
+    `hidden` lists landmark indices invisible in the current views (occlusion). The grid runs in
+    host-side chunks of `batch_size` points (memory bounded by the chunk, the same numbers for every
+    chunk size); a grid of more than `max_points` points is refused with an estimate (`limits`).
+    Returns a `VectorMap` pytree (points, included, heading, direction, valid, error_deg).
+    """
+    return maps.vector_map(**map_request(env, method, spacing, heading_deg, seed, clearance, hidden, batch_size,
+                                         max_points, **options))

@@ -1,0 +1,192 @@
+"""Landmark layouts designed for homing (docs/differentiable.md "Layout design").
+
+`optimise_layout` moves the landmarks (radii fixed) to minimise the soft homing quality of a
+method, averaged over every choice of `occlude` hidden landmarks, with optimistix's BFGS:
+
+  * positions are x = lo + (hi - lo) sigmoid(u): every landmark stays inside the arena, r + WALL_CM
+    from the walls, whatever u;
+  * a quadratic penalty PENALTY (cm^-2) keeps each landmark r + HOME_GAP_CM from home and pairs
+    r_i + r_j + GAP_CM apart, so that the result is a valid environment (docs/model.md §7);
+  * the loop is optimistix's own (init / step / terminate) written out, so each step reports progress.
+
+The layouts are then compared by the ordinary (hard) evaluation: catchment and error point rates.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+import numpy as np
+import optimistix as optx
+
+from ..evaluate._vector_map import load_env
+from ..evaluate._rollouts import catchment
+from ._quality import TAU, QualityProblem, quality_problem
+from ..core.errors import InputError
+from ..core.maps import SPACING
+from ..core.rollouts import Catchment, catchment_summary, occlusion_masks
+from ..core.scene import Env
+from ..core.soft.quality import soft_quality
+from ..options._settings import occlusion_count, positive_int
+from ..envs._presets import make_env, random_env
+
+WALL_CM = 10.0
+HOME_GAP_CM = 40.0
+GAP_CM = 20.0
+PENALTY = 1e-3  # per cm^2 of violation
+OPT_SPACING = 50.0  # grid of the objective (the hard comparison uses the caller's spacing)
+STEPS = 60
+
+
+@dataclass
+class LayoutResult:
+    """The start and optimised environments, the soft objective along the way, the hard comparison
+    rows (catchment and error rates of both layouts) and the two catchments they come from."""
+
+    start: Env
+    optimised: Env
+    objective: list[float]
+    rows: list[dict]
+    seconds: float
+    method: str
+    occlude: int
+    catchments: tuple[Catchment, Catchment]
+
+
+def _bounds(env: Env) -> tuple[np.ndarray, np.ndarray]:
+    """Per landmark, the box its centre may occupy: (lo (N, 2), hi (N, 2))."""
+    arena = np.asarray(env.arena, np.float64)
+    r = np.asarray(env.landmarks, np.float64)[np.asarray(env.valid), 2][:, None]
+    return arena[:2] + r + WALL_CM, arena[2:] - r - WALL_CM
+
+
+def _objective(u, args):
+    problem, masks, lo, hi, n = args
+    lm = problem.env.landmarks
+    pos = lo + (hi - lo) * jax.nn.sigmoid(u)
+    landmarks = lm.at[:n, :2].set(pos)
+    env = eqx.tree_at(lambda e: e.landmarks, problem.env, landmarks)
+    quality = jnp.mean(jax.vmap(lambda vis: soft_quality(env, problem.points, problem.included, problem.headings,
+                                                         problem.key, problem.sensor, problem.method, problem.tau,
+                                                         problem.sharpness, vis))(masks))
+    r = lm[:n, 2]
+    home = jnp.linalg.norm(pos - problem.env.home, axis=-1)
+    diff = pos[:, None] - pos[None]
+    gap = jnp.sqrt(jnp.sum(diff * diff, axis=-1) + jnp.eye(n) * 1e12)  # the diagonal: far, and no NaN gradient at 0
+    penalty = (jnp.sum(jax.nn.relu(r + HOME_GAP_CM - home) ** 2)
+               + 0.5 * jnp.sum(jax.nn.relu(r[:, None] + r[None] + GAP_CM - gap) ** 2))
+    return quality + PENALTY * penalty
+
+
+SOLVER = optx.BFGS(rtol=1e-5, atol=1e-6)
+F_STRUCT = jax.ShapeDtypeStruct((), jnp.float32)
+
+
+def _fn(u, args):
+    """The objective as optimistix's solvers take it: (value, aux)."""
+    return _objective(u, args), None
+
+
+# module-level programs: every layout of one shape reuses them (a lambda per call would recompile)
+_init = eqx.filter_jit(lambda u, a: SOLVER.init(_fn, u, a, {}, F_STRUCT, None, frozenset()))
+_step = eqx.filter_jit(lambda u, s, a: SOLVER.step(_fn, u, a, {}, s, frozenset()))
+_done = eqx.filter_jit(lambda u, s, a: SOLVER.terminate(_fn, u, a, {}, s, frozenset())[0])
+_value = eqx.filter_jit(_objective)
+
+
+def _minimise(args, u0, steps: int, progress: Callable[[int, int, float], None] | None) -> tuple[jax.Array, list[float]]:
+    """optimistix BFGS, stepped by hand: (u, objective after each step). A step returns the last
+    accepted point (the line search rejects a worse one), so the last u is the best."""
+    state = _init(u0, args)
+    u, history = u0, [float(_value(u0, args))]
+    for i in range(steps):  # one optimisation step per iteration: a progress report between them
+        if i > 0 and bool(_done(u, state, args)):
+            break
+        u, state, _ = _step(u, state, args)
+        if i > 0:  # the first step only evaluates its trial point
+            history.append(float(state.f_info.f))
+        if progress is not None:
+            progress(i + 1, steps, history[-1])
+    return u, history
+
+
+def start_layout(env: str | Path | Env | None = None, landmarks: int | None = None, seed: int = 0) -> Env:
+    """The starting environment: a preset or file, or `landmarks` seeded random cylinders (`random_env`)."""
+    if (env is None) == (landmarks is None):
+        raise InputError("env", env, "give an environment or --landmarks N (not both)")
+    if env is not None:
+        return load_env(env)
+    n = positive_int(landmarks, "landmarks")
+    if n > 12:
+        raise InputError("landmarks", n, "must be in 1..12")
+    return random_env(seed, n)
+
+
+def optimise_layout(env: str | Path | Env, method: str = "delv", occlude: int = 0, spacing: float = SPACING, seed: int = 0,
+                    tau: float = TAU, steps: int = STEPS, progress: Callable[[int, int, float], None] | None = None,
+                    announce: Callable[[], None] | None = None, **options) -> LayoutResult:
+    """Optimise the landmark positions of `env` for `method` (module docstring); compare the start and
+    the result by catchment and error rates on the `spacing` grid under every choice of `occlude`
+    hidden landmarks."""
+    env = load_env(env)
+    problem: QualityProblem = quality_problem(env, method, spacing=OPT_SPACING, seed=seed, tau=tau, **options)
+    k = occlusion_count(occlude, env.n_landmarks) if occlude else 0
+    steps = positive_int(steps, "steps")
+    n = env.n_landmarks
+    masks = occlusion_masks(env, k)[0] if k else np.asarray(env.valid, bool)[None]
+    lo, hi = _bounds(env)
+    pos0 = np.asarray(env.landmarks, np.float64)[np.asarray(env.valid), :2]
+    frac = np.clip((pos0 - lo) / (hi - lo), 1e-3, 1 - 1e-3)
+    u0 = jnp.asarray(np.log(frac / (1 - frac)), jnp.float32)
+    args = (problem, jnp.asarray(masks), jnp.asarray(lo, jnp.float32), jnp.asarray(hi, jnp.float32), n)
+    if announce is not None:
+        announce()
+    t0 = time.perf_counter()
+    u, history = _minimise(args, u0, steps, progress)
+    pos = lo + (hi - lo) / (1 + np.exp(-np.asarray(u, np.float64)))
+    radii = np.asarray(env.landmarks, np.float64)[np.asarray(env.valid), 2]
+    optimised = make_env([[float(x), float(y), float(r)] for (x, y), r in zip(pos, radii)],
+                         home=np.asarray(env.home).tolist(), arena=np.asarray(env.arena).tolist(),
+                         name=f"{env.name}-optimised-{method}" + (f"-occlude{k}" if k else ""),
+                         pad_to=env.landmarks.shape[0])  # the start's shape: its compiled programs serve both
+    seconds = time.perf_counter() - t0
+    catchments = tuple(catchment(e, method, spacing=spacing, seed=seed, occlude=k or None, **options)
+                       for e in (env, optimised))
+    rows = [_hard_row(label, e, c, method, k, q) for label, e, c, q in
+            zip(("start", "optimised"), (env, optimised), catchments, (history[0], history[-1]))]
+    return LayoutResult(start=env, optimised=optimised, objective=history, rows=rows, seconds=seconds, method=method,
+                        occlude=k, catchments=catchments)
+
+
+def _hard_row(label: str, env: Env, c: Catchment, method: str, k: int, soft_objective: float) -> dict:
+    """Catchment and error rates of `env` (mean over the C(N, k) masks), the ordinary evaluation."""
+    s = catchment_summary(c)
+    return {"layout": label, "env": env.name, "method": method, "occlude": k, "catchment_pct": s["catchment_pct"]["mean"],
+            "catchment_min_pct": s["catchment_pct"]["min"], "gt45_pct": s["gt45_pct"]["mean"],
+            "gt90_pct": s["gt90_pct"]["mean"], "points": s["points"], "soft_objective": soft_objective}
+
+
+def layout_figure(result: LayoutResult, spacing: float):
+    """Start and optimised layouts side by side: each one's vector map and catchment (the comparison's
+    own runs; the worst mask under occlusion), and the soft objective per step."""
+    from ..plots._maps import subplots
+    from ..plots._rollouts import catchment_panel
+
+    fig, axes = subplots(1, 3, figsize=(15.5, 5.2), squeeze=False)
+    for ax, env, row, c in zip(axes[0][:2], (result.start, result.optimised), result.rows, result.catchments):
+        worst = int(np.argmin(c.catchment_pct()))
+        catchment_panel(ax, env, c, worst, spacing, f"{row['layout']}: catchment {row['catchment_pct']:.1f} % "
+                                                    f"(worst mask {row['catchment_min_pct']:.1f} %)\n"
+                                                    f"e>45° {row['gt45_pct']:.1f} %, e>90° {row['gt90_pct']:.1f} %")
+    ax = axes[0][2]
+    ax.plot(range(len(result.objective)), result.objective, marker="o", markersize=3)
+    ax.set_xlabel("BFGS step")
+    ax.set_ylabel("soft objective (1 - cos error + penalty)")
+    ax.set_title(f"{result.method}, occlude {result.occlude}: {result.seconds:.1f} s", fontsize=10)
+    return fig

@@ -1,0 +1,154 @@
+"""Python API of the differentiable path (docs/differentiable.md): homing quality and its gradient
+with respect to the world (landmarks, home), the agent (d, the quantization scale) and the noise.
+
+    delvjax.homing_quality("env1", "delv", tau=0.01)            -> float (lower is better)
+    value, grads = delvjax.homing_quality_grad("env1", "delv")   -> grads["landmarks"] (N, 3), ...
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import NamedTuple
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from ..evaluate._vector_map import check_grid, scene_request
+from ..core.maps import CLEARANCE, SPACING, grid_included, grid_points, random_headings
+from ..core.methods import HomingMethod
+from ..core.scene import Env
+from ..core.soft.methods import check_differentiable
+from ..core.soft.quality import soft_quality
+from ..core.soft.sensing import VISIBILITY_WIDTH
+from ..options._limits import MAX_POINTS
+from ..options._settings import NOISE_FIELDS_DEG, NOISE_FIELDS_FRACTION, positive
+
+TAU = 0.01  # default softmin temperature (docs/differentiable.md)
+NOISE_NAMES = {**{f: name for name, f in NOISE_FIELDS_DEG.items()}, **{f: name for name, f in NOISE_FIELDS_FRACTION.items()}}
+
+
+def _setup(env, method, spacing, seed, clearance, heading_deg, max_points, options):
+    env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **options)
+    spacing = positive(spacing, "spacing")
+    check_grid(env, spacing, clearance, max_points)
+    points = grid_points(env.arena, spacing)
+    included = np.asarray(grid_included(env.arrays(), points, clearance))
+    headings = (np.asarray(random_headings(key, points.shape[0])) if heading is None
+                else np.full(points.shape[0], heading, np.float32))
+    return env, module, sensor, key, points, included, headings
+
+
+def _floats(tree):
+    """Every float leaf as a float32 array (python floats are not differentiable leaves)."""
+    return jax.tree.map(lambda x: jnp.asarray(x, jnp.float32) if isinstance(x, float) else x, tree)
+
+
+def _check_soft(tau, sharpness) -> tuple[float, float]:
+    tau = positive(tau, "tau")
+    sharpness = positive(sharpness, "sharpness")
+    return tau, sharpness
+
+
+def homing_quality(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, seed: int = 0,
+                   soft: bool = True, tau: float = TAU, sharpness: float = VISIBILITY_WIDTH,
+                   heading_deg: float | None = None, clearance: float = CLEARANCE, max_points: int = MAX_POINTS,
+                   **options) -> float:
+    """Mean of 1 - cos(angular error) over the docs/model.md §5 grid (0 perfect, 2 = every direction
+    reversed; a point without a direction counts 2). soft=True: the analytic views and softmin
+    matching of docs/differentiable.md with temperature `tau` and visibility width `sharpness` (rad);
+    soft=False: the ordinary (pixel) vector map. `options` as in `delvjax.vector_map`."""
+    if soft:
+        tau, sharpness = _check_soft(tau, sharpness)
+    env, module, sensor, key, points, included, headings = _setup(env, method, spacing, seed, clearance, heading_deg,
+                                                                  max_points, options)
+    if not soft:
+        from ..core.maps import vector_map
+
+        vm = vector_map(env=env, method=module, sensor=sensor, spacing=spacing, key=key, clearance=clearance,
+                        heading=None if heading_deg is None else math.radians(heading_deg))
+        err = np.radians(np.asarray(vm.error_deg))[np.asarray(vm.included)]
+        return float(np.mean(1.0 - np.cos(err)))
+    check_differentiable(module)
+    return float(_quality(env.arrays(), points, included, headings, key, sensor, module, jnp.float32(tau),
+                          jnp.float32(sharpness)))
+
+
+_quality = jax.jit(soft_quality)
+
+
+class QualityProblem(NamedTuple):
+    """A soft homing-quality evaluation ready to run: the differentiable parameters (`params`:
+    landmarks (L, 3), home (2,), d, noise (a `Noise`), scale for DELV) and everything held fixed."""
+
+    params: dict
+    env: Env
+    points: np.ndarray
+    included: np.ndarray
+    headings: np.ndarray
+    key: jax.Array
+    sensor: object
+    method: HomingMethod
+    tau: jax.Array
+    sharpness: jax.Array
+    n_landmarks: int
+
+
+def quality_problem(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, seed: int = 0,
+                    tau: float = TAU, sharpness: float = VISIBILITY_WIDTH, heading_deg: float | None = None,
+                    clearance: float = CLEARANCE, max_points: int = MAX_POINTS, **options) -> QualityProblem:
+    """Validate the options of `homing_quality_grad` (before any work) and set the problem up."""
+    tau, sharpness = _check_soft(tau, sharpness)
+    env, module, sensor, key, points, included, headings = _setup(env, method, spacing, seed, clearance, heading_deg,
+                                                                  max_points, options)
+    check_differentiable(module)
+    sensor, module = _floats(sensor), _floats(module)
+    arrays = env.arrays()
+    params = {"landmarks": jnp.asarray(arrays.landmarks, jnp.float32), "home": jnp.asarray(arrays.home, jnp.float32),
+              "d": sensor.d, "noise": sensor.noise}
+    if hasattr(module, "scale"):
+        params["scale"] = module.scale
+    return QualityProblem(params, arrays, points, included, headings, key, sensor, module, jnp.float32(tau),
+                          jnp.float32(sharpness), env.n_landmarks)
+
+
+def problem_loss(params: dict, problem: QualityProblem) -> jax.Array:
+    """The soft quality of `problem` with `params` in place of its own (a pure, differentiable function)."""
+    e = eqx.tree_at(lambda x: (x.landmarks, x.home), problem.env, (params["landmarks"], params["home"]))
+    s = eqx.tree_at(lambda x: (x.d, x.noise), problem.sensor, (params["d"], params["noise"]))
+    m = eqx.tree_at(lambda x: x.scale, problem.method, params["scale"]) if "scale" in params else problem.method
+    return soft_quality(e, problem.points, problem.included, problem.headings, problem.key, s, m, problem.tau,
+                        problem.sharpness)
+
+
+@jax.jit
+def problem_value_and_grad(problem: QualityProblem) -> tuple[jax.Array, dict]:
+    """Quality and its gradient with respect to every parameter, reverse mode, one program."""
+    return jax.value_and_grad(problem_loss)(problem.params, problem)
+
+
+def homing_quality_grad(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING,
+                        seed: int = 0, tau: float = TAU, sharpness: float = VISIBILITY_WIDTH,
+                        heading_deg: float | None = None, clearance: float = CLEARANCE, max_points: int = MAX_POINTS,
+                        **options) -> tuple[float, dict]:
+    """`homing_quality` (soft) and its gradient by reverse mode in one program: a dict with
+    landmarks (N, 3) per [x, y, r] cm, home (2,) per cm, d per cm, scale per cm (DELV only) and
+    each noise sigma under its option name (per degree for *_deg, per unit for the step factors).
+    The grid points and their headings are held fixed; noise is differentiated pathwise."""
+    problem = quality_problem(env, method, spacing, seed, tau, sharpness, heading_deg, clearance, max_points, **options)
+    value, grads = problem_value_and_grad(problem)
+    return float(value), readable_grads(grads, problem.n_landmarks)
+
+
+def readable_grads(grads: dict, n_landmarks: int) -> dict:
+    """Gradients by public name: landmarks (N, 3), home, d, scale, and the noise options (per degree)."""
+    out = {"landmarks": np.asarray(grads["landmarks"])[:n_landmarks], "home": np.asarray(grads["home"]),
+           "d": float(grads["d"])}
+    if "scale" in grads:
+        out["scale"] = float(grads["scale"])
+    for field, name in NOISE_NAMES.items():
+        g = float(getattr(grads["noise"], field))
+        out[name] = g * math.pi / 180.0 if name.endswith("_deg") else g
+    return out

@@ -1,0 +1,132 @@
+"""Sensitivity of homing quality to the world, the agent and the noise (docs/differentiable.md
+"Sensitivity study"): which landmark matters most, and how quality responds to d, bearing,
+odometry and compass noise, across DELV, ALV, ACV (gradients of the soft quality, reverse mode)
+and warping (central differences of the ordinary quality, common random numbers: it has no
+soft version)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from ..evaluate._vector_map import load_env
+from ._quality import TAU, homing_quality, homing_quality_grad
+from ..core.maps import SPACING
+from ..core.scene import Env
+from ..plots._maps import draw_env, subplots
+
+METHODS = ("delv", "alv", "acv", "warping")
+# the operating point at which sensitivities are taken: noise a real robot has (docs/differentiable.md)
+NOMINAL = {"d": 50.0, "bearing_noise_deg": 1.0, "odometry_turn_noise_deg": 1.0, "compass_noise_deg": 2.0}
+# what one "unit" of each parameter is in the table: 10 cm of d, 1 degree of each sigma
+UNITS = {"d": 10.0, "bearing_noise_deg": 1.0, "odometry_turn_noise_deg": 1.0, "compass_noise_deg": 1.0}
+FD_STEP = {"d": 5.0, "bearing_noise_deg": 0.5, "odometry_turn_noise_deg": 0.5, "compass_noise_deg": 0.5}
+READS = {"compass_noise_deg": ("alv", "acv")}  # parameters some methods never read (their sensitivity is 0)
+
+
+def _options(method: str) -> dict:
+    """The nominal options a method takes (no compass noise for methods without a compass)."""
+    return {k: v for k, v in NOMINAL.items() if method in READS.get(k, (method,))}
+
+
+def check_sensitivity(env: str | Path | Env, methods=METHODS, spacing: float = SPACING, seed: int = 0,
+                      tau: float = TAU) -> Env:
+    """Validate everything `sensitivity` takes, before any work (`InputError` naming the field)."""
+    from ..evaluate import _vector_map as api
+    from ._quality import quality_problem
+    from ..core.errors import InputError
+
+    env = load_env(env)
+    if isinstance(methods, str) or not methods:
+        raise InputError("methods", methods, f"must be a non-empty list of {', '.join(METHODS)}")
+    for m in methods:
+        if m not in METHODS:
+            raise InputError("methods", m, f"must be among {', '.join(METHODS)}")
+        if m == "warping":
+            api.map_request(env, m, spacing=spacing, seed=seed, **_options(m))
+        else:
+            quality_problem(env, m, spacing=spacing, seed=seed, tau=tau, **_options(m))
+    return env
+
+
+def sensitivity(env: str | Path | Env, methods=METHODS, spacing: float = SPACING, seed: int = 0, tau: float = TAU,
+                progress: Callable[[str], None] | None = None) -> dict:
+    """Per method: quality at the operating point, its gradient with respect to every landmark
+    [x, y, r] (soft methods), and d quality per unit of d and of each noise sigma. Returns
+    {"env", "methods": {name: {...}}, "landmark_rows", "parameter_rows"}."""
+    env = load_env(env)
+    out: dict = {"env": env, "methods": {}, "landmark_rows": [], "parameter_rows": []}
+    for m in methods:
+        if progress is not None:
+            progress(m)
+        opts = _options(m)
+        if m == "warping":
+            value = homing_quality(env, m, spacing=spacing, seed=seed, soft=False, **opts)
+            per = {}
+            for name in NOMINAL:
+                if name not in opts:
+                    per[name] = 0.0
+                    continue
+                h = FD_STEP[name]
+                hi = homing_quality(env, m, spacing=spacing, seed=seed, soft=False, **{**opts, name: opts[name] + h})
+                lo = homing_quality(env, m, spacing=spacing, seed=seed, soft=False,
+                                    **{**opts, name: max(opts[name] - h, 0.0)})
+                per[name] = (hi - lo) / (opts[name] + h - max(opts[name] - h, 0.0))
+            grads, how = None, "central difference, hard quality"
+        else:
+            value, g = homing_quality_grad(env, m, spacing=spacing, seed=seed, tau=tau, **opts)
+            per = {name: float(g.get(name, 0.0)) if name in opts else 0.0 for name in NOMINAL}
+            grads, how = g["landmarks"], f"reverse mode, soft quality (tau {tau:g})"
+        out["methods"][m] = {"quality": value, "per_unit": per, "landmark_grad": grads, "how": how}
+        for name in NOMINAL:
+            out["parameter_rows"].append({"method": m, "parameter": name, "nominal": opts.get(name, 0.0),
+                                          "unit": UNITS[name], "d_quality_per_unit": per[name] * UNITS[name],
+                                          "quality": value, "how": how})
+        if grads is not None:
+            for i, (gx, gy, gr) in enumerate(np.asarray(grads)):
+                out["landmark_rows"].append({"method": m, "landmark": i, "dq_dx_per_cm": float(gx),
+                                             "dq_dy_per_cm": float(gy), "dq_dr_per_cm": float(gr),
+                                             "position_gradient_norm": float(np.hypot(gx, gy))})
+    return out
+
+
+def landmark_figure(result: dict):
+    """Arrows on the landmarks: the direction that improves quality (minus the position gradient),
+    scaled per method so that its longest arrow is 150 cm; the number is |grad| x 100 (per metre)."""
+    env = result["env"]
+    soft = [m for m, r in result["methods"].items() if r["landmark_grad"] is not None]
+    fig, axes = subplots(1, max(len(soft), 1), figsize=(4.4 * max(len(soft), 1), 4.6), squeeze=False)
+    lm = np.asarray(env.landmarks)[np.asarray(env.valid)]
+    for ax, m in zip(axes[0], soft):
+        g = np.asarray(result["methods"][m]["landmark_grad"])
+        norm = np.hypot(g[:, 0], g[:, 1])
+        scale = 150.0 / max(norm.max(), 1e-12)
+        draw_env(ax, env)
+        ax.quiver(lm[:, 0], lm[:, 1], -g[:, 0] * scale, -g[:, 1] * scale, angles="xy", scale_units="xy", scale=1.0,
+                  color="tab:red", width=0.008, zorder=5)
+        for (x, y, r), n in zip(lm, norm):
+            ax.annotate(f"{100 * n:.2g}", (x, y), xytext=(0, r * 0.0 + 14), textcoords="offset points", ha="center",
+                        fontsize=8, color="tab:red", zorder=6)
+        ax.set_title(f"{m}: quality {result['methods'][m]['quality']:.3f}", fontsize=10)
+    fig.suptitle("Which landmark matters: arrows improve homing quality (|dQ/dx| per metre)")
+    return fig
+
+
+def parameter_figure(result: dict):
+    """Bars: change of homing quality per unit of d (10 cm) and of each noise sigma (1 degree)."""
+    methods = list(result["methods"])
+    names = list(NOMINAL)
+    fig, axes = subplots(1, 1, figsize=(7.5, 4.0), squeeze=False)
+    ax = axes[0, 0]
+    width = 0.8 / len(methods)
+    for k, m in enumerate(methods):
+        vals = [result["methods"][m]["per_unit"][n] * UNITS[n] for n in names]
+        ax.bar(np.arange(len(names)) + (k - (len(methods) - 1) / 2) * width, vals, width, label=m)
+    ax.axhline(0, color="black", linewidth=0.8)
+    ax.set_xticks(range(len(names)), ["d (per 10 cm)", "bearing σ (per °)", "odometry σ (per °)", "compass σ (per °)"])
+    ax.set_ylabel("change of homing quality (1 - cos error)")
+    ax.legend(fontsize=8)
+    ax.set_title("Sensitivity of homing quality at d = 50 cm, σ bearing 1°, odometry 1°, compass 2°", fontsize=9)
+    return fig

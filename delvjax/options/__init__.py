@@ -1,0 +1,8 @@
+"""User options: method names (the registry), validated settings, run-size limits
+(docs/model.md §3-4, §7)."""
+
+from ._limits import MAX_POINTS as MAX_POINTS
+from ._registry import DESCRIPTIONS as DESCRIPTIONS
+from ._registry import METHODS as METHODS
+from ._registry import get_method as get_method
+from ._settings import make_setup as make_setup

@@ -1,0 +1,37 @@
+"""How big a run may be: the number of grid points or trials is known before any work, so a run
+too large for the machine is refused with an estimate instead of exhausting memory (docs/reproduce.md
+"Large grids"). The limit is the user's to raise (`--max-points`, `max_points=`)."""
+
+from __future__ import annotations
+
+import math
+
+from ..core.errors import InputError
+from ._settings import positive_int
+
+MAX_POINTS = 1_000_000  # grid points (times masks) or trials in one run, by default
+# host memory per item of the results and their CSV rows, bytes; slowest method per item on 2 CPU cores, s
+BYTES = {"grid point": 120, "trial": 160, "path point": 40}
+SECONDS = {"grid point": 50e-6, "trial": 1.5e-3, "path point": 1e-4}
+
+
+def grid_count(arena, spacing: float) -> int:
+    """Number of cells of the docs/model.md §5 grid (at most one more per axis than `maps.grid_points`
+    keeps), computed without building it."""
+    xmin, ymin, xmax, ymax = (float(v) for v in arena)
+    nx = max(0, math.ceil((xmax - xmin - spacing / 2) / spacing))
+    ny = max(0, math.ceil((ymax - ymin - spacing / 2) / spacing))
+    return nx * ny
+
+
+def check_size(count: int, max_points, field: str, value, what: str = "grid point") -> int:
+    """`InputError` naming `field` when `count` items exceed `max_points`; the message estimates the
+    memory and time such a run would need. Returns the validated limit."""
+    limit = positive_int(max_points, "max_points")
+    if count > limit:
+        gb = count * BYTES[what] / 1e9
+        hours = count * SECONDS[what] / 3600
+        raise InputError(field, value, f"gives {count:.3g} {what}s, more than max_points {limit} (about {gb:.3g} GB "
+                                       f"of results and up to {hours:.3g} h on 2 CPU cores); use fewer or raise "
+                                       f"--max-points")
+    return limit

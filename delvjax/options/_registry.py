@@ -1,0 +1,87 @@
+"""The names of the methods: CLI and API names -> method modules (the edge; docs/model.md §3-4).
+
+Nothing under jit takes a name: the edge looks a name up here once and passes the module on.
+A new method is one module file in `delvjax/core/methods/` and one line in REGISTRY (its import
+beside the others).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from ..core.errors import InputError
+from ..core.methods.acv import ACV
+from ..core.methods.alv import ALV
+from ..core.methods.base import HomingMethod
+from ..core.methods.cartwright_collett import CartwrightCollett
+from ..core.methods.delv import DELV
+from ..core.methods.delv_gap import DELVGap
+from ..core.methods.delv_refined import DELVRefined
+from ..core.methods.heading import Compass, VisualCompass
+from ..core.methods.mfdid import MFDID
+from ..core.methods.program import Program
+from ..core.methods.warping import Warping
+
+# name: (module instance, one-line description). A new method is one line here.
+REGISTRY: dict[str, tuple[HomingMethod, str]] = {
+    "delv": (DELV(), "DELV, no compass: all cyclic shifts x n_heading heading hypotheses (thesis ch. 3-4)"),
+    "delv-compass": (DELV(heading=Compass()), "DELV with a compass: only the cyclic shift is searched (thesis ch. 5)"),
+    "delv-visual": (DELV(heading=VisualCompass()), "DELV with the visual compass of docs/model.md §4.4 (thesis 5.3.2)"),
+    "alv": (ALV(), "average landmark vector with a compass (Lambrinos 2000; thesis 3.3.2)"),
+    "alv-visual": (ALV(heading=VisualCompass()), "ALV with the visual compass (thesis 5.3.2)"),
+    "acv": (ACV(), "average correction vector with a compass (Hong 1992; thesis Eq 5.2)"),
+    "acv-visual": (ACV(heading=VisualCompass()), "ACV with the visual compass (thesis 5.3.2)"),
+    "warping": (Warping(), "predictive image matching over alpha x rho x psi, no compass (Franz 1998; thesis 4.2)"),
+    "mfdid": (MFDID(), "matched-filter descent in image distances with a compass (Moller & Vardy 2006)"),
+    "cc": (CartwrightCollett(), "snapshot model of Cartwright & Collett 1983 (landmarks only) with a compass"),
+    "delv-agent": (DELV(order="agent"), "DELV, no compass, the current list in the agent frame (the earlier order; "
+                                        "docs/model.md §3.3)"),
+    "delv-compass-agent": (DELV(heading=Compass(), order="agent"), "DELV with a compass, the current list in the agent "
+                                                                   "frame (the earlier order; docs/model.md §3.3)"),
+    "delv-gap": (DELVGap(), "DELV, no compass, gap-aware matching: pairings may skip landmarks (beyond the thesis)"),
+    "delv-gap-compass": (DELVGap(heading=Compass()), "DELV with a compass and gap-aware matching (beyond the thesis)"),
+    "delv-refined": (DELVRefined(), "DELV, no compass, heading and home vector refined by least squares after the "
+                                    "1 deg search (beyond the thesis)"),
+}
+METHODS: dict[str, HomingMethod] = {name: module for name, (module, _) in REGISTRY.items()}
+DESCRIPTIONS: dict[str, str] = {name: text for name, (_, text) in REGISTRY.items()}
+
+
+def get_method(name: str) -> HomingMethod:
+    """The module registered under `name`; `InputError` naming the field otherwise."""
+    if not isinstance(name, str) or name not in METHODS:
+        raise InputError("method", name, f"unknown method (choose from {', '.join(METHODS)})")
+    return METHODS[name]
+
+
+def configure(method: HomingMethod, **settings) -> HomingMethod:
+    """`method` with those of `settings` that are its own fields replaced (a `Program`: each of its
+    methods); settings a method does not have are left to the others (e.g. `levels` is DELV's)."""
+    if isinstance(method, Program):
+        return dataclasses.replace(method, methods=tuple(configure(m, **settings) for m in method.methods))
+    changes = {k: v for k, v in settings.items() if v is not None and owns(method, k)}
+    return dataclasses.replace(method, **changes) if changes else method
+
+
+def owns(method: HomingMethod, field: str) -> bool:
+    """Whether `method` (or, for a `Program`, one of its methods) has the setting `field`."""
+    if isinstance(method, Program):
+        return any(owns(m, field) for m in method.methods)
+    return field in {f.name for f in dataclasses.fields(method)}
+
+
+def program(method: str, names) -> tuple[Program, tuple[str, ...]]:
+    """The `Program` of the methods `names` (a list of registry names containing `method`) that runs
+    `method`; validated: `InputError` naming "program"."""
+    get_method(method)
+    if names is None:
+        names = (method,)
+    if isinstance(names, (str, bytes)) or not hasattr(names, "__iter__"):
+        raise InputError("program", names, "must be a list of method names")
+    names = tuple(names)
+    unknown = [m for m in names if m not in METHODS]
+    if unknown:
+        raise InputError("program", list(names), f"unknown method {unknown[0]!r} (choose from {', '.join(METHODS)})")
+    if method not in names:
+        raise InputError("program", list(names), f"must contain the method {method!r}")
+    return Program(methods=tuple(METHODS[m] for m in names), index=names.index(method)), names

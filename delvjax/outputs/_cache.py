@@ -1,0 +1,28 @@
+"""Persistent XLA compilation cache for the command line and studies (not for library imports)."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import jax
+
+
+def enable_compilation_cache() -> None:
+    """Cache compiled programs under $DELVJAX_CACHE_DIR (default ~/.cache/delvjax/xla):
+    a second run of the same command skips the seconds of compilation. Set it to "" to disable."""
+    path = os.environ.get("DELVJAX_CACHE_DIR", str(Path.home() / ".cache" / "delvjax" / "xla"))
+    if not path:
+        return
+    try:
+        Path(path).mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return
+    jax.config.update("jax_compilation_cache_dir", path)
+    jax.config.update("jax_persistent_cache_min_compile_time_secs", 0.5)
+
+
+def package_sources() -> list[Path]:
+    """Every source file of the delvjax package (study hashes, sweep cell digests), in a fixed order."""
+    root = Path(__file__).resolve().parents[1]
+    return sorted(p for p in root.rglob("*.py") if "__pycache__" not in p.parts)

@@ -1,0 +1,67 @@
+"""Figures of image experiments (docs/images.md; thesis Figs 4.16-4.21, 4.24): a world's obstacles,
+vector maps and catchments on a database, homing paths, and the pipeline from camera image to ring."""
+
+from __future__ import annotations
+
+import matplotlib
+import numpy as np
+from ._maps import draw_vector_map, draw_world, subplots
+
+
+def database_map_figure(db, vm, title: str = "", classes: bool = False, ax=None, perceived=None):
+    """Vector map on a database (Fig 4.18): arrows, invalid points as red x, obstacles."""
+    fig, ax = subplots(figsize=(6.4, 6.4)) if ax is None else (ax.figure, ax)
+    draw_vector_map(ax, None, vm.points, vm.direction, vm.valid, vm.included, db.spacing,
+                    error_deg=vm.error_deg if classes else None)
+    draw_world(ax, db.arena, db.home, db.obstacles, perceived)
+    ax.set_title(title, fontsize=10)
+    return fig
+
+
+def database_catchment_figure(db, vm, starts, paths, title: str = ""):
+    """Catchment on a database: the vector map with a square on every release point that homed."""
+    fig = database_map_figure(db, vm, title)
+    ax = fig.axes[0]
+    ok = np.asarray(paths.outcome) == 0
+    s = np.asarray(starts)
+    ax.scatter(s[ok, 0], s[ok, 1], marker="s", s=60, facecolors="none", edgecolors="tab:blue", zorder=1,
+               label="homes")
+    ax.legend(loc="upper right", fontsize=8)
+    return fig
+
+
+def paths_figure(db, vm, paths, title: str = ""):
+    """Fig 4.24: (a) homing paths from a few release points, (b) the vector map."""
+    fig, (a, b) = subplots(1, 2, figsize=(12.0, 6.0))
+    draw_world(a, db.arena, db.home, db.obstacles)
+    path = np.asarray(paths.path)
+    colors = matplotlib.colormaps["tab10"](np.arange(path.shape[0]) % 10)
+    for t in range(path.shape[0]):  # a handful of paths: drawing, not computing
+        a.plot(path[t, :, 0], path[t, :, 1], ".-", color=colors[t], lw=1.2, ms=4, zorder=5)
+        a.plot(path[t, 0, 0], path[t, 0, 1], "*", color="black", ms=10, zorder=6)
+    a.set_title("(a) homing paths", fontsize=10)
+    database_map_figure(db, vm, "(b) homing vectors", ax=b)
+    fig.suptitle(title)
+    fig.set_layout_engine("tight")
+    return fig
+
+
+def pipeline_figure(donut_image, panorama_image, mask_image, ring_mask, title: str = ""):
+    """Figs 4.16b-4.17: the donut image, its unwrapped panorama, the segmented landmarks and the ring."""
+    fig = matplotlib.figure.Figure(figsize=(10.0, 6.2))
+    grid = fig.add_gridspec(3, 2, width_ratios=[1.0, 2.4])
+    ax = fig.add_subplot(grid[:, 0])
+    ax.imshow(donut_image)
+    ax.set_title("(a) catadioptric image", fontsize=9)
+    for i, (img, label) in enumerate(((panorama_image, "(b) unwrapped panorama"),
+                                      (mask_image, "(c) landmark pixels (HSV threshold)"),
+                                      (np.repeat(np.asarray(ring_mask)[None], 8, 0), "(d) 1D ring"))):
+        a = fig.add_subplot(grid[i, 1])
+        a.imshow(img, cmap="gray", aspect="auto", interpolation="nearest")
+        a.set_title(label, fontsize=9)
+        a.set_yticks([])
+    for a in fig.axes:
+        a.set_xticks([])
+    fig.suptitle(title)
+    fig.set_layout_engine("tight")
+    return fig

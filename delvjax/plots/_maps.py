@@ -1,0 +1,114 @@
+"""Thesis-style figures from result arrays (never recomputing): vector maps (Figs 4.2/4.3), error curves (Fig 4.4)."""
+
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.figure import Figure
+from matplotlib.patches import Circle, Rectangle
+
+from ..core.metrics import error_class
+from ..core.scene import Env
+
+
+def subplots(*grid: int, figsize: tuple[float, float], **kw):
+    """(figure, axes) of a new figure that belongs to no pyplot state (no backend switch, no global
+    figure list; safe to draw on any thread): `Figure(figsize).subplots(*grid, **kw)`."""
+    fig = Figure(figsize=figsize)
+    return fig, fig.subplots(*grid, **kw)
+
+CLASS_STYLE = (  # Fig 4.3: dot < 45, star 45-90, triangle > 90
+    ("<45°", dict(marker=".", color="0.35", s=10)),
+    ("45–90°", dict(marker="*", color="tab:orange", s=40)),
+    (">90°", dict(marker="^", facecolors="none", edgecolors="tab:red", s=36)),
+)
+
+
+def draw_env(ax, env: Env, perceived_radius: float | None = None) -> None:
+    """Arena box, landmarks to scale (filled discs), home as a black square."""
+    lm = np.asarray(env.landmarks)[np.asarray(env.valid)]
+    draw_world(ax, env.arena, env.home, {"cylinders": lm.tolist()})
+
+
+def draw_world(ax, arena, home, obstacles: dict, perceived=None) -> None:
+    """Arena, cylinders [x, y, r] (discs) and boxes [xmin, ymin, xmax, ymax] (rectangles) to scale, home
+    as a black square; `perceived` (K, 2) landmark positions as white circles (Fig 4.20)."""
+    xmin, ymin, xmax, ymax = (float(v) for v in np.asarray(arena))
+    ax.set_xlim(xmin, xmax)
+    ax.set_ylim(ymin, ymax)
+    ax.set_aspect("equal")
+    for x, y, r in obstacles.get("cylinders", []):
+        ax.add_patch(Circle((x, y), r, facecolor="0.15", edgecolor="black", zorder=3))
+    for x0, y0, x1, y1 in obstacles.get("boxes", []):
+        ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, facecolor="0.15", edgecolor="black", zorder=3))
+    if perceived is not None and len(perceived):
+        r = 0.02 * (xmax - xmin)
+        for x, y in np.asarray(perceived):
+            ax.add_patch(Circle((x, y), r, facecolor="white", edgecolor="black", zorder=4))
+    hx, hy = np.asarray(home)[:2]
+    ax.plot([hx], [hy], marker="s", color="black", markersize=7, zorder=4, label="home")
+    ax.set_xlabel("x (cm)")
+    ax.set_ylabel("y (cm)")
+
+
+def draw_vector_map(ax, env: Env, points, direction, valid, included, spacing: float, error_deg=None) -> None:
+    """Unit arrows of the homing direction at each included point; invalid points as red x;
+    error class markers when `error_deg` is given."""
+    inc = np.asarray(included)
+    pts = np.asarray(points)[inc]
+    ok = np.asarray(valid)[inc]
+    ang = np.asarray(direction)[inc]
+    length = 0.7 * spacing
+    u, v = np.cos(ang[ok]) * length, np.sin(ang[ok]) * length
+    ax.quiver(pts[ok, 0], pts[ok, 1], u, v, angles="xy", scale_units="xy", scale=1.0, width=0.0022,
+              headwidth=4, headlength=4, color="black", zorder=2)
+    if (~ok).any():
+        ax.scatter(pts[~ok, 0], pts[~ok, 1], marker="x", color="tab:red", s=14, zorder=3, label="invalid")
+    if error_deg is not None:
+        cls = np.asarray(error_class(np.asarray(error_deg)))[inc]
+        for c, (label, style) in enumerate(CLASS_STYLE):
+            sel = (cls == c) & ok
+            if sel.any() and c > 0:
+                ax.scatter(pts[sel, 0], pts[sel, 1], zorder=4, label=label, **style)
+
+
+def vector_map_figure(env: Env, vm, spacing: float, title: str = "", classes: bool = False):
+    """Figure of one vector map (Fig 4.2; with `classes`, the error markers of Fig 4.3)."""
+    fig, ax = subplots(figsize=(6.4, 6.4))
+    draw_vector_map(ax, env, vm.points, vm.direction, vm.valid, vm.included, spacing,
+                    error_deg=vm.error_deg if classes else None)
+    draw_env(ax, env)
+    ax.set_title(title)
+    if classes or not np.asarray(vm.valid)[np.asarray(vm.included)].all():
+        ax.legend(loc="upper right", fontsize=8, framealpha=0.9)
+    return fig
+
+
+def error_curve_figure(curves: dict[str, list[dict]], title: str = ""):
+    """Mean angular error vs distance from home with 95% t intervals, one line per label (Fig 4.4)."""
+    fig, ax = subplots(figsize=(6.4, 4.2))
+    for label, rows in curves.items():
+        x = np.array([(r["bin_lo"] + r["bin_hi"]) / 2 for r in rows])
+        m = np.array([r["mean_deg"] for r in rows])
+        lo = np.array([r["ci_lo_deg"] for r in rows])
+        hi = np.array([r["ci_hi_deg"] for r in rows])
+        yerr = np.nan_to_num(np.stack([m - lo, hi - m]), nan=0.0)
+        ax.errorbar(x, m, yerr=yerr, marker="o", ms=4, capsize=3, label=label)
+    ax.set_xlabel("distance from home (cm)")
+    ax.set_ylabel("angular error (deg)")
+    ax.set_ylim(bottom=0)
+    ax.set_title(title)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return fig
+
+
+def environments_figure(envs: list[Env]):
+    """The built-in environments side by side (README)."""
+    fig, axes = subplots(1, len(envs), figsize=(3.2 * len(envs), 3.4))
+    for ax, env in zip(np.atleast_1d(axes), envs):
+        draw_env(ax, env)
+        ax.set_title(env.name)
+        ax.set_xlabel("")
+        ax.set_ylabel("")
+    fig.set_layout_engine("tight")  # applied when drawn (in the figure thread)
+    return fig

@@ -1,0 +1,176 @@
+"""What one study of `delvjax reproduce` sees and leaves behind (docs/reproduce.md): the run's
+`Settings`, the `StudyContext` writers (figures, tables, numbers, data files) and the
+`StudyRecord` written last as `<study>/study.json`; plus the run's versions and compile time."""
+
+from __future__ import annotations
+
+import platform
+import threading
+from concurrent.futures import Future, ThreadPoolExecutor
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+import jax
+
+from ..core.maps import SPACING
+from ..core.rollouts import DEFAULT_LANES, TRIALS_PER_DISTANCE
+from ..outputs._files import _jsonable, write_csv, write_figure, write_json, write_rows_csv
+
+STUDY_FILE = "study.json"
+COMPILE_EVENTS = ("/jax/core/compile/jaxpr_trace_duration", "/jax/core/compile/jaxpr_to_mlir_module_duration",
+                  "/jax/core/compile/backend_compile_duration")
+
+
+@dataclass(frozen=True)
+class Settings:
+    """What a run depends on besides the code (recorded in the report and every JSON).
+
+    spacing: grid spacing cm (docs/model.md §5, 25 = 40 x 40; --quick: 100 = 10 x 10); trials: rollouts
+    per success-rate distance bin (thesis: 100; they fill one trial block, so --quick keeps
+    them); seed: every random heading, release point and noise draw; lanes: trials advanced side by
+    side in the rollout program (`rollouts.run_trials`; no number depends on it): 256 fill the
+    program best on the large calls of a full run, 128 waste less on the 99-trial calls of --quick.
+    """
+
+    quick: bool = False
+    seed: int = 0
+    spacing: float = SPACING
+    trials: int = TRIALS_PER_DISTANCE
+    lanes: int = DEFAULT_LANES
+
+    @classmethod
+    def make(cls, quick: bool = False, seed: int = 0) -> "Settings":
+        return cls(quick=quick, seed=seed, spacing=100.0 if quick else SPACING, trials=TRIALS_PER_DISTANCE,
+                   lanes=128 if quick else DEFAULT_LANES)
+
+
+def settings_record(settings: Settings) -> dict:
+    """The settings as recorded in every study.json and the report, with the rollout rules."""
+    from ..core.rollouts import DEFAULT_RULES, PHYSICAL_RULES
+
+    return {**asdict(settings), "rules": {"default": DEFAULT_RULES, "physical": PHYSICAL_RULES}}
+
+
+def versions() -> dict[str, str]:
+    from .. import __version__
+
+    import numpy
+
+    return {"delvjax": __version__, "jax": jax.__version__, "numpy": numpy.__version__,
+            "python": platform.python_version(), "backend": jax.default_backend()}
+
+
+# --- compile-time accounting -------------------------------------------------------------
+
+_COMPILE_SECONDS: dict[int, float] = {}  # thread id -> seconds: studies run side by side (reproduce.py)
+
+
+def _on_duration(event: str, duration: float, **_: Any) -> None:
+    if event in COMPILE_EVENTS:  # reported in the thread that traces and compiles
+        ident = threading.get_ident()
+        _COMPILE_SECONDS[ident] = _COMPILE_SECONDS.get(ident, 0.0) + duration
+
+
+_LISTENING = []
+
+
+def compile_seconds() -> float:
+    """Seconds this thread has spent tracing, lowering and compiling XLA programs so far (each
+    study runs in one thread, so a study's compile time is not mixed with its neighbour's)."""
+    if not _LISTENING:
+        jax.monitoring.register_event_duration_secs_listener(_on_duration)
+        _LISTENING.append(True)
+    return _COMPILE_SECONDS.get(threading.get_ident(), 0.0)
+
+
+# --- one study's context -----------------------------------------------------------------
+
+@dataclass
+class StudyRecord:
+    """What a study produced, as written to its study.json and read by the report."""
+
+    name: str
+    title: str
+    hash: str = ""
+    settings: dict = field(default_factory=dict)
+    versions: dict = field(default_factory=dict)
+    seconds: float = 0.0
+    compile_seconds: float = 0.0
+    figures: list = field(default_factory=list)  # {"file", "caption"}
+    tables: list = field(default_factory=list)  # {"id", "title", "source", "file", "columns", "rows", "note"}
+    numbers: dict = field(default_factory=dict)  # flat keys -> JSON values, read by the claims
+    files: list = field(default_factory=list)
+
+
+class StudyContext:
+    """The output folder and writers of one study; every write is atomic and recorded."""
+
+    def __init__(self, out: Path, record: StudyRecord, settings: Settings, bar=None,
+                 painter: ThreadPoolExecutor | None = None):
+        self.out, self.record, self.settings, self._bar = out, record, settings, bar
+        self._painter, self._pending = painter, []  # type: ignore[var-annotated]
+        out.mkdir(parents=True, exist_ok=True)
+
+    def _file(self, name: str) -> Path:
+        self.record.files.append(name)
+        return self.out / name
+
+    def figure(self, name: str, fig, caption: str) -> None:
+        """Save a figure (`plots.subplots`: outside pyplot's state) as `name` (.png) with the caption the
+        report prints under it."""
+        path = self._file(name)
+        if self._painter is None:
+            write_figure(fig, path)
+        else:  # rendered while this thread waits on the device: figures overlap the computation
+            self._pending.append(self._painter.submit(write_figure, fig, path))
+        self.record.figures.append({"file": name, "caption": caption})
+
+    def finish(self, last: Callable[[], None]) -> Future | None:
+        """Run `last` (the study.json write) once every figure of the study is written: on the
+        figure thread, after them (one thread, first in first out), and only if none failed.
+        Returns its future (None when run here, without a figure thread)."""
+        pending: list[Future] = self._pending
+        self._pending = []
+        if self._painter is None:
+            last()
+            return None
+
+        def after_figures() -> None:
+            for f in pending:
+                f.result()  # a failed figure raises here: no study.json, so the study runs again
+            last()
+
+        return self._painter.submit(after_figures)
+
+    def table(self, table_id: str, title: str, rows: list[dict], source: str = "", note: str = "",
+              columns: list[str] | None = None) -> None:
+        """A table of the report (and `<table_id>.csv`): rows of flat dicts, `columns` shown in the report."""
+        write_rows_csv(self._file(f"{table_id}.csv"), rows)
+        self.record.tables.append({"id": table_id, "title": title, "source": source, "note": note,
+                                   "file": f"{table_id}.csv",
+                                   "columns": columns or list(dict.fromkeys(k for r in rows for k in r)),
+                                   "rows": _jsonable(rows)})
+
+    def csv(self, name: str, columns: dict | None = None, rows: list[dict] | None = None) -> None:
+        """A data file beside the figures (columns of equal length, or rows)."""
+        if rows is not None:
+            write_rows_csv(self._file(name), rows)
+        else:
+            write_csv(self._file(name), columns or {})
+
+    def json(self, name: str, obj: Any) -> None:
+        write_json(self._file(name), obj)
+
+    def number(self, key: str, value: Any) -> None:
+        """A headline number the claims table reads (`numbers[key]`)."""
+        self.record.numbers[key] = _jsonable(value)
+
+    def step(self, text: str) -> None:
+        """Progress within a long study (advances the inner bar)."""
+        if self._bar is not None:
+            self._bar.set_postfix_str(text[:60])
+            self._bar.update(1)
+
+
+# --- content hash and resume ---------------------------------------------------------------

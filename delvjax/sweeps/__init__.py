@@ -1,0 +1,8 @@
+"""Sweeps (docs/sweeps.md): a file of axes -> every cell evaluated, one compiled program per
+shape -> labelled results (xarray)."""
+
+from ._run import load_sweep as load_sweep
+from ._run import run_sweep as run_sweep
+from ._run import save_sweep as save_sweep
+from ._spec import SweepSpec as SweepSpec
+from ._spec import read_sweep as read_sweep

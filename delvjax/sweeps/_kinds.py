@@ -1,0 +1,120 @@
+"""What each kind of sweep computes per cell (docs/sweeps.md): the validated setup of a cell, the
+key of the cells that share one compiled program, and a chunk of such cells as one call of it
+(`core.cells.map_cells` for vector maps, `core.rollouts.cells` for catchments and success rates),
+split over the local devices when there are several."""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+
+import jax
+import numpy as np
+
+from ..evaluate import _vector_map as api, _rollouts as api_rollouts
+from ..core import cells as map_program
+from ..core.batching import over_devices, over_processes
+from ..core.errors import InputError
+from ..core.maps import grid_included, grid_points
+from ..core.rollouts import DEFAULT_LANES, catchment_counted
+from ..core.rollouts import cells as rollout_programs
+from ._spec import SweepSpec
+
+SUMS = {"vector-map": map_program.CellMetrics, "catchment": rollout_programs.CatchmentSums,
+        "success-rate": rollout_programs.SuccessSums}  # the per-cell sums each kind returns
+
+
+def sum_names(kind: str) -> tuple[str, ...]:
+    return tuple(f.name for f in dataclasses.fields(SUMS[kind]))
+
+
+def cell_setup(spec: SweepSpec, envs: dict, cell: dict, max_points: int) -> dict:
+    """One cell's setup, validated by the API call of its kind (`api.map_request`,
+    `api_rollouts.rollout_request`); an `InputError` names the cell."""
+    options = {k: v for k, v in cell.items() if k not in ("env", "method", "seed")}
+    try:
+        if spec.kind == "vector-map":
+            return api.map_request(envs[cell["env"]], method=cell["method"], seed=cell["seed"],
+                                   max_points=max_points, **options)
+        return api_rollouts.rollout_request(envs[cell["env"]], kind=spec.kind, method=cell["method"], seed=cell["seed"],
+                                            distances=spec.distances, trials=spec.trials, max_points=max_points,
+                                            **options)
+    except InputError as exc:
+        where = ", ".join(f"{k}={v}" for k, v in cell.items())
+        raise InputError(f"cell ({where})", exc.value, f"{exc.field}: {exc.expected}") from None
+
+
+def _traced(req: dict, mask_rows: int = 1) -> tuple:
+    """The pytree a cell's program takes (stacked over the cells of a chunk); a rollout cell's masks
+    padded to `mask_rows` rows (the most of any cell of the sweep: one program for every occlusion)."""
+    if req.get("kind") is None:
+        return req["env"].arrays(), req["method"], req["sensor"], req["key"]
+    masks = np.asarray(req["masks"], bool)
+    padded = np.concatenate([masks, np.repeat(masks[:1], max(0, mask_rows - len(masks)), axis=0)])
+    return (rollout_programs.RolloutCell(env=req["env"].arrays(), method=req["method"], sensor=req["sensor"],
+                                         key=req["key"], masks=padded, n_masks=np.int32(len(masks)),
+                                         radius=np.float32(req["home_radius"]),
+                                         homing_first=np.bool_(req["first_move"] == "homing"),  # docs/model.md §5
+                                         collide=np.bool_(req["collisions"] == "fail")),)
+
+
+def mask_rows(req: dict) -> int:
+    """Visibility masks of a rollout cell (0 for a vector map)."""
+    return len(req["masks"]) if "masks" in req else 0
+
+
+def group_key(req: dict) -> tuple:
+    """Cells with equal keys stack into one program: pytree structure, leaf shapes (the number of
+    masks aside), and the static settings (grid, clearance, max_steps)."""
+    leaves, treedef = jax.tree.flatten(_traced(dict(req, masks=req["masks"][:1]) if "masks" in req else req))
+    shapes = tuple((np.shape(x), np.asarray(x).dtype.str) for x in leaves)
+    return (treedef, shapes, req["spacing"], req["clearance"], req.get("max_steps"),
+            tuple(np.asarray(req["env"].arena).tolist()))
+
+
+def evaluate(kind: str, setups: list[dict], mesh, rows: int = 1, total: int | None = None) -> dict[str, np.ndarray]:
+    """The cells `setups` (one group) as one call of their program, split over `mesh`'s devices if
+    any (every device runs whole cells with the one-device program); rollout masks padded to `rows`.
+    With `total`, `mesh` spans every process and `setups` are this process's rows of a chunk of
+    `total` cells (`batching.over_processes`). Returns the sums (of `setups`) by name."""
+    first = setups[0]
+    stack = lambda *xs: np.stack([np.asarray(x) for x in xs])  # noqa: E731
+    traced = jax.tree.map(stack, *[_traced(req, rows) for req in setups])
+    if kind == "success-rate":
+        shared = (np.asarray(first["distances"], np.float32), np.float32(first["clearance"]))
+    else:
+        points = grid_points(first["env"].arena, first["spacing"])
+        included = np.stack([np.asarray(grid_included(req["env"].arrays(), points, req["clearance"]))
+                             for req in setups])
+        shared, traced = (points,), traced + (included,)
+        if kind == "catchment":
+            counted = np.stack([catchment_counted(req["env"].arena, points, inc, req["first_move"], req["sensor"].d)
+                                for req, inc in zip(setups, included)])
+            traced = traced + (counted,)
+    program = _program(kind, first.get("max_steps"), DEFAULT_LANES, first.get("trials"))
+    if total is not None:
+        res = over_processes(program, mesh, len(shared), total, *shared, *traced)
+    elif mesh is None:
+        res = program(*shared, *traced)
+    else:
+        res = over_devices(program, mesh, len(shared), *shared, *traced)
+    return {name: np.asarray(getattr(res, name)) for name in sum_names(kind)}
+
+
+@functools.lru_cache(maxsize=None)
+def _program(kind: str, max_steps: int | None, lanes: int, trials: int | None):
+    """The per-chunk program of a kind, shared arguments first (`over_devices` replicates them)."""
+    if kind == "vector-map":
+        return lambda points, envs, methods, sensors, keys, included: map_program.map_cells(
+            envs, points, included, methods, sensors, keys)
+    if kind == "catchment":
+        return lambda points, cells, included, counted: rollout_programs.catchment_cells(
+            cells, points, included, counted, max_steps=max_steps, lanes=lanes)
+    return lambda distances, clearance, cells: rollout_programs.success_cells(
+        cells, distances, clearance, trials=trials, max_steps=max_steps, lanes=lanes)
+
+
+def programs_compiled() -> int:
+    """Programs compiled so far for sweep cells (one device, or split over the local devices)."""
+    return (map_program.map_cells._cache_size() + rollout_programs.catchment_cells._cache_size()
+            + rollout_programs.success_cells._cache_size() + over_devices._cache_size())

@@ -1,0 +1,133 @@
+"""A sweep's results as labelled data (docs/sweeps.md "Results"): per-cell sums -> metrics, an
+`xarray.Dataset` (one dimension per axis, plus `distance_cm` for success rates), netCDF and a
+tidy CSV written as a unit, and `load_sweep`."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import jax
+import numpy as np
+
+from ..core.errors import InputError
+from ..outputs._files import output_set
+from ._spec import SweepSpec
+
+FILES = ("sweep.nc", "sweep.csv", "sweep.toml")
+
+
+def _pct(part: np.ndarray, whole: np.ndarray) -> np.ndarray:
+    """100 part / whole, NaN where whole is 0."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(whole > 0, 100.0 * part / np.maximum(whole, 1), np.nan)
+
+
+def error_metrics(sums: dict, n: np.ndarray) -> dict:
+    """Error point rates, mean error with its Student-t 95 % half-width, invalid rate over `n` directions."""
+    pts = np.maximum(n, 1)
+    mean = sums["error_sum"] / pts
+    var = np.maximum(sums["error_sq_sum"] - pts * mean ** 2, 0.0) / np.maximum(pts - 1, 1)
+    half = t_quantile(n) * np.sqrt(var / pts)
+    return {"gt45_pct": _pct(sums["gt45"], n), "gt90_pct": _pct(sums["gt90"], n),
+            "mean_error_deg": np.where(n > 0, mean, np.nan), "mean_error_ci95_deg": np.where(n >= 2, half, np.nan),
+            "invalid_pct": _pct(sums["invalid"], n), "points": sums["points"].astype(np.int64)}
+
+
+def catchment_metrics(sums: dict) -> dict:
+    """Catchment % (mean, worst and best mask), failure rates and mean moves of the successes."""
+    trials, points, counted = sums["trials"], sums["counted_points"], sums["counted"]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        steps = np.where(sums["successes"] > 0, sums["steps_success"] / np.maximum(sums["successes"], 1), np.nan)
+    # the vector map's rates over every released trial; the catchment over the counted ones (docs/model.md §5)
+    return {**error_metrics(sums, trials), "catchment_pct": _pct(sums["successes"], counted),
+            "catchment_min_pct": _pct(sums["success_min"], points), "catchment_max_pct": _pct(sums["success_max"], points),
+            "timeout_pct": _pct(sums["timeout"], counted), "landmark_pct": _pct(sums["landmark"], counted),
+            "arena_pct": _pct(sums["arena"], counted), "mean_steps_success": steps,
+            "catchment_points": counted_points(sums)}
+
+
+def counted_points(sums: dict) -> np.ndarray:
+    return sums["counted_points"].astype(np.int64)
+
+
+def wilson_pct(successes: np.ndarray, n: np.ndarray, confidence: float = 0.95) -> tuple[np.ndarray, np.ndarray]:
+    """95 % Wilson score interval in % (the interval of `core.rollouts.wilson_interval_pct`, which asks
+    scipy one trial count at a time), for arrays of counts; NaN where n is 0."""
+    from scipy import stats
+
+    z = stats.norm.ppf(0.5 + confidence / 2)
+    m = np.maximum(n, 1).astype(np.float64)
+    p = successes / m
+    denom = 1.0 + z * z / m
+    centre = (p + z * z / (2 * m)) / denom
+    half = z * np.sqrt(p * (1 - p) / m + z * z / (4 * m * m)) / denom
+    lo, hi = np.clip(centre - half, 0, 1), np.clip(centre + half, 0, 1)
+    return np.where(n > 0, 100 * lo, np.nan), np.where(n > 0, 100 * hi, np.nan)
+
+
+def success_metrics(sums: dict) -> dict:
+    """Success % per distance with its Wilson interval, and the trials placed."""
+    lo, hi = wilson_pct(sums["successes"], sums["placed"])
+    return {"success_pct": _pct(sums["successes"], sums["placed"]), "success_ci95_lo_pct": lo,
+            "success_ci95_hi_pct": hi, "placed": sums["placed"].astype(np.int64)}
+
+
+METRICS_OF = {"vector-map": lambda sums: error_metrics(sums, sums["points"]), "catchment": catchment_metrics,
+              "success-rate": success_metrics}
+
+
+def dataset(spec: SweepSpec, sums: dict, programs: int):
+    """Per-cell sums -> the requested metrics, labelled by the axes (and `distance_cm`)."""
+    import xarray as xr
+
+    values = METRICS_OF[spec.kind](sums)
+    dims, shape = list(spec.axes), spec.shape
+    coords = {name: np.asarray(v) for name, v in spec.axes.items()}
+    if spec.kind == "success-rate":
+        dims, shape = dims + ["distance_cm"], shape + (len(spec.distances),)
+        coords["distance_cm"] = np.asarray(spec.distances)
+    ds = xr.Dataset({m: (dims, np.asarray(values[m]).reshape(shape)) for m in spec.metrics}, coords=coords)
+    ds.attrs.update(sweep_toml=spec.text, kind=spec.kind, programs_compiled=programs, cells=spec.n_cells,
+                    delvjax_version=_version("delvjax"), jax_version=jax.__version__, jaxlib_version=_version("jaxlib"))
+    if spec.kind == "success-rate":
+        ds.attrs["trials_per_distance"] = spec.trials
+    return ds
+
+
+def t_quantile(n: np.ndarray) -> np.ndarray:
+    """Student-t 97.5 % quantile with n - 1 degrees of freedom (NaN for n < 2), as `metrics.t_interval`."""
+    from scipy import stats
+
+    return np.where(n >= 2, stats.t.ppf(0.975, np.maximum(n - 1, 1)), np.nan)
+
+
+def _version(package: str) -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version(package)
+    except PackageNotFoundError:
+        return "unknown"
+
+
+def save_sweep(ds, out: str | Path) -> list[Path]:
+    """sweep.nc (netCDF, every attribute), sweep.csv (one row per cell) and sweep.toml, as a unit."""
+    out = Path(out)
+    paths = [out / f for f in FILES]
+    table = ds.to_dataframe().reset_index()
+    with output_set() as files:
+        files.file(paths[0], lambda tmp: ds.to_netcdf(tmp, engine="scipy"), "--out")
+        files.file(paths[1], lambda tmp: table.to_csv(tmp, index=False, float_format="%.6g"), "--out")
+        files.file(paths[2], lambda tmp: Path(tmp).write_text(ds.attrs["sweep_toml"]), "--out")
+    return paths
+
+
+def load_sweep(out: str | Path):
+    """The `xarray.Dataset` of a finished sweep folder (`delvjax sweep ... --out DIR`)."""
+    import xarray as xr
+
+    path = Path(out) / FILES[0]
+    if not path.is_file():
+        raise InputError("out", str(out), f"has no {FILES[0]} (not a finished sweep folder)")
+    with xr.open_dataset(path, engine="scipy") as ds:
+        return ds.load()

@@ -1,0 +1,136 @@
+"""Running a sweep (docs/sweeps.md): every cell validated first, cells grouped by shape, one compiled
+program per shape called on chunks of cells, split over the local devices and dealt over the
+processes, finished chunks kept on disk; results as labelled data (`sweep_results`)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Callable
+
+import jax
+import numpy as np
+
+from ..evaluate import _vector_map as api
+from ._store import cell_digest, code_digest, load_cells, save_cells
+from ..core.batching import global_mesh, local_mesh, n_devices, process_rows
+from ..envs._presets import load_env, random_env
+from ._kinds import cell_setup, evaluate, group_key, mask_rows, programs_compiled, sum_names
+from ._results import dataset, load_sweep, save_sweep
+from ._spec import SweepSpec
+
+__all__ = ["CELL_CHUNK", "load_sweep", "run_sweep", "save_sweep"]
+
+if TYPE_CHECKING:
+    import xarray
+
+CELL_CHUNK = 64  # cells per call of a group's program (the last chunk padded): bounds memory
+
+
+def _envs(spec: SweepSpec) -> dict:
+    """The sweep's environments, padded to equal landmark slots (one program for every environment)."""
+    def env(name: str, pad_to: int | None = None):
+        if name in spec.random_envs:
+            return random_env(*spec.random_envs[name], pad_to=pad_to)
+        return load_env(name, pad_to=pad_to)
+
+    envs = {name: env(name) for name in spec.axes["env"]}
+    slots = max(int(e.landmarks.shape[0]) for e in envs.values())
+    return {name: env(name, pad_to=slots) for name in envs}
+
+
+def _plan(spec: SweepSpec, envs: dict, max_points: int, code: str | None) -> tuple[list[list[int]], list[str], int]:
+    """Validate every cell before any work; return the cells of each program (group), with `code`
+    every cell's digest (`cell_store`), and the most visibility masks of any cell. Setups are not
+    kept: memory does not grow with them."""
+    ids: dict[tuple, int] = {}
+    groups: list[list[int]] = []
+    digests: list[str] = []
+    rows = 1
+    for i, cell in enumerate(spec.cells()):  # input preparation, one small pytree per cell
+        req = cell_setup(spec, envs, cell, max_points)
+        rows = max(rows, mask_rows(req))
+        gid = ids.setdefault(group_key(req), len(ids))
+        if gid == len(groups):
+            groups.append([])
+        groups[gid].append(i)
+        digests.append(cell_digest(req, code) if code is not None else "")
+    return groups, digests, rows
+
+
+def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Callable[[int, int], None] | None = None,
+              announce: Callable[[], None] | None = None, out: str | Path | None = None) -> xarray.Dataset:
+    """Every cell of `spec`: metrics as an `xarray.Dataset` (one dimension per axis). Every cell is
+    validated before any work; `announce()` is called then; `progress(done, total)` after each chunk.
+    With `out`, finished chunks are kept in out/.cells and cells found there are not computed again
+    (`cell_store`: a killed or changed sweep resumes)."""
+    envs = _envs(spec)
+    groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None)
+    n = spec.n_cells
+    names = sum_names(spec.kind)
+    extra = (len(spec.distances),) if spec.kind == "success-rate" else ()
+    sums = {k: np.zeros((n,) + extra) for k in names}
+    todo = np.ones(n, bool)
+    if out is not None:
+        done = load_cells(Path(out))
+        for i, digest in enumerate(digests):
+            if digest in done:
+                todo[i] = False
+                for k in names:
+                    sums[k][i] = done[digest][k]
+    processes = jax.process_count()
+    if processes > 1:  # a cell is computed again unless every process found it (--out need not be shared)
+        from jax.experimental import multihost_utils
+
+        todo = multihost_utils.process_allgather(todo).any(axis=0)
+    if announce is not None:
+        announce()
+    if progress is not None and not todo.all():
+        progress(int((~todo).sum()), n)
+    compiled = programs_compiled()
+    mesh = local_mesh() if processes == 1 else global_mesh()  # one mesh over every device of every process
+    per_call = n_devices(mesh)
+    width = -(-CELL_CHUNK // per_call) * per_call  # cells per call, a multiple of the devices
+    jobs = []  # (cells, padded size): a group of more than one chunk pads every chunk to `width`
+    for cells in ([i for i in g if todo[i]] for g in groups):
+        size = width if len(cells) > width else -(-len(cells) // per_call) * per_call
+        jobs += [(cells[start:start + width], size) for start in range(0, len(cells), width)]
+    mine: list[int] = []  # the cells this process computed
+    for chunk, size in jobs:
+        padded = chunk + [chunk[0]] * (size - len(chunk))
+        start, stop = (0, size) if processes == 1 else process_rows(mesh, size)  # this process's rows
+        setups = [cell_setup(spec, envs, spec.cell(i), max_points) for i in padded[start:stop]]
+        res = evaluate(spec.kind, setups, mesh, rows, None if processes == 1 else size)
+        own = chunk[start:stop]  # this process's real cells (the rest of its rows are padding)
+        for k in names:
+            sums[k][own] = res[k][:len(own)]
+        mine += own
+        if out is not None and own:
+            save_cells(Path(out), [digests[i] for i in own], {k: sums[k][own] for k in names})
+        if progress is not None:
+            progress(len(chunk), n)
+    if processes > 1:
+        sums = _merge(sums, mine)
+    ds = dataset(spec, sums, programs_compiled() - compiled)
+    ds.attrs["cells_reused"] = int((~todo).sum())
+    return ds
+
+
+def _merge(sums: dict, mine: list[int]) -> dict:
+    """Every process's cells (`jax.distributed`): gathered, each cell from the process that computed it."""
+    from jax.experimental import multihost_utils
+
+    n = len(next(iter(sums.values())))
+    owned = np.zeros(n, bool)
+    owned[mine] = True
+    table = np.concatenate([v.reshape(n, -1) for v in sums.values()], axis=1)  # (cells, columns)
+    tables = multihost_utils.process_allgather(table)  # (P, cells, columns)
+    owners = multihost_utils.process_allgather(owned)  # (P, cells)
+    merged = table.copy()
+    for p in range(tables.shape[0]):  # a few processes
+        merged[owners[p]] = tables[p][owners[p]]
+    out, col = {}, 0
+    for k, v in sums.items():
+        width = int(np.prod(v.shape[1:], dtype=int))
+        out[k] = merged[:, col:col + width].reshape(v.shape)
+        col += width
+    return out

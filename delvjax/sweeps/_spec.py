@@ -1,0 +1,257 @@
+"""Sweep files (TOML, `tomllib`): axes, metrics, validation before any work (docs/sweeps.md)."""
+
+from __future__ import annotations
+
+import itertools
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Iterator
+
+import numpy as np
+
+from ..core.errors import InputError
+
+KINDS = ("vector-map", "catchment", "success-rate")
+# axis -> what it sets (the public option of `delvjax.vector_map` / `catchment` / `success_rate` of the same name)
+MAP_AXES = {
+    "env": "environment: preset name, JSON path, or {random = COUNT, landmarks = N | [N, ...], seed = S}",
+    "method": "registry name",
+    "spacing": "grid spacing, cm",
+    "seed": "seed of headings, release points and noise, 0..2^32-1",
+    "d": "unit-movement step, cm",
+    "levels": "DELV quantization levels Q (0 = continuous)",
+    "n_heading": "DELV heading hypotheses",
+    "background": "uniform | distant",
+    "bearing_noise_deg": "sigma of every blob bearing, deg",
+    "step_noise": "sigma of the unit move's length, fraction of d",
+    "turn_noise_deg": "sigma of the body turn during the unit move, deg",
+    "odometry_turn_noise_deg": "sigma of the odometry's report of that turn, deg",
+    "compass_noise_deg": "sigma of every compass reading, deg",
+}
+ROLLOUT_AXES = {
+    "occlude": "landmarks hidden while homing: every choice of k (the metrics pool the C(N, k) masks)",
+    "first_move": "release | homing (rollout rule, docs/model.md section 5)",
+    "collisions": "ignore | fail (rollout rule)",
+    "motion_heading_noise_deg": "sigma of the executed heading of every rollout move, deg",
+    "motion_step_noise": "sigma of every rollout move's length, fraction of d",
+    "home_radius": "success radius, cm",
+    "max_steps": "moves before a trial times out",
+}
+AXES = {**MAP_AXES, **ROLLOUT_AXES}
+KIND_AXES = {"vector-map": tuple(MAP_AXES), "catchment": tuple(AXES),
+             "success-rate": tuple(a for a in AXES if a != "spacing")}
+NAME_AXES = ("env", "method", "background", "first_move", "collisions")  # the axes whose values are strings
+ERROR_METRICS = {
+    "gt45_pct": "% of grid points with angular error > 45 deg (Tables 5.1/5.2)",
+    "gt90_pct": "% of grid points with angular error > 90 deg",
+    "mean_error_deg": "mean angular error over the grid points, invalid = 180 deg",
+    "mean_error_ci95_deg": "half-width of the 95 % Student-t interval of that mean",
+    "invalid_pct": "% of grid points without a homing direction",
+    "points": "grid points evaluated",
+}
+CATCHMENT_METRICS = {
+    "catchment_pct": "% of counted grid points whose rollout reaches home, mean over the masks (Tables 5.3/5.4; "
+                     "under first_move = release the points at least d from every wall, docs/model.md section 5)",
+    "catchment_min_pct": "the same under the worst mask",
+    "catchment_max_pct": "the same under the best mask",
+    "catchment_points": "grid points counted in the catchment",
+    "timeout_pct": "% of counted trials (points x masks) that ran out of moves",
+    "landmark_pct": "% of counted trials that ended inside a landmark (collisions = fail)",
+    "arena_pct": "% of counted trials that left the arena",
+    "mean_steps_success": "mean moves of the successful trials",
+}
+SUCCESS_METRICS = {
+    "success_pct": "% of placed trials that reach home, per release distance (Figs 4.10b, 5.7b)",
+    "success_ci95_lo_pct": "lower end of its 95 % Wilson interval",
+    "success_ci95_hi_pct": "upper end of its 95 % Wilson interval",
+    "placed": "trials placed per distance (over every mask)",
+}
+KIND_METRICS = {"vector-map": ERROR_METRICS,
+                "catchment": {**CATCHMENT_METRICS, **{k: v.replace("grid points", "first directions (points x masks)")
+                                                     for k, v in ERROR_METRICS.items()}},
+                "success-rate": SUCCESS_METRICS}
+METRICS = {**ERROR_METRICS, **CATCHMENT_METRICS, **SUCCESS_METRICS}
+DEFAULTS = {"env": ["env1"], "method": ["delv"], "spacing": [25.0], "seed": [0]}
+DISTANCES = tuple(float(v) for v in range(50, 451, 50))  # success-rate release distances, cm (core.rollouts)
+TRIALS = 100  # success-rate trials per distance
+RANDOM_ENVS = 10_000  # seeded random layouts one sweep file may ask for
+MAX_VALUES = 100_000  # values of one axis
+MAX_CELLS = 10_000_000  # cells of one sweep (each is validated before any work: about 1 ms a cell)
+
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A validated sweep: axes in file order (name -> values), metrics, the file's text, and for
+    success-rate sweeps the release distances and trials per distance."""
+
+    kind: str
+    axes: dict[str, list]
+    metrics: list[str]
+    text: str
+    distances: tuple[float, ...] = DISTANCES
+    trials: int = TRIALS
+    random_envs: dict[str, tuple[int, int]] = field(default_factory=dict)  # env label -> (seed, landmarks)
+
+    def cells(self) -> Iterator[dict]:
+        """Every combination of the axes (the last axis varies fastest), one at a time."""
+        names = list(self.axes)
+        return (dict(zip(names, combo)) for combo in itertools.product(*self.axes.values()))
+
+    def cell(self, i: int) -> dict:
+        """Cell `i` of `cells()`."""
+        index = np.unravel_index(i, self.shape)
+        return {name: values[int(j)] for (name, values), j in zip(self.axes.items(), index)}
+
+    @property
+    def n_cells(self) -> int:
+        return math.prod(self.shape)
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(len(v) for v in self.axes.values())
+
+
+def _values(name: str, raw, field: str | None = None) -> list:
+    """An axis's values: a list, one value, or an inclusive range (`field` names it in errors)."""
+    field = field or f"axes.{name}"
+    if isinstance(raw, dict):
+        unknown = sorted(set(raw) - {"start", "stop", "step", "num"})
+        if unknown or "start" not in raw or "stop" not in raw or ("step" in raw and "num" in raw):
+            raise InputError(field, raw, "a range is {start, stop, step} or {start, stop, num}")
+        start, stop = raw["start"], raw["stop"]
+        if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                   for v in (start, stop, raw.get("step", 1), raw.get("num", 2))):
+            raise InputError(field, raw, "range bounds must be finite numbers")
+        if "num" in raw:
+            num = raw["num"]
+            if not isinstance(num, int) or num < 1:
+                raise InputError(field, raw, "num must be an integer >= 1")
+            if num > MAX_VALUES:
+                raise InputError(field, raw, f"has {num} values, more than {MAX_VALUES}")
+            values = [start + (stop - start) * i / max(num - 1, 1) for i in range(num)]
+        else:
+            step = raw.get("step", 1)
+            if step <= 0 or stop < start:
+                raise InputError(field, raw, "is empty (need start <= stop and step > 0)")
+            count = math.floor((stop - start) / step + 1e-9) + 1
+            if count > MAX_VALUES:
+                raise InputError(field, raw, f"has {count:.3g} values, more than {MAX_VALUES}")
+            values = [start + i * step for i in range(count)]
+    elif isinstance(raw, list):
+        values = raw
+    else:
+        values = [raw]
+    if not values:
+        raise InputError(field, raw, "is empty")
+    if len(set(map(repr, values))) != len(values):
+        raise InputError(field, raw, "repeats a value")
+    kinds = {type(v) for v in values} - {bool}
+    if name in NAME_AXES and kinds != {str}:
+        raise InputError(field, raw, "must be names (strings)")
+    if name not in NAME_AXES and not kinds <= {int, float}:
+        raise InputError(field, raw, "must be numbers")
+    return values
+
+
+
+
+def _env_labels(raw, random_envs: dict[str, tuple[int, int]]) -> list:
+    """The env axis with every table {random = COUNT, landmarks = N or [N, ...], seed = S} replaced by
+    the labels of its seeded random layouts (`presets.random_env(S + i, N)`: "random<S+i>-<N>"),
+    recorded in `random_envs`."""
+    items = raw if isinstance(raw, list) else [raw]
+    labels = []
+    for item in items:
+        if not isinstance(item, dict):
+            labels.append(item)
+            continue
+        field_ = "axes.env"
+        if sorted(set(item) - {"random", "landmarks", "seed"}) or "random" not in item or "landmarks" not in item:
+            raise InputError(field_, item, "a random table is {random = COUNT, landmarks = N or [N, ...], seed = S}")
+        count, seed = item["random"], item.get("seed", 0)
+        counts = item["landmarks"] if isinstance(item["landmarks"], list) else [item["landmarks"]]
+        ints = [count, seed, *counts]
+        if not all(isinstance(v, int) and not isinstance(v, bool) for v in ints) or count < 1 or seed < 0 \
+                or not counts or min(counts) < 1 or max(counts) > 12:
+            raise InputError(field_, item, "random and seed must be integers >= 1 and >= 0, landmarks in 1..12")
+        if count * len(counts) + len(random_envs) > RANDOM_ENVS:
+            raise InputError(field_, item, f"asks for more than {RANDOM_ENVS} random layouts")
+        for n in counts:
+            for s_ in range(seed, seed + count):
+                label = f"random{s_}-{n}"
+                random_envs[label] = (s_, n)
+                labels.append(label)
+    return labels
+
+
+def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
+    """Validate a sweep file's text (structure, axes, metrics); `InputError` naming the field."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(source, source, f"is not valid TOML ({exc})") from None
+    unknown = sorted(set(data) - {"sweep", "axes"})
+    if unknown:
+        raise InputError(unknown[0], source, "unknown table (a sweep file has [sweep] and [axes])")
+    head, axes = data.get("sweep", {}), data.get("axes", {})
+    if not isinstance(head, dict) or not isinstance(axes, dict):
+        raise InputError("sweep", source, "[sweep] and [axes] must be tables")
+    for key in sorted(set(head) - {"kind", "metrics", "distances", "trials"}):
+        raise InputError(f"sweep.{key}", head[key], "unknown field (kind, metrics, distances, trials)")
+    kind = head.get("kind", "vector-map")
+    if kind not in KINDS:
+        raise InputError("sweep.kind", kind, f"must be one of {', '.join(KINDS)}")
+    for key in ("distances", "trials"):
+        if key in head and kind != "success-rate":
+            raise InputError(f"sweep.{key}", head[key], 'is a setting of kind = "success-rate" only')
+    known = KIND_METRICS[kind]
+    metrics = head.get("metrics", list(known))
+    if not isinstance(metrics, list) or not metrics:
+        raise InputError("sweep.metrics", metrics, "must be a non-empty list")
+    for i, m in enumerate(metrics):
+        if m not in known:
+            other = [k for k in KINDS if m in KIND_METRICS[k]]
+            hint = f' (a metric of kind = "{other[0]}")' if other else ""
+            raise InputError(f"sweep.metrics[{i}]", m, f"unknown metric of kind = \"{kind}\"{hint} (choose from "
+                                                       f"{', '.join(known)})")
+    for name in axes:
+        if name not in AXES:
+            raise InputError(f"axes.{name}", axes[name], f"unknown axis (choose from {', '.join(AXES)})")
+        if name not in KIND_AXES[kind]:
+            users = [k for k in KINDS if name in KIND_AXES[k]]
+            raise InputError(f"axes.{name}", axes[name], f'is not an axis of kind = "{kind}" (an axis of kind = '
+                                                         f'{" or ".join(repr(k) for k in users)})')
+    random_envs: dict[str, tuple[int, int]] = {}
+    if "env" in axes:
+        axes = {**axes, "env": _env_labels(axes["env"], random_envs)}
+    values = {name: _values(name, raw) for name, raw in axes.items()}
+    for name, default in DEFAULTS.items():
+        if name in KIND_AXES[kind]:
+            values.setdefault(name, default)
+    extra = {}
+    if kind == "success-rate":
+        extra["distances"] = tuple(float(v) for v in _values("distances", head.get("distances", list(DISTANCES)),
+                                                               "sweep.distances"))
+        trials = head.get("trials", TRIALS)
+        if isinstance(trials, bool) or not isinstance(trials, int) or trials < 1:
+            raise InputError("sweep.trials", trials, "must be an integer >= 1")
+        extra["trials"] = trials
+    cells = math.prod(len(v) for v in values.values())
+    if cells > MAX_CELLS:
+        raise InputError("axes", " x ".join(str(len(v)) for v in values.values()),
+                         f"give {cells:.3g} cells, more than {MAX_CELLS:.0e}: split the sweep")
+    return SweepSpec(kind=kind, axes=values, metrics=list(dict.fromkeys(metrics)), text=text, random_envs=random_envs,
+                     **extra)
+
+
+def read_sweep(path: str | Path) -> SweepSpec:
+    """A sweep file from disk (`parse_sweep`)."""
+    p = Path(path)
+    try:
+        text = p.read_text()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError("sweep", str(path), f"cannot be read ({getattr(exc, 'strerror', None) or exc})") from None
+    return parse_sweep(text, str(path))

@@ -1,0 +1,50 @@
+"""The thesis's claims, each checked against this run's numbers (the report's claims table).
+
+`evaluate(numbers)` takes {study: {key: value}} (the `numbers` of every study.json) and
+returns one row per claim of `delvjax.studies.thesis.CLAIMS`: section, quote, statement, our
+numbers, a verdict ("holds", "partly", "fails", "cannot tell" when the numbers compared are
+at the ceiling, or "n/a" when a study it needs was not run or its numbers are unusable) and
+why (ending with the check's rule and tolerance). Verdicts are computed here, never typed in.
+
+The checks live in `delvjax.studies.claims._ch4` and `delvjax.studies.claims._ch5` (one function per claim,
+registered in CHECKS by `@check`), the registry and shared helpers in `delvjax.studies.claims._common`;
+this module imports them all and is the one to import from.
+"""
+
+from __future__ import annotations
+
+from . import (_ch4 as claims_ch4, _ch4_more as claims_ch4_more, _ch5 as claims_ch5, _ch5_occlusion as claims_ch5_occlusion)
+from .. import thesis
+from ._common import BACKGROUNDS, CHECKS, ENVS, Missing, check
+
+__all__ = ["BACKGROUNDS", "CHECKS", "ENVS", "Missing", "check", "evaluate"]
+
+_CHECK_MODULES = (claims_ch4, claims_ch4_more, claims_ch5, claims_ch5_occlusion)  # importing them fills CHECKS, chapter 4 first
+
+
+def evaluate(numbers_by_study: dict[str, dict]) -> list[dict]:
+    flat = {}
+    for numbers in numbers_by_study.values():
+        flat.update(numbers)
+
+    def get(key):
+        if key not in flat or flat[key] is None:
+            raise Missing(key)
+        return flat[key]
+
+    rows = []
+    for claim in thesis.CLAIMS:
+        fn = CHECKS.get(claim["id"])
+        row = {k: claim[k] for k in ("id", "section", "quote", "statement")}
+        if fn is None:
+            row.update(ours="", verdict="n/a", why="no check written for this claim")
+        else:
+            try:
+                ours, verdict, why = fn(get)
+            except Missing as exc:
+                ours, verdict, why = "", "n/a", f"needs {exc.args[0]} (study not run)"
+            except (TypeError, ValueError, IndexError, ZeroDivisionError) as exc:  # a number of the wrong shape
+                ours, verdict, why = "", "n/a", f"numbers unusable ({type(exc).__name__}: {exc})"
+            row.update(ours=ours, verdict=verdict, why=why)
+        rows.append(row)
+    return rows

@@ -1,0 +1,130 @@
+"""The claim-check registry and the helpers the checks share (used by `delvjax.studies.claims`).
+
+CHECKS maps a claim id of `delvjax.studies.thesis.CLAIMS` to its check, a function of `get` (key ->
+number, raising Missing when the study that makes it was not run) returning (ours, verdict,
+why); `@check(claim_id)` registers one. The helpers format numbers and combine parts into a
+verdict. The checks themselves are in `delvjax.studies.claims._ch4` and `delvjax.studies.claims._ch5`.
+
+Verdicts (VERDICTS): "holds", "partly", "fails", "cannot tell" and "n/a" (a study not run).
+Every check states its rule and tolerance in its `why` text (`_why`). A comparison of
+catchments or success rates whose sides are all at the ceiling (`at_ceiling`: every value
+>= 99 %, or too close to 100 % to show the margin the claim needs) or where no method loses
+anything under the condition the claim is about (`no_loss`) cannot tell the methods apart:
+such a part is None, and `_combine` turns a claim whose decided parts all hold but some
+part is None into "cannot tell", never "holds".
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+CHECKS: dict[str, Callable] = {}
+
+HOLDS, PARTLY, FAILS, CANNOT_TELL, NOT_RUN = "holds", "partly", "fails", "cannot tell", "n/a"
+VERDICTS = (HOLDS, PARTLY, FAILS, CANNOT_TELL, NOT_RUN)
+CEILING = 99.0  # %: a catchment or success rate at or above it has nothing left to lose or gain
+
+
+def check(claim_id: str):
+    def deco(fn):
+        CHECKS[claim_id] = fn
+        return fn
+    return deco
+
+
+class Missing(KeyError):
+    """A number the claim needs was not produced (its study was not run)."""
+
+
+# --- helpers ----------------------------------------------------------------------------------
+
+ENVS = ("env1", "env2", "env3")
+BACKGROUNDS = ("distant", "walls", "none")
+
+
+def _flat(values):
+    for v in values if isinstance(values, (list, tuple)) else [values]:
+        if isinstance(v, (list, tuple)):
+            yield from _flat(v)
+        else:
+            yield v
+
+
+def at_ceiling(values, limit: float = CEILING) -> bool:
+    """True when every value (%, nested lists allowed) is >= limit: compared with each other they
+    cannot tell which side is better. Pass limit = 100 - margin when a part needs a margin."""
+    vals = list(_flat(values))
+    return bool(vals) and all(v >= limit for v in vals)
+
+
+def at_floor(values, limit: float = 1.0) -> bool:
+    """True when every value (an error rate in %, a loss in points) is <= limit: nothing to compare."""
+    vals = list(_flat(values))
+    return bool(vals) and all(v <= limit for v in vals)
+
+
+def no_loss(losses, limit: float = 2.0) -> bool:
+    """True when no method loses more than `limit` points under the claim's condition."""
+    return at_floor(losses, limit)
+
+
+def _combine(parts) -> str:
+    """Parts are True (holds), False (fails) or None (cannot tell, e.g. at the ceiling).
+    holds: every part holds; cannot tell: the decided parts hold but some cannot be told
+    (or none can); fails: every decided part fails; else partly."""
+    parts = list(parts)
+    known = [p for p in parts if p is not None]
+    if not known:
+        return CANNOT_TELL
+    if all(known):
+        return HOLDS if len(known) == len(parts) else CANNOT_TELL
+    return FAILS if not any(known) else PARTLY
+
+
+def _why(rule: str, *reasons: str) -> str:
+    """The why text: the reasons (empty ones left out), then the rule with its tolerance."""
+    text = "; ".join(r for r in reasons if r)
+    return (text + ". " if text else "") + "Rule: " + rule
+
+
+def _opt(get, key):
+    """A number shown for context only (None when its study did not record it)."""
+    try:
+        return get(key)
+    except Missing:
+        return None
+
+
+FAILURES = ("timeout", "landmark", "arena")  # failure outcomes, as delvjax.studies.runs._common.FAILURES (no JAX import here)
+
+
+def _failures(get, key: str) -> dict | None:
+    """Failure counts by outcome (`<key>:timeout|landmark|arena`, `delvjax.studies.runs._common.record_failures`), or
+    None when the run did not record them."""
+    counts = {o: _opt(get, f"{key}:{o}") for o in FAILURES}
+    return None if any(v is None for v in counts.values()) else {o: int(v) for o, v in counts.items()}
+
+
+def _n(v) -> str:
+    """A number or a list of numbers, 1 decimal."""
+    if isinstance(v, (list, tuple)):
+        return "/".join(_n(x) for x in v)
+    return "–" if v is None else f"{v:.1f}"
+
+
+def _verdict(parts: list[bool]) -> str:
+    """holds if every part holds, fails if none does, else partly."""
+    return "holds" if all(parts) else "fails" if not any(parts) else "partly"
+
+
+def _share(flags) -> float:
+    flags = list(flags)
+    return sum(flags) / max(len(flags), 1)
+
+
+def _pairs(a, b):
+    return list(zip(a, b))
+
+
+def _mean(v) -> float:
+    return sum(v) / len(v)

@@ -1,0 +1,63 @@
+"""What the image studies share (docs/images.md §8): rendered databases in memory, the methods
+compiled into one program, the numbers of a map, and the ideal rings of the ring model."""
+
+from __future__ import annotations
+
+import numpy as np
+
+import delvjax
+from delvjax.images._evaluate import LoadedDatabase, database_vector_map, rendered_database
+from delvjax.images._render import ImageSettings
+from delvjax.core.maps import VectorMap
+from delvjax.core.metrics import error_curve, summarize_map
+from delvjax.images._worlds import image_world
+from delvjax.envs._presets import make_env
+
+# the methods of the image studies, one compiled program (`registry.program`)
+METHODS = ("delv", "alv", "acv", "warping")
+LABEL = {"delv": "DELV", "alv": "ALV", "acv": "ACV", "warping": "image matching"}
+# Image matching reads the gray ring (the band's mean value): on a camera image that is what it has.
+# On the mask ring it sees four narrow blobs and errs by about 60° (images and ideal rings alike).
+# The landmark methods read blobs, so the channel does not change them.
+CHANNEL = "gray"
+ROBOT_SCALE = 180.0  # cm: DELV's quantization scale a in the 1.8 m arena (1000 cm in the 10 m one)
+CAMERA_NOISE = ImageSettings(pixel_noise=0.02, gain_noise=0.03)  # "realistic camera noise" of the studies
+
+
+def preview(ctx) -> bool:
+    """A preview run (`--quick`, or the tests' coarse settings): fewer settings, the same programs."""
+    return ctx.settings.quick or ctx.settings.spacing >= 100
+
+
+def database(name: str, settings: ImageSettings = CAMERA_NOISE, seed: int = 0, **kw) -> LoadedDatabase:
+    """A built-in world rendered in memory (ring for ring what its files would give)."""
+    return rendered_database(name, settings=settings, seed=seed, **kw)
+
+
+def image_map(db: LoadedDatabase, method: str, **options) -> VectorMap:
+    """The vector map of `method` on `db`, through the shared program of METHODS (gray channel unless
+    `channel` is given)."""
+    return database_vector_map(db, method, program=METHODS, **{"channel": CHANNEL, **options})
+
+
+def numbers(vm: VectorMap) -> dict:
+    """Mean error, invalid count and error point rates of a map."""
+    return summarize_map(vm.error_deg, vm.valid, vm.included)
+
+
+def curve(vm: VectorMap, home, bin_width: float) -> list[dict]:
+    """The error curve (Fig 4.19 style: mean and 95 % t interval per distance bin)."""
+    return error_curve(vm.error_deg, vm.points, home, vm.included, bin_width=bin_width)
+
+
+def ideal_map(world_name: str, method: str, **options) -> VectorMap:
+    """The ring model's vector map (docs/model.md: ideal rings, exact blobs) on the world's cylinders,
+    on the database's grid (spacing = unit move, heading along +x as the database's west neighbour move),
+    gray channel over the docs/model.md §2.3 `walls` background (the images' wall texture)."""
+    iw = image_world(world_name)
+    obs = iw.obstacles()
+    env = make_env([tuple(c) for c in obs["cylinders"]], home=iw.home,
+                   arena=tuple(float(v) for v in np.asarray(iw.world.arena)), name=world_name)
+    return delvjax.vector_map(env, method, spacing=iw.spacing, d=iw.spacing, heading_deg=0.0,
+                              clearance=iw.clearance, program=METHODS,
+                              **{"channel": CHANNEL, "background": "walls", **options})

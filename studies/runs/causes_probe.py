@@ -1,0 +1,111 @@
+"""Causes measured outside the run (docs/reproduce.md "Causes measured outside the run"): the
+experiments behind the causes that the claims (`claims_ch4`) and the fit (`fit_causes`) name
+without numbers of their own study. Not a study of `delvjax reproduce` (they take minutes and
+change nothing in the report); run them with
+
+    python -m delvjax.studies.runs.causes_probe [--variants N] [--spacing CM]
+
+1. Pixels (claims 4 and 5): DELV's vector map at 360 (the model's ring) and 1440 pixels, d = 20,
+   50 and 100 cm on env1 and the 3-landmark layout of Fig 4.8. With noise-free sensing the only
+   error of a bearing is its pixel; a short move's parallax magnifies it, and near home the short
+   home vector turns most with it.
+2. env3's coordinates (the fit's two env3 numbers): the thesis describes env3 (four landmarks east
+   of home) but gives no coordinates. Moving each landmark of ours up to `jitter` cm (kept east
+   of home, non-overlapping) shows how far ACV's error point rate (Table 5.1, k = 0) and
+   DELV-compass's catchment with one landmark hidden (Table 5.3, k = 1) depend on them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+import jax
+import numpy as np
+
+import delvjax
+from delvjax.core import rollouts
+from delvjax.core.errors import InputError
+from delvjax.core.sensor import Sensor
+from delvjax.envs._presets import make_env, preset_dict, random_env
+from delvjax.options._registry import program
+
+from ._common import HOME_RADIUS, PAD, PROGRAM, RULES, curve, env
+from ._occlusion_layouts import stacked_masks
+
+EAST_OF_HOME = 80.0  # cm: every moved env3 landmark keeps its centre at least this far east of home
+
+
+def pixels(spacing: float = 50.0, ds=(20.0, 50.0, 100.0), widths=(360, 1440)) -> dict:
+    """Mean vector-map error of DELV without compass per ring width and d (env1), and the
+    3-landmark layout's error curve (nearest bins first) per ring width (d = 50 cm)."""
+    e = env("env1").arrays()
+    out = {"env1_mean_error_deg": {}, "random3_curve_deg": {}}
+    for n_pix in widths:  # a handful of static ring widths: one program each
+        row = {}
+        for d in ds:
+            vm = delvjax.vector_map(e, method="delv", spacing=spacing, seed=0, d=d, n_pix=n_pix)
+            row[f"d={d:g}"] = float(np.asarray(vm.error_deg)[np.asarray(vm.included)].mean())
+        out["env1_mean_error_deg"][n_pix] = row
+        r3 = random_env(103, 3, pad_to=PAD)
+        out["random3_curve_deg"][n_pix] = [r["mean_deg"] for r in curve(r3, delvjax.vector_map(
+            r3, method="delv", spacing=spacing, seed=0, n_pix=n_pix))]
+    return out
+
+
+def env3_variants(n: int, jitter: float, seed: int = 0) -> list:
+    """`n` env3 layouts with every landmark moved uniformly up to `jitter` cm in x and y, kept east of
+    home and inside the arena; overlapping draws are skipped (fewer than n may come back)."""
+    spec = preset_dict("env3")
+    base = np.array([(lm["x"], lm["y"], lm["r"]) for lm in spec["landmarks"]])
+    home, arena = np.asarray(spec["home"], float), np.asarray(spec["arena"], float)
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(n):  # layout construction on the host: a few dozen draws
+        lm = base.copy()
+        lm[:, :2] += rng.uniform(-jitter, jitter, (len(lm), 2))
+        lm[:, 0] = np.clip(lm[:, 0], home[0] + EAST_OF_HOME, arena[2] - lm[:, 2])
+        lm[:, 1] = np.clip(lm[:, 1], arena[1] + lm[:, 2], arena[3] - lm[:, 2])
+        try:
+            out.append(make_env(lm, home=spec["home"], arena=spec["arena"], pad_to=PAD).arrays())
+        except InputError:  # overlapping landmarks
+            continue
+    return out
+
+
+def env3_layouts(n: int = 60, spacing: float = 50.0, acv_jitter: float = 150.0, delv_jitter: float = 70.0,
+                 delv_variants: int = 12) -> dict:
+    """ACV's e > 45° % (k = 0) over env3 variants moved up to `acv_jitter` cm, and DELV-compass's mean
+    catchment over the four single hidden landmarks (k = 1, default rules) over `delv_variants`
+    variants moved up to `delv_jitter` cm."""
+    acv = []
+    for e in env3_variants(n, acv_jitter, seed=1):
+        vm = delvjax.vector_map(e, method="acv", spacing=spacing, seed=0)
+        acv.append(100.0 * float((np.asarray(vm.error_deg)[np.asarray(vm.included)] > 45.0).mean()))
+    delv = []
+    method = program("delv-compass", PROGRAM)[0]
+    for e in env3_variants(delv_variants, delv_jitter, seed=0):
+        masks, hidden, ks = stacked_masks(e, 1)
+        c = rollouts.catchment_area(e, method, Sensor(), spacing=spacing, key=jax.random.PRNGKey(0), masks=masks[ks == 1],
+                                    hidden=[h for h, k in zip(hidden, ks) if k == 1], home_radius=HOME_RADIUS,
+                                    lanes=128, **RULES["default"])
+        delv.append(float(np.mean([r["catchment_pct"] for r in rollouts.catchment_summary(c)["per_mask"]])))
+    return {"acv_gt45_k0_pct": acv, "delv_compass_catchment_k1_pct": delv,
+            "acv_jitter_cm": acv_jitter, "delv_jitter_cm": delv_jitter, "spacing_cm": spacing}
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--variants", type=int, default=60, help="env3 variants for ACV (default 60)")
+    p.add_argument("--spacing", type=float, default=50.0, help="grid spacing cm (default 50)")
+    a = p.parse_args()
+    px = pixels(a.spacing)
+    lay = env3_layouts(a.variants, a.spacing)
+    for name, v in (("ACV e>45 % (k = 0)", lay["acv_gt45_k0_pct"]),
+                    ("DELV-compass catchment % (k = 1)", lay["delv_compass_catchment_k1_pct"])):
+        print(f"env3 variants, {name}: n {len(v)}, min {min(v):.1f}, median {np.median(v):.1f}, max {max(v):.1f}")
+    print(json.dumps({"pixels": px, "env3": lay}, indent=1))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,66 @@
+"""DELV vs predictive image matching, no compass, environment 1 (thesis §4.2, Figs 4.9-4.11).
+
+Vector maps (Fig 4.9), error curves (Fig 4.10a), success rate vs release distance
+(Fig 4.10b), trajectories from the same release points (Fig 4.11), and the catchments
+with their failures inside and outside the landmarks' convex hull; rollouts under the
+default and the physical rules.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from delvjax.plots._maps import error_curve_figure
+
+from ._common import (LABEL, RULES, as_vector_map, catchment, curve, curve_means, curves_rows, env, inside_hull, map_numbers, outcome_counts, panel_figure, rule_suffix, success_set, trajectory_set)
+
+TITLE = "DELV vs predictive image matching, no compass (Figs 4.9-4.11)"
+STEPS = 8
+METHODS = ("delv", "warping")
+N_STARTS = 8
+
+
+def run(ctx) -> None:
+    e = env("env1")
+    spacing = ctx.settings.spacing
+    items, curves, rows = [], {}, []
+    for m in METHODS:  # two methods: two programs
+        for rules in RULES:
+            c = catchment(ctx, e, m, rules)
+            inc = np.asarray(c.included)
+            hull = inside_hull(e, np.asarray(c.points))
+            ok = np.asarray(c.success)[0]
+            pct = float(c.catchment_pct()[0])
+            suffix = rule_suffix(rules)
+            ctx.number(f"catchment:env1:{m}{suffix}", pct)
+            fail_in = 100.0 * float((~ok[inc & hull]).mean())
+            fail_out = 100.0 * float((~ok[inc & ~hull]).mean())
+            ctx.number(f"fail_inside_hull:env1:{m}{suffix}", fail_in)
+            ctx.number(f"fail_outside_hull:env1:{m}{suffix}", fail_out)
+            if rules == "default":
+                vm = as_vector_map(c)
+                s = map_numbers(e, vm)
+                curves[LABEL[m]] = curve(e, vm)
+                ctx.number(f"error_curve:env1:{m}", curve_means(curves[LABEL[m]]))
+                ctx.number(f"map:env1:{m}:mean_error_deg", s["mean_error_deg"])
+                items.append((f"{LABEL[m]}: mean error {s['mean_error_deg']:.1f}°, catchment {pct:.1f} %", e, vm))
+            counts = outcome_counts(c)
+            rows.append({"method": LABEL[m], "rules": rules, "catchment %": pct,
+                         "failures timeout/landmark/arena": f"{counts['timeout']}/{counts['landmark']}/{counts['arena']}",
+                         "fail inside hull %": fail_in, "fail outside hull %": fail_out,
+                         "mean error °": s["mean_error_deg"]})
+            ctx.step(f"catchment {m} {rules}")
+    ctx.table("catchment_delv_vs_warping", "Catchment and failures by region, env1", rows, source="Figs 4.9-4.11",
+              note="The thesis prints no numbers for these figures. Hull: the convex hull of the landmark centres.")
+    ctx.figure("fig4_9_vector_maps.png", panel_figure(items, spacing, title="env1, no compass, random headings"),
+               "Fig 4.9: homing vectors of DELV (a) and predictive image matching (b).")
+    ctx.figure("fig4_10a_error_curves.png", error_curve_figure(curves, "DELV vs image matching, env1 (Fig 4.10a)"),
+               "Fig 4.10a: mean angular error vs distance from home (95 % t intervals).")
+    ctx.csv("fig4_10a_error_curves.csv", rows=curves_rows(curves))
+    success_set(ctx, e, METHODS, "fig4_10b_success_rate", "env1, no compass",
+                "Fig 4.10b: success rate vs release distance, 95 % Wilson intervals; default and physical rules.",
+                source="Fig 4.10b", note="The thesis: DELV > 90 % at every distance (§4.2).")
+    trajectory_set(ctx, e, METHODS, "fig4_11_trajectories", "Same release points, no compass, env1 (Fig 4.11)",
+                   f"Fig 4.11: homing paths of DELV and image matching from the same {N_STARTS} seeded release "
+                   "points.", N_STARTS)
+    ctx.step("trajectories")

@@ -1,0 +1,92 @@
+"""Sensitivity of homing quality by automatic differentiation (beyond the thesis; docs/differentiable.md).
+
+Which landmark's position matters most (arrows on the landmarks scaled by the gradient of the
+soft homing quality), and how homing quality responds to d, bearing, odometry and compass noise,
+for DELV, ALV, ACV (reverse mode) and warping (central differences of the ordinary quality).
+Also (in a full run, not under --quick) the bearing-noise gain maps: ||d direction / d current bearings|| at every
+grid point.
+Run alone: python -m delvjax.studies.runs.sensitivity --out results/sensitivity [--env env1]
+"""
+
+from __future__ import annotations
+
+import argparse
+
+import numpy as np
+
+import delvjax
+from delvjax.core import maps
+from delvjax.core.sensitivity import bearing_noise_gain
+from delvjax.core.sensor import Sensor
+from delvjax.plots._maps import draw_env, subplots
+from delvjax.options._registry import METHODS as REGISTRY
+from delvjax.gradients._sensitivity import landmark_figure, parameter_figure, sensitivity
+
+from ._common import env
+
+TITLE = "Sensitivity of homing quality: landmarks, d and noise (gradients; beyond the thesis)"
+STEPS = 5
+GAIN_METHODS = ("delv", "delv-compass", "alv", "acv")
+
+
+def gain_figure(e, spacing: float, seed: int):
+    """Bearing-noise gain maps (deg of direction per deg of bearing noise) and their rows."""
+    _, key = delvjax.evaluate._vector_map.resolve_headings(None, seed)
+    pts = maps.grid_points(e.arena, spacing)
+    inc = np.asarray(maps.grid_included(e.arrays(), pts, maps.CLEARANCE))
+    headings = maps.random_headings(key, pts.shape[0])
+    fig, axes = subplots(1, len(GAIN_METHODS), figsize=(4.4 * len(GAIN_METHODS), 4.6), squeeze=False)
+    rows, n = [], int(round(np.sqrt(pts.shape[0])))
+    xmin, ymin, xmax, ymax = np.asarray(e.arena)
+    for ax, m in zip(axes[0], GAIN_METHODS):
+        gain, ok = (np.asarray(a) for a in bearing_noise_gain(e, pts, headings, key, Sensor(), REGISTRY[m]))
+        ok = ok & inc
+        rows.append({"method": m, "median_gain": float(np.median(gain[ok])), "p90_gain": float(np.percentile(gain[ok], 90))})
+        im = ax.imshow(np.log10(np.where(ok, gain, np.nan).reshape(n, n)), origin="lower", extent=(xmin, xmax, ymin, ymax),
+                       cmap="viridis", vmin=-1, vmax=1.5)
+        draw_env(ax, e)
+        ax.set_title(f"{m}: median {rows[-1]['median_gain']:.2f}°/°", fontsize=10)
+    fig.colorbar(im, ax=axes[0].tolist(), shrink=0.8, label="log10 gain (deg of direction per deg of bearing noise)")
+    return fig, rows
+
+
+def run(ctx) -> None:
+    e = env("env1")
+    result = sensitivity(e, spacing=ctx.settings.spacing, seed=ctx.settings.seed, progress=ctx.step)
+    for m, r in result["methods"].items():
+        ctx.number(f"sensitivity:env1:{m}:quality", r["quality"])
+        for name, v in r["per_unit"].items():
+            ctx.number(f"sensitivity:env1:{m}:{name}", v)
+    ctx.table("sensitivity_parameters", "Change of homing quality (mean 1 - cos error) per 10 cm of d and per degree "
+              "of each noise sigma, env1", result["parameter_rows"], source="beyond the thesis",
+              note="DELV, ALV, ACV: gradient of the soft quality (reverse mode). Warping: central differences of the "
+                   "ordinary quality; it reads only the current ring image, so d, blob-bearing and odometry noise do "
+                   "not enter it (exactly 0). Methods without a compass have no compass sensitivity.",
+              columns=["method", "parameter", "nominal", "d_quality_per_unit", "quality"])
+    ctx.table("sensitivity_landmarks", "Gradient of the soft homing quality with respect to each landmark of env1",
+              result["landmark_rows"], source="beyond the thesis")
+    ctx.figure("sensitivity_landmarks.png", landmark_figure(result),
+               "Arrows on the landmarks: moving a landmark that way improves homing quality; numbers: |dQ/dx| per metre.")
+    ctx.figure("sensitivity_parameters.png", parameter_figure(result),
+               "Change of homing quality per 10 cm of d and per degree of each noise sigma.")
+    if ctx.settings.quick or ctx.settings.spacing >= 100:  # four more compiled programs: only in a full run
+        return
+    fig, rows = gain_figure(e, ctx.settings.spacing, ctx.settings.seed)
+    ctx.csv("bearing_gain.csv", rows=rows)
+    ctx.figure("bearing_gain.png", fig, "First-order std of the homing direction per degree of bearing noise (jax.grad).")
+
+
+def main(argv: list[str] | None = None) -> int:
+    from delvjax.cli._main import main as cli
+
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--out", default="results/sensitivity")
+    p.add_argument("--env", default="env1")
+    p.add_argument("--spacing", type=float, default=25.0)
+    p.add_argument("--seed", type=int, default=0)
+    a = p.parse_args(argv)
+    return cli(["sensitivity", a.env, "--out", a.out, "--spacing", str(a.spacing), "--seed", str(a.seed)])
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

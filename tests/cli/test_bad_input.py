@@ -1,0 +1,135 @@
+"""Bad and odd input found by trying the tool as a new user would (issue "hardening"): each case fails
+with one line naming the field and exit 2, or works as documented."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import delvjax
+from delvjax.cli._main import main
+from delvjax.core.errors import InputError
+
+
+def error_line(capsys) -> str:
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1, err  # one line, no traceback
+    return err[0]
+
+
+@pytest.mark.parametrize("seed", ["99999999999999999999", "4294967296", "-1"])
+def test_a_seed_out_of_range_is_one_line_naming_it(tmp_path, capsys, seed):
+    out = tmp_path / "m.csv"
+    assert main(["vector-map", "env1", "--seed", seed, "--spacing", "200", "--out", str(out)]) == 2
+    assert error_line(capsys).startswith("delvjax: error: seed:")
+    assert not out.exists()
+
+
+def test_seeds_at_the_32_bit_limit_are_distinct_and_valid():
+    """PRNGKey keeps 32 bits: 2**32 would silently repeat seed 0, so the largest seed is 2**32 - 1."""
+    with pytest.raises(InputError, match="seed"):
+        delvjax.vector_map("env1", spacing=200.0, seed=2**32, bearing_noise_deg=2.0)
+    a = delvjax.vector_map("env1", spacing=200.0, seed=2**32 - 1, bearing_noise_deg=2.0)
+    b = delvjax.vector_map("env1", spacing=200.0, seed=0, bearing_noise_deg=2.0)
+    assert not np.array_equal(np.asarray(a.heading), np.asarray(b.heading))
+
+
+def test_a_huge_heading_is_reduced_in_float64_before_the_core():
+    kw = dict(method="delv-compass", spacing=200.0)
+    reduced = math.fmod(1e30, 360.0)
+    huge = delvjax.vector_map("env1", heading_deg=1e30, **kw)
+    same = delvjax.vector_map("env1", heading_deg=reduced, **kw)
+    assert np.array_equal(np.asarray(huge.direction), np.asarray(same.direction), equal_nan=True)
+    inc = np.asarray(huge.included)
+    assert float(np.asarray(huge.error_deg)[inc].mean()) < 30.0  # not the 90 deg of a float32 overflow
+    a = delvjax.vector_map("env1", heading_deg=30.0 + 3600.0, **kw)
+    b = delvjax.vector_map("env1", heading_deg=30.0, **kw)
+    assert np.array_equal(np.asarray(a.direction), np.asarray(b.direction), equal_nan=True)
+
+
+@pytest.mark.parametrize("spec, field", [
+    ({"name": "e", "arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": 200, "y": 200, "r": 20}],
+      "lanmarks": []}, "lanmarks"),
+    ({"name": "e", "arena": [0, 0, 1000, 1000], "home": [500, 500],
+      "landmarks": [{"x": 200, "y": 200, "r": 20, "radius": 30}]}, "landmarks[0].radius"),
+])
+def test_unknown_fields_of_an_environment_file_are_named(tmp_path, capsys, spec, field):
+    path = tmp_path / "env.json"
+    path.write_text(json.dumps(spec))
+    out = tmp_path / "m.csv"
+    assert main(["vector-map", str(path), "--out", str(out)]) == 2
+    assert error_line(capsys).startswith(f"delvjax: error: {field}:")
+    assert not out.exists()
+
+
+def test_a_plot_alone_needs_no_csv_and_no_output_at_all_is_an_error(tmp_path, capsys):
+    png = tmp_path / "m.png"
+    assert main(["vector-map", "env1", "--spacing", "200", "--plot", str(png)]) == 0
+    assert png.exists() and not list(tmp_path.glob("*.csv"))
+    capsys.readouterr()
+    assert main(["vector-map", "env1", "--spacing", "200"]) == 2
+    assert "no output asked for" in error_line(capsys)
+
+
+def test_a_setting_the_method_does_not_have_is_refused(tmp_path, capsys):
+    out = tmp_path / "m.csv"
+    assert main(["vector-map", "env1", "--method", "alv", "--levels", "3", "--out", str(out)]) == 2
+    assert error_line(capsys).startswith("delvjax: error: levels:")
+    assert not out.exists()
+
+
+def test_the_help_says_what_each_noise_perturbs(capsys):
+    with pytest.raises(SystemExit):
+        main(["vector-map", "--help"])
+    text = capsys.readouterr().out
+    assert "MFDID (docs/model.md" in text and "rollouts only: error of the executed heading" in text
+
+
+@pytest.mark.parametrize("argv", [
+    ["catchment", "env1", "--max-steps", "0"],
+    ["catchment", "env1", "--method", "alv", "--levels", "3"],
+    ["success-rate", "env1", "--method", "delv,alv", "--levels", "3", "--trials", "2"],
+    ["success-rate", "env1", "--trials", "0"],
+    ["trajectories", "env1", "--start", "330", "640", "--method", "alv", "--home-radius", "-1"],
+])
+def test_rollout_commands_validate_everything_before_announcing_work(tmp_path, capsys, argv):
+    out = tmp_path / "r.csv"
+    assert main(argv + ["--out", str(out)]) == 2
+    assert error_line(capsys).startswith("delvjax: error: ")  # no progress line before the error
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("argv, field", [
+    (["vector-map", "env1", "--spacing", "5000"], "spacing"),
+    (["catchment", "env1", "--spacing", "5000"], "spacing"),
+    (["success-rate", "env1", "--distances", "5000", "--trials", "2"], "distances"),
+])
+def test_what_cannot_produce_a_result_is_refused(tmp_path, capsys, argv, field):
+    out = tmp_path / "r.csv"
+    assert main(argv + ["--out", str(out)]) == 2
+    assert error_line(capsys).startswith(f"delvjax: error: {field}:")
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("argv", [
+    ["vector-map", "env1", "--method", "delv", "--hide", "0", "1", "2", "3", "--spacing", "200"],
+    ["catchment", "ring3", "--method", "delv", "--occlude", "3", "--spacing", "200"],
+])
+def test_a_result_with_every_point_invalid_warns_in_one_line(tmp_path, capsys, argv):
+    out = tmp_path / "r.csv"
+    assert main(argv + ["--out", str(out)]) == 0
+    warnings = [line for line in capsys.readouterr().err.splitlines() if line.startswith("delvjax: warning:")]
+    assert len(warnings) == 1 and "every" in warnings[0] and "invalid" in warnings[0]
+    assert out.exists()
+
+
+def test_a_channel_for_a_method_that_reads_no_image_is_refused(tmp_path, capsys):
+    out = tmp_path / "m.csv"
+    assert main(["vector-map", "env1", "--method", "delv", "--channel", "gray", "--out", str(out)]) == 2
+    assert error_line(capsys).startswith("delvjax: error: channel:")
+    assert not out.exists()
+    assert main(["vector-map", "env1", "--method", "warping", "--channel", "gray", "--spacing", "200",
+                 "--out", str(out)]) == 0

@@ -1,0 +1,108 @@
+"""The command line: outputs, and bad input -> one-line error naming field and value, exit 2, no file."""
+
+from __future__ import annotations
+
+import csv
+import json
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+from delvjax.cli._main import main
+
+GOOD = {"name": "t", "arena": [0, 0, 1000, 1000], "home": [500, 500],
+        "landmarks": [{"x": 300, "y": 600, "r": 30}, {"x": 700, "y": 650, "r": 20}, {"x": 600, "y": 300, "r": 25}]}
+
+
+def test_vector_map_writes_csv_plot_and_summary(tmp_path):
+    out, plot, summary = tmp_path / "m.csv", tmp_path / "m.png", tmp_path / "m.json"
+    env = tmp_path / "env.json"
+    env.write_text(json.dumps(GOOD))
+    rc = main(["vector-map", str(env), "--method", "delv", "--spacing", "100", "--out", str(out), "--plot", str(plot),
+               "--summary", str(summary), "--classes"])
+    assert rc == 0
+    rows = list(csv.DictReader(out.open()))
+    assert set("x,y,heading_deg,direction_deg,error_deg,valid".split(",")) <= set(rows[0])
+    assert len(rows) == json.loads(summary.read_text())["points"] >= 90
+    assert all(0.0 <= float(r["error_deg"]) <= 180.0 for r in rows)
+    assert all((r["direction_deg"] == "nan") == (r["valid"] == "0") for r in rows)
+    assert plot.stat().st_size > 10_000
+
+
+def test_console_script_end_to_end(tmp_path):
+    exe = shutil.which("delvjax") or f"{sys.executable} -m delvjax.cli"
+    out = tmp_path / "sub" / "alv.csv"
+    res = subprocess.run(f"{exe} vector-map env3 --method alv --spacing 100 --heading-deg 90 --out {out}",
+                         shell=True, capture_output=True, text=True, timeout=300)
+    assert res.returncode == 0, res.stderr
+    rows = list(csv.DictReader(out.open()))
+    assert all(abs(float(r["heading_deg"]) - 90.0) < 1e-3 for r in rows)
+    assert "envs" in subprocess.run(f"{exe} --help", shell=True, capture_output=True, text=True).stdout
+
+
+def _env_file(tmp_path, text):
+    p = tmp_path / "env.json"
+    p.write_text(text if isinstance(text, str) else json.dumps(text))
+    return str(p)
+
+
+def _mut(path, value):
+    spec = json.loads(json.dumps(GOOD))
+    obj = spec
+    for k in path[:-1]:
+        obj = obj[k]
+    if value is KeyError:
+        del obj[path[-1]]
+    else:
+        obj[path[-1]] = value
+    return spec
+
+
+BAD_ENVS = [
+    ("malformed", '{"arena": [0, 0, 1000, 1000], "home": [500', "env"),
+    ("missing landmarks", _mut(["landmarks"], KeyError), "landmarks"),
+    ("missing r", _mut(["landmarks", 0, "r"], KeyError), "landmarks[0].r"),
+    ("non-numeric", _mut(["landmarks", 1, "x"], "far"), "landmarks[1].x"),
+    ("nan", '{"arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": NaN, "y": 1, "r": 1}]}', "landmarks[0].x"),
+    ("zero radius", _mut(["landmarks", 2, "r"], 0), "landmarks[2].r"),
+    ("negative radius", _mut(["landmarks", 2, "r"], -3), "landmarks[2].r"),
+    ("overlap", _mut(["landmarks", 1], {"x": 310, "y": 600, "r": 20}), "landmarks[1]"),
+    ("covers home", _mut(["landmarks", 1], {"x": 510, "y": 500, "r": 20}), "landmarks[1]"),
+    ("home outside", _mut(["home"], [1200, 500]), "home"),
+    ("inverted arena", _mut(["arena"], [1000, 1000, 0, 0]), "arena"),
+]
+
+
+@pytest.mark.parametrize("label, spec, field", BAD_ENVS, ids=[b[0] for b in BAD_ENVS])
+def test_bad_environment_file(tmp_path, capsys, label, spec, field):
+    out = tmp_path / "o.csv"
+    rc = main(["vector-map", _env_file(tmp_path, spec), "--out", str(out), "--plot", str(tmp_path / "o.png")])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and len(err.splitlines()) == 1 and field in err, err
+    assert not out.exists() and not (tmp_path / "o.png").exists()
+
+
+BAD_FLAGS = [
+    (["--d", "0"], "d"), (["--d", "-5"], "d"), (["--d", "nan"], "d"), (["--levels", "0"], "levels"),
+    (["--spacing", "-25"], "spacing"), (["--method", "magic"], "method"), (["--background", "sky"], "background"),
+    (["--bearing-noise-deg", "-1"], "bearing_noise_deg"), (["--hide", "7"], "hide"),
+]
+
+
+@pytest.mark.parametrize("flags, field", BAD_FLAGS, ids=[" ".join(f) for f, _ in BAD_FLAGS])
+def test_bad_flags(tmp_path, capsys, flags, field):
+    out = tmp_path / "o.csv"
+    rc = main(["vector-map", "env1", "--out", str(out), *flags])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and len(err.splitlines()) == 1 and field in err and flags[-1] in err, err
+    assert not out.exists()
+
+
+def test_unknown_preset_and_bad_output_path(tmp_path, capsys):
+    assert main(["vector-map", "env9", "--out", str(tmp_path / "o.csv")]) == 2
+    assert "env9" in capsys.readouterr().err
+    assert main(["vector-map", "env1", "--out", str(tmp_path / "o.txt")]) == 2
+    assert "--out" in capsys.readouterr().err
+    assert not list(tmp_path.iterdir())

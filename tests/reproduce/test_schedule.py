@@ -1,0 +1,95 @@
+"""`delvjax reproduce` side by side (`--workers`) and the studies of `--quick`. Collected through
+test_reproduce.py (same worker, same session fixture `run`, which ran with the default workers)."""
+
+from __future__ import annotations
+
+import json
+import time
+
+import pytest
+
+from delvjax.reproduce import _run as reproduce
+from delvjax.cli._main import main
+from delvjax.reproduce._report import settings_section
+from delvjax.reproduce._study import Settings, versions
+
+import delvjax.studies as studies
+
+from tests.cases.reproduce import TINY, read_record
+
+CHEAP = ["environments", "step_distance", "landmark_number", "with_compass"]
+
+
+def _tables_and_numbers(out, name):
+    rec = read_record(out, name)
+    return rec["numbers"], [t["rows"] for t in rec["tables"]], {f: (out / name / f).read_bytes()
+                                                                 for f in rec["files"] if f.endswith(".csv")}
+
+
+@pytest.mark.parametrize("workers", [1, 3])
+def test_workers_do_not_change_a_number(run, tmp_path, workers):
+    out, _, _ = run  # the default workers (one per core, at most 4)
+    other = tmp_path / f"w{workers}"
+    result = reproduce.reproduce(other, settings=TINY, progress=False, only=",".join(CHEAP), workers=workers)
+    assert result["ran"] == [n for n in studies.STUDIES if n in CHEAP]  # registry order, however they finished
+    for name in CHEAP:
+        assert _tables_and_numbers(other, name) == _tables_and_numbers(out, name), name
+
+
+def test_quick_leaves_the_studies_beyond_the_thesis_to_a_full_run():
+    everything = list(studies.STUDIES)
+    assert reproduce.select(None) == everything
+    quick = reproduce.select(None, quick=True)
+    assert quick == [n for n in everything if n not in studies.FULL_RUN_ONLY]
+    assert set(studies.FULL_RUN_ONLY) < set(everything) and "occlusion" in quick and "fit" not in quick
+    assert reproduce.select("fit,robot_images", quick=True) == ["fit", "robot_images"]  # --only runs what it names
+
+
+def test_quick_report_says_what_it_left_out():
+    text = settings_section(Settings.make(quick=True), versions(), {}, 1.0, [])
+    assert "A preview (`--quick`)" in text
+    for name in studies.FULL_RUN_ONLY:
+        assert f"`{name}`" in text
+    assert "A preview" not in settings_section(TINY, versions(), {}, 1.0, [])
+
+
+def test_schedule_compiles_the_shared_program_first_then_longest_first():
+    first, rest = reproduce.schedule(list(studies.STUDIES))
+    assert first == list(studies.FIRST) and sorted(first + rest) == sorted(studies.STUDIES)
+    assert rest[0] == "occlusion" and rest[-1] == "environments"
+    seconds = [studies.FULL_RUN_SECONDS.get(n, 0) for n in rest]
+    assert seconds == sorted(seconds, reverse=True)
+    assert set(studies.FULL_RUN_SECONDS) == set(studies.STUDIES)
+
+
+def test_a_failure_side_by_side_stops_what_has_not_started():
+    called = []
+
+    def fn(name):
+        called.append(name)
+        if name == "a":
+            raise RuntimeError("study a broke")
+        time.sleep(0.3)
+
+    with pytest.raises(RuntimeError, match="study a broke"):
+        reproduce._side_by_side(fn, ["a", "b", "c", "d"], workers=2)
+    assert called[0] == "a" and set(called) <= {"a", "b"}  # b only if it had started before a broke
+
+
+def test_workers_below_one_is_refused_before_any_work(tmp_path, capsys):
+    target = tmp_path / "x"
+    assert main(["reproduce", "--only", "environments", "--workers", "0", "--out", str(target)]) == 2
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert len(err) == 1 and "--workers" in err[0] and "0" in err[0]
+    assert not target.exists()
+    with pytest.raises(reproduce.InputError, match="workers"):
+        reproduce.reproduce(target, settings=TINY, progress=False, only="environments", workers=0)
+    assert not target.exists()
+
+
+def test_compile_seconds_are_counted_per_thread(run):
+    out, _, _ = run  # no_compass compiles the shared rollout program alone, before the others start
+    recs = {name: read_record(out, name) for name in studies.STUDIES}
+    assert recs["no_compass"]["compile_seconds"] > 0
+    assert all(json.dumps(r["compile_seconds"]) for r in recs.values())
+    assert sum(r["compile_seconds"] for r in recs.values()) <= sum(r["seconds"] for r in recs.values())

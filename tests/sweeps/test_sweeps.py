@@ -1,0 +1,213 @@
+"""Sweep files (docs/sweeps.md): validation before any work, one program per shape, cells equal to
+`delvjax.vector_map`, the same numbers however cells are chunked, labelled results."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import delvjax
+from delvjax.sweeps import _run as sweeps
+from delvjax.cli._main import main
+from delvjax.core.errors import InputError
+from delvjax.sweeps._examples import EXAMPLE
+from delvjax.sweeps._spec import parse_sweep
+
+SMALL = """
+[sweep]
+metrics = ["gt45_pct", "gt90_pct", "mean_error_deg", "mean_error_ci95_deg", "invalid_pct", "points"]
+[axes]
+method = ["delv", "alv"]
+d = [30, 60]
+bearing_noise_deg = [0.0, 3.0]
+seed = {start = 0, stop = 1}
+spacing = [90]
+"""
+
+
+@pytest.fixture(scope="module")
+def small():
+    return sweeps.run_sweep(parse_sweep(SMALL))
+
+
+def cli_sweep(tmp_path, text: str) -> tuple[int, object, object]:
+    """Write `text` as a sweep file and run `delvjax sweep` into tmp_path/out: (exit, file, out)."""
+    path, out = tmp_path / "s.toml", tmp_path / "out"
+    path.write_text(text)
+    return main(["sweep", str(path), "--out", str(out)]), path, out
+
+
+def test_the_example_file_is_valid_and_printed(capsys):
+    spec = parse_sweep(EXAMPLE)
+    assert spec.shape == (2, 2, 4, 2, 3, 1, ) and list(spec.axes)[:3] == ["env", "method", "d"]
+    assert spec.axes["d"] == [10, 40, 70, 100] and spec.axes["seed"] == [0, 1, 2]
+    assert main(["sweep", "--example"]) == 0
+    assert capsys.readouterr().out == EXAMPLE
+
+
+def test_every_cell_equals_the_vector_map_of_its_settings(small):
+    assert dict(small.sizes) == {"method": 2, "d": 2, "bearing_noise_deg": 2, "seed": 2, "env": 1, "spacing": 1}
+    assert 0 <= small.attrs["programs_compiled"] <= 2  # one per method (fewer if compiled by an earlier test)
+    for method in ("delv", "alv"):
+        for seed in (0, 1):
+            vm = delvjax.vector_map("env1", method=method, d=60, bearing_noise_deg=3.0, seed=seed, spacing=90.0)
+            s = delvjax.summarize_map(vm.error_deg, vm.valid, vm.included)
+            cell = small.sel({"method": method, "d": 60, "bearing_noise_deg": 3.0, "seed": seed}).squeeze()
+            assert int(cell.points) == s["points"] and float(cell.invalid_pct) == 100 * s["invalid"] / s["points"]
+            assert float(cell.gt45_pct) == s["gt45_pct"] and float(cell.gt90_pct) == s["gt90_pct"]
+            assert float(cell.mean_error_deg) == pytest.approx(s["mean_error_deg"], rel=1e-6)
+            assert 0 < float(cell.mean_error_ci95_deg) < 30
+    noisy, exact = small.sel({"bearing_noise_deg": 3.0}), small.sel({"bearing_noise_deg": 0.0})
+    assert float(noisy.mean_error_deg.mean()) > float(exact.mean_error_deg.mean())  # the axis reaches the cells
+
+
+def test_the_numbers_do_not_depend_on_how_cells_are_chunked(small, monkeypatch):
+    monkeypatch.setattr(sweeps, "CELL_CHUNK", 3)
+    chunked = sweeps.run_sweep(parse_sweep(SMALL))
+    for name in small.data_vars:
+        assert np.array_equal(small[name].values, chunked[name].values, equal_nan=True), name
+
+
+@pytest.mark.parametrize("text, field", [
+    ("[axes]\nd = []", "axes.d"),
+    ("[axes]\nd = {start = 5, stop = 1}", "axes.d"),
+    ("[axes]\nd = [1, 1]", "axes.d"),
+    ("[axes]\nlevls = [1]", "axes.levls"),
+    ("[axes]\nmotion_step_noise = [0.1]", "axes.motion_step_noise"),  # a rollout axis in a vector-map sweep
+    ("[sweep]\nkind = 'success-rate'\n[axes]\nspacing = [10]", "axes.spacing"),
+    ("[axes]\nmethod = [1]", "axes.method"),
+    ("[axes]\nfirst_move = [1]", "axes.first_move"),
+    ("[sweep]\nmetrics = ['catchment']", "sweep.metrics[0]"),
+    ("[sweep]\nmetrics = ['catchment_pct']", "sweep.metrics[0]"),  # a catchment metric in a vector-map sweep
+    ("[sweep]\nkind = 'catchment'\nmetrics = ['success_pct']", "sweep.metrics[0]"),
+    ("[sweep]\nkind = 'catchments'", "sweep.kind"),
+    ("[sweep]\ntrials = 5", "sweep.trials"),
+    ("[sweep]\nkind = 'success-rate'\ntrials = 0", "sweep.trials"),
+    ("[sweep]\nkind = 'success-rate'\ndistances = []", "sweep.distances"),
+    ("[sweep]\nkind = 'success-rate'\ndistances = ['a']", "sweep.distances"),
+    ("[sweep]\nmetric = ['gt45_pct']", "sweep.metric"),
+    ("[axis]\nd = [1]", "axis"),
+    ("d = [", "sweep"),
+])
+def test_a_bad_sweep_file_names_its_field(text, field):
+    with pytest.raises(InputError) as exc:
+        parse_sweep(text)
+    assert exc.value.field == field
+
+
+def test_an_incompatible_cell_is_refused_before_any_work(tmp_path, capsys):
+    code, _, out = cli_sweep(tmp_path, "[axes]\nmethod = ['delv', 'alv']\nlevels = [2]\nspacing = [200]\n")
+    assert code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "method=alv" in err[0] and "levels: is not a setting of the method alv" in err[0]
+    assert not out.exists()
+
+
+def test_the_cli_writes_netcdf_csv_and_the_file_and_load_sweep_reads_them(tmp_path, capsys):
+    code, path, out = cli_sweep(tmp_path, "[axes]\nd = [40, 80]\nseed = [3]\nspacing = [200]\n")
+    assert code == 0
+    assert sorted(p.name for p in out.iterdir()) == [".cells", "sweep.csv", "sweep.nc", "sweep.toml"]
+    ds = delvjax.load_sweep(out)
+    assert dict(ds.sizes) == {"env": 1, "method": 1, "spacing": 1, "seed": 1, "d": 2} or ds.sizes["d"] == 2
+    assert ds.attrs["sweep_toml"] == path.read_text() and "jax_version" in ds.attrs
+    rows = (out / "sweep.csv").read_text().splitlines()
+    assert len(rows) == 3 and rows[0].startswith("d,seed,spacing,env,method,gt45_pct")
+    with pytest.raises(InputError, match="sweep.nc"):
+        delvjax.load_sweep(tmp_path)
+
+
+FOUR = """
+import sys, numpy as np, jax
+from delvjax.sweeps._spec import parse_sweep
+from delvjax.sweeps import run_sweep
+assert jax.local_device_count() == 4
+results = {}
+for i, text in enumerate(sys.argv[2:]):
+    ds = run_sweep(parse_sweep(text))
+    results.update({f"{i}/{k}": ds[k].values for k in ds.data_vars})
+np.savez(sys.argv[1], **results)
+"""
+TINY = "[axes]\nd = [30, 60]\nseed = [0, 1, 2]\nbearing_noise_deg = [2.0]\nspacing = [150]\n"
+TINY_CATCHMENT = ("[sweep]\nkind = 'catchment'\n[axes]\nocclude = [0, 1]\nseed = [0, 1, 2]\n"
+                  "bearing_noise_deg = [4.0]\nmethod = ['alv']\nspacing = [150]\n")
+
+
+def test_cells_split_over_four_devices_give_the_one_device_numbers(tmp_path):
+    """6 cells over 4 forced host devices (padded to 8, two a device): every metric bitwise equal,
+    for a vector-map and a catchment sweep."""
+    import os
+    import subprocess
+    import sys
+
+    out = tmp_path / "four.npz"
+    env = dict(os.environ, XLA_FLAGS="--xla_force_host_platform_device_count=4", JAX_PLATFORMS="cpu")
+    run = subprocess.run([sys.executable, "-c", FOUR, str(out), TINY, TINY_CATCHMENT], env=env,
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr[-2000:]
+    four = np.load(out)
+    for i, text in enumerate((TINY, TINY_CATCHMENT)):
+        one = sweeps.run_sweep(parse_sweep(text))
+        for name in one.data_vars:
+            assert np.array_equal(one[name].values, four[f"{i}/{name}"], equal_nan=True), name
+        assert i == 0 or 0 < float(one.catchment_pct.min()) < 100  # a catchment that can differ
+
+
+def test_a_killed_sweep_resumes_and_a_changed_file_computes_only_its_new_cells(tmp_path, monkeypatch):
+    text = "[axes]\nd = [30, 60]\nseed = [0, 1]\nspacing = [150]\n"
+    monkeypatch.setattr(sweeps, "CELL_CHUNK", 2)
+    real, calls = sweeps.evaluate, []
+
+    def counted(kind, setups, *args):
+        calls.append(len(setups))
+        if len(calls) == 2 and kill:
+            raise KeyboardInterrupt  # killed after the first chunk
+        return real(kind, setups, *args)
+
+    monkeypatch.setattr(sweeps, "evaluate", counted)
+    kill, out = True, tmp_path / "out"
+    with pytest.raises(KeyboardInterrupt):
+        sweeps.run_sweep(parse_sweep(text), out=out)
+    assert len(list((out / ".cells").glob("*.npz"))) == 1  # the finished chunk, nothing partial
+    kill, calls[:] = False, []
+    resumed = sweeps.run_sweep(parse_sweep(text), out=out)
+    assert calls == [2] and resumed.attrs["cells_reused"] == 2
+    fresh = sweeps.run_sweep(parse_sweep(text))
+    for name in fresh.data_vars:
+        assert np.array_equal(fresh[name].values, resumed[name].values, equal_nan=True), name
+    calls[:] = []
+    changed = sweeps.run_sweep(parse_sweep(text.replace("[30, 60]", "[30, 60, 90]")), out=out)
+    assert calls == [2] and changed.attrs["cells_reused"] == 4  # only d = 90 (two seeds) is new
+
+
+def test_sweep_figures_heat_maps_and_lines_with_intervals_over_seeds(small, tmp_path):
+    from delvjax.plots._sweep import check_plot, sweep_figure
+
+    fig, rows = sweep_figure(small, "d", "bearing_noise_deg", "gt45_pct")  # one panel per method
+    assert len([a for a in fig.axes if a.get_visible() and a.get_title()]) == 2 and len(rows) == 2 * 2 * 2
+    cell = small.gt45_pct.sel({"method": "alv", "d": 60, "bearing_noise_deg": 3.0}).values.mean()
+    assert [r["gt45_pct"] for r in rows if r["panel"] == "method=alv" and r["d"] == 60
+            and r["bearing_noise_deg"] == 3.0] == [pytest.approx(cell)]
+    _, lines = sweep_figure(small, "d", None, "mean_error_deg")  # two seeds: a finite 95 % interval
+    assert len(lines) == 2 * 2 * 2 and all(r["ci95_lo"] < r["mean_error_deg"] < r["ci95_hi"] for r in lines)
+    for args, flag in [(("dd", None, "gt45_pct"), "--x"), (("d", "d", "gt45_pct"), "--y"), (("d", None, "x"), "--metric")]:
+        with pytest.raises(InputError) as exc:
+            check_plot(small, *args)
+        assert exc.value.field == flag
+
+
+def test_plot_sweep_writes_the_figure_and_its_numbers(tmp_path, capsys):
+    code, _, out = cli_sweep(tmp_path, "[axes]\nd = [40, 80]\nseed = [0, 1]\nspacing = [200]\n")
+    assert code == 0
+    assert main(["plot-sweep", str(out), "--x", "d", "--metric", "gt45_pct"]) == 0
+    assert (out / "gt45_pct.png").stat().st_size > 1000 and len((out / "gt45_pct.csv").read_text().splitlines()) == 3
+    assert main(["plot-sweep", str(out), "--x", "levels"]) == 2
+    assert "--x: is not an axis" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", [None, "envs", "vector-map", "catchment", "success-rate", "trajectories",
+                                     "reproduce", "sweep", "plot-sweep"])
+def test_every_help_text_prints(command, capsys):
+    """argparse %-formats help strings: a bare "95 %" once broke `delvjax --help`."""
+    with pytest.raises(SystemExit) as exc:
+        main([command, "--help"] if command else ["--help"])
+    assert exc.value.code == 0 and "usage: delvjax" in capsys.readouterr().out
