@@ -1,8 +1,11 @@
 """Python API of the differentiable path (docs/differentiable.md): homing quality and its gradient
 with respect to the world (landmarks, home), the agent (d, the quantization scale) and the noise.
 
-    delvjax.homing_quality("env1", "delv", tau=0.01)            -> float (lower is better)
+    delvjax.homing_quality("env1", "delv", tau=0.01)            -> a JAX scalar (lower is better)
     value, grads = delvjax.homing_quality_grad("env1", "delv")   -> grads["landmarks"] (N, 3), ...
+
+`homing_quality` is a JAX function: `jax.grad`, `jax.jit` and `jax.vmap` of it work with respect to
+an Env's landmarks and home, d, scale and the noise options (docs/differentiable.md).
 """
 
 from __future__ import annotations
@@ -24,7 +27,9 @@ from ..core.soft.methods import check_differentiable
 from ..core.soft.quality import soft_quality
 from ..core.soft.sensing import VISIBILITY_WIDTH
 from ..options._limits import MAX_POINTS
-from ..options._settings import NOISE_FIELDS_DEG, NOISE_FIELDS_FRACTION, positive
+from ..core.errors import InputError
+from ..options._limits import check_size, grid_count
+from ..options._settings import NOISE_FIELDS_DEG, NOISE_FIELDS_FRACTION, is_traced, positive
 
 TAU = 0.01  # default softmin temperature (docs/differentiable.md)
 NOISE_NAMES = {**{f: name for name, f in NOISE_FIELDS_DEG.items()}, **{f: name for name, f in NOISE_FIELDS_FRACTION.items()}}
@@ -32,12 +37,22 @@ NOISE_NAMES = {**{f: name for name, f in NOISE_FIELDS_DEG.items()}, **{f: name f
 
 def _setup(env, method, spacing, seed, clearance, heading_deg, max_points, options):
     env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **options)
+    for field, value in (("spacing", spacing), ("arena", env.arena)):
+        if is_traced(value):  # the grid's size depends on them: a program cannot take them as data
+            raise InputError(field, "a traced value", "must be concrete (it sets the grid's size); trace the "
+                                                      "landmarks, home, d, scale or noise instead")
     spacing = positive(spacing, "spacing")
-    check_grid(env, spacing, clearance, max_points)
+    traced = any(is_traced(x) for x in (env.landmarks, env.home, env.valid, clearance))
+    if traced:  # which points are clear of the landmarks is computed in the program
+        check_size(grid_count(env.arena, spacing), max_points, "spacing", spacing, "grid point")
+    else:
+        check_grid(env, spacing, clearance, max_points)
     points = grid_points(env.arena, spacing)
-    included = np.asarray(grid_included(env.arrays(), points, clearance))
-    headings = (np.asarray(random_headings(key, points.shape[0])) if heading is None
+    included = grid_included(env.arrays(), points, clearance)
+    headings = (random_headings(key, points.shape[0]) if heading is None
                 else np.full(points.shape[0], heading, np.float32))
+    # host arrays where they are known now; inside jax.jit even the key is traced
+    included, headings = (x if is_traced(x) else np.asarray(x) for x in (included, headings))
     return env, module, sensor, key, points, included, headings
 
 
@@ -55,25 +70,35 @@ def _check_soft(tau, sharpness) -> tuple[float, float]:
 def homing_quality(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, seed: int = 0,
                    soft: bool = True, tau: float = TAU, sharpness: float = VISIBILITY_WIDTH,
                    heading_deg: float | None = None, clearance: float = CLEARANCE, max_points: int = MAX_POINTS,
-                   **options) -> float:
+                   **options) -> jax.Array:
     """Mean of 1 - cos(angular error) over the docs/model.md §5 grid (0 perfect, 2 = every direction
-    reversed; a point without a direction counts 2). soft=True: the analytic views and softmin
-    matching of docs/differentiable.md with temperature `tau` and visibility width `sharpness` (rad);
-    soft=False: the ordinary (pixel) vector map. `options` as in `delvjax.vector_map`."""
+    reversed; a point without a direction counts 2), as a JAX scalar. soft=True: the analytic views
+    and softmin matching of docs/differentiable.md with temperature `tau` and visibility width
+    `sharpness` (rad); soft=False: the ordinary (pixel) vector map. `options` as in
+    `delvjax.vector_map`.
+
+    A JAX function: under `jax.grad`, `jax.jit` or `jax.vmap`, an Env's landmarks and home, `d`,
+    `scale`, the noise options, `tau` and `sharpness` may be traced (a traced value is checked at run
+    time, `equinox.error_if`, with the message a concrete one gets at once); the arena, spacing and
+    seed stay concrete (they set the grid). soft=False is not differentiable and takes no traced value."""
     if soft:
         tau, sharpness = _check_soft(tau, sharpness)
     env, module, sensor, key, points, included, headings = _setup(env, method, spacing, seed, clearance, heading_deg,
                                                                   max_points, options)
     if not soft:
+        leaves = jax.tree.leaves((env, module, sensor, clearance))
+        if any(is_traced(x) for x in leaves):
+            raise InputError("soft", soft, "must be True under jax.grad, jax.jit or jax.vmap (the pixel map is "
+                                           "not differentiable)")
         from ..core.maps import vector_map
 
         vm = vector_map(env=env, method=module, sensor=sensor, spacing=spacing, key=key, clearance=clearance,
                         heading=None if heading_deg is None else math.radians(heading_deg))
         err = np.radians(np.asarray(vm.error_deg))[np.asarray(vm.included)]
-        return float(np.mean(1.0 - np.cos(err)))
+        return jnp.asarray(np.mean(1.0 - np.cos(err)))
     check_differentiable(module)
-    return float(_quality(env.arrays(), points, included, headings, key, sensor, module, jnp.float32(tau),
-                          jnp.float32(sharpness)))
+    return _quality(env.arrays(), points, included, headings, key, sensor, module, jnp.float32(tau),
+                    jnp.float32(sharpness))
 
 
 _quality = jax.jit(soft_quality)

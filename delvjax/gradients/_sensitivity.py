@@ -63,16 +63,16 @@ def sensitivity(env: str | Path | Env, methods=METHODS, spacing: float = SPACING
             progress(m)
         opts = _options(m)
         if m == "warping":
-            value = homing_quality(env, m, spacing=spacing, seed=seed, soft=False, **opts)
+            value = float(homing_quality(env, m, spacing=spacing, seed=seed, soft=False, **opts))
             per = {}
             for name in NOMINAL:
                 if name not in opts:
                     per[name] = 0.0
                     continue
                 h = FD_STEP[name]
-                hi = homing_quality(env, m, spacing=spacing, seed=seed, soft=False, **{**opts, name: opts[name] + h})
-                lo = homing_quality(env, m, spacing=spacing, seed=seed, soft=False,
-                                    **{**opts, name: max(opts[name] - h, 0.0)})
+                hi = float(homing_quality(env, m, spacing=spacing, seed=seed, soft=False, **{**opts, name: opts[name] + h}))
+                lo = float(homing_quality(env, m, spacing=spacing, seed=seed, soft=False,
+                                          **{**opts, name: max(opts[name] - h, 0.0)}))
                 per[name] = (hi - lo) / (opts[name] + h - max(opts[name] - h, 0.0))
             grads, how = None, "central difference, hard quality"
         else:

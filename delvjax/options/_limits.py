@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..core.errors import InputError
 from ._settings import positive_int
 
@@ -18,7 +20,7 @@ SECONDS = {"grid point": 50e-6, "trial": 1.5e-3, "path point": 1e-4}
 def grid_count(arena, spacing: float) -> int:
     """Number of cells of the docs/model.md §5 grid (at most one more per axis than `maps.grid_points`
     keeps), computed without building it."""
-    xmin, ymin, xmax, ymax = (float(v) for v in arena)
+    xmin, ymin, xmax, ymax = (float(v) for v in np.asarray(arena))  # host numbers, also while jax traces
     nx = max(0, math.ceil((xmax - xmin - spacing / 2) / spacing))
     ny = max(0, math.ceil((ymax - ymin - spacing / 2) / spacing))
     return nx * ny

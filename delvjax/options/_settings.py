@@ -2,7 +2,9 @@
 method (`registry`) with its settings and a `Sensor`.
 
 Every check runs before any array work and raises `InputError` naming the field and value.
-Public angles are in degrees; the core sees radians.
+A number traced by `jax.jit`, `jax.grad` or `jax.vmap` has no value yet: it is checked inside the
+computation instead (`equinox.error_if`, the same message). Public angles are in degrees; the core
+sees radians.
 """
 
 from __future__ import annotations
@@ -10,6 +12,10 @@ from __future__ import annotations
 import dataclasses
 import inspect
 import math
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
 
 from ..core.errors import InputError
 from ..core.methods import HomingMethod, Program, Warping
@@ -28,8 +34,20 @@ NOISE_FIELDS_FRACTION = {"step_noise": "step", "motion_step_noise": "motion_step
 NOISE_OPTIONS = (*NOISE_FIELDS_DEG, *NOISE_FIELDS_FRACTION)
 
 
+def is_traced(value: object) -> bool:
+    """A number inside `jax.jit`, `jax.grad` or `jax.vmap`: checked in the computation, not here."""
+    return isinstance(value, jax.core.Tracer)
+
+
+def _traced_check(value: jax.Array, bad: jax.Array, field: str, expected: str) -> jax.Array:
+    """`value`, raising at run time with `InputError`'s wording where `bad` holds (equinox.error_if)."""
+    return eqx.error_if(value, bad, f"{field}: {expected} (a traced value)")
+
+
 def finite(value: object, field: str) -> float:
-    """`value` as a finite float, else `InputError`."""
+    """`value` as a finite float, else `InputError` (a traced value: checked at run time)."""
+    if is_traced(value):
+        return _traced_check(value, ~jnp.isfinite(value), field, "must be finite")
     if isinstance(value, bool):
         raise InputError(field, value, "must be a number")
     try:
@@ -45,6 +63,8 @@ def finite(value: object, field: str) -> float:
 
 def positive(value: object, field: str) -> float:
     v = finite(value, field)
+    if is_traced(v):
+        return _traced_check(v, v <= 0, field, "must be > 0")
     if v <= 0:
         raise InputError(field, value, "must be > 0")
     return v
@@ -52,6 +72,8 @@ def positive(value: object, field: str) -> float:
 
 def non_negative(value: object, field: str) -> float:
     v = finite(value, field)
+    if is_traced(v):
+        return _traced_check(v, v < 0, field, "must be >= 0")
     if v < 0:
         raise InputError(field, value, "must be >= 0")
     return v
@@ -118,7 +140,7 @@ def make_noise(**kwargs: float) -> Noise:
     for name, value in kwargs.items():
         v = non_negative(value, name)
         if name in NOISE_FIELDS_DEG:
-            fields[NOISE_FIELDS_DEG[name]] = math.radians(v)
+            fields[NOISE_FIELDS_DEG[name]] = v * (math.pi / 180.0) if is_traced(v) else math.radians(v)
         else:
             fields[NOISE_FIELDS_FRACTION[name]] = v
     return Noise(**fields)

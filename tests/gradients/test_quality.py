@@ -109,7 +109,7 @@ def _quality_at(name: str, landmarks=None, home=None, **options) -> float:
     base = load_env("env1")
     env = Env(jnp.asarray(base.landmarks if landmarks is None else landmarks, jnp.float32), base.valid,
               jnp.asarray(base.home if home is None else home, jnp.float32), base.arena, name="fd")
-    return delvjax.homing_quality(env, name, spacing=100, tau=0.05, **options)
+    return float(delvjax.homing_quality(env, name, spacing=100, tau=0.05, **options))
 
 
 @pytest.mark.parametrize("name, options, scalars", [
