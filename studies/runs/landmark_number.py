@@ -37,7 +37,7 @@ def run(ctx) -> None:
         ctx.step(label)
     ctx.table("landmark_number", "DELV without compass (and image matching) in arbitrary layouts", rows,
               source="Fig 4.8, §4.1",
-              note="Layouts are seeded random (delvjax.envs._presets.random_env); the thesis's are not given.")
+              note="Layouts are seeded random (delvjax.envs.random_env); the thesis's are not given.")
     ctx.figure("fig4_8_landmark_numbers.png", panel_figure(items, ctx.settings.spacing,
                                                            title="DELV without compass, arbitrary layouts"),
                "Fig 4.8a-e: homing vectors of DELV without compass with 3, 4 and 5 landmarks.")
