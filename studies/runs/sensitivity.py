@@ -14,7 +14,7 @@ import argparse
 
 import numpy as np
 
-import delvjax
+from delvjax.evaluate._vector_map import resolve_headings
 from delvjax.core import maps
 from delvjax.core.sensitivity import bearing_noise_gain
 from delvjax.core.sensor import Sensor
@@ -31,7 +31,7 @@ GAIN_METHODS = ("delv", "delv-compass", "alv", "acv")
 
 def gain_figure(e, spacing: float, seed: int):
     """Bearing-noise gain maps (deg of direction per deg of bearing noise) and their rows."""
-    _, key = delvjax.evaluate._vector_map.resolve_headings(None, seed)
+    _, key = resolve_headings(None, seed)
     pts = maps.grid_points(e.arena, spacing)
     inc = np.asarray(maps.grid_included(e.arrays(), pts, maps.CLEARANCE))
     headings = maps.random_headings(key, pts.shape[0])
