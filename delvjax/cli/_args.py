@@ -1,5 +1,6 @@
-"""Argument groups shared by the CLI commands (`cli`, `cli_rollouts`). Defaults are read from the
-modules (`options.defaults`), so they are written once."""
+"""Argument groups shared by the CLI commands (`cli`, `cli_rollouts`). The method and sensor flags,
+their help and defaults are made from the settings declared on the modules (`options._schema`),
+so they are written once."""
 
 from __future__ import annotations
 
@@ -9,12 +10,11 @@ from pathlib import Path
 
 from ..core.errors import InputError
 from ..core.maps import CLEARANCE, SPACING
-from ..core.methods import DELV, MFDID, Warping
 from ..core.rollouts import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
-from ..core.sensor import BACKGROUNDS, CHANNELS, Sensor
+from ..core.sensor import Noise, Sensor
 from ..outputs._files import check_distinct, check_output_path, output_set
 from ..options._limits import MAX_POINTS
-from ..options._settings import NOISE_FIELDS_DEG, NOISE_OPTIONS, defaults
+from ..options._schema import method_options, sensor_options
 from ..options._registry import METHODS
 
 CSV = (".csv",)
@@ -60,14 +60,12 @@ class ProgressBar:
 
 def add_scene_args(p: argparse.ArgumentParser, methods=None, grid: bool = True, images: bool = False) -> None:
     """The scene, method and noise options; `grid`: the command evaluates a grid (--spacing); `images`:
-    it can run on an image database instead (`cli_images.add_image_args`; the environment is optional)."""
-    sensor, delv, warping = defaults(Sensor), defaults(DELV), defaults(Warping)
+    it can run on an image database instead (`cli_images.add_image_args`; the environment is optional).
+    The method and sensor flags are made from the settings declared on the modules (`add_setting_args`)."""
     p.add_argument("env", nargs="?" if images else None, default=None,
                    help="preset name (see `delvjax envs`) or a docs/model.md §7 JSON file"
                         + (" (or --images DIR)" if images else ""))
     p.add_argument("--method", default="delv", help=f"homing method: {', '.join(methods or METHODS)} (default delv)")
-    p.add_argument("--levels", type=int, default=None, help="DELV distance quantization levels Q >= 1 (default: continuous)")
-    p.add_argument("--d", type=float, default=None, help=f"unit-movement step d in cm (default {sensor['d']:g})")
     if grid:
         p.add_argument("--spacing", type=float, default=SPACING, help=f"grid spacing in cm (default {SPACING:g}: 40x40)")
     else:  # not offered; recognized only to refuse it in one line naming it (`scene_kwargs`)
@@ -76,56 +74,42 @@ def add_scene_args(p: argparse.ArgumentParser, methods=None, grid: bool = True, 
                    help=f"grid points closer than r + clearance to a landmark are dropped (default {CLEARANCE:g})")
     p.add_argument("--heading-deg", type=float, default=None, help="fixed heading at every point (default: random per point from --seed)")
     p.add_argument("--seed", type=int, default=0, help="seed of random headings and all noise (default 0)")
-    p.add_argument("--background", default=None,
-                   help=f"{', '.join(BACKGROUNDS)} (default {BACKGROUNDS[sensor['background']]})")
-    p.add_argument("--channel", default=None,
-                   help=f"image channel of the image methods (warping, mfdid): {', '.join(CHANNELS)} "
-                        f"(default {sensor['channel']})")
-    p.add_argument("--n-heading", type=int, default=None, help=f"DELV heading hypotheses (default {delv['n_heading']})")
     p.add_argument("--max-points", type=int, default=MAX_POINTS,
                    help=f"refuse a run of more grid points (x occlusion masks) or trials than this, with an estimate "
                         f"of its memory and time (default {MAX_POINTS})")
     p.add_argument("--hide", type=int, nargs="+", default=None, metavar="I",
                    help="landmark indices invisible during homing (occlusion; the home record sees all)")
-    w = p.add_argument_group("warping hypotheses (docs/model.md §4.3)")
-    w.add_argument("--n-alpha", type=int, default=None, help=f"movement directions alpha (default {warping['n_alpha']})")
-    w.add_argument("--n-psi", type=int, default=None, help=f"rotations psi, must divide the {sensor['n_pix']} pixels (default {warping['n_psi']})")
-    w.add_argument("--n-rho", type=int, default=None, help=f"values of rho = d/r (default {warping['n_rho']})")
-    w.add_argument("--rho-min", type=float, default=None, help=f"smallest rho (default {warping['rho_min']:.2f})")
-    w.add_argument("--rho-max", type=float, default=None, help=f"largest rho, < 1 (default {warping['rho_max']:.2f})")
-    f = p.add_argument_group("MFDID (docs/model.md §4.5)")
-    f.add_argument("--mfdid-blur-deg", type=float, default=None,
-                   help=f"MFDID: Gaussian low-pass of both images, deg (default {defaults(MFDID)['blur_deg']:g})")
-    g = p.add_argument_group("noise: standard deviations, all default 0, all drawn from --seed (docs/model.md §2.5)")
-    for name in NOISE_OPTIONS:
-        unit = "deg" if name in NOISE_FIELDS_DEG else "fraction of d"
-        g.add_argument("--" + name.replace("_", "-"), type=float, default=0.0, dest=name,
-                       help=f"{NOISE_HELP[name]} ({unit})")
+    add_setting_args(p)
 
 
-NOISE_HELP = {  # what each sigma perturbs (docs/model.md §2.5)
-    "bearing_noise_deg": "error of every blob bearing, in every snapshot",
-    "step_noise": "error of the unit move's length, d * (1 + N(0, s)); the agent believes it moved d",
-    "turn_noise_deg": "true body turn during the unit move; the end view is rotated by it",
-    "odometry_turn_noise_deg": "error of the odometry's report of that turn",
-    "compass_noise_deg": "error of every compass reading (compass methods only)",
-    "motion_heading_noise_deg": "rollouts only: error of the executed heading of every step",
-    "motion_step_noise": "rollouts only: error of every step's length, d * (1 + N(0, s))",
-}
+def add_setting_args(p: argparse.ArgumentParser, only: tuple[str, ...] | None = None) -> None:
+    """A flag per declared setting (`options._schema`): the sensor's, the methods' (grouped by the
+    module classes that have them) and the noise sigmas; `only`: just these option names."""
+    groups: dict[str, argparse._ArgumentGroup] = {}
+    noise = "noise: standard deviations, all default 0, all drawn from --seed (docs/model.md §2.5)"
+    for opt in {**sensor_options(), **method_options()}.values():
+        if only is not None and opt.name not in only:
+            continue
+        title = (noise if opt.owners[0] is Noise else None if opt.owners[0] is Sensor
+                 else f"{'/'.join(t.__name__ for t in opt.owners)} settings")
+        target = p if title is None else groups.setdefault(title, p.add_argument_group(title))
+        target.add_argument(opt.flag, type=opt.type, default=None, dest=opt.name, help=opt.help)
+
+
+def setting_values(args: argparse.Namespace) -> dict:
+    """The settings given on the command line (flags of `add_setting_args`), by option name."""
+    names = (*sensor_options(), *method_options())
+    return {name: getattr(args, name) for name in names if getattr(args, name, None) is not None}
 
 
 def scene_kwargs(args: argparse.Namespace) -> dict:
     kw = dict(method=args.method, clearance=args.clearance, heading_deg=args.heading_deg,
-              seed=args.seed, background=args.background, channel=args.channel, hidden=args.hide,
-              max_points=args.max_points)
+              seed=args.seed, hidden=args.hide, max_points=args.max_points)
     if getattr(args, "unused_spacing", None) is not None:
         raise InputError("--spacing", args.unused_spacing, f"is not used by {args.command} (it evaluates no grid)")
     if hasattr(args, "spacing"):
         kw["spacing"] = args.spacing
-    settings = dict(levels=args.levels, d=args.d, n_heading=args.n_heading, n_alpha=args.n_alpha, n_psi=args.n_psi,
-                    n_rho=args.n_rho, mfdid_blur_deg=args.mfdid_blur_deg, rho_min=args.rho_min, rho_max=args.rho_max)
-    kw.update({k: v for k, v in settings.items() if v is not None})
-    kw.update({name: getattr(args, name) for name in NOISE_OPTIONS if getattr(args, name) != 0.0})
+    kw.update(setting_values(args))
     return kw
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ._args import progress
+from ._args import add_setting_args, progress, setting_values
 from ..core.maps import SPACING
 
 
@@ -53,7 +53,7 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
 
 def add_traps(sub) -> None:
     from ..gradients._quality import TAU
-    from ..options._settings import NOISE_FIELDS_DEG, NOISE_OPTIONS
+    from ..options._settings import NOISE_OPTIONS
 
     p = sub.add_parser("traps", help="trap points (sinks, saddles, sources) of a homing field near its failed "
                                      "rollouts (optimistix; docs/differentiable.md)",
@@ -69,21 +69,16 @@ def add_traps(sub) -> None:
     p.add_argument("--tau", type=float, default=TAU, help=f"softmin temperature (default {TAU:g})")
     p.add_argument("--near", type=float, default=None, help="a failed rollout ending this close to a sink counts as "
                                                             "trapped, cm (default d)")
-    p.add_argument("--levels", type=int, default=None, help="DELV quantization levels Q (default continuous)")
-    p.add_argument("--d", type=float, default=None, help="unit-movement step, cm (default 50)")
-    for name in NOISE_OPTIONS:
-        p.add_argument("--" + name.replace("_", "-"), type=float, default=None, dest=name,
-                       help=f"noise sigma ({'deg' if name in NOISE_FIELDS_DEG else 'fraction of d'}; default 0)")
+    add_setting_args(p, only=("levels", "d", *NOISE_OPTIONS))
     p.set_defaults(func=cmd_traps)
 
 
 def cmd_traps(args: argparse.Namespace) -> int:
     from ..outputs._files import check_out_dir, output_set
-    from ..options._settings import NOISE_OPTIONS
     from ..gradients._traps import find_traps, trap_figure
 
     out = check_out_dir(args.out)
-    options = {k: getattr(args, k) for k in ("levels", "d", *NOISE_OPTIONS) if getattr(args, k) is not None}
+    options = setting_values(args)
     report = find_traps(args.env, args.method, spacing=args.spacing, seed=args.seed, tau=args.tau, near=args.near,
                         announce=lambda: progress(f"catchment of {args.method} on {args.env}, then its trap points ..."),
                         **options)

@@ -14,13 +14,16 @@ from ._args import ProgressBar, check_outputs, progress, warn, wrote, write_outp
 from ..core.rollouts import check_rules
 from ..options._settings import non_negative, positive_int
 from ..core.errors import InputError
+from ..options._schema import method_options, sensor_options
 from ..outputs._files import check_out_dir
 from ..options._limits import MAX_POINTS
 from ..outputs._tables import vector_map_columns
 
 # scene options that mean nothing for a database (its images fix the scene, the poses and the unit move)
-UNUSED_WITH_IMAGES = ("d", "clearance", "heading_deg", "background", "hide", "bearing_noise_deg", "step_noise",
-                      "turn_noise_deg", "odometry_turn_noise_deg", "compass_noise_deg", "occlude")
+# the scene's options that a database replaces: the sensor's settings but the channel (the motion noise of a
+# rollout aside), and the grid and occlusion options
+UNUSED_WITH_IMAGES = (*(n for n in sensor_options() if n != "channel" and not n.startswith("motion_")),
+                      "clearance", "heading_deg", "hide", "occlude")
 EXTRACTOR_OPTIONS = ("hue_deg", "hue_width_deg", "sat_min", "val_min", "band_deg", "band_height_deg", "fill")
 
 
@@ -51,10 +54,8 @@ def _refuse_unused(args: argparse.Namespace, extra=()) -> None:
 
 
 def _method_options(args: argparse.Namespace) -> dict:
-    settings = dict(levels=args.levels, n_heading=args.n_heading, n_alpha=args.n_alpha, n_psi=args.n_psi,
-                    n_rho=args.n_rho, mfdid_blur_deg=args.mfdid_blur_deg, rho_min=args.rho_min, rho_max=args.rho_max,
-                    channel=args.channel)
-    return {k: v for k, v in settings.items() if v is not None}
+    names = (*method_options(), "channel")
+    return {k: getattr(args, k) for k in names if getattr(args, k, None) is not None}
 
 
 def load(args: argparse.Namespace):
@@ -117,8 +118,10 @@ def cmd_catchment_images(args: argparse.Namespace) -> int:
     _refuse_unused(args, extra=("lanes",))
     check_rules(args.first_move, args.collisions)
     positive_int(args.max_steps, "--max-steps")
-    for name in ("home_radius", "motion_heading_noise_deg", "motion_step_noise"):
-        non_negative(getattr(args, name), "--" + name.replace("_", "-"))
+    motion = {n: 0.0 if getattr(args, n) is None else getattr(args, n)  # a setting flag's default is None
+              for n in ("motion_heading_noise_deg", "motion_step_noise")}
+    for name, value in (("home_radius", args.home_radius), *motion.items()):
+        non_negative(value, "--" + name.replace("_", "-"))
     if args.first_move != args.parser_defaults.get("first_move", args.first_move):
         raise InputError("--first-move", args.first_move, "is not used with --images (every move follows the "
                                                           "direction at the nearest snapshot)")
@@ -129,8 +132,7 @@ def cmd_catchment_images(args: argparse.Namespace) -> int:
     vm = database_vector_map(db, args.method, **opts)
     warn_empty(vm)
     starts, paths = database_catchment(db, vm, home_radius=radius, max_steps=args.max_steps,
-                                       motion_heading_noise_deg=args.motion_heading_noise_deg,
-                                       motion_step_noise=args.motion_step_noise, seed=args.seed,
+                                       **motion, seed=args.seed,
                                        collisions=args.collisions == "fail")
     from ..core.images.rollouts import OUTCOMES
 

@@ -15,14 +15,15 @@ from ._images import add_image_args, cmd_catchment_images
 from ._args import (ProgressBar, add_output_args, add_rollout_args, add_scene_args, check_outputs, progress, rollout_kwargs, warn, write_outputs)
 from ..core.errors import InputError
 from ..core.rollouts import (DEFAULT_DISTANCES, N_STARTS, TRIAL_BLOCK, TRIALS_PER_DISTANCE, catchment_summary, check_rules)
-from ..options._settings import METHOD_OPTIONS, SENSOR_OPTIONS, make_setup, occlusion_count
+from ..options._settings import make_setup, occlusion_count, option_names
 from ..options._registry import get_method
 from ..outputs._tables import (catchment_columns, concat_columns, outcome_names, success_rows, success_trial_columns, trajectory_columns)
 
 
 def _check_methods(methods: list[str], kw: dict) -> None:
     """Every method of a comma-separated list with the options, validated before the first one runs."""
-    options = {k: v for k, v in kw.items() if k in METHOD_OPTIONS or k in SENSOR_OPTIONS}
+    names = set().union(*option_names())
+    options = {k: v for k, v in kw.items() if k in names}
     for m in methods:
         make_setup(m, **options)
 

@@ -5,4 +5,8 @@ from ._limits import MAX_POINTS as MAX_POINTS
 from ._registry import DESCRIPTIONS as DESCRIPTIONS
 from ._registry import METHODS as METHODS
 from ._registry import get_method as get_method
+from ._registry import register as register
+from ._registry import unregister as unregister
+from ._schema import Option as Option
+from ._schema import all_options as all_options
 from ._settings import make_setup as make_setup

@@ -10,6 +10,7 @@ from __future__ import annotations
 import dataclasses
 
 from ..core.errors import InputError
+from ..core.settings import declared
 from ..core.methods.acv import ACV
 from ..core.methods.alv import ALV
 from ..core.methods.base import HomingMethod
@@ -47,6 +48,22 @@ METHODS: dict[str, HomingMethod] = {name: module for name, (module, _) in REGIST
 DESCRIPTIONS: dict[str, str] = {name: text for name, (_, text) in REGISTRY.items()}
 
 
+def register(name: str, module: HomingMethod, description: str) -> None:
+    """Add a method under `name` (a line of REGISTRY, made at run time: a method of your own). Its
+    declared settings (`core/settings.py`) become CLI flags, API keywords and sweep axes."""
+    if not isinstance(module, HomingMethod):
+        raise InputError("method", module, "must be a HomingMethod module")
+    REGISTRY[name] = (module, description)
+    METHODS[name] = module
+    DESCRIPTIONS[name] = description
+
+
+def unregister(name: str) -> None:
+    """Remove a method added by `register`."""
+    for table in (REGISTRY, METHODS, DESCRIPTIONS):
+        table.pop(name, None)
+
+
 def get_method(name: str) -> HomingMethod:
     """The module registered under `name`; `InputError` naming the field otherwise."""
     if not isinstance(name, str) or name not in METHODS:
@@ -55,19 +72,21 @@ def get_method(name: str) -> HomingMethod:
 
 
 def configure(method: HomingMethod, **settings) -> HomingMethod:
-    """`method` with those of `settings` that are its own fields replaced (a `Program`: each of its
-    methods); settings a method does not have are left to the others (e.g. `levels` is DELV's)."""
+    """`method` with those of `settings` (public option names, validated field values) that are its
+    own declared settings replaced (a `Program`: each of its methods); settings a method does not
+    have are left to the others (e.g. `levels` is DELV's)."""
     if isinstance(method, Program):
         return dataclasses.replace(method, methods=tuple(configure(m, **settings) for m in method.methods))
-    changes = {k: v for k, v in settings.items() if v is not None and owns(method, k)}
+    own = declared(type(method))
+    changes = {own[k][0]: v for k, v in settings.items() if v is not None and k in own}
     return dataclasses.replace(method, **changes) if changes else method
 
 
-def owns(method: HomingMethod, field: str) -> bool:
-    """Whether `method` (or, for a `Program`, one of its methods) has the setting `field`."""
+def owns(method: HomingMethod, option: str) -> bool:
+    """Whether `method` (or, for a `Program`, one of its methods) declares the setting `option`."""
     if isinstance(method, Program):
-        return any(owns(m, field) for m in method.methods)
-    return field in {f.name for f in dataclasses.fields(method)}
+        return any(owns(m, option) for m in method.methods)
+    return option in declared(type(method))
 
 
 def program(method: str, names) -> tuple[Program, tuple[str, ...]]:

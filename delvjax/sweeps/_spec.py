@@ -12,37 +12,47 @@ from typing import Iterator
 import numpy as np
 
 from ..core.errors import InputError
+from ..options._schema import all_options
 
 KINDS = ("vector-map", "catchment", "success-rate")
-# axis -> what it sets (the public option of `delvjax.vector_map` / `catchment` / `success_rate` of the same name)
-MAP_AXES = {
+# axis -> what it sets (the public option of `delvjax.vector_map` / `catchment` / `success_rate` of the same name).
+# Besides these, every setting declared on the modules is an axis (`options._schema`; read when a file is
+# parsed, so that a method registered later brings its settings): see `axes(kind)`.
+SCENE_AXES = {
     "env": "environment: preset name, JSON path, or {random = COUNT, landmarks = N | [N, ...], seed = S}",
     "method": "registry name",
     "spacing": "grid spacing, cm",
     "seed": "seed of headings, release points and noise, 0..2^32-1",
-    "d": "unit-movement step, cm",
-    "levels": "DELV quantization levels Q (0 = continuous)",
-    "n_heading": "DELV heading hypotheses",
-    "background": "uniform | distant",
-    "bearing_noise_deg": "sigma of every blob bearing, deg",
-    "step_noise": "sigma of the unit move's length, fraction of d",
-    "turn_noise_deg": "sigma of the body turn during the unit move, deg",
-    "odometry_turn_noise_deg": "sigma of the odometry's report of that turn, deg",
-    "compass_noise_deg": "sigma of every compass reading, deg",
 }
 ROLLOUT_AXES = {
     "occlude": "landmarks hidden while homing: every choice of k (the metrics pool the C(N, k) masks)",
     "first_move": "release | homing (rollout rule, docs/model.md section 5)",
     "collisions": "ignore | fail (rollout rule)",
-    "motion_heading_noise_deg": "sigma of the executed heading of every rollout move, deg",
-    "motion_step_noise": "sigma of every rollout move's length, fraction of d",
     "home_radius": "success radius, cm",
     "max_steps": "moves before a trial times out",
 }
-AXES = {**MAP_AXES, **ROLLOUT_AXES}
-KIND_AXES = {"vector-map": tuple(MAP_AXES), "catchment": tuple(AXES),
-             "success-rate": tuple(a for a in AXES if a != "spacing")}
-NAME_AXES = ("env", "method", "background", "first_move", "collisions")  # the axes whose values are strings
+ROLLOUT_ONLY = ("motion_",)  # settings that act only in rollouts (the motion noise): not vector-map axes
+
+
+def setting_axes() -> dict[str, str]:
+    """Every declared setting (method, sensor, noise) as an axis: name -> what it sets."""
+    return {name: opt.help for name, opt in all_options().items()}
+
+
+def axes(kind: str) -> dict[str, str]:
+    """The axes of a kind of sweep: name -> what it sets."""
+    settings = setting_axes()
+    if kind == "vector-map":
+        return {**SCENE_AXES, **{k: v for k, v in settings.items() if not k.startswith(ROLLOUT_ONLY)}}
+    every = {**SCENE_AXES, **settings, **ROLLOUT_AXES}
+    return every if kind == "catchment" else {k: v for k, v in every.items() if k != "spacing"}
+
+
+def name_axes() -> tuple[str, ...]:
+    """The axes whose values are names (strings)."""
+    return ("env", "method", "first_move", "collisions", *(n for n, o in all_options().items() if o.type is str))
+
+
 ERROR_METRICS = {
     "gt45_pct": "% of grid points with angular error > 45 deg (Tables 5.1/5.2)",
     "gt90_pct": "% of grid points with angular error > 90 deg",
@@ -149,9 +159,10 @@ def _values(name: str, raw, field: str | None = None) -> list:
     if len(set(map(repr, values))) != len(values):
         raise InputError(field, raw, "repeats a value")
     kinds = {type(v) for v in values} - {bool}
-    if name in NAME_AXES and kinds != {str}:
+    names = name_axes()
+    if name in names and kinds != {str}:
         raise InputError(field, raw, "must be names (strings)")
-    if name not in NAME_AXES and not kinds <= {int, float}:
+    if name not in names and not kinds <= {int, float}:
         raise InputError(field, raw, "must be numbers")
     return values
 
@@ -196,8 +207,8 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
     unknown = sorted(set(data) - {"sweep", "axes"})
     if unknown:
         raise InputError(unknown[0], source, "unknown table (a sweep file has [sweep] and [axes])")
-    head, axes = data.get("sweep", {}), data.get("axes", {})
-    if not isinstance(head, dict) or not isinstance(axes, dict):
+    head, table = data.get("sweep", {}), data.get("axes", {})
+    if not isinstance(head, dict) or not isinstance(table, dict):
         raise InputError("sweep", source, "[sweep] and [axes] must be tables")
     for key in sorted(set(head) - {"kind", "metrics", "distances", "trials"}):
         raise InputError(f"sweep.{key}", head[key], "unknown field (kind, metrics, distances, trials)")
@@ -217,19 +228,21 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
             hint = f' (a metric of kind = "{other[0]}")' if other else ""
             raise InputError(f"sweep.metrics[{i}]", m, f"unknown metric of kind = \"{kind}\"{hint} (choose from "
                                                        f"{', '.join(known)})")
-    for name in axes:
-        if name not in AXES:
-            raise InputError(f"axes.{name}", axes[name], f"unknown axis (choose from {', '.join(AXES)})")
-        if name not in KIND_AXES[kind]:
-            users = [k for k in KINDS if name in KIND_AXES[k]]
-            raise InputError(f"axes.{name}", axes[name], f'is not an axis of kind = "{kind}" (an axis of kind = '
+    kind_axes = {k: axes(k) for k in KINDS}
+    every = {**kind_axes["catchment"], **kind_axes["success-rate"]}
+    for name in table:
+        if name not in every:
+            raise InputError(f"axes.{name}", table[name], f"unknown axis (choose from {', '.join(every)})")
+        if name not in kind_axes[kind]:
+            users = [k for k in KINDS if name in kind_axes[k]]
+            raise InputError(f"axes.{name}", table[name], f'is not an axis of kind = "{kind}" (an axis of kind = '
                                                          f'{" or ".join(repr(k) for k in users)})')
     random_envs: dict[str, tuple[int, int]] = {}
-    if "env" in axes:
-        axes = {**axes, "env": _env_labels(axes["env"], random_envs)}
-    values = {name: _values(name, raw) for name, raw in axes.items()}
+    if "env" in table:
+        table = {**table, "env": _env_labels(table["env"], random_envs)}
+    values = {name: _values(name, raw) for name, raw in table.items()}
     for name, default in DEFAULTS.items():
-        if name in KIND_AXES[kind]:
+        if name in kind_axes[kind]:
             values.setdefault(name, default)
     extra = {}
     if kind == "success-rate":

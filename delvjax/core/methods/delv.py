@@ -13,6 +13,7 @@ from ..errors import InputError
 from ..estimation import TIE_RAD
 from ..estimation import DistanceSettings, current_vectors, reference_vectors
 from ..search import first_argmin
+from ..settings import setting
 from ..geometry import TWO_PI, angle_of, rotate, safe_norm, wrap
 from ..sensing import UnitMove
 from ..types import Blobs, BlobFlags, BlobVectors, Direction, Hypotheses, Pairing, PairingFlags, Point, RowFlags, Scalar
@@ -182,11 +183,13 @@ class DELV(HomingMethod):
             bearing, the earlier rule; with occlusion its wrap point moves with the heading).
     """
 
-    levels: int = eqx.field(default=0, converter=lambda q: 0 if q is None else q)
-    scale: float = 1000.0
-    r_max: float = 2000.0
+    levels: int = setting(0, converter=lambda q: 0 if q is None else q, check="positive_int",
+                          help="distance quantization levels Q >= 1 (Eq 3.17)", shown_default="continuous")
+    scale: float = setting(1000.0, check="positive", unit="cm", help="quantization scale a")
+    r_max: float = setting(2000.0, check="positive", unit="cm", help="cap of estimated distances")
     heading: HeadingSource | None = None
-    n_heading: int = eqx.field(static=True, default=360)
+    n_heading: int = setting(360, static=True, check="positive_int", limit=36_000,
+                             help="heading hypotheses without a compass")
     order: str = eqx.field(static=True, default="home")
 
     def __check_init__(self):

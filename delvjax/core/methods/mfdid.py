@@ -31,6 +31,7 @@ from jax import Array
 
 from ..geometry import TWO_PI, angle_of, safe_norm, wrap
 from ..sensing import UnitMove
+from ..settings import setting
 from .base import HomingMethod
 from .heading import Compass, HeadingSource
 
@@ -72,7 +73,8 @@ class MFDID(HomingMethod):
     blur_deg: Gaussian low-pass of both images, degrees (0 = the raw images).
     """
 
-    blur_deg: float = 0.0
+    blur_deg: float = setting(0.0, check="non_negative", unit="deg", option="mfdid_blur_deg",
+                              help="Gaussian low-pass of both images")
     heading: HeadingSource = Compass()
 
     def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:

@@ -32,7 +32,6 @@ from __future__ import annotations
 
 import math
 
-import equinox as eqx
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -41,6 +40,7 @@ from jax import Array
 from ..errors import InputError
 from ..geometry import TWO_PI, wrap
 from ..search import first_argmin
+from ..settings import setting
 from ..sensing import UnitMove
 from .base import HomingMethod
 
@@ -196,11 +196,11 @@ class Warping(HomingMethod):
     image and the search carries no information.
     """
 
-    n_alpha: int = eqx.field(static=True, default=72)
-    n_psi: int = eqx.field(static=True, default=72)
-    n_rho: int = eqx.field(static=True, default=15)
-    rho_min: float = eqx.field(static=True, default=0.10)
-    rho_max: float = eqx.field(static=True, default=0.80)
+    n_alpha: int = setting(72, static=True, check="positive_int", limit=3_600, help="movement directions alpha")
+    n_psi: int = setting(72, static=True, check="positive_int", help="rotations psi, must divide the ring's pixels")
+    n_rho: int = setting(15, static=True, check="positive_int", limit=1_000, help="values of rho = d/r")
+    rho_min: float = setting(0.10, static=True, check="unit_interval", help="smallest rho")
+    rho_max: float = setting(0.80, static=True, check="unit_interval", help="largest rho, < 1")
 
     def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
         s, c = home.start.image, view.end.image

@@ -1,0 +1,5 @@
+"""`python -m delvjax.options`: print docs/options.md."""
+
+from ._docs import options_markdown
+
+print(options_markdown(), end="")
