@@ -6,21 +6,15 @@ Vision-Based Homing Navigation", chapters 3-5; see docs/model.md).
 rollouts); this top level is the edge: names, options, files, figures, CLI and this API.
 """
 
-from .core.errors import InputError as InputError
-from .core.maps import VectorMap as VectorMap
-from .core.methods import (ACV as ACV, ALV as ALV, DELV as DELV, MFDID as MFDID, CartwrightCollett as CartwrightCollett,
-                           Compass as Compass, DELVGap as DELVGap, DELVRefined as DELVRefined,
-                           HomingMethod as HomingMethod, Method as Method, Program as Program,
-                           VisualCompass as VisualCompass, Warping as Warping)
-from .core.metrics import error_curve as error_curve, error_point_rates as error_point_rates
-from .core.metrics import summarize_map as summarize_map
-from .core.scene import Env as Env
-from .core.sensing import Snapshot as Snapshot, UnitMove as UnitMove
-from .core.sensor import Noise as Noise, Sensor as Sensor
-
-# The edge's public names, imported on first use (PEP 562), so that `import delvjax` loads neither
-# matplotlib, xarray nor PIL: name -> the feature package that defines it.
+# Every public name is imported on first use (PEP 562): `import delvjax` loads neither JAX, matplotlib,
+# xarray nor PIL, and `delvjax --help` answers at once. name -> the module that defines it.
 _LAZY = {
+    "InputError": "core.errors", "VectorMap": "core.maps", "Env": "core.scene", "Noise": "core.sensor",
+    "Sensor": "core.sensor", "Snapshot": "core.sensing", "UnitMove": "core.sensing",
+    "error_curve": "core.metrics", "error_point_rates": "core.metrics", "summarize_map": "core.metrics",
+    **{name: "core.methods" for name in ("ACV", "ALV", "DELV", "MFDID", "CartwrightCollett", "Compass", "DELVGap",
+                                         "DELVRefined", "HomingMethod", "Method", "Program", "VisualCompass",
+                                         "Warping")},
     "load_env": "envs", "make_env": "envs",
     "vector_map": "evaluate", "catchment": "evaluate", "success_rate": "evaluate", "trajectories": "evaluate",
     "homing_quality": "gradients", "homing_quality_grad": "gradients", "optimise_layout": "gradients",
@@ -33,18 +27,24 @@ _LAZY = {
 }
 
 
-def __getattr__(name: str):
-    if name in _LAZY:
-        import importlib
+_PACKAGES = ("core", "cli", "envs", "evaluate", "gradients", "images", "options", "outputs", "plots", "reproduce",
+             "studies", "sweeps")
 
+
+def __getattr__(name: str):
+    import importlib
+
+    if name in _LAZY:
         value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
         globals()[name] = value  # later lookups are plain attribute reads
         return value
+    if name in _PACKAGES:  # `delvjax.core.maps` after a bare `import delvjax`
+        return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module 'delvjax' has no attribute {name!r}")
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(_LAZY) | set(_PACKAGES))
 
 
 __all__ = [

@@ -1,3 +1,3 @@
 """The command line, `delvjax` (README): argument parsing and validation; calls the Python API."""
 
-from ._main import main as main
+from ._entry import main as main

@@ -1,5 +1,5 @@
 """`python -m delvjax.cli`: the same as the `delvjax` command."""
 
-from ._main import main
+from ._entry import main
 
 raise SystemExit(main())

@@ -7,14 +7,14 @@ from pathlib import Path
 
 from ._args import add_setting_args, progress, setting_values
 from ..core.maps import SPACING
+from ._help import COMMAND_HELP
 
 
 def add_sensitivity(sub) -> None:
     from ..gradients._quality import TAU
     from ..gradients._sensitivity import METHODS
 
-    p = sub.add_parser("sensitivity", help="which landmark matters most, and the sensitivity of homing quality to d "
-                                           "and the noise (gradients; docs/differentiable.md)",
+    p = sub.add_parser("sensitivity", help=COMMAND_HELP["sensitivity"],
                        description="Gradients of the soft homing quality (mean 1 - cos angular error over the grid) "
                                    "with respect to every landmark and to d, bearing, odometry and compass noise, for "
                                    "DELV, ALV and ACV; central differences of the ordinary quality for warping. "
@@ -55,8 +55,7 @@ def add_traps(sub) -> None:
     from ..gradients._quality import TAU
     from ..options._settings import NOISE_OPTIONS
 
-    p = sub.add_parser("traps", help="trap points (sinks, saddles, sources) of a homing field near its failed "
-                                     "rollouts (optimistix; docs/differentiable.md)",
+    p = sub.add_parser("traps", help=COMMAND_HELP["traps"],
                        description="Run the catchment, then root-find the zeros of the soft homing field from the end "
                                    "points of the timed-out rollouts, classify them from the Jacobian, and report how "
                                    "many failed rollouts end within --near cm of a sink. Writes traps.png, traps.csv "
@@ -99,8 +98,7 @@ def add_optimise_layout(sub) -> None:
     from ..gradients._quality import TAU
     from ..gradients._layout import STEPS
 
-    p = sub.add_parser("optimise-layout", help="move the landmarks to maximise homing quality (optimistix BFGS), "
-                                               "compare by catchment (docs/differentiable.md)",
+    p = sub.add_parser("optimise-layout", help=COMMAND_HELP["optimise-layout"],
                        description="Optimise the landmark positions of ENV (or of --landmarks N seeded random ones) "
                                    "for a method, with or without occlusion (the mean over every choice of --occlude "
                                    "hidden landmarks), then compare start and result by the ordinary catchment and "

@@ -18,6 +18,7 @@ from ..options._schema import method_options, sensor_options
 from ..outputs._files import check_out_dir
 from ..options._limits import MAX_POINTS
 from ..outputs._tables import vector_map_columns
+from ._help import COMMAND_HELP
 
 # scene options that mean nothing for a database (its images fix the scene, the poses and the unit move)
 # the scene's options that a database replaces: the sensor's settings but the channel (the motion noise of a
@@ -152,7 +153,7 @@ def cmd_catchment_images(args: argparse.Namespace) -> int:
 # --- images render-db / import ------------------------------------------------------------------
 
 def add_images(sub) -> None:
-    p = sub.add_parser("images", help="image databases: render one from a world, import one (docs/images.md)")
+    p = sub.add_parser("images", help=COMMAND_HELP["images"])
     isub = p.add_subparsers(dest="images_command", required=True)
     r = isub.add_parser("render-db", help="render a grid database of colour panoramas in the BoB layout")
     r.add_argument("env", help="image world (robot, natural), preset or environment JSON file")

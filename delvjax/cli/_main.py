@@ -23,6 +23,7 @@ from ..options._limits import grid_count
 from ..envs._presets import PRESET_DESCRIPTIONS, PRESETS
 from ..options._registry import DESCRIPTIONS
 from ..outputs._tables import vector_map_columns
+from ._help import COMMAND_HELP, DESCRIPTION
 
 # --- commands ---------------------------------------------------------------------------
 
@@ -37,7 +38,7 @@ def cmd_envs(args: argparse.Namespace) -> int:
 
 
 def add_vector_map(sub) -> None:
-    p = sub.add_parser("vector-map", help="homing direction at every grid point (docs/model.md §5; Figs 4.2/4.3)")
+    p = sub.add_parser("vector-map", help=COMMAND_HELP["vector-map"])
     add_scene_args(p, images=True)
     add_output_args(p, "vector-map figure")
     p.add_argument("--classes", action="store_true", help="mark error classes < 45 / 45-90 / > 90 deg (Fig 4.3)")
@@ -75,7 +76,7 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
 
 
 def add_reproduce(sub) -> None:
-    p = sub.add_parser("reproduce", help="every simulation study of the thesis, a report beside the thesis's numbers",
+    p = sub.add_parser("reproduce", help=COMMAND_HELP["reproduce"],
                        description="Run the thesis's studies (skipping those whose code and settings are unchanged) "
                                    "and write figures, CSV/JSON, report.md and report.html into --out.")
     p.add_argument("--quick", action="store_true",
@@ -118,9 +119,9 @@ COMMANDS: list[Callable] = [add_vector_map, add_reproduce, *ROLLOUT_COMMANDS, ad
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="delvjax", description="Visual homing methods (DELV, ALV, ACV, ...) as JAX batch evaluators.")
+    parser = argparse.ArgumentParser(prog="delvjax", description=DESCRIPTION)
     sub = parser.add_subparsers(dest="command", required=True)
-    sub.add_parser("envs", help="list the built-in environments and methods").set_defaults(func=cmd_envs)
+    sub.add_parser("envs", help=COMMAND_HELP["envs"]).set_defaults(func=cmd_envs)
     for add in COMMANDS:
         add(sub)
     return parser

@@ -12,6 +12,7 @@ import numpy as np
 
 from ..evaluate import _vector_map as api, _rollouts as api_rollouts
 from ._images import add_image_args, cmd_catchment_images
+from ._help import COMMAND_HELP
 from ._args import (ProgressBar, add_output_args, add_rollout_args, add_scene_args, check_outputs, progress, rollout_kwargs, warn, write_outputs)
 from ..core.errors import InputError
 from ..core.rollouts import (DEFAULT_DISTANCES, N_STARTS, TRIAL_BLOCK, TRIALS_PER_DISTANCE, catchment_summary, check_rules)
@@ -39,10 +40,10 @@ def _methods(text: str) -> list[str]:
 
 # --- catchment -------------------------------------------------------------------------------
 
-def _rollout_parser(sub, name: str, help_text: str, plot_help: str, epilog: str | None = None, grid: bool = False):
+def _rollout_parser(sub, name: str, plot_help: str, epilog: str | None = None, grid: bool = False):
     """A subcommand with the scene, output and rollout options every rollout command takes (--spacing
     only where a grid is evaluated: an option a command does not use is not offered)."""
-    p = sub.add_parser(name, help=help_text, epilog=epilog)
+    p = sub.add_parser(name, help=COMMAND_HELP[name], epilog=epilog)
     add_scene_args(p, grid=grid, images=grid)
     add_output_args(p, plot_help)
     add_rollout_args(p)
@@ -50,7 +51,7 @@ def _rollout_parser(sub, name: str, help_text: str, plot_help: str, epilog: str 
 
 
 def add_catchment(sub) -> None:
-    p = _rollout_parser(sub, "catchment", "catchment area: a rollout from every grid point (docs/model.md §5; Figs 4.5, 5.5)",
+    p = _rollout_parser(sub, "catchment",
                         "catchment map: squares on catchment points over the vector map", grid=True)
     p.add_argument("--occlude", type=int, default=None, metavar="K",
                    help="evaluate every choice of K landmarks hidden during homing (Tables 5.3/5.4)")
@@ -98,7 +99,7 @@ def cmd_catchment(args: argparse.Namespace) -> int:
 # --- success rate ----------------------------------------------------------------------------
 
 def add_success_rate(sub) -> None:
-    p = _rollout_parser(sub, "success-rate", "success rate vs release distance (docs/model.md §5; Figs 4.10b, 5.7b)",
+    p = _rollout_parser(sub, "success-rate",
                         "success-rate curve", "--method takes a comma-separated list (one curve each).")
     p.add_argument("--trials", type=int, default=TRIALS_PER_DISTANCE,
                    help=f"trials per distance bin (default {TRIALS_PER_DISTANCE})")
@@ -140,7 +141,7 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
 # --- trajectories ----------------------------------------------------------------------------
 
 def add_trajectories(sub) -> None:
-    p = _rollout_parser(sub, "trajectories", "homing paths from chosen release points (docs/model.md §5; Figs 4.11, 5.8)",
+    p = _rollout_parser(sub, "trajectories",
                         "trajectory figure (one panel per method)",
                         "--method takes a comma-separated list (one panel each, same release points).")
     p.add_argument("--start", type=float, nargs=2, action="append", default=None, metavar=("X", "Y"),

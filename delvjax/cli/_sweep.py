@@ -8,10 +8,11 @@ import time
 from ._args import ProgressBar, progress
 from ..core.errors import InputError
 from ..options._limits import MAX_POINTS
+from ._help import COMMAND_HELP
 
 
 def add_sweep(sub) -> None:
-    p = sub.add_parser("sweep", help="every combination of the axes of a sweep file (TOML), one program per shape",
+    p = sub.add_parser("sweep", help=COMMAND_HELP["sweep"],
                        description="Evaluate every cell of a sweep file (a vector map, a catchment or a success-rate table "
                                    "per cell) and write sweep.nc (xarray/netCDF), "
                                    "sweep.csv (one row per cell) and sweep.toml into --out. "
@@ -90,7 +91,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
 
 
 def add_plot_sweep(sub) -> None:
-    p = sub.add_parser("plot-sweep", help="heat maps or line plots (95 %% intervals over seeds) of a finished sweep",
+    p = sub.add_parser("plot-sweep", help=COMMAND_HELP["plot-sweep"],
                        description="Draw a metric of a sweep folder over one axis (--x: lines with 95 % intervals "
                                    "over the seeds) or two (--x and --y: heat maps, mean over the seeds); one panel "
                                    "per combination of the remaining axes. Writes the figure and a CSV of the "
