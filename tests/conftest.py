@@ -102,6 +102,7 @@ def plain9(tmp_path_factory, small_db) -> Path:
 
 
 
+@pytest.hookimpl(tryfirst=True)  # before pytest-xdist reads the groups
 def pytest_collection_modifyitems(items):
     """`--dist loadgroup` with one group per test file (its tests share one worker and its compiled
     programs), except tests/reproduce/, whose three files share the session fixture `run`."""

@@ -241,7 +241,7 @@ def test_list_prints_every_study(capsys):
 
 def test_studies_importable_outside_the_repo(tmp_path):
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
-    proc = subprocess.run([sys.executable, "-c", "import studies, delvjax.reproduce as r; print(list(r.registry()))"],
+    proc = subprocess.run([sys.executable, "-c", "import delvjax.studies, delvjax.reproduce._run as r; print(list(r.registry()))"],
                           cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr[-2000:]
     printed = proc.stdout.strip().splitlines()[-1]

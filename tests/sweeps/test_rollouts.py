@@ -127,7 +127,7 @@ def test_the_readme_sweep_file_is_valid():
     import re
     from pathlib import Path
 
-    readme = (Path(__file__).parent.parent / "README.md").read_text()
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text()
     blocks = re.findall(r"```toml\n(.*?)```", readme, re.S)
     assert blocks
     for text in blocks:
