@@ -30,7 +30,8 @@ def add_sensitivity(sub) -> None:
 
 def cmd_sensitivity(args: argparse.Namespace) -> int:
     from ..outputs._files import check_out_dir, output_set
-    from ..gradients._sensitivity import check_sensitivity, landmark_figure, parameter_figure, sensitivity
+    from ..gradients._sensitivity import check_sensitivity, sensitivity
+    from ..plots._gradients import landmark_figure, parameter_figure
 
     out = check_out_dir(args.out)
     env = check_sensitivity(args.env, args.methods, args.spacing, args.seed, args.tau)
@@ -74,7 +75,8 @@ def add_traps(sub) -> None:
 
 def cmd_traps(args: argparse.Namespace) -> int:
     from ..outputs._files import check_out_dir, output_set
-    from ..gradients._traps import find_traps, trap_figure
+    from ..gradients._traps import find_traps
+    from ..plots._gradients import trap_figure
 
     out = check_out_dir(args.out)
     options = setting_values(args)
@@ -119,7 +121,8 @@ def add_optimise_layout(sub) -> None:
 def cmd_optimise_layout(args: argparse.Namespace) -> int:
     from ._args import ProgressBar
     from ..outputs._files import check_out_dir, output_set
-    from ..gradients._layout import layout_figure, optimise_layout, start_layout
+    from ..gradients._layout import optimise_layout, start_layout
+    from ..plots._gradients import layout_figure
     from ..envs._presets import env_to_dict
 
     out = check_out_dir(args.out)

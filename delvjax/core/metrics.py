@@ -34,6 +34,14 @@ def error_point_rates(error_deg: Array, included: Array) -> dict[str, float]:
     return {"gt45_pct": 100.0 * float(np.sum(e > 45.0)) / n, "gt90_pct": 100.0 * float(np.sum(e > 90.0)) / n}
 
 
+def t_quantile(n, confidence: float = 0.95):
+    """Student-t quantile of a two-sided `confidence` interval with n - 1 degrees of freedom, for a
+    count or an array of counts (NaN where n < 2): the one t quantile of every interval delvjax
+    reports (error curves, sweep metrics, sweep figures)."""
+    n = np.asarray(n)
+    return np.where(n >= 2, stats.t.ppf(0.5 + confidence / 2, np.maximum(n - 1, 1)), np.nan)
+
+
 def t_interval(values: np.ndarray, confidence: float = 0.95) -> tuple[float, float, int]:
     """Mean and Student-t half-width of a sample: (mean, half_width, n); half-width NaN for n < 2."""
     v = np.asarray(values, dtype=np.float64)
@@ -43,7 +51,7 @@ def t_interval(values: np.ndarray, confidence: float = 0.95) -> tuple[float, flo
     mean = float(v.mean())
     if n < 2:
         return mean, float("nan"), n
-    half = float(stats.t.ppf(0.5 + confidence / 2, n - 1) * v.std(ddof=1) / np.sqrt(n))
+    half = float(t_quantile(n, confidence) * v.std(ddof=1) / np.sqrt(n))
     return mean, half, n
 
 

@@ -212,8 +212,11 @@ def preset_dict(name: str) -> dict:
     }
 
 
-def load_env(name_or_path: str | Path, pad_to: int | None = None) -> Env:
-    """A preset by name (`env1`, `env2`, `env3`, `ring3`..`ring6`) or a docs/model.md §7 JSON file."""
+def load_env(name_or_path: str | Path | Env, pad_to: int | None = None) -> Env:
+    """A preset by name (`env1`, `env2`, `env3`, `ring3`..`ring6`), a docs/model.md §7 JSON file, or an
+    `Env` as it is."""
+    if isinstance(name_or_path, Env) and pad_to is None:
+        return name_or_path
     key = str(name_or_path)
     if key in PRESETS:
         return env_from_dict(preset_dict(key), pad_to=pad_to)

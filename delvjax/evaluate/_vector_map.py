@@ -22,12 +22,7 @@ from ..core.scene import Env
 from ..core.sensor import Sensor
 from ..options._settings import angle_deg, make_setup, non_negative, positive, positive_int, seed_value
 from ..options._limits import MAX_POINTS, check_size
-from ..envs._presets import load_env as _load_env
-
-
-def load_env(name_or_path: str | Path | Env) -> Env:
-    """A preset (`env1`, `env2`, `env3`, `ring3`..`ring6`), a docs/model.md §7 JSON path, or an `Env` as is."""
-    return name_or_path if isinstance(name_or_path, Env) else _load_env(name_or_path)
+from ..envs._presets import load_env
 
 
 def resolve_headings(heading_deg: float | None, seed: int) -> tuple[float | None, jax.Array]:

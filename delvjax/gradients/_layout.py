@@ -25,7 +25,7 @@ import jax.numpy as jnp
 import numpy as np
 import optimistix as optx
 
-from ..evaluate._vector_map import load_env
+from ..envs._presets import load_env
 from ..evaluate._rollouts import catchment
 from ._quality import TAU, QualityProblem, quality_problem
 from ..core.errors import InputError
@@ -170,23 +170,3 @@ def _hard_row(label: str, env: Env, c: Catchment, method: str, k: int, soft_obje
     return {"layout": label, "env": env.name, "method": method, "occlude": k, "catchment_pct": s["catchment_pct"]["mean"],
             "catchment_min_pct": s["catchment_pct"]["min"], "gt45_pct": s["gt45_pct"]["mean"],
             "gt90_pct": s["gt90_pct"]["mean"], "points": s["points"], "soft_objective": soft_objective}
-
-
-def layout_figure(result: LayoutResult, spacing: float):
-    """Start and optimised layouts side by side: each one's vector map and catchment (the comparison's
-    own runs; the worst mask under occlusion), and the soft objective per step."""
-    from ..plots._maps import subplots
-    from ..plots._rollouts import catchment_panel
-
-    fig, axes = subplots(1, 3, figsize=(15.5, 5.2), squeeze=False)
-    for ax, env, row, c in zip(axes[0][:2], (result.start, result.optimised), result.rows, result.catchments):
-        worst = int(np.argmin(c.catchment_pct()))
-        catchment_panel(ax, env, c, worst, spacing, f"{row['layout']}: catchment {row['catchment_pct']:.1f} % "
-                                                    f"(worst mask {row['catchment_min_pct']:.1f} %)\n"
-                                                    f"e>45° {row['gt45_pct']:.1f} %, e>90° {row['gt90_pct']:.1f} %")
-    ax = axes[0][2]
-    ax.plot(range(len(result.objective)), result.objective, marker="o", markersize=3)
-    ax.set_xlabel("BFGS step")
-    ax.set_ylabel("soft objective (1 - cos error + penalty)")
-    ax.set_title(f"{result.method}, occlude {result.occlude}: {result.seconds:.1f} s", fontsize=10)
-    return fig

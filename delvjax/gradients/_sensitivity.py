@@ -11,11 +11,10 @@ from typing import Callable
 
 import numpy as np
 
-from ..evaluate._vector_map import load_env
+from ..envs._presets import load_env
 from ._quality import TAU, homing_quality, homing_quality_grad
 from ..core.maps import SPACING
 from ..core.scene import Env
-from ..plots._maps import draw_env, subplots
 
 METHODS = ("delv", "alv", "acv", "warping")
 # the operating point at which sensitivities are taken: noise a real robot has (docs/differentiable.md)
@@ -90,43 +89,3 @@ def sensitivity(env: str | Path | Env, methods=METHODS, spacing: float = SPACING
                                              "dq_dy_per_cm": float(gy), "dq_dr_per_cm": float(gr),
                                              "position_gradient_norm": float(np.hypot(gx, gy))})
     return out
-
-
-def landmark_figure(result: dict):
-    """Arrows on the landmarks: the direction that improves quality (minus the position gradient),
-    scaled per method so that its longest arrow is 150 cm; the number is |grad| x 100 (per metre)."""
-    env = result["env"]
-    soft = [m for m, r in result["methods"].items() if r["landmark_grad"] is not None]
-    fig, axes = subplots(1, max(len(soft), 1), figsize=(4.4 * max(len(soft), 1), 4.6), squeeze=False)
-    lm = np.asarray(env.landmarks)[np.asarray(env.valid)]
-    for ax, m in zip(axes[0], soft):
-        g = np.asarray(result["methods"][m]["landmark_grad"])
-        norm = np.hypot(g[:, 0], g[:, 1])
-        scale = 150.0 / max(norm.max(), 1e-12)
-        draw_env(ax, env)
-        ax.quiver(lm[:, 0], lm[:, 1], -g[:, 0] * scale, -g[:, 1] * scale, angles="xy", scale_units="xy", scale=1.0,
-                  color="tab:red", width=0.008, zorder=5)
-        for (x, y, r), n in zip(lm, norm):
-            ax.annotate(f"{100 * n:.2g}", (x, y), xytext=(0, r * 0.0 + 14), textcoords="offset points", ha="center",
-                        fontsize=8, color="tab:red", zorder=6)
-        ax.set_title(f"{m}: quality {result['methods'][m]['quality']:.3f}", fontsize=10)
-    fig.suptitle("Which landmark matters: arrows improve homing quality (|dQ/dx| per metre)")
-    return fig
-
-
-def parameter_figure(result: dict):
-    """Bars: change of homing quality per unit of d (10 cm) and of each noise sigma (1 degree)."""
-    methods = list(result["methods"])
-    names = list(NOMINAL)
-    fig, axes = subplots(1, 1, figsize=(7.5, 4.0), squeeze=False)
-    ax = axes[0, 0]
-    width = 0.8 / len(methods)
-    for k, m in enumerate(methods):
-        vals = [result["methods"][m]["per_unit"][n] * UNITS[n] for n in names]
-        ax.bar(np.arange(len(names)) + (k - (len(methods) - 1) / 2) * width, vals, width, label=m)
-    ax.axhline(0, color="black", linewidth=0.8)
-    ax.set_xticks(range(len(names)), ["d (per 10 cm)", "bearing σ (per °)", "odometry σ (per °)", "compass σ (per °)"])
-    ax.set_ylabel("change of homing quality (1 - cos error)")
-    ax.legend(fontsize=8)
-    ax.set_title("Sensitivity of homing quality at d = 50 cm, σ bearing 1°, odometry 1°, compass 2°", fontsize=9)
-    return fig

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..evaluate._vector_map import load_env
+from ..envs._presets import load_env
 from ..evaluate._rollouts import catchment
 from ._quality import TAU, quality_problem
 from ..core.errors import InputError
@@ -149,30 +149,3 @@ def find_traps(env: str | Path | Env, method: str = "delv", spacing: float = SPA
                "discontinuities": sum(r["kind"] == "discontinuity" for r in rows), "tau": tau}
     return TrapReport(env=env, method=method, catchment=c, points=rows, failed_ends=ends, nearest_sink_cm=nearest,
                       summary=summary)
-
-
-def trap_figure(report: TrapReport, spacing: float):
-    """The catchment map (squares: rollouts that reach home) and vector map with the zeros drawn
-    (the sink at home left out): sinks red discs, saddles orange crosses, sources blue triangles, discontinuities grey diamonds;
-    the end points of the timed-out rollouts as small red dots."""
-    from ..plots._maps import subplots
-    from ..plots._rollouts import catchment_panel
-
-    fig, axes = subplots(1, 1, figsize=(6.2, 6.2), squeeze=False)
-    ax = axes[0, 0]
-    s = report.summary
-    catchment_panel(ax, report.env, report.catchment, 0, spacing,
-                    f"{report.method}: catchment {s['catchment_pct']:.1f} %, {s['timed_out']} timed out, "
-                    f"{s['timed_out_within_near_of_a_sink']} within {s['near_cm']:g} cm of a sink")
-    if len(report.failed_ends):
-        ax.plot(report.failed_ends[:, 0], report.failed_ends[:, 1], ".", color="tab:red", markersize=3, zorder=5,
-                label="timed-out ends")
-    style = {"sink": ("o", "tab:red"), "saddle": ("X", "tab:orange"), "source": ("^", "tab:blue"),
-             "degenerate": ("s", "tab:purple"), "discontinuity": ("D", "0.5"), "2-cycle": ("P", "tab:green")}
-    for kind, (marker, color) in style.items():
-        pts = np.array([[r["x"], r["y"]] for r in report.points if r["kind"] == kind and not r["home"]]).reshape(-1, 2)
-        if len(pts):
-            ax.plot(pts[:, 0], pts[:, 1], marker, color=color, markersize=10, markeredgecolor="black", zorder=6,
-                    label=kind)
-    ax.legend(fontsize=7, loc="upper right")
-    return fig

@@ -8,6 +8,7 @@ import itertools
 import numpy as np
 
 from ..core.errors import InputError
+from ..core.metrics import t_quantile
 from ._maps import subplots
 
 MAX_PANELS = 24
@@ -38,13 +39,11 @@ def panels(ds, x: str, y: str | None) -> list[tuple[str, dict]]:
 
 def summarize(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Mean over the last axis (seeds) and the half-width of its Student-t 95 % interval (NaN for one seed)."""
-    from scipy import stats
-
     n = values.shape[-1]
     mean = values.mean(axis=-1)
     if n < 2:
         return mean, np.full(mean.shape, np.nan)
-    return mean, stats.t.ppf(0.975, n - 1) * values.std(axis=-1, ddof=1) / np.sqrt(n)
+    return mean, t_quantile(n) * values.std(axis=-1, ddof=1) / np.sqrt(n)
 
 
 def _labels(ds, axis: str) -> list[str]:

@@ -10,6 +10,8 @@ import jax
 import numpy as np
 
 from ..core.errors import InputError
+from ..core.metrics import t_quantile
+from ..core.rollouts.success import wilson_pct
 from ..outputs._files import output_set
 from ._spec import SweepSpec
 
@@ -50,21 +52,6 @@ def counted_points(sums: dict) -> np.ndarray:
     return sums["counted_points"].astype(np.int64)
 
 
-def wilson_pct(successes: np.ndarray, n: np.ndarray, confidence: float = 0.95) -> tuple[np.ndarray, np.ndarray]:
-    """95 % Wilson score interval in % (the interval of `core.rollouts.wilson_interval_pct`, which asks
-    scipy one trial count at a time), for arrays of counts; NaN where n is 0."""
-    from scipy import stats
-
-    z = stats.norm.ppf(0.5 + confidence / 2)
-    m = np.maximum(n, 1).astype(np.float64)
-    p = successes / m
-    denom = 1.0 + z * z / m
-    centre = (p + z * z / (2 * m)) / denom
-    half = z * np.sqrt(p * (1 - p) / m + z * z / (4 * m * m)) / denom
-    lo, hi = np.clip(centre - half, 0, 1), np.clip(centre + half, 0, 1)
-    return np.where(n > 0, 100 * lo, np.nan), np.where(n > 0, 100 * hi, np.nan)
-
-
 def success_metrics(sums: dict) -> dict:
     """Success % per distance with its Wilson interval, and the trials placed."""
     lo, hi = wilson_pct(sums["successes"], sums["placed"])
@@ -92,13 +79,6 @@ def dataset(spec: SweepSpec, sums: dict, programs: int):
     if spec.kind == "success-rate":
         ds.attrs["trials_per_distance"] = spec.trials
     return ds
-
-
-def t_quantile(n: np.ndarray) -> np.ndarray:
-    """Student-t 97.5 % quantile with n - 1 degrees of freedom (NaN for n < 2), as `metrics.t_interval`."""
-    from scipy import stats
-
-    return np.where(n >= 2, stats.t.ppf(0.975, np.maximum(n - 1, 1)), np.nan)
 
 
 def _version(package: str) -> str:

@@ -12,6 +12,7 @@ from typing import Iterator
 import numpy as np
 
 from ..core.errors import InputError
+from ..core.rollouts.rules import DEFAULT_DISTANCES, TRIALS_PER_DISTANCE
 from ..options._schema import all_options
 
 KINDS = ("vector-map", "catchment", "success-rate")
@@ -84,8 +85,8 @@ KIND_METRICS = {"vector-map": ERROR_METRICS,
                 "success-rate": SUCCESS_METRICS}
 METRICS = {**ERROR_METRICS, **CATCHMENT_METRICS, **SUCCESS_METRICS}
 DEFAULTS = {"env": ["env1"], "method": ["delv"], "spacing": [25.0], "seed": [0]}
-DISTANCES = tuple(float(v) for v in range(50, 451, 50))  # success-rate release distances, cm (core.rollouts)
-TRIALS = 100  # success-rate trials per distance
+DISTANCES = DEFAULT_DISTANCES  # success-rate release distances, cm
+TRIALS = TRIALS_PER_DISTANCE  # success-rate trials per distance
 RANDOM_ENVS = 10_000  # seeded random layouts one sweep file may ask for
 MAX_VALUES = 100_000  # values of one axis
 MAX_CELLS = 10_000_000  # cells of one sweep (each is validated before any work: about 1 ms a cell)

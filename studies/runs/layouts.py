@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from delvjax.gradients._layout import layout_figure, optimise_layout
+from delvjax.gradients._layout import optimise_layout
+from delvjax.plots._gradients import layout_figure
 from delvjax.envs._presets import env_to_dict
 
 from ._common import env

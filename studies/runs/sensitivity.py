@@ -20,7 +20,8 @@ from delvjax.core.sensitivity import bearing_noise_gain
 from delvjax.core.sensor import Sensor
 from delvjax.plots._maps import draw_env, subplots
 from delvjax.options._registry import METHODS as REGISTRY
-from delvjax.gradients._sensitivity import landmark_figure, parameter_figure, sensitivity
+from delvjax.gradients._sensitivity import sensitivity
+from delvjax.plots._gradients import landmark_figure, parameter_figure
 
 from ._common import env
 

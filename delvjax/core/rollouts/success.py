@@ -60,12 +60,27 @@ class SuccessRate(Outcomes):
         return rows
 
 
+def wilson_pct(successes, trials, confidence: float = 0.95) -> tuple[np.ndarray, np.ndarray]:
+    """The Wilson score interval of success rates, in % (scipy's binomtest), for counts or arrays of
+    counts: (lo, hi), NaN where there are no trials. The one Wilson interval of delvjax (success-rate
+    tables, sweeps, figures)."""
+    def one(k, n):
+        if n == 0:
+            return float("nan"), float("nan")
+        ci = stats.binomtest(int(k), int(n)).proportion_ci(confidence_level=confidence, method="wilson")
+        return 100.0 * ci.low, 100.0 * ci.high
+
+    k, n = np.broadcast_arrays(np.asarray(successes), np.asarray(trials))
+    pairs = [one(a, b) for a, b in zip(k.ravel().tolist(), n.ravel().tolist())]  # a table's counts, host side
+    lo = np.array([p[0] for p in pairs], np.float64).reshape(k.shape)
+    hi = np.array([p[1] for p in pairs], np.float64).reshape(k.shape)
+    return lo, hi
+
+
 def wilson_interval_pct(successes: int, trials: int, confidence: float = 0.95) -> dict[str, float]:
-    """95% Wilson score interval of a success rate, in % (scipy's binomtest): ci_lo_pct, ci_hi_pct."""
-    if trials == 0:
-        return {"ci_lo_pct": float("nan"), "ci_hi_pct": float("nan")}
-    ci = stats.binomtest(successes, trials).proportion_ci(confidence_level=confidence, method="wilson")
-    return {"ci_lo_pct": 100.0 * ci.low, "ci_hi_pct": 100.0 * ci.high}
+    """95% Wilson score interval of one success rate, in %: ci_lo_pct, ci_hi_pct (`wilson_pct`)."""
+    lo, hi = wilson_pct(successes, trials, confidence)
+    return {"ci_lo_pct": float(lo), "ci_hi_pct": float(hi)}
 
 
 def success_rate_trials(env: Env, method: HomingMethod, sensor: Sensor, distances: Sequence[float] = DEFAULT_DISTANCES,

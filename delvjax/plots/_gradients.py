@@ -1,0 +1,94 @@
+"""Figures of the differentiable path (docs/differentiable.md), from the results of
+`delvjax.gradients` (never recomputing): which landmark matters, the sensitivity to d and the noise,
+trap points near failed rollouts, an optimised layout beside its start."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..gradients._layout import LayoutResult
+from ..gradients._sensitivity import NOMINAL, UNITS
+from ..gradients._traps import TrapReport
+from ._maps import draw_env, subplots
+from ._rollouts import catchment_panel
+
+
+def landmark_figure(result: dict):
+    """Arrows on the landmarks: the direction that improves quality (minus the position gradient),
+    scaled per method so that its longest arrow is 150 cm; the number is |grad| x 100 (per metre)."""
+    env = result["env"]
+    soft = [m for m, r in result["methods"].items() if r["landmark_grad"] is not None]
+    fig, axes = subplots(1, max(len(soft), 1), figsize=(4.4 * max(len(soft), 1), 4.6), squeeze=False)
+    lm = np.asarray(env.landmarks)[np.asarray(env.valid)]
+    for ax, m in zip(axes[0], soft):
+        g = np.asarray(result["methods"][m]["landmark_grad"])
+        norm = np.hypot(g[:, 0], g[:, 1])
+        scale = 150.0 / max(norm.max(), 1e-12)
+        draw_env(ax, env)
+        ax.quiver(lm[:, 0], lm[:, 1], -g[:, 0] * scale, -g[:, 1] * scale, angles="xy", scale_units="xy", scale=1.0,
+                  color="tab:red", width=0.008, zorder=5)
+        for (x, y, r), n in zip(lm, norm):
+            ax.annotate(f"{100 * n:.2g}", (x, y), xytext=(0, r * 0.0 + 14), textcoords="offset points", ha="center",
+                        fontsize=8, color="tab:red", zorder=6)
+        ax.set_title(f"{m}: quality {result['methods'][m]['quality']:.3f}", fontsize=10)
+    fig.suptitle("Which landmark matters: arrows improve homing quality (|dQ/dx| per metre)")
+    return fig
+
+
+def parameter_figure(result: dict):
+    """Bars: change of homing quality per unit of d (10 cm) and of each noise sigma (1 degree)."""
+    methods = list(result["methods"])
+    names = list(NOMINAL)
+    fig, axes = subplots(1, 1, figsize=(7.5, 4.0), squeeze=False)
+    ax = axes[0, 0]
+    width = 0.8 / len(methods)
+    for k, m in enumerate(methods):
+        vals = [result["methods"][m]["per_unit"][n] * UNITS[n] for n in names]
+        ax.bar(np.arange(len(names)) + (k - (len(methods) - 1) / 2) * width, vals, width, label=m)
+    ax.axhline(0, color="black", linewidth=0.8)
+    ax.set_xticks(range(len(names)), ["d (per 10 cm)", "bearing σ (per °)", "odometry σ (per °)", "compass σ (per °)"])
+    ax.set_ylabel("change of homing quality (1 - cos error)")
+    ax.legend(fontsize=8)
+    ax.set_title("Sensitivity of homing quality at d = 50 cm, σ bearing 1°, odometry 1°, compass 2°", fontsize=9)
+    return fig
+
+
+def trap_figure(report: TrapReport, spacing: float):
+    """The catchment map (squares: rollouts that reach home) and vector map with the zeros drawn
+    (the sink at home left out): sinks red discs, saddles orange crosses, sources blue triangles, discontinuities grey diamonds;
+    the end points of the timed-out rollouts as small red dots."""
+    fig, axes = subplots(1, 1, figsize=(6.2, 6.2), squeeze=False)
+    ax = axes[0, 0]
+    s = report.summary
+    catchment_panel(ax, report.env, report.catchment, 0, spacing,
+                    f"{report.method}: catchment {s['catchment_pct']:.1f} %, {s['timed_out']} timed out, "
+                    f"{s['timed_out_within_near_of_a_sink']} within {s['near_cm']:g} cm of a sink")
+    if len(report.failed_ends):
+        ax.plot(report.failed_ends[:, 0], report.failed_ends[:, 1], ".", color="tab:red", markersize=3, zorder=5,
+                label="timed-out ends")
+    style = {"sink": ("o", "tab:red"), "saddle": ("X", "tab:orange"), "source": ("^", "tab:blue"),
+             "degenerate": ("s", "tab:purple"), "discontinuity": ("D", "0.5"), "2-cycle": ("P", "tab:green")}
+    for kind, (marker, color) in style.items():
+        pts = np.array([[r["x"], r["y"]] for r in report.points if r["kind"] == kind and not r["home"]]).reshape(-1, 2)
+        if len(pts):
+            ax.plot(pts[:, 0], pts[:, 1], marker, color=color, markersize=10, markeredgecolor="black", zorder=6,
+                    label=kind)
+    ax.legend(fontsize=7, loc="upper right")
+    return fig
+
+
+def layout_figure(result: LayoutResult, spacing: float):
+    """Start and optimised layouts side by side: each one's vector map and catchment (the comparison's
+    own runs; the worst mask under occlusion), and the soft objective per step."""
+    fig, axes = subplots(1, 3, figsize=(15.5, 5.2), squeeze=False)
+    for ax, env, row, c in zip(axes[0][:2], (result.start, result.optimised), result.rows, result.catchments):
+        worst = int(np.argmin(c.catchment_pct()))
+        catchment_panel(ax, env, c, worst, spacing, f"{row['layout']}: catchment {row['catchment_pct']:.1f} % "
+                                                    f"(worst mask {row['catchment_min_pct']:.1f} %)\n"
+                                                    f"e>45° {row['gt45_pct']:.1f} %, e>90° {row['gt90_pct']:.1f} %")
+    ax = axes[0][2]
+    ax.plot(range(len(result.objective)), result.objective, marker="o", markersize=3)
+    ax.set_xlabel("BFGS step")
+    ax.set_ylabel("soft objective (1 - cos error + penalty)")
+    ax.set_title(f"{result.method}, occlude {result.occlude}: {result.seconds:.1f} s", fontsize=10)
+    return fig
