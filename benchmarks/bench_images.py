@@ -29,7 +29,7 @@ env, spacing, method, mode, folder = sys.argv[1], float(sys.argv[2]), sys.argv[3
 t_import = time.perf_counter() - t0
 def run():
     if mode == "memory":
-        db = E.rendered_database(env, spacing)
+        db = E.render_in_memory(env, spacing)
     else:
         shutil.rmtree(folder, ignore_errors=True)
         A.render_database(env, folder, spacing)

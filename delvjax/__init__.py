@@ -19,7 +19,7 @@ _LAZY = {
     "vector_map": "evaluate", "catchment": "evaluate", "success_rate": "evaluate", "trajectories": "evaluate",
     "homing_quality": "gradients", "homing_quality_grad": "gradients", "optimise_layout": "gradients",
     "sensitivity": "gradients", "find_traps": "gradients",
-    "ImageSettings": "images", "render_database": "images", "rendered_database": "images", "load_database": "images",
+    "ImageSettings": "images", "render_database": "images", "render_in_memory": "images", "rendered_database": "images", "load_database": "images",
     "import_database": "images", "database_vector_map": "images", "database_catchment": "images",
     "database_rollouts": "images",
     "METHODS": "options",
@@ -52,7 +52,7 @@ __all__ = [
     "METHODS", "MFDID", "Method", "Noise", "Program", "Sensor", "Snapshot", "UnitMove", "VectorMap", "VisualCompass",
     "Warping", "catchment", "error_curve", "homing_quality", "homing_quality_grad", "find_traps", "optimise_layout",
     "sensitivity", "error_point_rates", "load_env", "make_env", "success_rate", "summarize_map", "load_sweep",
-    "run_sweep", "trajectories", "vector_map", "ImageSettings", "render_database", "rendered_database",
+    "run_sweep", "trajectories", "vector_map", "ImageSettings", "render_database", "render_in_memory", "rendered_database",
     "load_database", "import_database", "database_vector_map", "database_catchment", "database_rollouts",
 ]
 __version__ = "0.1.0"

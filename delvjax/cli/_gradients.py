@@ -12,7 +12,7 @@ from ._help import COMMAND_HELP
 
 def add_sensitivity(sub) -> None:
     from ..gradients._quality import TAU
-    from ..gradients._sensitivity import METHODS
+    from ..gradients._sensitivity import SENSITIVITY_METHODS as METHODS
 
     p = sub.add_parser("sensitivity", help=COMMAND_HELP["sensitivity"],
                        description="Gradients of the soft homing quality (mean 1 - cos angular error over the grid) "

@@ -16,7 +16,7 @@ from ._quality import TAU, homing_quality, homing_quality_grad
 from ..core.maps import SPACING
 from ..core.scene import Env
 
-METHODS = ("delv", "alv", "acv", "warping")
+SENSITIVITY_METHODS = ("delv", "alv", "acv", "warping")
 # the operating point at which sensitivities are taken: noise a real robot has (docs/differentiable.md)
 NOMINAL = {"d": 50.0, "bearing_noise_deg": 1.0, "odometry_turn_noise_deg": 1.0, "compass_noise_deg": 2.0}
 # what one "unit" of each parameter is in the table: 10 cm of d, 1 degree of each sigma
@@ -30,7 +30,7 @@ def _options(method: str) -> dict:
     return {k: v for k, v in NOMINAL.items() if method in READS.get(k, (method,))}
 
 
-def check_sensitivity(env: str | Path | Env, methods=METHODS, spacing: float = SPACING, seed: int = 0,
+def check_sensitivity(env: str | Path | Env, methods=SENSITIVITY_METHODS, spacing: float = SPACING, seed: int = 0,
                       tau: float = TAU) -> Env:
     """Validate everything `sensitivity` takes, before any work (`InputError` naming the field)."""
     from ..evaluate import _vector_map as api
@@ -39,10 +39,10 @@ def check_sensitivity(env: str | Path | Env, methods=METHODS, spacing: float = S
 
     env = load_env(env)
     if isinstance(methods, str) or not methods:
-        raise InputError("methods", methods, f"must be a non-empty list of {', '.join(METHODS)}")
+        raise InputError("methods", methods, f"must be a non-empty list of {', '.join(SENSITIVITY_METHODS)}")
     for m in methods:
-        if m not in METHODS:
-            raise InputError("methods", m, f"must be among {', '.join(METHODS)}")
+        if m not in SENSITIVITY_METHODS:
+            raise InputError("methods", m, f"must be among {', '.join(SENSITIVITY_METHODS)}")
         if m == "warping":
             api.map_request(env, m, spacing=spacing, seed=seed, **_options(m))
         else:
@@ -50,7 +50,7 @@ def check_sensitivity(env: str | Path | Env, methods=METHODS, spacing: float = S
     return env
 
 
-def sensitivity(env: str | Path | Env, methods=METHODS, spacing: float = SPACING, seed: int = 0, tau: float = TAU,
+def sensitivity(env: str | Path | Env, methods=SENSITIVITY_METHODS, spacing: float = SPACING, seed: int = 0, tau: float = TAU,
                 progress: Callable[[str], None] | None = None) -> dict:
     """Per method: quality at the operating point, its gradient with respect to every landmark
     [x, y, r] (soft methods), and d quality per unit of d and of each noise sigma. Returns

@@ -276,7 +276,7 @@ def import_database(src: str | Path, out: str | Path, **options) -> LoadedDataba
     return db
 
 
-def rendered_database(env: str, spacing: float | None = None, settings=None, seed: int = 0,
+def render_in_memory(env: str, spacing: float | None = None, settings=None, seed: int = 0,
                       extractor: Extractor | None = None, chunk: int = DEFAULT_CHUNK) -> LoadedDatabase:
     """The database `render_database` would write, rendered and reduced to rings in memory (no files;
     ring for ring what `load_database` reads back from them, docs/images.md §5)."""
@@ -293,3 +293,6 @@ def rendered_database(env: str, spacing: float | None = None, settings=None, see
     return LoadedDatabase(iw.name, rings, [], pts[home_index].astype(np.float64), home_index,
                           np.asarray(iw.world.arena, np.float64), spacing, settings.camera, ex, iw.obstacles(),
                           settings.mirror)
+
+
+rendered_database = render_in_memory  # the name until 0.1 (CHANGELOG): `render_database` writes files, this does not

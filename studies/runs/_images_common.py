@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 import delvjax
-from delvjax.images._evaluate import LoadedDatabase, database_vector_map, rendered_database
+from delvjax.images._evaluate import LoadedDatabase, database_vector_map, render_in_memory
 from delvjax.images._render import ImageSettings
 from delvjax.core.maps import VectorMap
 from delvjax.core.metrics import error_curve, summarize_map
@@ -31,7 +31,7 @@ def preview(ctx) -> bool:
 
 def database(name: str, settings: ImageSettings = CAMERA_NOISE, seed: int = 0, **kw) -> LoadedDatabase:
     """A built-in world rendered in memory (ring for ring what its files would give)."""
-    return rendered_database(name, settings=settings, seed=seed, **kw)
+    return render_in_memory(name, settings=settings, seed=seed, **kw)
 
 
 def image_map(db: LoadedDatabase, method: str, **options) -> VectorMap:

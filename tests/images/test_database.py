@@ -13,7 +13,7 @@ import pytest
 
 from tests.twins.sensing import wrap
 from delvjax.evaluate import _vector_map as api
-from delvjax.images._evaluate import LoadedDatabase, database_vector_map, rendered_database
+from delvjax.images._evaluate import LoadedDatabase, database_vector_map, render_in_memory
 from delvjax.images._render import ImageSettings, render_rings, world_grid
 from delvjax.core.images.database import home_plan, move_plan
 from delvjax.core.images.rollouts import Field, nearest_snapshot_rollouts
@@ -234,7 +234,7 @@ def test_every_registered_method_runs_on_image_rings():
     from delvjax.options._registry import METHODS
 
     cam = camera(rows=12, cols=72, elev_top_deg=6.0, elev_bottom_deg=-6.0)  # the default 10° band: 10 rows
-    db = rendered_database("robot", settings=ImageSettings(camera=cam))
+    db = render_in_memory("robot", settings=ImageSettings(camera=cam))
     names = tuple(METHODS)
     for name in names:  # a traced index picks the method: one compiled program
         vm = database_vector_map(db, name, program=names, channel="gray")

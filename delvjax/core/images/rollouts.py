@@ -19,9 +19,10 @@ from jax import Array
 from ..batching import fixed_width_map
 from ..geometry import unit
 from ..rollouts.rules import ARENA, HOME_TOLERANCE, LANDMARK, RUNNING, SUCCESS, TIMEOUT
+from ..rollouts.rules import OUTCOMES as RULE_OUTCOMES
 
 UNDEFINED = 4
-OUTCOMES = ("success", "timeout", "landmark", "arena", "undefined")
+OUTCOMES = (*RULE_OUTCOMES, "undefined")  # the rollout outcomes, and no direction at a snapshot
 
 
 class Field(eqx.Module):
