@@ -16,7 +16,7 @@ _LAZY = {
                                          "DELVRefined", "HomingMethod", "Method", "Program", "VisualCompass",
                                          "Warping")},
     "load_env": "envs", "make_env": "envs",
-    "vector_map": "evaluate", "catchment": "evaluate", "success_rate": "evaluate", "trajectories": "evaluate",
+    "vector_map": "evaluate", "Grid": "evaluate", "Rules": "evaluate", "catchment": "evaluate", "success_rate": "evaluate", "trajectories": "evaluate",
     "homing_quality": "gradients", "homing_quality_grad": "gradients", "optimise_layout": "gradients",
     "sensitivity": "gradients", "find_traps": "gradients",
     "ImageSettings": "images", "render_database": "images", "render_in_memory": "images", "rendered_database": "images", "load_database": "images",
@@ -48,7 +48,7 @@ def __dir__() -> list[str]:
 
 
 __all__ = [
-    "ACV", "ALV", "CartwrightCollett", "Compass", "DELV", "DELVGap", "DELVRefined", "Env", "HomingMethod", "InputError",
+    "Grid", "Rules", "ACV", "ALV", "CartwrightCollett", "Compass", "DELV", "DELVGap", "DELVRefined", "Env", "HomingMethod", "InputError",
     "METHODS", "MFDID", "Method", "Noise", "Program", "Sensor", "Snapshot", "UnitMove", "VectorMap", "VisualCompass",
     "Warping", "catchment", "error_curve", "homing_quality", "homing_quality_grad", "find_traps", "optimise_layout",
     "sensitivity", "error_point_rates", "load_env", "make_env", "success_rate", "summarize_map", "load_sweep",

@@ -9,7 +9,7 @@ the nearest P-blob theta; delta = wrap(beta' - theta); by the sine law in P-L-C
 
 from __future__ import annotations
 
-from typing import Protocol
+from typing import Protocol, runtime_checkable
 
 import jax.numpy as jnp
 from jax import Array
@@ -20,6 +20,7 @@ from .sensing import UnitMove
 from .types import BlobFlags, BlobVectors, Blobs
 
 
+@runtime_checkable
 class DistanceSettings(Protocol):
     """What distance estimation reads (docs/model.md §3.1-3.2): the cap r_max (cm), quantization
     levels Q (0 = continuous) and scale a (cm). `DELV` has these fields."""

@@ -3,8 +3,9 @@ the CLI (same names, same validation before any work)."""
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
-from typing import Callable, Sequence
+from typing import Callable, NamedTuple, Sequence
 
 import jax
 import jax.numpy as jnp
@@ -13,6 +14,7 @@ from jax import Array
 
 from ._vector_map import check_grid, scene_request, visible_mask
 from ..core.errors import InputError
+from ._config import Grid, Rules, unpack
 from ..core.maps import CLEARANCE, SPACING
 from ..core.methods import HomingMethod
 from ..core.rollouts import (ARENA, DEFAULT_DISTANCES, DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, LANDMARK, MAX_STEPS, N_STARTS, TRIALS_PER_DISTANCE, Catchment, SuccessRate, Trajectories, catchment_area, check_rules, hidden_masks, occlusion_masks, position_status, release_points, rollout_keys, success_rate_trials, trajectory_trials)
@@ -20,9 +22,26 @@ from ..core.scene import Env
 from ..options._limits import MAX_POINTS, check_size
 from ..options._settings import finite, occlusion_count, positive, positive_int
 
+GRID_DEFAULTS = dataclasses.asdict(Grid())
+RULES_DEFAULTS = dataclasses.asdict(Rules())
+
+
+class RolloutSetup(NamedTuple):
+    """The validated keywords every rollout shares (`_rollout_options`)."""
+
+    env: Env
+    method: HomingMethod
+    sensor: object
+    heading: float | None
+    key: Array
+    max_steps: int
+    home_radius: float
+    lanes: int
+    clearance: float
+
 
 def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed, options,
-                     first_move=DEFAULT_FIRST_MOVE, collisions="ignore", program=None):
+                     first_move=DEFAULT_FIRST_MOVE, collisions="ignore", program=None) -> RolloutSetup:
     """Validate the shared keywords before any work (`api.scene_request` plus the rollout limits and rules)."""
     check_rules(first_move, collisions)
     env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, program,
@@ -30,7 +49,7 @@ def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, head
     max_steps = positive_int(max_steps, "max_steps")
     home_radius = positive(home_radius, "home_radius")
     lanes = positive_int(lanes, "lanes")
-    return env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance
+    return RolloutSetup(env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance)
 
 
 def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
@@ -38,6 +57,7 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
               home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE, lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
               collisions: str = "ignore", program: Sequence[str] | None = None, announce: Callable[[], None] | None = None,
               max_points: int = MAX_POINTS, progress: Callable[[int, int], None] | None = None,
+              grid: Grid | None = None, rules: Rules | None = None,
               **options) -> Catchment:
     """Catchment area of `method` (Figs 4.5, 5.5; Tables 5.3/5.4): a rollout from every docs/model.md §5 grid point.
 
@@ -54,6 +74,11 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
     `progress(done, total)` is called after each block of trials.
     Returns a `Catchment` (see `catchment_summary`).
     """
+    grid_kw = dict(spacing=spacing, clearance=clearance, heading_deg=heading_deg)
+    spacing, clearance, heading_deg = unpack(grid, Grid, grid_kw, GRID_DEFAULTS).values()
+    rules_kw = dict(max_steps=max_steps, home_radius=home_radius, first_move=first_move, collisions=collisions,
+                    lanes=lanes)
+    max_steps, home_radius, first_move, collisions, lanes = unpack(rules, Rules, rules_kw, RULES_DEFAULTS).values()
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         options, first_move, collisions, program)
@@ -71,7 +96,8 @@ def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", dis
                  max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
                  lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
                  collisions: str = "ignore", program: Sequence[str] | None = None,
-                 announce: Callable[[], None] | None = None, max_points: int = MAX_POINTS, **options) -> SuccessRate:
+                 announce: Callable[[], None] | None = None, max_points: int = MAX_POINTS, grid: Grid | None = None, rules: Rules | None = None,
+              **options) -> SuccessRate:
     """Success rate vs release distance (Figs 4.10b, 5.7b): `trials` rollouts per distance from home.
 
     Each trial: a random direction from home at that distance and a random heading (seeded);
@@ -79,6 +105,11 @@ def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", dis
     (deterministically, up to 64 times; else the trial is not placed and not counted).
     `options`, `first_move`, `collisions`, `program`, `announce` and `max_points` as in `catchment`.
     """
+    grid_kw = dict(clearance=clearance, heading_deg=heading_deg)  # no grid: only the clearance and heading
+    clearance, heading_deg = unpack(grid, Grid, grid_kw, GRID_DEFAULTS).values()
+    rules_kw = dict(max_steps=max_steps, home_radius=home_radius, first_move=first_move, collisions=collisions,
+                    lanes=lanes)
+    max_steps, home_radius, first_move, collisions, lanes = unpack(rules, Rules, rules_kw, RULES_DEFAULTS).values()
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         options, first_move, collisions, program)
@@ -95,7 +126,8 @@ def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", sta
                  max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
                  lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
                  collisions: str = "ignore", program: Sequence[str] | None = None,
-                 announce: Callable[[], None] | None = None, max_points: int = MAX_POINTS, **options) -> Trajectories:
+                 announce: Callable[[], None] | None = None, max_points: int = MAX_POINTS, grid: Grid | None = None, rules: Rules | None = None,
+              **options) -> Trajectories:
     """Homing paths (Figs 4.11, 5.8) from `starts` [(x, y), ...] or `n_starts` seeded random release points.
 
     Random release points are uniform in the arena, at least d from the walls, farther than
@@ -106,6 +138,11 @@ def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", sta
     release points for every method. `options`, `first_move`, `collisions`, `program` and `announce` as in
     `catchment`. Every position is kept: more than 100 x `max_points` of them (trials x (max_steps + 1)) are refused.
     """
+    grid_kw = dict(clearance=clearance, heading_deg=heading_deg)  # no grid: only the clearance and heading
+    clearance, heading_deg = unpack(grid, Grid, grid_kw, GRID_DEFAULTS).values()
+    rules_kw = dict(max_steps=max_steps, home_radius=home_radius, first_move=first_move, collisions=collisions,
+                    lanes=lanes)
+    max_steps, home_radius, first_move, collisions, lanes = unpack(rules, Rules, rules_kw, RULES_DEFAULTS).values()
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         options, first_move, collisions, program)

@@ -7,6 +7,7 @@ means the module's default) and calls the core.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -23,6 +24,9 @@ from ..core.sensor import Sensor
 from ..options._settings import angle_deg, make_setup, non_negative, positive, positive_int, seed_value
 from ..options._limits import MAX_POINTS, check_size
 from ..envs._presets import load_env
+from ._config import Grid, unpack
+
+GRID_DEFAULTS = dataclasses.asdict(Grid())
 
 
 def resolve_headings(heading_deg: float | None, seed: int) -> tuple[float | None, jax.Array]:
@@ -86,9 +90,12 @@ def _has_clear_point(env: Env, spacing: float, clearance: float) -> bool:
 
 def map_request(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
                 seed: int = 0, clearance: float = CLEARANCE, hidden: list[int] | None = None,
-                batch_size: int = maps.DEFAULT_BATCH, max_points: int = MAX_POINTS, **options) -> dict:
+                batch_size: int = maps.DEFAULT_BATCH, max_points: int = MAX_POINTS, grid: Grid | None = None,
+                **options) -> dict:
     """Validate the public options of a vector map (before any array work): keyword
     arguments of `core.maps.vector_map`. Raises `InputError` naming the field and value."""
+    g = unpack(grid, Grid, dict(spacing=spacing, clearance=clearance, heading_deg=heading_deg), GRID_DEFAULTS)
+    spacing, clearance, heading_deg = g["spacing"], g["clearance"], g["heading_deg"]
     env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **options)
     spacing = positive(spacing, "spacing")
     check_grid(env, spacing, clearance, max_points)
@@ -101,7 +108,8 @@ def map_request(env: str | Path | Env, method: str | HomingMethod = "delv", spac
 
 def vector_map(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
                seed: int = 0, clearance: float = CLEARANCE, hidden: list[int] | None = None,
-               batch_size: int = maps.DEFAULT_BATCH, max_points: int = MAX_POINTS, **options) -> maps.VectorMap:
+               batch_size: int = maps.DEFAULT_BATCH, max_points: int = MAX_POINTS, grid: Grid | None = None,
+               **options) -> maps.VectorMap:
     """Homing direction of `method` at every docs/model.md §5 grid point, one jitted vmapped call.
 
     `method`: a registry name (`"delv-compass"`) or a method module (`DELV(levels=3,
@@ -116,7 +124,9 @@ def vector_map(env: str | Path | Env, method: str | HomingMethod = "delv", spaci
     `hidden` lists landmark indices invisible in the current views (occlusion). The grid runs in
     host-side chunks of `batch_size` points (memory bounded by the chunk, the same numbers for every
     chunk size); a grid of more than `max_points` points is refused with an estimate (`limits`).
+    Config objects may replace the keywords: `grid=Grid(spacing, clearance, heading_deg)`,
+    `sensor=Sensor(...)`, `noise=Noise(...)` (evaluate/_config.py).
     Returns a `VectorMap` pytree (points, included, heading, direction, valid, error_deg).
     """
     return maps.vector_map(**map_request(env, method, spacing, heading_deg, seed, clearance, hidden, batch_size,
-                                         max_points, **options))
+                                         max_points, grid, **options))

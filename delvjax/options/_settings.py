@@ -85,11 +85,12 @@ def reads_channel(method: HomingMethod) -> bool:
     return bool(method.reads_gray("gray")) != bool(method.reads_gray("mask"))
 
 
-def make_setup(method: str | HomingMethod, program=None, sensor: Sensor | None = None,
+def make_setup(method: str | HomingMethod, program=None, sensor: Sensor | None = None, noise: Noise | None = None,
                **options) -> tuple[HomingMethod, Sensor]:
     """(method module, sensor), validated before any work. `method`: a registry name or a method
     module (`DELV(levels=3, heading=Compass())`); `program`: registry names compiled into one
-    program with `method` (`registry.program`); `sensor`: a `Sensor` instead of sensor options.
+    program with `method` (`registry.program`); `sensor`: a `Sensor` instead of sensor options;
+    `noise`: a `Noise` instead of the noise options.
     A method setting that the method does not have is an error naming it."""
     extra = (method,) if isinstance(method, HomingMethod) else ()
     method_names, sensor_names = option_names(extra)
@@ -104,6 +105,14 @@ def make_setup(method: str | HomingMethod, program=None, sensor: Sensor | None =
     elif given_sensor:
         name = sorted(given_sensor)[0]
         raise InputError(name, given_sensor[name], "cannot be combined with sensor= (set it on the Sensor)")
+    if noise is not None:  # a Noise module in place of the noise options
+        if not isinstance(noise, Noise):
+            raise InputError("noise", noise, "must be a delvjax.Noise")
+        given_noise = sorted(k for k in given_sensor if k in NOISE_OPTIONS)
+        if given_noise:
+            raise InputError(given_noise[0], given_sensor[given_noise[0]], "cannot be combined with noise= (set it "
+                                                                            "on the Noise)")
+        sensor = dataclasses.replace(sensor, noise=noise)
     settings = method_settings({k: v for k, v in options.items() if k in method_names}, sensor.n_pix, extra)
     if isinstance(method, HomingMethod):
         if program is not None:
