@@ -9,6 +9,7 @@ from ._args import ProgressBar, progress
 from ..core.errors import InputError
 from ..options._limits import MAX_POINTS
 from ._help import COMMAND_HELP
+from ..sweeps._examples import EXAMPLES
 
 
 def add_sweep(sub) -> None:
@@ -19,7 +20,7 @@ def add_sweep(sub) -> None:
                                    "`delvjax sweep --example` prints a documented example file.")
     p.add_argument("file", nargs="?", help="the sweep file (TOML)")
     p.add_argument("--out", default=None, help="output folder")
-    p.add_argument("--example", nargs="?", const="vector-map", default=None, choices=("vector-map", "catchment", "success-rate"),
+    p.add_argument("--example", nargs="?", const="vector-map", default=None, choices=tuple(EXAMPLES),
                    help="print a documented example sweep file of that kind (default vector-map) and exit")
     p.add_argument("--max-points", type=int, default=MAX_POINTS,
                    help=f"refuse a cell of more grid points than this (default {MAX_POINTS})")
@@ -56,7 +57,6 @@ def start_processes(args: argparse.Namespace) -> None:
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
-    from ..sweeps._examples import EXAMPLES
     from ..sweeps._spec import read_sweep
     from ..outputs._files import check_out_dir
     from ..sweeps._run import run_sweep, save_sweep

@@ -7,41 +7,52 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+from typing import TYPE_CHECKING
 
 import jax
 import numpy as np
 
 from ..evaluate import _vector_map as api, _rollouts as api_rollouts
-from ..core import cells as map_program
+from ..core import cells as map_cells
 from ..core.batching import over_devices, over_processes
 from ..core.errors import InputError
 from ..core.maps import grid_included, grid_points
 from ..core.rollouts import DEFAULT_LANES, catchment_counted
 from ..core.rollouts import cells as rollout_programs
-from ._spec import SweepSpec
 
-SUMS = {"vector-map": map_program.CellMetrics, "catchment": rollout_programs.CatchmentSums,
-        "success-rate": rollout_programs.SuccessSums}  # the per-cell sums each kind returns
+if TYPE_CHECKING:  # types only: the kinds and the spec are built from this module
+    from ._kind import SweepKind
+    from ._spec import SweepSpec
 
-
-def sum_names(kind: str) -> tuple[str, ...]:
-    return tuple(f.name for f in dataclasses.fields(SUMS[kind]))
+def sum_names(kind: SweepKind) -> tuple[str, ...]:
+    """The names of the per-cell sums a kind's program returns."""
+    return tuple(f.name for f in dataclasses.fields(kind.sums))
 
 
 def cell_setup(spec: SweepSpec, envs: dict, cell: dict, max_points: int) -> dict:
-    """One cell's setup, validated by the API call of its kind (`api.map_request`,
-    `api_rollouts.rollout_request`); an `InputError` names the cell."""
-    options = {k: v for k, v in cell.items() if k not in ("env", "method", "seed")}
+    """One cell's setup, validated by the API call of its kind (`spec.kind.request`); an `InputError`
+    names the cell."""
     try:
-        if spec.kind == "vector-map":
-            return api.map_request(envs[cell["env"]], method=cell["method"], seed=cell["seed"],
-                                   max_points=max_points, **options)
-        return api_rollouts.rollout_request(envs[cell["env"]], kind=spec.kind, method=cell["method"], seed=cell["seed"],
-                                            distances=spec.distances, trials=spec.trials, max_points=max_points,
-                                            **options)
+        return spec.kind.request(envs[cell["env"]], cell, spec, max_points)
     except InputError as exc:
         where = ", ".join(f"{k}={v}" for k, v in cell.items())
         raise InputError(f"cell ({where})", exc.value, f"{exc.field}: {exc.expected}") from None
+
+
+def _options(cell: dict) -> dict:
+    return {k: v for k, v in cell.items() if k not in ("env", "method", "seed")}
+
+
+def map_request(env, cell: dict, spec: SweepSpec, max_points: int) -> dict:
+    """A vector-map cell, validated as `delvjax.vector_map` validates its keywords."""
+    return api.map_request(env, method=cell["method"], seed=cell["seed"], max_points=max_points, **_options(cell))
+
+
+def rollout_request(env, cell: dict, spec: SweepSpec, max_points: int) -> dict:
+    """A catchment or success-rate cell, validated as `delvjax.catchment` / `success_rate` validate theirs."""
+    return api_rollouts.rollout_request(env, kind=str(spec.kind), method=cell["method"], seed=cell["seed"],
+                                        distances=spec.distances, trials=spec.trials, max_points=max_points,
+                                        **_options(cell))
 
 
 def _traced(req: dict, mask_rows: int = 1) -> tuple:
@@ -72,7 +83,7 @@ def group_key(req: dict) -> tuple:
             tuple(np.asarray(req["env"].arena).tolist()))
 
 
-def evaluate(kind: str, setups: list[dict], mesh, rows: int = 1, total: int | None = None) -> dict[str, np.ndarray]:
+def evaluate(kind: SweepKind, setups: list[dict], mesh, rows: int = 1, total: int | None = None) -> dict[str, np.ndarray]:
     """The cells `setups` (one group) as one call of their program, split over `mesh`'s devices if
     any (every device runs whole cells with the one-device program); rollout masks padded to `rows`.
     With `total`, `mesh` spans every process and `setups` are this process's rows of a chunk of
@@ -80,17 +91,7 @@ def evaluate(kind: str, setups: list[dict], mesh, rows: int = 1, total: int | No
     first = setups[0]
     stack = lambda *xs: np.stack([np.asarray(x) for x in xs])  # noqa: E731
     traced = jax.tree.map(stack, *[_traced(req, rows) for req in setups])
-    if kind == "success-rate":
-        shared = (np.asarray(first["distances"], np.float32), np.float32(first["clearance"]))
-    else:
-        points = grid_points(first["env"].arena, first["spacing"])
-        included = np.stack([np.asarray(grid_included(req["env"].arrays(), points, req["clearance"]))
-                             for req in setups])
-        shared, traced = (points,), traced + (included,)
-        if kind == "catchment":
-            counted = np.stack([catchment_counted(req["env"].arena, points, inc, req["first_move"], req["sensor"].d)
-                                for req, inc in zip(setups, included)])
-            traced = traced + (counted,)
+    shared, traced = kind.inputs(setups, traced)
     program = _program(kind, first.get("max_steps"), DEFAULT_LANES, first.get("trials"))
     if total is not None:
         res = over_processes(program, mesh, len(shared), total, *shared, *traced)
@@ -101,20 +102,52 @@ def evaluate(kind: str, setups: list[dict], mesh, rows: int = 1, total: int | No
     return {name: np.asarray(getattr(res, name)) for name in sum_names(kind)}
 
 
-@functools.lru_cache(maxsize=None)
-def _program(kind: str, max_steps: int | None, lanes: int, trials: int | None):
-    """The per-chunk program of a kind, shared arguments first (`over_devices` replicates them)."""
-    if kind == "vector-map":
-        return lambda points, envs, methods, sensors, keys, included: map_program.map_cells(
-            envs, points, included, methods, sensors, keys)
-    if kind == "catchment":
-        return lambda points, cells, included, counted: rollout_programs.catchment_cells(
-            cells, points, included, counted, max_steps=max_steps, lanes=lanes)
+def grid_inputs(setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
+    """(shared, traced) of a vector-map chunk: the grid points shared, each cell's included points."""
+    first = setups[0]
+    points = grid_points(first["env"].arena, first["spacing"])
+    included = np.stack([np.asarray(grid_included(req["env"].arrays(), points, req["clearance"])) for req in setups])
+    return (points,), traced + (included,)
+
+
+def catchment_inputs(setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
+    """(shared, traced) of a catchment chunk: the grid's, and the points each cell counts."""
+    shared, traced = grid_inputs(setups, traced)
+    points, included = shared[0], traced[-1]
+    counted = np.stack([catchment_counted(req["env"].arena, points, inc, req["first_move"], req["sensor"].d)
+                        for req, inc in zip(setups, included)])
+    return shared, traced + (counted,)
+
+
+def distance_inputs(setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
+    """(shared, traced) of a success-rate chunk: the release distances and clearance shared."""
+    first = setups[0]
+    return (np.asarray(first["distances"], np.float32), np.float32(first["clearance"])), traced
+
+
+def map_program(max_steps: int | None, lanes: int, trials: int | None):
+    return lambda points, envs, methods, sensors, keys, included: map_cells.map_cells(
+        envs, points, included, methods, sensors, keys)
+
+
+def catchment_program(max_steps: int | None, lanes: int, trials: int | None):
+    return lambda points, cells, included, counted: rollout_programs.catchment_cells(
+        cells, points, included, counted, max_steps=max_steps, lanes=lanes)
+
+
+def success_program(max_steps: int | None, lanes: int, trials: int | None):
     return lambda distances, clearance, cells: rollout_programs.success_cells(
         cells, distances, clearance, trials=trials, max_steps=max_steps, lanes=lanes)
 
 
+@functools.lru_cache(maxsize=None)
+def _program(kind: SweepKind, max_steps: int | None, lanes: int, trials: int | None):
+    """The per-chunk program of a kind (`kind.program`), shared arguments first (`over_devices`
+    replicates them); one per kind and setting."""
+    return kind.program(max_steps, lanes, trials)
+
+
 def programs_compiled() -> int:
     """Programs compiled so far for sweep cells (one device, or split over the local devices)."""
-    return (map_program.map_cells._cache_size() + rollout_programs.catchment_cells._cache_size()
+    return (map_cells.map_cells._cache_size() + rollout_programs.catchment_cells._cache_size()
             + rollout_programs.success_cells._cache_size() + over_devices._cache_size())

@@ -5,6 +5,7 @@ tidy CSV written as a unit, and `load_sweep`."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import jax
 import numpy as np
@@ -13,7 +14,9 @@ from ..core.errors import InputError
 from ..core.metrics import t_quantile
 from ..core.rollouts.success import wilson_pct
 from ..outputs._files import output_set
-from ._spec import SweepSpec
+
+if TYPE_CHECKING:  # types only: the kinds are built from this module
+    from ._spec import SweepSpec
 
 FILES = ("sweep.nc", "sweep.csv", "sweep.toml")
 
@@ -59,24 +62,20 @@ def success_metrics(sums: dict) -> dict:
             "success_ci95_hi_pct": hi, "placed": sums["placed"].astype(np.int64)}
 
 
-METRICS_OF = {"vector-map": lambda sums: error_metrics(sums, sums["points"]), "catchment": catchment_metrics,
-              "success-rate": success_metrics}
-
-
 def dataset(spec: SweepSpec, sums: dict, programs: int):
     """Per-cell sums -> the requested metrics, labelled by the axes (and `distance_cm`)."""
     import xarray as xr
 
-    values = METRICS_OF[spec.kind](sums)
+    values = spec.kind.metrics_of(sums)
     dims, shape = list(spec.axes), spec.shape
     coords = {name: np.asarray(v) for name, v in spec.axes.items()}
-    if spec.kind == "success-rate":
+    if spec.kind.per_distance:
         dims, shape = dims + ["distance_cm"], shape + (len(spec.distances),)
         coords["distance_cm"] = np.asarray(spec.distances)
     ds = xr.Dataset({m: (dims, np.asarray(values[m]).reshape(shape)) for m in spec.metrics}, coords=coords)
-    ds.attrs.update(sweep_toml=spec.text, kind=spec.kind, programs_compiled=programs, cells=spec.n_cells,
+    ds.attrs.update(sweep_toml=spec.text, kind=str(spec.kind), programs_compiled=programs, cells=spec.n_cells,
                     delvjax_version=_version("delvjax"), jax_version=jax.__version__, jaxlib_version=_version("jaxlib"))
-    if spec.kind == "success-rate":
+    if spec.kind.per_distance:
         ds.attrs["trials_per_distance"] = spec.trials
     return ds
 

@@ -67,7 +67,7 @@ def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Calla
     groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None)
     n = spec.n_cells
     names = sum_names(spec.kind)
-    extra = (len(spec.distances),) if spec.kind == "success-rate" else ()
+    extra = (len(spec.distances),) if spec.kind.per_distance else ()
     sums = {k: np.zeros((n,) + extra) for k in names}
     todo = np.ones(n, bool)
     if out is not None:

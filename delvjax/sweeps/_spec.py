@@ -14,8 +14,8 @@ import numpy as np
 from ..core.errors import InputError
 from ..core.rollouts.rules import DEFAULT_DISTANCES, TRIALS_PER_DISTANCE
 from ..options._schema import all_options
+from ._kind import KINDS, SweepKind
 
-KINDS = ("vector-map", "catchment", "success-rate")
 # axis -> what it sets (the public option of `delvjax.vector_map` / `catchment` / `success_rate` of the same name).
 # Besides these, every setting declared on the modules is an axis (`options._schema`; read when a file is
 # parsed, so that a method registered later brings its settings): see `axes(kind)`.
@@ -40,13 +40,14 @@ def setting_axes() -> dict[str, str]:
     return {name: opt.help for name, opt in all_options().items()}
 
 
-def axes(kind: str) -> dict[str, str]:
-    """The axes of a kind of sweep: name -> what it sets."""
+def axes(kind: SweepKind) -> dict[str, str]:
+    """The axes of a kind of sweep: name -> what it sets (no `spacing` without a grid; the rollout
+    axes and the motion noise only for rollouts)."""
     settings = setting_axes()
-    if kind == "vector-map":
-        return {**SCENE_AXES, **{k: v for k, v in settings.items() if not k.startswith(ROLLOUT_ONLY)}}
-    every = {**SCENE_AXES, **settings, **ROLLOUT_AXES}
-    return every if kind == "catchment" else {k: v for k, v in every.items() if k != "spacing"}
+    scene = {k: v for k, v in SCENE_AXES.items() if kind.grid or k != "spacing"}
+    if not kind.rollouts:
+        return {**scene, **{k: v for k, v in settings.items() if not k.startswith(ROLLOUT_ONLY)}}
+    return {**scene, **settings, **ROLLOUT_AXES}
 
 
 def name_axes() -> tuple[str, ...]:
@@ -54,36 +55,6 @@ def name_axes() -> tuple[str, ...]:
     return ("env", "method", "first_move", "collisions", *(n for n, o in all_options().items() if o.type is str))
 
 
-ERROR_METRICS = {
-    "gt45_pct": "% of grid points with angular error > 45 deg (Tables 5.1/5.2)",
-    "gt90_pct": "% of grid points with angular error > 90 deg",
-    "mean_error_deg": "mean angular error over the grid points, invalid = 180 deg",
-    "mean_error_ci95_deg": "half-width of the 95 % Student-t interval of that mean",
-    "invalid_pct": "% of grid points without a homing direction",
-    "points": "grid points evaluated",
-}
-CATCHMENT_METRICS = {
-    "catchment_pct": "% of counted grid points whose rollout reaches home, mean over the masks (Tables 5.3/5.4; "
-                     "under first_move = release the points at least d from every wall, docs/model.md section 5)",
-    "catchment_min_pct": "the same under the worst mask",
-    "catchment_max_pct": "the same under the best mask",
-    "catchment_points": "grid points counted in the catchment",
-    "timeout_pct": "% of counted trials (points x masks) that ran out of moves",
-    "landmark_pct": "% of counted trials that ended inside a landmark (collisions = fail)",
-    "arena_pct": "% of counted trials that left the arena",
-    "mean_steps_success": "mean moves of the successful trials",
-}
-SUCCESS_METRICS = {
-    "success_pct": "% of placed trials that reach home, per release distance (Figs 4.10b, 5.7b)",
-    "success_ci95_lo_pct": "lower end of its 95 % Wilson interval",
-    "success_ci95_hi_pct": "upper end of its 95 % Wilson interval",
-    "placed": "trials placed per distance (over every mask)",
-}
-KIND_METRICS = {"vector-map": ERROR_METRICS,
-                "catchment": {**CATCHMENT_METRICS, **{k: v.replace("grid points", "first directions (points x masks)")
-                                                     for k, v in ERROR_METRICS.items()}},
-                "success-rate": SUCCESS_METRICS}
-METRICS = {**ERROR_METRICS, **CATCHMENT_METRICS, **SUCCESS_METRICS}
 DEFAULTS = {"env": ["env1"], "method": ["delv"], "spacing": [25.0], "seed": [0]}
 DISTANCES = DEFAULT_DISTANCES  # success-rate release distances, cm
 TRIALS = TRIALS_PER_DISTANCE  # success-rate trials per distance
@@ -98,7 +69,7 @@ class SweepSpec:
     """A validated sweep: axes in file order (name -> values), metrics, the file's text, and for
     success-rate sweeps the release distances and trials per distance."""
 
-    kind: str
+    kind: SweepKind  # a str: the kind's name, with what the kind knows
     axes: dict[str, list]
     metrics: list[str]
     text: str
@@ -213,24 +184,26 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
         raise InputError("sweep", source, "[sweep] and [axes] must be tables")
     for key in sorted(set(head) - {"kind", "metrics", "distances", "trials"}):
         raise InputError(f"sweep.{key}", head[key], "unknown field (kind, metrics, distances, trials)")
-    kind = head.get("kind", "vector-map")
-    if kind not in KINDS:
-        raise InputError("sweep.kind", kind, f"must be one of {', '.join(KINDS)}")
+    name = head.get("kind", "vector-map")
+    if name not in KINDS:
+        raise InputError("sweep.kind", name, f"must be one of {', '.join(KINDS)}")
+    kind = KINDS[name]
     for key in ("distances", "trials"):
-        if key in head and kind != "success-rate":
-            raise InputError(f"sweep.{key}", head[key], 'is a setting of kind = "success-rate" only')
-    known = KIND_METRICS[kind]
+        if key in head and not kind.per_distance:
+            users = " or ".join(f'"{k}"' for k, v in KINDS.items() if v.per_distance)
+            raise InputError(f"sweep.{key}", head[key], f"is a setting of kind = {users} only")
+    known = kind.metrics
     metrics = head.get("metrics", list(known))
     if not isinstance(metrics, list) or not metrics:
         raise InputError("sweep.metrics", metrics, "must be a non-empty list")
     for i, m in enumerate(metrics):
         if m not in known:
-            other = [k for k in KINDS if m in KIND_METRICS[k]]
+            other = [k for k, v in KINDS.items() if m in v.metrics]
             hint = f' (a metric of kind = "{other[0]}")' if other else ""
             raise InputError(f"sweep.metrics[{i}]", m, f"unknown metric of kind = \"{kind}\"{hint} (choose from "
                                                        f"{', '.join(known)})")
-    kind_axes = {k: axes(k) for k in KINDS}
-    every = {**kind_axes["catchment"], **kind_axes["success-rate"]}
+    kind_axes = {k: axes(v) for k, v in KINDS.items()}
+    every = {k: v for kind_ in kind_axes.values() for k, v in kind_.items()}  # the axes of any kind
     for name in table:
         if name not in every:
             raise InputError(f"axes.{name}", table[name], f"unknown axis (choose from {', '.join(every)})")
@@ -246,7 +219,7 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
         if name in kind_axes[kind]:
             values.setdefault(name, default)
     extra = {}
-    if kind == "success-rate":
+    if kind.per_distance:
         extra["distances"] = tuple(float(v) for v in _values("distances", head.get("distances", list(DISTANCES)),
                                                                "sweep.distances"))
         trials = head.get("trials", TRIALS)

@@ -1,0 +1,73 @@
+"""The kinds of sweep (docs/sweeps.md): each is one object that knows its name (what a sweep file
+says; a `SweepKind` is that string), its metrics, whether it has a grid, rollout axes and a
+`distance_cm` dimension, the per-cell sums its program returns, how a cell is validated, its
+program, and its metrics from the sums. Nothing else compares a kind's name."""
+
+from __future__ import annotations
+
+from typing import Callable
+
+from ..core.cells import CellMetrics
+from ..core.rollouts.cells import CatchmentSums, SuccessSums
+from ._kinds import (catchment_inputs, catchment_program, distance_inputs, grid_inputs, map_program, map_request,
+                     rollout_request, success_program)
+from ._results import catchment_metrics, error_metrics, success_metrics
+
+
+class SweepKind(str):
+    """A kind of sweep: its name, and what it knows (see the module docstring)."""
+
+    metrics: dict[str, str]
+    grid: bool
+    rollouts: bool
+    per_distance: bool
+    sums: type
+    request: Callable  # (env, cell, spec, max_points) -> the validated setup of a cell
+    inputs: Callable  # (setups, traced) -> (shared, traced) arguments of the program
+    program: Callable  # (max_steps, lanes, trials) -> the per-chunk program
+    metrics_of: Callable[[dict], dict]
+
+    def __new__(cls, name: str, **known):
+        self = super().__new__(cls, name)
+        self.__dict__.update(known)
+        return self
+
+
+ERROR_METRICS = {
+    "gt45_pct": "% of grid points with angular error > 45 deg (Tables 5.1/5.2)",
+    "gt90_pct": "% of grid points with angular error > 90 deg",
+    "mean_error_deg": "mean angular error over the grid points, invalid = 180 deg",
+    "mean_error_ci95_deg": "half-width of the 95 % Student-t interval of that mean",
+    "invalid_pct": "% of grid points without a homing direction",
+    "points": "grid points evaluated",
+}
+CATCHMENT_METRICS = {
+    "catchment_pct": "% of counted grid points whose rollout reaches home, mean over the masks (Tables 5.3/5.4; "
+                     "under first_move = release the points at least d from every wall, docs/model.md section 5)",
+    "catchment_min_pct": "the same under the worst mask",
+    "catchment_max_pct": "the same under the best mask",
+    "catchment_points": "grid points counted in the catchment",
+    "timeout_pct": "% of counted trials (points x masks) that ran out of moves",
+    "landmark_pct": "% of counted trials that ended inside a landmark (collisions = fail)",
+    "arena_pct": "% of counted trials that left the arena",
+    "mean_steps_success": "mean moves of the successful trials",
+}
+SUCCESS_METRICS = {
+    "success_pct": "% of placed trials that reach home, per release distance (Figs 4.10b, 5.7b)",
+    "success_ci95_lo_pct": "lower end of its 95 % Wilson interval",
+    "success_ci95_hi_pct": "upper end of its 95 % Wilson interval",
+    "placed": "trials placed per distance (over every mask)",
+}
+
+
+VECTOR_MAP = SweepKind("vector-map", metrics=ERROR_METRICS, grid=True, rollouts=False, per_distance=False,
+                       sums=CellMetrics, request=map_request, inputs=grid_inputs, program=map_program,
+                       metrics_of=lambda sums: error_metrics(sums, sums["points"]))
+CATCHMENT = SweepKind("catchment", metrics={**CATCHMENT_METRICS, **{
+                          k: v.replace("grid points", "first directions (points x masks)") for k, v in ERROR_METRICS.items()}},
+                      grid=True, rollouts=True, per_distance=False, sums=CatchmentSums, request=rollout_request,
+                      inputs=catchment_inputs, program=catchment_program, metrics_of=catchment_metrics)
+SUCCESS_RATE = SweepKind("success-rate", metrics=SUCCESS_METRICS, grid=False, rollouts=True, per_distance=True,
+                         sums=SuccessSums, request=rollout_request, inputs=distance_inputs, program=success_program,
+                         metrics_of=success_metrics)
+KINDS = {k: k for k in (VECTOR_MAP, CATCHMENT, SUCCESS_RATE)}  # name -> kind
