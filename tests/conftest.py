@@ -1,5 +1,5 @@
-"""Shared fixtures: random environments (seeded NumPy), the reproduce run, image databases; every test
-file is one xdist group (its compiled programs stay in one worker), the reproduce tests one group."""
+"""Shared fixtures: random environments (seeded NumPy), the reproduce run (once per session, shared by
+the pytest-xdist workers), image databases."""
 
 from __future__ import annotations
 
@@ -48,18 +48,42 @@ def random_envs():
 
 @pytest.fixture(scope="session")
 def run(tmp_path_factory):
-    """Every study once at the tiny size (`reproduce_cases.TINY`): (output folder, result of
-    reproduce(), seconds). Shared by tests/reproduce/ (one xdist group: one worker, one run), whose files run in name
-    order; tests that change the folder put it back before they end."""
+    """Every study once at the tiny size (`tests.cases.reproduce.TINY`): (output folder, result of
+    reproduce(), seconds), for the files of tests/reproduce/, which run in name order; tests that
+    change the folder put it back before they end. Under pytest-xdist the first worker to ask runs
+    it into a folder the workers share and the others wait and take a copy of their own (one run of
+    the studies per test session, however the files are dealt)."""
+    import os
+    import pickle
+    import shutil
     import time
 
     from delvjax.reproduce import _run as reproduce
     from tests.cases.reproduce import TINY
 
-    out = tmp_path_factory.mktemp("reproduce") / "results"
-    t0 = time.perf_counter()
-    result = reproduce.reproduce(out, settings=TINY, progress=False)
-    return out, result, time.perf_counter() - t0
+    own = tmp_path_factory.mktemp("reproduce") / "results"
+    if os.environ.get("PYTEST_XDIST_WORKER") is None:
+        t0 = time.perf_counter()
+        result = reproduce.reproduce(own, settings=TINY, progress=False)
+        return own, result, time.perf_counter() - t0
+    shared = tmp_path_factory.getbasetemp().parent / "reproduce-shared"  # the same folder for every worker
+    done = shared.with_suffix(".pickle")
+    try:
+        os.close(os.open(shared.with_suffix(".claimed"), os.O_CREAT | os.O_EXCL))  # the first worker runs it
+        t0 = time.perf_counter()
+        result = reproduce.reproduce(shared, settings=TINY, progress=False)
+        tmp = done.with_suffix(".tmp")
+        tmp.write_bytes(pickle.dumps((result, time.perf_counter() - t0)))
+        tmp.replace(done)
+    except FileExistsError:
+        for _ in range(3600):  # the other workers wait for it (at most an hour)
+            if done.is_file():
+                break
+            time.sleep(1.0)
+    result, seconds = pickle.loads(done.read_bytes())
+    shutil.copytree(shared, own)
+    result["report"] = own / Path(result["report"]).relative_to(shared)
+    return own, result, seconds
 
 
 # --- image databases (test_images_io.py, test_images_errors.py, test_images_cli.py) ---------------
@@ -100,13 +124,3 @@ def plain9(tmp_path_factory, small_db) -> Path:
     return write_plain(tmp_path_factory.mktemp("plain9") / "nine", small_db, rows, rename=lambda i, f: f"p{i}.png")
 
 
-
-
-@pytest.hookimpl(tryfirst=True)  # before pytest-xdist reads the groups
-def pytest_collection_modifyitems(items):
-    """`--dist loadgroup` with one group per test file (its tests share one worker and its compiled
-    programs), except tests/reproduce/, whose three files share the session fixture `run`."""
-    for item in items:
-        path = Path(str(item.fspath))
-        group = "reproduce" if path.parent.name == "reproduce" else str(path)
-        item.add_marker(pytest.mark.xdist_group(group))

@@ -180,3 +180,33 @@ def test_the_architecture_doc_maps_every_module():
     modules = [p for folder in (PACKAGE, STUDIES) for p in folder.rglob("*.py") if p.name != "__main__.py"]
     missing = [str(p.relative_to(ROOT)) for p in modules if f"`{p.relative_to(ROOT)}`" not in doc]
     assert not missing, f"modules missing from docs/architecture.md's module index: {missing}"
+
+
+LATE = ("matplotlib", "xarray", "PIL", "yaml", "markdown", "tqdm", "scipy", "jax.experimental", "importlib",
+        "delvjax.plots", "delvjax.studies", "delvjax.cli._main")  # what may load inside a function
+
+
+def test_function_local_imports_are_heavy_optional_and_say_why():
+    """Imports inside functions only for heavy or optional dependencies, each with a comment why."""
+    bad = []
+    for path, name in ((p, module_name(p)) for p in all_modules().values()):
+        lines = path.read_text().splitlines()
+        package = name if path.name == "__init__.py" else name.rsplit(".", 1)[0]
+        for fn in ast.walk(ast.parse(path.read_text())):
+            if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                continue
+            for node in ast.walk(fn):
+                if not isinstance(node, (ast.Import, ast.ImportFrom)):
+                    continue
+                if isinstance(node, ast.Import):
+                    target = node.names[0].name
+                elif node.level:
+                    base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                    target = ".".join(base + ([node.module] if node.module else []))
+                else:
+                    target = node.module or ""
+                text = "\n".join(lines[node.lineno - 1:node.end_lineno])
+                late = any(target == t or target.startswith(t + ".") for t in LATE)
+                if not late or ("#" not in text and target != "importlib"):
+                    bad.append(f"{path.relative_to(ROOT)}:{node.lineno} {target}")
+    assert not bad, bad

@@ -5,6 +5,7 @@ so they are written once."""
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 from pathlib import Path
 
@@ -45,7 +46,7 @@ class ProgressBar:
 
     def __call__(self, done: int, total: int) -> None:
         if self.bar is None:
-            from tqdm.auto import tqdm
+            from tqdm.auto import tqdm  # tqdm: loaded only when a progress bar is shown
 
             self.bar = tqdm(total=total, unit=self.unit, unit_scale=True, file=sys.stderr, disable=total <= self.single)
         self.bar.update(done)
@@ -90,10 +91,15 @@ def add_setting_args(p: argparse.ArgumentParser, only: tuple[str, ...] | None = 
     for opt in {**sensor_options(), **method_options()}.values():
         if only is not None and opt.name not in only:
             continue
-        title = (noise if opt.owners[0] is Noise else None if opt.owners[0] is Sensor
-                 else f"{'/'.join(t.__name__ for t in opt.owners)} settings")
+        title = (noise if opt.owners[0] is Noise else None if opt.owners[0] is Sensor else _group_title(opt.owners))
         target = p if title is None else groups.setdefault(title, p.add_argument_group(title))
         target.add_argument(opt.flag, type=opt.type, default=None, dest=opt.name, help=opt.help)
+
+
+def _group_title(owners: tuple[type, ...]) -> str:
+    """"MFDID (docs/model.md §4.5)": the module classes and the docs section their docstring names."""
+    ref = re.search(r"docs/[\w.]+ §[\d.]+", owners[0].__doc__ or "")
+    return "/".join(t.__name__ for t in owners) + (f" ({ref.group(0)})" if ref else " settings")
 
 
 def setting_values(args: argparse.Namespace) -> dict:

@@ -8,12 +8,19 @@ from pathlib import Path
 from ._args import add_setting_args, progress, setting_values
 from ..core.maps import SPACING
 from ._help import COMMAND_HELP
+from ..gradients._quality import TAU
+from ..gradients._sensitivity import SENSITIVITY_METHODS as METHODS
+from ..outputs._files import check_out_dir, output_set
+from ..gradients._sensitivity import check_sensitivity, sensitivity
+from ..options._settings import NOISE_OPTIONS
+from ..gradients._traps import find_traps
+from ..gradients._layout import STEPS
+from ._args import ProgressBar
+from ..gradients._layout import optimise_layout, start_layout
+from ..envs._presets import env_to_dict
 
 
 def add_sensitivity(sub) -> None:
-    from ..gradients._quality import TAU
-    from ..gradients._sensitivity import SENSITIVITY_METHODS as METHODS
-
     p = sub.add_parser("sensitivity", help=COMMAND_HELP["sensitivity"],
                        description="Gradients of the soft homing quality (mean 1 - cos angular error over the grid) "
                                    "with respect to every landmark and to d, bearing, odometry and compass noise, for "
@@ -29,9 +36,7 @@ def add_sensitivity(sub) -> None:
 
 
 def cmd_sensitivity(args: argparse.Namespace) -> int:
-    from ..outputs._files import check_out_dir, output_set
-    from ..gradients._sensitivity import check_sensitivity, sensitivity
-    from ..plots._gradients import landmark_figure, parameter_figure
+    from ..plots._gradients import landmark_figure, parameter_figure  # matplotlib: loaded only when a figure is drawn
 
     out = check_out_dir(args.out)
     env = check_sensitivity(args.env, args.methods, args.spacing, args.seed, args.tau)
@@ -53,9 +58,6 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
 
 
 def add_traps(sub) -> None:
-    from ..gradients._quality import TAU
-    from ..options._settings import NOISE_OPTIONS
-
     p = sub.add_parser("traps", help=COMMAND_HELP["traps"],
                        description="Run the catchment, then root-find the zeros of the soft homing field from the end "
                                    "points of the timed-out rollouts, classify them from the Jacobian, and report how "
@@ -74,9 +76,7 @@ def add_traps(sub) -> None:
 
 
 def cmd_traps(args: argparse.Namespace) -> int:
-    from ..outputs._files import check_out_dir, output_set
-    from ..gradients._traps import find_traps
-    from ..plots._gradients import trap_figure
+    from ..plots._gradients import trap_figure  # matplotlib: loaded only when a figure is drawn
 
     out = check_out_dir(args.out)
     options = setting_values(args)
@@ -97,9 +97,6 @@ def cmd_traps(args: argparse.Namespace) -> int:
 
 
 def add_optimise_layout(sub) -> None:
-    from ..gradients._quality import TAU
-    from ..gradients._layout import STEPS
-
     p = sub.add_parser("optimise-layout", help=COMMAND_HELP["optimise-layout"],
                        description="Optimise the landmark positions of ENV (or of --landmarks N seeded random ones) "
                                    "for a method, with or without occlusion (the mean over every choice of --occlude "
@@ -119,11 +116,7 @@ def add_optimise_layout(sub) -> None:
 
 
 def cmd_optimise_layout(args: argparse.Namespace) -> int:
-    from ._args import ProgressBar
-    from ..outputs._files import check_out_dir, output_set
-    from ..gradients._layout import optimise_layout, start_layout
-    from ..plots._gradients import layout_figure
-    from ..envs._presets import env_to_dict
+    from ..plots._gradients import layout_figure  # matplotlib: loaded only when a figure is drawn
 
     out = check_out_dir(args.out)
     env = start_layout(args.env, args.landmarks, args.seed)

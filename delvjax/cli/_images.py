@@ -19,6 +19,15 @@ from ..outputs._files import check_out_dir
 from ..options._limits import MAX_POINTS
 from ..outputs._tables import vector_map_columns
 from ._help import COMMAND_HELP
+from ..images._evaluate import load_database
+from ..options._settings import make_setup
+from ..images._evaluate import database_vector_map
+from ..core.metrics import summarize_map
+from ..images._evaluate import catchment_numbers, database_catchment
+from ..core.images.rollouts import OUTCOMES
+from ..images._render import ImageSettings, camera, check_render, render_database
+from ..core.images import Catadioptric
+from ..images._evaluate import import_database
 
 # scene options that mean nothing for a database (its images fix the scene, the poses and the unit move)
 # the scene's options that a database replaces: the sensor's settings but the channel (the motion noise of a
@@ -61,9 +70,6 @@ def _method_options(args: argparse.Namespace) -> dict:
 
 def load(args: argparse.Namespace):
     """The database of --images with the reading options, after every option is checked."""
-    from ..images._evaluate import load_database
-    from ..options._settings import make_setup
-
     opts = _method_options(args)
     make_setup(args.method, **opts)  # method and settings checked before any image is read
     positive_int(args.chunk, "--chunk")
@@ -91,9 +97,7 @@ def warn_empty(vm) -> None:
 
 
 def cmd_vector_map_images(args: argparse.Namespace) -> int:
-    from ..images._evaluate import database_vector_map
-    from ..core.metrics import summarize_map
-    from ..plots._images import database_map_figure
+    from ..plots._images import database_map_figure  # matplotlib: loaded only when a figure is drawn
 
     _refuse_unused(args)
     check_outputs(args)
@@ -113,8 +117,7 @@ def cmd_vector_map_images(args: argparse.Namespace) -> int:
 
 
 def cmd_catchment_images(args: argparse.Namespace) -> int:
-    from ..images._evaluate import catchment_numbers, database_catchment, database_vector_map
-    from ..plots._images import database_catchment_figure
+    from ..plots._images import database_catchment_figure  # matplotlib: loaded only when a figure is drawn
 
     _refuse_unused(args, extra=("lanes",))
     check_rules(args.first_move, args.collisions)
@@ -135,7 +138,6 @@ def cmd_catchment_images(args: argparse.Namespace) -> int:
     starts, paths = database_catchment(db, vm, home_radius=radius, max_steps=args.max_steps,
                                        **motion, seed=args.seed,
                                        collisions=args.collisions == "fail")
-    from ..core.images.rollouts import OUTCOMES
 
     summary = {"images": args.images, "method": args.method, **catchment_numbers(paths),
                "home_radius_cm": db.spacing if radius is None else radius, "step_cm": db.spacing,
@@ -180,9 +182,6 @@ def add_images(sub) -> None:
 
 
 def cmd_render_db(args: argparse.Namespace) -> int:
-    from ..images._render import ImageSettings, camera, check_render, render_database
-    from ..core.images import Catadioptric
-
     check_out_dir(args.out)
     settings = ImageSettings(camera=camera(args.rows, args.cols), mirror=Catadioptric() if args.donut else None,
                              pixel_noise=args.pixel_noise, gain_noise=args.gain_noise, light_azimuth_deg=args.light_deg)
@@ -197,8 +196,6 @@ def cmd_render_db(args: argparse.Namespace) -> int:
 
 
 def cmd_import(args: argparse.Namespace) -> int:
-    from ..images._evaluate import import_database
-
     check_out_dir(args.out)
     t0 = time.perf_counter()
     db = import_database(args.src, args.out, home=args.home, arena=args.arena, spacing=args.spacing)

@@ -24,6 +24,8 @@ from ..envs._presets import PRESET_DESCRIPTIONS, PRESETS
 from ..options._registry import DESCRIPTIONS
 from ..outputs._tables import vector_map_columns
 from ._help import COMMAND_HELP, DESCRIPTION
+from ..core.metrics import summarize_map
+from ..reproduce import _run as reproduce
 
 # --- commands ---------------------------------------------------------------------------
 
@@ -47,8 +49,7 @@ def add_vector_map(sub) -> None:
 
 
 def cmd_vector_map(args: argparse.Namespace) -> int:
-    from ..core.metrics import summarize_map
-    from ..plots._maps import vector_map_figure
+    from ..plots._maps import vector_map_figure  # matplotlib: loaded only when a figure is drawn
 
     if args.images is not None:
         return cmd_vector_map_images(args)
@@ -94,8 +95,6 @@ def add_reproduce(sub) -> None:
 
 
 def cmd_reproduce(args: argparse.Namespace) -> int:
-    from ..reproduce import _run as reproduce
-
     if args.list:
         for name, module in reproduce.registry().items():
             print(f"{name:16s} {module.TITLE}")

@@ -89,7 +89,7 @@ def cmd_catchment(args: argparse.Namespace) -> int:
     if not bool(np.any(np.asarray(res.valid)[:, np.asarray(res.included)])):
         warn("every grid point is invalid under every mask: the method finds no homing direction anywhere "
              "(too few visible landmarks?)")
-    from ..plots._rollouts import catchment_figure
+    from ..plots._rollouts import catchment_figure  # matplotlib: loaded only when a figure is drawn
 
     write_outputs(args, catchment_columns(res, with_hidden=args.occlude is not None or bool(args.hide)), summary,
                   lambda: catchment_figure(env, res, args.spacing, title=f"{args.method} on {env.name}"))
@@ -129,7 +129,7 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
         rows += success_rows(res, m)
         trial_cols.append(success_trial_columns(res, m))
     rules = check_rules(args.first_move, args.collisions)
-    from ..plots._rollouts import success_rate_figure
+    from ..plots._rollouts import success_rate_figure  # matplotlib: loaded only when a figure is drawn
 
     summary = {"env": env.name, "trials_per_bin": args.trials, "seed": args.seed, "rules": rules,
                "max_steps": args.max_steps, "home_radius": args.home_radius, "seconds": timing, "bins": tables}
@@ -173,7 +173,7 @@ def cmd_trajectories(args: argparse.Namespace) -> int:
                                  "release_heading_deg": float(np.degrees(tr.heading[t])),
                                  "outcome": outcome[t], "steps": int(steps[t])} for t in range(path.shape[0])]
         progress(f"{int(np.asarray(tr.success).sum())}/{path.shape[0]} reach home")
-    from ..plots._rollouts import trajectories_figure
+    from ..plots._rollouts import trajectories_figure  # matplotlib: loaded only when a figure is drawn
 
     write_outputs(args, concat_columns(cols), summary, lambda: trajectories_figure(
         env, results, args.home_radius, title=f"homing trajectories on {env.name}"))

@@ -10,6 +10,14 @@ from ..core.errors import InputError
 from ..options._limits import MAX_POINTS
 from ._help import COMMAND_HELP
 from ..sweeps._examples import EXAMPLES
+import jax
+from ..sweeps._spec import read_sweep
+from ..outputs._files import check_out_dir
+from ..sweeps._run import run_sweep, save_sweep
+from pathlib import Path
+from ._args import FIGURE
+from ..outputs._files import check_output_path, output_set
+from ..sweeps._run import load_sweep
 
 
 def add_sweep(sub) -> None:
@@ -48,7 +56,6 @@ def start_processes(args: argparse.Namespace) -> None:
             raise InputError("--num-processes", args.num_processes, "must be >= 1")
         if not 0 <= args.process_id < args.num_processes:
             raise InputError("--process-id", args.process_id, f"must be in 0..{args.num_processes - 1}")
-    import jax
 
     jax.config.update("jax_cpu_collectives_implementation", "gloo")  # CPU processes exchange results
     kw = {} if args.distributed else dict(coordinator_address=args.coordinator, num_processes=args.num_processes,
@@ -57,10 +64,6 @@ def start_processes(args: argparse.Namespace) -> None:
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
-    from ..sweeps._spec import read_sweep
-    from ..outputs._files import check_out_dir
-    from ..sweeps._run import run_sweep, save_sweep
-
     if args.example:
         print(EXAMPLES[args.example], end="")
         return 0
@@ -71,7 +74,6 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     spec = read_sweep(args.file)
     out = check_out_dir(args.out)
     start_processes(args)
-    import jax
 
     lead = jax.process_index() == 0  # process 0 reports and writes
     t0 = time.perf_counter()
@@ -105,12 +107,7 @@ def add_plot_sweep(sub) -> None:
 
 
 def cmd_plot_sweep(args: argparse.Namespace) -> int:
-    from pathlib import Path
-
-    from ._args import FIGURE
-    from ..outputs._files import check_output_path, output_set
-    from ..plots._sweep import check_plot, sweep_figure
-    from ..sweeps._run import load_sweep
+    from ..plots._sweep import check_plot, sweep_figure  # matplotlib: loaded only when a figure is drawn
 
     ds = load_sweep(args.dir)
     check_plot(ds, args.x, args.y, args.metric)

@@ -22,7 +22,6 @@ DEFAULT_HOME = (500.0, 500.0)
 
 class Env(eqx.Module):
     """landmarks: (L, 3) [x, y, r] cm; valid: (L,) bool; home: (2,); arena: (4,) [xmin, ymin, xmax, ymax]."""
-
     landmarks: Array
     valid: Array
     home: Array
@@ -51,8 +50,8 @@ def rotation_mismatch(env: Env, angles_deg=(90.0, 180.0, 270.0)) -> dict[float, 
     rotated to the original centres moves none by more than d. 0 for a layout with that
     rotational symmetry (env2, ring4 at 90 deg); env1 is asymmetric: > `ASYMMETRY_CM` for all three.
     """
-    from scipy.sparse import csr_matrix
-    from scipy.sparse.csgraph import maximum_bipartite_matching
+    from scipy.sparse import csr_matrix  # scipy: loaded only where this is used, so that `import delvjax` stays light
+    from scipy.sparse.csgraph import maximum_bipartite_matching  # scipy: loaded only where this is used, so that `import delvjax` stays light
 
     pts = np.asarray(env.landmarks, float)[np.asarray(env.valid), :2]
     rel = pts - np.asarray(env.home, float)

@@ -30,6 +30,7 @@ from ..options._limits import MAX_POINTS
 from ..core.errors import InputError
 from ..options._limits import check_size, grid_count
 from ..options._settings import NOISE_FIELDS_DEG, NOISE_FIELDS_FRACTION, is_traced, positive
+from ..core.maps import vector_map
 
 TAU = 0.01  # default softmin temperature (docs/differentiable.md)
 NOISE_NAMES = {**{f: name for name, f in NOISE_FIELDS_DEG.items()}, **{f: name for name, f in NOISE_FIELDS_FRACTION.items()}}
@@ -90,7 +91,6 @@ def homing_quality(env: str | Path | Env, method: str | HomingMethod = "delv", s
         if any(is_traced(x) for x in leaves):
             raise InputError("soft", soft, "must be True under jax.grad, jax.jit or jax.vmap (the pixel map is "
                                            "not differentiable)")
-        from ..core.maps import vector_map
 
         vm = vector_map(env=env, method=module, sensor=sensor, spacing=spacing, key=key, clearance=clearance,
                         heading=None if heading_deg is None else math.radians(heading_deg))

@@ -15,6 +15,9 @@ from ..envs._presets import load_env
 from ._quality import TAU, homing_quality, homing_quality_grad
 from ..core.maps import SPACING
 from ..core.scene import Env
+from ..evaluate import _vector_map as api
+from ._quality import quality_problem
+from ..core.errors import InputError
 
 SENSITIVITY_METHODS = ("delv", "alv", "acv", "warping")
 # the operating point at which sensitivities are taken: noise a real robot has (docs/differentiable.md)
@@ -33,10 +36,6 @@ def _options(method: str) -> dict:
 def check_sensitivity(env: str | Path | Env, methods=SENSITIVITY_METHODS, spacing: float = SPACING, seed: int = 0,
                       tau: float = TAU) -> Env:
     """Validate everything `sensitivity` takes, before any work (`InputError` naming the field)."""
-    from ..evaluate import _vector_map as api
-    from ._quality import quality_problem
-    from ..core.errors import InputError
-
     env = load_env(env)
     if isinstance(methods, str) or not methods:
         raise InputError("methods", methods, f"must be a non-empty list of {', '.join(SENSITIVITY_METHODS)}")

@@ -75,7 +75,7 @@ def _rows(path: Path) -> list[dict[str, str]]:
 
 
 def _read_yaml(path: Path) -> dict:
-    import yaml
+    import yaml  # PyYAML: loaded only for a database's metadata
 
     try:
         text = path.read_text()
@@ -121,7 +121,7 @@ def read_index(src: str | Path) -> DatabaseIndex:
 def read_image(path: Path) -> np.ndarray:
     """An RGB uint8 array (H, W, 3) of an image file (Pillow), as stored (file column order; `read_images`
     turns panoramas into memory order)."""
-    from PIL import Image, UnidentifiedImageError
+    from PIL import Image, UnidentifiedImageError  # Pillow: loaded only when image files are read or written
 
     if not path.is_file():
         raise InputError("image", str(path), "does not exist")
@@ -169,7 +169,7 @@ class DatabaseWriter:
         """Images (k, H, W, 3) uint8 in memory order, positions (k, 2) cm, headings (k,) rad, grid (k, 2) int.
         Files are named by grid cell; with `first` (entries not on distinct grid cells, e.g. a route) by
         entry number, `image_{first + i:05d}.png`, as BoB names route images."""
-        from PIL import Image
+        from PIL import Image  # Pillow: loaded only when image files are read or written
 
         names = ([bob_filename(int(gx), int(gy)) for gx, gy in grid] if first is None
                  else [f"image_{first + i:05d}.png" for i in range(len(grid))])
@@ -190,7 +190,7 @@ class DatabaseWriter:
             raise InputError("--out", str(self.out), f"could not be written ({exc.strerror or exc})") from None
 
     def _commit(self, metadata: dict) -> None:
-        import yaml
+        import yaml  # PyYAML: loaded only for a database's metadata
 
         with open(self.tmp / ENTRIES, "w", newline="") as fh:
             w = csv.writer(fh)

@@ -23,6 +23,10 @@ from ..core.rollouts import MAX_STEPS
 from ..core.sensing import Snapshot
 from ._disk import DatabaseIndex, read_image, read_images, read_index
 from ..options._settings import finite, make_setup, non_negative, positive, positive_int, seed_value
+from ._render import database_metadata
+from ._disk import DatabaseWriter
+from ._render import ImageSettings, check_render, render_rings, world_grid
+from ..options._limits import MAX_POINTS
 
 EXTRACTOR_FIELDS = ("hue_deg", "hue_width_deg", "sat_min", "val_min", "band_deg", "band_height_deg", "fill",
                     "max_blobs")
@@ -31,7 +35,6 @@ EXTRACTOR_FIELDS = ("hue_deg", "hue_width_deg", "sat_min", "val_min", "band_deg"
 @dataclass
 class LoadedDatabase:
     """A database as ring snapshots with what evaluating it needs (docs/images.md §6)."""
-
     name: str
     rings: RingDatabase
     files: list[Path]
@@ -59,7 +62,7 @@ def _spacing(index: DatabaseIndex, spacing) -> float:
         return positive(index.meta["spacing_cm"], "spacing_cm")
     if len(index.positions) < 2:
         raise InputError("images", str(index.folder), "has one image: give the spacing (unit move) explicitly")
-    from scipy.spatial import cKDTree
+    from scipy.spatial import cKDTree  # scipy: loaded only where this is used, so that `import delvjax` stays light
 
     dist, _ = cKDTree(index.positions).query(index.positions, k=2)
     return positive(float(np.median(dist[:, 1])), "spacing (median distance between neighbouring images)")
@@ -251,8 +254,6 @@ def import_database(src: str | Path, out: str | Path, **options) -> LoadedDataba
     """Read a database (BoB or a plain folder; `load_database` options), check every image, and write
     it as a BoB database at `out` with delvjax metadata (docs/images.md §4); nothing is left at `out`
     if any image fails."""
-    from ._render import database_metadata
-    from ._disk import DatabaseWriter
 
     index = read_index(src)
     spacing = _spacing(index, options.get("spacing"))
@@ -280,8 +281,6 @@ def render_in_memory(env: str, spacing: float | None = None, settings=None, seed
                       extractor: Extractor | None = None, chunk: int = DEFAULT_CHUNK) -> LoadedDatabase:
     """The database `render_database` would write, rendered and reduced to rings in memory (no files;
     ring for ring what `load_database` reads back from them, docs/images.md §5)."""
-    from ._render import ImageSettings, check_render, render_rings, world_grid
-    from ..options._limits import MAX_POINTS
 
     settings = settings or ImageSettings()
     iw, spacing = check_render(env, spacing, settings, seed, MAX_POINTS, chunk)

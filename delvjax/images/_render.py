@@ -26,6 +26,8 @@ from ._disk import DatabaseWriter
 from ._worlds import ImageWorld, image_world
 from ..options._limits import MAX_POINTS, check_size, grid_count
 from ..options._settings import non_negative, positive, positive_int, seed_value
+import shutil
+from ..outputs._files import check_folder
 
 DEFAULT_CHUNK = 256  # images per host-side chunk
 IMAGE_WIDTH = 16  # images rendered or reduced side by side (`fixed_width_map`): bounds a group's memory
@@ -73,7 +75,6 @@ def lit(world, light_azimuth_deg: float | None):
 def render_images(world, settings_camera: Camera, mirror: Catadioptric | None, positions, headings, index, key,
                   pixel_noise, gain_noise):
     """uint8 images (k, H, W, 3) at poses, image i with camera noise from fold_in(key, index[i])."""
-
     def one(pos, heading, i):
         img = panorama(world, settings_camera, pos, heading) if mirror is None else donut(world, mirror, pos, heading)
         return to_uint8(camera_noise(jax.random.fold_in(key, i), img, pixel_noise, gain_noise))
@@ -84,7 +85,6 @@ def render_images(world, settings_camera: Camera, mirror: Catadioptric | None, p
 @eqx.filter_jit
 def extract_rings(images, cam: Camera, mirror: Catadioptric | None, extractor: Extractor):
     """Ring `Snapshot`s (k leading) of uint8 images (panoramas, or donuts unwrapped with `mirror`)."""
-
     def one(image):
         img = image.astype(jnp.float32) / 255.0
         return extractor(img if mirror is None else unwrap(img, mirror, cam), cam)
@@ -168,9 +168,6 @@ PNG_SHARE = 0.75  # a noisy rendered image compresses to about this share of its
 
 def check_disk(out: str | Path, n: int, settings: ImageSettings) -> None:
     """`InputError` naming --out when n images would not fit on its disk (estimated before any work)."""
-    import shutil
-
-    from ..outputs._files import check_folder
 
     base = check_folder(out, "--out", str(out))
     cam, mirror = settings.camera, settings.mirror

@@ -143,13 +143,13 @@ def write_rows_csv(path: str | Path, rows: list[dict]) -> None:
     write_csv(path, _row_columns(rows))
 
 
-def _jsonable(obj):
+def jsonable(obj):
     if isinstance(obj, dict):
-        return {str(k): _jsonable(v) for k, v in obj.items()}
+        return {str(k): jsonable(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
-        return [_jsonable(v) for v in obj]
+        return [jsonable(v) for v in obj]
     if isinstance(obj, (np.ndarray,)):
-        return _jsonable(obj.tolist())
+        return jsonable(obj.tolist())
     if isinstance(obj, (np.bool_, bool)):
         return bool(obj)
     if isinstance(obj, (np.integer,)):
@@ -160,7 +160,7 @@ def _jsonable(obj):
 
 
 def _json_to(path: Path, obj) -> None:
-    path.write_text(json.dumps(_jsonable(obj), indent=2) + "\n")
+    path.write_text(json.dumps(jsonable(obj), indent=2) + "\n")
 
 
 def write_json(path: str | Path, obj) -> None:

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from ..outputs._files import atomic_path
+from ..core.rollouts import DEFAULT_RULES, PHYSICAL_RULES
 
 VERDICT_MARK = {"holds": "✅ holds", "partly": "🟡 partly", "fails": "❌ fails", "cannot tell": "❔ cannot tell",
                 "n/a": "— not run"}
@@ -81,8 +82,6 @@ def study_section(rec) -> str:
 
 
 def settings_section(settings, versions: dict, records: dict, wall_seconds: float, ran: list[str]) -> str:
-    from ..core.rollouts import DEFAULT_RULES, PHYSICAL_RULES
-
     rows = [{"setting": k, "value": v} for k, v in asdict(settings).items()]
     rows += [{"setting": "rollout rules (default, docs/model.md §5)", "value": ", ".join(f"{k}={v}" for k, v in DEFAULT_RULES.items())},
              {"setting": "rollout rules (physical, beside the default)",
@@ -96,7 +95,7 @@ def settings_section(settings, versions: dict, records: dict, wall_seconds: floa
              f"This invocation took {wall_seconds:.1f} s; the studies' own recorded wall times add up to {total:.1f} s "
              "(studies run side by side, `--workers`).",
              md_table(["study", "wall s", "compile s", "this run"], timing)]
-    from ..studies import FULL_RUN_ONLY
+    from ..studies import FULL_RUN_ONLY  # the studies: loaded only when a report is written (they import the API)
 
     missing = [n for n in FULL_RUN_ONLY if n not in records]
     if settings.quick and missing:
@@ -108,7 +107,7 @@ def settings_section(settings, versions: dict, records: dict, wall_seconds: floa
 
 def choices_section(numbers: dict) -> str:
     """What we chose where the thesis is silent, each with the number it changes (`delvjax.studies.thesis.choices`)."""
-    from ..studies.thesis import choices
+    from ..studies.thesis import choices  # the studies: loaded only when a report is written (they import the API)
 
     return ("Where the thesis is silent or ambiguous we had to choose; each choice below with the number it "
             "changes in this run (or, where no study recomputes it, where it was measured). docs/model.md has the "
@@ -116,7 +115,7 @@ def choices_section(numbers: dict) -> str:
 
 
 def thesis_notes_section() -> str:
-    from ..studies import thesis
+    from ..studies import thesis  # the studies: loaded only when a report is written (they import the API)
 
     rows = [{"where": v.get("section", ""), "what": v.get("text", v.get("description", ""))}
             for v in thesis.NOTES.values()]
@@ -124,7 +123,7 @@ def thesis_notes_section() -> str:
 
 
 def build_markdown(records: dict, settings, versions: dict, wall_seconds: float, ran: list[str]) -> str:
-    from ..studies.claims import evaluate
+    from ..studies.claims import evaluate  # the studies: loaded only when a report is written (they import the API)
 
     claims = evaluate({n: r.numbers for n, r in records.items()})
     flat = {k: v for r in records.values() for k, v in r.numbers.items()}
@@ -156,7 +155,7 @@ def embed_images(html: str, root: Path) -> str:
 def write_report(out: Path, records: dict, settings, versions: dict, wall_seconds: float = 0.0,
                  ran: list[str] | None = None) -> Path:
     """Write out/report.md and out/report.html; returns the HTML path."""
-    import markdown
+    import markdown  # markdown: loaded only when the HTML report is written
 
     text = build_markdown(records, settings, versions, wall_seconds, ran or [])
     with atomic_path(out / "report.md") as tmp:

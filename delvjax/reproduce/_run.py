@@ -29,6 +29,9 @@ from ..core.errors import InputError
 from ..outputs._files import check_out_dir, write_json
 from ..outputs._cache import package_sources
 from ._study import STUDY_FILE, Settings, StudyContext, StudyRecord, compile_seconds, settings_record, versions
+from ..outputs._cache import enable_compilation_cache
+from ..options._settings import seed_value
+from ._report import write_report
 
 STUDIES = "delvjax.studies"  # the package of the study runners, the thesis's numbers and the claim checks
 
@@ -145,7 +148,7 @@ def schedule(names: list[str]) -> tuple[list[str], list[str]]:
 
 @contextmanager
 def _bars(total: int, enabled: bool) -> Iterator[Any]:
-    from tqdm.auto import tqdm
+    from tqdm.auto import tqdm  # tqdm: loaded only when a progress bar is shown
 
     bar = tqdm(total=total, desc="studies", unit="study", disable=not enabled, file=sys.stderr,
                bar_format="{l_bar}{bar}| {n_fmt}/{total_fmt} [{elapsed}<{remaining}]")
@@ -167,7 +170,7 @@ def run_study(name: str, module, out: Path, settings: Settings, force: bool = Fa
     before the first runs, so a source edited during a run marks the studies it changes as stale
     instead of stamping code that did not run with the new hash); None: taken now.
     """
-    from tqdm.auto import tqdm
+    from tqdm.auto import tqdm  # tqdm: loaded only when a progress bar is shown
 
     folder = out / name
     digest = study_hash(module, settings) if digest is None else digest
@@ -199,9 +202,6 @@ def reproduce(out: str | Path = "results", quick: bool = False, only: str | None
     the programs are the same (docs/reproduce.md "Speed"; tested).
     Returns {"records": {name: StudyRecord}, "ran": [names], "report": path of report.html}.
     """
-    from ..outputs._cache import enable_compilation_cache
-    from ..options._settings import seed_value
-    from ._report import write_report
 
     seed = seed_value(seed)
     settings = settings or Settings.make(quick=quick, seed=seed)

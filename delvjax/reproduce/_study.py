@@ -15,7 +15,10 @@ import jax
 
 from ..core.maps import SPACING
 from ..core.rollouts import DEFAULT_LANES, TRIALS_PER_DISTANCE
-from ..outputs._files import _jsonable, write_csv, write_figure, write_json, write_rows_csv
+from ..outputs._files import jsonable, write_csv, write_figure, write_json, write_rows_csv
+from ..core.rollouts import DEFAULT_RULES, PHYSICAL_RULES
+from .. import __version__
+import numpy
 
 STUDY_FILE = "study.json"
 COMPILE_EVENTS = ("/jax/core/compile/jaxpr_trace_duration", "/jax/core/compile/jaxpr_to_mlir_module_duration",
@@ -47,16 +50,10 @@ class Settings:
 
 def settings_record(settings: Settings) -> dict:
     """The settings as recorded in every study.json and the report, with the rollout rules."""
-    from ..core.rollouts import DEFAULT_RULES, PHYSICAL_RULES
-
     return {**asdict(settings), "rules": {"default": DEFAULT_RULES, "physical": PHYSICAL_RULES}}
 
 
 def versions() -> dict[str, str]:
-    from .. import __version__
-
-    import numpy
-
     return {"delvjax": __version__, "jax": jax.__version__, "numpy": numpy.__version__,
             "python": platform.python_version(), "backend": jax.default_backend()}
 
@@ -89,7 +86,6 @@ def compile_seconds() -> float:
 @dataclass
 class StudyRecord:
     """What a study produced, as written to its study.json and read by the report."""
-
     name: str
     title: str
     hash: str = ""
@@ -105,7 +101,6 @@ class StudyRecord:
 
 class StudyContext:
     """The output folder and writers of one study; every write is atomic and recorded."""
-
     def __init__(self, out: Path, record: StudyRecord, settings: Settings, bar=None,
                  painter: ThreadPoolExecutor | None = None):
         self.out, self.record, self.settings, self._bar = out, record, settings, bar
@@ -150,7 +145,7 @@ class StudyContext:
         self.record.tables.append({"id": table_id, "title": title, "source": source, "note": note,
                                    "file": f"{table_id}.csv",
                                    "columns": columns or list(dict.fromkeys(k for r in rows for k in r)),
-                                   "rows": _jsonable(rows)})
+                                   "rows": jsonable(rows)})
 
     def csv(self, name: str, columns: dict | None = None, rows: list[dict] | None = None) -> None:
         """A data file beside the figures (columns of equal length, or rows)."""
@@ -164,7 +159,7 @@ class StudyContext:
 
     def number(self, key: str, value: Any) -> None:
         """A headline number the claims table reads (`numbers[key]`)."""
-        self.record.numbers[key] = _jsonable(value)
+        self.record.numbers[key] = jsonable(value)
 
     def step(self, text: str) -> None:
         """Progress within a long study (advances the inner bar)."""

@@ -64,7 +64,7 @@ def success_metrics(sums: dict) -> dict:
 
 def dataset(spec: SweepSpec, sums: dict, programs: int):
     """Per-cell sums -> the requested metrics, labelled by the axes (and `distance_cm`)."""
-    import xarray as xr
+    import xarray as xr  # xarray: loaded only when results are labelled
 
     values = spec.kind.metrics_of(sums)
     dims, shape = list(spec.axes), spec.shape
@@ -81,7 +81,7 @@ def dataset(spec: SweepSpec, sums: dict, programs: int):
 
 
 def _version(package: str) -> str:
-    from importlib.metadata import PackageNotFoundError, version
+    from importlib.metadata import PackageNotFoundError, version  # only for the versions a result records
 
     try:
         return version(package)
@@ -103,7 +103,7 @@ def save_sweep(ds, out: str | Path) -> list[Path]:
 
 def load_sweep(out: str | Path):
     """The `xarray.Dataset` of a finished sweep folder (`delvjax sweep ... --out DIR`)."""
-    import xarray as xr
+    import xarray as xr  # xarray: loaded only when results are labelled
 
     path = Path(out) / FILES[0]
     if not path.is_file():

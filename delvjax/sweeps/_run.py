@@ -79,7 +79,7 @@ def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Calla
                     sums[k][i] = done[digest][k]
     processes = jax.process_count()
     if processes > 1:  # a cell is computed again unless every process found it (--out need not be shared)
-        from jax.experimental import multihost_utils
+        from jax.experimental import multihost_utils  # only with several processes (jax.distributed)
 
         todo = multihost_utils.process_allgather(todo).any(axis=0)
     if announce is not None:
@@ -117,7 +117,7 @@ def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Calla
 
 def _merge(sums: dict, mine: list[int]) -> dict:
     """Every process's cells (`jax.distributed`): gathered, each cell from the process that computed it."""
-    from jax.experimental import multihost_utils
+    from jax.experimental import multihost_utils  # only with several processes (jax.distributed)
 
     n = len(next(iter(sums.values())))
     owned = np.zeros(n, bool)

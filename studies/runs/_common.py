@@ -168,7 +168,7 @@ def panel_figure(items, spacing: float, classes: bool = False, title: str = ""):
                Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
                Line2D([], [], marker="x", color="tab:red", ls="", ms=7, label="no direction (invalid)")]
     if classes:
-        from delvjax.plots._maps import CLASS_STYLE
+        from delvjax.plots._maps import CLASS_STYLE  # matplotlib: loaded only when a figure is drawn
 
         handles += [Line2D([], [], ls="", label=f"error {lab}", marker=style["marker"],
                            color=style.get("color", style.get("edgecolors")),
@@ -224,7 +224,7 @@ def catchment_columns(ctx, key: str, results: dict, row: dict) -> None:
 def success_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, source: str, note: str) -> dict:
     """Success rate vs release distance of `methods` under both rule sets: numbers
     `success:env1:<method>[:physical]` and `success_overall:...`, a table, a figure and the counts CSV."""
-    from delvjax.plots._rollouts import success_rate_figure
+    from delvjax.plots._rollouts import success_rate_figure  # matplotlib: loaded only when a figure is drawn
 
     tables = {}
     for m in methods:  # a few methods x two rule sets; one compiled program
@@ -249,7 +249,7 @@ def success_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, s
 def trajectory_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, n_starts: int = 8) -> None:
     """Homing paths of `methods` from the same `n_starts` seeded release points (Figs 4.11, 5.8):
     numbers `trajectories:env1:<method>:reach_home`, the figure and the CSV of every position."""
-    from delvjax.plots._rollouts import trajectories_figure
+    from delvjax.plots._rollouts import trajectories_figure  # matplotlib: loaded only when a figure is drawn
 
     results, tables = {}, []
     for m in methods:

@@ -23,6 +23,7 @@ from delvjax.plots._images import database_map_figure, pipeline_figure
 
 from ._common import curves_rows
 from ._images_common import LABEL, ROBOT_SCALE, curve, database, ideal_map, image_map, numbers, preview
+from delvjax.images._worlds import image_world
 
 TITLE = "Robot experiments with artificial landmarks, on rendered images (Figs 4.16-4.21)"
 STEPS = 3
@@ -32,8 +33,6 @@ BIN = 20.0  # cm, error-curve bins in the 1.8 m arena
 
 def pipeline_panels(db) -> object:
     """Figs 4.16b-4.17: the donut at home, its panorama, the landmark pixels and the ring."""
-    from delvjax.images._worlds import image_world
-
     iw, mirror, cam = image_world("robot"), Catadioptric(), Camera()
 
     @jax.jit  # one program, not one per operation

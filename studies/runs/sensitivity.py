@@ -24,6 +24,7 @@ from delvjax.gradients._sensitivity import sensitivity
 from delvjax.plots._gradients import landmark_figure, parameter_figure
 
 from ._common import env
+from delvjax.cli._main import main as cli
 
 TITLE = "Sensitivity of homing quality: landmarks, d and noise (gradients; beyond the thesis)"
 STEPS = 5
@@ -78,8 +79,6 @@ def run(ctx) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from delvjax.cli._main import main as cli
-
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--out", default="results/sensitivity")
     p.add_argument("--env", default="env1")

@@ -1,7 +1,7 @@
 """`delvjax reproduce`: every study at a tiny size, its numbers, tables and the claims table
-(the report, resume and bad input: reproduce_runs.py, imported at the end).
+(the report, resume and bad input: test_runs.py; side by side: test_schedule.py).
 
-Compilation dominates, so the whole set of studies runs ONCE (session fixture `run`, conftest.py) on a
+Compilation dominates, so the whole set of studies runs ONCE per session (fixture `run`, conftest.py) on a
 5 x 5 grid (spacing 200 cm) with 10 trials per success-rate bin; the other tests reuse that
 output folder. Tests that change the folder (force, a crash, a new seed) put it back to
 "every study current under TINY" before they end, and run only the cheap `environments` /

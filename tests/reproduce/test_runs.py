@@ -1,7 +1,6 @@
-"""`delvjax reproduce` as a run: the report, resume after a crash or a change, bad input. Collected
-through test_reproduce.py (which imports these tests after its own), so that under pytest-xdist
-both share one worker and one session fixture `run` (conftest.py); tests that change the folder
-put it back to "every study current under TINY" before they end."""
+"""`delvjax reproduce` as a run: the report, resume after a crash or a change, bad input. The session
+fixture `run` (tests/conftest.py) is one run of the studies per test session, copied per pytest-xdist
+worker; tests that change the folder put it back to "every study current under TINY" before they end."""
 
 from __future__ import annotations
 import base64

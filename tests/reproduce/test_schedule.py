@@ -1,5 +1,5 @@
-"""`delvjax reproduce` side by side (`--workers`) and the studies of `--quick`. Collected through
-test_reproduce.py (same worker, same session fixture `run`, which ran with the default workers)."""
+"""`delvjax reproduce` side by side (`--workers`) and the studies of `--quick`; the session fixture `run`
+(tests/conftest.py) ran with the default workers."""
 
 from __future__ import annotations
 

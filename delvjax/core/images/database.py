@@ -24,6 +24,8 @@ from ..kernel import world_direction
 from ..methods.base import HomingMethod
 from ..metrics import angular_error_deg
 from ..sensing import Snapshot, UnitMove, sort_blobs
+from ..estimation import reference_vectors
+from ..geometry import rotate
 
 # the agent moved east, north, west, south: the start is one spacing west, south, east, north
 MOVES = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]], np.float32)
@@ -53,7 +55,7 @@ class MovePlan(eqx.Module):
 
 def neighbour(positions: np.ndarray, targets: np.ndarray, spacing: float) -> np.ndarray:
     """Index of the database point within TOLERANCE * spacing of each target, else -1 (k-d tree)."""
-    from scipy.spatial import cKDTree
+    from scipy.spatial import cKDTree  # scipy: loaded only where this is used, so that `import delvjax` stays light
 
     # the k-d tree counts strictly nearer points: the bound is nudged up so "within" includes it
     dist, idx = cKDTree(positions).query(targets, distance_upper_bound=np.nextafter(TOLERANCE * spacing, np.inf))
@@ -148,8 +150,6 @@ def database_directions(db: RingDatabase, plan: MovePlan, home_db: RingDatabase,
 def perceived_landmarks(home_db: RingDatabase, home: MovePlan, settings) -> tuple[Array, Array]:
     """World positions of the landmarks in DELV's reference map (docs/model.md §3.3; thesis Fig 4.20):
     home + Rot(alpha_r) V^R_i with `settings` (a `DELV`: levels, scale, r_max): ((B, 2), (B,))."""
-    from ..estimation import reference_vectors
-    from ..geometry import rotate
 
     record, alpha_r = home_view(home_db, home)
     vectors, valid = reference_vectors(record, settings)
