@@ -67,19 +67,28 @@ def run(tmp_path_factory):
         result = reproduce.reproduce(own, settings=TINY, progress=False)
         return own, result, time.perf_counter() - t0
     shared = tmp_path_factory.getbasetemp().parent / "reproduce-shared"  # the same folder for every worker
-    done = shared.with_suffix(".pickle")
+    done, failed = shared.with_suffix(".pickle"), shared.with_suffix(".failed")
     try:
         os.close(os.open(shared.with_suffix(".claimed"), os.O_CREAT | os.O_EXCL))  # the first worker runs it
-        t0 = time.perf_counter()
-        result = reproduce.reproduce(shared, settings=TINY, progress=False)
-        tmp = done.with_suffix(".tmp")
-        tmp.write_bytes(pickle.dumps((result, time.perf_counter() - t0)))
-        tmp.replace(done)
     except FileExistsError:
         for _ in range(3600):  # the other workers wait for it (at most an hour)
+            if failed.is_file():
+                pytest.fail(f"the shared reproduce run failed in another worker:\n{failed.read_text()}")
             if done.is_file():
                 break
             time.sleep(1.0)
+    else:
+        t0 = time.perf_counter()
+        try:
+            result = reproduce.reproduce(shared, settings=TINY, progress=False)
+        except BaseException:
+            import traceback
+
+            failed.write_text(traceback.format_exc())
+            raise
+        tmp = done.with_suffix(".tmp")
+        tmp.write_bytes(pickle.dumps((result, time.perf_counter() - t0)))
+        tmp.replace(done)
     result, seconds = pickle.loads(done.read_bytes())
     shutil.copytree(shared, own)
     result["report"] = own / Path(result["report"]).relative_to(shared)

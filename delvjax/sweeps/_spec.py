@@ -77,6 +77,12 @@ class SweepSpec:
     trials: int = TRIALS
     random_envs: dict[str, tuple[int, int]] = field(default_factory=dict)  # env label -> (seed, landmarks)
 
+    def __post_init__(self):
+        if not isinstance(self.kind, SweepKind):  # a kind given by its name
+            if self.kind not in KINDS:
+                raise InputError("kind", self.kind, f"must be one of {', '.join(KINDS)}")
+            object.__setattr__(self, "kind", KINDS[self.kind])
+
     def cells(self) -> Iterator[dict]:
         """Every combination of the axes (the last axis varies fastest), one at a time."""
         names = list(self.axes)

@@ -106,7 +106,7 @@ class Evaluator:
             for start in range(0, len(members), width):  # a handful of chunks, one call each
                 chunk = members[start:start + width]
                 batch = [setups[i] for i in chunk] + [setups[chunk[0]]] * (width - len(chunk))
-                res = evaluate("catchment", batch, None, rows)
+                res = evaluate(_SPEC.kind, batch, None, rows)
                 for name, v in res.items():
                     sums.setdefault(name, np.zeros(len(setups), v.dtype))[chunk] = v[:len(chunk)]
                 if self.step is not None:
