@@ -52,6 +52,14 @@ def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, head
     return RolloutSetup(env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance)
 
 
+def _configured(grid: Grid | None, rules: Rules | None, **given) -> tuple:
+    """The values of the grid and rule keywords `given` (in their order), from `grid=` and `rules=`
+    where those are given (evaluate/_config.py)."""
+    values = {**unpack(grid, Grid, {k: v for k, v in given.items() if k in GRID_DEFAULTS}, GRID_DEFAULTS),
+              **unpack(rules, Rules, {k: v for k, v in given.items() if k in RULES_DEFAULTS}, RULES_DEFAULTS)}
+    return tuple(values[k] for k in given)
+
+
 def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
               seed: int = 0, occlude: int | None = None, hidden: list[int] | None = None, max_steps: int = MAX_STEPS,
               home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE, lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
@@ -74,11 +82,9 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
     `progress(done, total)` is called after each block of trials.
     Returns a `Catchment` (see `catchment_summary`).
     """
-    grid_kw = dict(spacing=spacing, clearance=clearance, heading_deg=heading_deg)
-    spacing, clearance, heading_deg = unpack(grid, Grid, grid_kw, GRID_DEFAULTS).values()
-    rules_kw = dict(max_steps=max_steps, home_radius=home_radius, first_move=first_move, collisions=collisions,
-                    lanes=lanes)
-    max_steps, home_radius, first_move, collisions, lanes = unpack(rules, Rules, rules_kw, RULES_DEFAULTS).values()
+    spacing, clearance, heading_deg, max_steps, home_radius, first_move, collisions, lanes = _configured(
+        grid, rules, spacing=spacing, clearance=clearance, heading_deg=heading_deg, max_steps=max_steps,
+        home_radius=home_radius, first_move=first_move, collisions=collisions, lanes=lanes)
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         options, first_move, collisions, program)
@@ -105,11 +111,9 @@ def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", dis
     (deterministically, up to 64 times; else the trial is not placed and not counted).
     `options`, `first_move`, `collisions`, `program`, `announce` and `max_points` as in `catchment`.
     """
-    grid_kw = dict(clearance=clearance, heading_deg=heading_deg)  # no grid: only the clearance and heading
-    clearance, heading_deg = unpack(grid, Grid, grid_kw, GRID_DEFAULTS).values()
-    rules_kw = dict(max_steps=max_steps, home_radius=home_radius, first_move=first_move, collisions=collisions,
-                    lanes=lanes)
-    max_steps, home_radius, first_move, collisions, lanes = unpack(rules, Rules, rules_kw, RULES_DEFAULTS).values()
+    clearance, heading_deg, max_steps, home_radius, first_move, collisions, lanes = _configured(
+        grid, rules, clearance=clearance, heading_deg=heading_deg, max_steps=max_steps, home_radius=home_radius,
+        first_move=first_move, collisions=collisions, lanes=lanes)  # no grid: only its clearance and heading
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         options, first_move, collisions, program)
@@ -138,11 +142,9 @@ def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", sta
     release points for every method. `options`, `first_move`, `collisions`, `program` and `announce` as in
     `catchment`. Every position is kept: more than 100 x `max_points` of them (trials x (max_steps + 1)) are refused.
     """
-    grid_kw = dict(clearance=clearance, heading_deg=heading_deg)  # no grid: only the clearance and heading
-    clearance, heading_deg = unpack(grid, Grid, grid_kw, GRID_DEFAULTS).values()
-    rules_kw = dict(max_steps=max_steps, home_radius=home_radius, first_move=first_move, collisions=collisions,
-                    lanes=lanes)
-    max_steps, home_radius, first_move, collisions, lanes = unpack(rules, Rules, rules_kw, RULES_DEFAULTS).values()
+    clearance, heading_deg, max_steps, home_radius, first_move, collisions, lanes = _configured(
+        grid, rules, clearance=clearance, heading_deg=heading_deg, max_steps=max_steps, home_radius=home_radius,
+        first_move=first_move, collisions=collisions, lanes=lanes)  # no grid: only its clearance and heading
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
         env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
         options, first_move, collisions, program)
