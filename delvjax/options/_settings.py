@@ -57,11 +57,15 @@ def make_sensor(**options) -> Sensor:
     return Sensor(noise=noise, **fields)
 
 
-def method_settings(options: dict, n_pix: int | None = None, extra=()) -> dict[str, object]:
+def method_settings(options: dict, n_pix: int | None = None, extra=(), method: HomingMethod | None = None
+                    ) -> dict[str, object]:
     """Validated method settings by public name (their field values; `options._schema`), and the
-    relations between them: n_psi must divide the ring's n_pix pixels, rho_min <= rho_max."""
+    relations between them where `method` (default: any) has them: n_psi must divide the ring's n_pix
+    pixels, rho_min <= rho_max (the warping hypotheses)."""
     known = method_options(extra)
     out = {name: known[name].validate(value) for name, value in options.items() if value is not None}
+    if method is not None and not owns(method, "n_psi"):
+        return out
     warping = defaults(Warping)
     n_pix = defaults(Sensor)["n_pix"] if n_pix is None else n_pix
     n_psi = out.get("n_psi", warping["n_psi"])
@@ -113,13 +117,13 @@ def make_setup(method: str | HomingMethod, program=None, sensor: Sensor | None =
             raise InputError(given_noise[0], given_sensor[given_noise[0]], "cannot be combined with noise= (set it "
                                                                             "on the Noise)")
         sensor = dataclasses.replace(sensor, noise=noise)
-    settings = method_settings({k: v for k, v in options.items() if k in method_names}, sensor.n_pix, extra)
     if isinstance(method, HomingMethod):
         if program is not None:
             raise InputError("program", program, "needs a registry name as the method")
         module = method
     else:
         module = get_method(method) if program is None else registry_program(method, program)[0]
+    settings = method_settings({k: v for k, v in options.items() if k in method_names}, sensor.n_pix, extra, module)
     if "channel" in given_sensor and not reads_channel(module):
         label = method if isinstance(method, str) else type(method).__name__
         raise InputError("channel", given_sensor["channel"], f"is read only by image methods (warping, mfdid), "

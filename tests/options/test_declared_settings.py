@@ -99,3 +99,12 @@ def test_the_docs_option_table_is_made_from_the_declarations():
 
     docs = Path(__file__).resolve().parents[2] / "docs" / "options.md"
     assert docs.read_text() == options_markdown(), "regenerate: python -m delvjax.options > docs/options.md"
+
+
+def test_a_relation_between_settings_applies_only_to_the_methods_that_have_them():
+    from delvjax.options import make_setup
+
+    module, sensor = make_setup("delv", n_pix=7)  # DELV has no psi hypotheses: any ring width
+    assert sensor.n_pix == 7
+    with pytest.raises(InputError, match="n_psi: must divide n_pix = 7"):
+        make_setup("warping", n_pix=7)
