@@ -38,18 +38,26 @@ class RolloutSetup(NamedTuple):
     home_radius: float
     lanes: int
     clearance: float
+    first_move: str
+    collisions: str
 
 
 def _rollout_options(env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed, options,
-                     first_move=DEFAULT_FIRST_MOVE, collisions="ignore", program=None) -> RolloutSetup:
-    """Validate the shared keywords before any work (`api.scene_request` plus the rollout limits and rules)."""
+                     first_move=DEFAULT_FIRST_MOVE, collisions="ignore", program=None, grid: Grid | None = None,
+                     rules: Rules | None = None) -> RolloutSetup:
+    """Validate the shared keywords before any work (`api.scene_request` plus the rollout limits and
+    rules), taking the grid's clearance and heading and the rules from `grid=` and `rules=` if given."""
+    clearance, heading_deg, max_steps, home_radius, first_move, collisions, lanes = _configured(
+        grid, rules, clearance=clearance, heading_deg=heading_deg, max_steps=max_steps, home_radius=home_radius,
+        first_move=first_move, collisions=collisions, lanes=lanes)
     check_rules(first_move, collisions)
     env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, program,
                                                                  **options)
     max_steps = positive_int(max_steps, "max_steps")
     home_radius = positive(home_radius, "home_radius")
     lanes = positive_int(lanes, "lanes")
-    return RolloutSetup(env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance)
+    return RolloutSetup(env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance, first_move,
+                        collisions)
 
 
 def _configured(grid: Grid | None, rules: Rules | None, **given) -> tuple:
@@ -82,12 +90,10 @@ def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacin
     `progress(done, total)` is called after each block of trials.
     Returns a `Catchment` (see `catchment_summary`).
     """
-    spacing, clearance, heading_deg, max_steps, home_radius, first_move, collisions, lanes = _configured(
-        grid, rules, spacing=spacing, clearance=clearance, heading_deg=heading_deg, max_steps=max_steps,
-        home_radius=home_radius, first_move=first_move, collisions=collisions, lanes=lanes)
-    env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
-        env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
-        options, first_move, collisions, program)
+    (spacing,) = _configured(grid, None, spacing=spacing)
+    env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance, first_move, collisions = (
+        _rollout_options(env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed, options, first_move,
+                         collisions, program, grid, rules))
     spacing = positive(spacing, "spacing")
     masks, combos = _masks(env, occlude, hidden)
     check_grid(env, spacing, clearance, max_points, copies=len(masks), what="trial")
@@ -111,12 +117,9 @@ def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", dis
     (deterministically, up to 64 times; else the trial is not placed and not counted).
     `options`, `first_move`, `collisions`, `program`, `announce` and `max_points` as in `catchment`.
     """
-    clearance, heading_deg, max_steps, home_radius, first_move, collisions, lanes = _configured(
-        grid, rules, clearance=clearance, heading_deg=heading_deg, max_steps=max_steps, home_radius=home_radius,
-        first_move=first_move, collisions=collisions, lanes=lanes)  # no grid: only its clearance and heading
-    env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
-        env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
-        options, first_move, collisions, program)
+    env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance, first_move, collisions = (
+        _rollout_options(env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed, options, first_move,
+                         collisions, program, grid, rules))
     distances, trials = _distances(env, distances, trials, max_points)
     visible = visible_mask(env, hidden)
     _announce(announce)
@@ -142,12 +145,9 @@ def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", sta
     release points for every method. `options`, `first_move`, `collisions`, `program` and `announce` as in
     `catchment`. Every position is kept: more than 100 x `max_points` of them (trials x (max_steps + 1)) are refused.
     """
-    clearance, heading_deg, max_steps, home_radius, first_move, collisions, lanes = _configured(
-        grid, rules, clearance=clearance, heading_deg=heading_deg, max_steps=max_steps, home_radius=home_radius,
-        first_move=first_move, collisions=collisions, lanes=lanes)  # no grid: only its clearance and heading
-    env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance = _rollout_options(
-        env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed,
-        options, first_move, collisions, program)
+    env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance, first_move, collisions = (
+        _rollout_options(env, method, max_steps, home_radius, lanes, clearance, heading_deg, seed, options, first_move,
+                         collisions, program, grid, rules))
     visible = visible_mask(env, hidden)
     _, _, k_start = rollout_keys(key)
     count = positive_int(n_starts, "n_starts") if starts is None else len(starts) if hasattr(starts, "__len__") else 0
@@ -203,7 +203,7 @@ def rollout_request(env: str | Path | Env, kind: str = "catchment", method: str 
     or `success_rate` (kind "success-rate", under every mask of `occlude`) validate theirs, before any
     work; release headings are random from `seed`. Returns the setup (env, method, sensor, key, masks,
     ...) that `core.rollouts.cells` evaluates."""
-    env, module, sensor, _, key, max_steps, home_radius, _, clearance = _rollout_options(
+    env, module, sensor, _, key, max_steps, home_radius, _, clearance, _, _ = _rollout_options(
         env, method, max_steps, home_radius, DEFAULT_LANES, clearance, None, seed, options, first_move, collisions)
     masks, _ = _masks(env, occlude, None)
     if kind == "catchment":
