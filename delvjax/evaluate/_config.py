@@ -11,6 +11,7 @@ keyword given beside the object that holds it is an error naming it.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 from ..core.errors import InputError
@@ -39,6 +40,10 @@ class Rules:
     first_move: str = DEFAULT_FIRST_MOVE
     collisions: str = "ignore"
     lanes: int = DEFAULT_LANES
+
+
+GRID_DEFAULTS = dataclasses.asdict(Grid())
+RULES_DEFAULTS = dataclasses.asdict(Rules())
 
 
 def unpack(config, kind: type, given: dict, defaults: dict) -> dict:

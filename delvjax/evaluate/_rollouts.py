@@ -3,7 +3,6 @@ the CLI (same names, same validation before any work)."""
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 from typing import Callable, NamedTuple, Sequence
 
@@ -14,7 +13,7 @@ from jax import Array
 
 from ._vector_map import check_grid, scene_request, visible_mask
 from ..core.errors import InputError
-from ._config import Grid, Rules, unpack
+from ._config import GRID_DEFAULTS, RULES_DEFAULTS, Grid, Rules, unpack
 from ..core.maps import CLEARANCE, SPACING
 from ..core.methods import HomingMethod
 from ..core.rollouts import (ARENA, DEFAULT_DISTANCES, DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, LANDMARK, MAX_STEPS, N_STARTS, TRIALS_PER_DISTANCE, Catchment, SuccessRate, Trajectories, catchment_area, check_rules, hidden_masks, occlusion_masks, position_status, release_points, rollout_keys, success_rate_trials, trajectory_trials)
@@ -22,8 +21,6 @@ from ..core.scene import Env
 from ..options._limits import MAX_POINTS, check_size
 from ..options._settings import finite, occlusion_count, positive, positive_int
 
-GRID_DEFAULTS = dataclasses.asdict(Grid())
-RULES_DEFAULTS = dataclasses.asdict(Rules())
 
 
 class RolloutSetup(NamedTuple):

@@ -7,7 +7,6 @@ means the module's default) and calls the core.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from pathlib import Path
 
@@ -24,9 +23,8 @@ from ..core.sensor import Sensor
 from ..options._settings import angle_deg, make_setup, non_negative, positive, positive_int, seed_value
 from ..options._limits import MAX_POINTS, check_size
 from ..envs._presets import load_env
-from ._config import Grid, unpack
+from ._config import GRID_DEFAULTS, Grid, unpack
 
-GRID_DEFAULTS = dataclasses.asdict(Grid())
 
 
 def resolve_headings(heading_deg: float | None, seed: int) -> tuple[float | None, jax.Array]:

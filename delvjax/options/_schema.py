@@ -7,6 +7,7 @@ from these `Option`s, so a setting is written once, on its field.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import Any, Iterable
 
@@ -65,7 +66,9 @@ class Option:
         return s.to_field(v) if s.to_field is not None else v
 
 
-def _options(types: Iterable[type]) -> dict[str, Option]:
+@functools.lru_cache(maxsize=64)
+def _options(types: tuple[type, ...]) -> dict[str, Option]:
+    """The options of these module classes (cached per set of classes: callers must not change it)."""
     found: dict[str, list] = {}
     for t in types:
         for name, (field, setting, default) in declared(t).items():

@@ -124,12 +124,11 @@ def make_setup(method: str | HomingMethod, program=None, sensor: Sensor | None =
     else:
         module = get_method(method) if program is None else registry_program(method, program)[0]
     settings = method_settings({k: v for k, v in options.items() if k in method_names}, sensor.n_pix, extra, module)
+    label = method if isinstance(method, str) else type(method).__name__
     if "channel" in given_sensor and not reads_channel(module):
-        label = method if isinstance(method, str) else type(method).__name__
         raise InputError("channel", given_sensor["channel"], f"is read only by image methods (warping, mfdid), "
                                                              f"not by {label}")
     for name, value in settings.items():
         if not owns(module, name):
-            label = method if isinstance(method, str) else type(method).__name__
             raise InputError(name, value, f"is not a setting of the method {label}")
     return configure(module, **settings), sensor
