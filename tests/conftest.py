@@ -17,6 +17,15 @@ from delvjax.outputs._cache import enable_compilation_cache
 
 enable_compilation_cache()
 
+@pytest.fixture
+def untyped():
+    """A test that passes values of the wrong type on purpose: `tests.hints_unchecked` while it runs."""
+    from tests import hints_unchecked
+
+    with hints_unchecked():
+        yield
+
+
 ARENA = (0.0, 0.0, 1000.0, 1000.0)
 HOME = (500.0, 500.0)
 
@@ -68,6 +77,8 @@ def run(tmp_path_factory):
         return own, result, time.perf_counter() - t0
     shared = tmp_path_factory.getbasetemp().parent / "reproduce-shared"  # the same folder for every worker
     done, failed = shared.with_suffix(".pickle"), shared.with_suffix(".failed")
+    if failed.is_file():  # the run failed before (in this worker or another): say why, every time
+        pytest.fail(f"the shared reproduce run failed:\n{failed.read_text()}")
     try:
         os.close(os.open(shared.with_suffix(".claimed"), os.O_CREAT | os.O_EXCL))  # the first worker runs it
     except FileExistsError:

@@ -10,12 +10,13 @@ optimistix's Newton root finder from many starts at once (vmapped) to check that
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import jax
 import jax.numpy as jnp
 import optimistix as optx
 from jax import Array
+from jax.typing import ArrayLike
 
 from .scene import Env
 
@@ -39,7 +40,7 @@ def delv_field(x: Array, env: Env) -> Array:
 FIELDS: dict[str, Callable[[Array, Env], Array]] = {"alv": alv_field, "delv": delv_field}
 
 
-def equilibria(env: Env, starts: Array, field: str = "alv", rtol: float = 1e-6, atol: float = 1e-4,
+def equilibria(env: Env, starts: ArrayLike, field: str = "alv", rtol: float = 1e-6, atol: float = 1e-4,
                max_steps: int = 64) -> tuple[Array, Array]:
     """Zeros of a homing field from every start (vmapped optimistix Newton): (points (S, 2), converged (S,))."""
     fn = FIELDS[field]

@@ -12,7 +12,7 @@ device count, and only the number of groups varies. Work split over the devices 
 from __future__ import annotations
 
 from functools import partial
-from typing import Callable
+from collections.abc import Callable
 
 import jax
 import jax.numpy as jnp

@@ -17,7 +17,7 @@ from jax import Array
 from .geometry import unit, wrap
 from .search import first_argmin
 from .sensing import UnitMove
-from .types import BlobFlags, BlobVectors, Blobs
+from .types import BlobFlags, BlobVectors, Blobs, Real
 
 
 @runtime_checkable
@@ -48,7 +48,7 @@ def _nearest(parallax: Array, other_valid: Array) -> tuple[Array, Array]:
     return idx, jnp.take_along_axis(parallax, idx[:, None], axis=-1)[:, 0]
 
 
-def _guard(r: Array, sin_delta: Array, r_max: Array) -> Array:
+def _guard(r: Array, sin_delta: Array, r_max: Real) -> Array:
     """docs/model.md §3.1: negative, non-finite, > r_max or |sin(delta)| < 1e-9 -> r_max. "Negative"
     is read as "not positive": a landmark on the line of the move gives R = 0 (no triangle)."""
     bad = (jnp.abs(sin_delta) < SIN_EPS) | ~jnp.isfinite(r) | (r <= 0) | (r > r_max)

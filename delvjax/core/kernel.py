@@ -10,6 +10,7 @@ from __future__ import annotations
 import jax
 import jax.numpy as jnp
 from jax import Array
+from jax.typing import ArrayLike
 from .types import Direction
 
 from .geometry import wrap
@@ -38,7 +39,7 @@ def direction_from(env: Env, visible: Array, poses: MovePoses, home: UnitMove, m
     return world_direction(method, home, sense(env, visible, poses, method, sensor), poses.heading_end)
 
 
-def map_poses(point: Array, heading: Array, key_views: Array, index: Array, sensor: Sensor) -> MovePoses:
+def map_poses(point: Array, heading: Array, key_views: Array, index: ArrayLike, sensor: Sensor) -> MovePoses:
     """The vector map's unit move at grid point `index` (docs/model.md §3.3): it ends at `point`
     with release heading `heading`, drawn from the point's own stream fold_in(key_views, index)."""
     return unit_move_poses(point, heading, jax.random.fold_in(key_views, index), sensor, end_at=point)

@@ -10,7 +10,7 @@ the memory however large the grid.
 from __future__ import annotations
 
 from functools import partial
-from typing import Callable
+from collections.abc import Callable
 
 import equinox as eqx
 import jax
@@ -27,6 +27,7 @@ from .scene import Env, clear_of_landmarks
 from .sensing import record_home
 from .sensor import Sensor
 from .types import BlobFlags, GridFlag, GridFloat, GridPoints, PerPoint, PerPointFlag, Points
+from .types import Real
 
 DEFAULT_BATCH = 16384  # grid points per host-side chunk
 SPACING = 25.0  # cm, grid spacing (docs/model.md §5: 40 x 40 in the 1000 cm arena)
@@ -60,7 +61,7 @@ def grid_points(arena, spacing: float) -> np.ndarray:
 
 
 @jax.jit
-def grid_included(env: Env, points: Points, clearance: float) -> PerPointFlag:
+def grid_included(env: Env, points: Points, clearance: Real) -> PerPointFlag:
     """True where a grid point is farther than r + clearance from every landmark centre."""
     return clear_of_landmarks(env, points, clearance)
 
@@ -101,7 +102,7 @@ def homing_directions(env: Env, points: Points, headings: PerPoint, key: Array, 
 
 
 def vector_map(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = SPACING, heading: float | None = None,
-               key: Array | None = None, clearance: float = CLEARANCE, visible: Array | None = None,
+               key: Array | None = None, clearance: Real = CLEARANCE, visible: Array | None = None,
                batch_size: int = DEFAULT_BATCH, progress: Callable[[int, int], None] | None = None) -> VectorMap:
     """The vector map of `method` on the docs/model.md §5 grid; heading fixed (rad) or random per point from `key`.
 
@@ -141,7 +142,7 @@ def _device_chunk(env: Env, heading: Array | None, key: Array, sensor: Sensor, m
 
 @jax.jit
 def _vector_map(env: Env, points: Array, heading: Array | None, key: Array, sensor: Sensor, method: HomingMethod,
-                clearance: float, visible: Array | None, start: Array | int = 0) -> VectorMap:
+                clearance: Real, visible: Array | None, start: Array | int = 0) -> VectorMap:
     """One program for a chunk of the map: headings, directions, grid mask and errors; point i is grid point start + i."""
     if heading is None:
         headings = random_headings(key, points.shape[0], start)
@@ -185,7 +186,7 @@ def replace_field(method: HomingMethod, sensor: Sensor, name: str, value) -> tup
 
 
 def sweep(env: Env, method: HomingMethod, sensor: Sensor, name: str, values: Array, spacing: float = SPACING,
-          heading: float | None = None, key: Array | None = None, clearance: float = CLEARANCE,
+          heading: float | None = None, key: Array | None = None, clearance: Real = CLEARANCE,
           visible: Array | None = None) -> VectorMap:
     """Vector maps for every value of one continuous setting, vmapped as one program.
 

@@ -6,6 +6,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 from jax import Array
+from jax.typing import ArrayLike
 from scipy import stats
 
 from .geometry import angle_of, wrap
@@ -22,12 +23,12 @@ def angular_error_deg(direction: Array, valid: Array, points: Array, home: Array
     return jnp.where(valid, err, 180.0)
 
 
-def error_class(error_deg: Array) -> Array:
+def error_class(error_deg: ArrayLike) -> ArrayLike:
     """Spatial error class of Fig 4.3: 0 (< 45), 1 (45-90), 2 (> 90)."""
     return (error_deg > CLASS_EDGES_DEG[0]).astype(jnp.int32) + (error_deg > CLASS_EDGES_DEG[1]).astype(jnp.int32)
 
 
-def error_point_rates(error_deg: Array, included: Array) -> dict[str, float]:
+def error_point_rates(error_deg: ArrayLike, included: ArrayLike) -> dict[str, float]:
     """% of grid points with error > 45 and > 90 degrees (Tables 5.1/5.2)."""
     e = np.asarray(error_deg)[np.asarray(included)]
     n = max(e.size, 1)
@@ -55,7 +56,7 @@ def t_interval(values: np.ndarray, confidence: float = 0.95) -> tuple[float, flo
     return mean, half, n
 
 
-def error_curve(error_deg: Array, points: Array, home: Array, included: Array, bin_width: float = 50.0,
+def error_curve(error_deg: ArrayLike, points: ArrayLike, home: ArrayLike, included: ArrayLike, bin_width: float = 50.0,
                 confidence: float = 0.95) -> list[dict[str, float]]:
     """Mean angular error per distance-from-home bin with a Student-t CI (Fig 4.4).
 
@@ -78,7 +79,7 @@ def error_curve(error_deg: Array, points: Array, home: Array, included: Array, b
     return rows
 
 
-def summarize_map(error_deg: Array, valid: Array, included: Array) -> dict[str, float]:
+def summarize_map(error_deg: ArrayLike, valid: ArrayLike, included: ArrayLike) -> dict[str, float]:
     """Headline numbers of one vector map: point counts, invalid count, mean error, error point rates."""
     inc = np.asarray(included)
     e = np.asarray(error_deg)[inc]

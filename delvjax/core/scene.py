@@ -15,6 +15,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 from jax import Array
+from .types import Real
 
 DEFAULT_ARENA = (0.0, 0.0, 1000.0, 1000.0)
 DEFAULT_HOME = (500.0, 500.0)
@@ -75,7 +76,7 @@ def rotation_mismatch(env: Env, angles_deg=(90.0, 180.0, 270.0)) -> dict[float, 
 ASYMMETRY_CM = 80.0
 
 
-def clear_of_landmarks(env: Env, pos: Array, clearance: float, margin: float = 0.0) -> Array:
+def clear_of_landmarks(env: Env, pos: Array, clearance: Real, margin: Real = 0.0) -> Array:
     """At least `margin` inside the arena and farther than r + clearance + margin from every
     landmark centre; pos (..., 2). margin 0 is the grid rule of docs/model.md §5 (grid points
     and release points); margin d keeps a first move, whatever its heading, clear."""

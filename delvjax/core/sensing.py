@@ -10,7 +10,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 from jax import Array
-from .types import BlobFlags, Blobs, Point, Ring, RingMask, Scalar
+from .types import Point, Real, Scalar, SnapBlobs, SnapFlags, SnapMask, SnapRing
 
 from .sensor import Sensor
 from .geometry import TWO_PI, rotate, unit, wrap, wrap_positive
@@ -26,11 +26,11 @@ class Snapshot(eqx.Module):
     channel, read by the image methods as `image`.
     """
 
-    mask: RingMask
-    gray: Ring
-    bearing: Blobs
-    width: Blobs
-    valid: BlobFlags
+    mask: SnapMask  # a database holds a batch of snapshots
+    gray: SnapRing
+    bearing: SnapBlobs
+    width: SnapBlobs
+    valid: SnapFlags
     channel: str = eqx.field(static=True, default="mask")
 
     @property
@@ -51,6 +51,7 @@ class UnitMove(eqx.Module):
     d_hat: Array
     psi_hat: Array
     compass: Array
+
 
 
 def background_of_angle(phi: Array) -> Array:
@@ -217,7 +218,7 @@ def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, s
 
 
 def observe_move(env: Env, visible: Array, start: Array, end: Array, heading_start: Array, heading_end: Array,
-                 d_hat: Array, psi_hat: Array, key: Array, sensor: Sensor,
+                 d_hat: Real, psi_hat: Array, key: Array, sensor: Sensor,
                  with_start: Array | bool = True, with_gray: Array | bool = True,
                  with_mask: Array | bool = True) -> UnitMove:
     """Snapshots at `start` and `end` of a move already made (true poses given), plus the

@@ -14,6 +14,7 @@ import jax
 from jax import Array
 
 from .settings import radians, setting
+from .types import Real
 
 BACKGROUNDS = ("distant", "walls", "none")
 CHANNELS = ("mask", "gray")
@@ -31,23 +32,23 @@ class Noise(eqx.Module):
     motion_step:    rollouts only: step length factor `1 + N(0, .)` of each step.
     """
 
-    bearing: float = setting(0.0, check="non_negative", unit="deg", to_field=radians, option="bearing_noise_deg",
+    bearing: Real = setting(0.0, check="non_negative", unit="deg", to_field=radians, option="bearing_noise_deg",
                              help="error of every blob bearing, in every snapshot")
-    step: float = setting(0.0, check="non_negative", unit="fraction of d", option="step_noise",
+    step: Real = setting(0.0, check="non_negative", unit="fraction of d", option="step_noise",
                           help="error of the unit move's length, d * (1 + N(0, s)); the agent believes it moved d")
-    turn: float = setting(0.0, check="non_negative", unit="deg", to_field=radians, option="turn_noise_deg",
+    turn: Real = setting(0.0, check="non_negative", unit="deg", to_field=radians, option="turn_noise_deg",
                           help="true body turn during the unit move; the end view is rotated by it")
-    turn_odometry: float = setting(0.0, check="non_negative", unit="deg", to_field=radians,
+    turn_odometry: Real = setting(0.0, check="non_negative", unit="deg", to_field=radians,
                                    option="odometry_turn_noise_deg", help="error of the odometry's report of that turn")
-    compass: float = setting(0.0, check="non_negative", unit="deg", to_field=radians, option="compass_noise_deg",
+    compass: Real = setting(0.0, check="non_negative", unit="deg", to_field=radians, option="compass_noise_deg",
                              help="error of every compass reading (compass methods only)")
-    motion_heading: float = setting(0.0, check="non_negative", unit="deg", to_field=radians,
+    motion_heading: Real = setting(0.0, check="non_negative", unit="deg", to_field=radians,
                                     option="motion_heading_noise_deg",
                                     help="rollouts only: error of the executed heading of every step")
-    motion_step: float = setting(0.0, check="non_negative", unit="fraction of d", option="motion_step_noise",
+    motion_step: Real = setting(0.0, check="non_negative", unit="fraction of d", option="motion_step_noise",
                                  help="rollouts only: error of every step's length, d * (1 + N(0, s))")
 
-    def unit_move(self, key: Array, d: Array) -> tuple[Array, Array, Array, Array]:
+    def unit_move(self, key: Array, d: Real) -> tuple[Array, Array, Array, Array]:
         """Draws of an imagined unit movement (vector maps, the home record; docs/model.md §2.5):
         (true length, true turn psi, odometry's psi_hat, key of the observation)."""
         k_step, k_turn, k_odo, k_obs = jax.random.split(key, 4)
@@ -55,7 +56,7 @@ class Noise(eqx.Module):
         psi = self.turn * jax.random.normal(k_turn)
         return length, psi, psi + self.turn_odometry * jax.random.normal(k_odo), k_obs
 
-    def rollout_move(self, key: Array, d: Array) -> tuple[Array, Array, Array, Array, Array]:
+    def rollout_move(self, key: Array, d: Real) -> tuple[Array, Array, Array, Array, Array]:
         """Draws of one rollout move (docs/model.md §5): (heading error, true length, psi, psi_hat,
         key of the observation); the length carries both the unit-move and the motion step noise."""
         k_draw, k_obs = jax.random.split(key)
@@ -90,11 +91,11 @@ class Sensor(eqx.Module):
     channel:    image channel read by the image methods (warping, MFDID; §2.2): mask or gray.
     """
 
-    d: float = setting(50.0, check="positive", unit="cm", help="unit-movement step")
-    alpha_r: float = setting(0.0, check="angle_deg", unit="deg", to_field=radians, option="alpha_r_deg",
+    d: Real = setting(50.0, check="positive", unit="cm", help="unit-movement step")
+    alpha_r: Real = setting(0.0, check="angle_deg", unit="deg", to_field=radians, option="alpha_r_deg",
                              help="reference heading at home")
     noise: Noise = Noise()
-    background: int = setting(0, converter=lambda b: BACKGROUNDS.index(b) if isinstance(b, str) else b,
+    background: Real = setting(0, converter=lambda b: BACKGROUNDS.index(b) if isinstance(b, str) else b,
                               check="choice", choices=BACKGROUNDS, shown_default=BACKGROUNDS[0],
                               help="what the agent sees beyond the landmarks (docs/model.md §2.3)")
     n_pix: int = setting(360, static=True, check="positive_int", limit=36_000, help="ring image width in pixels")

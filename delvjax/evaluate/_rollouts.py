@@ -4,7 +4,8 @@ the CLI (same names, same validation before any work)."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Callable, NamedTuple, Sequence
+from collections.abc import Callable, Sequence
+from typing import NamedTuple
 
 import jax
 import jax.numpy as jnp
@@ -68,7 +69,7 @@ def _configured(grid: Grid | None, rules: Rules | None, **given) -> tuple:
 def catchment(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
               seed: int = 0, occlude: int | None = None, hidden: list[int] | None = None, max_steps: int = MAX_STEPS,
               home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE, lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
-              collisions: str = "ignore", program: Sequence[str] | None = None, announce: Callable[[], None] | None = None,
+              collisions: str | None = "ignore", program: Sequence[str] | None = None, announce: Callable[[], None] | None = None,
               max_points: int = MAX_POINTS, progress: Callable[[int, int], None] | None = None,
               grid: Grid | None = None, rules: Rules | None = None,
               **options) -> Catchment:
@@ -104,7 +105,7 @@ def success_rate(env: str | Path | Env, method: str | HomingMethod = "delv", dis
                  trials: int = TRIALS_PER_DISTANCE, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
                  max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
                  lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
-                 collisions: str = "ignore", program: Sequence[str] | None = None,
+                 collisions: str | None = "ignore", program: Sequence[str] | None = None,
                  announce: Callable[[], None] | None = None, max_points: int = MAX_POINTS, grid: Grid | None = None, rules: Rules | None = None,
               **options) -> SuccessRate:
     """Success rate vs release distance (Figs 4.10b, 5.7b): `trials` rollouts per distance from home.
@@ -129,7 +130,7 @@ def trajectories(env: str | Path | Env, method: str | HomingMethod = "delv", sta
                  n_starts: int = N_STARTS, heading_deg: float | None = None, seed: int = 0, hidden: list[int] | None = None,
                  max_steps: int = MAX_STEPS, home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE,
                  lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
-                 collisions: str = "ignore", program: Sequence[str] | None = None,
+                 collisions: str | None = "ignore", program: Sequence[str] | None = None,
                  announce: Callable[[], None] | None = None, max_points: int = MAX_POINTS, grid: Grid | None = None, rules: Rules | None = None,
               **options) -> Trajectories:
     """Homing paths (Figs 4.11, 5.8) from `starts` [(x, y), ...] or `n_starts` seeded random release points.
@@ -194,7 +195,7 @@ def _distances(env: Env, distances: Sequence[float], trials: int, max_points: in
 def rollout_request(env: str | Path | Env, kind: str = "catchment", method: str | HomingMethod = "delv",
                     spacing: float = SPACING, seed: int = 0, occlude: int | None = None, max_steps: int = MAX_STEPS,
                     home_radius: float = HOME_RADIUS, clearance: float = CLEARANCE, first_move: str = DEFAULT_FIRST_MOVE,
-                    collisions: str = "ignore", distances: Sequence[float] = DEFAULT_DISTANCES,
+                    collisions: str | None = "ignore", distances: Sequence[float] = DEFAULT_DISTANCES,
                     trials: int = TRIALS_PER_DISTANCE, max_points: int = MAX_POINTS, **options) -> dict:
     """Validate one rollout configuration of a sweep (docs/sweeps.md) as `catchment` (kind "catchment")
     or `success_rate` (kind "success-rate", under every mask of `occlude`) validate theirs, before any

@@ -31,6 +31,7 @@ from ..core.errors import InputError
 from ..options._limits import check_size, grid_count
 from ..options._settings import NOISE_FIELDS_DEG, NOISE_FIELDS_FRACTION, is_traced, positive
 from ..core.maps import vector_map
+from ..core.types import Real
 
 TAU = 0.01  # default softmin temperature (docs/differentiable.md)
 NOISE_NAMES = {**{f: name for name, f in NOISE_FIELDS_DEG.items()}, **{f: name for name, f in NOISE_FIELDS_FRACTION.items()}}
@@ -70,7 +71,7 @@ def _check_soft(tau, sharpness) -> tuple[float, float]:
 
 def homing_quality(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, seed: int = 0,
                    soft: bool = True, tau: float = TAU, sharpness: float = VISIBILITY_WIDTH,
-                   heading_deg: float | None = None, clearance: float = CLEARANCE, max_points: int = MAX_POINTS,
+                   heading_deg: float | None = None, clearance: Real = CLEARANCE, max_points: int = MAX_POINTS,
                    **options) -> jax.Array:
     """Mean of 1 - cos(angular error) over the docs/model.md §5 grid (0 perfect, 2 = every direction
     reversed; a point without a direction counts 2), as a JAX scalar. soft=True: the analytic views
@@ -123,7 +124,7 @@ class QualityProblem(NamedTuple):
 
 def quality_problem(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, seed: int = 0,
                     tau: float = TAU, sharpness: float = VISIBILITY_WIDTH, heading_deg: float | None = None,
-                    clearance: float = CLEARANCE, max_points: int = MAX_POINTS, **options) -> QualityProblem:
+                    clearance: Real = CLEARANCE, max_points: int = MAX_POINTS, **options) -> QualityProblem:
     """Validate the options of `homing_quality_grad` (before any work) and set the problem up."""
     tau, sharpness = _check_soft(tau, sharpness)
     env, module, sensor, key, points, included, headings = _setup(env, method, spacing, seed, clearance, heading_deg,
@@ -156,7 +157,7 @@ def problem_value_and_grad(problem: QualityProblem) -> tuple[jax.Array, dict]:
 
 def homing_quality_grad(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING,
                         seed: int = 0, tau: float = TAU, sharpness: float = VISIBILITY_WIDTH,
-                        heading_deg: float | None = None, clearance: float = CLEARANCE, max_points: int = MAX_POINTS,
+                        heading_deg: float | None = None, clearance: Real = CLEARANCE, max_points: int = MAX_POINTS,
                         **options) -> tuple[float, dict]:
     """`homing_quality` (soft) and its gradient by reverse mode in one program: a dict with
     landmarks (N, 3) per [x, y, r] cm, home (2,) per cm, d per cm, scale per cm (DELV only) and

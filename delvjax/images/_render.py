@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable
+from collections.abc import Callable
 
 import equinox as eqx
 import jax
@@ -22,6 +22,7 @@ from ..core.errors import InputError
 from ..core.images import Camera, Catadioptric, Extractor, camera_noise, donut, panorama, to_uint8, unwrap
 from ..core.images.database import RingDatabase
 from ..core.maps import grid_points
+from ..core.types import Real
 from ._disk import DatabaseWriter
 from ._worlds import ImageWorld, image_world
 from ..options._limits import MAX_POINTS, check_size, grid_count
@@ -41,8 +42,8 @@ class ImageSettings:
 
     camera: Camera = field(default_factory=Camera)
     mirror: Catadioptric | None = None
-    pixel_noise: float = PIXEL_NOISE
-    gain_noise: float = 0.0
+    pixel_noise: Real = PIXEL_NOISE
+    gain_noise: Real = 0.0
     light_azimuth_deg: float | None = None
 
 

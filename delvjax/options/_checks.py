@@ -12,6 +12,7 @@ import jax
 import jax.numpy as jnp
 
 from ..core.errors import InputError
+from ..core.types import Real
 
 
 def is_traced(value: object) -> bool:
@@ -24,7 +25,7 @@ def _traced_check(value: jax.Array, bad: jax.Array, field: str, expected: str) -
     return eqx.error_if(value, bad, f"{field}: {expected} (a traced value)")
 
 
-def finite(value: object, field: str) -> float:
+def finite(value: object, field: str) -> Real:
     """`value` as a finite float, else `InputError` (a traced value: checked at run time)."""
     if is_traced(value):
         return _traced_check(value, ~jnp.isfinite(value), field, "must be finite")
@@ -41,7 +42,7 @@ def finite(value: object, field: str) -> float:
     return v
 
 
-def positive(value: object, field: str) -> float:
+def positive(value: object, field: str) -> Real:
     v = finite(value, field)
     if is_traced(v):
         return _traced_check(v, v <= 0, field, "must be > 0")
@@ -50,7 +51,7 @@ def positive(value: object, field: str) -> float:
     return v
 
 
-def non_negative(value: object, field: str) -> float:
+def non_negative(value: object, field: str) -> Real:
     v = finite(value, field)
     if is_traced(v):
         return _traced_check(v, v < 0, field, "must be >= 0")

@@ -17,6 +17,7 @@ from ..core.errors import InputError
 from ..core.methods import HomingMethod, Program, Warping
 from ..core.sensor import Noise, Sensor
 from ..core.settings import declared
+from ..core.types import Real
 from ._checks import (INT_LIMIT, SEED_LIMIT, angle_deg, choice, finite, is_integer, is_traced,  # noqa: F401
                       non_negative, occlusion_count, positive, positive_int, seed_value)
 from ._registry import configure, get_method, owns
@@ -29,7 +30,7 @@ NOISE_FIELDS_FRACTION = {o: f for o, (f, s, _) in _NOISE.items() if s.unit != "d
 NOISE_OPTIONS = tuple(_NOISE)
 
 
-def make_noise(**kwargs: float) -> Noise:
+def make_noise(**kwargs: Real) -> Noise:
     """`Noise` from public keywords (`bearing_noise_deg`, `step_noise`, ...), all >= 0."""
     options = sensor_options()
     unknown = set(kwargs) - set(NOISE_OPTIONS)

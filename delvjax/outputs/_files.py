@@ -10,7 +10,7 @@ import os
 import tempfile
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 
 import numpy as np
 
@@ -116,7 +116,7 @@ def _cell(v) -> str:
     return str(v)
 
 
-def _csv_to(path: Path, columns: dict[str, Sequence]) -> None:
+def _csv_to(path: Path, columns: Mapping[str, Sequence | np.ndarray]) -> None:
     names = list(columns)
     data = [list(np.asarray(columns[n]).tolist()) if not isinstance(columns[n], list) else columns[n] for n in names]
     with open(path, "w", newline="") as fh:
@@ -219,7 +219,7 @@ class OutputSet:
         """Stage a file written by `write(temporary_path)` (e.g. a netCDF dataset)."""
         self._stage(path, field, write, errors=(Exception,))
 
-    def csv(self, path: str | Path, columns: dict[str, Sequence], field: str) -> None:
+    def csv(self, path: str | Path, columns: Mapping[str, Sequence | np.ndarray], field: str) -> None:
         """Stage columns as CSV (`write_csv`)."""
         self._stage(path, field, lambda tmp: _csv_to(tmp, columns))
 

@@ -50,7 +50,7 @@ def draw_world(ax, arena, home, obstacles: dict, perceived=None) -> None:
     ax.set_ylabel("y (cm)")
 
 
-def draw_vector_map(ax, env: Env, points, direction, valid, included, spacing: float, error_deg=None) -> None:
+def draw_vector_map(ax, env: Env | None, points, direction, valid, included, spacing: float, error_deg=None) -> None:
     """Unit arrows of the homing direction at each included point; invalid points as red x;
     error class markers when `error_deg` is given."""
     inc = np.asarray(included)

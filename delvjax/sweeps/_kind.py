@@ -5,7 +5,7 @@ program, and its metrics from the sums. Nothing else compares a kind's name."""
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 from ..core.cells import CellMetrics
 from ..core.rollouts.cells import CatchmentSums, SuccessSums

@@ -5,7 +5,8 @@ processes, finished chunks kept on disk; results as labelled data (`sweep_result
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable
+from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 import jax
 import numpy as np

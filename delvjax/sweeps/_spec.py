@@ -7,7 +7,7 @@ import math
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterator
+from collections.abc import Iterator
 
 import numpy as np
 
@@ -69,7 +69,7 @@ class SweepSpec:
     """A validated sweep: axes in file order (name -> values), metrics, the file's text, and for
     success-rate sweeps the release distances and trials per distance."""
 
-    kind: SweepKind  # a str: the kind's name, with what the kind knows
+    kind: SweepKind | str  # a str: the kind's name, with what the kind knows
     axes: dict[str, list]
     metrics: list[str]
     text: str

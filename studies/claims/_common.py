@@ -16,7 +16,7 @@ part is None into "cannot tell", never "holds".
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 CHECKS: dict[str, Callable] = {}
 

@@ -20,6 +20,7 @@ from hypothesis import HealthCheck, event, example, given, settings
 from hypothesis import strategies as st
 
 import delvjax
+from tests import hints_unchecked
 from delvjax import InputError
 from delvjax.evaluate._vector_map import map_request
 from delvjax.cli._main import main
@@ -186,7 +187,8 @@ def test_an_invalid_environment_is_an_input_error_naming_the_field(case, tmp_pat
        pad_to=st.one_of(st.none(), st.integers(-2, 3), JUNK, st.sampled_from([2.5, 10**6, 2**63])))
 def test_make_env_builds_an_env_or_names_the_argument(landmarks, home, arena, pad_to):
     try:
-        env = delvjax.make_env(landmarks, home=home, arena=arena, pad_to=pad_to)
+        with hints_unchecked():  # junk of every type on purpose: make_env's own errors are tested
+            env = delvjax.make_env(landmarks, home=home, arena=arena, pad_to=pad_to)
     except InputError as exc:
         assert exc.field.split("[")[0].split(".")[0] in {"landmarks", "home", "arena", "pad_to"}, str(exc)
         return
@@ -292,6 +294,7 @@ def test_random_command_lines_exit_0_or_2_without_a_traceback(case, tmp_path_fac
 def test_api_options_are_accepted_or_refused_by_name(name, value):
     method = {"n_alpha": "warping", "mfdid_blur_deg": "mfdid"}.get(name, "delv")
     try:
-        map_request("env1", method=method, spacing=500, **{name: value})
+        with hints_unchecked():  # values of every type on purpose: map_request's own errors are tested
+            map_request("env1", method=method, spacing=500, **{name: value})
     except InputError as exc:  # a huge clearance leaves no grid point: named as spacing
         assert exc.field in (name, "spacing" if name == "clearance" else name), str(exc)

@@ -36,7 +36,7 @@ def test_objects_give_the_numbers_of_their_keywords():
     (lambda: delvjax.vector_map("env1", noise=0.1), "noise"),
     (lambda: delvjax.catchment("env1", rules=Rules(first_move="later"), spacing=200.0), "first_move"),
 ])
-def test_a_keyword_beside_its_object_or_a_bad_object_is_refused(call, field):
+def test_a_keyword_beside_its_object_or_a_bad_object_is_refused(call, field, untyped):
     with pytest.raises(InputError) as info:
         call()
     assert info.value.field == field

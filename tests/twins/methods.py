@@ -36,8 +36,8 @@ def match_arrangement(ref_vecs, cur_vecs, alphas, min_pairs=2, cur_bearings=None
     (one pair fixes p; with n = 1 every shift has var = 0 and k = 0 wins), docs/model.md §3.4.
     cur_bearings: the current vectors' bearings (agent frame); given, the current list is paired in
     its home-frame order under each alpha (docs/model.md §3.3), else in the order given."""
-    ref = np.asarray(ref_vecs, dtype=float).reshape(-1, 2)
-    cur = np.asarray(cur_vecs, dtype=float).reshape(-1, 2)
+    ref = np.asarray(ref_vecs, dtype=float).reshape(-1, 2).tolist()  # plain floats: the loops below are hot
+    cur = np.asarray(cur_vecs, dtype=float).reshape(-1, 2).tolist()
     N, M = len(ref), len(cur)
     if min(N, M) < max(min_pairs, 1):
         return None
@@ -47,12 +47,12 @@ def match_arrangement(ref_vecs, cur_vecs, alphas, min_pairs=2, cur_bearings=None
         for alpha in alphas:
             order = list(range(M)) if cur_bearings is None else home_frame_order(cur_bearings, alpha)
             ca, sa = math.cos(alpha), math.sin(alpha)
-            rot = np.array([[ca, -sa], [sa, ca]])
-            e = np.array([ref[i] - rot @ cur[order[j]] for (i, j) in pairs])   # Eq 3.4
-            p = e.mean(axis=0)                                           # Eq 3.5
-            var = float(sum(float((ei - p) @ (ei - p)) for ei in e))     # Eq 3.6
+            e = [(ref[i][0] - (ca * cur[order[j]][0] - sa * cur[order[j]][1]),   # Eq 3.4: V^R_i - Rot(alpha) V_j
+                  ref[i][1] - (sa * cur[order[j]][0] + ca * cur[order[j]][1])) for (i, j) in pairs]
+            px, py = sum(x for x, _ in e) / len(e), sum(y for _, y in e) / len(e)  # Eq 3.5
+            var = sum((x - px) ** 2 + (y - py) ** 2 for x, y in e)               # Eq 3.6
             if best is None or var < best[3]:
-                best = (k, float(alpha), p, var)
+                best = (k, float(alpha), np.array([px, py]), var)
     return best
 
 
@@ -132,7 +132,7 @@ def visual_compass(home_gray, here_gray):
     n = len(S)
     best_k, best_cost = 0, math.inf
     for k in range(n):
-        cost = sum(abs(C[(j + k) % n] - S[j]) for j in range(n))
+        cost = float(np.sum(np.abs(np.roll(C, -k) - S)))  # sum over j of |C[(j + k) % n] - S[j]|
         if cost < best_cost:
             best_k, best_cost = k, cost
     return wrap(-TWO_PI * best_k / n)

@@ -36,12 +36,13 @@ def background_value(phi):
 
 def _ray_cylinder(o, u, c, r):
     """Distance along the unit ray o + t*u to the cylinder (c, r), or None if missed.
-    A ray starting inside the cylinder hits it at distance 0 (docs/model.md §2.2)."""
-    v = c - o
-    dist2 = float(v @ v)
+    A ray starting inside the cylinder hits it at distance 0 (docs/model.md §2.2).
+    Plain float arithmetic on the 2-vectors (a tiny NumPy array per call costs more than the sum)."""
+    vx, vy = float(c[0]) - float(o[0]), float(c[1]) - float(o[1])
+    dist2 = vx * vx + vy * vy
     if dist2 < r * r:
         return 0.0
-    t_ca = float(v @ u)                  # distance along the ray to the closest approach
+    t_ca = vx * float(u[0]) + vy * float(u[1])  # distance along the ray to the closest approach
     perp2 = dist2 - t_ca * t_ca          # squared distance of the centre from the ray
     if t_ca <= 0.0 or perp2 > r * r:
         return None
@@ -66,16 +67,16 @@ def _wall_fraction(o, u, arena):
 
 def render(landmarks, pos, heading, arena, background="distant", n_pix=360):
     """docs/model.md §2.2 ring image at pos with the given heading -> (mask bool, gray float)."""
-    landmarks = np.asarray(landmarks, dtype=float).reshape(-1, 3)
-    o = np.asarray(pos, dtype=float)
+    landmarks = [tuple(float(v) for v in lm) for lm in np.asarray(landmarks, dtype=float).reshape(-1, 3)]
+    o = (float(pos[0]), float(pos[1]))
     mask = np.zeros(n_pix, dtype=bool)
     gray = np.zeros(n_pix, dtype=float)
     for j in range(n_pix):
         phi = heading + TWO_PI * j / n_pix          # world angle of pixel j's ray
-        u = _unit(phi)
+        u = (math.cos(phi), math.sin(phi))
         best = math.inf                             # nearest cylinder hit
         for (cx, cy, r) in landmarks:
-            t = _ray_cylinder(o, u, np.array([cx, cy]), r)
+            t = _ray_cylinder(o, u, (cx, cy), r)
             if t is not None and t < best:
                 best = t
         if best < math.inf:

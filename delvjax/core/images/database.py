@@ -17,6 +17,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 from jax import Array
+from jax.typing import ArrayLike
 
 from ..batching import fixed_width_map
 from ..geometry import wrap
@@ -46,11 +47,11 @@ class MovePlan(eqx.Module):
     start, end: indices; shift: whole-pixel roll into the move's frame; d_hat: |C - P| cm;
     ok: the point has a neighbour (else its direction is invalid)."""
 
-    start: Array
-    end: Array
-    shift: Array
-    d_hat: Array
-    ok: Array
+    start: ArrayLike
+    end: ArrayLike
+    shift: ArrayLike
+    d_hat: ArrayLike
+    ok: ArrayLike
 
 
 def neighbour(positions: np.ndarray, targets: np.ndarray, spacing: float) -> np.ndarray:

@@ -16,6 +16,7 @@ from jax import Array
 from jax.scipy.ndimage import map_coordinates
 
 from ..sensing import Snapshot, blob_runs
+from ..types import Real
 from .world import Camera, Catadioptric
 
 
@@ -39,7 +40,7 @@ def pixel_normals(key: Array, shape: tuple[int, ...]) -> Array:
     return (total.astype(jnp.float32) - 510.0) * jnp.float32(1.0 / np.sqrt(4 * (256.0**2 - 1) / 12))
 
 
-def camera_noise(key: Array, image: Array, sigma: Array, gain_sigma: Array = 0.0) -> Array:
+def camera_noise(key: Array, image: Array, sigma: Real, gain_sigma: Real = 0.0) -> Array:
     """docs/images.md §5.1: a global brightness gain 1 + N(0, gain_sigma) (flicker, exposure) and
     independent noise of standard deviation sigma per pixel and channel (`pixel_normals`), clipped to [0, 1]."""
     k_gain, k_pix = jax.random.split(key)
@@ -76,7 +77,7 @@ def rgb_to_hsv(rgb: Array) -> Array:
     return jnp.stack([h, s, v], -1)
 
 
-def segment(hsv: Array, hue_deg: Array, hue_width_deg: Array, sat_min: Array, val_min: Array) -> Array:
+def segment(hsv: Array, hue_deg: Real, hue_width_deg: Real, sat_min: Real, val_min: Real) -> Array:
     """Landmark pixels (docs/images.md §5.3): hue within hue_width_deg / 2 of hue_deg (circularly),
     saturation >= sat_min, value >= val_min."""
     dh = jnp.abs(jnp.mod(hsv[..., 0] * 360.0 - hue_deg + 180.0, 360.0) - 180.0)
@@ -93,13 +94,13 @@ class Extractor(eqx.Module):
     share of its band is; max_blobs: blob slots; channel: the ring the image methods read.
     """
 
-    hue_deg: float = 0.0
-    hue_width_deg: float = 40.0
-    sat_min: float = 0.5
-    val_min: float = 0.15
-    band_deg: float = 0.0
-    band_height_deg: float = 10.0
-    fill: float = 0.5
+    hue_deg: Real = 0.0
+    hue_width_deg: Real = 40.0
+    sat_min: Real = 0.5
+    val_min: Real = 0.15
+    band_deg: Real = 0.0
+    band_height_deg: Real = 10.0
+    fill: Real = 0.5
     max_blobs: int = eqx.field(static=True, default=8)
     channel: str = eqx.field(static=True, default="mask")
 

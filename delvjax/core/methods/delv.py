@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import equinox as eqx
 import jax
@@ -16,7 +16,8 @@ from ..search import first_argmin
 from ..settings import setting
 from ..geometry import TWO_PI, angle_of, rotate, safe_norm, wrap
 from ..sensing import UnitMove
-from ..types import Blobs, BlobFlags, BlobVectors, Direction, Hypotheses, Pairing, PairingFlags, Point, RowFlags, Scalar
+from ..types import (Blobs, BlobFlags, BlobVectors, CurrentFlags, CurrentVectors, Direction, Hypotheses, Pairing, Move, PairingFlags, Point, Real, RowFlags,
+                     Scalar)
 from .base import HomingMethod
 from .heading import HeadingSource
 from .pairing import shift_pairs
@@ -59,7 +60,7 @@ def mod_two_pi_of_sum(bearing: Blobs, alphas: Hypotheses, tie: float) -> Array:
     return jnp.where(x >= y, x - y, x)
 
 
-def rotated_rows(cur_idx: Pairing, cur_valid: BlobFlags, alphas: Hypotheses,
+def rotated_rows(cur_idx: Pairing, cur_valid: CurrentFlags, alphas: Hypotheses,
                  offsets: Array | None) -> tuple[Array, Array]:
     """The current indices of every pairing when the current list starts at another blob.
 
@@ -77,7 +78,7 @@ def rotated_rows(cur_idx: Pairing, cur_valid: BlobFlags, alphas: Hypotheses,
     return jnp.minimum((cur_idx[None] + rot) % m, last), offsets.astype(jnp.int32)
 
 
-def match_arrangement(ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: BlobVectors, cur_valid: BlobFlags,
+def match_arrangement(ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: CurrentVectors, cur_valid: CurrentFlags,
                       alphas: Hypotheses, offsets: Array | None = None) -> tuple[Point, Scalar, Scalar, Array]:
     """Best cyclic shift k and heading hypothesis alpha (Eqs 3.4-3.6): (p (2,), alpha, var, n_pairs).
 
@@ -96,7 +97,7 @@ def match_arrangement(ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: BlobVecto
     return p, alpha, var, n
 
 
-def pairing_table(ref_v: BlobVectors, cur_v: BlobVectors, ref_idx: Pairing, cur_idx: Array, pair_ok: PairingFlags,
+def pairing_table(ref_v: BlobVectors, cur_v: CurrentVectors, ref_idx: Pairing, cur_idx: Array, pair_ok: PairingFlags,
                   row_ok: RowFlags, n: Array, alphas: Hypotheses,
                   row_of: Array | None = None) -> tuple[Array, Array, Array]:
     """var of every pairing (row) x heading hypothesis, (H, A) (inf on rows that are not row_ok), and
@@ -136,7 +137,7 @@ def best_index(var: Array) -> tuple[Array, Array]:
     return best // var.shape[1], best % var.shape[1]
 
 
-def best_pairing(ref_v: BlobVectors, cur_v: BlobVectors, ref_idx: Pairing, cur_idx: Array, pair_ok: PairingFlags,
+def best_pairing(ref_v: BlobVectors, cur_v: CurrentVectors, ref_idx: Pairing, cur_idx: Array, pair_ok: PairingFlags,
                  row_ok: RowFlags, n: Array, alphas: Hypotheses,
                  row_of: Array | None = None) -> tuple[Point, Scalar, Scalar]:
     """The first minimum of var over pairings (rows) x heading hypotheses (`pairing_table`): (p (2,), alpha, var)."""
@@ -183,10 +184,10 @@ class DELV(HomingMethod):
             bearing, the earlier rule; with occlusion its wrap point moves with the heading).
     """
 
-    levels: int = setting(0, converter=lambda q: 0 if q is None else q, check="positive_int",
+    levels: Real = setting(0, converter=lambda q: 0 if q is None else q, check="positive_int",
                           help="distance quantization levels Q >= 1 (Eq 3.17)", shown_default="continuous")
-    scale: float = setting(1000.0, check="positive", unit="cm", help="quantization scale a")
-    r_max: float = setting(2000.0, check="positive", unit="cm", help="cap of estimated distances")
+    scale: Real = setting(1000.0, check="positive", unit="cm", help="quantization scale a")
+    r_max: Real = setting(2000.0, check="positive", unit="cm", help="cap of estimated distances")
     heading: HeadingSource | None = None
     n_heading: int = setting(360, static=True, check="positive_int", limit=36_000,
                              help="heading hypotheses without a compass")
@@ -196,13 +197,13 @@ class DELV(HomingMethod):
         if self.order not in ORDERS:
             raise InputError("order", self.order, f"must be one of {', '.join(ORDERS)}")
 
-    def alphas(self, home: UnitMove, view: UnitMove) -> Hypotheses:
+    def alphas(self, home: Move, view: Move) -> Hypotheses:
         """The heading hypotheses: all n_heading of them, or the heading source's estimate."""
         if self.heading is None:
             return TWO_PI * jnp.arange(self.n_heading, dtype=jnp.float32) / self.n_heading
         return jnp.reshape(self.heading(home, view), (1,))
 
-    def match(self, ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: BlobVectors, cur_valid: BlobFlags,
+    def match(self, ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: CurrentVectors, cur_valid: CurrentFlags,
               alphas: Hypotheses, offsets: Array | None = None) -> tuple[Point, Scalar, Scalar, Array]:
         """The arrangement search (`match_arrangement`): (p, alpha, var, n)."""
         return match_arrangement(ref_v, ref_valid, cur_v, cur_valid, alphas, offsets)

@@ -13,12 +13,12 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 from jax import Array, lax
-from ..types import PerPoint, Scalar
+from ..types import Move, PerPoint, Scalar
 
 from ..geometry import TWO_PI, wrap
 from ..scene import Env
 from ..search import first_argmin
-from ..sensing import UnitMove, render
+from ..sensing import render
 from ..sensor import Sensor
 
 
@@ -44,7 +44,7 @@ class Compass(eqx.Module):
 
     reads_gray: ClassVar[bool] = False
 
-    def __call__(self, home: UnitMove, view: UnitMove) -> Scalar:
+    def __call__(self, home: Move, view: Move) -> Scalar:
         return view.compass
 
 
@@ -53,7 +53,7 @@ class VisualCompass(eqx.Module):
 
     reads_gray: ClassVar[bool] = True
 
-    def __call__(self, home: UnitMove, view: UnitMove) -> Scalar:
+    def __call__(self, home: Move, view: Move) -> Scalar:
         return visual_compass(home.start.gray, view.end.gray)
 
 
@@ -65,7 +65,7 @@ class HeadingSource(Protocol):
 
     reads_gray: bool
 
-    def __call__(self, home: UnitMove, view: UnitMove) -> Scalar: ...
+    def __call__(self, home: Move, view: Move) -> Scalar: ...
 
 
 def visual_compass_errors(env: Env, points: Array, headings: Array, sensor: Sensor) -> PerPoint:

@@ -34,6 +34,7 @@ from ..sensing import UnitMove
 from ..settings import setting
 from .base import HomingMethod
 from .heading import Compass, HeadingSource
+from ..types import Real
 
 
 def sample_ring(image: Array, angle: Array) -> Array:
@@ -46,7 +47,7 @@ def sample_ring(image: Array, angle: Array) -> Array:
     return (1.0 - w) * image[i0] + w * image[(i0 + 1) % n]
 
 
-def low_pass(image: Array, sigma_pix: Array) -> Array:
+def low_pass(image: Array, sigma_pix: Real) -> Array:
     """Circular Gaussian blur of a ring image, std `sigma_pix` pixels (0 = unchanged), by FFT:
     the wrapped Gaussian's spectrum is exp(-2 pi^2 sigma^2 f^2 / n^2). Differentiable in sigma."""
     n = image.shape[-1]
@@ -73,7 +74,7 @@ class MFDID(HomingMethod):
     blur_deg: Gaussian low-pass of both images, degrees (0 = the raw images).
     """
 
-    blur_deg: float = setting(0.0, check="non_negative", unit="deg", option="mfdid_blur_deg",
+    blur_deg: Real = setting(0.0, check="non_negative", unit="deg", option="mfdid_blur_deg",
                               help="Gaussian low-pass of both images")
     heading: HeadingSource = Compass()
 

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import jax.numpy as jnp
 
-from ..types import BlobFlags, Pairing, PairingFlags, RowFlags
+from ..types import BlobFlags, CurrentFlags, Pairing, PairingFlags, RowFlags
 
 
-def shift_pairs(ref_valid: BlobFlags, cur_valid: BlobFlags) -> tuple[Pairing, Pairing, PairingFlags, RowFlags]:
+def shift_pairs(ref_valid: BlobFlags, cur_valid: CurrentFlags) -> tuple[Pairing, Pairing, PairingFlags, RowFlags]:
     """Index arrays of every cyclic shift k (thesis §3.2.4, Algorithm 3).
 
     N reference, M current entries (valid first), n = min(N, M) pairs and max(N, M)

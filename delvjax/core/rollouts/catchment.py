@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-from typing import Callable, Sequence
+from collections.abc import Callable, Sequence
 
 import equinox as eqx
 import jax
@@ -24,6 +24,7 @@ from ..types import (GridFlag, GridFloat, GridPoints, MaskGridFlag, MaskGridFloa
 from .rules import (DEFAULT_FIRST_MOVE, DEFAULT_LANES, EXCLUDED, NEAR_WALL, HOME_RADIUS, MAX_STEPS, OUTCOMES, SUCCESS, Outcomes,
                     catchment_counted)
 from .trials import run_trials
+from ..types import Real
 
 
 def occlusion_masks(env: Env, k: int) -> tuple[np.ndarray, list[tuple[int, ...]]]:
@@ -79,8 +80,8 @@ class Catchment(Outcomes):
 
 
 def catchment_area(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = SPACING, heading: float | None = None,
-                   key: Array | None = None, clearance: float = CLEARANCE, masks: np.ndarray | None = None,
-                   hidden: Sequence[tuple[int, ...]] = ((),), home_radius: float = HOME_RADIUS, max_steps: int = MAX_STEPS,
+                   key: Array | None = None, clearance: Real = CLEARANCE, masks: np.ndarray | None = None,
+                   hidden: Sequence[tuple[int, ...]] = ((),), home_radius: Real = HOME_RADIUS, max_steps: int = MAX_STEPS,
                    lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE, collisions: str = "ignore",
                    progress: Callable[[int, int], None] | None = None) -> Catchment:
     """Rollouts from every grid point under every mask in `masks` (M, L), one program (docs/model.md §5).

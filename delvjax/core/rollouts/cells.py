@@ -16,6 +16,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 from jax import Array
+from jax.typing import ArrayLike
 
 from ..maps import random_headings, stream_keys
 from ..metrics import angular_error_deg
@@ -34,12 +35,12 @@ class RolloutCell(eqx.Module):
     env: object
     method: object
     sensor: object
-    key: Array
-    masks: Array
-    n_masks: Array
-    radius: Array
-    homing_first: Array
-    collide: Array
+    key: ArrayLike
+    masks: ArrayLike
+    n_masks: ArrayLike
+    radius: ArrayLike
+    homing_first: ArrayLike
+    collide: ArrayLike
 
 
 class CatchmentSums(eqx.Module):

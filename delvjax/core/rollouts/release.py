@@ -11,13 +11,14 @@ from jax import Array
 from ..geometry import TWO_PI, unit
 from ..maps import CLEARANCE
 from ..scene import Env, clear_of_landmarks
+from ..types import Real
 
 START_TRIES = 64  # candidate release points per trial before a trial counts as not placed
 
 
 @partial(jax.jit, static_argnames=("n", "tries"))
-def release_points(env: Env, key: Array, n: int, distance: Array | None = None, clearance: float = CLEARANCE,
-                   min_home_distance: float = 0.0, margin: float = 0.0,
+def release_points(env: Env, key: Array, n: int, distance: Array | None = None, clearance: Real = CLEARANCE,
+                   min_home_distance: Real = 0.0, margin: Real = 0.0,
                    tries: int = START_TRIES) -> tuple[Array, Array, Array]:
     """n seeded release points: (points (n, 2), headings (n,), placed (n,)).
 

@@ -53,7 +53,7 @@ TRIALS_PER_DISTANCE = 100  # success rate, thesis §4.3
 N_STARTS = 6  # random release points of a trajectory figure
 
 
-def check_rules(first_move: str, collisions: str) -> dict[str, str]:
+def check_rules(first_move: str, collisions: str | None) -> dict[str, str]:
     """Validated rollout rules (module docstring) as the dict recorded in summaries."""
     if first_move not in FIRST_MOVES:
         raise InputError("first_move", first_move, f"must be one of {', '.join(FIRST_MOVES)}")

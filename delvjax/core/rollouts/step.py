@@ -21,6 +21,7 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 from jax import Array
+from jax.typing import ArrayLike
 
 from ..geometry import unit, wrap
 from ..kernel import direction_from, map_poses
@@ -46,15 +47,15 @@ class Rollout(eqx.Module):
     home: UnitMove
     method: HomingMethod
     sensor: Sensor
-    key_index: Array
-    mask_index: Array
-    masks: Array
-    k_roll: Array
-    k_views: Array
-    radius: Array
+    key_index: ArrayLike
+    mask_index: ArrayLike
+    masks: ArrayLike
+    k_roll: ArrayLike
+    k_views: ArrayLike
+    radius: ArrayLike
     max_steps: int = eqx.field(static=True)
-    homing_first: Array
-    collide: Array
+    homing_first: ArrayLike
+    collide: ArrayLike
 
     def advance(self, t: Array, pos: Array, heading: Array, step: Array, first: Array):
         """Trial t's first direction (at its release point) or its next move:

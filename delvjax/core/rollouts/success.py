@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 from functools import partial
-from typing import Sequence
+from collections.abc import Sequence
 
 import equinox as eqx
 import jax
 import jax.numpy as jnp
 import numpy as np
 from jax import Array
+from jax.typing import ArrayLike
 from scipy import stats
 
 from ..maps import CLEARANCE
@@ -21,6 +22,7 @@ from .release import release_points
 from .rules import (DEFAULT_DISTANCES, DEFAULT_FIRST_MOVE, DEFAULT_LANES, EXCLUDED, HOME_RADIUS, MAX_STEPS, OUTCOMES, SUCCESS,
                     TRIALS_PER_DISTANCE, Outcomes, rollout_keys)
 from .trials import run_trials
+from ..types import Real
 
 
 class SuccessRate(Outcomes):
@@ -85,7 +87,7 @@ def wilson_interval_pct(successes: int, trials: int, confidence: float = 0.95) -
 
 def success_rate_trials(env: Env, method: HomingMethod, sensor: Sensor, distances: Sequence[float] = DEFAULT_DISTANCES,
                         trials: int = TRIALS_PER_DISTANCE, heading: float | None = None, key: Array | None = None,
-                        clearance: float = CLEARANCE, visible: Array | None = None, home_radius: float = HOME_RADIUS,
+                        clearance: Real = CLEARANCE, visible: ArrayLike | None = None, home_radius: Real = HOME_RADIUS,
                         max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
                         collisions: str = "ignore") -> SuccessRate:
     """`trials` rollouts per release distance: random direction from home, random heading (docs/model.md §5)."""
@@ -110,7 +112,7 @@ def success_rate_trials(env: Env, method: HomingMethod, sensor: Sensor, distance
 
 
 @partial(jax.jit, static_argnames=("trials",))
-def _release_bins(env: Env, key: Array, distances: Array, trials: int, clearance: float) -> tuple[Array, Array, Array]:
+def _release_bins(env: Env, key: Array, distances: Array, trials: int, clearance: Real) -> tuple[Array, Array, Array]:
     """`release_points` for every distance bin b, from fold_in(key_start, b)."""
     _, _, k_start = rollout_keys(key)
     return jax.vmap(lambda b, r: release_points(env, jax.random.fold_in(k_start, b), trials, r, clearance))(

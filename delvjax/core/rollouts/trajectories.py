@@ -13,6 +13,7 @@ from ..sensor import Sensor
 from ..types import Paths, PerTrial, PerTrialInt, TrialPoints
 from .rules import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes
 from .trials import run_trials
+from ..types import Real
 
 
 class Trajectories(Outcomes):
@@ -33,7 +34,7 @@ class Trajectories(Outcomes):
 
 
 def trajectory_trials(env: Env, method: HomingMethod, sensor: Sensor, starts: Array, headings: Array,
-                      key: Array | None = None, visible: Array | None = None, home_radius: float = HOME_RADIUS,
+                      key: Array | None = None, visible: Array | None = None, home_radius: Real = HOME_RADIUS,
                       max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
                       collisions: str = "ignore") -> Trajectories:
     """Rollouts from `starts` (T, 2) with `headings` (T,) rad, recording every position."""

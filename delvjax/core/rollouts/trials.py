@@ -12,7 +12,7 @@ import functools
 import equinox as eqx
 import jax
 import numpy as np
-from typing import Callable
+from collections.abc import Callable
 
 from jax import Array
 
@@ -28,6 +28,7 @@ from ..batching import padded as padded_width
 from .lanes import run_block
 from .rules import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes, check_rules, rollout_keys
 from .step import Rollout
+from ..types import Real
 
 TRIAL_BLOCK = 16384
 MASK_ROWS = 64  # visibility masks are padded to this many rows (all k of 6 landmarks: 42; one program)
@@ -98,7 +99,7 @@ def home_record(env: Env, key: Array, sensor: Sensor) -> UnitMove:
 
 
 def run_trials(env: Env, starts: TrialPoints, headings: PerTrial, key_index: PerTrialInt, mask_index: PerTrialInt, masks: Masks,
-               key: Array, sensor: Sensor, method: HomingMethod, home_radius: float = HOME_RADIUS,
+               key: Array, sensor: Sensor, method: HomingMethod, home_radius: Real = HOME_RADIUS,
                max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, record_paths: bool = False,
                first_move: str = DEFAULT_FIRST_MOVE, collisions: str = "ignore",
                progress: Callable[[int, int], None] | None = None) -> Trials:

@@ -24,6 +24,8 @@ import jax
 import jax.numpy as jnp
 from jax import Array
 
+from ..types import Real
+
 from ..errors import InputError
 from ..estimation import SIN_EPS, quantize
 from ..geometry import angle_of, rotate, safe_norm, unit, wrap
@@ -59,7 +61,7 @@ def _partner_parallax(rows: Array, cols: Array, col_ok: Array, tau: Array) -> Ar
     return jnp.sum(w * par, axis=-1)
 
 
-def _guarded(r: Array, sin_delta: Array, r_max: Array) -> Array:
+def _guarded(r: Array, sin_delta: Array, r_max: Real) -> Array:
     """docs/model.md §3.1 guard: not positive, non-finite, > r_max or |sin delta| tiny -> r_max."""
     bad = (jnp.abs(sin_delta) < SIN_EPS) | ~jnp.isfinite(r) | (r <= 0) | (r > r_max)
     return jnp.where(bad, r_max, r)

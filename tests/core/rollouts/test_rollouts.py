@@ -233,7 +233,7 @@ def test_methods_sharing_one_program_give_the_same_numbers_as_their_own_programs
 
 
 @pytest.mark.parametrize("program", [("alv", "acv"), ("delv-compass", "nope"), "delv-compass", (), 3])
-def test_a_program_must_hold_known_methods_including_the_one_run(program):
+def test_a_program_must_hold_known_methods_including_the_one_run(program, untyped):
     env = make_env(FOUR)
     with pytest.raises(InputError, match="program"):
         delvjax.catchment(env, method="delv-compass", spacing=100.0, program=program)
