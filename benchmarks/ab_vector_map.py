@@ -54,32 +54,46 @@ print(json.dumps({"best_ms": 1e3 * min(times), "median_ms": 1e3 * float(np.media
 
 def measure(tree: Path, method: str, repeats: int) -> dict:
     env = {**os.environ, "PYTHONPATH": str(tree), "DELVJAX_CACHE_DIR": ""}
-    out = subprocess.run([sys.executable, "-c", CHILD, method, str(repeats)], cwd=tree, env=env,
-                         capture_output=True, text=True, check=True)
+    out = subprocess.run(
+        [sys.executable, "-c", CHILD, method, str(repeats)],
+        cwd=tree,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--base", required=True, help="git revision to compare against")
-    p.add_argument("--methods", nargs="+", default=["delv", "delv-compass", "delv-visual", "alv", "acv", "warping", "mfdid"])
+    p.add_argument(
+        "--methods", nargs="+", default=["delv", "delv-compass", "delv-visual", "alv", "acv", "warping", "mfdid"]
+    )
     p.add_argument("--rounds", type=int, default=2)
     p.add_argument("--repeats", type=int, default=100)
     a = p.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         base = Path(tmp) / "base"
-        subprocess.run(["git", "worktree", "add", "--detach", str(base), a.base], cwd=ROOT, check=True,
-                       capture_output=True)
+        subprocess.run(
+            ["git", "worktree", "add", "--detach", str(base), a.base], cwd=ROOT, check=True, capture_output=True
+        )
         try:
-            print(f"{'method':13s} {'base best':>9s} {'base med':>8s} {'this best':>9s} {'this med':>8s} {'this/base':>9s}")
+            print(
+                f"{'method':13s} {'base best':>9s} {'base med':>8s} {'this best':>9s} {'this med':>8s} {'this/base':>9s}"
+            )
             for m in a.methods:
                 runs = {"base": [], "this": []}
                 for _ in range(a.rounds):  # alternate, so drift of the machine hits both alike
                     runs["base"].append(measure(base, m, a.repeats))
                     runs["this"].append(measure(ROOT, m, a.repeats))
                 b = {k: (min(r["best_ms"] for r in v), min(r["median_ms"] for r in v)) for k, v in runs.items()}
-                print(f"{m:13s} {b['base'][0]:9.2f} {b['base'][1]:8.2f} {b['this'][0]:9.2f} {b['this'][1]:8.2f} "
-                      f"{b['this'][0] / b['base'][0]:9.3f}", flush=True)
+                print(
+                    f"{m:13s} {b['base'][0]:9.2f} {b['base'][1]:8.2f} {b['this'][0]:9.2f} {b['this'][1]:8.2f} "
+                    f"{b['this'][0] / b['base'][0]:9.3f}",
+                    flush=True,
+                )
         finally:
             subprocess.run(["git", "worktree", "remove", "--force", str(base)], cwd=ROOT, capture_output=True)
 

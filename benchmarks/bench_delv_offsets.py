@@ -62,8 +62,9 @@ def main() -> None:
         "remainder": jax.jit(jax.vmap(lambda b, v: remainder_offsets(b, v, alphas))),
         "now": jax.jit(jax.vmap(lambda b, v: delv.list_offsets(b, v, alphas))),
     }
-    match = jax.jit(jax.vmap(lambda r, c, b, v: delv.match_arrangement(r, v, c, v, alphas,
-                                                                         delv.list_offsets(b, v, alphas))))
+    match = jax.jit(
+        jax.vmap(lambda r, c, b, v: delv.match_arrangement(r, v, c, v, alphas, delv.list_offsets(b, v, alphas)))
+    )
     for name, f in progs.items():
         t = time.perf_counter()
         jax.block_until_ready(f(bearing, valid))
@@ -79,8 +80,10 @@ def main() -> None:
     print(f"{'offsets per view':24s} {'us':>8s}")
     for name, us in times.items():
         print(f"{name:24s} {us:8.2f}")
-    print(f"remainder / now: {times['remainder'] / times['now']:.1f}x; "
-          f"numpy reference / now: {times['numpy reference'] / times['now']:.1f}x")
+    print(
+        f"remainder / now: {times['remainder'] / times['now']:.1f}x; "
+        f"numpy reference / now: {times['numpy reference'] / times['now']:.1f}x"
+    )
 
 
 if __name__ == "__main__":

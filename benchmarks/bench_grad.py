@@ -44,8 +44,10 @@ def main() -> None:
     ap.add_argument("--repeats", type=int, default=10)
     a = ap.parse_args()
     print(f"jax {jax.__version__} on {jax.devices()[0].platform}, env {a.env}, spacing {a.spacing:g}")
-    print(f"{'method':7s} {'points':>6s} {'params':>6s} {'fwd ms':>7s} {'grad ms':>8s} {'ratio':>6s} {'FD ms':>8s} "
-          f"{'hard map ms':>11s} {'compile fwd/grad s':>18s}")
+    print(
+        f"{'method':7s} {'points':>6s} {'params':>6s} {'fwd ms':>7s} {'grad ms':>8s} {'ratio':>6s} {'FD ms':>8s} "
+        f"{'hard map ms':>11s} {'compile fwd/grad s':>18s}"
+    )
     for m in a.methods:
         p = quality_problem(a.env, m, spacing=a.spacing)
         n_params = sum(x.size for x in jax.tree.leaves(p.params))
@@ -53,8 +55,11 @@ def main() -> None:
         c_g, grad = timed(lambda: problem_value_and_grad(p), a.repeats)
         env, pts, heads = p.env, jax.numpy.asarray(p.points), jax.numpy.asarray(p.headings)
         _, hard = timed(lambda: maps.homing_directions(env, pts, heads, p.key, p.sensor, p.method), a.repeats)
-        print(f"{m:7s} {int(p.included.sum()):6d} {n_params:6d} {1e3 * fwd:7.1f} {1e3 * grad:8.1f} {grad / fwd:6.2f} "
-              f"{2e3 * n_params * fwd:8.0f} {1e3 * hard:11.1f} {c_f:8.1f} / {c_g:.1f}", flush=True)
+        print(
+            f"{m:7s} {int(p.included.sum()):6d} {n_params:6d} {1e3 * fwd:7.1f} {1e3 * grad:8.1f} {grad / fwd:6.2f} "
+            f"{2e3 * n_params * fwd:8.0f} {1e3 * hard:11.1f} {c_f:8.1f} / {c_g:.1f}",
+            flush=True,
+        )
 
 
 if __name__ == "__main__":

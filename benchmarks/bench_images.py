@@ -53,8 +53,13 @@ def child(env: str, spacing: float, method: str, mode: str) -> dict:
 
     folder = tempfile.mkdtemp(prefix="bench-images-")
     try:
-        out = subprocess.run([sys.executable, "-c", CHILD, env, str(spacing), method, mode, folder + "/db"],
-                             capture_output=True, text=True, check=True, cwd=ROOT)
+        out = subprocess.run(
+            [sys.executable, "-c", CHILD, env, str(spacing), method, mode, folder + "/db"],
+            capture_output=True,
+            text=True,
+            check=True,
+            cwd=ROOT,
+        )
     finally:
         shutil.rmtree(folder, ignore_errors=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
@@ -88,19 +93,26 @@ def main() -> None:
     p.add_argument("--modes", nargs="+", default=["memory", "files"], choices=["memory", "files"])
     a = p.parse_args()
     print(f"env {a.env}, spacing {a.spacing:g} cm (fresh process per row; first run includes compilation)")
-    print(f"{'method':10s} {'mode':7s} {'images':>6s} {'size':>7s} {'first s':>8s} {'warm s':>7s} {'ms/img':>7s} "
-          f"{'error':>6s} {'RSS MB':>7s}")
+    print(
+        f"{'method':10s} {'mode':7s} {'images':>6s} {'size':>7s} {'first s':>8s} {'warm s':>7s} {'ms/img':>7s} "
+        f"{'error':>6s} {'RSS MB':>7s}"
+    )
     warm_per_image = None
     for m in a.methods:
         for mode in a.modes:
             r = child(a.env, a.spacing, m, mode)
             ms = 1e3 * r["warm_s"] / r["images"]
             warm_per_image = warm_per_image or r["warm_s"] / r["images"]
-            print(f"{m:10s} {mode:7s} {r['images']:6d} {r['cols']:3d}x{r['rows']:<3d} {r['first_s']:8.2f} "
-                  f"{r['warm_s']:7.2f} {ms:7.2f} {r['mean_error_deg']:6.1f} {r['peak_rss_mb']:7.0f}", flush=True)
+            print(
+                f"{m:10s} {mode:7s} {r['images']:6d} {r['cols']:3d}x{r['rows']:<3d} {r['first_s']:8.2f} "
+                f"{r['warm_s']:7.2f} {ms:7.2f} {r['mean_error_deg']:6.1f} {r['peak_rss_mb']:7.0f}",
+                flush=True,
+            )
     ref = reference_seconds_per_image(a.env, a.ref_images)
-    print(f"NumPy reference: {ref * 1e3:.0f} ms per image (render, band rings, blobs); the whole path above "
-          f"(render, rings, vector map) per image, warm: {warm_per_image * 1e3:.2f} ms; ratio {ref / warm_per_image:.0f}x")
+    print(
+        f"NumPy reference: {ref * 1e3:.0f} ms per image (render, band rings, blobs); the whole path above "
+        f"(render, rings, vector map) per image, warm: {warm_per_image * 1e3:.2f} ms; ratio {ref / warm_per_image:.0f}x"
+    )
 
 
 if __name__ == "__main__":

@@ -52,8 +52,10 @@ def main() -> None:
     for n in a.points:
         r = run(n, a.method, a.batch)
         one = run(n, a.method, 10**9)["peak_rss_mb"] if n <= 1e5 else math.nan
-        print(f"{r['points']:9d} {r['compile']:9.2f} {r['seconds']:8.2f} {r['points'] / r['seconds']:9.0f} {r['peak_rss_mb']:12.0f} "
-              f"{'-' if math.isnan(one) else f'{one:.0f}':>13}")
+        print(
+            f"{r['points']:9d} {r['compile']:9.2f} {r['seconds']:8.2f} {r['points'] / r['seconds']:9.0f} {r['peak_rss_mb']:12.0f} "
+            f"{'-' if math.isnan(one) else f'{one:.0f}':>13}"
+        )
 
 
 if __name__ == "__main__":

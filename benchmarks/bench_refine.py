@@ -32,13 +32,20 @@ def main() -> None:
     ap.add_argument("--spacing", type=float, default=25.0)
     a = ap.parse_args()
     corner = delvjax.make_env(CORNER, name="corner")
-    cases = [("env1", "env1", {}), ("env1, 3 deg bearing noise", "env1", {"bearing_noise_deg": 3.0}),
-             ("corner, 10 deg search", corner, {"n_heading": 36}), ("corner, 1 deg search", corner, {})]
+    cases = [
+        ("env1", "env1", {}),
+        ("env1, 3 deg bearing noise", "env1", {"bearing_noise_deg": 3.0}),
+        ("corner, 10 deg search", corner, {"n_heading": 36}),
+        ("corner, 1 deg search", corner, {}),
+    ]
     print(f"{'case':28s} {'plain mean/median':>18s} {'refined mean/median':>20s} {'plain ms':>8s} {'refined ms':>10s}")
     for label, env, kw in cases:
         (p, tp), (r, tr) = errors(env, "delv", a.spacing, **kw), errors(env, "delv-refined", a.spacing, **kw)
-        print(f"{label:28s} {p.mean():8.3f} / {np.median(p):7.3f} {r.mean():9.3f} / {np.median(r):8.3f} "
-              f"{1e3 * tp:8.1f} {1e3 * tr:10.1f}", flush=True)
+        print(
+            f"{label:28s} {p.mean():8.3f} / {np.median(p):7.3f} {r.mean():9.3f} / {np.median(r):8.3f} "
+            f"{1e3 * tp:8.1f} {1e3 * tr:10.1f}",
+            flush=True,
+        )
 
 
 if __name__ == "__main__":

@@ -40,9 +40,11 @@ def main() -> None:
         out = Path(a.out or Path(tmp) / "results")
         cold = run(out, a.quick, cache="", workers=a.workers)  # no persistent compilation cache: all compiles
         again = run(out, a.quick, cache="", workers=a.workers)
-        peak_gb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024 ** 2
-        print(f"reproduce{' --quick' if a.quick else ''} (workers {a.workers or 'default'}): cold {cold:.1f} s, second run {again:.1f} s, "
-              f"peak RSS {peak_gb:.2f} GB")
+        peak_gb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024**2
+        print(
+            f"reproduce{' --quick' if a.quick else ''} (workers {a.workers or 'default'}): cold {cold:.1f} s, second run {again:.1f} s, "
+            f"peak RSS {peak_gb:.2f} GB"
+        )
         print(f"{'study':16s} {'wall s':>8s} {'compile s':>10s}")
         for f in sorted(out.glob("*/study.json")):
             d = json.loads(f.read_text())

@@ -55,19 +55,28 @@ def bench_method(env, method, spacing, reps, lanes):
     def rollouts_only(seed):
         pts, heads, cells, key = grid_trials(env, spacing, seed)
         n = pts.shape[0]
-        return rollouts.run_trials(env, pts, heads, cells, jnp.zeros(n, jnp.int32), env.valid[None], key, config,
-                                   module, lanes=lanes)
+        return rollouts.run_trials(
+            env, pts, heads, cells, jnp.zeros(n, jnp.int32), env.valid[None], key, config, module, lanes=lanes
+        )
 
     res, first = timed(rollouts_only, 0)
     warm = min(timed(rollouts_only, s)[1] for s in range(1, reps + 1))
-    _, first_full = timed(rollouts.catchment_area, env, module, config, spacing, None, jax.random.PRNGKey(0), lanes=lanes)
-    full = min(timed(rollouts.catchment_area, env, module, config, spacing, None, jax.random.PRNGKey(s), lanes=lanes)[1]
-               for s in range(1, reps + 1))
+    _, first_full = timed(
+        rollouts.catchment_area, env, module, config, spacing, None, jax.random.PRNGKey(0), lanes=lanes
+    )
+    full = min(
+        timed(rollouts.catchment_area, env, module, config, spacing, None, jax.random.PRNGKey(s), lanes=lanes)[1]
+        for s in range(1, reps + 1)
+    )
     steps = np.asarray(res.steps)
-    print(f"{method:13s} rollouts: {steps.size} starts, {int(steps.sum())} moves (mean {steps.mean():.1f}, "
-          f"max {steps.max()}), catchment {100 * float(np.mean(np.asarray(res.success))):.2f} %")
-    print(f"{'':13s} rollouts only: compile {first - warm:6.2f} s  warm {warm:6.3f} s "
-          f"({1e6 * warm / max(int(steps.sum()), 1):.1f} us per move)")
+    print(
+        f"{method:13s} rollouts: {steps.size} starts, {int(steps.sum())} moves (mean {steps.mean():.1f}, "
+        f"max {steps.max()}), catchment {100 * float(np.mean(np.asarray(res.success))):.2f} %"
+    )
+    print(
+        f"{'':13s} rollouts only: compile {first - warm:6.2f} s  warm {warm:6.3f} s "
+        f"({1e6 * warm / max(int(steps.sum()), 1):.1f} us per move)"
+    )
     print(f"{'':13s} catchment (rollouts + vector map): compile {first_full - full:6.2f} s  warm {full:6.3f} s")
     return warm, full, res
 
@@ -81,8 +90,9 @@ def bench_reference(env, method, spacing, n_points):
     t = time.perf_counter()
     moves = 0
     for i in pick:  # the reference is a per-point loop by design
-        _, steps, _ = reference_rollout(lms, arena, home, np.asarray(pts[i], float), float(heads[i]), method,
-                                        record=record)
+        _, steps, _ = reference_rollout(
+            lms, arena, home, np.asarray(pts[i], float), float(heads[i]), method, record=record
+        )
         moves += steps
     per_point = (time.perf_counter() - t) / n_points
     return per_point, moves / n_points, pts.shape[0]
@@ -96,8 +106,12 @@ def bench_strategies(env, method, spacing):
     masks = env.valid[None]
     print(f"strategies ({method}, {n} starts):")
     for lanes in (64, 128, 256, 512, n):
-        run = lambda: rollouts.run_trials(env, pts, heads, cells, jnp.zeros(n, jnp.int32), masks, key, config,  # noqa: E731
-                                          module, lanes=lanes)
+
+        def run(lanes=lanes):
+            return rollouts.run_trials(
+                env, pts, heads, cells, jnp.zeros(n, jnp.int32), masks, key, config, module, lanes=lanes
+            )
+
         timed(run)
         print(f"  queue, {lanes:4d} lanes: warm {min(timed(run)[1] for _ in range(2)):.3f} s")
     for chunk in (128, 256):
@@ -107,9 +121,21 @@ def bench_strategies(env, method, spacing):
         c = jnp.concatenate([cells, jnp.repeat(cells[:1], pad)])
 
         def chunked():
-            return [rollouts.run_trials(env, p[i:i + chunk], h[i:i + chunk], c[i:i + chunk],
-                                        jnp.zeros(chunk, jnp.int32), masks, key, config, module, lanes=chunk)
-                    for i in range(0, n + pad, chunk)]
+            return [
+                rollouts.run_trials(
+                    env,
+                    p[i : i + chunk],
+                    h[i : i + chunk],
+                    c[i : i + chunk],
+                    jnp.zeros(chunk, jnp.int32),
+                    masks,
+                    key,
+                    config,
+                    module,
+                    lanes=chunk,
+                )
+                for i in range(0, n + pad, chunk)
+            ]
 
         timed(chunked)
         print(f"  chunks of {chunk} without refill: warm {min(timed(chunked)[1] for _ in range(2)):.3f} s")
@@ -125,16 +151,20 @@ def main() -> None:
     ap.add_argument("--strategies", action="store_true", help="also compare batching strategies")
     args = ap.parse_args()
     env = load_env(args.env)
-    print(f"jax {jax.__version__} on {jax.devices()[0].platform}; {args.env}, spacing {args.spacing:g}, "
-          f"lanes {args.lanes}")
+    print(
+        f"jax {jax.__version__} on {jax.devices()[0].platform}; {args.env}, spacing {args.spacing:g}, "
+        f"lanes {args.lanes}"
+    )
     warm, _, _ = bench_method(env, "delv", args.spacing, args.reps, args.lanes)
     if "warping" in METHODS:
         bench_method(env, "warping", args.spacing, args.reps, args.lanes)
     else:
         print("warping       not registered (skipped)")
     per_point, mean_moves, n = bench_reference(env, "delv", args.spacing, args.ref_points)
-    print(f"NumPy reference (delv): {per_point:.3f} s per start ({mean_moves:.1f} moves) on {args.ref_points} "
-          f"starts -> {per_point * n:.1f} s for {n} starts")
+    print(
+        f"NumPy reference (delv): {per_point:.3f} s per start ({mean_moves:.1f} moves) on {args.ref_points} "
+        f"starts -> {per_point * n:.1f} s for {n} starts"
+    )
     print(f"ratio reference / JAX warm rollouts: {per_point * n / warm:.0f}x")
     if args.strategies:
         bench_strategies(env, "delv", args.spacing)

@@ -56,16 +56,24 @@ def free_port() -> int:
 
 
 def run_devices(kind: str, devices: int, seeds: int) -> dict:
-    return run_child(CHILD, kind, seeds, 0, 1, 0, XLA_FLAGS=f"--xla_force_host_platform_device_count={devices}",
-                     DELVJAX_CACHE_DIR="")
+    return run_child(
+        CHILD, kind, seeds, 0, 1, 0, XLA_FLAGS=f"--xla_force_host_platform_device_count={devices}", DELVJAX_CACHE_DIR=""
+    )
 
 
 def run_processes(kind: str, processes: int, seeds: int) -> dict:
     port = free_port()
     env = {**os.environ, "DELVJAX_CACHE_DIR": "", "JAX_PLATFORMS": "cpu"}
-    procs = [subprocess.Popen([sys.executable, "-c", CHILD, kind, str(seeds), str(p), str(processes), str(port)],
-                              env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-             for p in range(processes)]
+    procs = [
+        subprocess.Popen(
+            [sys.executable, "-c", CHILD, kind, str(seeds), str(p), str(processes), str(port)],
+            env=env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        for p in range(processes)
+    ]
     outs = [p.communicate() for p in procs]
     if any(p.returncode for p in procs):
         raise SystemExit("\n".join(o[1][-2000:] for o in outs))
@@ -84,8 +92,10 @@ def main() -> None:
         seeds = max(1, a.cells // 100) if kind == "vector-map" else max(1, a.catchment_cells // 10)
         grid = "40 x 40 grid" if kind == "vector-map" else "1559 rollouts a cell"
         print(f"\nDELV {kind} sweep, env1, {grid}; cpu count {os.cpu_count()}")
-        print(f"{'setting':>12} {'first s':>8} {'warm s':>7} {'cells':>6} {'cells/s':>8} {'efficiency':>10} "
-              f"{'programs':>8}")
+        print(
+            f"{'setting':>12} {'first s':>8} {'warm s':>7} {'cells':>6} {'cells/s':>8} {'efficiency':>10} "
+            f"{'programs':>8}"
+        )
         base = None
         runs = [(f"{d} device(s)", d, run_devices(kind, d, seeds)) for d in a.devices]
         runs += [(f"{p} processes", p, run_processes(kind, p, seeds)) for p in a.processes]
@@ -93,8 +103,11 @@ def main() -> None:
             rate = r["cells"] / r["warm_s"]
             base = rate if base is None and scale == 1 else base
             eff = f"{rate / (base * scale):.2f}" if base else "-"
-            print(f"{label:>12} {r['first_s']:8.1f} {r['warm_s']:7.1f} {r['cells']:>6} {rate:8.1f} {eff:>10} "
-                  f"{r['programs']:>8}  ({r['platform']})", flush=True)
+            print(
+                f"{label:>12} {r['first_s']:8.1f} {r['warm_s']:7.1f} {r['cells']:>6} {rate:8.1f} {eff:>10} "
+                f"{r['programs']:>8}  ({r['platform']})",
+                flush=True,
+            )
 
 
 if __name__ == "__main__":

@@ -35,12 +35,17 @@ def main() -> None:
     ap.add_argument("--cells", type=int, nargs="+", default=[1000, 10000, 100000], help="multiples of 100")
     ap.add_argument("--spacing", type=float, default=250.0)
     a = ap.parse_args()
-    print(f"{'cells':>7} {'points':>6} {'time s':>7} {'ms/cell':>7} {'after import MB':>15} {'peak MB':>8} "
-          f"{'result MB':>9}")
+    print(
+        f"{'cells':>7} {'points':>6} {'time s':>7} {'ms/cell':>7} {'after import MB':>15} {'peak MB':>8} "
+        f"{'result MB':>9}"
+    )
     for cells in a.cells:
         r = run_child(CHILD, cells, a.spacing, DELVJAX_CACHE_DIR="")
-        print(f"{r['cells']:>7} {r['points']:>6} {r['s']:7.1f} {1000 * r['s'] / r['cells']:7.2f} {r['import_mb']:15.0f} "
-              f"{r['peak_mb']:8.0f} {r['result_mb']:9.2f}", flush=True)
+        print(
+            f"{r['cells']:>7} {r['points']:>6} {r['s']:7.1f} {1000 * r['s'] / r['cells']:7.2f} {r['import_mb']:15.0f} "
+            f"{r['peak_mb']:8.0f} {r['result_mb']:9.2f}",
+            flush=True,
+        )
 
 
 if __name__ == "__main__":

@@ -34,9 +34,17 @@ def bench(env_name: str, method: str, spacing: float, repeats: int, ref_points: 
     ref_per_point = reference_seconds_per_point(ref.reference_direction, run, method, ref_points)
     warm_s = statistics.median(run["warm"])
     n = run["points"].shape[0]
-    return {"method": method, "points": n, "compile_s": run["compile_s"], "warm_ms": 1e3 * warm_s,
-            "best_ms": 1e3 * min(run["warm"]), "api_warm_ms": 1e3 * api_s, "us_per_point": 1e6 * warm_s / n,
-            "ref_ms_per_point": 1e3 * ref_per_point, "ratio": ref_per_point / (warm_s / n)}
+    return {
+        "method": method,
+        "points": n,
+        "compile_s": run["compile_s"],
+        "warm_ms": 1e3 * warm_s,
+        "best_ms": 1e3 * min(run["warm"]),
+        "api_warm_ms": 1e3 * api_s,
+        "us_per_point": 1e6 * warm_s / n,
+        "ref_ms_per_point": 1e3 * ref_per_point,
+        "ratio": ref_per_point / (warm_s / n),
+    }
 
 
 def main() -> None:
@@ -47,12 +55,19 @@ def main() -> None:
     p.add_argument("--repeats", type=int, default=20)
     p.add_argument("--ref-points", type=int, default=20)
     a = p.parse_args()
-    print(f"jax {jax.__version__} on {jax.devices()[0].platform} ({jax.device_count()} device), env {a.env}, spacing {a.spacing:g}")
-    print(f"{'method':13s} {'points':>6s} {'compile s':>9s} {'warm ms':>8s} {'best ms':>7s} {'api ms':>7s} {'us/pt':>7s} {'ref ms/pt':>9s} {'ratio':>8s}")
+    print(
+        f"jax {jax.__version__} on {jax.devices()[0].platform} ({jax.device_count()} device), env {a.env}, spacing {a.spacing:g}"
+    )
+    print(
+        f"{'method':13s} {'points':>6s} {'compile s':>9s} {'warm ms':>8s} {'best ms':>7s} {'api ms':>7s} {'us/pt':>7s} {'ref ms/pt':>9s} {'ratio':>8s}"
+    )
     for m in a.methods:
         r = bench(a.env, m, a.spacing, a.repeats, a.ref_points)
-        print(f"{r['method']:13s} {r['points']:6d} {r['compile_s']:9.2f} {r['warm_ms']:8.1f} {r['best_ms']:7.1f} {r['api_warm_ms']:7.1f} "
-              f"{r['us_per_point']:7.1f} {r['ref_ms_per_point']:9.2f} {r['ratio']:7.0f}x", flush=True)
+        print(
+            f"{r['method']:13s} {r['points']:6d} {r['compile_s']:9.2f} {r['warm_ms']:8.1f} {r['best_ms']:7.1f} {r['api_warm_ms']:7.1f} "
+            f"{r['us_per_point']:7.1f} {r['ref_ms_per_point']:9.2f} {r['ratio']:7.0f}x",
+            flush=True,
+        )
 
 
 if __name__ == "__main__":

@@ -71,13 +71,22 @@ def bench(env_name: str, method: str, channel: str, spacing: float, repeats: int
     cfg = Sensor(channel=channel)
     run = time_map_program(env_name, method, cfg, spacing, repeats)
     compile_s, warm, cpu, points = run["compile_s"], run["warm"], run["cpu"], run["points"]
-    ref_per_point = reference_seconds_per_point(ref.reference_direction, run, method, ref_points,
-                                                channel=channel, background=BACKGROUNDS[int(cfg.background)])
+    ref_per_point = reference_seconds_per_point(
+        ref.reference_direction, run, method, ref_points, channel=channel, background=BACKGROUNDS[int(cfg.background)]
+    )
     warm_s = min(warm)
     n = points.shape[0]
-    out = {"method": method, "channel": channel, "points": n, "compile_s": compile_s, "warm_ms": 1e3 * warm_s,
-           "median_ms": 1e3 * statistics.median(warm), "cpu_ms": 1e3 * min(cpu),
-           "ref_s_per_point": ref_per_point, "ratio": ref_per_point / (warm_s / n)}
+    out = {
+        "method": method,
+        "channel": channel,
+        "points": n,
+        "compile_s": compile_s,
+        "warm_ms": 1e3 * warm_s,
+        "median_ms": 1e3 * statistics.median(warm),
+        "cpu_ms": 1e3 * min(cpu),
+        "ref_s_per_point": ref_per_point,
+        "ratio": ref_per_point / (warm_s / n),
+    }
     if method == "warping":
         out.update(floor(n, cfg, channel))
     return out
@@ -89,20 +98,34 @@ def main() -> None:
     p.add_argument("--spacing", type=float, default=25.0)
     p.add_argument("--repeats", type=int, default=10)
     p.add_argument("--ref-points", type=int, default=3)
-    p.add_argument("--cases", nargs="+", default=["warping:mask", "warping:gray", "mfdid:mask", "mfdid:gray"],
-                   help="method:channel pairs")
+    p.add_argument(
+        "--cases",
+        nargs="+",
+        default=["warping:mask", "warping:gray", "mfdid:mask", "mfdid:gray"],
+        help="method:channel pairs",
+    )
     a = p.parse_args()
-    print(f"jax {jax.__version__} on {jax.devices()[0].platform}, {os.cpu_count()} cores at ~{cpu_ghz():.2f} GHz, "
-          f"env {a.env}, spacing {a.spacing:g}; warm = best of {a.repeats}, load average {os.getloadavg()[0]:.2f}")
-    print(f"{'method':8s} {'chan':4s} {'points':>6s} {'compile s':>9s} {'warm ms':>8s} {'median':>7s} {'cpu ms':>7s} "
-          f"{'ref s/pt':>8s} {'ratio':>8s} | {'hyps':>9s} {'Gops':>6s} {'table KB':>8s} {'floor ms':>8s}")
+    print(
+        f"jax {jax.__version__} on {jax.devices()[0].platform}, {os.cpu_count()} cores at ~{cpu_ghz():.2f} GHz, "
+        f"env {a.env}, spacing {a.spacing:g}; warm = best of {a.repeats}, load average {os.getloadavg()[0]:.2f}"
+    )
+    print(
+        f"{'method':8s} {'chan':4s} {'points':>6s} {'compile s':>9s} {'warm ms':>8s} {'median':>7s} {'cpu ms':>7s} "
+        f"{'ref s/pt':>8s} {'ratio':>8s} | {'hyps':>9s} {'Gops':>6s} {'table KB':>8s} {'floor ms':>8s}"
+    )
     for case in a.cases:
         method, channel = case.split(":")
         r = bench(a.env, method, channel, a.spacing, a.repeats, a.ref_points)
-        tail = (f" | {r['hypotheses']:9.3g} {r['gops']:6.1f} {r['table_kb']:8.0f} {r['floor_ms']:8.1f}"
-                if "floor_ms" in r else "")
-        print(f"{method:8s} {channel:4s} {r['points']:6d} {r['compile_s']:9.2f} {r['warm_ms']:8.1f} {r['median_ms']:7.1f} "
-              f"{r['cpu_ms']:7.1f} {r['ref_s_per_point']:8.3f} {r['ratio']:7.0f}x" + tail, flush=True)
+        tail = (
+            f" | {r['hypotheses']:9.3g} {r['gops']:6.1f} {r['table_kb']:8.0f} {r['floor_ms']:8.1f}"
+            if "floor_ms" in r
+            else ""
+        )
+        print(
+            f"{method:8s} {channel:4s} {r['points']:6d} {r['compile_s']:9.2f} {r['warm_ms']:8.1f} {r['median_ms']:7.1f} "
+            f"{r['cpu_ms']:7.1f} {r['ref_s_per_point']:8.3f} {r['ratio']:7.0f}x" + tail,
+            flush=True,
+        )
 
 
 if __name__ == "__main__":

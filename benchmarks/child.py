@@ -10,8 +10,9 @@ import sys
 
 def run_child(code: str, *args, **env: str) -> dict:
     """`python -c code args...` with extra environment variables; the JSON object of its last line."""
-    out = subprocess.run([sys.executable, "-c", code, *map(str, args)], env={**os.environ, **env},
-                         capture_output=True, text=True)
+    out = subprocess.run(
+        [sys.executable, "-c", code, *map(str, args)], env={**os.environ, **env}, capture_output=True, text=True
+    )
     if out.returncode != 0:
         raise SystemExit(out.stderr[-3000:])
     return json.loads(out.stdout.strip().splitlines()[-1])

@@ -36,7 +36,21 @@ FIRST = ("no_compass",)
 # Rough seconds of each study in a full run on 2 CPU cores, one at a time (occlusion, fit and layouts
 # measured; the others scaled from --quick): only the order in which studies side by side are started,
 # the longest first, so that a long one does not start last. A study missing here starts last.
-FULL_RUN_SECONDS = {"occlusion": 620, "fit": 240, "layouts": 145, "quantization": 120, "visual_compass": 100,
-                    "image_matching": 80, "sensitivity": 60, "landmark_number": 50, "robot_images": 45,
-                    "comparators": 40, "with_compass": 35, "natural_images": 30, "image_effects": 30,
-                    "step_distance": 25, "no_compass": 25, "environments": 1}
+FULL_RUN_SECONDS = {
+    "occlusion": 620,
+    "fit": 240,
+    "layouts": 145,
+    "quantization": 120,
+    "visual_compass": 100,
+    "image_matching": 80,
+    "sensitivity": 60,
+    "landmark_number": 50,
+    "robot_images": 45,
+    "comparators": 40,
+    "with_compass": 35,
+    "natural_images": 30,
+    "image_effects": 30,
+    "step_distance": 25,
+    "no_compass": 25,
+    "environments": 1,
+}

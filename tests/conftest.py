@@ -17,6 +17,7 @@ from delvjax.outputs._cache import enable_compilation_cache
 
 enable_compilation_cache()
 
+
 @pytest.fixture
 def untyped():
     """A test that passes values of the wrong type on purpose: `tests.hints_unchecked` while it runs."""
@@ -132,8 +133,12 @@ def plain_db(tmp_path_factory, small_db) -> Path:
     """The small database as a plain folder: shuffled rows, other file names, positions.csv in cm."""
     rows = entries(small_db)
     order = np.random.default_rng(0).permutation(len(rows))
-    return write_plain(tmp_path_factory.mktemp("plain") / "panos", small_db, [rows[i] for i in order],
-                       rename=lambda i, f: f"pano {i:03d}.png")
+    return write_plain(
+        tmp_path_factory.mktemp("plain") / "panos",
+        small_db,
+        [rows[i] for i in order],
+        rename=lambda i, f: f"pano {i:03d}.png",
+    )
 
 
 @pytest.fixture(scope="module")
@@ -142,5 +147,3 @@ def plain9(tmp_path_factory, small_db) -> Path:
     rows = [r for r in entries(small_db) if max(abs(float(r["X [mm]"]) - 900), abs(float(r["Y [mm]"]) - 900)) <= 200]
     assert len(rows) == 9
     return write_plain(tmp_path_factory.mktemp("plain9") / "nine", small_db, rows, rename=lambda i, f: f"p{i}.png")
-
-

@@ -63,23 +63,48 @@ def add_scene_args(p: argparse.ArgumentParser, methods=None, grid: bool = True, 
     """The scene, method and noise options; `grid`: the command evaluates a grid (--spacing); `images`:
     it can run on an image database instead (`cli_images.add_image_args`; the environment is optional).
     The method and sensor flags are made from the settings declared on the modules (`add_setting_args`)."""
-    p.add_argument("env", nargs="?" if images else None, default=None,
-                   help="preset name (see `delvjax envs`) or a docs/model.md §7 JSON file"
-                        + (" (or --images DIR)" if images else ""))
+    p.add_argument(
+        "env",
+        nargs="?" if images else None,
+        default=None,
+        help="preset name (see `delvjax envs`) or a docs/model.md §7 JSON file"
+        + (" (or --images DIR)" if images else ""),
+    )
     p.add_argument("--method", default="delv", help=f"homing method: {', '.join(methods or METHODS)} (default delv)")
     if grid:
-        p.add_argument("--spacing", type=float, default=SPACING, help=f"grid spacing in cm (default {SPACING:g}: 40x40)")
+        p.add_argument(
+            "--spacing", type=float, default=SPACING, help=f"grid spacing in cm (default {SPACING:g}: 40x40)"
+        )
     else:  # not offered; recognized only to refuse it in one line naming it (`scene_kwargs`)
         p.add_argument("--spacing", type=float, default=None, dest="unused_spacing", help=argparse.SUPPRESS)
-    p.add_argument("--clearance", type=float, default=CLEARANCE,
-                   help=f"grid points closer than r + clearance to a landmark are dropped (default {CLEARANCE:g})")
-    p.add_argument("--heading-deg", type=float, default=None, help="fixed heading at every point (default: random per point from --seed)")
+    p.add_argument(
+        "--clearance",
+        type=float,
+        default=CLEARANCE,
+        help=f"grid points closer than r + clearance to a landmark are dropped (default {CLEARANCE:g})",
+    )
+    p.add_argument(
+        "--heading-deg",
+        type=float,
+        default=None,
+        help="fixed heading at every point (default: random per point from --seed)",
+    )
     p.add_argument("--seed", type=int, default=0, help="seed of random headings and all noise (default 0)")
-    p.add_argument("--max-points", type=int, default=MAX_POINTS,
-                   help=f"refuse a run of more grid points (x occlusion masks) or trials than this, with an estimate "
-                        f"of its memory and time (default {MAX_POINTS})")
-    p.add_argument("--hide", type=int, nargs="+", default=None, metavar="I",
-                   help="landmark indices invisible during homing (occlusion; the home record sees all)")
+    p.add_argument(
+        "--max-points",
+        type=int,
+        default=MAX_POINTS,
+        help=f"refuse a run of more grid points (x occlusion masks) or trials than this, with an estimate "
+        f"of its memory and time (default {MAX_POINTS})",
+    )
+    p.add_argument(
+        "--hide",
+        type=int,
+        nargs="+",
+        default=None,
+        metavar="I",
+        help="landmark indices invisible during homing (occlusion; the home record sees all)",
+    )
     add_setting_args(p)
 
 
@@ -91,13 +116,13 @@ def add_setting_args(p: argparse.ArgumentParser, only: tuple[str, ...] | None = 
     for opt in {**sensor_options(), **method_options()}.values():
         if only is not None and opt.name not in only:
             continue
-        title = (noise if opt.owners[0] is Noise else None if opt.owners[0] is Sensor else _group_title(opt.owners))
+        title = noise if opt.owners[0] is Noise else None if opt.owners[0] is Sensor else _group_title(opt.owners)
         target = p if title is None else groups.setdefault(title, p.add_argument_group(title))
         target.add_argument(opt.flag, type=opt.type, default=None, dest=opt.name, help=opt.help)
 
 
 def _group_title(owners: tuple[type, ...]) -> str:
-    """"MFDID (docs/model.md §4.5)": the module classes and the docs section their docstring names."""
+    """ "MFDID (docs/model.md §4.5)": the module classes and the docs section their docstring names."""
     ref = re.search(r"docs/[\w.]+ §[\d.]+", owners[0].__doc__ or "")
     return "/".join(t.__name__ for t in owners) + (f" ({ref.group(0)})" if ref else " settings")
 
@@ -109,8 +134,14 @@ def setting_values(args: argparse.Namespace) -> dict:
 
 
 def scene_kwargs(args: argparse.Namespace) -> dict:
-    kw = dict(method=args.method, clearance=args.clearance, heading_deg=args.heading_deg,
-              seed=args.seed, hidden=args.hide, max_points=args.max_points)
+    kw = dict(
+        method=args.method,
+        clearance=args.clearance,
+        heading_deg=args.heading_deg,
+        seed=args.seed,
+        hidden=args.hide,
+        max_points=args.max_points,
+    )
     if getattr(args, "unused_spacing", None) is not None:
         raise InputError("--spacing", args.unused_spacing, f"is not used by {args.command} (it evaluates no grid)")
     if hasattr(args, "spacing"):
@@ -125,8 +156,12 @@ def add_output_args(p: argparse.ArgumentParser, plot_help: str) -> None:
     p.add_argument("--summary", default=None, help="JSON file with the headline numbers")
 
 
-OUTPUTS = (("out", "--out", CSV), ("trials_out", "--trials-out", CSV), ("plot", "--plot", FIGURE),
-           ("summary", "--summary", JSON))  # attribute, option, suffixes of every output option
+OUTPUTS = (
+    ("out", "--out", CSV),
+    ("trials_out", "--trials-out", CSV),
+    ("plot", "--plot", FIGURE),
+    ("summary", "--summary", JSON),
+)  # attribute, option, suffixes of every output option
 
 
 def check_outputs(args: argparse.Namespace) -> None:
@@ -161,18 +196,36 @@ def write_outputs(args: argparse.Namespace, columns, summary: dict, figure, tria
 
 def add_rollout_args(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("rollouts (docs/model.md §5)")
-    g.add_argument("--max-steps", type=int, default=MAX_STEPS, help=f"moves allowed to reach home (default {MAX_STEPS})")
-    g.add_argument("--home-radius", type=float, default=HOME_RADIUS,
-                   help=f"success within this distance of home, cm (default {HOME_RADIUS:g})")
-    g.add_argument("--lanes", type=int, default=DEFAULT_LANES,
-                   help=f"trials advanced side by side (memory bound; default {DEFAULT_LANES})")
-    g.add_argument("--first-move", default=DEFAULT_FIRST_MOVE, metavar="RULE",
-                   help="release (default, thesis Algorithm 2): a method that needs a unit movement (DELV) first "
-                        "moves d along the release heading, then matches; the catchment counts grid points at least "
-                        "d from every wall; homing: every method's first move follows the direction computed at the "
-                        "release point, as in the vector map")
-    g.add_argument("--collisions", default="ignore", metavar="RULE",
-                   help="ignore (default): landmarks are no obstacles; fail: a move ending inside a landmark fails")
+    g.add_argument(
+        "--max-steps", type=int, default=MAX_STEPS, help=f"moves allowed to reach home (default {MAX_STEPS})"
+    )
+    g.add_argument(
+        "--home-radius",
+        type=float,
+        default=HOME_RADIUS,
+        help=f"success within this distance of home, cm (default {HOME_RADIUS:g})",
+    )
+    g.add_argument(
+        "--lanes",
+        type=int,
+        default=DEFAULT_LANES,
+        help=f"trials advanced side by side (memory bound; default {DEFAULT_LANES})",
+    )
+    g.add_argument(
+        "--first-move",
+        default=DEFAULT_FIRST_MOVE,
+        metavar="RULE",
+        help="release (default, thesis Algorithm 2): a method that needs a unit movement (DELV) first "
+        "moves d along the release heading, then matches; the catchment counts grid points at least "
+        "d from every wall; homing: every method's first move follows the direction computed at the "
+        "release point, as in the vector map",
+    )
+    g.add_argument(
+        "--collisions",
+        default="ignore",
+        metavar="RULE",
+        help="ignore (default): landmarks are no obstacles; fail: a move ending inside a landmark fails",
+    )
 
 
 def rollout_kwargs(args: argparse.Namespace, drop=()) -> dict:
@@ -181,6 +234,7 @@ def rollout_kwargs(args: argparse.Namespace, drop=()) -> dict:
     for name in drop:
         kw.pop(name, None)
     check_rules(args.first_move, args.collisions)
-    kw.update(max_steps=args.max_steps, home_radius=args.home_radius, first_move=args.first_move,
-              collisions=args.collisions)
+    kw.update(
+        max_steps=args.max_steps, home_radius=args.home_radius, first_move=args.first_move, collisions=args.collisions
+    )
     return kw

@@ -21,11 +21,14 @@ from ..envs._presets import env_to_dict
 
 
 def add_sensitivity(sub) -> None:
-    p = sub.add_parser("sensitivity", help=COMMAND_HELP["sensitivity"],
-                       description="Gradients of the soft homing quality (mean 1 - cos angular error over the grid) "
-                                   "with respect to every landmark and to d, bearing, odometry and compass noise, for "
-                                   "DELV, ALV and ACV; central differences of the ordinary quality for warping. "
-                                   "Writes two figures, two CSVs and sensitivity.json into --out.")
+    p = sub.add_parser(
+        "sensitivity",
+        help=COMMAND_HELP["sensitivity"],
+        description="Gradients of the soft homing quality (mean 1 - cos angular error over the grid) "
+        "with respect to every landmark and to d, bearing, odometry and compass noise, for "
+        "DELV, ALV and ACV; central differences of the ordinary quality for warping. "
+        "Writes two figures, two CSVs and sensitivity.json into --out.",
+    )
     p.add_argument("env", help="preset name or environment JSON")
     p.add_argument("--out", required=True, help="output folder")
     p.add_argument("--methods", nargs="+", default=list(METHODS), help=f"among {', '.join(METHODS)} (default all)")
@@ -40,13 +43,34 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
 
     out = check_out_dir(args.out)
     env = check_sensitivity(args.env, args.methods, args.spacing, args.seed, args.tau)
-    result = sensitivity(env, args.methods, args.spacing, args.seed, args.tau,
-                         progress=lambda m: progress(f"sensitivity of {m} on {env.name} ..."))
-    summary = {"env": env.name, "spacing": args.spacing, "seed": args.seed, "tau": args.tau,
-               "methods": {m: {"quality": r["quality"], "how": r["how"], "per_unit": r["per_unit"]}
-                           for m, r in result["methods"].items()}}
-    paths = [Path(out) / name for name in ("sensitivity_landmarks.png", "sensitivity_parameters.png", "landmarks.csv",
-                                           "parameters.csv", "sensitivity.json")]
+    result = sensitivity(
+        env,
+        args.methods,
+        args.spacing,
+        args.seed,
+        args.tau,
+        progress=lambda m: progress(f"sensitivity of {m} on {env.name} ..."),
+    )
+    summary = {
+        "env": env.name,
+        "spacing": args.spacing,
+        "seed": args.seed,
+        "tau": args.tau,
+        "methods": {
+            m: {"quality": r["quality"], "how": r["how"], "per_unit": r["per_unit"]}
+            for m, r in result["methods"].items()
+        },
+    }
+    paths = [
+        Path(out) / name
+        for name in (
+            "sensitivity_landmarks.png",
+            "sensitivity_parameters.png",
+            "landmarks.csv",
+            "parameters.csv",
+            "sensitivity.json",
+        )
+    ]
     with output_set() as files:
         files.figure(landmark_figure(result), paths[0], "--out")
         files.figure(parameter_figure(result), paths[1], "--out")
@@ -58,19 +82,26 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
 
 
 def add_traps(sub) -> None:
-    p = sub.add_parser("traps", help=COMMAND_HELP["traps"],
-                       description="Run the catchment, then root-find the zeros of the soft homing field from the end "
-                                   "points of the timed-out rollouts, classify them from the Jacobian, and report how "
-                                   "many failed rollouts end within --near cm of a sink. Writes traps.png, traps.csv "
-                                   "and traps.json into --out.")
+    p = sub.add_parser(
+        "traps",
+        help=COMMAND_HELP["traps"],
+        description="Run the catchment, then root-find the zeros of the soft homing field from the end "
+        "points of the timed-out rollouts, classify them from the Jacobian, and report how "
+        "many failed rollouts end within --near cm of a sink. Writes traps.png, traps.csv "
+        "and traps.json into --out.",
+    )
     p.add_argument("env", help="preset name or environment JSON")
     p.add_argument("--method", default="delv", help="delv, delv-compass, alv or acv (default delv)")
     p.add_argument("--out", required=True, help="output folder")
     p.add_argument("--spacing", type=float, default=SPACING, help=f"grid spacing, cm (default {SPACING:g})")
     p.add_argument("--seed", type=int, default=0, help="seed of headings and noise (default 0)")
     p.add_argument("--tau", type=float, default=TAU, help=f"softmin temperature (default {TAU:g})")
-    p.add_argument("--near", type=float, default=None, help="a failed rollout ending this close to a sink counts as "
-                                                            "trapped, cm (default d)")
+    p.add_argument(
+        "--near",
+        type=float,
+        default=None,
+        help="a failed rollout ending this close to a sink counts as trapped, cm (default d)",
+    )
     add_setting_args(p, only=("levels", "d", *NOISE_OPTIONS))
     p.set_defaults(func=cmd_traps)
 
@@ -80,13 +111,22 @@ def cmd_traps(args: argparse.Namespace) -> int:
 
     out = check_out_dir(args.out)
     options = setting_values(args)
-    report = find_traps(args.env, args.method, spacing=args.spacing, seed=args.seed, tau=args.tau, near=args.near,
-                        announce=lambda: progress(f"catchment of {args.method} on {args.env}, then its trap points ..."),
-                        **options)
+    report = find_traps(
+        args.env,
+        args.method,
+        spacing=args.spacing,
+        seed=args.seed,
+        tau=args.tau,
+        near=args.near,
+        announce=lambda: progress(f"catchment of {args.method} on {args.env}, then its trap points ..."),
+        **options,
+    )
     s = report.summary
-    progress(f"{s['timed_out']} rollouts timed out; {s['sinks']} sink(s) besides home, {s['saddles']} saddle(s), "
-             f"{s['discontinuities']} discontinuity point(s); {s['timed_out_within_near_of_a_sink']} timed-out "
-             f"rollouts end within {s['near_cm']:g} cm of a sink")
+    progress(
+        f"{s['timed_out']} rollouts timed out; {s['sinks']} sink(s) besides home, {s['saddles']} saddle(s), "
+        f"{s['discontinuities']} discontinuity point(s); {s['timed_out_within_near_of_a_sink']} timed-out "
+        f"rollouts end within {s['near_cm']:g} cm of a sink"
+    )
     paths = [Path(out) / name for name in ("traps.png", "traps.csv", "traps.json")]
     with output_set() as files:
         files.figure(trap_figure(report, args.spacing), paths[0], "--out")
@@ -97,12 +137,15 @@ def cmd_traps(args: argparse.Namespace) -> int:
 
 
 def add_optimise_layout(sub) -> None:
-    p = sub.add_parser("optimise-layout", help=COMMAND_HELP["optimise-layout"],
-                       description="Optimise the landmark positions of ENV (or of --landmarks N seeded random ones) "
-                                   "for a method, with or without occlusion (the mean over every choice of --occlude "
-                                   "hidden landmarks), then compare start and result by the ordinary catchment and "
-                                   "error rates. Writes layout.png, comparison.csv, optimised_env.json (an environment "
-                                   "file) and layout.json into --out.")
+    p = sub.add_parser(
+        "optimise-layout",
+        help=COMMAND_HELP["optimise-layout"],
+        description="Optimise the landmark positions of ENV (or of --landmarks N seeded random ones) "
+        "for a method, with or without occlusion (the mean over every choice of --occlude "
+        "hidden landmarks), then compare start and result by the ordinary catchment and "
+        "error rates. Writes layout.png, comparison.csv, optimised_env.json (an environment "
+        "file) and layout.json into --out.",
+    )
     p.add_argument("env", nargs="?", default=None, help="preset name or environment JSON (or use --landmarks)")
     p.add_argument("--landmarks", type=int, default=None, help="start from N seeded random landmarks instead")
     p.add_argument("--seed", type=int, default=0, help="seed of the random layout, headings and noise (default 0)")
@@ -121,22 +164,42 @@ def cmd_optimise_layout(args: argparse.Namespace) -> int:
     out = check_out_dir(args.out)
     env = start_layout(args.env, args.landmarks, args.seed)
     with ProgressBar("step", 0) as bar:
-        result = optimise_layout(env, args.method, args.occlude, args.spacing, args.seed, args.tau, args.steps,
-                                 progress=lambda i, n, v: bar(1, n),
-                                 announce=lambda: progress(f"optimising the {env.n_landmarks} landmarks of {env.name} "
-                                                           f"for {args.method} ..."))
+        result = optimise_layout(
+            env,
+            args.method,
+            args.occlude,
+            args.spacing,
+            args.seed,
+            args.tau,
+            args.steps,
+            progress=lambda i, n, v: bar(1, n),
+            announce=lambda: progress(
+                f"optimising the {env.n_landmarks} landmarks of {env.name} for {args.method} ..."
+            ),
+        )
     start, end = result.rows
-    progress(f"catchment {start['catchment_pct']:.1f} % -> {end['catchment_pct']:.1f} %, e>45° {start['gt45_pct']:.1f} % "
-             f"-> {end['gt45_pct']:.1f} % ({len(result.objective) - 1} steps, {result.seconds:.1f} s)")
+    progress(
+        f"catchment {start['catchment_pct']:.1f} % -> {end['catchment_pct']:.1f} %, e>45° {start['gt45_pct']:.1f} % "
+        f"-> {end['gt45_pct']:.1f} % ({len(result.objective) - 1} steps, {result.seconds:.1f} s)"
+    )
     paths = [Path(out) / name for name in ("layout.png", "comparison.csv", "optimised_env.json", "layout.json")]
     with output_set() as files:
         files.figure(layout_figure(result, args.spacing), paths[0], "--out")
         files.rows_csv(paths[1], result.rows, "--out")
         files.json(paths[2], env_to_dict(result.optimised), "--out")
-        files.json(paths[3], {"method": args.method, "occlude": result.occlude, "seconds": result.seconds,
-                              "objective": result.objective, "rows": result.rows,
-                              "start_env": env_to_dict(result.start), "optimised_env": env_to_dict(result.optimised)},
-                   "--out")
+        files.json(
+            paths[3],
+            {
+                "method": args.method,
+                "occlude": result.occlude,
+                "seconds": result.seconds,
+                "objective": result.objective,
+                "rows": result.rows,
+                "start_env": env_to_dict(result.start),
+                "optimised_env": env_to_dict(result.optimised),
+            },
+            "--out",
+        )
     print("wrote " + ", ".join(str(p) for p in paths))
     return 0
 

@@ -12,14 +12,14 @@ import numpy as np
 
 from ._args import ProgressBar, check_outputs, progress, warn, wrote, write_outputs
 from ..core.rollouts import check_rules
-from ..options._settings import non_negative, positive_int
+from ..options._checks import non_negative, positive_int
 from ..core.errors import InputError
 from ..options._schema import method_options, sensor_options
 from ..outputs._files import check_out_dir
 from ..options._limits import MAX_POINTS
 from ..outputs._tables import vector_map_columns
 from ._help import COMMAND_HELP
-from ..images._evaluate import load_database
+from ..images._load import load_database
 from ..options._settings import make_setup
 from ..images._evaluate import database_vector_map
 from ..core.metrics import summarize_map
@@ -32,21 +32,42 @@ from ..images._evaluate import import_database
 # scene options that mean nothing for a database (its images fix the scene, the poses and the unit move)
 # the scene's options that a database replaces: the sensor's settings but the channel (the motion noise of a
 # rollout aside), and the grid and occlusion options
-UNUSED_WITH_IMAGES = (*(n for n in sensor_options() if n != "channel" and not n.startswith("motion_")),
-                      "clearance", "heading_deg", "hide", "occlude")
+UNUSED_WITH_IMAGES = (
+    *(n for n in sensor_options() if n != "channel" and not n.startswith("motion_")),
+    "clearance",
+    "heading_deg",
+    "hide",
+    "occlude",
+)
 EXTRACTOR_OPTIONS = ("hue_deg", "hue_width_deg", "sat_min", "val_min", "band_deg", "band_height_deg", "fill")
 
 
 def add_image_args(p: argparse.ArgumentParser) -> None:
     """--images and the options that read a database (docs/images.md §4-5)."""
     g = p.add_argument_group("image database (docs/images.md): evaluate on images instead of an environment")
-    g.add_argument("--images", default=None, metavar="DIR",
-                   help="a BoB database or a folder of panoramas with positions.csv; replaces the environment, "
-                        "--spacing then sets the unit move (default: the database's spacing)")
-    g.add_argument("--home", type=float, nargs=2, default=None, metavar=("X", "Y"),
-                   help="home in cm (default: the database's metadata, else the image nearest the arena centre)")
-    g.add_argument("--arena", type=float, nargs=4, default=None, metavar=("XMIN", "YMIN", "XMAX", "YMAX"),
-                   help="arena in cm (default: the metadata, else the extent of the positions)")
+    g.add_argument(
+        "--images",
+        default=None,
+        metavar="DIR",
+        help="a BoB database or a folder of panoramas with positions.csv; replaces the environment, "
+        "--spacing then sets the unit move (default: the database's spacing)",
+    )
+    g.add_argument(
+        "--home",
+        type=float,
+        nargs=2,
+        default=None,
+        metavar=("X", "Y"),
+        help="home in cm (default: the database's metadata, else the image nearest the arena centre)",
+    )
+    g.add_argument(
+        "--arena",
+        type=float,
+        nargs=4,
+        default=None,
+        metavar=("XMIN", "YMIN", "XMAX", "YMAX"),
+        help="arena in cm (default: the metadata, else the extent of the positions)",
+    )
     g.add_argument("--max-blobs", type=int, default=None, help="landmark blob slots (default: the metadata, else 8)")
     for name in EXTRACTOR_OPTIONS:
         g.add_argument("--" + name.replace("_", "-"), type=float, default=None, help=argparse.SUPPRESS)
@@ -79,10 +100,21 @@ def load(args: argparse.Namespace):
     spacing = None if args.spacing == args.parser_defaults.get("spacing") else args.spacing
     ex = {k: getattr(args, k) for k in EXTRACTOR_OPTIONS if getattr(args, k) is not None}
     with ProgressBar("img", args.chunk) as bar:
-        db = load_database(args.images, home=args.home, arena=args.arena, spacing=spacing, channel=args.channel,
-                           extractor=ex, max_blobs=args.max_blobs, chunk=args.chunk, progress=bar)
+        db = load_database(
+            args.images,
+            home=args.home,
+            arena=args.arena,
+            spacing=spacing,
+            channel=args.channel,
+            extractor=ex,
+            max_blobs=args.max_blobs,
+            chunk=args.chunk,
+            progress=bar,
+        )
     if len(db.files) > args.max_points:
-        raise InputError("--images", args.images, f"has {len(db.files)} images, more than --max-points {args.max_points}")
+        raise InputError(
+            "--images", args.images, f"has {len(db.files)} images, more than --max-points {args.max_points}"
+        )
     return db, opts
 
 
@@ -92,8 +124,10 @@ def warn_empty(vm) -> None:
     if not included.any():
         warn("the database has no point besides home: nothing to evaluate")
     elif not bool(np.any(np.asarray(vm.valid) & included)):
-        warn("every database point is invalid: the method finds no homing direction anywhere (no landmark "
-             "found by the threshold, or no neighbour one spacing away?)")
+        warn(
+            "every database point is invalid: the method finds no homing direction anywhere (no landmark "
+            "found by the threshold, or no neighbour one spacing away?)"
+        )
 
 
 def cmd_vector_map_images(args: argparse.Namespace) -> int:
@@ -103,16 +137,32 @@ def cmd_vector_map_images(args: argparse.Namespace) -> int:
     check_outputs(args)
     t0 = time.perf_counter()
     db, opts = load(args)
-    progress(f"vector map of {args.method} on {len(db.files)} images ({db.camera.cols} x {db.camera.rows}, "
-             f"unit move {db.spacing:g} cm) ...")
+    progress(
+        f"vector map of {args.method} on {len(db.files)} images ({db.camera.cols} x {db.camera.rows}, "
+        f"unit move {db.spacing:g} cm) ..."
+    )
     vm = database_vector_map(db, args.method, **opts)
-    summary = {"images": args.images, "method": args.method, "home": db.home.tolist(), "spacing_cm": db.spacing,
-               **summarize_map(vm.error_deg, vm.valid, vm.included), "seconds": time.perf_counter() - t0}
-    progress(f"done in {summary['seconds']:.2f} s: mean error {summary['mean_error_deg']:.2f} deg, "
-             f"{summary['invalid']} invalid")
+    summary = {
+        "images": args.images,
+        "method": args.method,
+        "home": db.home.tolist(),
+        "spacing_cm": db.spacing,
+        **summarize_map(vm.error_deg, vm.valid, vm.included),
+        "seconds": time.perf_counter() - t0,
+    }
+    progress(
+        f"done in {summary['seconds']:.2f} s: mean error {summary['mean_error_deg']:.2f} deg, "
+        f"{summary['invalid']} invalid"
+    )
     warn_empty(vm)
-    write_outputs(args, vector_map_columns(vm), summary, lambda: database_map_figure(
-        db, vm, f"{args.method} on {db.name}: mean error {summary['mean_error_deg']:.1f}°", classes=args.classes))
+    write_outputs(
+        args,
+        vector_map_columns(vm),
+        summary,
+        lambda: database_map_figure(
+            db, vm, f"{args.method} on {db.name}: mean error {summary['mean_error_deg']:.1f}°", classes=args.classes
+        ),
+    )
     return 0
 
 
@@ -122,37 +172,67 @@ def cmd_catchment_images(args: argparse.Namespace) -> int:
     _refuse_unused(args, extra=("lanes",))
     check_rules(args.first_move, args.collisions)
     positive_int(args.max_steps, "--max-steps")
-    motion = {n: 0.0 if getattr(args, n) is None else getattr(args, n)  # a setting flag's default is None
-              for n in ("motion_heading_noise_deg", "motion_step_noise")}
+    motion = {
+        n: 0.0 if getattr(args, n) is None else getattr(args, n)  # a setting flag's default is None
+        for n in ("motion_heading_noise_deg", "motion_step_noise")
+    }
     for name, value in (("home_radius", args.home_radius), *motion.items()):
         non_negative(value, "--" + name.replace("_", "-"))
     if args.first_move != args.parser_defaults.get("first_move", args.first_move):
-        raise InputError("--first-move", args.first_move, "is not used with --images (every move follows the "
-                                                          "direction at the nearest snapshot)")
+        raise InputError(
+            "--first-move",
+            args.first_move,
+            "is not used with --images (every move follows the direction at the nearest snapshot)",
+        )
     check_outputs(args)
     t0 = time.perf_counter()
     db, opts = load(args)
     radius = None if args.home_radius == args.parser_defaults.get("home_radius") else args.home_radius
     vm = database_vector_map(db, args.method, **opts)
     warn_empty(vm)
-    starts, paths = database_catchment(db, vm, home_radius=radius, max_steps=args.max_steps,
-                                       **motion, seed=args.seed,
-                                       collisions=args.collisions == "fail")
+    starts, paths = database_catchment(
+        db,
+        vm,
+        home_radius=radius,
+        max_steps=args.max_steps,
+        **motion,
+        seed=args.seed,
+        collisions=args.collisions == "fail",
+    )
 
-    summary = {"images": args.images, "method": args.method, **catchment_numbers(paths),
-               "home_radius_cm": db.spacing if radius is None else radius, "step_cm": db.spacing,
-               "collisions": args.collisions, "seconds": time.perf_counter() - t0}
-    progress(f"done in {summary['seconds']:.2f} s: catchment {summary['catchment_pct']:.2f} % of "
-             f"{summary['releases']} releases")
+    summary = {
+        "images": args.images,
+        "method": args.method,
+        **catchment_numbers(paths),
+        "home_radius_cm": db.spacing if radius is None else radius,
+        "step_cm": db.spacing,
+        "collisions": args.collisions,
+        "seconds": time.perf_counter() - t0,
+    }
+    progress(
+        f"done in {summary['seconds']:.2f} s: catchment {summary['catchment_pct']:.2f} % of "
+        f"{summary['releases']} releases"
+    )
     code = np.asarray(paths.outcome)
-    columns = {"x": starts[:, 0], "y": starts[:, 1], "outcome": [OUTCOMES[c] for c in code],
-               "steps": np.asarray(paths.steps)}
-    write_outputs(args, columns, summary, lambda: database_catchment_figure(
-        db, vm, starts, paths, f"{args.method} on {db.name}: catchment {summary['catchment_pct']:.1f} %"))
+    columns = {
+        "x": starts[:, 0],
+        "y": starts[:, 1],
+        "outcome": [OUTCOMES[c] for c in code],
+        "steps": np.asarray(paths.steps),
+    }
+    write_outputs(
+        args,
+        columns,
+        summary,
+        lambda: database_catchment_figure(
+            db, vm, starts, paths, f"{args.method} on {db.name}: catchment {summary['catchment_pct']:.1f} %"
+        ),
+    )
     return 0
 
 
 # --- images render-db / import ------------------------------------------------------------------
+
 
 def add_images(sub) -> None:
     p = sub.add_parser("images", help=COMMAND_HELP["images"])
@@ -164,7 +244,9 @@ def add_images(sub) -> None:
     r.add_argument("--cols", type=int, default=360, help="panorama width in pixels (default 360)")
     r.add_argument("--rows", type=int, default=60, help="panorama height in pixels (default 60: 30 to -30 deg)")
     r.add_argument("--donut", action="store_true", help="store catadioptric (donut) images instead of panoramas")
-    r.add_argument("--pixel-noise", type=float, default=0.02, help="camera noise per pixel, of full scale (default 0.02)")
+    r.add_argument(
+        "--pixel-noise", type=float, default=0.02, help="camera noise per pixel, of full scale (default 0.02)"
+    )
     r.add_argument("--gain-noise", type=float, default=0.0, help="per-image brightness gain noise (default 0)")
     r.add_argument("--light-deg", type=float, default=None, help="light azimuth, deg (default: the world's, 45)")
     r.add_argument("--seed", type=int, default=0, help="seed of the camera noise (default 0)")
@@ -175,16 +257,22 @@ def add_images(sub) -> None:
     i.add_argument("src", help="database folder")
     i.add_argument("--out", required=True, help="new database folder (must not exist or be empty)")
     i.add_argument("--home", type=float, nargs=2, default=None, metavar=("X", "Y"), help="home, cm")
-    i.add_argument("--arena", type=float, nargs=4, default=None, metavar=("XMIN", "YMIN", "XMAX", "YMAX"),
-                   help="arena, cm")
+    i.add_argument(
+        "--arena", type=float, nargs=4, default=None, metavar=("XMIN", "YMIN", "XMAX", "YMAX"), help="arena, cm"
+    )
     i.add_argument("--spacing", type=float, default=None, help="grid spacing = unit move, cm")
     i.set_defaults(func=cmd_import)
 
 
 def cmd_render_db(args: argparse.Namespace) -> int:
     check_out_dir(args.out)
-    settings = ImageSettings(camera=camera(args.rows, args.cols), mirror=Catadioptric() if args.donut else None,
-                             pixel_noise=args.pixel_noise, gain_noise=args.gain_noise, light_azimuth_deg=args.light_deg)
+    settings = ImageSettings(
+        camera=camera(args.rows, args.cols),
+        mirror=Catadioptric() if args.donut else None,
+        pixel_noise=args.pixel_noise,
+        gain_noise=args.gain_noise,
+        light_azimuth_deg=args.light_deg,
+    )
     iw, spacing = check_render(args.env, args.spacing, settings, args.seed, args.max_points, args.chunk)
     t0 = time.perf_counter()
     progress(f"rendering {iw.name} every {spacing:g} cm into {args.out} ...")
@@ -200,8 +288,10 @@ def cmd_import(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     db = import_database(args.src, args.out, home=args.home, arena=args.arena, spacing=args.spacing)
     blobs = np.asarray(db.rings.snapshots.valid).sum(-1)
-    progress(f"{len(db.files)} images in {time.perf_counter() - t0:.2f} s; landmark blobs per image: min {blobs.min()}, "
-             f"mean {blobs.mean():.2f}, max {blobs.max()}; home {db.home.tolist()}, spacing {db.spacing:g} cm")
+    progress(
+        f"{len(db.files)} images in {time.perf_counter() - t0:.2f} s; landmark blobs per image: min {blobs.min()}, "
+        f"mean {blobs.mean():.2f}, max {blobs.max()}; home {db.home.tolist()}, spacing {db.spacing:g} cm"
+    )
     print(wrote(args.out))
     return 0
 

@@ -12,7 +12,16 @@ import numpy as np
 
 from ..evaluate import _vector_map as api
 from ..outputs._cache import enable_compilation_cache
-from ._args import (ProgressBar, add_output_args, add_scene_args, check_outputs, progress, scene_kwargs, warn, write_outputs)
+from ._args import (
+    ProgressBar,
+    add_output_args,
+    add_scene_args,
+    check_outputs,
+    progress,
+    scene_kwargs,
+    warn,
+    write_outputs,
+)
 from ._rollouts import ROLLOUT_COMMANDS
 from ._gradients import GRADIENT_COMMANDS
 from ._images import IMAGE_COMMANDS, add_image_args, cmd_vector_map_images
@@ -28,6 +37,7 @@ from ..core.metrics import summarize_map
 from ..reproduce import _run as reproduce
 
 # --- commands ---------------------------------------------------------------------------
+
 
 def cmd_envs(args: argparse.Namespace) -> int:
     for name in PRESETS:
@@ -62,35 +72,55 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     with ProgressBar("pt", request["batch_size"]) as bar:  # a bar only when the grid runs in several chunks
         vm = maps.vector_map(**request, progress=bar)
     vm.error_deg.block_until_ready()
-    summary = {"env": env.name, "method": args.method, **summarize_map(vm.error_deg, vm.valid, vm.included),
-               "seconds": time.perf_counter() - t0}
-    progress(f"done in {summary['seconds']:.2f} s: {summary['points']} points, {summary['invalid']} invalid, "
-             f"mean error {summary['mean_error_deg']:.2f} deg, >45: {summary['gt45_pct']:.2f} %, "
-             f">90: {summary['gt90_pct']:.2f} %")
+    summary = {
+        "env": env.name,
+        "method": args.method,
+        **summarize_map(vm.error_deg, vm.valid, vm.included),
+        "seconds": time.perf_counter() - t0,
+    }
+    progress(
+        f"done in {summary['seconds']:.2f} s: {summary['points']} points, {summary['invalid']} invalid, "
+        f"mean error {summary['mean_error_deg']:.2f} deg, >45: {summary['gt45_pct']:.2f} %, "
+        f">90: {summary['gt90_pct']:.2f} %"
+    )
     if not bool(np.any(np.asarray(vm.valid) & np.asarray(vm.included))):
-        warn("every grid point is invalid: the method finds no homing direction anywhere (too few visible "
-             "landmarks?)")
+        warn("every grid point is invalid: the method finds no homing direction anywhere (too few visible landmarks?)")
     title = f"{args.method} on {env.name}: mean error {summary['mean_error_deg']:.1f}°"
-    write_outputs(args, vector_map_columns(vm), summary,
-                  lambda: vector_map_figure(env, vm, args.spacing, title=title, classes=args.classes))
+    write_outputs(
+        args,
+        vector_map_columns(vm),
+        summary,
+        lambda: vector_map_figure(env, vm, args.spacing, title=title, classes=args.classes),
+    )
     return 0
 
 
 def add_reproduce(sub) -> None:
-    p = sub.add_parser("reproduce", help=COMMAND_HELP["reproduce"],
-                       description="Run the thesis's studies (skipping those whose code and settings are unchanged) "
-                                   "and write figures, CSV/JSON, report.md and report.html into --out.")
-    p.add_argument("--quick", action="store_true",
-                   help="a preview of the thesis's simulation studies on a coarse 10 x 10 grid (spacing 100 cm); the "
-                        "studies beyond the thesis and on rendered images run in a full run or when --only names them")
+    p = sub.add_parser(
+        "reproduce",
+        help=COMMAND_HELP["reproduce"],
+        description="Run the thesis's studies (skipping those whose code and settings are unchanged) "
+        "and write figures, CSV/JSON, report.md and report.html into --out.",
+    )
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help="a preview of the thesis's simulation studies on a coarse 10 x 10 grid (spacing 100 cm); the "
+        "studies beyond the thesis and on rendered images run in a full run or when --only names them",
+    )
     p.add_argument("--out", default="results", help="output folder (default results/)")
     p.add_argument("--only", default=None, metavar="STUDY[,STUDY]", help="run only these studies")
     p.add_argument("--list", action="store_true", help="list the studies and exit")
     p.add_argument("--force", action="store_true", help="recompute even studies that are up to date")
     p.add_argument("--seed", type=int, default=0, help="seed of every random heading, release point and noise")
-    p.add_argument("--workers", type=int, default=None, metavar="N",
-                   help="studies run side by side (default: one per CPU core, at most 4; 1: one at a time); "
-                        "the numbers do not depend on it")
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        metavar="N",
+        help="studies run side by side (default: one per CPU core, at most 4; 1: one at a time); "
+        "the numbers do not depend on it",
+    )
     p.set_defaults(func=cmd_reproduce)
 
 
@@ -104,17 +134,28 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
         raise InputError("--workers", args.workers, "must be at least 1")
     reproduce.check_out_dir(args.out)
     t0 = time.perf_counter()
-    result = reproduce.reproduce(args.out, quick=args.quick, only=args.only, force=args.force, seed=args.seed,
-                                 workers=args.workers)
+    result = reproduce.reproduce(
+        args.out, quick=args.quick, only=args.only, force=args.force, seed=args.seed, workers=args.workers
+    )
     skipped = [n for n in result["records"] if n not in result["ran"]]
-    print(f"ran {len(result['ran'])} studies" + (f", {len(skipped)} unchanged (skipped)" if skipped else "")
-          + f" in {time.perf_counter() - t0:.1f} s; report: {result['report']}")
+    print(
+        f"ran {len(result['ran'])} studies"
+        + (f", {len(skipped)} unchanged (skipped)" if skipped else "")
+        + f" in {time.perf_counter() - t0:.1f} s; report: {result['report']}"
+    )
     return 0
 
 
 # Each entry adds one subcommand; a new command is one function here or in its own module.
-COMMANDS: list[Callable] = [add_vector_map, add_reproduce, *ROLLOUT_COMMANDS, add_sweep, add_plot_sweep,
-                            *GRADIENT_COMMANDS, *IMAGE_COMMANDS]
+COMMANDS: list[Callable] = [
+    add_vector_map,
+    add_reproduce,
+    *ROLLOUT_COMMANDS,
+    add_sweep,
+    add_plot_sweep,
+    *GRADIENT_COMMANDS,
+    *IMAGE_COMMANDS,
+]
 
 
 def build_parser() -> argparse.ArgumentParser:

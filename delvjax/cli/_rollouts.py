@@ -13,12 +13,37 @@ import numpy as np
 from ..evaluate import _vector_map as api, _rollouts as api_rollouts
 from ._images import add_image_args, cmd_catchment_images
 from ._help import COMMAND_HELP
-from ._args import (ProgressBar, add_output_args, add_rollout_args, add_scene_args, check_outputs, progress, rollout_kwargs, warn, write_outputs)
+from ._args import (
+    ProgressBar,
+    add_output_args,
+    add_rollout_args,
+    add_scene_args,
+    check_outputs,
+    progress,
+    rollout_kwargs,
+    warn,
+    write_outputs,
+)
 from ..core.errors import InputError
-from ..core.rollouts import (DEFAULT_DISTANCES, N_STARTS, TRIAL_BLOCK, TRIALS_PER_DISTANCE, catchment_summary, check_rules)
-from ..options._settings import make_setup, occlusion_count, option_names
+from ..core.rollouts import (
+    DEFAULT_DISTANCES,
+    N_STARTS,
+    TRIAL_BLOCK,
+    TRIALS_PER_DISTANCE,
+    catchment_summary,
+    check_rules,
+)
+from ..options._settings import make_setup, option_names
+from ..options._checks import occlusion_count
 from ..options._registry import get_method
-from ..outputs._tables import (catchment_columns, concat_columns, outcome_names, success_rows, success_trial_columns, trajectory_columns)
+from ..outputs._tables import (
+    catchment_columns,
+    concat_columns,
+    outcome_names,
+    success_rows,
+    success_trial_columns,
+    trajectory_columns,
+)
 
 
 def _check_methods(methods: list[str], kw: dict) -> None:
@@ -40,6 +65,7 @@ def _methods(text: str) -> list[str]:
 
 # --- catchment -------------------------------------------------------------------------------
 
+
 def _rollout_parser(sub, name: str, plot_help: str, epilog: str | None = None, grid: bool = False):
     """A subcommand with the scene, output and rollout options every rollout command takes (--spacing
     only where a grid is evaluated: an option a command does not use is not offered)."""
@@ -51,10 +77,14 @@ def _rollout_parser(sub, name: str, plot_help: str, epilog: str | None = None, g
 
 
 def add_catchment(sub) -> None:
-    p = _rollout_parser(sub, "catchment",
-                        "catchment map: squares on catchment points over the vector map", grid=True)
-    p.add_argument("--occlude", type=int, default=None, metavar="K",
-                   help="evaluate every choice of K landmarks hidden during homing (Tables 5.3/5.4)")
+    p = _rollout_parser(sub, "catchment", "catchment map: squares on catchment points over the vector map", grid=True)
+    p.add_argument(
+        "--occlude",
+        type=int,
+        default=None,
+        metavar="K",
+        help="evaluate every choice of K landmarks hidden during homing (Tables 5.3/5.4)",
+    )
     add_image_args(p)
     p.set_defaults(func=cmd_catchment)
 
@@ -74,37 +104,72 @@ def cmd_catchment(args: argparse.Namespace) -> int:
         occlusion_count(args.occlude, env.n_landmarks)
     t0 = time.perf_counter()
     with ProgressBar("trial", TRIAL_BLOCK) as bar:  # a bar once the trials run in several blocks
-        res = api_rollouts.catchment(env, **kw, progress=bar, announce=lambda: progress(
-            f"catchment of {args.method} on {env.name} (spacing {args.spacing:g} cm"
-            + (f", {args.occlude} of {env.n_landmarks} landmarks hidden" if args.occlude else "") + ") ..."))
+        res = api_rollouts.catchment(
+            env,
+            **kw,
+            progress=bar,
+            announce=lambda: progress(
+                f"catchment of {args.method} on {env.name} (spacing {args.spacing:g} cm"
+                + (f", {args.occlude} of {env.n_landmarks} landmarks hidden" if args.occlude else "")
+                + ") ..."
+            ),
+        )
     res.outcome.block_until_ready()
     seconds = time.perf_counter() - t0
-    summary = {"env": env.name, "method": args.method, "occlude": args.occlude or 0, "seconds": seconds,
-               **catchment_summary(res)}
+    summary = {
+        "env": env.name,
+        "method": args.method,
+        "occlude": args.occlude or 0,
+        "seconds": seconds,
+        **catchment_summary(res),
+    }
     c = summary["catchment_pct"]
-    progress(f"done in {seconds:.2f} s: {summary['points']} points x {summary['masks']} mask(s); catchment "
-             + (f"{c['mean']:.2f} %" if summary["masks"] == 1 else
-                f"mean {c['mean']:.2f} %, min {c['min']:.2f} %, max {c['max']:.2f} %")
-             + f"; >45: {summary['gt45_pct']['mean']:.2f} %, >90: {summary['gt90_pct']['mean']:.2f} %")
+    progress(
+        f"done in {seconds:.2f} s: {summary['points']} points x {summary['masks']} mask(s); catchment "
+        + (
+            f"{c['mean']:.2f} %"
+            if summary["masks"] == 1
+            else f"mean {c['mean']:.2f} %, min {c['min']:.2f} %, max {c['max']:.2f} %"
+        )
+        + f"; >45: {summary['gt45_pct']['mean']:.2f} %, >90: {summary['gt90_pct']['mean']:.2f} %"
+    )
     if not bool(np.any(np.asarray(res.valid)[:, np.asarray(res.included)])):
-        warn("every grid point is invalid under every mask: the method finds no homing direction anywhere "
-             "(too few visible landmarks?)")
+        warn(
+            "every grid point is invalid under every mask: the method finds no homing direction anywhere "
+            "(too few visible landmarks?)"
+        )
     from ..plots._rollouts import catchment_figure  # matplotlib: loaded only when a figure is drawn
 
-    write_outputs(args, catchment_columns(res, with_hidden=args.occlude is not None or bool(args.hide)), summary,
-                  lambda: catchment_figure(env, res, args.spacing, title=f"{args.method} on {env.name}"))
+    write_outputs(
+        args,
+        catchment_columns(res, with_hidden=args.occlude is not None or bool(args.hide)),
+        summary,
+        lambda: catchment_figure(env, res, args.spacing, title=f"{args.method} on {env.name}"),
+    )
     return 0
 
 
 # --- success rate ----------------------------------------------------------------------------
 
+
 def add_success_rate(sub) -> None:
-    p = _rollout_parser(sub, "success-rate",
-                        "success-rate curve", "--method takes a comma-separated list (one curve each).")
-    p.add_argument("--trials", type=int, default=TRIALS_PER_DISTANCE,
-                   help=f"trials per distance bin (default {TRIALS_PER_DISTANCE})")
-    p.add_argument("--distances", type=float, nargs="+", default=list(DEFAULT_DISTANCES), metavar="CM",
-                   help="release distances from home (default 50 100 ... 450)")
+    p = _rollout_parser(
+        sub, "success-rate", "success-rate curve", "--method takes a comma-separated list (one curve each)."
+    )
+    p.add_argument(
+        "--trials",
+        type=int,
+        default=TRIALS_PER_DISTANCE,
+        help=f"trials per distance bin (default {TRIALS_PER_DISTANCE})",
+    )
+    p.add_argument(
+        "--distances",
+        type=float,
+        nargs="+",
+        default=list(DEFAULT_DISTANCES),
+        metavar="CM",
+        help="release distances from home (default 50 100 ... 450)",
+    )
     p.add_argument("--trials-out", default=None, help="per-trial CSV (release point, heading, outcome, steps)")
     p.set_defaults(func=cmd_success_rate)
 
@@ -119,8 +184,14 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
     tables, rows, trial_cols, timing = {}, [], [], {}
     for m in methods:  # one program per method (different methods are different programs)
         t0 = time.perf_counter()
-        res = api_rollouts.success_rate(env, method=m, **kw, announce=lambda: progress(
-            f"success rate of {m} on {env.name}: {args.trials} trials x {len(args.distances)} distances ..."))
+        res = api_rollouts.success_rate(
+            env,
+            method=m,
+            **kw,
+            announce=lambda: progress(
+                f"success rate of {m} on {env.name}: {args.trials} trials x {len(args.distances)} distances ..."
+            ),
+        )
         res.outcome.block_until_ready()
         timing[m] = time.perf_counter() - t0
         tables[m] = res.table()
@@ -131,23 +202,48 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
     rules = check_rules(args.first_move, args.collisions)
     from ..plots._rollouts import success_rate_figure  # matplotlib: loaded only when a figure is drawn
 
-    summary = {"env": env.name, "trials_per_bin": args.trials, "seed": args.seed, "rules": rules,
-               "max_steps": args.max_steps, "home_radius": args.home_radius, "seconds": timing, "bins": tables}
-    write_outputs(args, rows, summary, lambda: success_rate_figure(
-        tables, title=f"success rate on {env.name} ({args.trials} trials per distance)"), concat_columns(trial_cols))
+    summary = {
+        "env": env.name,
+        "trials_per_bin": args.trials,
+        "seed": args.seed,
+        "rules": rules,
+        "max_steps": args.max_steps,
+        "home_radius": args.home_radius,
+        "seconds": timing,
+        "bins": tables,
+    }
+    write_outputs(
+        args,
+        rows,
+        summary,
+        lambda: success_rate_figure(tables, title=f"success rate on {env.name} ({args.trials} trials per distance)"),
+        concat_columns(trial_cols),
+    )
     return 0
 
 
 # --- trajectories ----------------------------------------------------------------------------
 
+
 def add_trajectories(sub) -> None:
-    p = _rollout_parser(sub, "trajectories",
-                        "trajectory figure (one panel per method)",
-                        "--method takes a comma-separated list (one panel each, same release points).")
-    p.add_argument("--start", type=float, nargs=2, action="append", default=None, metavar=("X", "Y"),
-                   help="a release point in cm (repeatable; default: --n-starts random points from --seed)")
-    p.add_argument("--n-starts", type=int, default=None,
-                   help=f"random release points, instead of --start (default {N_STARTS})")
+    p = _rollout_parser(
+        sub,
+        "trajectories",
+        "trajectory figure (one panel per method)",
+        "--method takes a comma-separated list (one panel each, same release points).",
+    )
+    p.add_argument(
+        "--start",
+        type=float,
+        nargs=2,
+        action="append",
+        default=None,
+        metavar=("X", "Y"),
+        help="a release point in cm (repeatable; default: --n-starts random points from --seed)",
+    )
+    p.add_argument(
+        "--n-starts", type=int, default=None, help=f"random release points, instead of --start (default {N_STARTS})"
+    )
     p.set_defaults(func=cmd_trajectories)
 
 
@@ -163,20 +259,31 @@ def cmd_trajectories(args: argparse.Namespace) -> int:
     summary = {"env": env.name, "rules": check_rules(args.first_move, args.collisions), "trials": {}}
     _check_methods(methods, kw)
     for m in methods:  # one program per method
-        tr = api_rollouts.trajectories(env, method=m, **kw,
-                                       announce=lambda: progress(f"trajectories of {m} on {env.name} ..."))
+        tr = api_rollouts.trajectories(
+            env, method=m, **kw, announce=lambda: progress(f"trajectories of {m} on {env.name} ...")
+        )
         results[m] = tr
         path, steps = np.asarray(tr.path), np.asarray(tr.steps)
         cols.append(trajectory_columns(tr, m))
         outcome = outcome_names(tr.outcome)
-        summary["trials"][m] = [{"start": np.asarray(tr.start[t]).tolist(),
-                                 "release_heading_deg": float(np.degrees(tr.heading[t])),
-                                 "outcome": outcome[t], "steps": int(steps[t])} for t in range(path.shape[0])]
+        summary["trials"][m] = [
+            {
+                "start": np.asarray(tr.start[t]).tolist(),
+                "release_heading_deg": float(np.degrees(tr.heading[t])),
+                "outcome": outcome[t],
+                "steps": int(steps[t]),
+            }
+            for t in range(path.shape[0])
+        ]
         progress(f"{int(np.asarray(tr.success).sum())}/{path.shape[0]} reach home")
     from ..plots._rollouts import trajectories_figure  # matplotlib: loaded only when a figure is drawn
 
-    write_outputs(args, concat_columns(cols), summary, lambda: trajectories_figure(
-        env, results, args.home_radius, title=f"homing trajectories on {env.name}"))
+    write_outputs(
+        args,
+        concat_columns(cols),
+        summary,
+        lambda: trajectories_figure(env, results, args.home_radius, title=f"homing trajectories on {env.name}"),
+    )
     return 0
 
 

@@ -21,23 +21,39 @@ from ..sweeps._run import load_sweep
 
 
 def add_sweep(sub) -> None:
-    p = sub.add_parser("sweep", help=COMMAND_HELP["sweep"],
-                       description="Evaluate every cell of a sweep file (a vector map, a catchment or a success-rate table "
-                                   "per cell) and write sweep.nc (xarray/netCDF), "
-                                   "sweep.csv (one row per cell) and sweep.toml into --out. "
-                                   "`delvjax sweep --example` prints a documented example file.")
+    p = sub.add_parser(
+        "sweep",
+        help=COMMAND_HELP["sweep"],
+        description="Evaluate every cell of a sweep file (a vector map, a catchment or a success-rate table "
+        "per cell) and write sweep.nc (xarray/netCDF), "
+        "sweep.csv (one row per cell) and sweep.toml into --out. "
+        "`delvjax sweep --example` prints a documented example file.",
+    )
     p.add_argument("file", nargs="?", help="the sweep file (TOML)")
     p.add_argument("--out", default=None, help="output folder")
-    p.add_argument("--example", nargs="?", const="vector-map", default=None, choices=tuple(EXAMPLES),
-                   help="print a documented example sweep file of that kind (default vector-map) and exit")
-    p.add_argument("--max-points", type=int, default=MAX_POINTS,
-                   help=f"refuse a cell of more grid points than this (default {MAX_POINTS})")
+    p.add_argument(
+        "--example",
+        nargs="?",
+        const="vector-map",
+        default=None,
+        choices=tuple(EXAMPLES),
+        help="print a documented example sweep file of that kind (default vector-map) and exit",
+    )
+    p.add_argument(
+        "--max-points",
+        type=int,
+        default=MAX_POINTS,
+        help=f"refuse a cell of more grid points than this (default {MAX_POINTS})",
+    )
     g = p.add_argument_group("several processes or machines (jax.distributed; docs/sweeps.md)")
     g.add_argument("--coordinator", default=None, metavar="HOST:PORT", help="address of process 0")
     g.add_argument("--num-processes", type=int, default=None, help="number of processes")
     g.add_argument("--process-id", type=int, default=None, help="this process, 0 .. num-processes - 1")
-    g.add_argument("--distributed", action="store_true",
-                   help="let jax.distributed.initialize() read the cluster (SLURM, Open MPI) from the environment")
+    g.add_argument(
+        "--distributed",
+        action="store_true",
+        help="let jax.distributed.initialize() read the cluster (SLURM, Open MPI) from the environment",
+    )
     p.set_defaults(func=cmd_sweep)
 
 
@@ -58,8 +74,11 @@ def start_processes(args: argparse.Namespace) -> None:
             raise InputError("--process-id", args.process_id, f"must be in 0..{args.num_processes - 1}")
 
     jax.config.update("jax_cpu_collectives_implementation", "gloo")  # CPU processes exchange results
-    kw = {} if args.distributed else dict(coordinator_address=args.coordinator, num_processes=args.num_processes,
-                                          process_id=args.process_id)
+    kw = (
+        {}
+        if args.distributed
+        else dict(coordinator_address=args.coordinator, num_processes=args.num_processes, process_id=args.process_id)
+    )
     jax.distributed.initialize(**kw)
 
 
@@ -79,25 +98,40 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     n = spec.n_cells
     with ProgressBar("cell", 0 if lead else n) as bar:
-        ds = run_sweep(spec, max_points=args.max_points, progress=bar, out=out,
-                       announce=lambda: lead and progress(f"sweep of {n} cells ({' x '.join(map(str, spec.shape))}: "
-                                                          f"{', '.join(spec.axes)}) on {jax.process_count()} "
-                                                          f"process(es), {jax.device_count()} device(s) ..."))
+        ds = run_sweep(
+            spec,
+            max_points=args.max_points,
+            progress=bar,
+            out=out,
+            announce=lambda: (
+                lead
+                and progress(
+                    f"sweep of {n} cells ({' x '.join(map(str, spec.shape))}: "
+                    f"{', '.join(spec.axes)}) on {jax.process_count()} "
+                    f"process(es), {jax.device_count()} device(s) ..."
+                )
+            ),
+        )
     if not lead:
         return 0
-    progress(f"done in {time.perf_counter() - t0:.1f} s: {n} cells ({ds.attrs['cells_reused']} finished before), "
-             f"{ds.attrs['programs_compiled']} program(s) compiled")
+    progress(
+        f"done in {time.perf_counter() - t0:.1f} s: {n} cells ({ds.attrs['cells_reused']} finished before), "
+        f"{ds.attrs['programs_compiled']} program(s) compiled"
+    )
     paths = save_sweep(ds, out)
     print("wrote " + ", ".join(str(p) for p in paths))
     return 0
 
 
 def add_plot_sweep(sub) -> None:
-    p = sub.add_parser("plot-sweep", help=COMMAND_HELP["plot-sweep"],
-                       description="Draw a metric of a sweep folder over one axis (--x: lines with 95 % intervals "
-                                   "over the seeds) or two (--x and --y: heat maps, mean over the seeds); one panel "
-                                   "per combination of the remaining axes. Writes the figure and a CSV of the "
-                                   "numbers drawn (same name, .csv).")
+    p = sub.add_parser(
+        "plot-sweep",
+        help=COMMAND_HELP["plot-sweep"],
+        description="Draw a metric of a sweep folder over one axis (--x: lines with 95 % intervals "
+        "over the seeds) or two (--x and --y: heat maps, mean over the seeds); one panel "
+        "per combination of the remaining axes. Writes the figure and a CSV of the "
+        "numbers drawn (same name, .csv).",
+    )
     p.add_argument("dir", help="a folder written by `delvjax sweep`")
     p.add_argument("--x", required=True, help="axis along x")
     p.add_argument("--y", default=None, help="axis along y (a heat map)")

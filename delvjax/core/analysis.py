@@ -23,6 +23,7 @@ from .scene import Env
 
 def alv_field(x: Array, env: Env) -> Array:
     """Eq 3.12 with exact geometry: sum u(L_i - x) - sum u(L_i - x_o), (2,)."""
+
     def unit_sum(p):
         v = env.landmarks[:, :2] - p
         u = v / jnp.linalg.norm(v, axis=-1, keepdims=True)
@@ -40,8 +41,9 @@ def delv_field(x: Array, env: Env) -> Array:
 FIELDS: dict[str, Callable[[Array, Env], Array]] = {"alv": alv_field, "delv": delv_field}
 
 
-def equilibria(env: Env, starts: ArrayLike, field: str = "alv", rtol: float = 1e-6, atol: float = 1e-4,
-               max_steps: int = 64) -> tuple[Array, Array]:
+def equilibria(
+    env: Env, starts: ArrayLike, field: str = "alv", rtol: float = 1e-6, atol: float = 1e-4, max_steps: int = 64
+) -> tuple[Array, Array]:
     """Zeros of a homing field from every start (vmapped optimistix Newton): (points (S, 2), converged (S,))."""
     fn = FIELDS[field]
     solver = optx.Newton(rtol=rtol, atol=atol)

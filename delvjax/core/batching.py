@@ -46,8 +46,7 @@ def fixed_width_map(fn: Callable, xs: tuple, active: jax.Array | None = None, wi
         flags = pad(active).reshape(m // width, width)
         shapes = jax.eval_shape(lambda g: batched(*g), jax.tree.map(lambda a: a[0], groups))
         idle = lambda g: jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), shapes)  # noqa: E731
-        out = jax.lax.map(lambda gf: jax.lax.cond(jnp.any(gf[1]), lambda g: batched(*g), idle, gf[0]),
-                          (groups, flags))
+        out = jax.lax.map(lambda gf: jax.lax.cond(jnp.any(gf[1]), lambda g: batched(*g), idle, gf[0]), (groups, flags))
     return jax.tree.map(lambda a: a.reshape((m,) + a.shape[2:])[:n], out)
 
 
@@ -92,11 +91,16 @@ def over_processes(fn: Callable, mesh: Mesh, n_replicated: int, total: int, *arg
     each process passes the whole replicated args and only its own rows (`process_rows`) of the split
     ones, and gets its own rows of the outputs back (NumPy)."""
     replicated, split = NamedSharding(mesh, P()), NamedSharding(mesh, P("items"))
-    glob = [jax.tree.map(lambda a: jax.make_array_from_process_local_data(replicated, np.asarray(a)), x)
-            for x in args[:n_replicated]]
-    glob += [jax.tree.map(lambda a: jax.make_array_from_process_local_data(split, np.asarray(a),
-                                                                           (total,) + np.shape(a)[1:]), x)
-             for x in args[n_replicated:]]
+    glob = [
+        jax.tree.map(lambda a: jax.make_array_from_process_local_data(replicated, np.asarray(a)), x)
+        for x in args[:n_replicated]
+    ]
+    glob += [
+        jax.tree.map(
+            lambda a: jax.make_array_from_process_local_data(split, np.asarray(a), (total,) + np.shape(a)[1:]), x
+        )
+        for x in args[n_replicated:]
+    ]
     out = over_devices(fn, mesh, n_replicated, *glob)
 
     def mine(a):

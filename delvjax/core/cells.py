@@ -35,8 +35,9 @@ class CellMetrics(eqx.Module):
 
 
 @jax.jit
-def map_cells(envs: Env, points: Array, included: Array, methods: HomingMethod, sensors: Sensor,
-              keys: Array) -> CellMetrics:
+def map_cells(
+    envs: Env, points: Array, included: Array, methods: HomingMethod, sensors: Sensor, keys: Array
+) -> CellMetrics:
     """Vector-map metrics of C stacked cells (leading axis C on `envs`, `included`, `methods`,
     `sensors`, `keys`); `points` (P, 2) is the shared grid. Headings are random per point from each
     cell's key, as in `maps.vector_map`."""
@@ -48,7 +49,13 @@ def map_cells(envs: Env, points: Array, included: Array, methods: HomingMethod, 
         err = angular_error_deg(direction, valid, points, env.home)
         count = lambda m: jnp.sum(m & inc).astype(jnp.int32)  # noqa: E731
         e = jnp.where(inc, err, 0.0)
-        return CellMetrics(points=count(jnp.ones_like(inc)), invalid=count(~valid), gt45=count(err > 45.0),
-                           gt90=count(err > 90.0), error_sum=jnp.sum(e), error_sq_sum=jnp.sum(e * e))
+        return CellMetrics(
+            points=count(jnp.ones_like(inc)),
+            invalid=count(~valid),
+            gt45=count(err > 45.0),
+            gt90=count(err > 90.0),
+            error_sum=jnp.sum(e),
+            error_sq_sum=jnp.sum(e * e),
+        )
 
     return jax.lax.map(one, (envs, included, methods, sensors, keys))

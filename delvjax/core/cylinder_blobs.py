@@ -37,8 +37,9 @@ def _pixel_hits(rel: Array, c2: Array, dirs: Array, j: Array) -> Array:
     return (b > 0) & (b * b >= c2)
 
 
-def cylinder_runs(landmarks: Array, visible: Array, origin: Array, heading: Array, n_pix: int
-                  ) -> tuple[Array, Array, Array]:
+def cylinder_runs(
+    landmarks: Array, visible: Array, origin: Array, heading: Array, n_pix: int
+) -> tuple[Array, Array, Array]:
     """Per cylinder, the run of pixels it covers: (first pixel in [0, n), length in pixels, active).
 
     A cylinder containing the viewpoint covers the whole ring (first 0, length n); one that no
@@ -49,7 +50,7 @@ def cylinder_runs(landmarks: Array, visible: Array, origin: Array, heading: Arra
     r = landmarks[:, 2]
     inside = c2 <= 0
     phi = jnp.arctan2(rel[:, 1], rel[:, 0])
-    beta = jnp.arcsin(jnp.clip(r / jnp.sqrt(jnp.maximum(c2 + r ** 2, 1e-30)), 0.0, 1.0))
+    beta = jnp.arcsin(jnp.clip(r / jnp.sqrt(jnp.maximum(c2 + r**2, 1e-30)), 0.0, 1.0))
     step = np.float32(2.0 * np.pi / n_pix)
     s0 = jnp.ceil((phi - beta) / step).astype(jnp.int32)
     e0 = jnp.floor((phi + beta) / step).astype(jnp.int32)
@@ -64,8 +65,9 @@ def cylinder_runs(landmarks: Array, visible: Array, origin: Array, heading: Arra
     return first, length, active
 
 
-def blobs_of_cylinders(landmarks: Array, visible: Array, origin: Array, heading: Array, n_pix: int
-                       ) -> tuple[Array, Array, Array]:
+def blobs_of_cylinders(
+    landmarks: Array, visible: Array, origin: Array, heading: Array, n_pix: int
+) -> tuple[Array, Array, Array]:
     """The blobs of the ring at `origin` with `heading` (docs/model.md §2.4): (bearing (L,), width (L,),
     valid (L,)) in the order of `sensing.blob_runs` before its sort (call `sensing.sort_blobs` after).
 

@@ -29,6 +29,7 @@ class DistanceSettings(Protocol):
     levels: Array | int
     scale: Array | float
 
+
 SIN_EPS = 1e-9
 
 

@@ -22,19 +22,20 @@ from .sensor import Sensor
 
 def sense(env: Env, visible: Array, poses: MovePoses, method: HomingMethod, sensor: Sensor) -> UnitMove:
     """The unit move `poses` as the agent senses it, rendering only what `method` reads."""
-    return observe_poses(env, visible, poses, sensor, method.reads_start_view(), method.reads_gray(sensor.channel),
-                         method.reads_image())
+    return observe_poses(
+        env, visible, poses, sensor, method.reads_start_view(), method.reads_gray(sensor.channel), method.reads_image()
+    )
 
 
-def world_direction(method: HomingMethod, home: UnitMove, view: UnitMove,
-                    heading_end: Array) -> Direction:
+def world_direction(method: HomingMethod, home: UnitMove, view: UnitMove, heading_end: Array) -> Direction:
     """The method's homing direction in the world frame (rad; NaN where invalid) and its validity."""
     angle, valid = method(home, view)
     return jnp.where(valid, wrap(heading_end + angle), jnp.nan), valid
 
 
-def direction_from(env: Env, visible: Array, poses: MovePoses, home: UnitMove, method: HomingMethod,
-                   sensor: Sensor) -> Direction:
+def direction_from(
+    env: Env, visible: Array, poses: MovePoses, home: UnitMove, method: HomingMethod, sensor: Sensor
+) -> Direction:
     """Sense `poses` and home: (world direction, valid)."""
     return world_direction(method, home, sense(env, visible, poses, method, sensor), poses.heading_end)
 

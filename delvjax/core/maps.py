@@ -80,9 +80,16 @@ def random_headings(key: Array, n: int, start: Array | int = 0) -> Array:
 
 
 @jax.jit
-def homing_directions(env: Env, points: Points, headings: PerPoint, key: Array, sensor: Sensor,
-                      method: HomingMethod, visible: BlobFlags | None = None,
-                      start: Array | int = 0) -> tuple[PerPoint, PerPointFlag]:
+def homing_directions(
+    env: Env,
+    points: Points,
+    headings: PerPoint,
+    key: Array,
+    sensor: Sensor,
+    method: HomingMethod,
+    visible: BlobFlags | None = None,
+    start: Array | int = 0,
+) -> tuple[PerPoint, PerPointFlag]:
     """World homing directions (P,) and validity (P,) of `method` at `points` with `headings`.
 
     The home record sees every landmark; the current views see only `visible` ones
@@ -101,9 +108,18 @@ def homing_directions(env: Env, points: Points, headings: PerPoint, key: Array, 
     return fixed_width_map(lambda *a: one(a), (points, headings, index))
 
 
-def vector_map(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = SPACING, heading: float | None = None,
-               key: Array | None = None, clearance: Real = CLEARANCE, visible: Array | None = None,
-               batch_size: int = DEFAULT_BATCH, progress: Callable[[int, int], None] | None = None) -> VectorMap:
+def vector_map(
+    env: Env,
+    method: HomingMethod,
+    sensor: Sensor,
+    spacing: float = SPACING,
+    heading: float | None = None,
+    key: Array | None = None,
+    clearance: Real = CLEARANCE,
+    visible: Array | None = None,
+    batch_size: int = DEFAULT_BATCH,
+    progress: Callable[[int, int], None] | None = None,
+) -> VectorMap:
     """The vector map of `method` on the docs/model.md §5 grid; heading fixed (rad) or random per point from `key`.
 
     The grid runs in host-side chunks of `batch_size` points (the last one padded, so one
@@ -120,29 +136,48 @@ def vector_map(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = 
     chunk = per_device * n_devices(mesh)
     parts = []
     for start in range(0, n, chunk):  # chunked driver: every chunk is the same compiled program
-        rows = points[start:start + chunk]
+        rows = points[start : start + chunk]
         rows = np.concatenate([rows, np.repeat(rows[:1], chunk - len(rows), axis=0)])
         if mesh is None:
             part = _vector_map(env, rows, heading, key, sensor, method, clearance, visible, np.int32(start))
         else:  # device d evaluates grid points start + d * per_device ...: the same per-point program
             starts = (start + per_device * np.arange(mesh.size)).astype(np.int32)
-            part = over_devices(_device_chunk, mesh, 7, env, heading, key, sensor, method, clearance, visible,
-                                rows, starts)
-        parts.append(jax.tree.map(lambda a: np.asarray(a)[:n - start], part))
+            part = over_devices(
+                _device_chunk, mesh, 7, env, heading, key, sensor, method, clearance, visible, rows, starts
+            )
+        parts.append(jax.tree.map(lambda a: np.asarray(a)[: n - start], part))
         if progress is not None:
             progress(min(chunk, n - start), n)
     return jax.tree.map(lambda *a: jnp.asarray(np.concatenate(a)), *parts)
 
 
-def _device_chunk(env: Env, heading: Array | None, key: Array, sensor: Sensor, method: HomingMethod, clearance,
-                  visible: Array | None, points: Array, starts: Array) -> VectorMap:
+def _device_chunk(
+    env: Env,
+    heading: Array | None,
+    key: Array,
+    sensor: Sensor,
+    method: HomingMethod,
+    clearance,
+    visible: Array | None,
+    points: Array,
+    starts: Array,
+) -> VectorMap:
     """One device's part of a chunk (`batching.over_devices`): its points start at starts[0]."""
     return _vector_map(env, points, heading, key, sensor, method, clearance, visible, starts[0])
 
 
 @jax.jit
-def _vector_map(env: Env, points: Array, heading: Array | None, key: Array, sensor: Sensor, method: HomingMethod,
-                clearance: Real, visible: Array | None, start: Array | int = 0) -> VectorMap:
+def _vector_map(
+    env: Env,
+    points: Array,
+    heading: Array | None,
+    key: Array,
+    sensor: Sensor,
+    method: HomingMethod,
+    clearance: Real,
+    visible: Array | None,
+    start: Array | int = 0,
+) -> VectorMap:
     """One program for a chunk of the map: headings, directions, grid mask and errors; point i is grid point start + i."""
     if heading is None:
         headings = random_headings(key, points.shape[0], start)
@@ -185,9 +220,18 @@ def replace_field(method: HomingMethod, sensor: Sensor, name: str, value) -> tup
     return method, eqx.tree_at(where, sensor, value, is_leaf=lambda x: x is None)
 
 
-def sweep(env: Env, method: HomingMethod, sensor: Sensor, name: str, values: Array, spacing: float = SPACING,
-          heading: float | None = None, key: Array | None = None, clearance: Real = CLEARANCE,
-          visible: Array | None = None) -> VectorMap:
+def sweep(
+    env: Env,
+    method: HomingMethod,
+    sensor: Sensor,
+    name: str,
+    values: Array,
+    spacing: float = SPACING,
+    heading: float | None = None,
+    key: Array | None = None,
+    clearance: Real = CLEARANCE,
+    visible: Array | None = None,
+) -> VectorMap:
     """Vector maps for every value of one continuous setting, vmapped as one program.
 
     `name` names a leaf of the method or the sensor (`replace_field`: "levels", "d",

@@ -56,8 +56,14 @@ def t_interval(values: np.ndarray, confidence: float = 0.95) -> tuple[float, flo
     return mean, half, n
 
 
-def error_curve(error_deg: ArrayLike, points: ArrayLike, home: ArrayLike, included: ArrayLike, bin_width: float = 50.0,
-                confidence: float = 0.95) -> list[dict[str, float]]:
+def error_curve(
+    error_deg: ArrayLike,
+    points: ArrayLike,
+    home: ArrayLike,
+    included: ArrayLike,
+    bin_width: float = 50.0,
+    confidence: float = 0.95,
+) -> list[dict[str, float]]:
     """Mean angular error per distance-from-home bin with a Student-t CI (Fig 4.4).
 
     Rows: bin_lo, bin_hi, n, mean_deg, ci_lo_deg, ci_hi_deg (CI NaN where n < 2).
@@ -74,8 +80,16 @@ def error_curve(error_deg: ArrayLike, points: ArrayLike, home: ArrayLike, includ
         if not np.any(sel):
             continue
         mean, half, n = t_interval(e[sel], confidence)
-        rows.append({"bin_lo": b * bin_width, "bin_hi": (b + 1) * bin_width, "n": n, "mean_deg": mean,
-                     "ci_lo_deg": mean - half, "ci_hi_deg": mean + half})
+        rows.append(
+            {
+                "bin_lo": b * bin_width,
+                "bin_hi": (b + 1) * bin_width,
+                "n": n,
+                "mean_deg": mean,
+                "ci_lo_deg": mean - half,
+                "ci_hi_deg": mean + half,
+            }
+        )
     return rows
 
 

@@ -23,6 +23,7 @@ DEFAULT_HOME = (500.0, 500.0)
 
 class Env(eqx.Module):
     """landmarks: (L, 3) [x, y, r] cm; valid: (L,) bool; home: (2,); arena: (4,) [xmin, ymin, xmax, ymax]."""
+
     landmarks: Array
     valid: Array
     home: Array
@@ -52,7 +53,9 @@ def rotation_mismatch(env: Env, angles_deg=(90.0, 180.0, 270.0)) -> dict[float, 
     rotational symmetry (env2, ring4 at 90 deg); env1 is asymmetric: > `ASYMMETRY_CM` for all three.
     """
     from scipy.sparse import csr_matrix  # scipy: loaded only where this is used, so that `import delvjax` stays light
-    from scipy.sparse.csgraph import maximum_bipartite_matching  # scipy: loaded only where this is used, so that `import delvjax` stays light
+    from scipy.sparse.csgraph import (
+        maximum_bipartite_matching,
+    )  # scipy: loaded only where this is used, so that `import delvjax` stays light
 
     pts = np.asarray(env.landmarks, float)[np.asarray(env.valid), :2]
     rel = pts - np.asarray(env.home, float)
@@ -81,8 +84,12 @@ def clear_of_landmarks(env: Env, pos: Array, clearance: Real, margin: Real = 0.0
     landmark centre; pos (..., 2). margin 0 is the grid rule of docs/model.md §5 (grid points
     and release points); margin d keeps a first move, whatever its heading, clear."""
     a = env.arena
-    inside = ((pos[..., 0] >= a[0] + margin) & (pos[..., 0] <= a[2] - margin)
-              & (pos[..., 1] >= a[1] + margin) & (pos[..., 1] <= a[3] - margin))
+    inside = (
+        (pos[..., 0] >= a[0] + margin)
+        & (pos[..., 0] <= a[2] - margin)
+        & (pos[..., 1] >= a[1] + margin)
+        & (pos[..., 1] <= a[3] - margin)
+    )
     dist = jnp.sqrt(jnp.sum((pos[..., None, :] - env.landmarks[:, :2]) ** 2, axis=-1))
     near = jnp.any(env.valid & (dist <= env.landmarks[:, 2] + clearance + margin), axis=-1)
     return inside & ~near

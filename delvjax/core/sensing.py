@@ -53,7 +53,6 @@ class UnitMove(eqx.Module):
     compass: Array
 
 
-
 def background_of_angle(phi: Array) -> Array:
     """docs/model.md §2.3 background intensity as a function of an angle (radians)."""
     return 0.45 + 0.25 * jnp.sin(3.0 * phi) + 0.15 * jnp.sin(7.0 * phi + 1.0)
@@ -117,8 +116,9 @@ def computed_if(flag: Array | bool, fn):
     return jax.lax.cond(flag, fn, zeros)
 
 
-def render(env: Env, visible: Array, pos: Array, heading: Array, sensor: Sensor,
-           with_gray: Array | bool = True) -> tuple[Array, Array]:
+def render(
+    env: Env, visible: Array, pos: Array, heading: Array, sensor: Sensor, with_gray: Array | bool = True
+) -> tuple[Array, Array]:
     """Ring image at `pos` with `heading` (docs/model.md §2.2-2.3): (mask bool (n_pix,), gray (n_pix,)).
 
     Pixel j looks along world angle heading + 2*pi*j/n_pix; landmark = 1, else background.
@@ -202,8 +202,16 @@ def sort_blobs(bearing: Array, valid: Array, *carried: Array) -> tuple[Array, ..
     return (jnp.where(ok, b, 0.0), ok, *(jnp.where(ok, c, 0.0) for c in rest))
 
 
-def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, sensor: Sensor,
-             with_gray: Array | bool = True, with_mask: Array | bool = True) -> Snapshot:
+def snapshot(
+    env: Env,
+    visible: Array,
+    pos: Array,
+    heading: Array,
+    key: Array,
+    sensor: Sensor,
+    with_gray: Array | bool = True,
+    with_mask: Array | bool = True,
+) -> Snapshot:
     """Render, extract blobs and add bearing noise (docs/model.md §2.5) for one viewpoint.
 
     The blobs come from the cylinders (`cylinder_blobs`: those of the rendered ring); the ring itself
@@ -217,10 +225,21 @@ def snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, s
     return Snapshot(mask=mask, gray=gray, bearing=bearing, width=width, valid=valid, channel=sensor.channel)
 
 
-def observe_move(env: Env, visible: Array, start: Array, end: Array, heading_start: Array, heading_end: Array,
-                 d_hat: Real, psi_hat: Array, key: Array, sensor: Sensor,
-                 with_start: Array | bool = True, with_gray: Array | bool = True,
-                 with_mask: Array | bool = True) -> UnitMove:
+def observe_move(
+    env: Env,
+    visible: Array,
+    start: Array,
+    end: Array,
+    heading_start: Array,
+    heading_end: Array,
+    d_hat: Real,
+    psi_hat: Array,
+    key: Array,
+    sensor: Sensor,
+    with_start: Array | bool = True,
+    with_gray: Array | bool = True,
+    with_mask: Array | bool = True,
+) -> UnitMove:
     """Snapshots at `start` and `end` of a move already made (true poses given), plus the
     agent's readings: odometry (d_hat, psi_hat) and a compass reading of heading_end - alpha_r
     with N(0, noise.compass) error. Rollouts use this for the step just made.
@@ -232,8 +251,9 @@ def observe_move(env: Env, visible: Array, start: Array, end: Array, heading_sta
     k_compass, k_start, k_end = sensor.noise.observation_keys(key)
     compass = wrap(heading_end - sensor.alpha_r + sensor.noise.compass_error(k_compass))
     return UnitMove(
-        start=computed_if(with_start, lambda: snapshot(env, visible, start, heading_start, k_start, sensor, with_gray,
-                                                       with_mask)),
+        start=computed_if(
+            with_start, lambda: snapshot(env, visible, start, heading_start, k_start, sensor, with_gray, with_mask)
+        ),
         end=snapshot(env, visible, end, heading_end, k_end, sensor, with_gray, with_mask),
         d_hat=jnp.asarray(d_hat, jnp.float32),
         psi_hat=jnp.asarray(psi_hat, jnp.float32),
@@ -256,8 +276,7 @@ class MovePoses(eqx.Module):
     key: Array
 
 
-def unit_move_poses(start: Array, heading: Array, key: Array, sensor: Sensor,
-                    end_at: Array | None = None) -> MovePoses:
+def unit_move_poses(start: Array, heading: Array, key: Array, sensor: Sensor, end_at: Array | None = None) -> MovePoses:
     """The true poses and odometry of one unit movement (docs/model.md §2.5, §3.1), before sensing.
 
     The agent at P = `start` with `heading` moves d * (1 + N(0, noise.step)) along it and
@@ -271,16 +290,42 @@ def unit_move_poses(start: Array, heading: Array, key: Array, sensor: Sensor,
     return MovePoses(start, start + step * unit(heading), heading, heading + psi, psi_hat, k_obs)
 
 
-def observe_poses(env: Env, visible: Array, poses: MovePoses, sensor: Sensor,
-                  with_start: Array | bool = True, with_gray: Array | bool = True,
-                  with_mask: Array | bool = True) -> UnitMove:
+def observe_poses(
+    env: Env,
+    visible: Array,
+    poses: MovePoses,
+    sensor: Sensor,
+    with_start: Array | bool = True,
+    with_gray: Array | bool = True,
+    with_mask: Array | bool = True,
+) -> UnitMove:
     """`observe_move` of a `MovePoses` (the odometry reports d_hat = d)."""
-    return observe_move(env, visible, poses.start, poses.end, poses.heading_start, poses.heading_end, sensor.d,
-                        poses.psi_hat, poses.key, sensor, with_start, with_gray, with_mask)
+    return observe_move(
+        env,
+        visible,
+        poses.start,
+        poses.end,
+        poses.heading_start,
+        poses.heading_end,
+        sensor.d,
+        poses.psi_hat,
+        poses.key,
+        sensor,
+        with_start,
+        with_gray,
+        with_mask,
+    )
 
 
-def unit_move(env: Env, start: Array, heading: Array, key: Array, sensor: Sensor,
-              visible: Array | None = None, end_at: Array | None = None) -> tuple[UnitMove, Array]:
+def unit_move(
+    env: Env,
+    start: Array,
+    heading: Array,
+    key: Array,
+    sensor: Sensor,
+    visible: Array | None = None,
+    end_at: Array | None = None,
+) -> tuple[UnitMove, Array]:
     """Sense one unit movement (`unit_move_poses`); returns (UnitMove, true heading at the end)."""
     if visible is None:
         visible = jnp.ones(env.landmarks.shape[0], bool)

@@ -30,8 +30,9 @@ def _perturbed(view: UnitMove, eps: Array) -> UnitMove:
 
 
 @jax.jit
-def bearing_jacobian(env: Env, points: Points, headings: PerPoint, key: Array, sensor: Sensor,
-                     method: HomingMethod) -> tuple[PointBlobs, PointBlobFlags, PerPointFlag]:
+def bearing_jacobian(
+    env: Env, points: Points, headings: PerPoint, key: Array, sensor: Sensor, method: HomingMethod
+) -> tuple[PointBlobs, PointBlobFlags, PerPointFlag]:
     """d(direction)/d(current blob bearings) at every point: (jac (P, B), blob_valid (P, B), valid (P,)).
 
     Same keys and unit moves as `maps.homing_directions`; rad per rad; 0 where undefined.
@@ -54,8 +55,9 @@ def bearing_jacobian(env: Env, points: Points, headings: PerPoint, key: Array, s
     return jax.vmap(one)(points, headings, jnp.arange(points.shape[0]))
 
 
-def bearing_noise_gain(env: Env, points: Points, headings: PerPoint, key: Array, sensor: Sensor,
-                       method: HomingMethod) -> tuple[PerPoint, PerPointFlag]:
+def bearing_noise_gain(
+    env: Env, points: Points, headings: PerPoint, key: Array, sensor: Sensor, method: HomingMethod
+) -> tuple[PerPoint, PerPointFlag]:
     """First-order std of the homing direction per unit std of independent bearing noise
     on the current view, (P,) deg per deg, and validity (P,)."""
     jac, _, ok = bearing_jacobian(env.arrays(), points, headings, key, sensor, method)

@@ -32,21 +32,60 @@ class Noise(eqx.Module):
     motion_step:    rollouts only: step length factor `1 + N(0, .)` of each step.
     """
 
-    bearing: Real = setting(0.0, check="non_negative", unit="deg", to_field=radians, option="bearing_noise_deg",
-                             help="error of every blob bearing, in every snapshot")
-    step: Real = setting(0.0, check="non_negative", unit="fraction of d", option="step_noise",
-                          help="error of the unit move's length, d * (1 + N(0, s)); the agent believes it moved d")
-    turn: Real = setting(0.0, check="non_negative", unit="deg", to_field=radians, option="turn_noise_deg",
-                          help="true body turn during the unit move; the end view is rotated by it")
-    turn_odometry: Real = setting(0.0, check="non_negative", unit="deg", to_field=radians,
-                                   option="odometry_turn_noise_deg", help="error of the odometry's report of that turn")
-    compass: Real = setting(0.0, check="non_negative", unit="deg", to_field=radians, option="compass_noise_deg",
-                             help="error of every compass reading (compass methods only)")
-    motion_heading: Real = setting(0.0, check="non_negative", unit="deg", to_field=radians,
-                                    option="motion_heading_noise_deg",
-                                    help="rollouts only: error of the executed heading of every step")
-    motion_step: Real = setting(0.0, check="non_negative", unit="fraction of d", option="motion_step_noise",
-                                 help="rollouts only: error of every step's length, d * (1 + N(0, s))")
+    bearing: Real = setting(
+        0.0,
+        check="non_negative",
+        unit="deg",
+        to_field=radians,
+        option="bearing_noise_deg",
+        help="error of every blob bearing, in every snapshot",
+    )
+    step: Real = setting(
+        0.0,
+        check="non_negative",
+        unit="fraction of d",
+        option="step_noise",
+        help="error of the unit move's length, d * (1 + N(0, s)); the agent believes it moved d",
+    )
+    turn: Real = setting(
+        0.0,
+        check="non_negative",
+        unit="deg",
+        to_field=radians,
+        option="turn_noise_deg",
+        help="true body turn during the unit move; the end view is rotated by it",
+    )
+    turn_odometry: Real = setting(
+        0.0,
+        check="non_negative",
+        unit="deg",
+        to_field=radians,
+        option="odometry_turn_noise_deg",
+        help="error of the odometry's report of that turn",
+    )
+    compass: Real = setting(
+        0.0,
+        check="non_negative",
+        unit="deg",
+        to_field=radians,
+        option="compass_noise_deg",
+        help="error of every compass reading (compass methods only)",
+    )
+    motion_heading: Real = setting(
+        0.0,
+        check="non_negative",
+        unit="deg",
+        to_field=radians,
+        option="motion_heading_noise_deg",
+        help="rollouts only: error of the executed heading of every step",
+    )
+    motion_step: Real = setting(
+        0.0,
+        check="non_negative",
+        unit="fraction of d",
+        option="motion_step_noise",
+        help="rollouts only: error of every step's length, d * (1 + N(0, s))",
+    )
 
     def unit_move(self, key: Array, d: Real) -> tuple[Array, Array, Array, Array]:
         """Draws of an imagined unit movement (vector maps, the home record; docs/model.md §2.5):
@@ -92,12 +131,23 @@ class Sensor(eqx.Module):
     """
 
     d: Real = setting(50.0, check="positive", unit="cm", help="unit-movement step")
-    alpha_r: Real = setting(0.0, check="angle_deg", unit="deg", to_field=radians, option="alpha_r_deg",
-                             help="reference heading at home")
+    alpha_r: Real = setting(
+        0.0, check="angle_deg", unit="deg", to_field=radians, option="alpha_r_deg", help="reference heading at home"
+    )
     noise: Noise = Noise()
-    background: Real = setting(0, converter=lambda b: BACKGROUNDS.index(b) if isinstance(b, str) else b,
-                              check="choice", choices=BACKGROUNDS, shown_default=BACKGROUNDS[0],
-                              help="what the agent sees beyond the landmarks (docs/model.md §2.3)")
+    background: Real = setting(
+        0,
+        converter=lambda b: BACKGROUNDS.index(b) if isinstance(b, str) else b,
+        check="choice",
+        choices=BACKGROUNDS,
+        shown_default=BACKGROUNDS[0],
+        help="what the agent sees beyond the landmarks (docs/model.md §2.3)",
+    )
     n_pix: int = setting(360, static=True, check="positive_int", limit=36_000, help="ring image width in pixels")
-    channel: str = setting("mask", static=True, check="choice", choices=CHANNELS,
-                           help="image channel of the image methods (warping, mfdid)")
+    channel: str = setting(
+        "mask",
+        static=True,
+        check="choice",
+        choices=CHANNELS,
+        help="image channel of the image methods (warping, mfdid)",
+    )

@@ -16,6 +16,7 @@ import numpy as np
 from ..core.errors import InputError
 from ..core.scene import DEFAULT_ARENA, DEFAULT_HOME, Env
 
+
 def make_env(landmarks, home=DEFAULT_HOME, arena=DEFAULT_ARENA, name: str = "env", pad_to: int | None = None) -> Env:
     """Build an `Env` from plain numbers (validated like a JSON file, docs/model.md §7)."""
     try:
@@ -71,7 +72,9 @@ def validate_env_dict(spec: object) -> dict:
             raise InputError(key, None, "missing required field")
     unknown = sorted(set(spec) - ENV_FIELDS, key=str)
     if unknown:
-        raise InputError(unknown[0], spec[unknown[0]], f"unknown field (an environment has {', '.join(sorted(ENV_FIELDS))})")
+        raise InputError(
+            unknown[0], spec[unknown[0]], f"unknown field (an environment has {', '.join(sorted(ENV_FIELDS))})"
+        )
     name = spec.get("name", "env")
     if not isinstance(name, str) or not name:
         raise InputError("name", name, "must be a non-empty string")
@@ -108,8 +111,16 @@ def validate_env_dict(spec: object) -> dict:
     return {"name": name, "arena": [xmin, ymin, xmax, ymax], "home": [hx, hy], "landmarks": lms}
 
 
-def random_env(seed: int, n_landmarks: int, radius=(15.0, 45.0), region=(150.0, 850.0), min_home_gap: float = 40.0,
-               min_gap: float = 20.0, pad_to: int | None = None, name: str | None = None) -> Env:
+def random_env(
+    seed: int,
+    n_landmarks: int,
+    radius=(15.0, 45.0),
+    region=(150.0, 850.0),
+    min_home_gap: float = 40.0,
+    min_gap: float = 20.0,
+    pad_to: int | None = None,
+    name: str | None = None,
+) -> Env:
     """A reproducible random layout (thesis Fig 4.8 "arbitrary layouts"): `n_landmarks`
     non-overlapping cylinders in the default arena, none within r + `min_home_gap` of home."""
     rng = np.random.default_rng(seed)
@@ -162,7 +173,9 @@ def env_to_dict(env: Env) -> dict:
     }
 
 
-def _ring(n: int, distance: float = 250.0, radius: float = 30.0, first_deg: float = 90.0) -> list[tuple[float, float, float]]:
+def _ring(
+    n: int, distance: float = 250.0, radius: float = 30.0, first_deg: float = 90.0
+) -> list[tuple[float, float, float]]:
     hx, hy = DEFAULT_HOME
     return [
         (

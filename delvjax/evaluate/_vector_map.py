@@ -20,11 +20,11 @@ from ..core.errors import InputError
 from ..core.methods import HomingMethod
 from ..core.scene import Env
 from ..core.sensor import Sensor
-from ..options._settings import angle_deg, make_setup, non_negative, positive, positive_int, seed_value
+from ..options._settings import make_setup
+from ..options._checks import angle_deg, non_negative, positive, positive_int, seed_value
 from ..options._limits import MAX_POINTS, check_size
 from ..envs._presets import load_env
 from ._config import GRID_DEFAULTS, Grid, unpack
-
 
 
 def resolve_headings(heading_deg: float | None, seed: int) -> tuple[float | None, jax.Array]:
@@ -48,8 +48,15 @@ def visible_mask(env: Env, hidden: list[int] | tuple[int, ...] | None) -> np.nda
     return mask
 
 
-def scene_request(env: str | Path | Env, method: str | HomingMethod, clearance: float, heading_deg: float | None, seed: int,
-                  program=None, **options) -> tuple[Env, HomingMethod, Sensor, float | None, jax.Array, float]:
+def scene_request(
+    env: str | Path | Env,
+    method: str | HomingMethod,
+    clearance: float,
+    heading_deg: float | None,
+    seed: int,
+    program=None,
+    **options,
+) -> tuple[Env, HomingMethod, Sensor, float | None, jax.Array, float]:
     """The options every evaluation shares, validated before any work: method name and settings,
     sensor options, grid clearance, environment, heading/seed. Returns
     (env, method module, sensor, heading rad | None, key, clearance)."""
@@ -60,8 +67,9 @@ def scene_request(env: str | Path | Env, method: str | HomingMethod, clearance: 
     return env, module, sensor, heading, key, clearance
 
 
-def check_grid(env: Env, spacing: float, clearance: float, max_points: int = MAX_POINTS, copies: int = 1,
-               what: str = "grid point") -> None:
+def check_grid(
+    env: Env, spacing: float, clearance: float, max_points: int = MAX_POINTS, copies: int = 1, what: str = "grid point"
+) -> None:
     """`InputError` naming `spacing` when the docs/model.md §5 grid (times `copies`, e.g. occlusion masks)
     has more than `max_points` points (`limits.check_size`, checked before the grid is built; `what`
     they are: grid points, or trials of a catchment) or no point clear of the landmarks."""
@@ -75,21 +83,36 @@ _CLEAR: dict[tuple, bool] = {}  # (scene numbers, spacing, clearance) -> answer:
 
 def _has_clear_point(env: Env, spacing: float, clearance: float) -> bool:
     """Whether some docs/model.md §5 grid point is clear of every landmark (r + clearance)."""
-    key = (np.asarray(env.landmarks).tobytes(), np.asarray(env.valid).tobytes(), np.asarray(env.arena).tobytes(),
-           float(spacing), float(clearance))
+    key = (
+        np.asarray(env.landmarks).tobytes(),
+        np.asarray(env.valid).tobytes(),
+        np.asarray(env.arena).tobytes(),
+        float(spacing),
+        float(clearance),
+    )
     if key not in _CLEAR:
         points = maps.grid_points(env.arena, spacing)
-        _CLEAR[key] = points.shape[0] > 0 and bool(np.asarray(
-            maps.grid_included(env.arrays(), jax.device_put(points), clearance)).any())
+        _CLEAR[key] = points.shape[0] > 0 and bool(
+            np.asarray(maps.grid_included(env.arrays(), jax.device_put(points), clearance)).any()
+        )
         if len(_CLEAR) > 4096:
             _CLEAR.pop(next(iter(_CLEAR)))
     return _CLEAR[key]
 
 
-def map_request(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
-                seed: int = 0, clearance: float = CLEARANCE, hidden: list[int] | None = None,
-                batch_size: int = maps.DEFAULT_BATCH, max_points: int = MAX_POINTS, grid: Grid | None = None,
-                **options) -> dict:
+def map_request(
+    env: str | Path | Env,
+    method: str | HomingMethod = "delv",
+    spacing: float = SPACING,
+    heading_deg: float | None = None,
+    seed: int = 0,
+    clearance: float = CLEARANCE,
+    hidden: list[int] | None = None,
+    batch_size: int = maps.DEFAULT_BATCH,
+    max_points: int = MAX_POINTS,
+    grid: Grid | None = None,
+    **options,
+) -> dict:
     """Validate the public options of a vector map (before any array work): keyword
     arguments of `core.maps.vector_map`. Raises `InputError` naming the field and value."""
     g = unpack(grid, Grid, dict(spacing=spacing, clearance=clearance, heading_deg=heading_deg), GRID_DEFAULTS)
@@ -99,15 +122,32 @@ def map_request(env: str | Path | Env, method: str | HomingMethod = "delv", spac
     check_grid(env, spacing, clearance, max_points)
     batch_size = positive_int(batch_size, "batch_size")
     visible = visible_mask(env, hidden)
-    return dict(env=env, method=module, sensor=sensor, spacing=spacing, heading=heading, key=key,
-                clearance=clearance, visible=None if visible is None else jax.device_put(visible),
-                batch_size=batch_size)
+    return dict(
+        env=env,
+        method=module,
+        sensor=sensor,
+        spacing=spacing,
+        heading=heading,
+        key=key,
+        clearance=clearance,
+        visible=None if visible is None else jax.device_put(visible),
+        batch_size=batch_size,
+    )
 
 
-def vector_map(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, heading_deg: float | None = None,
-               seed: int = 0, clearance: float = CLEARANCE, hidden: list[int] | None = None,
-               batch_size: int = maps.DEFAULT_BATCH, max_points: int = MAX_POINTS, grid: Grid | None = None,
-               **options) -> maps.VectorMap:
+def vector_map(
+    env: str | Path | Env,
+    method: str | HomingMethod = "delv",
+    spacing: float = SPACING,
+    heading_deg: float | None = None,
+    seed: int = 0,
+    clearance: float = CLEARANCE,
+    hidden: list[int] | None = None,
+    batch_size: int = maps.DEFAULT_BATCH,
+    max_points: int = MAX_POINTS,
+    grid: Grid | None = None,
+    **options,
+) -> maps.VectorMap:
     """Homing direction of `method` at every docs/model.md §5 grid point, one jitted vmapped call.
 
     `method`: a registry name (`"delv-compass"`) or a method module (`DELV(levels=3,
@@ -126,5 +166,8 @@ def vector_map(env: str | Path | Env, method: str | HomingMethod = "delv", spaci
     `sensor=Sensor(...)`, `noise=Noise(...)` (evaluate/_config.py).
     Returns a `VectorMap` pytree (points, included, heading, direction, valid, error_deg).
     """
-    return maps.vector_map(**map_request(env, method, spacing, heading_deg, seed, clearance, hidden, batch_size,
-                                         max_points, grid, **options))
+    return maps.vector_map(
+        **map_request(
+            env, method, spacing, heading_deg, seed, clearance, hidden, batch_size, max_points, grid, **options
+        )
+    )

@@ -33,7 +33,7 @@ from ..core.maps import SPACING
 from ..core.rollouts import Catchment, catchment_summary, occlusion_masks
 from ..core.scene import Env
 from ..core.soft.quality import soft_quality
-from ..options._settings import occlusion_count, positive_int
+from ..options._checks import occlusion_count, positive_int
 from ..envs._presets import make_env, random_env
 
 WALL_CM = 10.0
@@ -72,15 +72,29 @@ def _objective(u, args):
     pos = lo + (hi - lo) * jax.nn.sigmoid(u)
     landmarks = lm.at[:n, :2].set(pos)
     env = eqx.tree_at(lambda e: e.landmarks, problem.env, landmarks)
-    quality = jnp.mean(jax.vmap(lambda vis: soft_quality(env, problem.points, problem.included, problem.headings,
-                                                         problem.key, problem.sensor, problem.method, problem.tau,
-                                                         problem.sharpness, vis))(masks))
+    quality = jnp.mean(
+        jax.vmap(
+            lambda vis: soft_quality(
+                env,
+                problem.points,
+                problem.included,
+                problem.headings,
+                problem.key,
+                problem.sensor,
+                problem.method,
+                problem.tau,
+                problem.sharpness,
+                vis,
+            )
+        )(masks)
+    )
     r = lm[:n, 2]
     home = jnp.linalg.norm(pos - problem.env.home, axis=-1)
     diff = pos[:, None] - pos[None]
     gap = jnp.sqrt(jnp.sum(diff * diff, axis=-1) + jnp.eye(n) * 1e12)  # the diagonal: far, and no NaN gradient at 0
-    penalty = (jnp.sum(jax.nn.relu(r + HOME_GAP_CM - home) ** 2)
-               + 0.5 * jnp.sum(jax.nn.relu(r[:, None] + r[None] + GAP_CM - gap) ** 2))
+    penalty = jnp.sum(jax.nn.relu(r + HOME_GAP_CM - home) ** 2) + 0.5 * jnp.sum(
+        jax.nn.relu(r[:, None] + r[None] + GAP_CM - gap) ** 2
+    )
     return quality + PENALTY * penalty
 
 
@@ -100,7 +114,9 @@ _done = eqx.filter_jit(lambda u, s, a: SOLVER.terminate(_fn, u, a, {}, s, frozen
 _value = eqx.filter_jit(_objective)
 
 
-def _minimise(args, u0, steps: int, progress: Callable[[int, int, float], None] | None) -> tuple[jax.Array, list[float]]:
+def _minimise(
+    args, u0, steps: int, progress: Callable[[int, int, float], None] | None
+) -> tuple[jax.Array, list[float]]:
     """optimistix BFGS, stepped by hand: (u, objective after each step). A step returns the last
     accepted point (the line search rejects a worse one), so the last u is the best."""
     state = _init(u0, args)
@@ -128,9 +144,18 @@ def start_layout(env: str | Path | Env | None = None, landmarks: int | None = No
     return random_env(seed, n)
 
 
-def optimise_layout(env: str | Path | Env, method: str = "delv", occlude: int = 0, spacing: float = SPACING, seed: int = 0,
-                    tau: float = TAU, steps: int = STEPS, progress: Callable[[int, int, float], None] | None = None,
-                    announce: Callable[[], None] | None = None, **options) -> LayoutResult:
+def optimise_layout(
+    env: str | Path | Env,
+    method: str = "delv",
+    occlude: int = 0,
+    spacing: float = SPACING,
+    seed: int = 0,
+    tau: float = TAU,
+    steps: int = STEPS,
+    progress: Callable[[int, int, float], None] | None = None,
+    announce: Callable[[], None] | None = None,
+    **options,
+) -> LayoutResult:
     """Optimise the landmark positions of `env` for `method` (module docstring); compare the start and
     the result by catchment and error rates on the `spacing` grid under every choice of `occlude`
     hidden landmarks."""
@@ -151,22 +176,45 @@ def optimise_layout(env: str | Path | Env, method: str = "delv", occlude: int = 
     u, history = _minimise(args, u0, steps, progress)
     pos = lo + (hi - lo) / (1 + np.exp(-np.asarray(u, np.float64)))
     radii = np.asarray(env.landmarks, np.float64)[np.asarray(env.valid), 2]
-    optimised = make_env([[float(x), float(y), float(r)] for (x, y), r in zip(pos, radii)],
-                         home=np.asarray(env.home).tolist(), arena=np.asarray(env.arena).tolist(),
-                         name=f"{env.name}-optimised-{method}" + (f"-occlude{k}" if k else ""),
-                         pad_to=env.landmarks.shape[0])  # the start's shape: its compiled programs serve both
+    optimised = make_env(
+        [[float(x), float(y), float(r)] for (x, y), r in zip(pos, radii)],
+        home=np.asarray(env.home).tolist(),
+        arena=np.asarray(env.arena).tolist(),
+        name=f"{env.name}-optimised-{method}" + (f"-occlude{k}" if k else ""),
+        pad_to=env.landmarks.shape[0],
+    )  # the start's shape: its compiled programs serve both
     seconds = time.perf_counter() - t0
-    catchments = tuple(catchment(e, method, spacing=spacing, seed=seed, occlude=k or None, **options)
-                       for e in (env, optimised))
-    rows = [_hard_row(label, e, c, method, k, q) for label, e, c, q in
-            zip(("start", "optimised"), (env, optimised), catchments, (history[0], history[-1]))]
-    return LayoutResult(start=env, optimised=optimised, objective=history, rows=rows, seconds=seconds, method=method,
-                        occlude=k, catchments=catchments)
+    catchments = tuple(
+        catchment(e, method, spacing=spacing, seed=seed, occlude=k or None, **options) for e in (env, optimised)
+    )
+    rows = [
+        _hard_row(label, e, c, method, k, q)
+        for label, e, c, q in zip(("start", "optimised"), (env, optimised), catchments, (history[0], history[-1]))
+    ]
+    return LayoutResult(
+        start=env,
+        optimised=optimised,
+        objective=history,
+        rows=rows,
+        seconds=seconds,
+        method=method,
+        occlude=k,
+        catchments=catchments,
+    )
 
 
 def _hard_row(label: str, env: Env, c: Catchment, method: str, k: int, soft_objective: float) -> dict:
     """Catchment and error rates of `env` (mean over the C(N, k) masks), the ordinary evaluation."""
     s = catchment_summary(c)
-    return {"layout": label, "env": env.name, "method": method, "occlude": k, "catchment_pct": s["catchment_pct"]["mean"],
-            "catchment_min_pct": s["catchment_pct"]["min"], "gt45_pct": s["gt45_pct"]["mean"],
-            "gt90_pct": s["gt90_pct"]["mean"], "points": s["points"], "soft_objective": soft_objective}
+    return {
+        "layout": label,
+        "env": env.name,
+        "method": method,
+        "occlude": k,
+        "catchment_pct": s["catchment_pct"]["mean"],
+        "catchment_min_pct": s["catchment_pct"]["min"],
+        "gt45_pct": s["gt45_pct"]["mean"],
+        "gt90_pct": s["gt90_pct"]["mean"],
+        "points": s["points"],
+        "soft_objective": soft_objective,
+    }

@@ -29,20 +29,27 @@ from ..core.soft.sensing import VISIBILITY_WIDTH
 from ..options._limits import MAX_POINTS
 from ..core.errors import InputError
 from ..options._limits import check_size, grid_count
-from ..options._settings import NOISE_FIELDS_DEG, NOISE_FIELDS_FRACTION, is_traced, positive
+from ..options._settings import NOISE_FIELDS_DEG, NOISE_FIELDS_FRACTION
+from ..options._checks import is_traced, positive
 from ..core.maps import vector_map
 from ..core.types import Real
 
 TAU = 0.01  # default softmin temperature (docs/differentiable.md)
-NOISE_NAMES = {**{f: name for name, f in NOISE_FIELDS_DEG.items()}, **{f: name for name, f in NOISE_FIELDS_FRACTION.items()}}
+NOISE_NAMES = {
+    **{f: name for name, f in NOISE_FIELDS_DEG.items()},
+    **{f: name for name, f in NOISE_FIELDS_FRACTION.items()},
+}
 
 
 def _setup(env, method, spacing, seed, clearance, heading_deg, max_points, options):
     env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **options)
     for field, value in (("spacing", spacing), ("arena", env.arena)):
         if is_traced(value):  # the grid's size depends on them: a program cannot take them as data
-            raise InputError(field, "a traced value", "must be concrete (it sets the grid's size); trace the "
-                                                      "landmarks, home, d, scale or noise instead")
+            raise InputError(
+                field,
+                "a traced value",
+                "must be concrete (it sets the grid's size); trace the landmarks, home, d, scale or noise instead",
+            )
     spacing = positive(spacing, "spacing")
     traced = any(is_traced(x) for x in (env.landmarks, env.home, env.valid, clearance))
     if traced:  # which points are clear of the landmarks is computed in the program
@@ -51,8 +58,9 @@ def _setup(env, method, spacing, seed, clearance, heading_deg, max_points, optio
         check_grid(env, spacing, clearance, max_points)
     points = grid_points(env.arena, spacing)
     included = grid_included(env.arrays(), points, clearance)
-    headings = (random_headings(key, points.shape[0]) if heading is None
-                else np.full(points.shape[0], heading, np.float32))
+    headings = (
+        random_headings(key, points.shape[0]) if heading is None else np.full(points.shape[0], heading, np.float32)
+    )
     # host arrays where they are known now; inside jax.jit even the key is traced
     included, headings = (x if is_traced(x) else np.asarray(x) for x in (included, headings))
     return env, module, sensor, key, points, included, headings
@@ -69,10 +77,19 @@ def _check_soft(tau, sharpness) -> tuple[float, float]:
     return tau, sharpness
 
 
-def homing_quality(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, seed: int = 0,
-                   soft: bool = True, tau: float = TAU, sharpness: float = VISIBILITY_WIDTH,
-                   heading_deg: float | None = None, clearance: Real = CLEARANCE, max_points: int = MAX_POINTS,
-                   **options) -> jax.Array:
+def homing_quality(
+    env: str | Path | Env,
+    method: str | HomingMethod = "delv",
+    spacing: float = SPACING,
+    seed: int = 0,
+    soft: bool = True,
+    tau: float = TAU,
+    sharpness: float = VISIBILITY_WIDTH,
+    heading_deg: float | None = None,
+    clearance: Real = CLEARANCE,
+    max_points: int = MAX_POINTS,
+    **options,
+) -> jax.Array:
     """Mean of 1 - cos(angular error) over the docs/model.md §5 grid (0 perfect, 2 = every direction
     reversed; a point without a direction counts 2), as a JAX scalar. soft=True: the analytic views
     and softmin matching of docs/differentiable.md with temperature `tau` and visibility width
@@ -85,21 +102,31 @@ def homing_quality(env: str | Path | Env, method: str | HomingMethod = "delv", s
     seed stay concrete (they set the grid). soft=False is not differentiable and takes no traced value."""
     if soft:
         tau, sharpness = _check_soft(tau, sharpness)
-    env, module, sensor, key, points, included, headings = _setup(env, method, spacing, seed, clearance, heading_deg,
-                                                                  max_points, options)
+    env, module, sensor, key, points, included, headings = _setup(
+        env, method, spacing, seed, clearance, heading_deg, max_points, options
+    )
     if not soft:
         leaves = jax.tree.leaves((env, module, sensor, clearance))
         if any(is_traced(x) for x in leaves):
-            raise InputError("soft", soft, "must be True under jax.grad, jax.jit or jax.vmap (the pixel map is "
-                                           "not differentiable)")
+            raise InputError(
+                "soft", soft, "must be True under jax.grad, jax.jit or jax.vmap (the pixel map is not differentiable)"
+            )
 
-        vm = vector_map(env=env, method=module, sensor=sensor, spacing=spacing, key=key, clearance=clearance,
-                        heading=None if heading_deg is None else math.radians(heading_deg))
+        vm = vector_map(
+            env=env,
+            method=module,
+            sensor=sensor,
+            spacing=spacing,
+            key=key,
+            clearance=clearance,
+            heading=None if heading_deg is None else math.radians(heading_deg),
+        )
         err = np.radians(np.asarray(vm.error_deg))[np.asarray(vm.included)]
         return jnp.asarray(np.mean(1.0 - np.cos(err)))
     check_differentiable(module)
-    return _quality(env.arrays(), points, included, headings, key, sensor, module, jnp.float32(tau),
-                    jnp.float32(sharpness))
+    return _quality(
+        env.arrays(), points, included, headings, key, sensor, module, jnp.float32(tau), jnp.float32(sharpness)
+    )
 
 
 _quality = jax.jit(soft_quality)
@@ -122,22 +149,47 @@ class QualityProblem(NamedTuple):
     n_landmarks: int
 
 
-def quality_problem(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING, seed: int = 0,
-                    tau: float = TAU, sharpness: float = VISIBILITY_WIDTH, heading_deg: float | None = None,
-                    clearance: Real = CLEARANCE, max_points: int = MAX_POINTS, **options) -> QualityProblem:
+def quality_problem(
+    env: str | Path | Env,
+    method: str | HomingMethod = "delv",
+    spacing: float = SPACING,
+    seed: int = 0,
+    tau: float = TAU,
+    sharpness: float = VISIBILITY_WIDTH,
+    heading_deg: float | None = None,
+    clearance: Real = CLEARANCE,
+    max_points: int = MAX_POINTS,
+    **options,
+) -> QualityProblem:
     """Validate the options of `homing_quality_grad` (before any work) and set the problem up."""
     tau, sharpness = _check_soft(tau, sharpness)
-    env, module, sensor, key, points, included, headings = _setup(env, method, spacing, seed, clearance, heading_deg,
-                                                                  max_points, options)
+    env, module, sensor, key, points, included, headings = _setup(
+        env, method, spacing, seed, clearance, heading_deg, max_points, options
+    )
     check_differentiable(module)
     sensor, module = _floats(sensor), _floats(module)
     arrays = env.arrays()
-    params = {"landmarks": jnp.asarray(arrays.landmarks, jnp.float32), "home": jnp.asarray(arrays.home, jnp.float32),
-              "d": sensor.d, "noise": sensor.noise}
+    params = {
+        "landmarks": jnp.asarray(arrays.landmarks, jnp.float32),
+        "home": jnp.asarray(arrays.home, jnp.float32),
+        "d": sensor.d,
+        "noise": sensor.noise,
+    }
     if hasattr(module, "scale"):
         params["scale"] = module.scale
-    return QualityProblem(params, arrays, points, included, headings, key, sensor, module, jnp.float32(tau),
-                          jnp.float32(sharpness), env.n_landmarks)
+    return QualityProblem(
+        params,
+        arrays,
+        points,
+        included,
+        headings,
+        key,
+        sensor,
+        module,
+        jnp.float32(tau),
+        jnp.float32(sharpness),
+        env.n_landmarks,
+    )
 
 
 def problem_loss(params: dict, problem: QualityProblem) -> jax.Array:
@@ -145,8 +197,9 @@ def problem_loss(params: dict, problem: QualityProblem) -> jax.Array:
     e = eqx.tree_at(lambda x: (x.landmarks, x.home), problem.env, (params["landmarks"], params["home"]))
     s = eqx.tree_at(lambda x: (x.d, x.noise), problem.sensor, (params["d"], params["noise"]))
     m = eqx.tree_at(lambda x: x.scale, problem.method, params["scale"]) if "scale" in params else problem.method
-    return soft_quality(e, problem.points, problem.included, problem.headings, problem.key, s, m, problem.tau,
-                        problem.sharpness)
+    return soft_quality(
+        e, problem.points, problem.included, problem.headings, problem.key, s, m, problem.tau, problem.sharpness
+    )
 
 
 @jax.jit
@@ -155,10 +208,18 @@ def problem_value_and_grad(problem: QualityProblem) -> tuple[jax.Array, dict]:
     return jax.value_and_grad(problem_loss)(problem.params, problem)
 
 
-def homing_quality_grad(env: str | Path | Env, method: str | HomingMethod = "delv", spacing: float = SPACING,
-                        seed: int = 0, tau: float = TAU, sharpness: float = VISIBILITY_WIDTH,
-                        heading_deg: float | None = None, clearance: Real = CLEARANCE, max_points: int = MAX_POINTS,
-                        **options) -> tuple[float, dict]:
+def homing_quality_grad(
+    env: str | Path | Env,
+    method: str | HomingMethod = "delv",
+    spacing: float = SPACING,
+    seed: int = 0,
+    tau: float = TAU,
+    sharpness: float = VISIBILITY_WIDTH,
+    heading_deg: float | None = None,
+    clearance: Real = CLEARANCE,
+    max_points: int = MAX_POINTS,
+    **options,
+) -> tuple[float, dict]:
     """`homing_quality` (soft) and its gradient by reverse mode in one program: a dict with
     landmarks (N, 3) per [x, y, r] cm, home (2,) per cm, d per cm, scale per cm (DELV only) and
     each noise sigma under its option name (per degree for *_deg, per unit for the step factors).
@@ -170,8 +231,11 @@ def homing_quality_grad(env: str | Path | Env, method: str | HomingMethod = "del
 
 def readable_grads(grads: dict, n_landmarks: int) -> dict:
     """Gradients by public name: landmarks (N, 3), home, d, scale, and the noise options (per degree)."""
-    out = {"landmarks": np.asarray(grads["landmarks"])[:n_landmarks], "home": np.asarray(grads["home"]),
-           "d": float(grads["d"])}
+    out = {
+        "landmarks": np.asarray(grads["landmarks"])[:n_landmarks],
+        "home": np.asarray(grads["home"]),
+        "d": float(grads["d"]),
+    }
     if "scale" in grads:
         out["scale"] = float(grads["scale"])
     for field, name in NOISE_NAMES.items():

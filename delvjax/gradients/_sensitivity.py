@@ -33,8 +33,9 @@ def _options(method: str) -> dict:
     return {k: v for k, v in NOMINAL.items() if method in READS.get(k, (method,))}
 
 
-def check_sensitivity(env: str | Path | Env, methods=SENSITIVITY_METHODS, spacing: float = SPACING, seed: int = 0,
-                      tau: float = TAU) -> Env:
+def check_sensitivity(
+    env: str | Path | Env, methods=SENSITIVITY_METHODS, spacing: float = SPACING, seed: int = 0, tau: float = TAU
+) -> Env:
     """Validate everything `sensitivity` takes, before any work (`InputError` naming the field)."""
     env = load_env(env)
     if isinstance(methods, str) or not methods:
@@ -49,8 +50,14 @@ def check_sensitivity(env: str | Path | Env, methods=SENSITIVITY_METHODS, spacin
     return env
 
 
-def sensitivity(env: str | Path | Env, methods=SENSITIVITY_METHODS, spacing: float = SPACING, seed: int = 0, tau: float = TAU,
-                progress: Callable[[str], None] | None = None) -> dict:
+def sensitivity(
+    env: str | Path | Env,
+    methods=SENSITIVITY_METHODS,
+    spacing: float = SPACING,
+    seed: int = 0,
+    tau: float = TAU,
+    progress: Callable[[str], None] | None = None,
+) -> dict:
     """Per method: quality at the operating point, its gradient with respect to every landmark
     [x, y, r] (soft methods), and d quality per unit of d and of each noise sigma. Returns
     {"env", "methods": {name: {...}}, "landmark_rows", "parameter_rows"}."""
@@ -68,9 +75,14 @@ def sensitivity(env: str | Path | Env, methods=SENSITIVITY_METHODS, spacing: flo
                     per[name] = 0.0
                     continue
                 h = FD_STEP[name]
-                hi = float(homing_quality(env, m, spacing=spacing, seed=seed, soft=False, **{**opts, name: opts[name] + h}))
-                lo = float(homing_quality(env, m, spacing=spacing, seed=seed, soft=False,
-                                          **{**opts, name: max(opts[name] - h, 0.0)}))
+                hi = float(
+                    homing_quality(env, m, spacing=spacing, seed=seed, soft=False, **{**opts, name: opts[name] + h})
+                )
+                lo = float(
+                    homing_quality(
+                        env, m, spacing=spacing, seed=seed, soft=False, **{**opts, name: max(opts[name] - h, 0.0)}
+                    )
+                )
                 per[name] = (hi - lo) / (opts[name] + h - max(opts[name] - h, 0.0))
             grads, how = None, "central difference, hard quality"
         else:
@@ -79,12 +91,27 @@ def sensitivity(env: str | Path | Env, methods=SENSITIVITY_METHODS, spacing: flo
             grads, how = g["landmarks"], f"reverse mode, soft quality (tau {tau:g})"
         out["methods"][m] = {"quality": value, "per_unit": per, "landmark_grad": grads, "how": how}
         for name in NOMINAL:
-            out["parameter_rows"].append({"method": m, "parameter": name, "nominal": opts.get(name, 0.0),
-                                          "unit": UNITS[name], "d_quality_per_unit": per[name] * UNITS[name],
-                                          "quality": value, "how": how})
+            out["parameter_rows"].append(
+                {
+                    "method": m,
+                    "parameter": name,
+                    "nominal": opts.get(name, 0.0),
+                    "unit": UNITS[name],
+                    "d_quality_per_unit": per[name] * UNITS[name],
+                    "quality": value,
+                    "how": how,
+                }
+            )
         if grads is not None:
             for i, (gx, gy, gr) in enumerate(np.asarray(grads)):
-                out["landmark_rows"].append({"method": m, "landmark": i, "dq_dx_per_cm": float(gx),
-                                             "dq_dy_per_cm": float(gy), "dq_dr_per_cm": float(gr),
-                                             "position_gradient_norm": float(np.hypot(gx, gy))})
+                out["landmark_rows"].append(
+                    {
+                        "method": m,
+                        "landmark": i,
+                        "dq_dx_per_cm": float(gx),
+                        "dq_dy_per_cm": float(gy),
+                        "dq_dr_per_cm": float(gr),
+                        "position_gradient_norm": float(np.hypot(gx, gy)),
+                    }
+                )
     return out

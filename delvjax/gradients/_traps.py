@@ -26,7 +26,7 @@ from ..core.rollouts import TIMEOUT, Catchment
 from ..core.rollouts.rules import HOME_RADIUS
 from ..core.scene import Env
 from ..core.soft.traps import KINDS, field_zeros, two_cycles
-from ..options._settings import positive, positive_int
+from ..options._checks import positive, positive_int
 
 MERGE_CM = 2.0  # zeros closer than this are one
 CYCLE_CM = 1.0  # a period-2 orbit closes within this
@@ -82,9 +82,18 @@ def _nearest(ends: np.ndarray, rows: list[dict], keep) -> np.ndarray:
     return np.min(np.hypot(*(ends[:, None, :] - pts[None]).transpose(2, 0, 1)), axis=1)
 
 
-def find_traps(env: str | Path | Env, method: str = "delv", spacing: float = SPACING, seed: int = 0, tau: float = TAU,
-               near: float | None = None, max_starts: int = MAX_STARTS, home_radius: float = HOME_RADIUS,
-               announce=None, **options) -> TrapReport:
+def find_traps(
+    env: str | Path | Env,
+    method: str = "delv",
+    spacing: float = SPACING,
+    seed: int = 0,
+    tau: float = TAU,
+    near: float | None = None,
+    max_starts: int = MAX_STARTS,
+    home_radius: float = HOME_RADIUS,
+    announce=None,
+    **options,
+) -> TrapReport:
     """Zeros of the soft homing field of `method` near the end points of the failed (timed-out)
     rollouts of its catchment. `near` (default d): a failed rollout counts as ending at a sink
     within this distance (a trapped agent circles its sink in steps of d). `options` as in
@@ -101,12 +110,21 @@ def find_traps(env: str | Path | Env, method: str = "delv", spacing: float = SPA
     ends = np.asarray(c.end)[0][timeout]
     home = np.asarray(problem.env.home, np.float64)
     starts = _starts(ends, home, max_starts)
-    z, _, kind, jac, residual = (np.asarray(a) for a in field_zeros(problem.env, starts, problem.sensor, problem.method,
-                                                                      problem.key, problem.tau, problem.sharpness))
+    z, _, kind, jac, residual = (
+        np.asarray(a)
+        for a in field_zeros(
+            problem.env, starts, problem.sensor, problem.method, problem.key, problem.tau, problem.sharpness
+        )
+    )
     arena = np.asarray(problem.env.arena)
     lm = np.asarray(problem.env.landmarks)[np.asarray(problem.env.valid)]
-    inside = (np.all(np.isfinite(z), axis=1) & (z[:, 0] >= arena[0]) & (z[:, 0] <= arena[2]) & (z[:, 1] >= arena[1])
-              & (z[:, 1] <= arena[3]))
+    inside = (
+        np.all(np.isfinite(z), axis=1)
+        & (z[:, 0] >= arena[0])
+        & (z[:, 0] <= arena[2])
+        & (z[:, 1] >= arena[1])
+        & (z[:, 1] <= arena[3])
+    )
     inside &= ~np.any(np.hypot(*(z[:, None, :] - lm[None, :, :2]).transpose(2, 0, 1)) < lm[None, :, 2], axis=1)
     rows = []
     for group in _merge(np.where(inside[:, None], z, np.nan)):
@@ -115,37 +133,73 @@ def find_traps(env: str | Path | Env, method: str = "delv", spacing: float = SPA
             continue
         zero = residual[i] < RESIDUAL
         label = KINDS[int(np.bincount(kind[group]).argmax())] if zero else "discontinuity"
-        rows.append({"x": float(z[i, 0]), "y": float(z[i, 1]), "kind": label, "zero": bool(zero),
-                     "home": bool(np.hypot(*(z[i] - home)) <= home_radius),
-                     "det_jacobian": float(np.linalg.det(jac[i])), "trace_jacobian": float(np.trace(jac[i])),
-                     "relative_residual": float(residual[i]), "starts": len(group)})
-    cx, cy, cres = (np.asarray(a) for a in two_cycles(problem.env, starts, problem.sensor, problem.method, problem.key,
-                                                       problem.tau, problem.sharpness))
+        rows.append(
+            {
+                "x": float(z[i, 0]),
+                "y": float(z[i, 1]),
+                "kind": label,
+                "zero": bool(zero),
+                "home": bool(np.hypot(*(z[i] - home)) <= home_radius),
+                "det_jacobian": float(np.linalg.det(jac[i])),
+                "trace_jacobian": float(np.trace(jac[i])),
+                "relative_residual": float(residual[i]),
+                "starts": len(group),
+            }
+        )
+    cx, cy, cres = (
+        np.asarray(a)
+        for a in two_cycles(
+            problem.env, starts, problem.sensor, problem.method, problem.key, problem.tau, problem.sharpness
+        )
+    )
     away = (np.hypot(*(cx - home).T) > home_radius) & (np.hypot(*(cy - home).T) > home_radius)  # else: home reached
     closed = np.all(np.isfinite(cx), axis=1) & (cres < CYCLE_CM) & away
     for group in _merge(np.where(closed[:, None], cx, np.nan), CYCLE_MERGE_CM):  # a family of orbits: one row
         i = group[0]
-        if closed[i] and not any(r["kind"] == "2-cycle" and np.hypot(r["x"] - cy[i, 0], r["y"] - cy[i, 1])
-                                 <= CYCLE_MERGE_CM for r in rows):
-            rows.append({"x": float(cx[i, 0]), "y": float(cx[i, 1]), "kind": "2-cycle", "zero": False, "home": False,
-                         "partner_x": float(cy[i, 0]), "partner_y": float(cy[i, 1]), "relative_residual": float(cres[i]),
-                         "starts": len(group)})
+        if closed[i] and not any(
+            r["kind"] == "2-cycle" and np.hypot(r["x"] - cy[i, 0], r["y"] - cy[i, 1]) <= CYCLE_MERGE_CM for r in rows
+        ):
+            rows.append(
+                {
+                    "x": float(cx[i, 0]),
+                    "y": float(cx[i, 1]),
+                    "kind": "2-cycle",
+                    "zero": False,
+                    "home": False,
+                    "partner_x": float(cy[i, 0]),
+                    "partner_y": float(cy[i, 1]),
+                    "relative_residual": float(cres[i]),
+                    "starts": len(group),
+                }
+            )
     nearest = _nearest(ends, rows, lambda r: r["kind"] == "sink" and not r["home"])
     near_jump = _nearest(ends, rows, lambda r: r["kind"] == "discontinuity")
-    near_cycle = np.minimum(_nearest(ends, rows, lambda r: r["kind"] == "2-cycle"),
-                            _nearest(ends, [{"x": r["partner_x"], "y": r["partner_y"]} for r in rows
-                                            if r["kind"] == "2-cycle"], lambda r: True))
-    summary = {"env": env.name, "method": method,
-               "grid_points": int(inc.sum()), "catchment_pct": float(c.catchment_pct()[0]),
-               "failed_rollouts": int((inc & ~np.asarray(c.success)[0]).sum()), "timed_out": int(timeout.sum()),
-               "starts": int(len(starts)), "near_cm": near,
-               "timed_out_within_near_of_a_sink": int((nearest <= near).sum()),
-               "timed_out_within_near_of_a_discontinuity": int(((near_jump <= near) & (nearest > near)).sum()),
-               "timed_out_on_a_2_cycle": int((near_cycle <= near).sum()),
-               "two_cycles": sum(r["kind"] == "2-cycle" for r in rows),
-               "sinks": sum(r["kind"] == "sink" and not r["home"] for r in rows),
-               "home_sinks": sum(r["kind"] == "sink" and r["home"] for r in rows),
-               "saddles": sum(r["kind"] == "saddle" for r in rows), "sources": sum(r["kind"] == "source" for r in rows),
-               "discontinuities": sum(r["kind"] == "discontinuity" for r in rows), "tau": tau}
-    return TrapReport(env=env, method=method, catchment=c, points=rows, failed_ends=ends, nearest_sink_cm=nearest,
-                      summary=summary)
+    near_cycle = np.minimum(
+        _nearest(ends, rows, lambda r: r["kind"] == "2-cycle"),
+        _nearest(
+            ends, [{"x": r["partner_x"], "y": r["partner_y"]} for r in rows if r["kind"] == "2-cycle"], lambda r: True
+        ),
+    )
+    summary = {
+        "env": env.name,
+        "method": method,
+        "grid_points": int(inc.sum()),
+        "catchment_pct": float(c.catchment_pct()[0]),
+        "failed_rollouts": int((inc & ~np.asarray(c.success)[0]).sum()),
+        "timed_out": int(timeout.sum()),
+        "starts": int(len(starts)),
+        "near_cm": near,
+        "timed_out_within_near_of_a_sink": int((nearest <= near).sum()),
+        "timed_out_within_near_of_a_discontinuity": int(((near_jump <= near) & (nearest > near)).sum()),
+        "timed_out_on_a_2_cycle": int((near_cycle <= near).sum()),
+        "two_cycles": sum(r["kind"] == "2-cycle" for r in rows),
+        "sinks": sum(r["kind"] == "sink" and not r["home"] for r in rows),
+        "home_sinks": sum(r["kind"] == "sink" and r["home"] for r in rows),
+        "saddles": sum(r["kind"] == "saddle" for r in rows),
+        "sources": sum(r["kind"] == "source" for r in rows),
+        "discontinuities": sum(r["kind"] == "discontinuity" for r in rows),
+        "tau": tau,
+    }
+    return TrapReport(
+        env=env, method=method, catchment=c, points=rows, failed_ends=ends, nearest_sink_cm=nearest, summary=summary
+    )

@@ -1,12 +1,12 @@
 """Image databases (docs/images.md): render a colour world into a database, read and write the
 BoB layout on disk, evaluate homing methods on a database."""
 
-from ._evaluate import LoadedDatabase as LoadedDatabase
+from ._load import LoadedDatabase as LoadedDatabase
 from ._evaluate import database_catchment as database_catchment
 from ._evaluate import database_rollouts as database_rollouts
 from ._evaluate import database_vector_map as database_vector_map
 from ._evaluate import import_database as import_database
-from ._evaluate import load_database as load_database
+from ._load import load_database as load_database
 from ._evaluate import render_in_memory as render_in_memory
 from ._evaluate import rendered_database as rendered_database
 from ._render import ImageSettings as ImageSettings

@@ -109,13 +109,26 @@ def read_index(src: str | Path) -> DatabaseIndex:
     missing = [c for c in need if not rows or c not in rows[0]]
     if missing:
         raise InputError("images", str(path), f"lacks the column(s) {', '.join(missing)}")
-    pos = np.array([[_number(r[keys["x"]], "images", path, i + 2), _number(r[keys["y"]], "images", path, i + 2)]
-                    for i, r in enumerate(rows)]) * scale
+    pos = (
+        np.array(
+            [
+                [_number(r[keys["x"]], "images", path, i + 2), _number(r[keys["y"]], "images", path, i + 2)]
+                for i, r in enumerate(rows)
+            ]
+        )
+        * scale
+    )
     head = np.radians([_number(r.get(keys["heading"]) or "0", "images", path, i + 2) for i, r in enumerate(rows)])
     files = [folder / r[keys["file"]] for r in rows]
     meta = _read_yaml(folder / METADATA) if (folder / METADATA).is_file() else {}
-    return DatabaseIndex(folder, files, pos.astype(np.float32), head.astype(np.float32),
-                         meta=dict(meta.get("delvjax") or {}), needs_unwrapping=bool(meta.get("needsUnwrapping", 0)))
+    return DatabaseIndex(
+        folder,
+        files,
+        pos.astype(np.float32),
+        head.astype(np.float32),
+        meta=dict(meta.get("delvjax") or {}),
+        needs_unwrapping=bool(meta.get("needsUnwrapping", 0)),
+    )
 
 
 def read_image(path: Path) -> np.ndarray:
@@ -141,8 +154,11 @@ def read_images(index: DatabaseIndex, rows: Iterable[int], shape: tuple[int, ...
     shape = shape or images[0].shape
     for p, im in zip(paths, images):
         if im.shape != tuple(shape):
-            raise InputError("image", str(p), f"is {im.shape[1]} x {im.shape[0]} pixels, the database's images "
-                                              f"{shape[1]} x {shape[0]}")
+            raise InputError(
+                "image",
+                str(p),
+                f"is {im.shape[1]} x {im.shape[0]} pixels, the database's images {shape[1]} x {shape[0]}",
+            )
     stack = np.stack(images)
     return stack if index.needs_unwrapping else file_columns(stack)
 
@@ -164,24 +180,47 @@ class DatabaseWriter:
         self.rows: list[list] = []
         self.pool = ThreadPoolExecutor(THREADS)
 
-    def add(self, images: np.ndarray, positions: np.ndarray, headings: np.ndarray, grid: np.ndarray,
-            donut: bool = False, first: int | None = None) -> None:
+    def add(
+        self,
+        images: np.ndarray,
+        positions: np.ndarray,
+        headings: np.ndarray,
+        grid: np.ndarray,
+        donut: bool = False,
+        first: int | None = None,
+    ) -> None:
         """Images (k, H, W, 3) uint8 in memory order, positions (k, 2) cm, headings (k,) rad, grid (k, 2) int.
         Files are named by grid cell; with `first` (entries not on distinct grid cells, e.g. a route) by
         entry number, `image_{first + i:05d}.png`, as BoB names route images."""
         from PIL import Image  # Pillow: loaded only when image files are read or written
 
-        names = ([bob_filename(int(gx), int(gy)) for gx, gy in grid] if first is None
-                 else [f"image_{first + i:05d}.png" for i in range(len(grid))])
+        names = (
+            [bob_filename(int(gx), int(gy)) for gx, gy in grid]
+            if first is None
+            else [f"image_{first + i:05d}.png" for i in range(len(grid))]
+        )
         files = images if donut else file_columns(images)
         try:
-            list(self.pool.map(lambda a: Image.fromarray(a[0]).save(self.tmp / a[1], compress_level=1),
-                               zip(files, names)))
+            list(
+                self.pool.map(
+                    lambda a: Image.fromarray(a[0]).save(self.tmp / a[1], compress_level=1), zip(files, names)
+                )
+            )
         except OSError as exc:
             raise InputError("--out", str(self.out), f"could not be written ({exc.strerror or exc})") from None
         for (x, y), h, (gx, gy), name in zip(positions, headings, grid, names):
-            self.rows.append([round(float(x) * 10, 3), round(float(y) * 10, 3), 0, round(math.degrees(float(h)), 6),
-                              name, int(gx), int(gy), 0])
+            self.rows.append(
+                [
+                    round(float(x) * 10, 3),
+                    round(float(y) * 10, 3),
+                    0,
+                    round(math.degrees(float(h)), 6),
+                    name,
+                    int(gx),
+                    int(gy),
+                    0,
+                ]
+            )
 
     def commit(self, metadata: dict) -> None:
         try:

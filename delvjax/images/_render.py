@@ -26,7 +26,7 @@ from ..core.types import Real
 from ._disk import DatabaseWriter
 from ._worlds import ImageWorld, image_world
 from ..options._limits import MAX_POINTS, check_size, grid_count
-from ..options._settings import non_negative, positive, positive_int, seed_value
+from ..options._checks import non_negative, positive, positive_int, seed_value
 import shutil
 from ..outputs._files import check_folder
 
@@ -47,8 +47,9 @@ class ImageSettings:
     light_azimuth_deg: float | None = None
 
 
-def camera(rows: int = 60, cols: int = 360, elev_top_deg: float = 30.0, elev_bottom_deg: float = -30.0,
-           height: float = 25.0) -> Camera:
+def camera(
+    rows: int = 60, cols: int = 360, elev_top_deg: float = 30.0, elev_bottom_deg: float = -30.0, height: float = 25.0
+) -> Camera:
     """A validated panoramic `Camera`."""
     rows, cols = positive_int(rows, "rows"), positive_int(cols, "cols")
     if rows > 4096 or cols > 16384:
@@ -57,8 +58,13 @@ def camera(rows: int = 60, cols: int = 360, elev_top_deg: float = 30.0, elev_bot
         raise InputError("cols", cols, "must be a multiple of 4 (unit moves along the grid axes are whole-pixel turns)")
     if not -90 < elev_bottom_deg < elev_top_deg < 90:
         raise InputError("elevation", (elev_top_deg, elev_bottom_deg), "must satisfy -90 < bottom < top < 90 deg")
-    return Camera(height=positive(height, "camera_height"), elev_top_deg=float(elev_top_deg),
-                  elev_bottom_deg=float(elev_bottom_deg), rows=rows, cols=cols)
+    return Camera(
+        height=positive(height, "camera_height"),
+        elev_top_deg=float(elev_top_deg),
+        elev_bottom_deg=float(elev_bottom_deg),
+        rows=rows,
+        cols=cols,
+    )
 
 
 def lit(world, light_azimuth_deg: float | None):
@@ -68,14 +74,27 @@ def lit(world, light_azimuth_deg: float | None):
     light = np.asarray(world.light)
     el = math.atan2(light[2], math.hypot(light[0], light[1]))
     az = math.radians(float(light_azimuth_deg))
-    return eqx.tree_at(lambda w: w.light, world, jnp.asarray(
-        [math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)], jnp.float32))
+    return eqx.tree_at(
+        lambda w: w.light,
+        world,
+        jnp.asarray([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)], jnp.float32),
+    )
 
 
 @eqx.filter_jit
-def render_images(world, settings_camera: Camera, mirror: Catadioptric | None, positions, headings, index, key,
-                  pixel_noise, gain_noise):
+def render_images(
+    world,
+    settings_camera: Camera,
+    mirror: Catadioptric | None,
+    positions,
+    headings,
+    index,
+    key,
+    pixel_noise,
+    gain_noise,
+):
     """uint8 images (k, H, W, 3) at poses, image i with camera noise from fold_in(key, index[i])."""
+
     def one(pos, heading, i):
         img = panorama(world, settings_camera, pos, heading) if mirror is None else donut(world, mirror, pos, heading)
         return to_uint8(camera_noise(jax.random.fold_in(key, i), img, pixel_noise, gain_noise))
@@ -86,6 +105,7 @@ def render_images(world, settings_camera: Camera, mirror: Catadioptric | None, p
 @eqx.filter_jit
 def extract_rings(images, cam: Camera, mirror: Catadioptric | None, extractor: Extractor):
     """Ring `Snapshot`s (k leading) of uint8 images (panoramas, or donuts unwrapped with `mirror`)."""
+
     def one(image):
         img = image.astype(jnp.float32) / 255.0
         return extractor(img if mirror is None else unwrap(img, mirror, cam), cam)
@@ -116,9 +136,17 @@ def rendered_chunks(world, settings: "ImageSettings", positions, headings, key, 
     the same size (`full`): rows from hi - lo on are padding."""
     size = min(chunk, len(positions))
     for lo, hi in chunks(len(positions), size):
-        imgs = render_images(world, settings.camera, settings.mirror, jnp.asarray(full(positions[lo:hi], size)),
-                             jnp.asarray(full(headings[lo:hi], size)), jnp.arange(lo, lo + size), key,
-                             settings.pixel_noise, settings.gain_noise)
+        imgs = render_images(
+            world,
+            settings.camera,
+            settings.mirror,
+            jnp.asarray(full(positions[lo:hi], size)),
+            jnp.asarray(full(headings[lo:hi], size)),
+            jnp.arange(lo, lo + size),
+            key,
+            settings.pixel_noise,
+            settings.gain_noise,
+        )
         yield lo, hi, imgs
 
 
@@ -138,19 +166,29 @@ def world_grid(iw: ImageWorld, spacing: float) -> tuple[np.ndarray, np.ndarray]:
     return pts[keep], grid[keep]
 
 
-def render_rings(iw: ImageWorld, settings: ImageSettings, positions: np.ndarray, headings: np.ndarray, key,
-                 extractor: Extractor | None = None, chunk: int = DEFAULT_CHUNK) -> RingDatabase:
+def render_rings(
+    iw: ImageWorld,
+    settings: ImageSettings,
+    positions: np.ndarray,
+    headings: np.ndarray,
+    key,
+    extractor: Extractor | None = None,
+    chunk: int = DEFAULT_CHUNK,
+) -> RingDatabase:
     """Render and reduce to rings in memory (no files): the database `render_database` would write and
     `load_database` read back, ring for ring (docs/images.md §6)."""
     world, ex = lit(iw.world, settings.light_azimuth_deg), extractor or iw.extractor
-    parts = [head(extract_rings(imgs, settings.camera, settings.mirror, ex), hi - lo)
-             for lo, hi, imgs in rendered_chunks(world, settings, positions, headings, key, chunk)]
+    parts = [
+        head(extract_rings(imgs, settings.camera, settings.mirror, ex), hi - lo)
+        for lo, hi, imgs in rendered_chunks(world, settings, positions, headings, key, chunk)
+    ]
     snaps = jax.tree.map(lambda *a: jnp.concatenate(a), *parts)
     return RingDatabase(snaps, jnp.asarray(positions, jnp.float32), jnp.asarray(headings, jnp.float32))
 
 
-def check_render(env: str, spacing: float | None, settings: ImageSettings, seed: int, max_points: int,
-                 chunk: int) -> tuple[ImageWorld, float]:
+def check_render(
+    env: str, spacing: float | None, settings: ImageSettings, seed: int, max_points: int, chunk: int
+) -> tuple[ImageWorld, float]:
     """Validate a render before any work: the world, spacing, noise, seed, size."""
     iw = image_world(env)
     spacing = iw.spacing if spacing is None else positive(spacing, "spacing")
@@ -172,35 +210,76 @@ def check_disk(out: str | Path, n: int, settings: ImageSettings) -> None:
 
     base = check_folder(out, "--out", str(out))
     cam, mirror = settings.camera, settings.mirror
-    raw = 3 * (cam.rows * cam.cols if mirror is None else mirror.size ** 2)
+    raw = 3 * (cam.rows * cam.cols if mirror is None else mirror.size**2)
     need = n * (PNG_SHARE * raw + 200)
     free = shutil.disk_usage(base).free
     if need > free:
-        raise InputError("--out", str(out), f"would need about {need / 1e9:.3g} GB for {n} images, and its disk has "
-                                            f"{free / 1e9:.3g} GB free")
+        raise InputError(
+            "--out",
+            str(out),
+            f"would need about {need / 1e9:.3g} GB for {n} images, and its disk has {free / 1e9:.3g} GB free",
+        )
 
 
-def database_metadata(name: str, arena, home, spacing: float, cam: Camera, mirror: Catadioptric | None,
-                      ex: Extractor, obstacles: dict, **extra) -> dict:
+def database_metadata(
+    name: str,
+    arena,
+    home,
+    spacing: float,
+    cam: Camera,
+    mirror: Catadioptric | None,
+    ex: Extractor,
+    obstacles: dict,
+    **extra,
+) -> dict:
     """The database_metadata.yaml block: BoB's camera fields plus `delvjax:` (docs/images.md §4)."""
     res = [cam.cols, cam.rows] if mirror is None else [mirror.size, mirror.size]
-    block = {"world": name, "arena_cm": [float(v) for v in np.asarray(arena)],
-             "home_cm": [float(v) for v in np.asarray(home)], "spacing_cm": float(spacing),
-             "camera_height_cm": float(cam.height), "elevation_deg": [float(cam.elev_top_deg), float(cam.elev_bottom_deg)],
-             "panorama": [cam.rows, cam.cols], **extra,
-             "extractor": {k: getattr(ex, k) for k in ("hue_deg", "hue_width_deg", "sat_min", "val_min", "band_deg",
-                                                       "band_height_deg", "fill", "max_blobs")},
-             "obstacles": {k: [[float(x) for x in row] for row in v] for k, v in obstacles.items()}}
+    block = {
+        "world": name,
+        "arena_cm": [float(v) for v in np.asarray(arena)],
+        "home_cm": [float(v) for v in np.asarray(home)],
+        "spacing_cm": float(spacing),
+        "camera_height_cm": float(cam.height),
+        "elevation_deg": [float(cam.elev_top_deg), float(cam.elev_bottom_deg)],
+        "panorama": [cam.rows, cam.cols],
+        **extra,
+        "extractor": {
+            k: getattr(ex, k)
+            for k in (
+                "hue_deg",
+                "hue_width_deg",
+                "sat_min",
+                "val_min",
+                "band_deg",
+                "band_height_deg",
+                "fill",
+                "max_blobs",
+            )
+        },
+        "obstacles": {k: [[float(x) for x in row] for row in v] for k, v in obstacles.items()},
+    }
     if mirror is not None:
-        block["catadioptric"] = {k: getattr(mirror, k) for k in ("inner", "outer", "elev_inner_deg",
-                                                                  "elev_outer_deg", "size")}
-    return {"camera": {"name": "delvjax", "resolution": res, "isPanoramic": 1},
-            "needsUnwrapping": int(mirror is not None), "isGreyscale": 0, "delvjax": block}
+        block["catadioptric"] = {
+            k: getattr(mirror, k) for k in ("inner", "outer", "elev_inner_deg", "elev_outer_deg", "size")
+        }
+    return {
+        "camera": {"name": "delvjax", "resolution": res, "isPanoramic": 1},
+        "needsUnwrapping": int(mirror is not None),
+        "isGreyscale": 0,
+        "delvjax": block,
+    }
 
 
-def render_database(env: str, out: str | Path, spacing: float | None = None, settings: ImageSettings | None = None,
-                    seed: int = 0, chunk: int = DEFAULT_CHUNK, max_points: int = MAX_POINTS,
-                    progress: Callable[[int, int], None] | None = None) -> dict:
+def render_database(
+    env: str,
+    out: str | Path,
+    spacing: float | None = None,
+    settings: ImageSettings | None = None,
+    seed: int = 0,
+    chunk: int = DEFAULT_CHUNK,
+    max_points: int = MAX_POINTS,
+    progress: Callable[[int, int], None] | None = None,
+) -> dict:
     """Render `env` (an image world, preset or environment file) on its grid into a BoB database at
     `out` (docs/images.md §4); nothing is left at `out` if it fails. Returns a summary."""
     settings = settings or ImageSettings()
@@ -212,12 +291,26 @@ def render_database(env: str, out: str | Path, spacing: float | None = None, set
     writer = DatabaseWriter(out)
     try:
         for lo, hi, imgs in rendered_chunks(world, settings, pts, headings, key, chunk):
-            writer.add(np.asarray(imgs[: hi - lo]), pts[lo:hi], headings[lo:hi], grid[lo:hi], donut=settings.mirror is not None)
+            writer.add(
+                np.asarray(imgs[: hi - lo]), pts[lo:hi], headings[lo:hi], grid[lo:hi], donut=settings.mirror is not None
+            )
             if progress:
                 progress(hi - lo, len(pts))
-        writer.commit(database_metadata(iw.name, iw.world.arena, iw.home, spacing, settings.camera, settings.mirror,
-                                        iw.extractor, iw.obstacles(), pixel_noise=settings.pixel_noise,
-                                        gain_noise=settings.gain_noise, seed=seed))
+        writer.commit(
+            database_metadata(
+                iw.name,
+                iw.world.arena,
+                iw.home,
+                spacing,
+                settings.camera,
+                settings.mirror,
+                iw.extractor,
+                iw.obstacles(),
+                pixel_noise=settings.pixel_noise,
+                gain_noise=settings.gain_noise,
+                seed=seed,
+            )
+        )
     except BaseException:
         writer.discard()
         raise

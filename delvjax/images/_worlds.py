@@ -47,31 +47,53 @@ def _robot() -> ImageWorld:
 
 
 def _natural() -> ImageWorld:
-    boxes = [(620.0, 560.0, 740.0, 640.0, 75.0),   # table
-             (560.0, 300.0, 640.0, 360.0, 110.0),  # lecture desk
-             (280.0, 330.0, 340.0, 400.0, 100.0)]  # drawer
+    boxes = [
+        (620.0, 560.0, 740.0, 640.0, 75.0),  # table
+        (560.0, 300.0, 640.0, 360.0, 110.0),  # lecture desk
+        (280.0, 330.0, 340.0, 400.0, 100.0),
+    ]  # drawer
     box_rgb = [(0.55, 0.33, 0.12), (0.80, 0.62, 0.08), (0.12, 0.28, 0.72)]
-    world = make_world(cylinders=[(330.0, 640.0, 20.0, 70.0)], cylinder_rgb=[(0.12, 0.55, 0.18)], boxes=boxes,
-                       box_rgb=box_rgb, arena=(0.0, 0.0, 1000.0, 1000.0), wall_height=250.0)
+    world = make_world(
+        cylinders=[(330.0, 640.0, 20.0, 70.0)],
+        cylinder_rgb=[(0.12, 0.55, 0.18)],
+        boxes=boxes,
+        box_rgb=box_rgb,
+        arena=(0.0, 0.0, 1000.0, 1000.0),
+        wall_height=250.0,
+    )
     # any saturated colour is a landmark: walls, floor and ceiling are grey (docs/images.md §8)
-    return ImageWorld("natural", world, (500.0, 500.0), 40.0,
-                      Extractor(hue_width_deg=360.0, sat_min=0.45, max_blobs=6), clearance=15.0)
+    return ImageWorld(
+        "natural",
+        world,
+        (500.0, 500.0),
+        40.0,
+        Extractor(hue_width_deg=360.0, sat_min=0.45, max_blobs=6),
+        clearance=15.0,
+    )
 
 
 BUILT_IN = {"robot": _robot, "natural": _natural}
-DESCRIPTIONS = {"robot": "thesis §4.4.1: 4 red cylinders in a 1.8 m arena, snapshots every 20 cm",
-                "natural": "thesis §4.4.2: table, desk, flower pot and drawer in a 10 m room, every 40 cm"}
+DESCRIPTIONS = {
+    "robot": "thesis §4.4.1: 4 red cylinders in a 1.8 m arena, snapshots every 20 cm",
+    "natural": "thesis §4.4.2: table, desk, flower pot and drawer in a 10 m room, every 40 cm",
+}
 
 
-def env_world(name_or_path: str, height: float = 100.0, wall_height: float = 150.0, spacing: float = 25.0
-              ) -> ImageWorld:
+def env_world(
+    name_or_path: str, height: float = 100.0, wall_height: float = 150.0, spacing: float = 25.0
+) -> ImageWorld:
     """A docs/model.md environment (preset or JSON file) as red cylinders of `height` cm."""
     env = load_env(name_or_path)
     lm = np.asarray(env.landmarks)[np.asarray(env.valid)]
-    world = make_world(cylinders=[(x, y, r, height) for x, y, r in lm], cylinder_rgb=[RED] * len(lm),
-                       arena=tuple(float(v) for v in np.asarray(env.arena)), wall_height=wall_height)
-    return ImageWorld(env.name, world, tuple(float(v) for v in np.asarray(env.home)), spacing,
-                      Extractor(max_blobs=max(len(lm), 1)))
+    world = make_world(
+        cylinders=[(x, y, r, height) for x, y, r in lm],
+        cylinder_rgb=[RED] * len(lm),
+        arena=tuple(float(v) for v in np.asarray(env.arena)),
+        wall_height=wall_height,
+    )
+    return ImageWorld(
+        env.name, world, tuple(float(v) for v in np.asarray(env.home)), spacing, Extractor(max_blobs=max(len(lm), 1))
+    )
 
 
 def image_world(name: str) -> ImageWorld:
@@ -81,5 +103,6 @@ def image_world(name: str) -> ImageWorld:
     try:
         return env_world(name)
     except InputError:
-        raise InputError("env", name, f"is no image world ({', '.join(BUILT_IN)}), preset ({', '.join(PRESETS)}) "
-                                      f"or environment file") from None
+        raise InputError(
+            "env", name, f"is no image world ({', '.join(BUILT_IN)}), preset ({', '.join(PRESETS)}) or environment file"
+        ) from None

@@ -119,5 +119,11 @@ def unit_interval(value: object, field: str) -> float:
     return v
 
 
-CHECKS = {"finite": finite, "positive": positive, "non_negative": non_negative, "positive_int": positive_int,
-          "unit_interval": unit_interval, "angle_deg": angle_deg}  # core/settings.py CHECKS, but "choice"
+CHECKS = {
+    "finite": finite,
+    "positive": positive,
+    "non_negative": non_negative,
+    "positive_int": positive_int,
+    "unit_interval": unit_interval,
+    "angle_deg": angle_deg,
+}  # core/settings.py CHECKS, but "choice"

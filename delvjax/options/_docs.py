@@ -24,6 +24,7 @@ def options_markdown() -> str:
         check = s.check + (f" <= {s.limit}" if s.limit else "") + (f": {', '.join(s.choices)}" if s.choices else "")
         owner = "Sensor" if opt.owners[0] in (Sensor, Noise) else ", ".join(t.__name__ for t in opt.owners)
         owner += f".{'noise.' if opt.owners[0] is Noise else ''}{opt.field}"
-        rows.append(f"| `{opt.name}` | `{opt.flag}` | {s.help} | {s.unit or '-'} | {check} | {opt.shown_default} "
-                    f"| `{owner}` |")
+        rows.append(
+            f"| `{opt.name}` | `{opt.flag}` | {s.help} | {s.unit or '-'} | {check} | {opt.shown_default} | `{owner}` |"
+        )
     return HEADER + "\n".join(rows) + "\n"

@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from ..core.errors import InputError
-from ._settings import positive_int
+from ._checks import positive_int
 
 MAX_POINTS = 1_000_000  # grid points (times masks) or trials in one run, by default
 # host memory per item of the results and their CSV rows, bytes; slowest method per item on 2 CPU cores, s
@@ -33,7 +33,11 @@ def check_size(count: int, max_points, field: str, value, what: str = "grid poin
     if count > limit:
         gb = count * BYTES[what] / 1e9
         hours = count * SECONDS[what] / 3600
-        raise InputError(field, value, f"gives {count:.3g} {what}s, more than max_points {limit} (about {gb:.3g} GB "
-                                       f"of results and up to {hours:.3g} h on 2 CPU cores); use fewer or raise "
-                                       f"--max-points")
+        raise InputError(
+            field,
+            value,
+            f"gives {count:.3g} {what}s, more than max_points {limit} (about {gb:.3g} GB "
+            f"of results and up to {hours:.3g} h on 2 CPU cores); use fewer or raise "
+            f"--max-points",
+        )
     return limit

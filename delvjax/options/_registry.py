@@ -35,14 +35,20 @@ REGISTRY: dict[str, tuple[HomingMethod, str]] = {
     "warping": (Warping(), "predictive image matching over alpha x rho x psi, no compass (Franz 1998; thesis 4.2)"),
     "mfdid": (MFDID(), "matched-filter descent in image distances with a compass (Moller & Vardy 2006)"),
     "cc": (CartwrightCollett(), "snapshot model of Cartwright & Collett 1983 (landmarks only) with a compass"),
-    "delv-agent": (DELV(order="agent"), "DELV, no compass, the current list in the agent frame (the earlier order; "
-                                        "docs/model.md §3.3)"),
-    "delv-compass-agent": (DELV(heading=Compass(), order="agent"), "DELV with a compass, the current list in the agent "
-                                                                   "frame (the earlier order; docs/model.md §3.3)"),
+    "delv-agent": (
+        DELV(order="agent"),
+        "DELV, no compass, the current list in the agent frame (the earlier order; docs/model.md §3.3)",
+    ),
+    "delv-compass-agent": (
+        DELV(heading=Compass(), order="agent"),
+        "DELV with a compass, the current list in the agent frame (the earlier order; docs/model.md §3.3)",
+    ),
     "delv-gap": (DELVGap(), "DELV, no compass, gap-aware matching: pairings may skip landmarks (beyond the thesis)"),
     "delv-gap-compass": (DELVGap(heading=Compass()), "DELV with a compass and gap-aware matching (beyond the thesis)"),
-    "delv-refined": (DELVRefined(), "DELV, no compass, heading and home vector refined by least squares after the "
-                                    "1 deg search (beyond the thesis)"),
+    "delv-refined": (
+        DELVRefined(),
+        "DELV, no compass, heading and home vector refined by least squares after the 1 deg search (beyond the thesis)",
+    ),
 }
 METHODS: dict[str, HomingMethod] = {name: module for name, (module, _) in REGISTRY.items()}
 DESCRIPTIONS: dict[str, str] = {name: text for name, (_, text) in REGISTRY.items()}

@@ -45,8 +45,13 @@ class Option:
     @property
     def shown_default(self) -> str:
         s = self.setting
-        return s.shown_default if s.shown_default is not None else f"{self.default:g}" if isinstance(
-            self.default, float) else str(self.default)
+        return (
+            s.shown_default
+            if s.shown_default is not None
+            else f"{self.default:g}"
+            if isinstance(self.default, float)
+            else str(self.default)
+        )
 
     @property
     def help(self) -> str:
@@ -60,8 +65,11 @@ class Option:
     def validate(self, value: Any) -> Any:
         """The field's value for a public `value`, or `InputError` naming the option."""
         s = self.setting
-        v = checks.CHECKS[s.check](value, self.name) if s.check != "choice" else checks.choice(value, self.name,
-                                                                                                 s.choices)
+        v = (
+            checks.CHECKS[s.check](value, self.name)
+            if s.check != "choice"
+            else checks.choice(value, self.name, s.choices)
+        )
         if s.limit is not None and v > s.limit:
             raise InputError(self.name, value, f"must be <= {s.limit} (it sets an array size)")
         return s.to_field(v) if s.to_field is not None else v
@@ -75,16 +83,19 @@ def _options(types: tuple[type, ...]) -> dict[str, Option]:
         for name, (field, setting, default) in declared(t).items():
             found.setdefault(name, [field, setting, default, []])[3].append(t)
     # a subclass inherits its base's settings: name the base only (DELV, not DELVGap and DELVRefined)
-    return {name: Option(name, f, s, d, tuple(t for t in owners if not any(t is not b and issubclass(t, b)
-                                                                          for b in owners)))
-            for name, (f, s, d, owners) in found.items()}
+    return {
+        name: Option(
+            name, f, s, d, tuple(t for t in owners if not any(t is not b and issubclass(t, b) for b in owners))
+        )
+        for name, (f, s, d, owners) in found.items()
+    }
 
 
 def method_types(extra: Iterable[HomingMethod] = ()) -> tuple[type, ...]:
     """The classes of the registered methods and of `extra` modules (a `Program`'s members), once each."""
     out: dict[type, None] = {}
     for m in (*METHODS.values(), *extra):
-        for member in (m.methods if isinstance(m, Program) else (m,)):
+        for member in m.methods if isinstance(m, Program) else (m,):
             out.setdefault(type(member), None)
     return tuple(out)
 

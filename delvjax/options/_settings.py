@@ -18,8 +18,6 @@ from ..core.methods import HomingMethod, Program, Warping
 from ..core.sensor import Noise, Sensor
 from ..core.settings import declared
 from ..core.types import Real
-from ._checks import (INT_LIMIT, SEED_LIMIT, angle_deg, choice, finite, is_integer, is_traced,  # noqa: F401
-                      non_negative, occlusion_count, positive, positive_int, seed_value)
 from ._registry import configure, get_method, owns
 from ._registry import program as registry_program
 from ._schema import method_options, sensor_options
@@ -58,8 +56,9 @@ def make_sensor(**options) -> Sensor:
     return Sensor(noise=noise, **fields)
 
 
-def method_settings(options: dict, n_pix: int | None = None, extra=(), method: HomingMethod | None = None
-                    ) -> dict[str, object]:
+def method_settings(
+    options: dict, n_pix: int | None = None, extra=(), method: HomingMethod | None = None
+) -> dict[str, object]:
     """Validated method settings by public name (their field values; `options._schema`), and the
     relations between them where `method` (default: any) has them: n_psi must divide the ring's n_pix
     pixels, rho_min <= rho_max (the warping hypotheses)."""
@@ -90,8 +89,9 @@ def reads_channel(method: HomingMethod) -> bool:
     return bool(method.reads_gray("gray")) != bool(method.reads_gray("mask"))
 
 
-def make_setup(method: str | HomingMethod, program=None, sensor: Sensor | None = None, noise: Noise | None = None,
-               **options) -> tuple[HomingMethod, Sensor]:
+def make_setup(
+    method: str | HomingMethod, program=None, sensor: Sensor | None = None, noise: Noise | None = None, **options
+) -> tuple[HomingMethod, Sensor]:
     """(method module, sensor), validated before any work. `method`: a registry name or a method
     module (`DELV(levels=3, heading=Compass())`); `program`: registry names compiled into one
     program with `method` (`registry.program`); `sensor`: a `Sensor` instead of sensor options;
@@ -115,8 +115,9 @@ def make_setup(method: str | HomingMethod, program=None, sensor: Sensor | None =
             raise InputError("noise", noise, "must be a delvjax.Noise")
         given_noise = sorted(k for k in given_sensor if k in NOISE_OPTIONS)
         if given_noise:
-            raise InputError(given_noise[0], given_sensor[given_noise[0]], "cannot be combined with noise= (set it "
-                                                                            "on the Noise)")
+            raise InputError(
+                given_noise[0], given_sensor[given_noise[0]], "cannot be combined with noise= (set it on the Noise)"
+            )
         sensor = dataclasses.replace(sensor, noise=noise)
     if isinstance(method, HomingMethod):
         if program is not None:
@@ -127,8 +128,9 @@ def make_setup(method: str | HomingMethod, program=None, sensor: Sensor | None =
     settings = method_settings({k: v for k, v in options.items() if k in method_names}, sensor.n_pix, extra, module)
     label = method if isinstance(method, str) else type(method).__name__
     if "channel" in given_sensor and not reads_channel(module):
-        raise InputError("channel", given_sensor["channel"], f"is read only by image methods (warping, mfdid), "
-                                                             f"not by {label}")
+        raise InputError(
+            "channel", given_sensor["channel"], f"is read only by image methods (warping, mfdid), not by {label}"
+        )
     for name, value in settings.items():
         if not owns(module, name):
             raise InputError(name, value, f"is not a setting of the method {label}")

@@ -33,7 +33,8 @@ def vector_map_columns(vm: VectorMap) -> dict[str, np.ndarray]:
     inc = np.asarray(vm.included)
     pts = np.asarray(vm.points)[inc]
     return {
-        "x": pts[:, 0], "y": pts[:, 1],
+        "x": pts[:, 0],
+        "y": pts[:, 1],
         "heading_deg": np.degrees(np.asarray(vm.heading)[inc]),
         "direction_deg": np.degrees(np.asarray(vm.direction)[inc]),
         "error_deg": np.asarray(vm.error_deg)[inc],
@@ -51,12 +52,18 @@ def catchment_columns(res: Catchment, with_hidden: bool = False) -> dict[str, ob
     pts = np.tile(np.asarray(res.points)[inc], (n_masks, 1))
     per = lambda a: np.asarray(a)[:, inc].reshape(-1)  # noqa: E731
     columns: dict[str, object] = {
-        "x": pts[:, 0], "y": pts[:, 1],
+        "x": pts[:, 0],
+        "y": pts[:, 1],
         "heading_deg": np.tile(np.degrees(np.asarray(res.heading)[inc]), n_masks),
-        "success": per(res.success), "steps": per(res.steps), "outcome": outcome_names(per(res.outcome)),
-        "end_x": per(np.asarray(res.end)[..., 0]), "end_y": per(np.asarray(res.end)[..., 1]),
+        "success": per(res.success),
+        "steps": per(res.steps),
+        "outcome": outcome_names(per(res.outcome)),
+        "end_x": per(np.asarray(res.end)[..., 0]),
+        "end_y": per(np.asarray(res.end)[..., 1]),
         "invalid_steps": per(res.invalid_steps),
-        "direction_deg": np.degrees(per(res.direction)), "error_deg": per(res.error_deg), "valid": per(res.valid),
+        "direction_deg": np.degrees(per(res.direction)),
+        "error_deg": per(res.error_deg),
+        "valid": per(res.valid),
         **rule_columns(res.rules, pts.shape[0]),
     }
     if with_hidden:
@@ -78,10 +85,13 @@ def success_trial_columns(res: SuccessRate, method: str) -> dict[str, object]:
         "method": [method] * placed.size,
         "distance_cm": np.repeat(np.asarray(res.distances), n_tr),
         "trial": np.tile(np.arange(n_tr), n_bins),
-        "x": start[:, 0], "y": start[:, 1],
+        "x": start[:, 0],
+        "y": start[:, 1],
         "heading_deg": np.degrees(np.asarray(res.heading).reshape(-1)),
-        "placed": placed, "success": np.asarray(res.success).reshape(-1),
-        "steps": np.asarray(res.steps).reshape(-1), "outcome": outcome_names(res.outcome),
+        "placed": placed,
+        "success": np.asarray(res.success).reshape(-1),
+        "steps": np.asarray(res.steps).reshape(-1),
+        "outcome": outcome_names(res.outcome),
         **rule_columns(res.rules, placed.size),
     }
 
@@ -92,10 +102,18 @@ def trajectory_columns(tr: Trajectories, method: str) -> dict[str, list]:
     heading, success, outcome = np.degrees(np.asarray(tr.heading)), np.asarray(tr.success), outcome_names(tr.outcome)
     t = np.repeat(np.arange(path.shape[0]), steps + 1)
     s = np.concatenate([np.arange(n + 1) for n in steps]) if steps.size else np.zeros(0, int)
-    return {"method": [method] * t.size, "trial": t.tolist(), "step": s.tolist(),
-            "x": path[t, s, 0].tolist(), "y": path[t, s, 1].tolist(),
-            "release_heading_deg": heading[t].tolist(), "success": success[t].tolist(),
-            "steps": steps[t].tolist(), "outcome": [outcome[i] for i in t], **rule_columns(tr.rules, t.size)}
+    return {
+        "method": [method] * t.size,
+        "trial": t.tolist(),
+        "step": s.tolist(),
+        "x": path[t, s, 0].tolist(),
+        "y": path[t, s, 1].tolist(),
+        "release_heading_deg": heading[t].tolist(),
+        "success": success[t].tolist(),
+        "steps": steps[t].tolist(),
+        "outcome": [outcome[i] for i in t],
+        **rule_columns(tr.rules, t.size),
+    }
 
 
 def concat_columns(tables: list[dict]) -> dict[str, list]:

@@ -25,11 +25,29 @@ def landmark_figure(result: dict):
         norm = np.hypot(g[:, 0], g[:, 1])
         scale = 150.0 / max(norm.max(), 1e-12)
         draw_env(ax, env)
-        ax.quiver(lm[:, 0], lm[:, 1], -g[:, 0] * scale, -g[:, 1] * scale, angles="xy", scale_units="xy", scale=1.0,
-                  color="tab:red", width=0.008, zorder=5)
+        ax.quiver(
+            lm[:, 0],
+            lm[:, 1],
+            -g[:, 0] * scale,
+            -g[:, 1] * scale,
+            angles="xy",
+            scale_units="xy",
+            scale=1.0,
+            color="tab:red",
+            width=0.008,
+            zorder=5,
+        )
         for (x, y, r), n in zip(lm, norm):
-            ax.annotate(f"{100 * n:.2g}", (x, y), xytext=(0, r * 0.0 + 14), textcoords="offset points", ha="center",
-                        fontsize=8, color="tab:red", zorder=6)
+            ax.annotate(
+                f"{100 * n:.2g}",
+                (x, y),
+                xytext=(0, r * 0.0 + 14),
+                textcoords="offset points",
+                ha="center",
+                fontsize=8,
+                color="tab:red",
+                zorder=6,
+            )
         ax.set_title(f"{m}: quality {result['methods'][m]['quality']:.3f}", fontsize=10)
     fig.suptitle("Which landmark matters: arrows improve homing quality (|dQ/dx| per metre)")
     return fig
@@ -60,19 +78,39 @@ def trap_figure(report: TrapReport, spacing: float):
     fig, axes = subplots(1, 1, figsize=(6.2, 6.2), squeeze=False)
     ax = axes[0, 0]
     s = report.summary
-    catchment_panel(ax, report.env, report.catchment, 0, spacing,
-                    f"{report.method}: catchment {s['catchment_pct']:.1f} %, {s['timed_out']} timed out, "
-                    f"{s['timed_out_within_near_of_a_sink']} within {s['near_cm']:g} cm of a sink")
+    catchment_panel(
+        ax,
+        report.env,
+        report.catchment,
+        0,
+        spacing,
+        f"{report.method}: catchment {s['catchment_pct']:.1f} %, {s['timed_out']} timed out, "
+        f"{s['timed_out_within_near_of_a_sink']} within {s['near_cm']:g} cm of a sink",
+    )
     if len(report.failed_ends):
-        ax.plot(report.failed_ends[:, 0], report.failed_ends[:, 1], ".", color="tab:red", markersize=3, zorder=5,
-                label="timed-out ends")
-    style = {"sink": ("o", "tab:red"), "saddle": ("X", "tab:orange"), "source": ("^", "tab:blue"),
-             "degenerate": ("s", "tab:purple"), "discontinuity": ("D", "0.5"), "2-cycle": ("P", "tab:green")}
+        ax.plot(
+            report.failed_ends[:, 0],
+            report.failed_ends[:, 1],
+            ".",
+            color="tab:red",
+            markersize=3,
+            zorder=5,
+            label="timed-out ends",
+        )
+    style = {
+        "sink": ("o", "tab:red"),
+        "saddle": ("X", "tab:orange"),
+        "source": ("^", "tab:blue"),
+        "degenerate": ("s", "tab:purple"),
+        "discontinuity": ("D", "0.5"),
+        "2-cycle": ("P", "tab:green"),
+    }
     for kind, (marker, color) in style.items():
         pts = np.array([[r["x"], r["y"]] for r in report.points if r["kind"] == kind and not r["home"]]).reshape(-1, 2)
         if len(pts):
-            ax.plot(pts[:, 0], pts[:, 1], marker, color=color, markersize=10, markeredgecolor="black", zorder=6,
-                    label=kind)
+            ax.plot(
+                pts[:, 0], pts[:, 1], marker, color=color, markersize=10, markeredgecolor="black", zorder=6, label=kind
+            )
     ax.legend(fontsize=7, loc="upper right")
     return fig
 
@@ -83,9 +121,16 @@ def layout_figure(result: LayoutResult, spacing: float):
     fig, axes = subplots(1, 3, figsize=(15.5, 5.2), squeeze=False)
     for ax, env, row, c in zip(axes[0][:2], (result.start, result.optimised), result.rows, result.catchments):
         worst = int(np.argmin(c.catchment_pct()))
-        catchment_panel(ax, env, c, worst, spacing, f"{row['layout']}: catchment {row['catchment_pct']:.1f} % "
-                                                    f"(worst mask {row['catchment_min_pct']:.1f} %)\n"
-                                                    f"e>45° {row['gt45_pct']:.1f} %, e>90° {row['gt90_pct']:.1f} %")
+        catchment_panel(
+            ax,
+            env,
+            c,
+            worst,
+            spacing,
+            f"{row['layout']}: catchment {row['catchment_pct']:.1f} % "
+            f"(worst mask {row['catchment_min_pct']:.1f} %)\n"
+            f"e>45° {row['gt45_pct']:.1f} %, e>90° {row['gt90_pct']:.1f} %",
+        )
     ax = axes[0][2]
     ax.plot(range(len(result.objective)), result.objective, marker="o", markersize=3)
     ax.set_xlabel("BFGS step")

@@ -11,8 +11,16 @@ from ._maps import draw_vector_map, draw_world, subplots
 def database_map_figure(db, vm, title: str = "", classes: bool = False, ax=None, perceived=None):
     """Vector map on a database (Fig 4.18): arrows, invalid points as red x, obstacles."""
     fig, ax = subplots(figsize=(6.4, 6.4)) if ax is None else (ax.figure, ax)
-    draw_vector_map(ax, None, vm.points, vm.direction, vm.valid, vm.included, db.spacing,
-                    error_deg=vm.error_deg if classes else None)
+    draw_vector_map(
+        ax,
+        None,
+        vm.points,
+        vm.direction,
+        vm.valid,
+        vm.included,
+        db.spacing,
+        error_deg=vm.error_deg if classes else None,
+    )
     draw_world(ax, db.arena, db.home, db.obstacles, perceived)
     ax.set_title(title, fontsize=10)
     return fig
@@ -24,8 +32,7 @@ def database_catchment_figure(db, vm, starts, paths, title: str = ""):
     ax = fig.axes[0]
     ok = np.asarray(paths.outcome) == 0
     s = np.asarray(starts)
-    ax.scatter(s[ok, 0], s[ok, 1], marker="s", s=60, facecolors="none", edgecolors="tab:blue", zorder=1,
-               label="homes")
+    ax.scatter(s[ok, 0], s[ok, 1], marker="s", s=60, facecolors="none", edgecolors="tab:blue", zorder=1, label="homes")
     ax.legend(loc="upper right", fontsize=8)
     return fig
 
@@ -53,9 +60,13 @@ def pipeline_figure(donut_image, panorama_image, mask_image, ring_mask, title: s
     ax = fig.add_subplot(grid[:, 0])
     ax.imshow(donut_image)
     ax.set_title("(a) catadioptric image", fontsize=9)
-    for i, (img, label) in enumerate(((panorama_image, "(b) unwrapped panorama"),
-                                      (mask_image, "(c) landmark pixels (HSV threshold)"),
-                                      (np.repeat(np.asarray(ring_mask)[None], 8, 0), "(d) 1D ring"))):
+    for i, (img, label) in enumerate(
+        (
+            (panorama_image, "(b) unwrapped panorama"),
+            (mask_image, "(c) landmark pixels (HSV threshold)"),
+            (np.repeat(np.asarray(ring_mask)[None], 8, 0), "(d) 1D ring"),
+        )
+    ):
         a = fig.add_subplot(grid[i, 1])
         a.imshow(img, cmap="gray", aspect="auto", interpolation="nearest")
         a.set_title(label, fontsize=9)

@@ -16,6 +16,7 @@ def subplots(*grid: int, figsize: tuple[float, float], **kw):
     fig = Figure(figsize=figsize)
     return fig, fig.subplots(*grid, **kw)
 
+
 CLASS_STYLE = (  # Fig 4.3: dot < 45, star 45-90, triangle > 90
     ("<45°", dict(marker=".", color="0.35", s=10)),
     ("45–90°", dict(marker="*", color="tab:orange", s=40)),
@@ -59,8 +60,20 @@ def draw_vector_map(ax, env: Env | None, points, direction, valid, included, spa
     ang = np.asarray(direction)[inc]
     length = 0.7 * spacing
     u, v = np.cos(ang[ok]) * length, np.sin(ang[ok]) * length
-    ax.quiver(pts[ok, 0], pts[ok, 1], u, v, angles="xy", scale_units="xy", scale=1.0, width=0.0022,
-              headwidth=4, headlength=4, color="black", zorder=2)
+    ax.quiver(
+        pts[ok, 0],
+        pts[ok, 1],
+        u,
+        v,
+        angles="xy",
+        scale_units="xy",
+        scale=1.0,
+        width=0.0022,
+        headwidth=4,
+        headlength=4,
+        color="black",
+        zorder=2,
+    )
     if (~ok).any():
         ax.scatter(pts[~ok, 0], pts[~ok, 1], marker="x", color="tab:red", s=14, zorder=3, label="invalid")
     if error_deg is not None:
@@ -74,8 +87,9 @@ def draw_vector_map(ax, env: Env | None, points, direction, valid, included, spa
 def vector_map_figure(env: Env, vm, spacing: float, title: str = "", classes: bool = False):
     """Figure of one vector map (Fig 4.2; with `classes`, the error markers of Fig 4.3)."""
     fig, ax = subplots(figsize=(6.4, 6.4))
-    draw_vector_map(ax, env, vm.points, vm.direction, vm.valid, vm.included, spacing,
-                    error_deg=vm.error_deg if classes else None)
+    draw_vector_map(
+        ax, env, vm.points, vm.direction, vm.valid, vm.included, spacing, error_deg=vm.error_deg if classes else None
+    )
     draw_env(ax, env)
     ax.set_title(title)
     if classes or not np.asarray(vm.valid)[np.asarray(vm.included)].all():

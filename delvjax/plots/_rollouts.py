@@ -30,8 +30,9 @@ def draw_catchment(ax, points, success, included, spacing: float) -> None:
 def catchment_panel(ax, env: Env, result, m: int, spacing: float, title: str = "") -> None:
     """One mask of a `Catchment`: its vector map with the catchment squares underneath."""
     draw_catchment(ax, result.points, np.asarray(result.success)[m], result.counted, spacing)
-    draw_vector_map(ax, env, result.points, np.asarray(result.direction)[m], np.asarray(result.valid)[m],
-                    result.included, spacing)
+    draw_vector_map(
+        ax, env, result.points, np.asarray(result.direction)[m], np.asarray(result.valid)[m], result.included, spacing
+    )
     draw_env(ax, env)
     hidden = result.hidden[m] if m < len(result.hidden) else ()
     lms = np.asarray(env.landmarks)
@@ -102,8 +103,10 @@ def trajectories_figure(env: Env, results: dict, home_radius: float, title: str 
         ok = np.asarray(traj.outcome) == SUCCESS
         ax.set_title(f"{label}: {int(ok.sum())}/{ok.size} reach home", fontsize=10)
     handles = [Line2D([], [], marker="*", color="black", ls="", ms=10, label="release point")]
-    handles += [Line2D([], [], marker=m, mfc="none", mec=c, ls="", ms=7, mew=1.8, label=f"failure: {name}")
-                for name, (m, c) in FAIL_STYLE.items()]
+    handles += [
+        Line2D([], [], marker=m, mfc="none", mec=c, ls="", ms=7, mew=1.8, label=f"failure: {name}")
+        for name, (m, c) in FAIL_STYLE.items()
+    ]
     fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8, frameon=False)
     if title:
         fig.suptitle(title)
@@ -121,10 +124,19 @@ def success_rate_figure(tables: dict, title: str = ""):
     for i, (label, rows) in enumerate(tables.items()):
         x = np.array([r["distance_cm"] for r in rows])
         y = np.array([r["success_pct"] for r in rows])
-        yerr = np.nan_to_num(np.array([[r["success_pct"] - r["ci_lo_pct"], r["ci_hi_pct"] - r["success_pct"]]
-                                       for r in rows]).T, nan=0.0)
-        line = ax.errorbar(x + 4.0 * (i - (n - 1) / 2), y, yerr=yerr, marker=markers[i % len(markers)], ms=5,
-                           capsize=2.5, elinewidth=0.8, label=label).lines[0]
+        yerr = np.nan_to_num(
+            np.array([[r["success_pct"] - r["ci_lo_pct"], r["ci_hi_pct"] - r["success_pct"]] for r in rows]).T, nan=0.0
+        )
+        line = ax.errorbar(
+            x + 4.0 * (i - (n - 1) / 2),
+            y,
+            yerr=yerr,
+            marker=markers[i % len(markers)],
+            ms=5,
+            capsize=2.5,
+            elinewidth=0.8,
+            label=label,
+        ).lines[0]
         colors.append(line.get_color())
     x = np.array([r["distance_cm"] for r in next(iter(tables.values()))])
     step = np.diff(x)
@@ -133,8 +145,13 @@ def success_rate_figure(tables: dict, title: str = ""):
         ax.set_xticks(x)
         ax.set_xticklabels([])
         cells = [[f"{r['successes']}/{r['placed']}" for r in rows] for rows in tables.values()]
-        table = ax.table(cellText=[[f"{v:g}" for v in x]] + cells, rowLabels=["distance (cm)", *tables],
-                         cellLoc="center", loc="bottom", bbox=(0, -0.05 - 0.075 * (n + 1), 1, 0.075 * (n + 1)))
+        table = ax.table(
+            cellText=[[f"{v:g}" for v in x]] + cells,
+            rowLabels=["distance (cm)", *tables],
+            cellLoc="center",
+            loc="bottom",
+            bbox=(0, -0.05 - 0.075 * (n + 1), 1, 0.075 * (n + 1)),
+        )
         table.auto_set_font_size(False)
         table.set_fontsize(7.5)
         for (row, col), cell in table.get_celld().items():
@@ -142,8 +159,16 @@ def success_rate_figure(tables: dict, title: str = ""):
             if row >= 1:
                 cell.get_text().set_color(colors[row - 1])
         ax.set_xlabel("")
-        ax.text(1.0, -0.08 - 0.075 * (n + 1), "successes / trials per release distance", transform=ax.transAxes,
-                ha="right", va="top", fontsize=7, color="0.35")
+        ax.text(
+            1.0,
+            -0.08 - 0.075 * (n + 1),
+            "successes / trials per release distance",
+            transform=ax.transAxes,
+            ha="right",
+            va="top",
+            fontsize=7,
+            color="0.35",
+        )
     else:
         ax.set_xlabel("release distance from home (cm)")
     ax.set_ylabel("success rate (%)")

@@ -26,8 +26,12 @@ def check_plot(ds, x: str, y: str | None, metric: str) -> None:
     facets = [d for d in ds.dims if d not in (x, y, "seed") and ds.sizes[d] > 1]
     n = int(np.prod([ds.sizes[d] for d in facets])) if facets else 1
     if n > MAX_PANELS:
-        raise InputError("--x", x, f"leaves {n} panels ({', '.join(facets)}); at most {MAX_PANELS}: choose --x/--y "
-                                   "among them or sweep fewer values")
+        raise InputError(
+            "--x",
+            x,
+            f"leaves {n} panels ({', '.join(facets)}); at most {MAX_PANELS}: choose --x/--y "
+            "among them or sweep fewer values",
+        )
 
 
 def panels(ds, x: str, y: str | None) -> list[tuple[str, dict]]:
@@ -89,8 +93,10 @@ def sweep_figure(ds, x: str, y: str | None, metric: str):
                 ax.fill_between(xs, lo, hi, color="tab:blue", alpha=0.25, label=what)
             ax.set_xlabel(x)
             ax.set_ylabel(metric)
-            rows += [{"panel": title, x: v, metric: m, "ci95_lo": a, "ci95_hi": b, "interval": what}
-                     for v, m, a, b in zip(xs.tolist(), mean, lo, hi)]
+            rows += [
+                {"panel": title, x: v, metric: m, "ci95_lo": a, "ci95_hi": b, "interval": what}
+                for v, m, a, b in zip(xs.tolist(), mean, lo, hi)
+            ]
         else:
             mean, _ = summarize(da.transpose(y, x, "seed").values)
             im = ax.imshow(mean, origin="lower", aspect="auto", cmap="viridis")
@@ -99,10 +105,13 @@ def sweep_figure(ds, x: str, y: str | None, metric: str):
             ax.set_xlabel(x)
             ax.set_ylabel(y)
             fig.colorbar(im, ax=ax, label=metric)
-            rows += [{"panel": title, y: vy, x: vx, metric: float(mean[i, j])}
-                     for i, vy in enumerate(ds[y].values.tolist()) for j, vx in enumerate(ds[x].values.tolist())]
+            rows += [
+                {"panel": title, y: vy, x: vx, metric: float(mean[i, j])}
+                for i, vy in enumerate(ds[y].values.tolist())
+                for j, vx in enumerate(ds[x].values.tolist())
+            ]
         ax.set_title(title, fontsize=9)
-    for ax in axes.ravel()[len(items):]:
+    for ax in axes.ravel()[len(items) :]:
         ax.set_visible(False)
     fig.suptitle(f"{metric}" + (" (mean over seeds)" if "seed" in ds.dims and ds.sizes["seed"] > 1 else ""))
     fig.tight_layout()

@@ -17,8 +17,13 @@ from typing import Any
 from ..outputs._files import atomic_path
 from ..core.rollouts import DEFAULT_RULES, PHYSICAL_RULES
 
-VERDICT_MARK = {"holds": "✅ holds", "partly": "🟡 partly", "fails": "❌ fails", "cannot tell": "❔ cannot tell",
-                "n/a": "— not run"}
+VERDICT_MARK = {
+    "holds": "✅ holds",
+    "partly": "🟡 partly",
+    "fails": "❌ fails",
+    "cannot tell": "❔ cannot tell",
+    "n/a": "— not run",
+}
 CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;max-width:1200px;margin:2em auto;
 padding:0 1em;color:#222;line-height:1.45}
@@ -53,23 +58,36 @@ def md_table(columns: list[str], rows: list[dict]) -> str:
 
 def claims_section(claims: list[dict]) -> str:
     counts = {v: sum(c["verdict"] == v for c in claims) for v in VERDICT_MARK}
-    head = (f"**{counts['holds']} hold, {counts['partly']} partly, {counts['fails']} fail"
-            + (f", {counts['cannot tell']} cannot tell" if counts["cannot tell"] else "")
-            + (f", {counts['n/a']} not run" if counts["n/a"] else "") + f"** of {len(claims)} claims. "
-            "Each verdict is computed from this run's numbers (`studies/claims/__init__.py`); the thesis's "
-            "words are quoted with their section. *Cannot tell*: the numbers compared are at the ceiling "
-            "(all >= 99 %) or no method loses anything, so they cannot show the claim either way; each "
-            "*why* ends with the check's rule and its tolerance.")
-    rows = [{"#": i + 1, "claim (thesis)": f"{c['section']}: “{c['quote']}”", "what must hold": c["statement"],
-             "ours": c["ours"], "verdict": VERDICT_MARK[c["verdict"]], "why": c["why"]}
-            for i, c in enumerate(claims)]
+    head = (
+        f"**{counts['holds']} hold, {counts['partly']} partly, {counts['fails']} fail"
+        + (f", {counts['cannot tell']} cannot tell" if counts["cannot tell"] else "")
+        + (f", {counts['n/a']} not run" if counts["n/a"] else "")
+        + f"** of {len(claims)} claims. "
+        "Each verdict is computed from this run's numbers (`studies/claims/__init__.py`); the thesis's "
+        "words are quoted with their section. *Cannot tell*: the numbers compared are at the ceiling "
+        "(all >= 99 %) or no method loses anything, so they cannot show the claim either way; each "
+        "*why* ends with the check's rule and its tolerance."
+    )
+    rows = [
+        {
+            "#": i + 1,
+            "claim (thesis)": f"{c['section']}: “{c['quote']}”",
+            "what must hold": c["statement"],
+            "ours": c["ours"],
+            "verdict": VERDICT_MARK[c["verdict"]],
+            "why": c["why"],
+        }
+        for i, c in enumerate(claims)
+    ]
     return head + "\n\n" + md_table(["#", "claim (thesis)", "what must hold", "ours", "verdict", "why"], rows)
 
 
 def study_section(rec) -> str:
-    parts = [f"## {rec.title}",
-             f"*Study `{rec.name}`: {rec.seconds:.1f} s wall, of which {rec.compile_seconds:.1f} s compilation "
-             f"(0 when the compiled programs came from the cache).*"]
+    parts = [
+        f"## {rec.title}",
+        f"*Study `{rec.name}`: {rec.seconds:.1f} s wall, of which {rec.compile_seconds:.1f} s compilation "
+        f"(0 when the compiled programs came from the cache).*",
+    ]
     for t in rec.tables:
         parts.append(f"### {t['title']}" + (f" ({t['source']})" if t["source"] else ""))
         parts.append(md_table(t["columns"], t["rows"]))
@@ -83,42 +101,62 @@ def study_section(rec) -> str:
 
 def settings_section(settings, versions: dict, records: dict, wall_seconds: float, ran: list[str]) -> str:
     rows = [{"setting": k, "value": v} for k, v in asdict(settings).items()]
-    rows += [{"setting": "rollout rules (default, docs/model.md §5)", "value": ", ".join(f"{k}={v}" for k, v in DEFAULT_RULES.items())},
-             {"setting": "rollout rules (physical, beside the default)",
-              "value": ", ".join(f"{k}={v}" for k, v in PHYSICAL_RULES.items())},
-             {"setting": "success", "value": "within 50 cm of home within 50 moves of d = 50 cm"}]
+    rows += [
+        {
+            "setting": "rollout rules (default, docs/model.md §5)",
+            "value": ", ".join(f"{k}={v}" for k, v in DEFAULT_RULES.items()),
+        },
+        {
+            "setting": "rollout rules (physical, beside the default)",
+            "value": ", ".join(f"{k}={v}" for k, v in PHYSICAL_RULES.items()),
+        },
+        {"setting": "success", "value": "within 50 cm of home within 50 moves of d = 50 cm"},
+    ]
     rows += [{"setting": f"version of {k}", "value": v} for k, v in versions.items()]
-    timing = [{"study": n, "wall s": r.seconds, "compile s": r.compile_seconds,
-               "this run": "ran" if n in ran else "unchanged (skipped)"} for n, r in records.items()]
+    timing = [
+        {
+            "study": n,
+            "wall s": r.seconds,
+            "compile s": r.compile_seconds,
+            "this run": "ran" if n in ran else "unchanged (skipped)",
+        }
+        for n, r in records.items()
+    ]
     total = sum(r.seconds for r in records.values())
-    parts = [md_table(["setting", "value"], rows),
-             f"This invocation took {wall_seconds:.1f} s; the studies' own recorded wall times add up to {total:.1f} s "
-             "(studies run side by side, `--workers`).",
-             md_table(["study", "wall s", "compile s", "this run"], timing)]
+    parts = [
+        md_table(["setting", "value"], rows),
+        f"This invocation took {wall_seconds:.1f} s; the studies' own recorded wall times add up to {total:.1f} s "
+        "(studies run side by side, `--workers`).",
+        md_table(["study", "wall s", "compile s", "this run"], timing),
+    ]
     from ..studies import FULL_RUN_ONLY  # the studies: loaded only when a report is written (they import the API)
 
     missing = [n for n in FULL_RUN_ONLY if n not in records]
     if settings.quick and missing:
-        parts.append("**A preview (`--quick`)**: a 10 x 10 grid, and these studies are left to a full run (or "
-                     f"`--only`): {', '.join(f'`{n}`' for n in missing)}; claims that read them say *not run*.")
+        parts.append(
+            "**A preview (`--quick`)**: a 10 x 10 grid, and these studies are left to a full run (or "
+            f"`--only`): {', '.join(f'`{n}`' for n in missing)}; claims that read them say *not run*."
+        )
     return "\n\n".join(parts)
-
 
 
 def choices_section(numbers: dict) -> str:
     """What we chose where the thesis is silent, each with the number it changes (`delvjax.studies.thesis.choices`)."""
     from ..studies.thesis import choices  # the studies: loaded only when a report is written (they import the API)
 
-    return ("Where the thesis is silent or ambiguous we had to choose; each choice below with the number it "
-            "changes in this run (or, where no study recomputes it, where it was measured). docs/model.md has the "
-            "reasons.\n\n" + md_table(["choice", "ours", "alternative", "what it changes"], choices.rows(numbers)))
+    return (
+        "Where the thesis is silent or ambiguous we had to choose; each choice below with the number it "
+        "changes in this run (or, where no study recomputes it, where it was measured). docs/model.md has the "
+        "reasons.\n\n" + md_table(["choice", "ours", "alternative", "what it changes"], choices.rows(numbers))
+    )
 
 
 def thesis_notes_section() -> str:
     from ..studies import thesis  # the studies: loaded only when a report is written (they import the API)
 
-    rows = [{"where": v.get("section", ""), "what": v.get("text", v.get("description", ""))}
-            for v in thesis.NOTES.values()]
+    rows = [
+        {"where": v.get("section", ""), "what": v.get("text", v.get("description", ""))} for v in thesis.NOTES.values()
+    ]
     return md_table(["where", "what"], rows)
 
 
@@ -127,14 +165,19 @@ def build_markdown(records: dict, settings, versions: dict, wall_seconds: float,
 
     claims = evaluate({n: r.numbers for n, r in records.items()})
     flat = {k: v for r in records.values() for k, v in r.numbers.items()}
-    parts = ["# delvjax: reproduction of the thesis's simulation experiments",
-             "The thesis is *Distance-Estimated Landmark Vector Model for Vision-Based Homing Navigation* "
-             "(chapters 4-5). It gives no landmark coordinates, grid spacing or home radius, so the claims "
-             "to check are the trends (who beats whom, how fast each degrades), not the digits. "
-             "Our environments, frames and every decision where the thesis is ambiguous: `docs/model.md`.",
-             "## Run settings", settings_section(settings, versions, records, wall_seconds, ran),
-             "## Claims of the thesis", claims_section(claims),
-             "## What we chose", choices_section(flat)]
+    parts = [
+        "# delvjax: reproduction of the thesis's simulation experiments",
+        "The thesis is *Distance-Estimated Landmark Vector Model for Vision-Based Homing Navigation* "
+        "(chapters 4-5). It gives no landmark coordinates, grid spacing or home radius, so the claims "
+        "to check are the trends (who beats whom, how fast each degrades), not the digits. "
+        "Our environments, frames and every decision where the thesis is ambiguous: `docs/model.md`.",
+        "## Run settings",
+        settings_section(settings, versions, records, wall_seconds, ran),
+        "## Claims of the thesis",
+        claims_section(claims),
+        "## What we chose",
+        choices_section(flat),
+    ]
     parts += [study_section(r) for r in records.values()]
     parts += ["## Inconsistencies within the thesis", thesis_notes_section()]
     return "\n\n".join(parts) + "\n"
@@ -142,18 +185,20 @@ def build_markdown(records: dict, settings, versions: dict, wall_seconds: float,
 
 def embed_images(html: str, root: Path) -> str:
     """Replace <img src="relative.png"> by data URIs so the page stands alone."""
+
     def repl(m: re.Match) -> str:
         path = root / m.group(2)
         if not path.is_file():
             return m.group(0)
         data = base64.b64encode(path.read_bytes()).decode("ascii")
-        return f'{m.group(1)}data:image/png;base64,{data}{m.group(3)}'
+        return f"{m.group(1)}data:image/png;base64,{data}{m.group(3)}"
 
     return re.sub(r'(<img[^>]*src=")([^"]+\.png)(")', repl, html)
 
 
-def write_report(out: Path, records: dict, settings, versions: dict, wall_seconds: float = 0.0,
-                 ran: list[str] | None = None) -> Path:
+def write_report(
+    out: Path, records: dict, settings, versions: dict, wall_seconds: float = 0.0, ran: list[str] | None = None
+) -> Path:
     """Write out/report.md and out/report.html; returns the HTML path."""
     import markdown  # markdown: loaded only when the HTML report is written
 
@@ -161,8 +206,10 @@ def write_report(out: Path, records: dict, settings, versions: dict, wall_second
     with atomic_path(out / "report.md") as tmp:
         tmp.write_text(text)
     body = markdown.markdown(text, extensions=["tables"])
-    page = (f"<!doctype html><html><head><meta charset='utf-8'><title>delvjax reproduction report</title>"
-            f"<style>{CSS}</style></head><body>{embed_images(body, out)}</body></html>\n")
+    page = (
+        f"<!doctype html><html><head><meta charset='utf-8'><title>delvjax reproduction report</title>"
+        f"<style>{CSS}</style></head><body>{embed_images(body, out)}</body></html>\n"
+    )
     html = out / "report.html"
     with atomic_path(html) as tmp:
         tmp.write_text(page)

@@ -31,7 +31,7 @@ from ..outputs._files import check_out_dir, write_json
 from ..outputs._cache import package_sources
 from ._study import STUDY_FILE, Settings, StudyContext, StudyRecord, compile_seconds, settings_record, versions
 from ..outputs._cache import enable_compilation_cache
-from ..options._settings import seed_value
+from ..options._checks import seed_value
 from ._report import write_report
 
 STUDIES = "delvjax.studies"  # the package of the study runners, the thesis's numbers and the claim checks
@@ -107,6 +107,7 @@ def is_current(folder: Path, digest: str) -> bool:
 
 # --- the registry and the run --------------------------------------------------------------
 
+
 def registry(names: list[str] | None = None) -> dict[str, Any]:
     """name -> study module, in report order (`studies.STUDIES`), or only `names`."""
     names = list(importlib.import_module(STUDIES).STUDIES) if names is None else names
@@ -151,17 +152,30 @@ def schedule(names: list[str]) -> tuple[list[str], list[str]]:
 def _bars(total: int, enabled: bool) -> Iterator[Any]:
     from tqdm.auto import tqdm  # tqdm: loaded only when a progress bar is shown
 
-    bar = tqdm(total=total, desc="studies", unit="study", disable=not enabled, file=sys.stderr,
-               bar_format="{l_bar}{bar}| {n_fmt}/{total_fmt} [{elapsed}<{remaining}]")
+    bar = tqdm(
+        total=total,
+        desc="studies",
+        unit="study",
+        disable=not enabled,
+        file=sys.stderr,
+        bar_format="{l_bar}{bar}| {n_fmt}/{total_fmt} [{elapsed}<{remaining}]",
+    )
     try:
         yield bar
     finally:
         bar.close()
 
 
-def run_study(name: str, module, out: Path, settings: Settings, force: bool = False,
-              progress: bool = True, painter: ThreadPoolExecutor | None = None, digest: str | None = None
-              ) -> tuple[StudyRecord, bool, Future | None]:
+def run_study(
+    name: str,
+    module,
+    out: Path,
+    settings: Settings,
+    force: bool = False,
+    progress: bool = True,
+    painter: ThreadPoolExecutor | None = None,
+    digest: str | None = None,
+) -> tuple[StudyRecord, bool, Future | None]:
     """Run one study unless current; returns (record, ran, future of its completion).
 
     `painter`: one thread that renders the figures while the next study computes; the
@@ -177,11 +191,13 @@ def run_study(name: str, module, out: Path, settings: Settings, force: bool = Fa
     digest = study_hash(module, settings) if digest is None else digest
     if not force and is_current(folder, digest):
         return load_record(folder), False, None  # type: ignore[return-value]
-    record = StudyRecord(name=name, title=module.TITLE, hash=digest, settings=settings_record(settings),
-                         versions=versions())
+    record = StudyRecord(
+        name=name, title=module.TITLE, hash=digest, settings=settings_record(settings), versions=versions()
+    )
     c0, t0 = compile_seconds(), time.perf_counter()
-    with tqdm(total=getattr(module, "STEPS", None), desc=f"  {name}", leave=False, disable=not progress,
-              file=sys.stderr) as bar:
+    with tqdm(
+        total=getattr(module, "STEPS", None), desc=f"  {name}", leave=False, disable=not progress, file=sys.stderr
+    ) as bar:
         ctx = StudyContext(folder, record, settings, bar, painter)
         module.run(ctx)
     record.seconds = time.perf_counter() - t0
@@ -192,9 +208,16 @@ def run_study(name: str, module, out: Path, settings: Settings, force: bool = Fa
     return record, True, done
 
 
-def reproduce(out: str | Path = "results", quick: bool = False, only: str | None = None, force: bool = False,
-              seed: int = 0, progress: bool = True, settings: Settings | None = None,
-              workers: int | None = None) -> dict:
+def reproduce(
+    out: str | Path = "results",
+    quick: bool = False,
+    only: str | None = None,
+    force: bool = False,
+    seed: int = 0,
+    progress: bool = True,
+    settings: Settings | None = None,
+    workers: int | None = None,
+) -> dict:
     """Run the selected studies (skipping current ones), then write report.md / report.html.
 
     `settings` overrides quick/seed (e.g. a tiny grid for tests: Settings(spacing=200.0, trials=10)).
@@ -222,8 +245,9 @@ def reproduce(out: str | Path = "results", quick: bool = False, only: str | None
     first, rest = schedule(names)
 
     def one(name: str) -> None:
-        rec, did, done = run_study(name, modules[name], out, settings, force=force, progress=progress,
-                                   painter=painter, digest=digests[name])
+        rec, did, done = run_study(
+            name, modules[name], out, settings, force=force, progress=progress, painter=painter, digest=digests[name]
+        )
         records[name] = rec
         completions.append(done)
         if did:

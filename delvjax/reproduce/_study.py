@@ -22,8 +22,11 @@ from .. import __version__
 import numpy
 
 STUDY_FILE = "study.json"
-COMPILE_EVENTS = ("/jax/core/compile/jaxpr_trace_duration", "/jax/core/compile/jaxpr_to_mlir_module_duration",
-                  "/jax/core/compile/backend_compile_duration")
+COMPILE_EVENTS = (
+    "/jax/core/compile/jaxpr_trace_duration",
+    "/jax/core/compile/jaxpr_to_mlir_module_duration",
+    "/jax/core/compile/backend_compile_duration",
+)
 
 
 @dataclass(frozen=True)
@@ -45,8 +48,13 @@ class Settings:
 
     @classmethod
     def make(cls, quick: bool = False, seed: int = 0) -> "Settings":
-        return cls(quick=quick, seed=seed, spacing=100.0 if quick else SPACING, trials=TRIALS_PER_DISTANCE,
-                   lanes=128 if quick else DEFAULT_LANES)
+        return cls(
+            quick=quick,
+            seed=seed,
+            spacing=100.0 if quick else SPACING,
+            trials=TRIALS_PER_DISTANCE,
+            lanes=128 if quick else DEFAULT_LANES,
+        )
 
 
 def settings_record(settings: Settings) -> dict:
@@ -55,8 +63,13 @@ def settings_record(settings: Settings) -> dict:
 
 
 def versions() -> dict[str, str]:
-    return {"delvjax": __version__, "jax": jax.__version__, "numpy": numpy.__version__,
-            "python": platform.python_version(), "backend": jax.default_backend()}
+    return {
+        "delvjax": __version__,
+        "jax": jax.__version__,
+        "numpy": numpy.__version__,
+        "python": platform.python_version(),
+        "backend": jax.default_backend(),
+    }
 
 
 # --- compile-time accounting -------------------------------------------------------------
@@ -84,9 +97,11 @@ def compile_seconds() -> float:
 
 # --- one study's context -----------------------------------------------------------------
 
+
 @dataclass
 class StudyRecord:
     """What a study produced, as written to its study.json and read by the report."""
+
     name: str
     title: str
     hash: str = ""
@@ -102,8 +117,10 @@ class StudyRecord:
 
 class StudyContext:
     """The output folder and writers of one study; every write is atomic and recorded."""
-    def __init__(self, out: Path, record: StudyRecord, settings: Settings, bar=None,
-                 painter: ThreadPoolExecutor | None = None):
+
+    def __init__(
+        self, out: Path, record: StudyRecord, settings: Settings, bar=None, painter: ThreadPoolExecutor | None = None
+    ):
         self.out, self.record, self.settings, self._bar = out, record, settings, bar
         self._painter, self._pending = painter, []  # type: ignore[var-annotated]
         out.mkdir(parents=True, exist_ok=True)
@@ -139,14 +156,28 @@ class StudyContext:
 
         return self._painter.submit(after_figures)
 
-    def table(self, table_id: str, title: str, rows: list[dict], source: str = "", note: str = "",
-              columns: list[str] | None = None) -> None:
+    def table(
+        self,
+        table_id: str,
+        title: str,
+        rows: list[dict],
+        source: str = "",
+        note: str = "",
+        columns: list[str] | None = None,
+    ) -> None:
         """A table of the report (and `<table_id>.csv`): rows of flat dicts, `columns` shown in the report."""
         write_rows_csv(self._file(f"{table_id}.csv"), rows)
-        self.record.tables.append({"id": table_id, "title": title, "source": source, "note": note,
-                                   "file": f"{table_id}.csv",
-                                   "columns": columns or list(dict.fromkeys(k for r in rows for k in r)),
-                                   "rows": jsonable(rows)})
+        self.record.tables.append(
+            {
+                "id": table_id,
+                "title": title,
+                "source": source,
+                "note": note,
+                "file": f"{table_id}.csv",
+                "columns": columns or list(dict.fromkeys(k for r in rows for k in r)),
+                "rows": jsonable(rows),
+            }
+        )
 
     def csv(self, name: str, columns: dict | None = None, rows: list[dict] | None = None) -> None:
         """A data file beside the figures (columns of equal length, or rows)."""

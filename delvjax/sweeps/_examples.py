@@ -1,6 +1,7 @@
 """Documented example sweep files, one per kind (`delvjax sweep --example KIND`; docs/sweeps.md)."""
 
-EXAMPLES = {"vector-map": '''# delvjax sweep file: every combination of the axes is one cell (docs/sweeps.md).
+EXAMPLES = {
+    "vector-map": """# delvjax sweep file: every combination of the axes is one cell (docs/sweeps.md).
 # Run: delvjax sweep this.toml --out results/sweep ; read: delvjax.load_sweep("results/sweep")
 # Other kinds: delvjax sweep --example catchment | success-rate
 
@@ -18,8 +19,8 @@ seed = { start = 0, stop = 2 }       # integer range, step 1 (default [0])
 # spacing = [25]                     # grid spacing, cm (default 25)
 # levels, n_heading, background, step_noise, turn_noise_deg, odometry_turn_noise_deg,
 # compass_noise_deg: the options of `delvjax vector-map` of the same name
-''',
-            "catchment": '''# delvjax sweep file: a catchment area per cell (docs/sweeps.md "Rollout sweeps").
+""",
+    "catchment": """# delvjax sweep file: a catchment area per cell (docs/sweeps.md "Rollout sweeps").
 # Run: delvjax sweep this.toml --out results/catchment
 
 [sweep]
@@ -35,8 +36,8 @@ collisions = ["ignore", "fail"]
 seed = [0, 1]
 # d, levels, the noise sigmas, motion_heading_noise_deg, motion_step_noise, home_radius,
 # max_steps and spacing: the options of `delvjax catchment` of the same name
-''',
-            "success-rate": '''# delvjax sweep file: success rate per release distance (docs/sweeps.md "Rollout sweeps").
+""",
+    "success-rate": """# delvjax sweep file: success rate per release distance (docs/sweeps.md "Rollout sweeps").
 # Run: delvjax sweep this.toml --out results/success
 
 [sweep]
@@ -50,5 +51,6 @@ method = ["delv", "alv"]
 bearing_noise_deg = { start = 0, stop = 4, step = 2 }
 motion_heading_noise_deg = [0, 10]
 seed = [0, 1]
-'''}
+""",
+}
 EXAMPLE = EXAMPLES["vector-map"]

@@ -9,8 +9,16 @@ from collections.abc import Callable
 
 from ..core.cells import CellMetrics
 from ..core.rollouts.cells import CatchmentSums, SuccessSums
-from ._kinds import (catchment_inputs, catchment_program, distance_inputs, grid_inputs, map_program, map_request,
-                     rollout_request, success_program)
+from ._kinds import (
+    catchment_inputs,
+    catchment_program,
+    distance_inputs,
+    grid_inputs,
+    map_program,
+    map_request,
+    rollout_request,
+    success_program,
+)
 from ._results import catchment_metrics, error_metrics, success_metrics
 
 
@@ -43,7 +51,7 @@ ERROR_METRICS = {
 }
 CATCHMENT_METRICS = {
     "catchment_pct": "% of counted grid points whose rollout reaches home, mean over the masks (Tables 5.3/5.4; "
-                     "under first_move = release the points at least d from every wall, docs/model.md section 5)",
+    "under first_move = release the points at least d from every wall, docs/model.md section 5)",
     "catchment_min_pct": "the same under the worst mask",
     "catchment_max_pct": "the same under the best mask",
     "catchment_points": "grid points counted in the catchment",
@@ -60,14 +68,43 @@ SUCCESS_METRICS = {
 }
 
 
-VECTOR_MAP = SweepKind("vector-map", metrics=ERROR_METRICS, grid=True, rollouts=False, per_distance=False,
-                       sums=CellMetrics, request=map_request, inputs=grid_inputs, program=map_program,
-                       metrics_of=lambda sums: error_metrics(sums, sums["points"]))
-CATCHMENT = SweepKind("catchment", metrics={**CATCHMENT_METRICS, **{
-                          k: v.replace("grid points", "first directions (points x masks)") for k, v in ERROR_METRICS.items()}},
-                      grid=True, rollouts=True, per_distance=False, sums=CatchmentSums, request=rollout_request,
-                      inputs=catchment_inputs, program=catchment_program, metrics_of=catchment_metrics)
-SUCCESS_RATE = SweepKind("success-rate", metrics=SUCCESS_METRICS, grid=False, rollouts=True, per_distance=True,
-                         sums=SuccessSums, request=rollout_request, inputs=distance_inputs, program=success_program,
-                         metrics_of=success_metrics)
+VECTOR_MAP = SweepKind(
+    "vector-map",
+    metrics=ERROR_METRICS,
+    grid=True,
+    rollouts=False,
+    per_distance=False,
+    sums=CellMetrics,
+    request=map_request,
+    inputs=grid_inputs,
+    program=map_program,
+    metrics_of=lambda sums: error_metrics(sums, sums["points"]),
+)
+CATCHMENT = SweepKind(
+    "catchment",
+    metrics={
+        **CATCHMENT_METRICS,
+        **{k: v.replace("grid points", "first directions (points x masks)") for k, v in ERROR_METRICS.items()},
+    },
+    grid=True,
+    rollouts=True,
+    per_distance=False,
+    sums=CatchmentSums,
+    request=rollout_request,
+    inputs=catchment_inputs,
+    program=catchment_program,
+    metrics_of=catchment_metrics,
+)
+SUCCESS_RATE = SweepKind(
+    "success-rate",
+    metrics=SUCCESS_METRICS,
+    grid=False,
+    rollouts=True,
+    per_distance=True,
+    sums=SuccessSums,
+    request=rollout_request,
+    inputs=distance_inputs,
+    program=success_program,
+    metrics_of=success_metrics,
+)
 KINDS = {k: k for k in (VECTOR_MAP, CATCHMENT, SUCCESS_RATE)}  # name -> kind

@@ -24,6 +24,7 @@ if TYPE_CHECKING:  # types only: the kinds and the spec are built from this modu
     from ._kind import SweepKind
     from ._spec import SweepSpec
 
+
 def sum_names(kind: SweepKind) -> tuple[str, ...]:
     """The names of the per-cell sums a kind's program returns."""
     return tuple(f.name for f in dataclasses.fields(kind.sums))
@@ -50,9 +51,16 @@ def map_request(env, cell: dict, spec: SweepSpec, max_points: int) -> dict:
 
 def rollout_request(env, cell: dict, spec: SweepSpec, max_points: int) -> dict:
     """A catchment or success-rate cell, validated as `delvjax.catchment` / `success_rate` validate theirs."""
-    return api_rollouts.rollout_request(env, kind=str(spec.kind), method=cell["method"], seed=cell["seed"],
-                                        distances=spec.distances, trials=spec.trials, max_points=max_points,
-                                        **_options(cell))
+    return api_rollouts.rollout_request(
+        env,
+        kind=str(spec.kind),
+        method=cell["method"],
+        seed=cell["seed"],
+        distances=spec.distances,
+        trials=spec.trials,
+        max_points=max_points,
+        **_options(cell),
+    )
 
 
 def _traced(req: dict, mask_rows: int = 1) -> tuple:
@@ -62,11 +70,19 @@ def _traced(req: dict, mask_rows: int = 1) -> tuple:
         return req["env"].arrays(), req["method"], req["sensor"], req["key"]
     masks = np.asarray(req["masks"], bool)
     padded = np.concatenate([masks, np.repeat(masks[:1], max(0, mask_rows - len(masks)), axis=0)])
-    return (rollout_programs.RolloutCell(env=req["env"].arrays(), method=req["method"], sensor=req["sensor"],
-                                         key=req["key"], masks=padded, n_masks=np.int32(len(masks)),
-                                         radius=np.float32(req["home_radius"]),
-                                         homing_first=np.bool_(req["first_move"] == "homing"),  # docs/model.md §5
-                                         collide=np.bool_(req["collisions"] == "fail")),)
+    return (
+        rollout_programs.RolloutCell(
+            env=req["env"].arrays(),
+            method=req["method"],
+            sensor=req["sensor"],
+            key=req["key"],
+            masks=padded,
+            n_masks=np.int32(len(masks)),
+            radius=np.float32(req["home_radius"]),
+            homing_first=np.bool_(req["first_move"] == "homing"),  # docs/model.md §5
+            collide=np.bool_(req["collisions"] == "fail"),
+        ),
+    )
 
 
 def mask_rows(req: dict) -> int:
@@ -79,11 +95,19 @@ def group_key(req: dict) -> tuple:
     masks aside), and the static settings (grid, clearance, max_steps)."""
     leaves, treedef = jax.tree.flatten(_traced(dict(req, masks=req["masks"][:1]) if "masks" in req else req))
     shapes = tuple((np.shape(x), np.asarray(x).dtype.str) for x in leaves)
-    return (treedef, shapes, req["spacing"], req["clearance"], req.get("max_steps"),
-            tuple(np.asarray(req["env"].arena).tolist()))
+    return (
+        treedef,
+        shapes,
+        req["spacing"],
+        req["clearance"],
+        req.get("max_steps"),
+        tuple(np.asarray(req["env"].arena).tolist()),
+    )
 
 
-def evaluate(kind: SweepKind, setups: list[dict], mesh, rows: int = 1, total: int | None = None) -> dict[str, np.ndarray]:
+def evaluate(
+    kind: SweepKind, setups: list[dict], mesh, rows: int = 1, total: int | None = None
+) -> dict[str, np.ndarray]:
     """The cells `setups` (one group) as one call of their program, split over `mesh`'s devices if
     any (every device runs whole cells with the one-device program); rollout masks padded to `rows`.
     With `total`, `mesh` spans every process and `setups` are this process's rows of a chunk of
@@ -114,8 +138,12 @@ def catchment_inputs(setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
     """(shared, traced) of a catchment chunk: the grid's, and the points each cell counts."""
     shared, traced = grid_inputs(setups, traced)
     points, included = shared[0], traced[-1]
-    counted = np.stack([catchment_counted(req["env"].arena, points, inc, req["first_move"], req["sensor"].d)
-                        for req, inc in zip(setups, included)])
+    counted = np.stack(
+        [
+            catchment_counted(req["env"].arena, points, inc, req["first_move"], req["sensor"].d)
+            for req, inc in zip(setups, included)
+        ]
+    )
     return shared, traced + (counted,)
 
 
@@ -127,17 +155,20 @@ def distance_inputs(setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
 
 def map_program(max_steps: int | None, lanes: int, trials: int | None):
     return lambda points, envs, methods, sensors, keys, included: map_cells.map_cells(
-        envs, points, included, methods, sensors, keys)
+        envs, points, included, methods, sensors, keys
+    )
 
 
 def catchment_program(max_steps: int | None, lanes: int, trials: int | None):
     return lambda points, cells, included, counted: rollout_programs.catchment_cells(
-        cells, points, included, counted, max_steps=max_steps, lanes=lanes)
+        cells, points, included, counted, max_steps=max_steps, lanes=lanes
+    )
 
 
 def success_program(max_steps: int | None, lanes: int, trials: int | None):
     return lambda distances, clearance, cells: rollout_programs.success_cells(
-        cells, distances, clearance, trials=trials, max_steps=max_steps, lanes=lanes)
+        cells, distances, clearance, trials=trials, max_steps=max_steps, lanes=lanes
+    )
 
 
 @functools.lru_cache(maxsize=None)
@@ -149,5 +180,9 @@ def _program(kind: SweepKind, max_steps: int | None, lanes: int, trials: int | N
 
 def programs_compiled() -> int:
     """Programs compiled so far for sweep cells (one device, or split over the local devices)."""
-    return (map_cells.map_cells._cache_size() + rollout_programs.catchment_cells._cache_size()
-            + rollout_programs.success_cells._cache_size() + over_devices._cache_size())
+    return (
+        map_cells.map_cells._cache_size()
+        + rollout_programs.catchment_cells._cache_size()
+        + rollout_programs.success_cells._cache_size()
+        + over_devices._cache_size()
+    )

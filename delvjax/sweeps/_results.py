@@ -31,11 +31,16 @@ def error_metrics(sums: dict, n: np.ndarray) -> dict:
     """Error point rates, mean error with its Student-t 95 % half-width, invalid rate over `n` directions."""
     pts = np.maximum(n, 1)
     mean = sums["error_sum"] / pts
-    var = np.maximum(sums["error_sq_sum"] - pts * mean ** 2, 0.0) / np.maximum(pts - 1, 1)
+    var = np.maximum(sums["error_sq_sum"] - pts * mean**2, 0.0) / np.maximum(pts - 1, 1)
     half = t_quantile(n) * np.sqrt(var / pts)
-    return {"gt45_pct": _pct(sums["gt45"], n), "gt90_pct": _pct(sums["gt90"], n),
-            "mean_error_deg": np.where(n > 0, mean, np.nan), "mean_error_ci95_deg": np.where(n >= 2, half, np.nan),
-            "invalid_pct": _pct(sums["invalid"], n), "points": sums["points"].astype(np.int64)}
+    return {
+        "gt45_pct": _pct(sums["gt45"], n),
+        "gt90_pct": _pct(sums["gt90"], n),
+        "mean_error_deg": np.where(n > 0, mean, np.nan),
+        "mean_error_ci95_deg": np.where(n >= 2, half, np.nan),
+        "invalid_pct": _pct(sums["invalid"], n),
+        "points": sums["points"].astype(np.int64),
+    }
 
 
 def catchment_metrics(sums: dict) -> dict:
@@ -44,11 +49,17 @@ def catchment_metrics(sums: dict) -> dict:
     with np.errstate(invalid="ignore", divide="ignore"):
         steps = np.where(sums["successes"] > 0, sums["steps_success"] / np.maximum(sums["successes"], 1), np.nan)
     # the vector map's rates over every released trial; the catchment over the counted ones (docs/model.md §5)
-    return {**error_metrics(sums, trials), "catchment_pct": _pct(sums["successes"], counted),
-            "catchment_min_pct": _pct(sums["success_min"], points), "catchment_max_pct": _pct(sums["success_max"], points),
-            "timeout_pct": _pct(sums["timeout"], counted), "landmark_pct": _pct(sums["landmark"], counted),
-            "arena_pct": _pct(sums["arena"], counted), "mean_steps_success": steps,
-            "catchment_points": counted_points(sums)}
+    return {
+        **error_metrics(sums, trials),
+        "catchment_pct": _pct(sums["successes"], counted),
+        "catchment_min_pct": _pct(sums["success_min"], points),
+        "catchment_max_pct": _pct(sums["success_max"], points),
+        "timeout_pct": _pct(sums["timeout"], counted),
+        "landmark_pct": _pct(sums["landmark"], counted),
+        "arena_pct": _pct(sums["arena"], counted),
+        "mean_steps_success": steps,
+        "catchment_points": counted_points(sums),
+    }
 
 
 def counted_points(sums: dict) -> np.ndarray:
@@ -58,8 +69,12 @@ def counted_points(sums: dict) -> np.ndarray:
 def success_metrics(sums: dict) -> dict:
     """Success % per distance with its Wilson interval, and the trials placed."""
     lo, hi = wilson_pct(sums["successes"], sums["placed"])
-    return {"success_pct": _pct(sums["successes"], sums["placed"]), "success_ci95_lo_pct": lo,
-            "success_ci95_hi_pct": hi, "placed": sums["placed"].astype(np.int64)}
+    return {
+        "success_pct": _pct(sums["successes"], sums["placed"]),
+        "success_ci95_lo_pct": lo,
+        "success_ci95_hi_pct": hi,
+        "placed": sums["placed"].astype(np.int64),
+    }
 
 
 def dataset(spec: SweepSpec, sums: dict, programs: int):
@@ -73,8 +88,15 @@ def dataset(spec: SweepSpec, sums: dict, programs: int):
         dims, shape = dims + ["distance_cm"], shape + (len(spec.distances),)
         coords["distance_cm"] = np.asarray(spec.distances)
     ds = xr.Dataset({m: (dims, np.asarray(values[m]).reshape(shape)) for m in spec.metrics}, coords=coords)
-    ds.attrs.update(sweep_toml=spec.text, kind=str(spec.kind), programs_compiled=programs, cells=spec.n_cells,
-                    delvjax_version=_version("delvjax"), jax_version=jax.__version__, jaxlib_version=_version("jaxlib"))
+    ds.attrs.update(
+        sweep_toml=spec.text,
+        kind=str(spec.kind),
+        programs_compiled=programs,
+        cells=spec.n_cells,
+        delvjax_version=_version("delvjax"),
+        jax_version=jax.__version__,
+        jaxlib_version=_version("jaxlib"),
+    )
     if spec.kind.per_distance:
         ds.attrs["trials_per_distance"] = spec.trials
     return ds

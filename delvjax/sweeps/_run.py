@@ -29,6 +29,7 @@ CELL_CHUNK = 64  # cells per call of a group's program (the last chunk padded): 
 
 def _envs(spec: SweepSpec) -> dict:
     """The sweep's environments, padded to equal landmark slots (one program for every environment)."""
+
     def env(name: str, pad_to: int | None = None):
         if name in spec.random_envs:
             return random_env(*spec.random_envs[name], pad_to=pad_to)
@@ -58,8 +59,13 @@ def _plan(spec: SweepSpec, envs: dict, max_points: int, code: str | None) -> tup
     return groups, digests, rows
 
 
-def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Callable[[int, int], None] | None = None,
-              announce: Callable[[], None] | None = None, out: str | Path | None = None) -> xarray.Dataset:
+def run_sweep(
+    spec: SweepSpec,
+    max_points: int = api.MAX_POINTS,
+    progress: Callable[[int, int], None] | None = None,
+    announce: Callable[[], None] | None = None,
+    out: str | Path | None = None,
+) -> xarray.Dataset:
     """Every cell of `spec`: metrics as an `xarray.Dataset` (one dimension per axis). Every cell is
     validated before any work; `announce()` is called then; `progress(done, total)` after each chunk.
     With `out`, finished chunks are kept in out/.cells and cells found there are not computed again
@@ -94,7 +100,7 @@ def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Calla
     jobs = []  # (cells, padded size): a group of more than one chunk pads every chunk to `width`
     for cells in ([i for i in g if todo[i]] for g in groups):
         size = width if len(cells) > width else -(-len(cells) // per_call) * per_call
-        jobs += [(cells[start:start + width], size) for start in range(0, len(cells), width)]
+        jobs += [(cells[start : start + width], size) for start in range(0, len(cells), width)]
     mine: list[int] = []  # the cells this process computed
     for chunk, size in jobs:
         padded = chunk + [chunk[0]] * (size - len(chunk))
@@ -103,7 +109,7 @@ def run_sweep(spec: SweepSpec, max_points: int = api.MAX_POINTS, progress: Calla
         res = evaluate(spec.kind, setups, mesh, rows, None if processes == 1 else size)
         own = chunk[start:stop]  # this process's real cells (the rest of its rows are padding)
         for k in names:
-            sums[k][own] = res[k][:len(own)]
+            sums[k][own] = res[k][: len(own)]
         mine += own
         if out is not None and own:
             save_cells(Path(out), [digests[i] for i in own], {k: sums[k][own] for k in names})
@@ -132,6 +138,6 @@ def _merge(sums: dict, mine: list[int]) -> dict:
     out, col = {}, 0
     for k, v in sums.items():
         width = int(np.prod(v.shape[1:], dtype=int))
-        out[k] = merged[:, col:col + width].reshape(v.shape)
+        out[k] = merged[:, col : col + width].reshape(v.shape)
         col += width
     return out

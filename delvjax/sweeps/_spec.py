@@ -63,7 +63,6 @@ MAX_VALUES = 100_000  # values of one axis
 MAX_CELLS = 10_000_000  # cells of one sweep (each is validated before any work: about 1 ms a cell)
 
 
-
 @dataclass(frozen=True)
 class SweepSpec:
     """A validated sweep: axes in file order (name -> values), metrics, the file's text, and for
@@ -110,8 +109,10 @@ def _values(name: str, raw, field: str | None = None) -> list:
         if unknown or "start" not in raw or "stop" not in raw or ("step" in raw and "num" in raw):
             raise InputError(field, raw, "a range is {start, stop, step} or {start, stop, num}")
         start, stop = raw["start"], raw["stop"]
-        if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-                   for v in (start, stop, raw.get("step", 1), raw.get("num", 2))):
+        if not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+            for v in (start, stop, raw.get("step", 1), raw.get("num", 2))
+        ):
             raise InputError(field, raw, "range bounds must be finite numbers")
         if "num" in raw:
             num = raw["num"]
@@ -145,8 +146,6 @@ def _values(name: str, raw, field: str | None = None) -> list:
     return values
 
 
-
-
 def _env_labels(raw, random_envs: dict[str, tuple[int, int]]) -> list:
     """The env axis with every table {random = COUNT, landmarks = N or [N, ...], seed = S} replaced by
     the labels of its seeded random layouts (`presets.random_env(S + i, N)`: "random<S+i>-<N>"),
@@ -163,8 +162,14 @@ def _env_labels(raw, random_envs: dict[str, tuple[int, int]]) -> list:
         count, seed = item["random"], item.get("seed", 0)
         counts = item["landmarks"] if isinstance(item["landmarks"], list) else [item["landmarks"]]
         ints = [count, seed, *counts]
-        if not all(isinstance(v, int) and not isinstance(v, bool) for v in ints) or count < 1 or seed < 0 \
-                or not counts or min(counts) < 1 or max(counts) > 12:
+        if (
+            not all(isinstance(v, int) and not isinstance(v, bool) for v in ints)
+            or count < 1
+            or seed < 0
+            or not counts
+            or min(counts) < 1
+            or max(counts) > 12
+        ):
             raise InputError(field_, item, "random and seed must be integers >= 1 and >= 0, landmarks in 1..12")
         if count * len(counts) + len(random_envs) > RANDOM_ENVS:
             raise InputError(field_, item, f"asks for more than {RANDOM_ENVS} random layouts")
@@ -206,8 +211,9 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
         if m not in known:
             other = [k for k, v in KINDS.items() if m in v.metrics]
             hint = f' (a metric of kind = "{other[0]}")' if other else ""
-            raise InputError(f"sweep.metrics[{i}]", m, f"unknown metric of kind = \"{kind}\"{hint} (choose from "
-                                                       f"{', '.join(known)})")
+            raise InputError(
+                f"sweep.metrics[{i}]", m, f'unknown metric of kind = "{kind}"{hint} (choose from {", ".join(known)})'
+            )
     kind_axes = {k: axes(v) for k, v in KINDS.items()}
     every = {k: v for kind_ in kind_axes.values() for k, v in kind_.items()}  # the axes of any kind
     for name in table:
@@ -215,8 +221,11 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
             raise InputError(f"axes.{name}", table[name], f"unknown axis (choose from {', '.join(every)})")
         if name not in kind_axes[kind]:
             users = [k for k in KINDS if name in kind_axes[k]]
-            raise InputError(f"axes.{name}", table[name], f'is not an axis of kind = "{kind}" (an axis of kind = '
-                                                         f'{" or ".join(repr(k) for k in users)})')
+            raise InputError(
+                f"axes.{name}",
+                table[name],
+                f'is not an axis of kind = "{kind}" (an axis of kind = {" or ".join(repr(k) for k in users)})',
+            )
     random_envs: dict[str, tuple[int, int]] = {}
     if "env" in table:
         table = {**table, "env": _env_labels(table["env"], random_envs)}
@@ -226,18 +235,23 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
             values.setdefault(name, default)
     extra = {}
     if kind.per_distance:
-        extra["distances"] = tuple(float(v) for v in _values("distances", head.get("distances", list(DISTANCES)),
-                                                               "sweep.distances"))
+        extra["distances"] = tuple(
+            float(v) for v in _values("distances", head.get("distances", list(DISTANCES)), "sweep.distances")
+        )
         trials = head.get("trials", TRIALS)
         if isinstance(trials, bool) or not isinstance(trials, int) or trials < 1:
             raise InputError("sweep.trials", trials, "must be an integer >= 1")
         extra["trials"] = trials
     cells = math.prod(len(v) for v in values.values())
     if cells > MAX_CELLS:
-        raise InputError("axes", " x ".join(str(len(v)) for v in values.values()),
-                         f"give {cells:.3g} cells, more than {MAX_CELLS:.0e}: split the sweep")
-    return SweepSpec(kind=kind, axes=values, metrics=list(dict.fromkeys(metrics)), text=text, random_envs=random_envs,
-                     **extra)
+        raise InputError(
+            "axes",
+            " x ".join(str(len(v)) for v in values.values()),
+            f"give {cells:.3g} cells, more than {MAX_CELLS:.0e}: split the sweep",
+        )
+    return SweepSpec(
+        kind=kind, axes=values, metrics=list(dict.fromkeys(metrics)), text=text, random_envs=random_envs, **extra
+    )
 
 
 def read_sweep(path: str | Path) -> SweepSpec:

@@ -13,13 +13,25 @@ this module imports them all and is the one to import from.
 
 from __future__ import annotations
 
-from . import (_ch4 as claims_ch4, _ch4_more as claims_ch4_more, _ch5 as claims_ch5, _ch5_occlusion as claims_ch5_occlusion)
+from . import (
+    _ch4 as claims_ch4,
+    _ch4_more as claims_ch4_more,
+    _ch5 as claims_ch5,
+    _ch5_occlusion as claims_ch5_occlusion,
+    _ch5_visual as claims_ch5_visual,
+)
 from .. import thesis
 from ._common import BACKGROUNDS, CHECKS, ENVS, Missing, check
 
 __all__ = ["BACKGROUNDS", "CHECKS", "ENVS", "Missing", "check", "evaluate"]
 
-_CHECK_MODULES = (claims_ch4, claims_ch4_more, claims_ch5, claims_ch5_occlusion)  # importing them fills CHECKS, chapter 4 first
+_CHECK_MODULES = (
+    claims_ch4,
+    claims_ch4_more,
+    claims_ch5,
+    claims_ch5_occlusion,
+    claims_ch5_visual,
+)  # importing them fills CHECKS, chapter 4 first
 
 
 def evaluate(numbers_by_study: dict[str, dict]) -> list[dict]:

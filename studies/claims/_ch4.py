@@ -11,7 +11,23 @@ default rollout rules; a comparison whose sides are all at the ceiling is "canno
 
 from __future__ import annotations
 
-from ._common import (CANNOT_TELL, CEILING, ENVS, _combine, _failures, _mean, _n, _opt, _pairs, _share, _verdict, _why, at_ceiling, at_floor, check)
+from ._common import (
+    CANNOT_TELL,
+    CEILING,
+    ENVS,
+    _combine,
+    _failures,
+    _mean,
+    _n,
+    _opt,
+    _pairs,
+    _share,
+    _verdict,
+    _why,
+    at_ceiling,
+    at_floor,
+    check,
+)
 
 THIRD = 3  # release-distance bins of the near / far third of a success-rate curve (9 bins: 50..450 cm)
 
@@ -24,8 +40,8 @@ def _physical(get, keys) -> str:
 # --- chapter 4 ----------------------------------------------------------------------------------
 
 FIG4_5 = {"env1": 98.52, "env2": 95.41, "env3": 77.66}  # thesis catchment %, DELV without compass
-LARGE = 75.0       # % "sufficient level of success" (the thesis's lowest, env3 77.66, within 3 points)
-GAP_TOL = 10.0     # points of tolerance on the env3 gap
+LARGE = 75.0  # % "sufficient level of success" (the thesis's lowest, env3 77.66, within 3 points)
+GAP_TOL = 10.0  # points of tolerance on the env3 gap
 
 
 @check("delv_nocompass_catchment_all_envs")
@@ -37,21 +53,29 @@ def _(get):
     thesis_gap = min(FIG4_5["env1"], FIG4_5["env2"]) - FIG4_5["env3"]
     need = thesis_gap - GAP_TOL
     large, gap_ok = all(v >= LARGE for v in c.values()), gap >= need
-    ours = ("catchment env1/2/3: " + _n(list(c.values())) + " % (thesis 98.5/95.4/77.7); env3 below the others by "
-            f"{gap:.1f} points (thesis {thesis_gap:.1f})" + _physical(get, [f"catchment:{e}:delv" for e in ENVS]))
-    rule = (f"every catchment >= {LARGE:.0f} % and env3 strictly lowest by >= {need:.2f} points (the thesis's gap "
-            f"{thesis_gap:.2f} minus a tolerance of {GAP_TOL:.0f}); all three >= {CEILING:.0f} %: cannot tell")
+    ours = (
+        "catchment env1/2/3: " + _n(list(c.values())) + " % (thesis 98.5/95.4/77.7); env3 below the others by "
+        f"{gap:.1f} points (thesis {thesis_gap:.1f})" + _physical(get, [f"catchment:{e}:delv" for e in ENVS])
+    )
+    rule = (
+        f"every catchment >= {LARGE:.0f} % and env3 strictly lowest by >= {need:.2f} points (the thesis's gap "
+        f"{thesis_gap:.2f} minus a tolerance of {GAP_TOL:.0f}); all three >= {CEILING:.0f} %: cannot tell"
+    )
     if at_ceiling(list(c.values())):
         return ours, CANNOT_TELL, _why(rule, "every environment is at the ceiling: the layouts cannot be told apart")
-    reasons = ["" if large else f"a catchment is below {LARGE:.0f} %",
-               "" if gap > 0 else "env3 is not strictly the lowest",
-               "" if gap_ok or gap <= 0 else f"env3 is lowest by only {gap:.1f} points (with the landmarks no "
-                                             "obstacles DELV homes from almost everywhere)"]
+    reasons = [
+        "" if large else f"a catchment is below {LARGE:.0f} %",
+        "" if gap > 0 else "env3 is not strictly the lowest",
+        ""
+        if gap_ok or gap <= 0
+        else f"env3 is lowest by only {gap:.1f} points (with the landmarks no "
+        "obstacles DELV homes from almost everywhere)",
+    ]
     return ours, _verdict([large, gap_ok]), _why(rule, *reasons)
 
 
-INSIDE_MAX = 2.0   # % "almost zero"
-FLOOR = 0.5        # % of error points: below it everywhere there is nothing to locate
+INSIDE_MAX = 2.0  # % "almost zero"
+FLOOR = 0.5  # % of error points: below it everywhere there is nothing to locate
 
 
 @check("errors_outside_landmark_hull")
@@ -63,13 +87,21 @@ def _(get):
     near0 = [ins[e] <= INSIDE_MAX for e in ENVS]
     outside = [out[e] > ins[e] for e in ENVS]
     ours = "; ".join(f"{e} e>45 inside {_n(ins[e])} %, outside {_n(out[e])} %" for e in ENVS)
-    rule = (f"inside <= {INSIDE_MAX:.0f} % ('almost zero') and outside > inside in every environment (partly: "
-            f"outside > inside in 2 of 3); all <= {FLOOR} %: cannot tell")
+    rule = (
+        f"inside <= {INSIDE_MAX:.0f} % ('almost zero') and outside > inside in every environment (partly: "
+        f"outside > inside in 2 of 3); all <= {FLOOR} %: cannot tell"
+    )
     if at_floor([*ins.values(), *out.values()], FLOOR):
         return ours, CANNOT_TELL, _why(rule, "no error points inside or outside the hull")
     bad = [e for e, a, b in zip(ENVS, near0, outside) if not (a and b)]
-    why = "" if not bad else (f"not in {', '.join(bad)}: the hull there is a thin region at the edge of the layout "
-                              "(env3: home lies outside it), where the parallax of a 50 cm move is small")
+    why = (
+        ""
+        if not bad
+        else (
+            f"not in {', '.join(bad)}: the hull there is a thin region at the edge of the layout "
+            "(env3: home lies outside it), where the parallax of a 50 cm move is small"
+        )
+    )
     return ours, _verdict([all(near0) and all(outside), _share(outside) >= 2 / 3]), _why(rule, why)
 
 
@@ -86,12 +118,24 @@ def _(get):
     catch = {d: get(f"catchment:env1:delv:d={d}") for d in ds}
     spread = max(means.values()) - min(means.values())
     cspread = max(catch.values()) - min(catch.values())
-    ours = ("mean of the error curve, d = 20/50/100/150 cm: " + _n(list(means.values())) + "°; catchment "
-            + _n(list(catch.values())) + " %")
+    ours = (
+        "mean of the error curve, d = 20/50/100/150 cm: "
+        + _n(list(means.values()))
+        + "°; catchment "
+        + _n(list(catch.values()))
+        + " %"
+    )
     parts = [spread <= STEP_SPREAD, None if at_ceiling(list(catch.values())) else cspread <= STEP_SPREAD]
     rule = f"error curves within {STEP_SPREAD:.0f}° and catchments within {STEP_SPREAD:.0f} points of each other"
-    return ours, _combine(parts), _why(rule, "" if parts[0] else f"the curves differ by {spread:.1f}° on average",
-                                       "" if parts[1] is not False else _step_loss_cause(get, catch, cspread))
+    return (
+        ours,
+        _combine(parts),
+        _why(
+            rule,
+            "" if parts[0] else f"the curves differ by {spread:.1f}° on average",
+            "" if parts[1] is not False else _step_loss_cause(get, catch, cspread),
+        ),
+    )
 
 
 def _step_loss_cause(get, catch: dict, cspread: float) -> str:
@@ -107,15 +151,17 @@ def _step_loss_cause(get, catch: dict, cspread: float) -> str:
     radius = _opt(get, "step_distance:home_radius_cm")
     wide = _opt(get, f"catchment:env1:delv:d={low}:home_radius={0.5 * low:g}")
     if timeouts == total and radius is not None and low > 2 * radius:
-        text += (f"; a step longer than twice the home radius of {radius:g} cm can jump over the home disc, "
-                 "back and forth until the step limit")
+        text += (
+            f"; a step longer than twice the home radius of {radius:g} cm can jump over the home disc, "
+            "back and forth until the step limit"
+        )
         if wide is not None:
             text += f"; with a home radius of {0.5 * low:g} cm d = {low} cm keeps {wide:.1f} %"
     return text + ")"
 
 
 SLIGHT = 10.0  # degrees: at most this is "slight"
-TIE = 1.0      # degrees: closer than this is no improvement
+TIE = 1.0  # degrees: closer than this is no improvement
 
 
 @check("small_step_slightly_better")
@@ -127,23 +173,34 @@ def _(get):
     gain = _mean([e[100], e[150]]) - _mean([e[20], e[50]])
     ours = f"mean error d = 20/50/100/150 cm: {_n(list(e.values()))}°; small d better by {gain:.1f}°"
     verdict = "holds" if TIE <= gain <= SLIGHT else "partly" if gain > -TIE else "fails"
-    rule = (f"mean(d = 100, 150) - mean(d = 20, 50) between {TIE:.0f}° and {SLIGHT:.0f}° (partly: within {TIE:.0f}° "
-            "or more than slight)")
-    why = ("" if verdict == "holds" else "the small steps are not better" if gain < TIE
-           else "the improvement is more than slight")
+    rule = (
+        f"mean(d = 100, 150) - mean(d = 20, 50) between {TIE:.0f}° and {SLIGHT:.0f}° (partly: within {TIE:.0f}° "
+        "or more than slight)"
+    )
+    why = (
+        ""
+        if verdict == "holds"
+        else "the small steps are not better"
+        if gain < TIE
+        else "the improvement is more than slight"
+    )
     if gain < TIE and e[20] > e[50]:
-        why += (f": d = 20 cm errs most, its short move's parallax magnifying the {PIXEL_DEG:g}° pixel steps of the "
-                "bearings, the only error of noise-free sensing (at 1440 pixels d = 20 cm's mean error falls by 2.8°, "
-                "d = 50 cm's by 1.3°: docs/reproduce.md, 'Causes measured outside the run')")
+        why += (
+            f": d = 20 cm errs most, its short move's parallax magnifying the {PIXEL_DEG:g}° pixel steps of the "
+            "bearings, the only error of noise-free sensing (at 1440 pixels d = 20 cm's mean error falls by 2.8°, "
+            "d = 50 cm's by 1.3°: docs/reproduce.md, 'Causes measured outside the run')"
+        )
     return ours, verdict, _why(rule, why)
 
 
 PIXEL_DEG = 1.0  # degrees per pixel of the 360-pixel ring (docs/model.md §2.2)
-NEAR_HOME_CAUSE = ("our errors are largest near home, not far from it: near home the home vector is short, so the "
-                   f"landmark vectors' small errors ({PIXEL_DEG:g}° pixels) turn it most, and the nearest bins hold "
-                   "few points; far away our noise-free views lose little, where the thesis's lost landmarks to "
-                   "occlusion (at 1440 pixels the 3-landmark layout's nearest bin falls from 14.8° to 5.8°: "
-                   "docs/reproduce.md, 'Causes measured outside the run')")
+NEAR_HOME_CAUSE = (
+    "our errors are largest near home, not far from it: near home the home vector is short, so the "
+    f"landmark vectors' small errors ({PIXEL_DEG:g}° pixels) turn it most, and the nearest bins hold "
+    "few points; far away our noise-free views lose little, where the thesis's lost landmarks to "
+    "occlusion (at 1440 pixels the 3-landmark layout's nearest bin falls from 14.8° to 5.8°: "
+    "docs/reproduce.md, 'Causes measured outside the run')"
+)
 
 
 @check("few_landmarks_error_below_90")
@@ -155,16 +212,25 @@ def _(get):
     below = [v < 90 for c in curves.values() for v in c]
     k = max(1, len(next(iter(curves.values()))) // 3)
     far = [_mean(c[-k:]) >= _mean(c) for c in curves.values()]
-    ours = ("largest bin mean, 3/4/5 landmarks: " + _n([max(c) for c in curves.values()]) + "°; far third "
-            + _n([_mean(c[-k:]) for c in curves.values()]) + "° vs whole curve " + _n([_mean(c) for c in curves.values()])
-            + "°")
+    ours = (
+        "largest bin mean, 3/4/5 landmarks: "
+        + _n([max(c) for c in curves.values()])
+        + "°; far third "
+        + _n([_mean(c[-k:]) for c in curves.values()])
+        + "° vs whole curve "
+        + _n([_mean(c) for c in curves.values()])
+        + "°"
+    )
     if not all(below):
         verdict = "partly" if _share(below) >= 0.9 else "fails"
     else:
         verdict = "holds" if all(far) else "partly"
     rule = "every bin < 90° (partly: 90 % of the bins) and the far third of the bins >= the curve's mean"
-    return ours, verdict, _why(rule, "" if all(below) else "some distance bins average 90° or more",
-                               "" if all(far) else NEAR_HOME_CAUSE)
+    return (
+        ours,
+        verdict,
+        _why(rule, "" if all(below) else "some distance bins average 90° or more", "" if all(far) else NEAR_HOME_CAUSE),
+    )
 
 
 LANDMARK_NUMBER_GAP = 10.0  # degrees
@@ -181,14 +247,23 @@ def _(get):
     sw, sd = max(w.values()) - min(w.values()), max(d.values()) - min(d.values())
     few = w[3] - w[5] >= LANDMARK_NUMBER_GAP
     sensitive = sw >= max(LANDMARK_NUMBER_GAP, 2 * sd)
-    ours = (f"mean error with 3/4/5 landmarks: image matching {_n(list(w.values()))}°, DELV {_n(list(d.values()))}°; "
-            f"spread {sw:.1f}° vs {sd:.1f}°")
-    rule = (f"image matching with 3 landmarks >= {LANDMARK_NUMBER_GAP:.0f}° above 5 landmarks, and its spread over "
-            f"3/4/5 >= max({LANDMARK_NUMBER_GAP:.0f}°, 2 x DELV's)")
-    few_why = ("few landmarks do not make image matching err more (the seeded layouts differ in arrangement as "
-               "well as in number, and our panoramas are noise-free renderings: its error follows the arrangement)")
-    return ours, _verdict([few, sensitive]), _why(rule, "" if few else few_why,
-                                                  "" if sensitive else "image matching is not more sensitive than DELV")
+    ours = (
+        f"mean error with 3/4/5 landmarks: image matching {_n(list(w.values()))}°, DELV {_n(list(d.values()))}°; "
+        f"spread {sw:.1f}° vs {sd:.1f}°"
+    )
+    rule = (
+        f"image matching with 3 landmarks >= {LANDMARK_NUMBER_GAP:.0f}° above 5 landmarks, and its spread over "
+        f"3/4/5 >= max({LANDMARK_NUMBER_GAP:.0f}°, 2 x DELV's)"
+    )
+    few_why = (
+        "few landmarks do not make image matching err more (the seeded layouts differ in arrangement as "
+        "well as in number, and our panoramas are noise-free renderings: its error follows the arrangement)"
+    )
+    return (
+        ours,
+        _verdict([few, sensitive]),
+        _why(rule, "" if few else few_why, "" if sensitive else "image matching is not more sensitive than DELV"),
+    )
 
 
 SIGNIFICANT = 10.0  # degrees: "significantly smaller"
@@ -204,11 +279,19 @@ def _(get):
     ours = f"env1 mean error DELV {_n(md)}°, image matching {_n(mw)}°; DELV lower in {share:.0%} of distance bins"
     parts = [md <= mw - SIGNIFICANT, share >= 0.8]
     rule = f"mean error DELV <= image matching - {SIGNIFICANT:.0f}° and DELV lower in >= 80 % of the bins"
-    return ours, _verdict(parts), _why(rule, "" if parts[0] else "the mean errors differ by less than "
-                                       f"{SIGNIFICANT:.0f}°", "" if parts[1] else
-                                       "image matching is as good near home: there the views differ by a small warp, "
-                                       "which predictive matching finds almost exactly, while DELV's short home "
-                                       "vector turns most with the landmark vectors' pixel errors")
+    return (
+        ours,
+        _verdict(parts),
+        _why(
+            rule,
+            "" if parts[0] else f"the mean errors differ by less than {SIGNIFICANT:.0f}°",
+            ""
+            if parts[1]
+            else "image matching is as good near home: there the views differ by a small warp, "
+            "which predictive matching finds almost exactly, while DELV's short home "
+            "vector turns most with the landmark vectors' pixel errors",
+        ),
+    )
 
 
 FAR_DROP = 2.0  # points: the far third below the near third by at least this

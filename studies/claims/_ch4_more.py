@@ -2,7 +2,20 @@
 
 from __future__ import annotations
 
-from ._common import (CANNOT_TELL, CEILING, _combine, _failures, _mean, _n, _pairs, _share, _verdict, _why, at_ceiling, check)
+from ._common import (
+    CANNOT_TELL,
+    CEILING,
+    _combine,
+    _failures,
+    _mean,
+    _n,
+    _pairs,
+    _share,
+    _verdict,
+    _why,
+    at_ceiling,
+    check,
+)
 from ._ch4 import FAR_DROP, LARGE, THIRD, _over90_far, _physical  # the first part's tolerances and helpers
 
 
@@ -16,9 +29,11 @@ def _(get):
     ceiling: cannot tell."""
     s, p = get("success:env1:delv"), get("success:env1:delv:physical")
     ours = f"default rules {_n(s)} %; physical rules {_n(p)} %"
-    rule = (f"min > 90 % and the far {THIRD} distances lowest (minimum among them, mean >= {FAR_DROP:.0f} points "
-            f"below the near {THIRD}) under the default rules, or under the physical ones where the default are at "
-            f"the ceiling (>= {CEILING:.0f} %)")
+    rule = (
+        f"min > 90 % and the far {THIRD} distances lowest (minimum among them, mean >= {FAR_DROP:.0f} points "
+        f"below the near {THIRD}) under the default rules, or under the physical ones where the default are at "
+        f"the ceiling (>= {CEILING:.0f} %)"
+    )
     over_d, far_d = _over90_far(s)
     if not over_d:
         verdict = "partly" if _mean(s) > 90 else "fails"
@@ -27,18 +42,32 @@ def _(get):
         return ours, "holds" if far_d else "partly", _why(rule, "" if far_d else "the far releases are not the lowest")
     over_p, far_p = _over90_far(p)
     if far_p is None:
-        return ours, CANNOT_TELL, _why(rule, "100 % at every distance under both rule sets: where it is lowest "
-                                             "cannot be told")
+        return (
+            ours,
+            CANNOT_TELL,
+            _why(rule, "100 % at every distance under both rule sets: where it is lowest cannot be told"),
+        )
     if over_p and far_p:
         return ours, "holds", _why(rule, "the far decrease shows under the physical rules")
-    physical = "under the physical rules " + ("far releases are lowest but fall to 90 % or below" if far_p
-                                              else "far releases are not the lowest")
+    physical = "under the physical rules " + (
+        "far releases are lowest but fall to 90 % or below" if far_p else "far releases are not the lowest"
+    )
     fails = _failures(get, "success_failures_far:env1:delv:physical")
     if far_p and fails and sum(fails.values()):
-        physical += (f" ({fails['landmark']} of the {sum(fails.values())} failures of the far {THIRD} distances are moves "
-                     "ending inside a landmark: a far release passes more landmarks on its way home)")
-    return ours, "partly", _why(rule, "> 90 % under the default rules, where every distance is at the ceiling (noise-free "
-                                      "sensing, landmarks no obstacles)", physical)
+        physical += (
+            f" ({fails['landmark']} of the {sum(fails.values())} failures of the far {THIRD} distances are moves "
+            "ending inside a landmark: a far release passes more landmarks on its way home)"
+        )
+    return (
+        ours,
+        "partly",
+        _why(
+            rule,
+            "> 90 % under the default rules, where every distance is at the ceiling (noise-free "
+            "sensing, landmarks no obstacles)",
+            physical,
+        ),
+    )
 
 
 BEAT = 5.0  # points: "higher probability", beyond the binomial noise of 100 trials
@@ -55,12 +84,20 @@ def _(get):
     bins = None if not told else (all(a >= b - BEAT for a, b in told) and _mean([a - b for a, b in told]) >= BEAT)
     catch = None if at_ceiling([cd, cw]) else cd >= cw + BEAT
     ours = f"success DELV {_n(d)} vs image matching {_n(w)} %; catchment {_n(cd)} vs {_n(cw)} %"
-    rule = (f"success DELV - image matching >= {BEAT:.0f} points on average over the distances not both at the "
-            f"ceiling and never below -{BEAT:.0f}; catchment DELV >= image matching + {BEAT:.0f}")
-    return ours, _combine([bins, catch]), _why(rule, "" if bins is not False else "image matching succeeds as often "
-                                               "at some distances", "" if catch is not False else
-                                               "the catchments do not differ by 5 points",
-                                               "" if None not in (bins, catch) else "a part is at the ceiling")
+    rule = (
+        f"success DELV - image matching >= {BEAT:.0f} points on average over the distances not both at the "
+        f"ceiling and never below -{BEAT:.0f}; catchment DELV >= image matching + {BEAT:.0f}"
+    )
+    return (
+        ours,
+        _combine([bins, catch]),
+        _why(
+            rule,
+            "" if bins is not False else "image matching succeeds as often at some distances",
+            "" if catch is not False else "the catchments do not differ by 5 points",
+            "" if None not in (bins, catch) else "a part is at the ceiling",
+        ),
+    )
 
 
 OFTEN = 10.0  # points of failed releases
@@ -78,11 +115,18 @@ def _(get):
     if at_ceiling([100.0 - v for v in (wi, wo, do)]):
         return ours, CANNOT_TELL, _why(rule, "no method fails from anywhere")
     parts = [wo >= wi + OFTEN, wo >= do + OFTEN]
-    return ours, _verdict(parts), _why(rule, "" if parts[0] else "not much more often outside than inside",
-                                       "" if parts[1] else "DELV fails about as often outside")
+    return (
+        ours,
+        _verdict(parts),
+        _why(
+            rule,
+            "" if parts[0] else "not much more often outside than inside",
+            "" if parts[1] else "DELV fails about as often outside",
+        ),
+    )
 
 
-MOSTLY = 0.75      # share of bins: "mostly"
+MOSTLY = 0.75  # share of bins: "mostly"
 LEVEL_CLOSE = 10.0  # degrees: "do not change much"
 
 
@@ -97,12 +141,18 @@ def _(get):
     ours = "mean error Q = 1..5: " + _n([_mean(c) for c in levels.values()]) + f"°, continuous {_n(cont)}°"
     bad = [q for q, ok in zip(levels, close) if not ok]
     rule = f"< 30° in >= {MOSTLY:.0%} of the bins and the mean within {LEVEL_CLOSE:.0f}° of continuous, every level"
-    return ours, _verdict([all(small), all(close)]), _why(
-        rule, "" if all(small) else "some levels exceed 30° in more than a quarter of the bins",
-        "" if not bad else f"Q = {bad} differ from continuous by more than {LEVEL_CLOSE:.0f}°")
+    return (
+        ours,
+        _verdict([all(small), all(close)]),
+        _why(
+            rule,
+            "" if all(small) else "some levels exceed 30° in more than a quarter of the bins",
+            "" if not bad else f"Q = {bad} differ from continuous by more than {LEVEL_CLOSE:.0f}°",
+        ),
+    )
 
 
-LEVEL_STEP = 2.0   # points: a fall smaller than this between neighbouring levels is noise
+LEVEL_STEP = 2.0  # points: a fall smaller than this between neighbouring levels is noise
 LEVEL_WORST = 5.0  # points: level 1 below continuous by at least this
 THREE_CLOSE = 5.0  # points: three levels within this of continuous
 
@@ -119,15 +169,29 @@ def _(get):
     c = [get(f"catchment:env1:delv:{t}") for t in tags]
     monotone = all(b >= a - LEVEL_STEP for a, b in zip(s, s[1:])) and s[0] <= s[-1] - LEVEL_WORST
     three = s[2] >= s[-1] - THREE_CLOSE
-    ours = ("success overall Q = 1/2/3/5/continuous: " + _n(s) + " %; catchment " + _n(c) + " %"
-            + _physical(get, [f"success_overall:env1:delv:{t}" for t in tags]))
-    rule = (f"success non-decreasing with the levels (within {LEVEL_STEP:.0f} points), level 1 >= {LEVEL_WORST:.0f} "
-            f"below continuous, three levels within {THREE_CLOSE:.0f} of continuous")
+    ours = (
+        "success overall Q = 1/2/3/5/continuous: "
+        + _n(s)
+        + " %; catchment "
+        + _n(c)
+        + " %"
+        + _physical(get, [f"success_overall:env1:delv:{t}" for t in tags])
+    )
+    rule = (
+        f"success non-decreasing with the levels (within {LEVEL_STEP:.0f} points), level 1 >= {LEVEL_WORST:.0f} "
+        f"below continuous, three levels within {THREE_CLOSE:.0f} of continuous"
+    )
     if at_ceiling(s):
         return ours, CANNOT_TELL, _why(rule, "every level succeeds from everywhere")
-    return ours, _verdict([monotone, three]), _why(
-        rule, "" if monotone else "success does not fall with fewer levels",
-        "" if three else "three levels fall short of continuous")
+    return (
+        ours,
+        _verdict([monotone, three]),
+        _why(
+            rule,
+            "" if monotone else "success does not fall with fewer levels",
+            "" if three else "three levels fall short of continuous",
+        ),
+    )
 
 
 LOWER = 1.0  # degrees
@@ -141,10 +205,19 @@ def _(get):
     sur = {e: get(f"map:{e}:delv:Q3:mean_error_deg") for e in ("env2", "ring3", "ring6")}
     edge = get("map:env3:delv:Q3:mean_error_deg")
     lower = [v <= edge - LOWER for v in sur.values()]
-    ours = ("3 levels, mean error " + ", ".join(f"{e} {_n(v)}°" for e, v in sur.items())
-            + f" vs env3 (one side) {_n(edge)}°")
-    return ours, _verdict(lower), _why(f"each surrounding layout below env3 by >= {LOWER:.0f}°",
-                                       "" if all(lower) else "some surrounding layouts err as much as env3")
+    ours = (
+        "3 levels, mean error "
+        + ", ".join(f"{e} {_n(v)}°" for e, v in sur.items())
+        + f" vs env3 (one side) {_n(edge)}°"
+    )
+    return (
+        ours,
+        _verdict(lower),
+        _why(
+            f"each surrounding layout below env3 by >= {LOWER:.0f}°",
+            "" if all(lower) else "some surrounding layouts err as much as env3",
+        ),
+    )
 
 
 MORE = 1.0  # degrees
@@ -158,11 +231,21 @@ def _(get):
     catch = get("robot_images:delv:catchment_pct")
     more, homes = img >= ideal + MORE, catch >= LARGE
     ours = f"mean error {_n(img)}° on images, {_n(ideal)}° on ideal rings; catchment {_n(catch)} %"
-    why = "" if more and homes else ("rendered images carry no detection error beyond pixel noise: their rings "
-                                     "are the ring model's, so DELV errs as on ideal rings" if homes
-                                     else f"the catchment on images is below {LARGE:.0f} %")
-    return ours, _verdict([more and homes, homes]), _why(
-        f"images >= ideal rings + {MORE:.0f}° and catchment >= {LARGE:.0f} %", why)
+    why = (
+        ""
+        if more and homes
+        else (
+            "rendered images carry no detection error beyond pixel noise: their rings "
+            "are the ring model's, so DELV errs as on ideal rings"
+            if homes
+            else f"the catchment on images is below {LARGE:.0f} %"
+        )
+    )
+    return (
+        ours,
+        _verdict([more and homes, homes]),
+        _why(f"images >= ideal rings + {MORE:.0f}° and catchment >= {LARGE:.0f} %", why),
+    )
 
 
 ROBOT_BEAT = 2.0  # degrees / points
@@ -177,13 +260,23 @@ def _(get):
     ed, ew = get("robot_images:delv:mean_error_deg"), get("robot_images:warping:mean_error_deg")
     cd, cw = get("robot_images:delv:catchment_pct"), get("robot_images:warping:catchment_pct")
     ours = f"robot images: mean error DELV {_n(ed)}° vs image matching {_n(ew)}°; catchment {_n(cd)} vs {_n(cw)} %"
-    rule = (f"image matching must not beat DELV by > {ROBOT_BEAT:.0f}° or {ROBOT_BEAT:.0f} points; DELV better by "
-            f">= that on both for holds")
+    rule = (
+        f"image matching must not beat DELV by > {ROBOT_BEAT:.0f}° or {ROBOT_BEAT:.0f} points; DELV better by "
+        f">= that on both for holds"
+    )
     if ew < ed - ROBOT_BEAT or cw > cd + ROBOT_BEAT:
-        return ours, "fails", _why(rule, "image matching " + ("errs less" if ew < ed - ROBOT_BEAT else "homes more")
-                                   + ": the rendered arena has uniform light, no clutter and exact poses, the "
-                                   "conditions where comparing pixels works best; the thesis's camera images had none "
-                                   "of these advantages (the image_effects study varies light and noise)")
+        return (
+            ours,
+            "fails",
+            _why(
+                rule,
+                "image matching "
+                + ("errs less" if ew < ed - ROBOT_BEAT else "homes more")
+                + ": the rendered arena has uniform light, no clutter and exact poses, the "
+                "conditions where comparing pixels works best; the thesis's camera images had none "
+                "of these advantages (the image_effects study varies light and noise)",
+            ),
+        )
     parts = [ed <= ew - ROBOT_BEAT, None if at_ceiling([cd, cw]) else cd >= cw + ROBOT_BEAT]
     verdict = _combine(parts)
     verdict = "partly" if verdict == "fails" else verdict  # ties: not beaten, not better
@@ -199,5 +292,11 @@ def _(get):
     close = [abs(v - base) <= LEVEL_CLOSE for v in levels.values()]
     ours = "mean error, 1/2/4/5 levels: " + _n(list(levels.values())) + f"°; continuous {_n(base)}°"
     verdict = "holds" if all(close) else "partly" if _share(close) >= 0.5 else "fails"
-    return ours, verdict, _why(f"every level within {LEVEL_CLOSE:.0f}° of continuous",
-                               "" if verdict == "holds" else f"some levels differ by more than {LEVEL_CLOSE:.0f}°")
+    return (
+        ours,
+        verdict,
+        _why(
+            f"every level within {LEVEL_CLOSE:.0f}° of continuous",
+            "" if verdict == "holds" else f"some levels differ by more than {LEVEL_CLOSE:.0f}°",
+        ),
+    )

@@ -10,7 +10,22 @@ is "cannot tell".
 
 from __future__ import annotations
 
-from ._common import (ENVS, FAILURES, _combine, _failures, _mean, _n, _opt, _pairs, _share, _verdict, _why, at_ceiling, at_floor, check)
+from ._common import (
+    ENVS,
+    FAILURES,
+    _combine,
+    _failures,
+    _mean,
+    _n,
+    _opt,
+    _pairs,
+    _share,
+    _verdict,
+    _why,
+    at_ceiling,
+    at_floor,
+    check,
+)
 
 OCCLUSION_LAYOUTS = ("env1", "env2", "env3", "ring3", "ring5", "ring6")
 
@@ -40,14 +55,18 @@ def _(get):
     not_smaller = [e for e, ok in zip(ENVS, smaller) if not ok]
     why_not = "" if all(smaller) else f"not smaller in {', '.join(not_smaller)}"
     if not_smaller and all(slips[e] is not None for e in not_smaller):
-        why_not += (" (without compass no wrong heading wins there: " + ", ".join(f"{e} {slips[e]:.1f} % of the points"
-                                                                             for e in not_smaller)
-                    + "; the heading that fits the estimated landmark vectors best absorbs part of their error)")
+        why_not += (
+            " (without compass no wrong heading wins there: "
+            + ", ".join(f"{e} {slips[e]:.1f} % of the points" for e in not_smaller)
+            + "; the heading that fits the estimated landmark vectors best absorbs part of their error)"
+        )
     why_far = "" if not far else f"far smaller in {', '.join(far)}"
     if far and all(slips[e] is not None for e in far):
-        why_far += (": without compass a wrong heading hypothesis wins at " + ", ".join(
-            f"{e} {slips[e]:.1f} % of the points (mean error {rest[e]:.1f}° at the others)" for e in far)
-            + "; with every landmark on one side of home, rotations of the view about home fit nearly alike")
+        why_far += (
+            ": without compass a wrong heading hypothesis wins at "
+            + ", ".join(f"{e} {slips[e]:.1f} % of the points (mean error {rest[e]:.1f}° at the others)" for e in far)
+            + "; with every landmark on one side of home, rotations of the view about home fit nearly alike"
+        )
     return ours, verdict, _why(f"0 < without - with <= {SLIGHTLY:.0f}° in every environment", why_not, why_far)
 
 
@@ -74,16 +93,29 @@ def _(get):
     margin it needs (env3 without compass above 97.7 %)."""
     c = {e: (get(f"catchment:{e}:delv-compass"), get(f"catchment:{e}:delv")) for e in ENVS}
     parts = {e: _margin_part(a, b, FIG5_5_VS_4_5[e][0] - FIG5_5_VS_4_5[e][1], COMPASS_TOL) for e, (a, b) in c.items()}
-    ours = "; ".join(f"{e} {_n(a)} with vs {_n(b)} % without (thesis {FIG5_5_VS_4_5[e][0]} vs {FIG5_5_VS_4_5[e][1]})"
-                     for e, (a, b) in c.items())
-    phys = [(_opt(get, f"catchment:{e}:delv-compass:physical"), _opt(get, f"catchment:{e}:delv:physical")) for e in ENVS]
+    ours = "; ".join(
+        f"{e} {_n(a)} with vs {_n(b)} % without (thesis {FIG5_5_VS_4_5[e][0]} vs {FIG5_5_VS_4_5[e][1]})"
+        for e, (a, b) in c.items()
+    )
+    phys = [
+        (_opt(get, f"catchment:{e}:delv-compass:physical"), _opt(get, f"catchment:{e}:delv:physical")) for e in ENVS
+    ]
     if all(None not in p for p in phys):
         ours += "; physical rules " + ", ".join(f"{e} {_n(a)} vs {_n(b)}" for e, (a, b) in zip(ENVS, phys))
     verdict = _combine([parts["env2"], parts["env3"], parts["env1"]])
-    reasons = [f"{e} at the ceiling" if p is None else "" if p else f"{e} differs from the thesis's difference by more "
-               f"than {COMPASS_TOL:.0f} points" for e, p in parts.items()]
-    return ours, verdict, _why(f"with - without within {COMPASS_TOL:.0f} points of the thesis's -6.5 / +1.6 / +7.3",
-                               *reasons)
+    reasons = [
+        f"{e} at the ceiling"
+        if p is None
+        else ""
+        if p
+        else f"{e} differs from the thesis's difference by more than {COMPASS_TOL:.0f} points"
+        for e, p in parts.items()
+    ]
+    return (
+        ours,
+        verdict,
+        _why(f"with - without within {COMPASS_TOL:.0f} points of the thesis's -6.5 / +1.6 / +7.3", *reasons),
+    )
 
 
 TIE_DEG = 1.0
@@ -102,13 +134,20 @@ def _(get):
     hi_alv = _share(a > b + TIE_DEG for a, b in _pairs(d, alv))
     acv_ok = lo_acv >= 0.6 and bool(hi_acv) and max(hi_acv) <= SLIGHTLY
     alv_ok = lo_alv >= MIXED and hi_alv >= MIXED
-    ours = (f"DELV lower than ACV in {lo_acv:.0%}, higher in {len(hi_acv)} bins; lower than ALV in {lo_alv:.0%}, "
-            f"higher in {hi_alv:.0%} of distance bins (env1; ties within {TIE_DEG:.0f}°)")
-    rule = (f"vs ACV lower in >= 60 % and higher (by <= {SLIGHTLY:.0f}°) in some bins; vs ALV each way in >= "
-            f"{MIXED:.0%} of the bins")
+    ours = (
+        f"DELV lower than ACV in {lo_acv:.0%}, higher in {len(hi_acv)} bins; lower than ALV in {lo_alv:.0%}, "
+        f"higher in {hi_alv:.0%} of distance bins (env1; ties within {TIE_DEG:.0f}°)"
+    )
+    rule = (
+        f"vs ACV lower in >= 60 % and higher (by <= {SLIGHTLY:.0f}°) in some bins; vs ALV each way in >= "
+        f"{MIXED:.0%} of the bins"
+    )
     alv_why = "" if alv_ok else "against ALV one side dominates, not a mix" + _alv_steady(d, alv)
-    return ours, _verdict([acv_ok, alv_ok]), _why(rule, "" if acv_ok else "not 'smaller than ACV in most, slightly "
-                                                  "higher in some'", alv_why)
+    return (
+        ours,
+        _verdict([acv_ok, alv_ok]),
+        _why(rule, "" if acv_ok else "not 'smaller than ACV in most, slightly higher in some'", alv_why),
+    )
 
 
 def _alv_steady(d, alv) -> str:
@@ -116,17 +155,22 @@ def _alv_steady(d, alv) -> str:
     higher = [i for i, (a, b) in enumerate(_pairs(d, alv)) if a > b + TIE_DEG]
     if not alv or higher != list(range(len(higher))):  # DELV higher somewhere beyond the nearest bins: no such cause
         return ""
-    near = ("" if not higher else f", higher only in the nearest {len(higher)} bin{'s' * (len(higher) > 1)} (where "
-            "the short home vector turns most with the pixel errors)")
-    return (f": ALV errs {min(alv):.0f}-{max(alv):.0f}° in every bin, the gradient of a potential (§3.3.2) bending "
-            "off the straight line home at every distance, while DELV's noise-free estimates point nearly straight"
-            + near)
+    near = (
+        ""
+        if not higher
+        else f", higher only in the nearest {len(higher)} bin{'s' * (len(higher) > 1)} (where "
+        "the short home vector turns most with the pixel errors)"
+    )
+    return (
+        f": ALV errs {min(alv):.0f}-{max(alv):.0f}° in every bin, the gradient of a potential (§3.3.2) bending "
+        "off the straight line home at every distance, while DELV's noise-free estimates point nearly straight" + near
+    )
 
 
-NEAR_FAR = 3     # release-distance bins
-SR_TOL = 3.0     # points: beyond the binomial noise of 100 trials at 80-90 %
-LITTLE = 10.0    # points: "little higher"
-SIMILAR = 5.0    # points of overall success
+NEAR_FAR = 3  # release-distance bins
+SR_TOL = 3.0  # points: beyond the binomial noise of 100 trials at 80-90 %
+LITTLE = 10.0  # points: "little higher"
+SIMILAR = 5.0  # points of overall success
 
 
 @check("delv_compass_success_near_far")
@@ -143,15 +187,20 @@ def _(get):
         df, of = d[-NEAR_FAR:], o[-NEAR_FAR:]
         far = None if at_ceiling([df, of]) else _mean(df) <= _mean(of) - SR_TOL
         parts += [sim, near, far]
-        reasons += ["" if far is not False else f"far from home DELV succeeds at least as often as {name}"
-                    + _far_failures(get, name.lower()),
-                    "" if near is not False else f"near home DELV is not a little above {name}",
-                    "" if sim is not False else f"overall not similar to {name}"]
+        reasons += [
+            ""
+            if far is not False
+            else f"far from home DELV succeeds at least as often as {name}" + _far_failures(get, name.lower()),
+            "" if near is not False else f"near home DELV is not a little above {name}",
+            "" if sim is not False else f"overall not similar to {name}",
+        ]
     if None in parts:
         reasons.append("parts at the ceiling (both >= 99 %)")
     ours = f"success DELV {_n(d)}, ACV {_n(acv)}, ALV {_n(alv)} %"
-    rule = (f"overall within {SIMILAR:.0f} points; near {NEAR_FAR} distances DELV higher by {SR_TOL:.0f}..{LITTLE:.0f}; "
-            f"far {NEAR_FAR} DELV lower by >= {SR_TOL:.0f}")
+    rule = (
+        f"overall within {SIMILAR:.0f} points; near {NEAR_FAR} distances DELV higher by {SR_TOL:.0f}..{LITTLE:.0f}; "
+        f"far {NEAR_FAR} DELV lower by >= {SR_TOL:.0f}"
+    )
     return ours, _combine(parts), _why(rule, *reasons)
 
 
@@ -161,9 +210,11 @@ def _far_failures(get, method: str) -> str:
     if not d or not o:
         return ""
     fmt = lambda f: "/".join(str(f[k]) for k in FAILURES)  # noqa: E731
-    return (f" (failures timeout/landmark/arena of the far {NEAR_FAR} distances: DELV {fmt(d)}, {_short(method)} "
-            f"{fmt(o)}; our DELV senses without noise, so a poor first estimate far away sharpens with every step "
-            "towards home)")
+    return (
+        f" (failures timeout/landmark/arena of the far {NEAR_FAR} distances: DELV {fmt(d)}, {_short(method)} "
+        f"{fmt(o)}; our DELV senses without noise, so a poor first estimate far away sharpens with every step "
+        "towards home)"
+    )
 
 
 def _occl(get, env, m, field="catchment"):
@@ -189,11 +240,19 @@ def _(get):
         cells.append(f"{e} catchment {_n(c[:2])} %, e>45 {_n(g[:2])} %")
     ours = "DELV-compass k = 0/1: " + "; ".join(cells) + " (thesis env1 92.01/49.11 %)"
     bad = [e for e, a, b in zip(ENVS, parts[::2], parts[1::2]) if a is False or b is False]
-    return ours, _combine(parts), _why(f"catchment loss and e>45 rise from k = 0 to 1 below {SEVERE:.0f} points",
-                                       "" if not bad else f"severe damage in {', '.join(bad)} (as the thesis's own "
-                                       "Table 5.3 shows: linear matching skips a hidden landmark only where the "
-                                       "home-frame list wraps, so most choices of the hidden landmark pair every "
-                                       "landmark after it wrongly; the occlusion study's per-choice table)")
+    return (
+        ours,
+        _combine(parts),
+        _why(
+            f"catchment loss and e>45 rise from k = 0 to 1 below {SEVERE:.0f} points",
+            ""
+            if not bad
+            else f"severe damage in {', '.join(bad)} (as the thesis's own "
+            "Table 5.3 shows: linear matching skips a hidden landmark only where the "
+            "home-frame list wraps, so most choices of the hidden landmark pair every "
+            "landmark after it wrongly; the occlusion study's per-choice table)",
+        ),
+    )
 
 
 STEP = 1.0  # points
@@ -207,9 +266,15 @@ def _(get):
     steps = g[1] >= g[0] + STEP and g[2] >= g[1] + STEP
     total = g[2] - g[0] >= (20.48 - 8.75) / 2
     ours = f"env1 DELV e>45, k = 0/1/2: {_n(g[:3])} % (thesis 8.75/13.99/20.48)"
-    return ours, _verdict([steps, total]), _why(
-        f"each step up by >= {STEP:.0f} point, k = 0 -> 2 up by >= 5.9 points",
-        "" if steps else "not rising with every hidden landmark", "" if total else "rises by less than half the thesis's")
+    return (
+        ours,
+        _verdict([steps, total]),
+        _why(
+            f"each step up by >= {STEP:.0f} point, k = 0 -> 2 up by >= 5.9 points",
+            "" if steps else "not rising with every hidden landmark",
+            "" if total else "rises by less than half the thesis's",
+        ),
+    )
 
 
 BELOW_TOL = 1.0  # points (the thesis's env2 k = 0 tie at 7.99)
@@ -229,9 +294,15 @@ def _(get):
         parts.append(f"{e} DELV {_n(d)} vs ACV {_n(a)}")
     ours = "e>45 % for k = 0/1/2: " + "; ".join(parts)
     verdict = "holds" if all(below) and all(faster) else "partly" if all(faster) or all(below) else "fails"
-    return ours, verdict, _why("DELV <= ACV + 1 at every k; ACV's rise >= 2 x DELV's and >= DELV's + 10 points",
-                               "" if all(below) else "DELV above ACV somewhere",
-                               "" if all(faster) else "ACV's rate does not rise much faster somewhere")
+    return (
+        ours,
+        verdict,
+        _why(
+            "DELV <= ACV + 1 at every k; ACV's rise >= 2 x DELV's and >= DELV's + 10 points",
+            "" if all(below) else "DELV above ACV somewhere",
+            "" if all(faster) else "ACV's rate does not rise much faster somewhere",
+        ),
+    )
 
 
 GT90_K0_TOL, GT90_TOL, GT90_FLOOR = 0.5, 1.0, 0.5  # points
@@ -259,15 +330,25 @@ def _(get):
     verdict = _combine(parts)
     if verdict == "fails" and (_share(f for f in k0 + kn if f is not None) >= 0.5):
         verdict = "partly"
-    return ours, verdict, _why(f"k = 0: ACV <= DELV + {GT90_K0_TOL}; k >= 1: DELV <= ACV + {GT90_TOL:.0f}, every layout",
-                               "" if parts[0] is not False else "ACV above DELV without occlusion somewhere" + K0_CAUSE,
-                               "" if parts[1] is not False else "DELV above ACV with hidden landmarks somewhere")
+    return (
+        ours,
+        verdict,
+        _why(
+            f"k = 0: ACV <= DELV + {GT90_K0_TOL}; k >= 1: DELV <= ACV + {GT90_TOL:.0f}, every layout",
+            "" if parts[0] is not False else "ACV above DELV without occlusion somewhere" + K0_CAUSE,
+            "" if parts[1] is not False else "DELV above ACV with hidden landmarks somewhere",
+        ),
+    )
 
 
 SMALL_OCCL = {0: 100.0 - 92.01, 1: 52.88 - 49.11}  # the thesis's ACV - DELV gap, env1
-ACV_LAYOUT = ("ACV's errors depend strongly on the layout, which the thesis does not give (env3 moved by up to 150 cm: "
-              "ACV's e>45 21-82 %, docs/reproduce.md 'Causes measured outside the run')")
-K0_CAUSE = (": with every landmark in view our DELV has almost no error points (noise-free sensing), and ACV's "
-            "corrections, tangential to the bearings only (Eq 5.2), leave some; " + ACV_LAYOUT)
+ACV_LAYOUT = (
+    "ACV's errors depend strongly on the layout, which the thesis does not give (env3 moved by up to 150 cm: "
+    "ACV's e>45 21-82 %, docs/reproduce.md 'Causes measured outside the run')"
+)
+K0_CAUSE = (
+    ": with every landmark in view our DELV has almost no error points (noise-free sensing), and ACV's "
+    "corrections, tangential to the bearings only (Eq 5.2), leave some; " + ACV_LAYOUT
+)
 GAP_TOL_OCCL = 10.0
 BEYOND_TIE = 0.5

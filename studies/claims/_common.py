@@ -29,6 +29,7 @@ def check(claim_id: str):
     def deco(fn):
         CHECKS[claim_id] = fn
         return fn
+
     return deco
 
 
@@ -95,7 +96,11 @@ def _opt(get, key):
         return None
 
 
-FAILURES = ("timeout", "landmark", "arena")  # failure outcomes, as delvjax.studies.runs._common.FAILURES (no JAX import here)
+FAILURES = (
+    "timeout",
+    "landmark",
+    "arena",
+)  # failure outcomes, as delvjax.studies.runs._common.FAILURES (no JAX import here)
 
 
 def _failures(get, key: str) -> dict | None:

@@ -31,22 +31,41 @@ PAD = 6
 # the default rules (thesis Algorithm 2), the earlier default ("homing": every first move follows the
 # direction computed at the release point) and the physical rules (landmarks are obstacles); docs/model.md §5
 RULES = {"default": rollouts.DEFAULT_RULES, "homing": rollouts.HOMING_RULES, "physical": rollouts.PHYSICAL_RULES}
-RULES_NOTE = ("default rules (thesis Algorithm 2, docs/model.md §5): a method that needs a unit movement (DELV) first "
-              "moves d along the release heading and only then matches, the others turn to their first direction at "
-              "once; the catchment counts the grid points at least d from every wall (the blind first move must stay "
-              "in the arena); landmarks are no obstacles. homing: every first move follows the direction computed at "
-              "the release point (the earlier default; every grid point counts). physical: Algorithm 2, and a move "
-              "ending inside a landmark fails.")
-LABEL = {"delv": "DELV", "delv-compass": "DELV (compass)", "delv-visual": "DELV (visual compass)",
-         "acv": "ACV", "alv": "ALV", "acv-visual": "ACV (visual compass)", "alv-visual": "ALV (visual compass)",
-         "warping": "image matching"}
+RULES_NOTE = (
+    "default rules (thesis Algorithm 2, docs/model.md §5): a method that needs a unit movement (DELV) first "
+    "moves d along the release heading and only then matches, the others turn to their first direction at "
+    "once; the catchment counts the grid points at least d from every wall (the blind first move must stay "
+    "in the arena); landmarks are no obstacles. homing: every first move follows the direction computed at "
+    "the release point (the earlier default; every grid point counts). physical: Algorithm 2, and a move "
+    "ending inside a landmark fails."
+)
+LABEL = {
+    "delv": "DELV",
+    "delv-compass": "DELV (compass)",
+    "delv-visual": "DELV (visual compass)",
+    "acv": "ACV",
+    "alv": "ALV",
+    "acv-visual": "ACV (visual compass)",
+    "alv-visual": "ALV (visual compass)",
+    "warping": "image matching",
+}
 HOME_RADIUS = rollouts.HOME_RADIUS
 # Every method of the reproduction is compiled into one rollout program (`registry.program`: a
 # `Program` module whose traced index picks the method): compiling a rollout program costs about 6 CPU-seconds, so the
 # reproduction compiles one, not eight. Rendering a method does not need (the start snapshot, the gray
 # channel) is skipped at run time, so no method runs slower for sharing (docs/reproduce.md).
-PROGRAM = ("delv", "delv-compass", "alv", "acv", "delv-visual", "alv-visual", "acv-visual", "warping", "delv-gap-compass",
-           "delv-compass-agent")
+PROGRAM = (
+    "delv",
+    "delv-compass",
+    "alv",
+    "acv",
+    "delv-visual",
+    "alv-visual",
+    "acv-visual",
+    "warping",
+    "delv-gap-compass",
+    "delv-compass-agent",
+)
 
 
 def env(name: str) -> Env:
@@ -61,19 +80,36 @@ def vector_map(ctx, e: Env, method: str, **options) -> VectorMap:
     return as_vector_map(catchment(ctx, e, method, **options))
 
 
-def catchment(ctx, e: Env, method: str, rules: str = "default", home_radius: float = HOME_RADIUS,
-              **options) -> rollouts.Catchment:
-    return delvjax.catchment(e.arrays(), method=method, spacing=ctx.settings.spacing, seed=ctx.settings.seed,
-                             home_radius=home_radius, program=PROGRAM, lanes=ctx.settings.lanes,
-                             **RULES[rules], **options)
+def catchment(
+    ctx, e: Env, method: str, rules: str = "default", home_radius: float = HOME_RADIUS, **options
+) -> rollouts.Catchment:
+    return delvjax.catchment(
+        e.arrays(),
+        method=method,
+        spacing=ctx.settings.spacing,
+        seed=ctx.settings.seed,
+        home_radius=home_radius,
+        program=PROGRAM,
+        lanes=ctx.settings.lanes,
+        **RULES[rules],
+        **options,
+    )
 
 
 def success_table(ctx, e: Env, method: str, rules: str = "default", **options) -> list[dict]:
     """Success rate per release distance 50..450 cm (`settings.trials` per bin, Figs 4.10b, 5.7b): the
     rows of `tables.success_rows` (the CLI's success-rate CSV)."""
-    res = delvjax.success_rate(e.arrays(), method=method, trials=ctx.settings.trials, seed=ctx.settings.seed,
-                               home_radius=HOME_RADIUS, program=PROGRAM, lanes=ctx.settings.lanes,
-                               **RULES[rules], **options)
+    res = delvjax.success_rate(
+        e.arrays(),
+        method=method,
+        trials=ctx.settings.trials,
+        seed=ctx.settings.seed,
+        home_radius=HOME_RADIUS,
+        program=PROGRAM,
+        lanes=ctx.settings.lanes,
+        **RULES[rules],
+        **options,
+    )
     return success_rows(res, method)
 
 
@@ -109,8 +145,14 @@ def curves_rows(curves: dict[str, list[dict]]) -> list[dict]:
 
 def as_vector_map(c: rollouts.Catchment, m: int = 0) -> VectorMap:
     """The vector map inside a `Catchment` (mask m): same headings and home record as `vector_map`."""
-    return VectorMap(points=c.points, included=c.included, heading=c.heading, direction=np.asarray(c.direction)[m],
-                     valid=np.asarray(c.valid)[m], error_deg=np.asarray(c.error_deg)[m])
+    return VectorMap(
+        points=c.points,
+        included=c.included,
+        heading=c.heading,
+        direction=np.asarray(c.direction)[m],
+        valid=np.asarray(c.valid)[m],
+        error_deg=np.asarray(c.error_deg)[m],
+    )
 
 
 def index(tree, i: int):
@@ -149,30 +191,45 @@ def record_failures(ctx, key: str, counts: dict[str, int]) -> None:
 
 def success_summary(rows: list[dict]) -> dict:
     placed = sum(r["placed"] for r in rows)
-    return {"by_distance": [r["success_pct"] for r in rows],
-            "overall": 100.0 * sum(r["successes"] for r in rows) / max(placed, 1)}
+    return {
+        "by_distance": [r["success_pct"] for r in rows],
+        "overall": 100.0 * sum(r["successes"] for r in rows) / max(placed, 1),
+    }
 
 
 # --- figures ---------------------------------------------------------------------------------
+
 
 def panel_figure(items, spacing: float, classes: bool = False, title: str = ""):
     """1 x n vector-map panels: items = [(panel title, env, VectorMap)]; every marker in a legend."""
     fig, axes = subplots(1, len(items), figsize=(4.6 * len(items), 5.0), squeeze=False)
     for ax, (label, e, vm) in zip(axes[0], items):
-        draw_vector_map(ax, e, vm.points, vm.direction, vm.valid, vm.included, spacing,
-                        error_deg=vm.error_deg if classes else None)
+        draw_vector_map(
+            ax, e, vm.points, vm.direction, vm.valid, vm.included, spacing, error_deg=vm.error_deg if classes else None
+        )
         draw_env(ax, e)
         ax.set_title(label, fontsize=9)
-    handles = [Line2D([], [], marker=r"$\rightarrow$", color="black", ls="", ms=10, label="homing direction"),
-               Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
-               Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
-               Line2D([], [], marker="x", color="tab:red", ls="", ms=7, label="no direction (invalid)")]
+    handles = [
+        Line2D([], [], marker=r"$\rightarrow$", color="black", ls="", ms=10, label="homing direction"),
+        Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
+        Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
+        Line2D([], [], marker="x", color="tab:red", ls="", ms=7, label="no direction (invalid)"),
+    ]
     if classes:
         from delvjax.plots._maps import CLASS_STYLE  # matplotlib: loaded only when a figure is drawn
 
-        handles += [Line2D([], [], ls="", label=f"error {lab}", marker=style["marker"],
-                           color=style.get("color", style.get("edgecolors")),
-                           mfc="none" if "facecolors" in style else None) for lab, style in CLASS_STYLE[1:]]
+        handles += [
+            Line2D(
+                [],
+                [],
+                ls="",
+                label=f"error {lab}",
+                marker=style["marker"],
+                color=style.get("color", style.get("edgecolors")),
+                mfc="none" if "facecolors" in style else None,
+            )
+            for lab, style in CLASS_STYLE[1:]
+        ]
     fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8, frameon=False)
     if title:
         fig.suptitle(title)
@@ -185,10 +242,12 @@ def catchment_figure(items, spacing: float, title: str):
     fig, axes = subplots(1, len(items), figsize=(4.8 * len(items), 5.4), squeeze=False)
     for ax, (label, e, c) in zip(axes[0], items):
         catchment_panel(ax, e, c, 0, spacing, title=label)
-    handles = [Patch(label="release point inside the catchment area", **SQUARE),
-               Line2D([], [], marker=r"$\rightarrow$", color="black", ls="", ms=10, label="first homing direction"),
-               Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
-               Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)")]
+    handles = [
+        Patch(label="release point inside the catchment area", **SQUARE),
+        Line2D([], [], marker=r"$\rightarrow$", color="black", ls="", ms=10, label="first homing direction"),
+        Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
+        Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
+    ]
     fig.legend(handles=handles, loc="lower center", ncol=4, fontsize=8, frameon=False)
     fig.suptitle(title)
     fig.set_layout_engine("tight", rect=(0, 0.05, 1, 1))  # applied when drawn (in the figure thread)
@@ -236,12 +295,25 @@ def success_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, s
             record_failures(ctx, f"success_failures:env1:{m}{rule_suffix(rules)}", failure_counts(t))
             record_failures(ctx, f"success_failures_far:env1:{m}{rule_suffix(rules)}", failure_counts(t, last=FAR_BINS))
             ctx.step(f"success {m} {rules}")
-    ctx.table("success_rate", f"Success rate (%) by release distance, {title}", [
-        {"method (rules)": k, **{f"{r['distance_cm']:g} cm": r["success_pct"] for r in v},
-         "failures timeout/landmark/arena": failures_text(failure_counts(v))}
-        for k, v in tables.items()], source=source, note=note)
-    ctx.figure(f"{fig_file}.png", success_rate_figure(
-        tables, f"Success rate, {title} ({ctx.settings.trials} trials per distance; {source})"), caption)
+    ctx.table(
+        "success_rate",
+        f"Success rate (%) by release distance, {title}",
+        [
+            {
+                "method (rules)": k,
+                **{f"{r['distance_cm']:g} cm": r["success_pct"] for r in v},
+                "failures timeout/landmark/arena": failures_text(failure_counts(v)),
+            }
+            for k, v in tables.items()
+        ],
+        source=source,
+        note=note,
+    )
+    ctx.figure(
+        f"{fig_file}.png",
+        success_rate_figure(tables, f"Success rate, {title} ({ctx.settings.trials} trials per distance; {source})"),
+        caption,
+    )
     ctx.csv(f"{fig_file}_counts.csv", rows=[{"label": k, **r} for k, v in tables.items() for r in v])
     return tables
 
@@ -253,8 +325,15 @@ def trajectory_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str
 
     results, tables = {}, []
     for m in methods:
-        tr = delvjax.trajectories(e.arrays(), method=m, n_starts=n_starts, seed=ctx.settings.seed,
-                                  home_radius=HOME_RADIUS, program=PROGRAM, lanes=ctx.settings.lanes)
+        tr = delvjax.trajectories(
+            e.arrays(),
+            method=m,
+            n_starts=n_starts,
+            seed=ctx.settings.seed,
+            home_radius=HOME_RADIUS,
+            program=PROGRAM,
+            lanes=ctx.settings.lanes,
+        )
         results[LABEL[m]] = tr
         tables.append(trajectory_columns(tr, m))
         ctx.number(f"trajectories:env1:{m}:reach_home", int(np.asarray(tr.success).sum()))

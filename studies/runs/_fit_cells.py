@@ -40,8 +40,14 @@ from ._common import HOME_RADIUS, PAD, RULES, env
 METHODS = ("delv", "delv-compass", "acv", "alv")  # the methods of Figs 4.5, 5.5, 5.10, Tables 5.1-5.4
 SENSOR_SETTINGS = ("bearing_noise_deg", "step_noise", "odometry_turn_noise_deg", "alpha_r_deg")
 RADIUS_SCALE = "landmark_radius_scale"
-DEFAULTS = {"bearing_noise_deg": 0.0, "step_noise": 0.0, "odometry_turn_noise_deg": 0.0,
-            "home_radius": HOME_RADIUS, "alpha_r_deg": math.degrees(Sensor().alpha_r), RADIUS_SCALE: 1.0}
+DEFAULTS = {
+    "bearing_noise_deg": 0.0,
+    "step_noise": 0.0,
+    "odometry_turn_noise_deg": 0.0,
+    "home_radius": HOME_RADIUS,
+    "alpha_r_deg": math.degrees(Sensor().alpha_r),
+    RADIUS_SCALE: 1.0,
+}
 """The settings the thesis does not give, at the project's defaults (docs/model.md §1, §2.5, §5, §6):
 noise-free sensing and odometry, `common.HOME_RADIUS`, the home unit move along alpha_r = 0, the
 landmark radii of docs/envs (scale 1)."""
@@ -66,17 +72,29 @@ def env_key(name: str, scale: float) -> str:
 def cell(point: dict, target_cell: tuple[str, str, int], spacing: float, seed: int, methods: dict) -> dict:
     """The sweep cell of one (env, method, k) under the settings `point` (default rollout rules)."""
     name, method, k = target_cell
-    return {"env": env_key(name, float(point[RADIUS_SCALE])), "method": methods[method], "seed": seed, "occlude": k,
-            "spacing": spacing, "home_radius": float(point["home_radius"]), **RULES["default"],
-            **{s: float(point[s]) for s in SENSOR_SETTINGS}}
+    return {
+        "env": env_key(name, float(point[RADIUS_SCALE])),
+        "method": methods[method],
+        "seed": seed,
+        "occlude": k,
+        "spacing": spacing,
+        "home_radius": float(point["home_radius"]),
+        **RULES["default"],
+        **{s: float(point[s]) for s in SENSOR_SETTINGS},
+    }
 
 
 class Evaluator:
     """Runs lists of settings points on the cells `cell_list`; keeps the time, cells, trials and
     programs compiled of every call (the study's cost table)."""
 
-    def __init__(self, cell_list: list[tuple[str, str, int]], spacing: float, seed: int,
-                 step: Callable[[str], None] | None = None):
+    def __init__(
+        self,
+        cell_list: list[tuple[str, str, int]],
+        spacing: float,
+        seed: int,
+        step: Callable[[str], None] | None = None,
+    ):
         self.cell_list, self.spacing, self.seed, self.step = cell_list, spacing, seed, step
         self.methods = {m: program(m, METHODS)[0] for m in METHODS}
         self.envs: dict = {}
@@ -104,11 +122,11 @@ class Evaluator:
         sums: dict[str, np.ndarray] = {}
         for members in groups.values():  # one group: every cell shares the program (module docstring)
             for start in range(0, len(members), width):  # a handful of chunks, one call each
-                chunk = members[start:start + width]
+                chunk = members[start : start + width]
                 batch = [setups[i] for i in chunk] + [setups[chunk[0]]] * (width - len(chunk))
                 res = evaluate(_SPEC.kind, batch, None, rows)
                 for name, v in res.items():
-                    sums.setdefault(name, np.zeros(len(setups), v.dtype))[chunk] = v[:len(chunk)]
+                    sums.setdefault(name, np.zeros(len(setups), v.dtype))[chunk] = v[: len(chunk)]
                 if self.step is not None:
                     self.step(f"fit: {start + len(chunk)}/{len(members)} cells")
         metrics = catchment_metrics(sums)

@@ -23,8 +23,15 @@ import numpy as np
 
 from .. import thesis
 
-TABLES = {"fig4_5": "Fig 4.5", "fig5_5": "Fig 5.5", "fig5_10": "Fig 5.10", "table5_1": "Table 5.1",
-          "table5_2": "Table 5.2", "table5_3": "Table 5.3", "table5_4": "Table 5.4"}
+TABLES = {
+    "fig4_5": "Fig 4.5",
+    "fig5_5": "Fig 5.5",
+    "fig5_10": "Fig 5.10",
+    "table5_1": "Table 5.1",
+    "table5_2": "Table 5.2",
+    "table5_3": "Table 5.3",
+    "table5_4": "Table 5.4",
+}
 COPIED = {"ring4"}  # the thesis's L = 4 rows copy other rows (thesis.NOTES): no result of their own
 FIELDS = ("gt45", "gt90")  # error point rates of Tables 5.1/5.2
 
@@ -52,13 +59,25 @@ def targets(tables=tuple(TABLES), envs: tuple[str, ...] | None = None) -> list[T
     out = []
     for table in tables:
         if table in thesis.CATCHMENT:
-            rows = [(e, m, k, "catchment", v) for e, ms in thesis.CATCHMENT[table].items()
-                    for m, values in ms.items() for k, v in enumerate(values)]
+            rows = [
+                (e, m, k, "catchment", v)
+                for e, ms in thesis.CATCHMENT[table].items()
+                for m, values in ms.items()
+                for k, v in enumerate(values)
+            ]
         else:
-            rows = [(e, m, k, f, v) for e, ms in thesis.ERROR_POINTS[table].items()
-                    for m, fields in ms.items() for f in FIELDS for k, v in enumerate(fields[f])]
-        out += [Target(table, e, m, k, f, float(v)) for e, m, k, f, v in rows
-                if e not in COPIED and (envs is None or e in envs)]
+            rows = [
+                (e, m, k, f, v)
+                for e, ms in thesis.ERROR_POINTS[table].items()
+                for m, fields in ms.items()
+                for f in FIELDS
+                for k, v in enumerate(fields[f])
+            ]
+        out += [
+            Target(table, e, m, k, f, float(v))
+            for e, m, k, f, v in rows
+            if e not in COPIED and (envs is None or e in envs)
+        ]
     return out
 
 
@@ -109,8 +128,9 @@ class SearchResult:
     joint: tuple[str, ...] = ()
 
 
-def search(evaluate: Callable[[list[dict]], list[float]], grid: dict[str, tuple], default: dict,
-           top: int = 2, values: int = 2) -> SearchResult:
+def search(
+    evaluate: Callable[[list[dict]], list[float]], grid: dict[str, tuple], default: dict, top: int = 2, values: int = 2
+) -> SearchResult:
     """Fit the settings of `grid` (name -> values tried; `default` holds every name's default).
 
     1. One setting at a time: the defaults, then each value of each setting with the others at their

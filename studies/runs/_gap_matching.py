@@ -25,8 +25,11 @@ from ._common import HOME_RADIUS, PROGRAM, RULES
 from ._occlusion_layouts import ENVS, RING_SPACING, fmt_spread, spread
 
 METHODS = ("delv-compass", "delv-gap-compass", "delv-compass-agent")
-LABELS = {"delv-compass": "linear matching (thesis), home-frame list", "delv-gap-compass": "gap-aware matching",
-          "delv-compass-agent": "linear matching, agent-frame list (the earlier order)"}
+LABELS = {
+    "delv-compass": "linear matching (thesis), home-frame list",
+    "delv-gap-compass": "gap-aware matching",
+    "delv-compass-agent": "linear matching, agent-frame list (the earlier order)",
+}
 FIELDS = {"catchment_pct": "catchment", "gt45_pct": "gt45", "gt90_pct": "gt90"}
 
 
@@ -34,9 +37,18 @@ def gap_aware_summary(e, masks, hidden, spacing: float, settings, method: str = 
     """Per-mask catchment summaries (`rollouts.catchment_summary`) of `method` (gap-aware DELV with a
     compass, or linear DELV with the agent-frame list) on the occlusion study's masks, grid, seed and
     default rules."""
-    c = rollouts.catchment_area(e.arrays(), program(method, PROGRAM)[0], Sensor(), spacing=spacing,
-                                key=jax.random.PRNGKey(settings.seed), masks=masks, hidden=hidden,
-                                home_radius=HOME_RADIUS, lanes=settings.lanes, **RULES["default"])
+    c = rollouts.catchment_area(
+        e.arrays(),
+        program(method, PROGRAM)[0],
+        Sensor(),
+        spacing=spacing,
+        key=jax.random.PRNGKey(settings.seed),
+        masks=masks,
+        hidden=hidden,
+        home_radius=HOME_RADIUS,
+        lanes=settings.lanes,
+        **RULES["default"],
+    )
     return rollouts.catchment_summary(c)["per_mask"]
 
 
@@ -45,12 +57,24 @@ def layout_rows(ctx, name: str, ks: np.ndarray, hidden, summary: dict[str, list[
     `gap:<env>:<method>:<catchment|gt45|gt90>` (a list over k). `summary`: method -> per-mask summaries."""
     rows, per_choice = [], []
     for i, h in enumerate(hidden):
-        per_choice.append({"env": name, "k": int(ks[i]), "hidden": " ".join(map(str, h)),
-                           **{f"{m}_{f}": summary[m][i][f] for m in METHODS for f in FIELDS}})
+        per_choice.append(
+            {
+                "env": name,
+                "k": int(ks[i]),
+                "hidden": " ".join(map(str, h)),
+                **{f"{m}_{f}": summary[m][i][f] for m in METHODS for f in FIELDS},
+            }
+        )
     for k in range(int(ks.max()) + 1):
         sel = np.flatnonzero(ks == k)
-        rows.append({"env": name, "k": k, "choices": len(sel),
-                     **{f"{m}:{f}": spread([summary[m][i][f] for i in sel]) for m in METHODS for f in FIELDS}})
+        rows.append(
+            {
+                "env": name,
+                "k": k,
+                "choices": len(sel),
+                **{f"{m}:{f}": spread([summary[m][i][f] for i in sel]) for m in METHODS for f in FIELDS},
+            }
+        )
     for m in METHODS:
         for f, label in FIELDS.items():
             ctx.number(f"gap:{name}:{m}:{label}", [r[f"{m}:{f}"]["mean"] for r in rows])
@@ -66,24 +90,36 @@ def report(ctx, rows: list[dict], per_choice: list[dict]) -> None:
 
 def table(ctx, rows: list[dict]) -> None:
     lin, gap, agent = METHODS
-    out = [{"env": r["env"], "k": r["k"], "choices": r["choices"],
-            "catchment % linear": fmt_spread(r[f"{lin}:catchment_pct"]), "catchment % gap-aware": fmt_spread(r[f"{gap}:catchment_pct"]),
+    out = [
+        {
+            "env": r["env"],
+            "k": r["k"],
+            "choices": r["choices"],
+            "catchment % linear": fmt_spread(r[f"{lin}:catchment_pct"]),
+            "catchment % gap-aware": fmt_spread(r[f"{gap}:catchment_pct"]),
             "change (points)": r[f"{gap}:catchment_pct"]["mean"] - r[f"{lin}:catchment_pct"]["mean"],
             "catchment % linear, agent-frame list": fmt_spread(r[f"{agent}:catchment_pct"]),
-            "e>45 % linear": r[f"{lin}:gt45_pct"]["mean"], "e>45 % gap-aware": r[f"{gap}:gt45_pct"]["mean"],
-            "e>90 % linear": r[f"{lin}:gt90_pct"]["mean"], "e>90 % gap-aware": r[f"{gap}:gt90_pct"]["mean"]}
-           for r in rows]
-    ctx.table("gap_matching", "DELV with a compass: linear (home- and agent-frame list) vs gap-aware matching under "
-                              "occlusion", out,
-              source="Tables 5.1-5.4 (layouts and k); beyond the thesis",
-              note="Mean [min-max] over the C(N, k) choices of hidden landmarks; default rollout rules; the same "
-                   "release points, headings and noise streams for every matching. The agent-frame list (the earlier order, "
-                   "docs/model.md §3.3) starts wherever the agent happens to face, so its wrap point, the one place where "
-                   "linear matching can skip a hidden landmark, moves at every step: it looks more robust than the "
-                   "thesis's DELV, which lists the landmarks in the home frame (Fig 3.4), as ACV does. Where a view shows as many "
-                   "blobs as the home view both matchings pair alike (bitwise the same direction); with k = 0 they "
-                   "differ only where landmarks overlap in the view and merge into one blob. ring3, ring5, ring6: "
-                   f"grid spacing max(spacing, {RING_SPACING:g}) cm.")
+            "e>45 % linear": r[f"{lin}:gt45_pct"]["mean"],
+            "e>45 % gap-aware": r[f"{gap}:gt45_pct"]["mean"],
+            "e>90 % linear": r[f"{lin}:gt90_pct"]["mean"],
+            "e>90 % gap-aware": r[f"{gap}:gt90_pct"]["mean"],
+        }
+        for r in rows
+    ]
+    ctx.table(
+        "gap_matching",
+        "DELV with a compass: linear (home- and agent-frame list) vs gap-aware matching under occlusion",
+        out,
+        source="Tables 5.1-5.4 (layouts and k); beyond the thesis",
+        note="Mean [min-max] over the C(N, k) choices of hidden landmarks; default rollout rules; the same "
+        "release points, headings and noise streams for every matching. The agent-frame list (the earlier order, "
+        "docs/model.md §3.3) starts wherever the agent happens to face, so its wrap point, the one place where "
+        "linear matching can skip a hidden landmark, moves at every step: it looks more robust than the "
+        "thesis's DELV, which lists the landmarks in the home frame (Fig 3.4), as ACV does. Where a view shows as many "
+        "blobs as the home view both matchings pair alike (bitwise the same direction); with k = 0 they "
+        "differ only where landmarks overlap in the view and merge into one blob. ring3, ring5, ring6: "
+        f"grid spacing max(spacing, {RING_SPACING:g}) cm.",
+    )
 
 
 def figure(ctx, rows: list[dict]) -> None:
@@ -95,8 +131,7 @@ def figure(ctx, rows: list[dict]) -> None:
             s = [r[f"{m}:catchment_pct"] for r in sel]
             mean = np.array([v["mean"] for v in s])
             err = np.array([[v["mean"] - v["min"] for v in s], [v["max"] - v["mean"] for v in s]])
-            ax.errorbar(k + 0.06 * (i - 1), mean, yerr=err, marker="o", ms=4, capsize=3, color=f"C{i}",
-                        label=LABELS[m])
+            ax.errorbar(k + 0.06 * (i - 1), mean, yerr=err, marker="o", ms=4, capsize=3, color=f"C{i}", label=LABELS[m])
         ax.set_title(name, fontsize=10)
         ax.set_xticks(range(ENVS[name] + 1))
         ax.set_xlabel("hidden landmarks k")
@@ -106,6 +141,9 @@ def figure(ctx, rows: list[dict]) -> None:
     handles, labels = axes.ravel()[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8, frameon=False)
     fig.set_layout_engine("tight", rect=(0, 0.06, 1, 1))
-    ctx.figure("gap_matching_catchment_vs_k.png", fig,
-               "Catchment of DELV with a compass vs the number of hidden landmarks k, linear rotational matching "
-               "(thesis) and gap-aware matching (bars: min-max over the choices of hidden landmarks).")
+    ctx.figure(
+        "gap_matching_catchment_vs_k.png",
+        fig,
+        "Catchment of DELV with a compass vs the number of hidden landmarks k, linear rotational matching "
+        "(thesis) and gap-aware matching (bars: min-max over the choices of hidden landmarks).",
+    )

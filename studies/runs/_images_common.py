@@ -56,8 +56,19 @@ def ideal_map(world_name: str, method: str, **options) -> VectorMap:
     gray channel over the docs/model.md §2.3 `walls` background (the images' wall texture)."""
     iw = image_world(world_name)
     obs = iw.obstacles()
-    env = make_env([tuple(c) for c in obs["cylinders"]], home=iw.home,
-                   arena=tuple(float(v) for v in np.asarray(iw.world.arena)), name=world_name)
-    return delvjax.vector_map(env, method, spacing=iw.spacing, d=iw.spacing, heading_deg=0.0,
-                              clearance=iw.clearance, program=METHODS,
-                              **{"channel": CHANNEL, "background": "walls", **options})
+    env = make_env(
+        [tuple(c) for c in obs["cylinders"]],
+        home=iw.home,
+        arena=tuple(float(v) for v in np.asarray(iw.world.arena)),
+        name=world_name,
+    )
+    return delvjax.vector_map(
+        env,
+        method,
+        spacing=iw.spacing,
+        d=iw.spacing,
+        heading_deg=0.0,
+        clearance=iw.clearance,
+        program=METHODS,
+        **{"channel": CHANNEL, "background": "walls", **options},
+    )

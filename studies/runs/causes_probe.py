@@ -48,8 +48,10 @@ def pixels(spacing: float = 50.0, ds=(20.0, 50.0, 100.0), widths=(360, 1440)) ->
             row[f"d={d:g}"] = float(np.asarray(vm.error_deg)[np.asarray(vm.included)].mean())
         out["env1_mean_error_deg"][n_pix] = row
         r3 = random_env(103, 3, pad_to=PAD)
-        out["random3_curve_deg"][n_pix] = [r["mean_deg"] for r in curve(r3, delvjax.vector_map(
-            r3, method="delv", spacing=spacing, seed=0, n_pix=n_pix))]
+        out["random3_curve_deg"][n_pix] = [
+            r["mean_deg"]
+            for r in curve(r3, delvjax.vector_map(r3, method="delv", spacing=spacing, seed=0, n_pix=n_pix))
+        ]
     return out
 
 
@@ -73,8 +75,9 @@ def env3_variants(n: int, jitter: float, seed: int = 0) -> list:
     return out
 
 
-def env3_layouts(n: int = 60, spacing: float = 50.0, acv_jitter: float = 150.0, delv_jitter: float = 70.0,
-                 delv_variants: int = 12) -> dict:
+def env3_layouts(
+    n: int = 60, spacing: float = 50.0, acv_jitter: float = 150.0, delv_jitter: float = 70.0, delv_variants: int = 12
+) -> dict:
     """ACV's e > 45° % (k = 0) over env3 variants moved up to `acv_jitter` cm, and DELV-compass's mean
     catchment over the four single hidden landmarks (k = 1, default rules) over `delv_variants`
     variants moved up to `delv_jitter` cm."""
@@ -86,12 +89,26 @@ def env3_layouts(n: int = 60, spacing: float = 50.0, acv_jitter: float = 150.0, 
     method = program("delv-compass", PROGRAM)[0]
     for e in env3_variants(delv_variants, delv_jitter, seed=0):
         masks, hidden, ks = stacked_masks(e, 1)
-        c = rollouts.catchment_area(e, method, Sensor(), spacing=spacing, key=jax.random.PRNGKey(0), masks=masks[ks == 1],
-                                    hidden=[h for h, k in zip(hidden, ks) if k == 1], home_radius=HOME_RADIUS,
-                                    lanes=128, **RULES["default"])
+        c = rollouts.catchment_area(
+            e,
+            method,
+            Sensor(),
+            spacing=spacing,
+            key=jax.random.PRNGKey(0),
+            masks=masks[ks == 1],
+            hidden=[h for h, k in zip(hidden, ks) if k == 1],
+            home_radius=HOME_RADIUS,
+            lanes=128,
+            **RULES["default"],
+        )
         delv.append(float(np.mean([r["catchment_pct"] for r in rollouts.catchment_summary(c)["per_mask"]])))
-    return {"acv_gt45_k0_pct": acv, "delv_compass_catchment_k1_pct": delv,
-            "acv_jitter_cm": acv_jitter, "delv_jitter_cm": delv_jitter, "spacing_cm": spacing}
+    return {
+        "acv_gt45_k0_pct": acv,
+        "delv_compass_catchment_k1_pct": delv,
+        "acv_jitter_cm": acv_jitter,
+        "delv_jitter_cm": delv_jitter,
+        "spacing_cm": spacing,
+    }
 
 
 def main() -> None:
@@ -101,8 +118,10 @@ def main() -> None:
     a = p.parse_args()
     px = pixels(a.spacing)
     lay = env3_layouts(a.variants, a.spacing)
-    for name, v in (("ACV e>45 % (k = 0)", lay["acv_gt45_k0_pct"]),
-                    ("DELV-compass catchment % (k = 1)", lay["delv_compass_catchment_k1_pct"])):
+    for name, v in (
+        ("ACV e>45 % (k = 0)", lay["acv_gt45_k0_pct"]),
+        ("DELV-compass catchment % (k = 1)", lay["delv_compass_catchment_k1_pct"]),
+    ):
         print(f"env3 variants, {name}: n {len(v)}, min {min(v):.1f}, median {np.median(v):.1f}, max {max(v):.1f}")
     print(json.dumps({"pixels": px, "env3": lay}, indent=1))
 

@@ -9,7 +9,18 @@ from __future__ import annotations
 
 from delvjax.plots._maps import error_curve_figure
 
-from ._common import (LABEL, curve, curve_means, curves_rows, env, map_numbers, panel_figure, success_set, trajectory_set, vector_map)
+from ._common import (
+    LABEL,
+    curve,
+    curve_means,
+    curves_rows,
+    env,
+    map_numbers,
+    panel_figure,
+    success_set,
+    trajectory_set,
+    vector_map,
+)
 
 TITLE = "DELV vs ACV vs ALV with a compass (Figs 5.6-5.8)"
 STEPS = 10
@@ -30,21 +41,47 @@ def run(ctx) -> None:
             ctx.number(f"error_curve:{name}:{m}", curve_means(curves[LABEL[m]]))
             ctx.number(f"map:{name}:{m}:mean_error_deg", s["mean_error_deg"])
             ctx.number(f"map:{name}:{m}:gt45_pct", s["gt45_pct"])
-            rows.append({"env": name, "method": LABEL[m], "mean error °": s["mean_error_deg"], "e>45 %": s["gt45_pct"],
-                         "e>90 %": s["gt90_pct"], "invalid points": s["invalid"]})
+            rows.append(
+                {
+                    "env": name,
+                    "method": LABEL[m],
+                    "mean error °": s["mean_error_deg"],
+                    "e>45 %": s["gt45_pct"],
+                    "e>90 %": s["gt90_pct"],
+                    "invalid points": s["invalid"],
+                }
+            )
             items.append((f"{LABEL[m]}: mean error {s['mean_error_deg']:.1f}°", e, vm))
-        ctx.figure(f"fig5_6_vector_maps_{name}.png", panel_figure(items, spacing, classes=True,
-                                                                  title=f"With a compass, {name}"),
-                   f"Fig 5.6: homing vectors of DELV, ACV and ALV with a compass on {name}, error classes marked.")
-        ctx.figure(f"fig5_7a_error_curves_{name}.png", error_curve_figure(curves, f"With a compass, {name} (Fig 5.7a)"),
-                   f"Fig 5.7a: mean angular error vs distance from home on {name} (95 % t intervals).")
+        ctx.figure(
+            f"fig5_6_vector_maps_{name}.png",
+            panel_figure(items, spacing, classes=True, title=f"With a compass, {name}"),
+            f"Fig 5.6: homing vectors of DELV, ACV and ALV with a compass on {name}, error classes marked.",
+        )
+        ctx.figure(
+            f"fig5_7a_error_curves_{name}.png",
+            error_curve_figure(curves, f"With a compass, {name} (Fig 5.7a)"),
+            f"Fig 5.7a: mean angular error vs distance from home on {name} (95 % t intervals).",
+        )
         ctx.csv(f"fig5_7a_error_curves_{name}.csv", rows=curves_rows(curves))
         ctx.step(name)
     ctx.table("vector_maps", "Vector-map errors with a compass", rows, source="Figs 5.6-5.7a")
     e = env("env1")
-    success_set(ctx, e, METHODS, "fig5_7b_success_rate", "env1, with a compass",
-                "Fig 5.7b: success rate vs release distance, 95 % Wilson intervals; default and physical rules.",
-                source="Fig 5.7b", note="The thesis prints no numbers for this figure.")
-    trajectory_set(ctx, e, METHODS, "fig5_8_trajectories", "Same release points, with a compass, env1 (Fig 5.8)",
-                   f"Fig 5.8: homing paths of DELV, ACV and ALV from the same {N_STARTS} seeded release points.",
-                   N_STARTS)
+    success_set(
+        ctx,
+        e,
+        METHODS,
+        "fig5_7b_success_rate",
+        "env1, with a compass",
+        "Fig 5.7b: success rate vs release distance, 95 % Wilson intervals; default and physical rules.",
+        source="Fig 5.7b",
+        note="The thesis prints no numbers for this figure.",
+    )
+    trajectory_set(
+        ctx,
+        e,
+        METHODS,
+        "fig5_8_trajectories",
+        "Same release points, with a compass, env1 (Fig 5.8)",
+        f"Fig 5.8: homing paths of DELV, ACV and ALV from the same {N_STARTS} seeded release points.",
+        N_STARTS,
+    )

@@ -25,20 +25,36 @@ def layout_rows() -> list[dict]:
         d = env_to_dict(delvjax.load_env(name))
         hx, hy = d["home"]
         for i, lm in enumerate(d["landmarks"]):
-            rows.append({"env": name, "landmark": i, "x": lm["x"], "y": lm["y"], "r": lm["r"],
-                         "bearing from home °": math.degrees(math.atan2(lm["y"] - hy, lm["x"] - hx)) % 360,
-                         "distance from home cm": math.hypot(lm["x"] - hx, lm["y"] - hy)})
+            rows.append(
+                {
+                    "env": name,
+                    "landmark": i,
+                    "x": lm["x"],
+                    "y": lm["y"],
+                    "r": lm["r"],
+                    "bearing from home °": math.degrees(math.atan2(lm["y"] - hy, lm["x"] - hx)) % 360,
+                    "distance from home cm": math.hypot(lm["x"] - hx, lm["y"] - hy),
+                }
+            )
     return rows
 
 
 def run(ctx) -> None:
     envs = [delvjax.load_env(n) for n in PRESETS]
-    ctx.figure("environments.png", environments_figure(envs),
-               "The built-in environments: arena 1000 x 1000 cm, home (black square) at (500, 500). "
-               + "; ".join(f"{n}: {PRESET_DESCRIPTIONS[n]}" for n in ("env1", "env2", "env3")) + ".")
-    ctx.table("landmarks", "Landmarks of the built-in environments", layout_rows(),
-              note="The thesis gives no coordinates; ours follow its descriptions (docs/env1.md explains env1). "
-                   "ring4 and env2 are the same layout (four landmarks 250 cm from home at 45/135/225/315°).")
+    ctx.figure(
+        "environments.png",
+        environments_figure(envs),
+        "The built-in environments: arena 1000 x 1000 cm, home (black square) at (500, 500). "
+        + "; ".join(f"{n}: {PRESET_DESCRIPTIONS[n]}" for n in ("env1", "env2", "env3"))
+        + ".",
+    )
+    ctx.table(
+        "landmarks",
+        "Landmarks of the built-in environments",
+        layout_rows(),
+        note="The thesis gives no coordinates; ours follow its descriptions (docs/env1.md explains env1). "
+        "ring4 and env2 are the same layout (four landmarks 250 cm from home at 45/135/225/315°).",
+    )
     for e in envs:
         ctx.json(f"envs/{e.name}.json", env_to_dict(e))
     ctx.step("environments")

@@ -33,13 +33,23 @@ FACTORS = {  # factor -> (values, label, values of --quick)
 def _database(factor: str, value, seed: int):
     """The robot database with one setting changed, and the rings of the home record."""
     if factor == "cols":
-        return database("robot", ImageSettings(camera=camera(cols=int(value)), pixel_noise=CAMERA_NOISE.pixel_noise,
-                                               gain_noise=CAMERA_NOISE.gain_noise), seed), None
+        return database(
+            "robot",
+            ImageSettings(
+                camera=camera(cols=int(value)), pixel_noise=CAMERA_NOISE.pixel_noise, gain_noise=CAMERA_NOISE.gain_noise
+            ),
+            seed,
+        ), None
     if factor == "pixel_noise":
-        return database("robot", ImageSettings(pixel_noise=float(value), gain_noise=CAMERA_NOISE.gain_noise), seed), None
+        return database(
+            "robot", ImageSettings(pixel_noise=float(value), gain_noise=CAMERA_NOISE.gain_noise), seed
+        ), None
     if factor == "light_turn_deg":
-        turned = ImageSettings(pixel_noise=CAMERA_NOISE.pixel_noise, gain_noise=CAMERA_NOISE.gain_noise,
-                               light_azimuth_deg=45.0 + float(value))
+        turned = ImageSettings(
+            pixel_noise=CAMERA_NOISE.pixel_noise,
+            gain_noise=CAMERA_NOISE.gain_noise,
+            light_azimuth_deg=45.0 + float(value),
+        )
         db = database("robot", turned, seed)
         home = database("robot", seed=seed)  # the home record under the world's light (azimuth 45°)
         return db, home.rings
@@ -53,19 +63,32 @@ def run(ctx) -> None:
     ideal = {m: numbers(ideal_map("robot", m))["mean_error_deg"] for m in METHODS}
     rows = []
     for factor, (values, label, quick_values) in FACTORS.items():
-        for v in (quick_values if quick else values):
+        for v in quick_values if quick else values:
             db, home_rings = _database(factor, v, ctx.settings.seed)
             for m in METHODS:
                 s = numbers(image_map(db, m, home_rings=home_rings))
-                rows.append({"factor": factor, "value": v, "method": LABEL[m], "mean error °": s["mean_error_deg"],
-                             "e>45 %": s["gt45_pct"], "e>90 %": s["gt90_pct"], "invalid": s["invalid"],
-                             "ideal rings: mean error °": ideal[m]})
+                rows.append(
+                    {
+                        "factor": factor,
+                        "value": v,
+                        "method": LABEL[m],
+                        "mean error °": s["mean_error_deg"],
+                        "e>45 %": s["gt45_pct"],
+                        "e>90 %": s["gt90_pct"],
+                        "invalid": s["invalid"],
+                        "ideal rings: mean error °": ideal[m],
+                    }
+                )
                 ctx.number(f"image_effects:{factor}={v}:{m}:mean_error_deg", s["mean_error_deg"])
         ctx.step(factor)
-    ctx.table("image_effects", "Mean angular error on rendered robot images as one setting of the image path changes",
-              rows, source="beyond the thesis",
-              note="Defaults: 360 x 60 panorama, 10° band, red ±20°, camera noise 0.02 with 3 % gain noise, light at "
-                   "45°. The ideal-ring column is the ring model on the same layout and grid.")
+    ctx.table(
+        "image_effects",
+        "Mean angular error on rendered robot images as one setting of the image path changes",
+        rows,
+        source="beyond the thesis",
+        note="Defaults: 360 x 60 panorama, 10° band, red ±20°, camera noise 0.02 with 3 % gain noise, light at "
+        "45°. The ideal-ring column is the ring model on the same layout and grid.",
+    )
     fig, axes = subplots(1, len(FACTORS), figsize=(3.6 * len(FACTORS), 3.6), sharey=True)
     for ax, (factor, (_, label, _)) in zip(axes, FACTORS.items()):
         for i, m in enumerate(METHODS):
@@ -79,5 +102,9 @@ def run(ctx) -> None:
     axes[0].legend(fontsize=7)
     fig.suptitle("Image path settings against the ideal rings (dotted), robot world")
     fig.set_layout_engine("tight")
-    ctx.figure("image_effects.png", fig, "Mean angular error of each method as one image setting changes; dotted: "
-                                         "the same method on the ideal rings of the ring model.")
+    ctx.figure(
+        "image_effects.png",
+        fig,
+        "Mean angular error of each method as one image setting changes; dotted: "
+        "the same method on the ideal rings of the ring model.",
+    )

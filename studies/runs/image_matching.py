@@ -12,7 +12,23 @@ import numpy as np
 
 from delvjax.plots._maps import error_curve_figure
 
-from ._common import (LABEL, RULES, as_vector_map, catchment, curve, curve_means, curves_rows, env, inside_hull, map_numbers, outcome_counts, panel_figure, rule_suffix, success_set, trajectory_set)
+from ._common import (
+    LABEL,
+    RULES,
+    as_vector_map,
+    catchment,
+    curve,
+    curve_means,
+    curves_rows,
+    env,
+    inside_hull,
+    map_numbers,
+    outcome_counts,
+    panel_figure,
+    rule_suffix,
+    success_set,
+    trajectory_set,
+)
 
 TITLE = "DELV vs predictive image matching, no compass (Figs 4.9-4.11)"
 STEPS = 8
@@ -45,22 +61,53 @@ def run(ctx) -> None:
                 ctx.number(f"map:env1:{m}:mean_error_deg", s["mean_error_deg"])
                 items.append((f"{LABEL[m]}: mean error {s['mean_error_deg']:.1f}°, catchment {pct:.1f} %", e, vm))
             counts = outcome_counts(c)
-            rows.append({"method": LABEL[m], "rules": rules, "catchment %": pct,
-                         "failures timeout/landmark/arena": f"{counts['timeout']}/{counts['landmark']}/{counts['arena']}",
-                         "fail inside hull %": fail_in, "fail outside hull %": fail_out,
-                         "mean error °": s["mean_error_deg"]})
+            rows.append(
+                {
+                    "method": LABEL[m],
+                    "rules": rules,
+                    "catchment %": pct,
+                    "failures timeout/landmark/arena": f"{counts['timeout']}/{counts['landmark']}/{counts['arena']}",
+                    "fail inside hull %": fail_in,
+                    "fail outside hull %": fail_out,
+                    "mean error °": s["mean_error_deg"],
+                }
+            )
             ctx.step(f"catchment {m} {rules}")
-    ctx.table("catchment_delv_vs_warping", "Catchment and failures by region, env1", rows, source="Figs 4.9-4.11",
-              note="The thesis prints no numbers for these figures. Hull: the convex hull of the landmark centres.")
-    ctx.figure("fig4_9_vector_maps.png", panel_figure(items, spacing, title="env1, no compass, random headings"),
-               "Fig 4.9: homing vectors of DELV (a) and predictive image matching (b).")
-    ctx.figure("fig4_10a_error_curves.png", error_curve_figure(curves, "DELV vs image matching, env1 (Fig 4.10a)"),
-               "Fig 4.10a: mean angular error vs distance from home (95 % t intervals).")
+    ctx.table(
+        "catchment_delv_vs_warping",
+        "Catchment and failures by region, env1",
+        rows,
+        source="Figs 4.9-4.11",
+        note="The thesis prints no numbers for these figures. Hull: the convex hull of the landmark centres.",
+    )
+    ctx.figure(
+        "fig4_9_vector_maps.png",
+        panel_figure(items, spacing, title="env1, no compass, random headings"),
+        "Fig 4.9: homing vectors of DELV (a) and predictive image matching (b).",
+    )
+    ctx.figure(
+        "fig4_10a_error_curves.png",
+        error_curve_figure(curves, "DELV vs image matching, env1 (Fig 4.10a)"),
+        "Fig 4.10a: mean angular error vs distance from home (95 % t intervals).",
+    )
     ctx.csv("fig4_10a_error_curves.csv", rows=curves_rows(curves))
-    success_set(ctx, e, METHODS, "fig4_10b_success_rate", "env1, no compass",
-                "Fig 4.10b: success rate vs release distance, 95 % Wilson intervals; default and physical rules.",
-                source="Fig 4.10b", note="The thesis: DELV > 90 % at every distance (§4.2).")
-    trajectory_set(ctx, e, METHODS, "fig4_11_trajectories", "Same release points, no compass, env1 (Fig 4.11)",
-                   f"Fig 4.11: homing paths of DELV and image matching from the same {N_STARTS} seeded release "
-                   "points.", N_STARTS)
+    success_set(
+        ctx,
+        e,
+        METHODS,
+        "fig4_10b_success_rate",
+        "env1, no compass",
+        "Fig 4.10b: success rate vs release distance, 95 % Wilson intervals; default and physical rules.",
+        source="Fig 4.10b",
+        note="The thesis: DELV > 90 % at every distance (§4.2).",
+    )
+    trajectory_set(
+        ctx,
+        e,
+        METHODS,
+        "fig4_11_trajectories",
+        "Same release points, no compass, env1 (Fig 4.11)",
+        f"Fig 4.11: homing paths of DELV and image matching from the same {N_STARTS} seeded release points.",
+        N_STARTS,
+    )
     ctx.step("trajectories")

@@ -29,18 +29,35 @@ def run(ctx) -> None:
         w = vector_map(ctx, e, "warping")
         sw = map_numbers(e, w)
         ctx.number(f"error_curve:random{n}:warping", curve_means(curve(e, w)))
-        rows.append({"landmarks": n, "layout seed": 100 + n, "mean error °": s["mean_error_deg"],
-                     "e>45 %": s["gt45_pct"], "e>90 %": s["gt90_pct"],
-                     "largest bin mean error °": max(curve_means(curves[label])),
-                     "image matching mean error °": sw["mean_error_deg"], "image matching e>45 %": sw["gt45_pct"]})
+        rows.append(
+            {
+                "landmarks": n,
+                "layout seed": 100 + n,
+                "mean error °": s["mean_error_deg"],
+                "e>45 %": s["gt45_pct"],
+                "e>90 %": s["gt90_pct"],
+                "largest bin mean error °": max(curve_means(curves[label])),
+                "image matching mean error °": sw["mean_error_deg"],
+                "image matching e>45 %": sw["gt45_pct"],
+            }
+        )
         items.append((f"{n} landmarks (layout seed {100 + n}): mean error {s['mean_error_deg']:.1f}°", e, vm))
         ctx.step(label)
-    ctx.table("landmark_number", "DELV without compass (and image matching) in arbitrary layouts", rows,
-              source="Fig 4.8, §4.1",
-              note="Layouts are seeded random (delvjax.envs.random_env); the thesis's are not given.")
-    ctx.figure("fig4_8_landmark_numbers.png", panel_figure(items, ctx.settings.spacing,
-                                                           title="DELV without compass, arbitrary layouts"),
-               "Fig 4.8a-e: homing vectors of DELV without compass with 3, 4 and 5 landmarks.")
-    ctx.figure("fig4_8f_landmark_number_errors.png", error_curve_figure(curves, "DELV, landmark numbers (Fig 4.8f)"),
-               "Fig 4.8f: mean angular error vs distance from home (95 % t intervals).")
+    ctx.table(
+        "landmark_number",
+        "DELV without compass (and image matching) in arbitrary layouts",
+        rows,
+        source="Fig 4.8, §4.1",
+        note="Layouts are seeded random (delvjax.envs.random_env); the thesis's are not given.",
+    )
+    ctx.figure(
+        "fig4_8_landmark_numbers.png",
+        panel_figure(items, ctx.settings.spacing, title="DELV without compass, arbitrary layouts"),
+        "Fig 4.8a-e: homing vectors of DELV without compass with 3, 4 and 5 landmarks.",
+    )
+    ctx.figure(
+        "fig4_8f_landmark_number_errors.png",
+        error_curve_figure(curves, "DELV, landmark numbers (Fig 4.8f)"),
+        "Fig 4.8f: mean angular error vs distance from home (95 % t intervals).",
+    )
     ctx.csv("fig4_8f_landmark_number_errors.csv", rows=curves_rows(curves))

@@ -25,27 +25,57 @@ def run(ctx) -> None:
     steps = 10 if quick else 60
     rows, layouts = [], {}
     for name, k in cases:
-        r = optimise_layout(env(name), "delv", occlude=k, spacing=ctx.settings.spacing, seed=ctx.settings.seed,
-                            steps=steps)
+        r = optimise_layout(
+            env(name), "delv", occlude=k, spacing=ctx.settings.spacing, seed=ctx.settings.seed, steps=steps
+        )
         before, after = r.rows
         key = f"{name}:delv" + (f":occlude={k}" if k else "")
         for row in r.rows:
-            rows.append({"env": name, "occlude": k, **{c: row[c] for c in ("layout", "catchment_pct", "catchment_min_pct",
-                                                                             "gt45_pct", "gt90_pct", "soft_objective")},
-                         "steps": len(r.objective) - 1, "seconds": r.seconds})
+            rows.append(
+                {
+                    "env": name,
+                    "occlude": k,
+                    **{
+                        c: row[c]
+                        for c in (
+                            "layout",
+                            "catchment_pct",
+                            "catchment_min_pct",
+                            "gt45_pct",
+                            "gt90_pct",
+                            "soft_objective",
+                        )
+                    },
+                    "steps": len(r.objective) - 1,
+                    "seconds": r.seconds,
+                }
+            )
         ctx.number(f"layout:{key}:catchment_pct", [before["catchment_pct"], after["catchment_pct"]])
         ctx.number(f"layout:{key}:gt45_pct", [before["gt45_pct"], after["gt45_pct"]])
-        layouts[key] = {"start": env_to_dict(r.start), "optimised": env_to_dict(r.optimised),
-                        "moved_cm": np.hypot(*(np.asarray(r.optimised.landmarks)[np.asarray(r.optimised.valid), :2]
-                                               - np.asarray(r.start.landmarks)[np.asarray(r.start.valid), :2]).T).tolist()}
-        ctx.figure(f"layout_{name}{'_occlude' + str(k) if k else ''}.png", layout_figure(r, ctx.settings.spacing),
-                   f"{name}, DELV{' with ' + str(k) + ' landmark(s) hidden' if k else ''}: the thesis's layout and the "
-                   "optimised one (catchment squares, vector map), and the soft objective per BFGS step.")
+        layouts[key] = {
+            "start": env_to_dict(r.start),
+            "optimised": env_to_dict(r.optimised),
+            "moved_cm": np.hypot(
+                *(
+                    np.asarray(r.optimised.landmarks)[np.asarray(r.optimised.valid), :2]
+                    - np.asarray(r.start.landmarks)[np.asarray(r.start.valid), :2]
+                ).T
+            ).tolist(),
+        }
+        ctx.figure(
+            f"layout_{name}{'_occlude' + str(k) if k else ''}.png",
+            layout_figure(r, ctx.settings.spacing),
+            f"{name}, DELV{' with ' + str(k) + ' landmark(s) hidden' if k else ''}: the thesis's layout and the "
+            "optimised one (catchment squares, vector map), and the soft objective per BFGS step.",
+        )
         ctx.step(key)
-    ctx.table("layouts", "DELV on the thesis's layouts and on layouts optimised for it (ordinary evaluation)", rows,
-              source="beyond the thesis",
-              note="Landmarks move, radii stay; each stays r + 40 cm from home and pairs r_i + r_j + 20 cm apart. "
-                   "The objective is the soft quality on a 50 cm grid; the table is the ordinary evaluation.",
-              columns=["env", "occlude", "layout", "catchment_pct", "catchment_min_pct", "gt45_pct", "gt90_pct",
-                       "steps"])
+    ctx.table(
+        "layouts",
+        "DELV on the thesis's layouts and on layouts optimised for it (ordinary evaluation)",
+        rows,
+        source="beyond the thesis",
+        note="Landmarks move, radii stay; each stays r + 40 cm from home and pairs r_i + r_j + 20 cm apart. "
+        "The objective is the soft quality on a 50 cm grid; the table is the ordinary evaluation.",
+        columns=["env", "occlude", "layout", "catchment_pct", "catchment_min_pct", "gt45_pct", "gt90_pct", "steps"],
+    )
     ctx.json("layouts.json", layouts)

@@ -31,20 +31,39 @@ def run(ctx) -> None:
         c = catchment_numbers(paths)
         ctx.number(f"natural_images:{m}:mean_error_deg", s["mean_error_deg"])
         ctx.number(f"natural_images:{m}:catchment_pct", c["catchment_pct"])
-        rows.append({"method": LABEL[m], "images: mean error °": s["mean_error_deg"], "images: e>45 %": s["gt45_pct"],
-                     "catchment %": c["catchment_pct"],
-                     "landmark hits %": c["landmark_pct"], "invalid": s["invalid"]})
+        rows.append(
+            {
+                "method": LABEL[m],
+                "images: mean error °": s["mean_error_deg"],
+                "images: e>45 %": s["gt45_pct"],
+                "catchment %": c["catchment_pct"],
+                "landmark hits %": c["landmark_pct"],
+                "invalid": s["invalid"],
+            }
+        )
         if m == "delv":
             trips = database_rollouts(db, vm, np.asarray(STARTS), seed=ctx.settings.seed, max_steps=60)
-            ctx.figure("fig4_24_natural.png", paths_figure(db, vm, trips, "DELV with natural landmarks (Fig 4.24)"),
-                       "Fig 4.24: (a) homing paths from four release points (nearest-snapshot rollouts), (b) the vector "
-                       "map; boxes: table, lecture desk, drawer; disc: flower pot.")
-            ctx.csv("fig4_24_paths.csv", rows=[
-                {"start": i, "step": t, "x": float(x), "y": float(y), "outcome": OUTCOMES[int(trips.outcome[i])]}
-                for i in range(len(STARTS)) for t, (x, y) in enumerate(np.asarray(trips.path[i]))])
+            ctx.figure(
+                "fig4_24_natural.png",
+                paths_figure(db, vm, trips, "DELV with natural landmarks (Fig 4.24)"),
+                "Fig 4.24: (a) homing paths from four release points (nearest-snapshot rollouts), (b) the vector "
+                "map; boxes: table, lecture desk, drawer; disc: flower pot.",
+            )
+            ctx.csv(
+                "fig4_24_paths.csv",
+                rows=[
+                    {"start": i, "step": t, "x": float(x), "y": float(y), "outcome": OUTCOMES[int(trips.outcome[i])]}
+                    for i in range(len(STARTS))
+                    for t, (x, y) in enumerate(np.asarray(trips.path[i]))
+                ],
+            )
         ctx.step(m)
-    ctx.table("natural_images", "Homing with natural landmarks on rendered images", rows,
-              source="Fig 4.24",
-              note="Landmarks: every saturated colour (the walls, floor and ceiling are grey; the thesis used "
-                   "mean-shift segmentation). Catchment: nearest-snapshot rollouts every 40 cm, a trial that walks "
-                   "into furniture fails.")
+    ctx.table(
+        "natural_images",
+        "Homing with natural landmarks on rendered images",
+        rows,
+        source="Fig 4.24",
+        note="Landmarks: every saturated colour (the walls, floor and ceiling are grey; the thesis used "
+        "mean-shift segmentation). Catchment: nearest-snapshot rollouts every 40 cm, a trial that walks "
+        "into furniture fails.",
+    )

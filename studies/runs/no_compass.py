@@ -10,7 +10,20 @@ from __future__ import annotations
 from delvjax.plots._maps import error_curve_figure
 from .. import thesis
 
-from ._common import (RULES, RULES_NOTE, as_vector_map, catchment, catchment_columns, catchment_figure, curve, curve_means, curves_rows, env, map_numbers, panel_figure)
+from ._common import (
+    RULES,
+    RULES_NOTE,
+    as_vector_map,
+    catchment,
+    catchment_columns,
+    catchment_figure,
+    curve,
+    curve_means,
+    curves_rows,
+    env,
+    map_numbers,
+    panel_figure,
+)
 
 TITLE = "DELV without a compass, environments 1-3 (Figs 4.2-4.5)"
 STEPS = 3
@@ -33,20 +46,43 @@ def run(ctx) -> None:
         thesis_pct = thesis.CATCHMENT["fig4_5"][name]["delv"][0]
         row = {"env": name, "thesis %": thesis_pct}
         catchment_columns(ctx, f"catchment:{name}:delv", res, row)
-        row.update({"points": int(s["points"]), "mean error °": s["mean_error_deg"], "e>45 %": s["gt45_pct"],
-                    "e>45 inside hull %": s["gt45_inside_hull_pct"], "e>45 outside hull %": s["gt45_outside_hull_pct"]})
+        row.update(
+            {
+                "points": int(s["points"]),
+                "mean error °": s["mean_error_deg"],
+                "e>45 %": s["gt45_pct"],
+                "e>45 inside hull %": s["gt45_inside_hull_pct"],
+                "e>45 outside hull %": s["gt45_outside_hull_pct"],
+            }
+        )
         rows.append(row)
         items.append((f"{name}: mean error {s['mean_error_deg']:.1f}°, e>45 {s['gt45_pct']:.1f} %", e, vm))
         catch_items.append((f"{name}: {row['ours default %']:.2f} % (thesis {thesis_pct:.2f} %)", e, res["default"]))
-    ctx.table("catchment_fig4_5", "Catchment area and errors of DELV without compass", rows, source="Fig 4.5, §4.2",
-              note=RULES_NOTE)
-    ctx.figure("fig4_2_vector_maps.png", panel_figure(items, spacing, title="DELV without compass, random headings"),
-               "Fig 4.2: homing vectors of DELV without compass on env1-3 (release heading random per point).")
-    ctx.figure("fig4_3_error_classes.png", panel_figure(items, spacing, classes=True,
-                                                        title="DELV without compass: angular error classes"),
-               "Fig 4.3: grid points with angular error 45-90° (stars) and > 90° (triangles).")
-    ctx.figure("fig4_4_error_curves.png", error_curve_figure(curves, "DELV without compass (Fig 4.4)"),
-               "Fig 4.4: mean angular error vs distance from home, 95 % Student-t intervals.")
+    ctx.table(
+        "catchment_fig4_5",
+        "Catchment area and errors of DELV without compass",
+        rows,
+        source="Fig 4.5, §4.2",
+        note=RULES_NOTE,
+    )
+    ctx.figure(
+        "fig4_2_vector_maps.png",
+        panel_figure(items, spacing, title="DELV without compass, random headings"),
+        "Fig 4.2: homing vectors of DELV without compass on env1-3 (release heading random per point).",
+    )
+    ctx.figure(
+        "fig4_3_error_classes.png",
+        panel_figure(items, spacing, classes=True, title="DELV without compass: angular error classes"),
+        "Fig 4.3: grid points with angular error 45-90° (stars) and > 90° (triangles).",
+    )
+    ctx.figure(
+        "fig4_4_error_curves.png",
+        error_curve_figure(curves, "DELV without compass (Fig 4.4)"),
+        "Fig 4.4: mean angular error vs distance from home, 95 % Student-t intervals.",
+    )
     ctx.csv("fig4_4_error_curves.csv", rows=curves_rows(curves))
-    ctx.figure("fig4_5_catchment.png", catchment_figure(catch_items, spacing, "DELV without compass: catchment area"),
-               "Fig 4.5: release points from which DELV without compass reaches home (default rules).")
+    ctx.figure(
+        "fig4_5_catchment.png",
+        catchment_figure(catch_items, spacing, "DELV without compass: catchment area"),
+        "Fig 4.5: release points from which DELV without compass reaches home (default rules).",
+    )

@@ -60,33 +60,54 @@ def run(ctx) -> None:
             res = rule_catchments(e, m, sensor, spacing, key, masks, hidden, settings.lanes)
             summaries = {rules: rollouts.catchment_summary(c)["per_mask"] for rules, c in res.items()}
             for i, row in enumerate(summaries["default"]):
-                mask_rows.append({"env": name, "method": m, "k": int(ks[i]), "hidden": " ".join(map(str, row["hidden"])),
-                                  "gt45_pct": row["gt45_pct"], "gt90_pct": row["gt90_pct"],
-                                  **{f"{rules}_{f}": summaries[rules][i][f] for rules in RULES
-                                     for f in ("catchment_pct", "timeout_count", "landmark_count", "arena_count")}})
+                mask_rows.append(
+                    {
+                        "env": name,
+                        "method": m,
+                        "k": int(ks[i]),
+                        "hidden": " ".join(map(str, row["hidden"])),
+                        "gt45_pct": row["gt45_pct"],
+                        "gt90_pct": row["gt90_pct"],
+                        **{
+                            f"{rules}_{f}": summaries[rules][i][f]
+                            for rules in RULES
+                            for f in ("catchment_pct", "timeout_count", "landmark_count", "arena_count")
+                        },
+                    }
+                )
             for k in range(k_max + 1):
                 sel = np.flatnonzero(ks == k)
                 row = {"env": name, "method": m, "k": k, "choices": len(sel)}
                 for field in ("gt45_pct", "gt90_pct"):
                     row[field] = spread([summaries["default"][i][field] for i in sel])
-                row["choice_catchments"] = [(summaries["default"][i]["hidden"], summaries["default"][i]["catchment_pct"])
-                                            for i in sel]
+                row["choice_catchments"] = [
+                    (summaries["default"][i]["hidden"], summaries["default"][i]["catchment_pct"]) for i in sel
+                ]
                 for rules in RULES:
                     row[f"catchment_{rules}"] = spread([summaries[rules][i]["catchment_pct"] for i in sel])
-                    row[f"failures_{rules}"] = {f: int(sum(summaries[rules][i][f"{f}_count"] for i in sel))
-                                                for f in ("timeout", "landmark", "arena")}
+                    row[f"failures_{rules}"] = {
+                        f: int(sum(summaries[rules][i][f"{f}_count"] for i in sel))
+                        for f in ("timeout", "landmark", "arena")
+                    }
                 per_k.append(row)
-            for field, getter in (("gt45", lambda r: r["gt45_pct"]["mean"]), ("gt90", lambda r: r["gt90_pct"]["mean"]),
-                                  ("catchment", lambda r: r["catchment_default"]["mean"]),
-                                  ("catchment:physical", lambda r: r["catchment_physical"]["mean"])):
+            for field, getter in (
+                ("gt45", lambda r: r["gt45_pct"]["mean"]),
+                ("gt90", lambda r: r["gt90_pct"]["mean"]),
+                ("catchment", lambda r: r["catchment_default"]["mean"]),
+                ("catchment:physical", lambda r: r["catchment_physical"]["mean"]),
+            ):
                 rows_m = [r for r in per_k if r["env"] == name and r["method"] == m]
                 ctx.number(f"occlusion:{name}:{m}:{field}", [getter(r) for r in rows_m])
             if name == "env1" and m == "delv-compass":
                 fig5_10 = {"env": e, "result": res["default"], "ks": ks}
             if m == "delv-compass":  # the same masks, grid and streams with gap-aware matching
-                summary = {m: summaries["default"],
-                           **{other: gap_matching.gap_aware_summary(e, masks, hidden, spacing, settings, other)
-                              for other in gap_matching.METHODS[1:]}}
+                summary = {
+                    m: summaries["default"],
+                    **{
+                        other: gap_matching.gap_aware_summary(e, masks, hidden, spacing, settings, other)
+                        for other in gap_matching.METHODS[1:]
+                    },
+                }
                 rows, choices = gap_matching.layout_rows(ctx, name, ks, hidden, summary)
                 gap_rows, gap_choices = gap_rows + rows, gap_choices + choices
             ctx.step(f"{name} {m}")
@@ -102,9 +123,22 @@ def rule_catchments(e, m: str, sensor: Sensor, spacing: float, key, masks, hidde
     §5): its default catchment is its "homing" run restated (`rollouts.under_release`), one run fewer."""
     method = program(m, PROGRAM)[0]
     view_only = not bool(np.asarray(method.reads_start_view()))
-    res = {rules: rollouts.catchment_area(e.arrays(), method, sensor, spacing=spacing, key=key, masks=masks, hidden=hidden,
-                                          home_radius=HOME_RADIUS, lanes=lanes, **RULES[rules])
-           for rules in RULES if not (view_only and rules == "default")}
+    res = {
+        rules: rollouts.catchment_area(
+            e.arrays(),
+            method,
+            sensor,
+            spacing=spacing,
+            key=key,
+            masks=masks,
+            hidden=hidden,
+            home_radius=HOME_RADIUS,
+            lanes=lanes,
+            **RULES[rules],
+        )
+        for rules in RULES
+        if not (view_only and rules == "default")
+    }
     if view_only:
         res["default"] = rollouts.under_release(res["homing"], e.arena, sensor.d)
     return {rules: res[rules] for rules in RULES}
@@ -120,37 +154,53 @@ def layout_rows(per_k: list[dict], envs) -> list[tuple[str, str, dict]]:
 
 
 def tables(ctx, per_k: list[dict]) -> None:
-    for table, source, title, envs in (("table5_1", "Table 5.1", "Error point rates, env1-3", ("env1", "env2", "env3")),
-                                       ("table5_2", "Table 5.2", "Error point rates, L equally spaced landmarks",
-                                        ("ring3", "ring4", "ring5", "ring6"))):
-        rows = [{"env": label, "method": LABEL[r["method"]], "k": r["k"],
-                 "ours e>45 % mean [min-max]": fmt_spread(r["gt45_pct"]),
-                 "thesis e>45 %": thesis_row(table, name, r["method"], r["k"], "gt45"),
-                 "ours e>90 %": r["gt90_pct"]["mean"],
-                 "thesis e>90 %": thesis_row(table, name, r["method"], r["k"], "gt90")}
-                for name, label, r in layout_rows(per_k, envs)]
+    for table, source, title, envs in (
+        ("table5_1", "Table 5.1", "Error point rates, env1-3", ("env1", "env2", "env3")),
+        (
+            "table5_2",
+            "Table 5.2",
+            "Error point rates, L equally spaced landmarks",
+            ("ring3", "ring4", "ring5", "ring6"),
+        ),
+    ):
+        rows = [
+            {
+                "env": label,
+                "method": LABEL[r["method"]],
+                "k": r["k"],
+                "ours e>45 % mean [min-max]": fmt_spread(r["gt45_pct"]),
+                "thesis e>45 %": thesis_row(table, name, r["method"], r["k"], "gt45"),
+                "ours e>90 %": r["gt90_pct"]["mean"],
+                "thesis e>90 %": thesis_row(table, name, r["method"], r["k"], "gt90"),
+            }
+            for name, label, r in layout_rows(per_k, envs)
+        ]
         ctx.table(table, title, rows, source=source, note=NOTE + (RING_NOTE if table == "table5_2" else ""))
-    for table, source, title, envs in (("table5_3", "Table 5.3", "Catchment area, env1-3", ("env1", "env2", "env3")),
-                                       ("table5_4", "Table 5.4", "Catchment area, L equally spaced landmarks",
-                                        ("ring3", "ring4", "ring5", "ring6"))):
+    for table, source, title, envs in (
+        ("table5_3", "Table 5.3", "Catchment area, env1-3", ("env1", "env2", "env3")),
+        ("table5_4", "Table 5.4", "Catchment area, L equally spaced landmarks", ("ring3", "ring4", "ring5", "ring6")),
+    ):
         rows = []
         for name, label, r in layout_rows(per_k, envs):  # tabulation of a few dozen rows
             fd, fp = r["failures_default"], r["failures_physical"]
             thesis_pct = thesis_row(table, name, r["method"], r["k"])
-            row = {"env": label, "method": LABEL[r["method"]],
-                   "k": r["k"], "choices": r["choices"],
-                   "ours default % mean [min-max]": fmt_spread(r["catchment_default"]),
-                   "ours homing-first %": r["catchment_homing"]["mean"],
-                   "ours physical %": r["catchment_physical"]["mean"],
-                   "thesis %": thesis_pct,
-                   f"choices within {CHOICE_TOL:g} points of the thesis": near_thesis(r["choice_catchments"], thesis_pct),
-                   "default failures timeout/arena": f"{fd['timeout']}/{fd['arena']}",
-                   "physical failures timeout/landmark/arena": f"{fp['timeout']}/{fp['landmark']}/{fp['arena']}"}
+            row = {
+                "env": label,
+                "method": LABEL[r["method"]],
+                "k": r["k"],
+                "choices": r["choices"],
+                "ours default % mean [min-max]": fmt_spread(r["catchment_default"]),
+                "ours homing-first %": r["catchment_homing"]["mean"],
+                "ours physical %": r["catchment_physical"]["mean"],
+                "thesis %": thesis_pct,
+                f"choices within {CHOICE_TOL:g} points of the thesis": near_thesis(r["choice_catchments"], thesis_pct),
+                "default failures timeout/arena": f"{fd['timeout']}/{fd['arena']}",
+                "physical failures timeout/landmark/arena": f"{fp['timeout']}/{fp['landmark']}/{fp['arena']}",
+            }
             if table == "table5_3" and name == "env1" and r["method"] == "delv-compass":
                 row["thesis %"] = f"{row['thesis %']} (Fig 5.10: {thesis_row('fig5_10', 'env1', r['method'], r['k'])})"
             rows.append(row)
-        ctx.table(table, title, rows, source=source,
-                  note=NOTE + (FIG5_10_NOTE if table == "table5_3" else RING_NOTE))
+        ctx.table(table, title, rows, source=source, note=NOTE + (FIG5_10_NOTE if table == "table5_3" else RING_NOTE))
 
 
 CHOICE_TOL = 5.0  # points: a choice of hidden landmarks "could give" the thesis's single number within this
@@ -166,24 +216,29 @@ def near_thesis(choices: list, thesis_pct) -> str:
     return f"{len(near)} of {len(choices)}" + (f" (hidden {names})" if near and len(near) < len(choices) else "")
 
 
-NOTE = ("Mean [min-max] over the C(N, k) choices of hidden landmarks. The thesis's L = 4 rows of Tables 5.2 and 5.4 "
-        "copy other rows (DELV and ACV equal environment 1's, ALV environment 2's); our ring4 is the env2 layout, so "
-        "its rows are env2's. DELV lists the current landmarks in the home frame, as ACV does (docs/model.md §3.3; "
-        "the agent-frame list is the gap-matching table's last column). default rules (thesis Algorithm 2): DELV "
-        "first moves d along the release heading and then matches, ALV and ACV turn to their first direction at "
-        "once; the catchment counts grid points at least d from every wall; landmarks are no obstacles. "
-        "homing-first: every first move follows the direction computed at the release point (the earlier default, "
-        "all grid points). physical: Algorithm 2, and a move ending inside a landmark fails.")
-RING_NOTE = (f" ring3, ring5, ring6: grid spacing max(spacing, {RING_SPACING:g}) cm; ring4 (= env2): the env1-3 "
-             "grid.")
-FIG5_10_NOTE = (" The thesis disagrees with itself for DELV on env1: Table 5.3 gives 92.01 / 49.11 / 40.3 % for "
-                "k = 0 / 1 / 2, Fig 5.10's caption 92.01 / 82.04 / 59.11 %; both are shown.")
+NOTE = (
+    "Mean [min-max] over the C(N, k) choices of hidden landmarks. The thesis's L = 4 rows of Tables 5.2 and 5.4 "
+    "copy other rows (DELV and ACV equal environment 1's, ALV environment 2's); our ring4 is the env2 layout, so "
+    "its rows are env2's. DELV lists the current landmarks in the home frame, as ACV does (docs/model.md §3.3; "
+    "the agent-frame list is the gap-matching table's last column). default rules (thesis Algorithm 2): DELV "
+    "first moves d along the release heading and then matches, ALV and ACV turn to their first direction at "
+    "once; the catchment counts grid points at least d from every wall; landmarks are no obstacles. "
+    "homing-first: every first move follows the direction computed at the release point (the earlier default, "
+    "all grid points). physical: Algorithm 2, and a move ending inside a landmark fails."
+)
+RING_NOTE = f" ring3, ring5, ring6: grid spacing max(spacing, {RING_SPACING:g}) cm; ring4 (= env2): the env1-3 grid."
+FIG5_10_NOTE = (
+    " The thesis disagrees with itself for DELV on env1: Table 5.3 gives 92.01 / 49.11 / 40.3 % for "
+    "k = 0 / 1 / 2, Fig 5.10's caption 92.01 / 82.04 / 59.11 %; both are shown."
+)
 
 
 def figures(ctx, per_k: list[dict], fig5_10: dict) -> None:
     spacing = ctx.settings.spacing
-    for field, key, ylabel, name in (("catchment_default", "table5_3", "catchment area (%)", "catchment_vs_k.png"),
-                                     ("gt45_pct", "table5_1", "error points e > 45° (%)", "error_points_vs_k.png")):
+    for field, key, ylabel, name in (
+        ("catchment_default", "table5_3", "catchment area (%)", "catchment_vs_k.png"),
+        ("gt45_pct", "table5_1", "error points e > 45° (%)", "error_points_vs_k.png"),
+    ):
         envs = list(ENVS)
         fig, axes = subplots(2, 3, figsize=(13, 7.6), sharey=True)
         for ax, env_name in zip(axes.ravel(), envs):
@@ -192,13 +247,33 @@ def figures(ctx, per_k: list[dict], fig5_10: dict) -> None:
                 sel = [r for r in per_k if r["env"] == env_name and r["method"] == m]
                 k = np.array([r["k"] for r in sel])
                 mean = np.array([r[field]["mean"] for r in sel])
-                err = np.array([[r[field]["mean"] - r[field]["min"] for r in sel],
-                                [r[field]["max"] - r[field]["mean"] for r in sel]])
-                ax.errorbar(k + 0.06 * (i - 1), mean, yerr=err, marker="o", ms=4, capsize=3, color=f"C{i}",
-                            label=f"{LABEL[m]} (ours, min-max over choices)")
+                err = np.array(
+                    [
+                        [r[field]["mean"] - r[field]["min"] for r in sel],
+                        [r[field]["max"] - r[field]["mean"] for r in sel],
+                    ]
+                )
+                ax.errorbar(
+                    k + 0.06 * (i - 1),
+                    mean,
+                    yerr=err,
+                    marker="o",
+                    ms=4,
+                    capsize=3,
+                    color=f"C{i}",
+                    label=f"{LABEL[m]} (ours, min-max over choices)",
+                )
                 t = [thesis_row(table, env_name, m, int(kk), "gt45" if field == "gt45_pct" else None) for kk in k]
-                ax.plot(k, [np.nan if v is None else v for v in t], "--", marker="s", mfc="none", color=f"C{i}",
-                        alpha=0.8, label=f"{LABEL[m]} (thesis)")
+                ax.plot(
+                    k,
+                    [np.nan if v is None else v for v in t],
+                    "--",
+                    marker="s",
+                    mfc="none",
+                    color=f"C{i}",
+                    alpha=0.8,
+                    label=f"{LABEL[m]} (thesis)",
+                )
             ax.set_title(env_name, fontsize=10)
             ax.set_xticks(range(ENVS[env_name] + 1))
             ax.set_xlabel("hidden landmarks k")
@@ -208,8 +283,12 @@ def figures(ctx, per_k: list[dict], fig5_10: dict) -> None:
         handles, labels = axes.ravel()[0].get_legend_handles_labels()
         fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8, frameon=False)
         fig.set_layout_engine("tight", rect=(0, 0.07, 1, 1))  # applied when drawn (in the figure thread)
-        ctx.figure(name, fig, f"{ylabel} vs the number of hidden landmarks k: ours (solid; bars: min-max over the "
-                              "choices of hidden landmarks) and the thesis (dashed), default rollout rules.")
+        ctx.figure(
+            name,
+            fig,
+            f"{ylabel} vs the number of hidden landmarks k: ours (solid; bars: min-max over the "
+            "choices of hidden landmarks) and the thesis (dashed), default rollout rules.",
+        )
     # Fig 5.9 / 5.10: DELV with a compass on env1, one representative choice per k (nearest the mean).
     c, ks, e = fig5_10["result"], fig5_10["ks"], fig5_10["env"]
     pct = c.catchment_pct()
@@ -220,19 +299,28 @@ def figures(ctx, per_k: list[dict], fig5_10: dict) -> None:
     for ax, i in zip(fig.axes, picks):  # hidden landmarks: hollow, dashed (as in Fig 5.10)
         for j in c.hidden[i]:
             ax.add_patch(Circle(lms[j, :2], lms[j, 2], facecolor="white", edgecolor="black", linestyle="--", zorder=4))
-    ctx.figure("fig5_9_occluded_vector_maps.png", fig,
-               "Fig 5.9: homing vectors with k = 0, 1, 2 hidden landmarks (hollow dashed discs: hidden).")
+    ctx.figure(
+        "fig5_9_occluded_vector_maps.png",
+        fig,
+        "Fig 5.9: homing vectors with k = 0, 1, 2 hidden landmarks (hollow dashed discs: hidden).",
+    )
     fig, axes = subplots(1, 3, figsize=(14.4, 5.2))
     for ax, k, i in zip(axes, range(3), picks):
-        catchment_panel(ax, e, c, i, spacing, title=f"k = {k}: {pct[i]:.2f} % (mean over choices "
-                                                    f"{pct[ks == k].mean():.2f} %)")
-    handles = [Patch(label="release point inside the catchment area", **SQUARE),
-               Line2D([], [], marker=r"$\rightarrow$", color="black", ls="", ms=10, label="first homing direction"),
-               Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
-               Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
-               Line2D([], [], marker="o", mfc="white", mec="black", ls="", ms=9, label="hidden landmark")]
+        catchment_panel(
+            ax, e, c, i, spacing, title=f"k = {k}: {pct[i]:.2f} % (mean over choices {pct[ks == k].mean():.2f} %)"
+        )
+    handles = [
+        Patch(label="release point inside the catchment area", **SQUARE),
+        Line2D([], [], marker=r"$\rightarrow$", color="black", ls="", ms=10, label="first homing direction"),
+        Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
+        Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
+        Line2D([], [], marker="o", mfc="white", mec="black", ls="", ms=9, label="hidden landmark"),
+    ]
     fig.legend(handles=handles, loc="lower center", ncol=5, fontsize=8, frameon=False)
     fig.set_layout_engine("tight", rect=(0, 0.06, 1, 1))  # applied when drawn (in the figure thread)
-    ctx.figure("fig5_10_occluded_catchment.png", fig,
-               "Fig 5.10: catchment of DELV with a compass on env1 with k = 0, 1, 2 hidden landmarks "
-               "(squares: release points that reach home; hollow dashed discs: hidden landmarks).")
+    ctx.figure(
+        "fig5_10_occluded_catchment.png",
+        fig,
+        "Fig 5.10: catchment of DELV with a compass on env1 with k = 0, 1, 2 hidden landmarks "
+        "(squares: release points that reach home; hollow dashed discs: hidden landmarks).",
+    )

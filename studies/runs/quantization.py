@@ -12,7 +12,22 @@ from __future__ import annotations
 from delvjax.plots._maps import error_curve_figure
 from delvjax.plots._rollouts import success_rate_figure
 
-from ._common import (RULES, as_vector_map, catchment, catchment_columns, curve, curve_means, curves_rows, env, map_numbers, panel_figure, rule_suffix, success_summary, success_table, vector_map)
+from ._common import (
+    RULES,
+    as_vector_map,
+    catchment,
+    catchment_columns,
+    curve,
+    curve_means,
+    curves_rows,
+    env,
+    map_numbers,
+    panel_figure,
+    rule_suffix,
+    success_summary,
+    success_table,
+    vector_map,
+)
 
 TITLE = "Quantized distances (Figs 4.12-4.14)"
 STEPS = 7
@@ -51,19 +66,33 @@ def run(ctx) -> None:
         if q is not None and q >= 3:
             items.append((f"{label}: mean error {s['mean_error_deg']:.1f}°", e, vm))
     tables = {r["levels"]: r.pop("_table") for r in rows if "_table" in r}
-    ctx.table("quantization", "DELV without compass on env1 by quantization level", rows, source="Figs 4.12-4.13",
-              note="The thesis prints no numbers for these figures (§4.3, §4.5: fewer levels fail more, "
-                   "three levels already home in most cases).")
-    ctx.figure("fig4_12_quantized_maps.png", panel_figure(items, spacing, title="DELV, quantized distances, env1"),
-               "Fig 4.12: homing vectors with 3, 4 and 5 distance levels.")
-    ctx.figure("fig4_13a_quantization_errors.png", error_curve_figure(curves, "DELV, quantized distances (Fig 4.13a)"),
-               "Fig 4.13a: mean angular error vs distance from home per level (95 % t intervals).")
+    ctx.table(
+        "quantization",
+        "DELV without compass on env1 by quantization level",
+        rows,
+        source="Figs 4.12-4.13",
+        note="The thesis prints no numbers for these figures (§4.3, §4.5: fewer levels fail more, "
+        "three levels already home in most cases).",
+    )
+    ctx.figure(
+        "fig4_12_quantized_maps.png",
+        panel_figure(items, spacing, title="DELV, quantized distances, env1"),
+        "Fig 4.12: homing vectors with 3, 4 and 5 distance levels.",
+    )
+    ctx.figure(
+        "fig4_13a_quantization_errors.png",
+        error_curve_figure(curves, "DELV, quantized distances (Fig 4.13a)"),
+        "Fig 4.13a: mean angular error vs distance from home per level (95 % t intervals).",
+    )
     ctx.csv("fig4_13a_quantization_errors.csv", rows=curves_rows(curves))
-    ctx.figure("fig4_13b_quantization_success.png",
-               success_rate_figure(tables, f"Success rate by quantization level, env1 ({ctx.settings.trials} trials "
-                                           "per distance; Fig 4.13b)"),
-               "Fig 4.13b: success rate vs release distance per level, 95 % Wilson intervals (default rules; the "
-               "table gives both rule sets).")
+    ctx.figure(
+        "fig4_13b_quantization_success.png",
+        success_rate_figure(
+            tables, f"Success rate by quantization level, env1 ({ctx.settings.trials} trials per distance; Fig 4.13b)"
+        ),
+        "Fig 4.13b: success rate vs release distance per level, 95 % Wilson intervals (default rules; the "
+        "table gives both rule sets).",
+    )
     ctx.csv("fig4_13b_quantization_success.csv", rows=[{"levels": k, **r} for k, v in tables.items() for r in v])
     # Fig 4.14: three levels in other layouts.
     items, curves, rows = [], {}, []
@@ -73,11 +102,15 @@ def run(ctx) -> None:
         s = map_numbers(le, vm)
         curves[name] = curve(le, vm)
         ctx.number(f"map:{name}:delv:Q3:mean_error_deg", s["mean_error_deg"])
-        rows.append({"layout": name, "mean error °": s["mean_error_deg"], "e>45 %": s["gt45_pct"],
-                     "e>90 %": s["gt90_pct"]})
+        rows.append(
+            {"layout": name, "mean error °": s["mean_error_deg"], "e>45 %": s["gt45_pct"], "e>90 %": s["gt90_pct"]}
+        )
         items.append((f"{name}: mean error {s['mean_error_deg']:.1f}°", le, vm))
     ctx.step("layouts")
     ctx.table("quantization_layouts", "DELV with 3 levels in other layouts", rows, source="Fig 4.14")
-    ctx.figure("fig4_14_layouts.png", panel_figure(items, spacing, title="DELV with 3 distance levels"),
-               "Fig 4.14: homing vectors with 3 distance levels in other layouts.")
+    ctx.figure(
+        "fig4_14_layouts.png",
+        panel_figure(items, spacing, title="DELV with 3 distance levels"),
+        "Fig 4.14: homing vectors with 3 distance levels in other layouts.",
+    )
     ctx.csv("fig4_14_layout_errors.csv", rows=curves_rows(curves))

@@ -43,17 +43,24 @@ def pipeline_panels(db) -> object:
 
     img, pano, mask = images(iw.world, iw.extractor)
     ring = np.asarray(db.rings.snapshots.mask)[db.home_index]
-    return pipeline_figure(np.asarray(img), file_columns(np.asarray(pano)), file_columns(np.asarray(mask), axis=-1),
-                           file_columns(ring, axis=-1),
-                           "The image pipeline at home (robot world)")
+    return pipeline_figure(
+        np.asarray(img),
+        file_columns(np.asarray(pano)),
+        file_columns(np.asarray(mask), axis=-1),
+        file_columns(ring, axis=-1),
+        "The image pipeline at home (robot world)",
+    )
 
 
 def run(ctx) -> None:
     db = database("robot", seed=ctx.settings.seed)
     home = db.home
-    ctx.figure("fig4_17_pipeline.png", pipeline_panels(db),
-               "Figs 4.16b-4.17: catadioptric image at home, unwrapped panorama, red pixels found by the HSV "
-               "threshold, and the 1D ring of the 10° band (columns in the file order: unmirrored).")
+    ctx.figure(
+        "fig4_17_pipeline.png",
+        pipeline_panels(db),
+        "Figs 4.16b-4.17: catadioptric image at home, unwrapped panorama, red pixels found by the HSV "
+        "threshold, and the 1D ring of the 10° band (columns in the file order: unmirrored).",
+    )
     rows, curves, maps = [], {}, {}
     runs = (("delv", "gray"), ("warping", "gray")) + ((("warping", "mask"),) if not preview(ctx) else ())
     for m, channel in runs:  # (the mask ring is another program: the full run only)
@@ -70,36 +77,62 @@ def run(ctx) -> None:
         ctx.number(f"robot_images:{tag}:mean_error_deg", s["mean_error_deg"])
         ctx.number(f"robot_images:{tag}:ideal_mean_error_deg", si["mean_error_deg"])
         ctx.number(f"robot_images:{tag}:catchment_pct", c["catchment_pct"])
-        rows.append({"method": label, "images: mean error °": s["mean_error_deg"], "images: e>45 %": s["gt45_pct"],
-                     "images: e>90 %": s["gt90_pct"], "ideal rings: mean error °": si["mean_error_deg"],
-                     "ideal rings: e>45 %": si["gt45_pct"], "catchment %": c["catchment_pct"],
-                     "invalid": s["invalid"]})
+        rows.append(
+            {
+                "method": label,
+                "images: mean error °": s["mean_error_deg"],
+                "images: e>45 %": s["gt45_pct"],
+                "images: e>90 %": s["gt90_pct"],
+                "ideal rings: mean error °": si["mean_error_deg"],
+                "ideal rings: e>45 %": si["gt45_pct"],
+                "catchment %": c["catchment_pct"],
+                "invalid": s["invalid"],
+            }
+        )
     ctx.step("maps")
     fig, axes = subplots(1, 2, figsize=(12.0, 6.0))
     for ax, (m, (vm, s)), tag in zip(axes, maps.items(), "ab"):
         database_map_figure(db, vm, f"({tag}) {LABEL[m]}: mean error {s['mean_error_deg']:.1f}°", ax=ax)
     fig.set_layout_engine("tight")
-    ctx.figure("fig4_18_robot_maps.png", fig, "Fig 4.18: vector maps from the rendered images, (a) DELV, (b) "
-                                              "predictive image matching on the gray ring (no compass; grid points within 10 cm of a "
-                                              "landmark have no snapshot).")
-    ctx.figure("fig4_19_robot_errors.png", error_curve_figure(curves, "Robot world: images against ideal rings "
-                                                                      "(Fig 4.19)"),
-               "Fig 4.19: mean angular error vs distance from home (95 % t intervals), images and ideal rings.")
+    ctx.figure(
+        "fig4_18_robot_maps.png",
+        fig,
+        "Fig 4.18: vector maps from the rendered images, (a) DELV, (b) "
+        "predictive image matching on the gray ring (no compass; grid points within 10 cm of a "
+        "landmark have no snapshot).",
+    )
+    ctx.figure(
+        "fig4_19_robot_errors.png",
+        error_curve_figure(curves, "Robot world: images against ideal rings (Fig 4.19)"),
+        "Fig 4.19: mean angular error vs distance from home (95 % t intervals), images and ideal rings.",
+    )
     ctx.csv("fig4_19_robot_errors.csv", rows=curves_rows(curves))
-    ctx.table("robot_images", "DELV and image matching on rendered robot images", rows,
-              source="Figs 4.18-4.19",
-              note="The thesis prints no numbers: its robot errors were larger than in simulation, 'most likely due "
-                   "to the landmark detection error'. Catchment: nearest-snapshot rollouts, landmarks ignored. Image "
-                   "matching on the mask ring errs as much on ideal rings: it is the method, not the images.")
+    ctx.table(
+        "robot_images",
+        "DELV and image matching on rendered robot images",
+        rows,
+        source="Figs 4.18-4.19",
+        note="The thesis prints no numbers: its robot errors were larger than in simulation, 'most likely due "
+        "to the landmark detection error'. Catchment: nearest-snapshot rollouts, landmarks ignored. Image "
+        "matching on the mask ring errs as much on ideal rings: it is the method, not the images.",
+    )
     qrows, qcurves, panels = [], {}, []
     for q in LEVELS:  # a traced leaf of DELV: one program for every level
-        vm, ideal = image_map(db, "delv", levels=q, scale=ROBOT_SCALE), ideal_map("robot", "delv", levels=q,
-                                                                                   scale=ROBOT_SCALE)
+        vm, ideal = (
+            image_map(db, "delv", levels=q, scale=ROBOT_SCALE),
+            ideal_map("robot", "delv", levels=q, scale=ROBOT_SCALE),
+        )
         s, si = numbers(vm), numbers(ideal)
         qcurves[f"{q} level{'s' * (q > 1)}"] = curve(vm, home, BIN)
         ctx.number(f"robot_images:delv:Q{q}:mean_error_deg", s["mean_error_deg"])
-        qrows.append({"levels": q, "images: mean error °": s["mean_error_deg"], "images: e>45 %": s["gt45_pct"],
-                      "ideal rings: mean error °": si["mean_error_deg"]})
+        qrows.append(
+            {
+                "levels": q,
+                "images: mean error °": s["mean_error_deg"],
+                "images: e>45 %": s["gt45_pct"],
+                "ideal rings: mean error °": si["mean_error_deg"],
+            }
+        )
         if q != 2:
             panels.append((q, vm, s, perceived(db, DELV(levels=q, scale=ROBOT_SCALE))))
     ctx.step("quantization")
@@ -107,16 +140,27 @@ def run(ctx) -> None:
     for ax, (q, vm, s, where), tag in zip(axes, panels, "abc"):
         database_map_figure(db, vm, f"({tag}) level {q}: mean error {s['mean_error_deg']:.1f}°", ax=ax, perceived=where)
     fig.set_layout_engine("tight")
-    ctx.figure("fig4_20_robot_quantized.png", fig,
-               f"Fig 4.20: DELV with quantized distances (scale {ROBOT_SCALE:g} cm) on the images; white circles: "
-               "the perceived landmark positions of the reference map (outside the panel when beyond the arena).")
-    ctx.figure("fig4_21_robot_quantized_errors.png", error_curve_figure(
-        {k: v for k, v in qcurves.items() if not k.startswith("4")}, "DELV, quantized distances, robot images "
-                                                                     "(Fig 4.21)"),
-               "Fig 4.21: error curves with 1, 2 and 5 levels (95 % t intervals).")
+    ctx.figure(
+        "fig4_20_robot_quantized.png",
+        fig,
+        f"Fig 4.20: DELV with quantized distances (scale {ROBOT_SCALE:g} cm) on the images; white circles: "
+        "the perceived landmark positions of the reference map (outside the panel when beyond the arena).",
+    )
+    ctx.figure(
+        "fig4_21_robot_quantized_errors.png",
+        error_curve_figure(
+            {k: v for k, v in qcurves.items() if not k.startswith("4")},
+            "DELV, quantized distances, robot images (Fig 4.21)",
+        ),
+        "Fig 4.21: error curves with 1, 2 and 5 levels (95 % t intervals).",
+    )
     ctx.csv("fig4_21_robot_quantized_errors.csv", rows=curves_rows(qcurves))
-    ctx.table("robot_images_quantized", "DELV with quantized distances on rendered robot images",
-              qrows, source="Figs 4.20-4.21",
-              note="The thesis: the robot errors 'maintained similar level of errors with respect to the quantization "
-                   "level' as in simulation.")
+    ctx.table(
+        "robot_images_quantized",
+        "DELV with quantized distances on rendered robot images",
+        qrows,
+        source="Figs 4.20-4.21",
+        note="The thesis: the robot errors 'maintained similar level of errors with respect to the quantization "
+        "level' as in simulation.",
+    )
     ctx.step("done")

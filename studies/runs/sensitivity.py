@@ -43,9 +43,17 @@ def gain_figure(e, spacing: float, seed: int):
     for ax, m in zip(axes[0], GAIN_METHODS):
         gain, ok = (np.asarray(a) for a in bearing_noise_gain(e, pts, headings, key, Sensor(), REGISTRY[m]))
         ok = ok & inc
-        rows.append({"method": m, "median_gain": float(np.median(gain[ok])), "p90_gain": float(np.percentile(gain[ok], 90))})
-        im = ax.imshow(np.log10(np.where(ok, gain, np.nan).reshape(n, n)), origin="lower", extent=(xmin, xmax, ymin, ymax),
-                       cmap="viridis", vmin=-1, vmax=1.5)
+        rows.append(
+            {"method": m, "median_gain": float(np.median(gain[ok])), "p90_gain": float(np.percentile(gain[ok], 90))}
+        )
+        im = ax.imshow(
+            np.log10(np.where(ok, gain, np.nan).reshape(n, n)),
+            origin="lower",
+            extent=(xmin, xmax, ymin, ymax),
+            cmap="viridis",
+            vmin=-1,
+            vmax=1.5,
+        )
         draw_env(ax, e)
         ax.set_title(f"{m}: median {rows[-1]['median_gain']:.2f}°/°", fontsize=10)
     fig.colorbar(im, ax=axes[0].tolist(), shrink=0.8, label="log10 gain (deg of direction per deg of bearing noise)")
@@ -59,23 +67,39 @@ def run(ctx) -> None:
         ctx.number(f"sensitivity:env1:{m}:quality", r["quality"])
         for name, v in r["per_unit"].items():
             ctx.number(f"sensitivity:env1:{m}:{name}", v)
-    ctx.table("sensitivity_parameters", "Change of homing quality (mean 1 - cos error) per 10 cm of d and per degree "
-              "of each noise sigma, env1", result["parameter_rows"], source="beyond the thesis",
-              note="DELV, ALV, ACV: gradient of the soft quality (reverse mode). Warping: central differences of the "
-                   "ordinary quality; it reads only the current ring image, so d, blob-bearing and odometry noise do "
-                   "not enter it (exactly 0). Methods without a compass have no compass sensitivity.",
-              columns=["method", "parameter", "nominal", "d_quality_per_unit", "quality"])
-    ctx.table("sensitivity_landmarks", "Gradient of the soft homing quality with respect to each landmark of env1",
-              result["landmark_rows"], source="beyond the thesis")
-    ctx.figure("sensitivity_landmarks.png", landmark_figure(result),
-               "Arrows on the landmarks: moving a landmark that way improves homing quality; numbers: |dQ/dx| per metre.")
-    ctx.figure("sensitivity_parameters.png", parameter_figure(result),
-               "Change of homing quality per 10 cm of d and per degree of each noise sigma.")
+    ctx.table(
+        "sensitivity_parameters",
+        "Change of homing quality (mean 1 - cos error) per 10 cm of d and per degree of each noise sigma, env1",
+        result["parameter_rows"],
+        source="beyond the thesis",
+        note="DELV, ALV, ACV: gradient of the soft quality (reverse mode). Warping: central differences of the "
+        "ordinary quality; it reads only the current ring image, so d, blob-bearing and odometry noise do "
+        "not enter it (exactly 0). Methods without a compass have no compass sensitivity.",
+        columns=["method", "parameter", "nominal", "d_quality_per_unit", "quality"],
+    )
+    ctx.table(
+        "sensitivity_landmarks",
+        "Gradient of the soft homing quality with respect to each landmark of env1",
+        result["landmark_rows"],
+        source="beyond the thesis",
+    )
+    ctx.figure(
+        "sensitivity_landmarks.png",
+        landmark_figure(result),
+        "Arrows on the landmarks: moving a landmark that way improves homing quality; numbers: |dQ/dx| per metre.",
+    )
+    ctx.figure(
+        "sensitivity_parameters.png",
+        parameter_figure(result),
+        "Change of homing quality per 10 cm of d and per degree of each noise sigma.",
+    )
     if ctx.settings.quick or ctx.settings.spacing >= 100:  # four more compiled programs: only in a full run
         return
     fig, rows = gain_figure(e, ctx.settings.spacing, ctx.settings.seed)
     ctx.csv("bearing_gain.csv", rows=rows)
-    ctx.figure("bearing_gain.png", fig, "First-order std of the homing direction per degree of bearing noise (jax.grad).")
+    ctx.figure(
+        "bearing_gain.png", fig, "First-order std of the homing direction per degree of bearing noise (jax.grad)."
+    )
 
 
 def main(argv: list[str] | None = None) -> int:

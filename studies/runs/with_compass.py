@@ -13,7 +13,21 @@ import numpy as np
 from delvjax.plots._maps import error_curve_figure
 from .. import thesis
 
-from ._common import (RULES, RULES_NOTE, as_vector_map, catchment, catchment_columns, catchment_figure, curve, curve_means, curves_rows, env, map_numbers, panel_figure, vector_map)
+from ._common import (
+    RULES,
+    RULES_NOTE,
+    as_vector_map,
+    catchment,
+    catchment_columns,
+    catchment_figure,
+    curve,
+    curve_means,
+    curves_rows,
+    env,
+    map_numbers,
+    panel_figure,
+    vector_map,
+)
 
 TITLE = "DELV with a compass, environments 1-3 (Figs 5.2-5.5)"
 STEPS = 3
@@ -30,7 +44,10 @@ def heading_slips(with_compass, without) -> dict:
     inc = np.asarray(with_compass.included)
     a, b = np.asarray(with_compass.error_deg)[inc], np.asarray(without.error_deg)[inc]
     slip = b > a + SLIP_DEG
-    return {"pct": 100.0 * float(slip.mean()), "mean_without_deg": float(b[~slip].mean()) if (~slip).any() else float("nan")}
+    return {
+        "pct": 100.0 * float(slip.mean()),
+        "mean_without_deg": float(b[~slip].mean()) if (~slip).any() else float("nan"),
+    }
 
 
 def run(ctx) -> None:
@@ -50,25 +67,47 @@ def run(ctx) -> None:
         ctx.number(f"map:{name}:delv-compass:mean_error_deg", s["mean_error_deg"])
         ctx.number(f"error_curve:{name}:delv-compass", curve_means(curves[f"{name} with compass"]))
         thesis_pct = thesis.CATCHMENT["fig5_5"][name]["delv-compass"][0]
-        row = {"env": name, "thesis with compass %": thesis_pct,
-               "thesis without compass % (Fig 4.5)": thesis.CATCHMENT["fig4_5"][name]["delv"][0]}
+        row = {
+            "env": name,
+            "thesis with compass %": thesis_pct,
+            "thesis without compass % (Fig 4.5)": thesis.CATCHMENT["fig4_5"][name]["delv"][0],
+        }
         catchment_columns(ctx, f"catchment:{name}:delv-compass", res, row)
-        row.update({"mean error ° (compass)": s["mean_error_deg"], "mean error ° (no compass)":
-                    no_compass["mean_error_deg"], "e>45 %": s["gt45_pct"],
-                    f"no compass > compass + {SLIP_DEG:g}° (% of points)": slips["pct"],
-                    "mean error ° (no compass, other points)": slips["mean_without_deg"]})
+        row.update(
+            {
+                "mean error ° (compass)": s["mean_error_deg"],
+                "mean error ° (no compass)": no_compass["mean_error_deg"],
+                "e>45 %": s["gt45_pct"],
+                f"no compass > compass + {SLIP_DEG:g}° (% of points)": slips["pct"],
+                "mean error ° (no compass, other points)": slips["mean_without_deg"],
+            }
+        )
         rows.append(row)
         items.append((f"{name}: mean error {s['mean_error_deg']:.1f}°, e>45 {s['gt45_pct']:.1f} %", e, vm))
         catch_items.append((f"{name}: {row['ours default %']:.2f} % (thesis {thesis_pct:.2f} %)", e, res["default"]))
         ctx.step(name)
-    ctx.table("catchment_fig5_5", "Catchment area and errors of DELV with a compass", rows, source="Fig 5.5, §5.2",
-              note=RULES_NOTE + f" Without compass DELV also estimates its heading (§3.2.3): the share of grid points "
-                   f"where it errs more than {SLIP_DEG:g}° beyond DELV with a compass (a wrong heading hypothesis "
-                   "won) and its mean error at the other points.")
-    ctx.figure("fig5_2_vector_maps.png", panel_figure(items, spacing, classes=True, title="DELV with a compass"),
-               "Figs 5.2-5.3: homing vectors of DELV with a compass, error classes marked.")
-    ctx.figure("fig5_4_error_curves.png", error_curve_figure(curves, "DELV with a compass (Fig 5.4)"),
-               "Fig 5.4: mean angular error vs distance from home (95 % t intervals).")
+    ctx.table(
+        "catchment_fig5_5",
+        "Catchment area and errors of DELV with a compass",
+        rows,
+        source="Fig 5.5, §5.2",
+        note=RULES_NOTE + f" Without compass DELV also estimates its heading (§3.2.3): the share of grid points "
+        f"where it errs more than {SLIP_DEG:g}° beyond DELV with a compass (a wrong heading hypothesis "
+        "won) and its mean error at the other points.",
+    )
+    ctx.figure(
+        "fig5_2_vector_maps.png",
+        panel_figure(items, spacing, classes=True, title="DELV with a compass"),
+        "Figs 5.2-5.3: homing vectors of DELV with a compass, error classes marked.",
+    )
+    ctx.figure(
+        "fig5_4_error_curves.png",
+        error_curve_figure(curves, "DELV with a compass (Fig 5.4)"),
+        "Fig 5.4: mean angular error vs distance from home (95 % t intervals).",
+    )
     ctx.csv("fig5_4_error_curves.csv", rows=curves_rows(curves))
-    ctx.figure("fig5_5_catchment.png", catchment_figure(catch_items, spacing, "DELV with a compass: catchment area"),
-               "Fig 5.5: release points from which DELV with a compass reaches home (default rules).")
+    ctx.figure(
+        "fig5_5_catchment.png",
+        catchment_figure(catch_items, spacing, "DELV with a compass: catchment area"),
+        "Fig 5.5: release points from which DELV with a compass reaches home (default rules).",
+    )

@@ -59,8 +59,16 @@ from ._claims_ch5 import CLAIMS_CH5 as _CLAIMS_CH5
 from ._notes import NOTES
 from ._numbers import CATCHMENT, CATCHMENT_SOURCES, ERROR_POINTS, ERROR_POINTS_SOURCES, OTHER
 
-__all__ = ["THESIS_TITLE", "CATCHMENT", "CATCHMENT_SOURCES", "ERROR_POINTS", "ERROR_POINTS_SOURCES",
-           "OTHER", "NOTES", "CLAIMS"]
+__all__ = [
+    "THESIS_TITLE",
+    "CATCHMENT",
+    "CATCHMENT_SOURCES",
+    "ERROR_POINTS",
+    "ERROR_POINTS_SOURCES",
+    "OTHER",
+    "NOTES",
+    "CLAIMS",
+]
 
 THESIS_TITLE = "Distance-Estimated Landmark Vector Model for Vision-Based Homing Navigation"
 

@@ -1,4 +1,5 @@
 """Synthetic numbers for the claim-check tests (tests/studies/test_claim_checks.py): builders of the study numbers each check reads."""
+
 from __future__ import annotations
 
 import re
@@ -34,6 +35,7 @@ def occl(field: str, values: dict) -> dict:
 
 # --- the thesis's own tables as synthetic numbers ---------------------------------------------
 
+
 def t53(method):  # Table 5.3 (env1-3) and 5.4 (rings) catchments
     out = {e: thesis.CATCHMENT["table5_3"][e][method] for e in E3}
     out.update({e: thesis.CATCHMENT["table5_4"][e][method] for e in ("ring3", "ring5", "ring6")})
@@ -46,8 +48,10 @@ def t51(method, field):  # Tables 5.1-5.2 error point rates
     return out
 
 
-THESIS_OCCLUSION = merge(*(occl("catchment", {(e, m): v for e, v in t53(m).items()}) for m in TRUE3),
-                         *(occl(f, {(e, m): v for e, v in t51(m, f).items()}) for m in TRUE3 for f in ("gt45", "gt90")))
+THESIS_OCCLUSION = merge(
+    *(occl("catchment", {(e, m): v for e, v in t53(m).items()}) for m in TRUE3),
+    *(occl(f, {(e, m): v for e, v in t51(m, f).items()}) for m in TRUE3 for f in ("gt45", "gt90")),
+)
 
 
 def same(field, value, envs=E3, methods=("delv-compass",)):
@@ -56,18 +60,23 @@ def same(field, value, envs=E3, methods=("delv-compass",)):
 
 # --- cases: claim -> {expected verdict (or "verdict#name"): numbers} ------------------------------
 
+
 def c_catch_envs(a, b, c):
     return {"catchment:env1:delv": a, "catchment:env2:delv": b, "catchment:env3:delv": c}
 
 
 def hull(ins, out):
-    return merge({f"map:{e}:delv:gt45_inside_hull_pct": ins for e in E3},
-                 {f"map:{e}:delv:gt45_outside_hull_pct": out for e in E3})
+    return merge(
+        {f"map:{e}:delv:gt45_inside_hull_pct": ins for e in E3},
+        {f"map:{e}:delv:gt45_outside_hull_pct": out for e in E3},
+    )
 
 
 def steps(curves, catch):
-    return merge({f"error_curve:env1:delv:d={d}": c for d, c in zip((20, 50, 100, 150), curves)},
-                 {f"catchment:env1:delv:d={d}": c for d, c in zip((20, 50, 100, 150), catch)})
+    return merge(
+        {f"error_curve:env1:delv:d={d}": c for d, c in zip((20, 50, 100, 150), curves)},
+        {f"catchment:env1:delv:d={d}": c for d, c in zip((20, 50, 100, 150), catch)},
+    )
 
 
 def step_errors(*e):
@@ -82,13 +91,17 @@ def flat(v, n=14):
     return [float(v)] * n
 
 
-RISING = [10.0 + 2 * i for i in range(14)]      # error growing with the distance from home
+RISING = [10.0 + 2 * i for i in range(14)]  # error growing with the distance from home
 FALLING = list(reversed(RISING))
 
 
 def warping_err(d, w, md, mw):
-    return {"error_curve:env1:delv": d, "error_curve:env1:warping": w,
-            "map:env1:delv:mean_error_deg": md, "map:env1:warping:mean_error_deg": mw}
+    return {
+        "error_curve:env1:delv": d,
+        "error_curve:env1:warping": w,
+        "map:env1:delv:mean_error_deg": md,
+        "map:env1:warping:mean_error_deg": mw,
+    }
 
 
 def success(d, p):
@@ -96,7 +109,7 @@ def success(d, p):
 
 
 FAR_LOW = [100.0, 100.0, 100.0, 99.0, 98.0, 97.0, 96.0, 94.0, 92.0]
-OURS_PHYSICAL = [100.0, 99.0, 95.0, 96.0, 90.0, 86.0, 87.0, 82.0, 85.0]   # the full run's physical rules
+OURS_PHYSICAL = [100.0, 99.0, 95.0, 96.0, 90.0, 86.0, 87.0, 82.0, 85.0]  # the full run's physical rules
 WARPING_SUCCESS = [100.0, 100.0, 100.0, 77.0, 70.0, 63.0, 53.0, 53.0, 51.0]
 
 
@@ -105,47 +118,68 @@ def beats(d, w, cd, cw):
 
 
 def fail_hull(wi, wo, do):
-    return {"fail_inside_hull:env1:warping": wi, "fail_outside_hull:env1:warping": wo, "fail_outside_hull:env1:delv": do}
+    return {
+        "fail_inside_hull:env1:warping": wi,
+        "fail_outside_hull:env1:warping": wo,
+        "fail_outside_hull:env1:delv": do,
+    }
 
 
 def quant(cont, levels):
-    return merge({"error_curve:env1:delv:continuous": cont},
-                 {f"error_curve:env1:delv:Q{q}": levels for q in (1, 2, 3, 4, 5)})
+    return merge(
+        {"error_curve:env1:delv:continuous": cont}, {f"error_curve:env1:delv:Q{q}": levels for q in (1, 2, 3, 4, 5)}
+    )
 
 
 def levels_success(s):
     tags = ("Q1", "Q2", "Q3", "Q5", "continuous")
-    return merge({f"success_overall:env1:delv:{t}": v for t, v in zip(tags, s)},
-                 {f"catchment:env1:delv:{t}": v for t, v in zip(tags, s)})
+    return merge(
+        {f"success_overall:env1:delv:{t}": v for t, v in zip(tags, s)},
+        {f"catchment:env1:delv:{t}": v for t, v in zip(tags, s)},
+    )
 
 
 def surround(sur, edge):
-    return merge({f"map:{e}:delv:Q3:mean_error_deg": sur for e in ("env2", "ring3", "ring6")},
-                 {"map:env3:delv:Q3:mean_error_deg": edge})
+    return merge(
+        {f"map:{e}:delv:Q3:mean_error_deg": sur for e in ("env2", "ring3", "ring6")},
+        {"map:env3:delv:Q3:mean_error_deg": edge},
+    )
 
 
 def robot(img, ideal, catch):
-    return {"robot_images:delv:mean_error_deg": img, "robot_images:delv:ideal_mean_error_deg": ideal,
-            "robot_images:delv:catchment_pct": catch}
+    return {
+        "robot_images:delv:mean_error_deg": img,
+        "robot_images:delv:ideal_mean_error_deg": ideal,
+        "robot_images:delv:catchment_pct": catch,
+    }
 
 
 def robot_vs(ed, ew, cd, cw):
-    return {"robot_images:delv:mean_error_deg": ed, "robot_images:warping:mean_error_deg": ew,
-            "robot_images:delv:catchment_pct": cd, "robot_images:warping:catchment_pct": cw}
+    return {
+        "robot_images:delv:mean_error_deg": ed,
+        "robot_images:warping:mean_error_deg": ew,
+        "robot_images:delv:catchment_pct": cd,
+        "robot_images:warping:catchment_pct": cw,
+    }
 
 
 def robot_q(base, q):
-    return merge({"robot_images:delv:mean_error_deg": base},
-                 {f"robot_images:delv:Q{k}:mean_error_deg": q for k in (1, 2, 4, 5)})
+    return merge(
+        {"robot_images:delv:mean_error_deg": base}, {f"robot_images:delv:Q{k}:mean_error_deg": q for k in (1, 2, 4, 5)}
+    )
 
 
 def compass_err(w, wo):
-    return merge({f"map:{e}:delv-compass:mean_error_deg": w for e in E3}, {f"map:{e}:delv:mean_error_deg": wo for e in E3})
+    return merge(
+        {f"map:{e}:delv-compass:mean_error_deg": w for e in E3}, {f"map:{e}:delv:mean_error_deg": wo for e in E3}
+    )
 
 
 def compass_catch(pairs):
-    return merge({f"catchment:{e}:delv-compass": a for e, (a, b) in zip(E3, pairs)},
-                 {f"catchment:{e}:delv": b for e, (a, b) in zip(E3, pairs)})
+    return merge(
+        {f"catchment:{e}:delv-compass": a for e, (a, b) in zip(E3, pairs)},
+        {f"catchment:{e}:delv": b for e, (a, b) in zip(E3, pairs)},
+    )
 
 
 def curves3(d, acv, alv):
@@ -161,12 +195,17 @@ def tolerate(catch, gt45, others=(90.0, 40.0, 30.0)):
 
 
 def pair(field, d, a, envs=E3):
-    return merge(occl(field, {(e, "delv-compass"): list(d) for e in envs}), occl(field, {(e, "acv"): list(a) for e in envs}))
+    return merge(
+        occl(field, {(e, "delv-compass"): list(d) for e in envs}), occl(field, {(e, "acv"): list(a) for e in envs})
+    )
 
 
 def alv_case(alv, gt45, d):
-    return merge(occl("catchment", {(e, "alv"): list(alv) for e in L6}), occl("gt45", {(e, "alv"): list(gt45) for e in L6}),
-                 occl("catchment", {(e, "delv-compass"): list(d) for e in L6}))
+    return merge(
+        occl("catchment", {(e, "alv"): list(alv) for e in L6}),
+        occl("gt45", {(e, "alv"): list(gt45) for e in L6}),
+        occl("catchment", {(e, "delv-compass"): list(d) for e in L6}),
+    )
 
 
 def k3(values):
@@ -177,9 +216,11 @@ TRUE_ERR = {"delv-compass": 8.0, "acv": 26.0, "alv": 9.0}
 
 
 def visual_err(rise, gt5=20.0):
-    return merge({f"map:env1:{m}:mean_error_deg": v for m, v in TRUE_ERR.items()},
-                 {f"visual:{bg}:heading_error_gt5_pct": gt5 for bg in BGS},
-                 {f"visual:{bg}:{m}:mean_error_deg": TRUE_ERR[m] + rise[m] for bg in BGS for m in TRUE3})
+    return merge(
+        {f"map:env1:{m}:mean_error_deg": v for m, v in TRUE_ERR.items()},
+        {f"visual:{bg}:heading_error_gt5_pct": gt5 for bg in BGS},
+        {f"visual:{bg}:{m}:mean_error_deg": TRUE_ERR[m] + rise[m] for bg in BGS for m in TRUE3},
+    )
 
 
 def visual_catch(c):
@@ -187,17 +228,21 @@ def visual_catch(c):
 
 
 def dependence(visual, rise, noise_end):
-    return merge({f"catchment:env1:{m}": 100.0 for m in TRUE3},
-                 {f"visual:{bg}:{m}:catchment": v for bg in BGS for m, v in zip(TRUE3, visual)},
-                 {f"map:env1:{m}:mean_error_deg": TRUE_ERR[m] for m in TRUE3},
-                 {f"visual:{bg}:{m}:mean_error_deg": TRUE_ERR[m] + r for bg in BGS for m, r in zip(TRUE3, rise)},
-                 {f"compass_noise:env1:{m}:catchment": [100.0, 100.0, 99.0, 98.0, 97.0, v]
-                  for m, v in zip(TRUE3, noise_end)})
+    return merge(
+        {f"catchment:env1:{m}": 100.0 for m in TRUE3},
+        {f"visual:{bg}:{m}:catchment": v for bg in BGS for m, v in zip(TRUE3, visual)},
+        {f"map:env1:{m}:mean_error_deg": TRUE_ERR[m] for m in TRUE3},
+        {f"visual:{bg}:{m}:mean_error_deg": TRUE_ERR[m] + r for bg in BGS for m, r in zip(TRUE3, rise)},
+        {f"compass_noise:env1:{m}:catchment": [100.0, 100.0, 99.0, 98.0, 97.0, v] for m, v in zip(TRUE3, noise_end)},
+    )
 
 
 def similar(ed, ea, cd, ca):
-    return merge({f"map:{e}:delv-compass:mean_error_deg": ed for e in E3}, {f"map:{e}:acv:mean_error_deg": ea for e in E3},
-                 pair("catchment", [cd, cd / 2, cd / 3], [ca, ca / 2, ca / 3]))
+    return merge(
+        {f"map:{e}:delv-compass:mean_error_deg": ed for e in E3},
+        {f"map:{e}:acv:mean_error_deg": ea for e in E3},
+        pair("catchment", [cd, cd / 2, cd / 3], [ca, ca / 2, ca / 3]),
+    )
 
 
 T51_GT45 = merge(occl("gt45", {(e, m): t51(m, "gt45")[e] for e in E3 for m in ("delv-compass", "acv")}))

@@ -22,6 +22,7 @@ CYLINDERS = [(45.0, 135.0, 8.0), (130.0, 150.0, 8.0), (145.0, 55.0, 8.0), (55.0,
 
 # --- helpers ---------------------------------------------------------------------------------------
 
+
 def render_db(out: Path, *extra: str) -> Path:
     assert main(["images", "render-db", "robot", "--out", str(out), *extra]) == 0
     return out
@@ -84,6 +85,7 @@ def write_plain(folder: Path, src: Path, rows: list[dict[str, str]], rename=lamb
         for i, r in enumerate(rows):
             name = rename(i, r["Filename"])
             shutil.copyfile(src / r["Filename"], folder / name)
-            w.writerow([name, float(r["X [mm]"]) / 10, float(r["Y [mm]"]) / 10]
-                       + ([r["Heading [degrees]"]] if heading else []))
+            w.writerow(
+                [name, float(r["X [mm]"]) / 10, float(r["Y [mm]"]) / 10] + ([r["Heading [degrees]"]] if heading else [])
+            )
     return folder

@@ -14,8 +14,15 @@ from delvjax.options._settings import make_sensor
 
 ARENA = [0.0, 0.0, 1000.0, 1000.0]
 HOME = [500.0, 500.0]
-NOISE = dict(bearing_noise_deg=2.0, step_noise=0.05, turn_noise_deg=3.0, odometry_turn_noise_deg=1.0,
-             compass_noise_deg=2.0, motion_heading_noise_deg=5.0, motion_step_noise=0.1)
+NOISE = dict(
+    bearing_noise_deg=2.0,
+    step_noise=0.05,
+    turn_noise_deg=3.0,
+    odometry_turn_noise_deg=1.0,
+    compass_noise_deg=2.0,
+    motion_heading_noise_deg=5.0,
+    motion_step_noise=0.1,
+)
 # four cylinders [x, y, r] around the default home (explicit: the built-in layouts may change)
 FOUR = np.array([[330.0, 640.0, 30.0], [640.0, 720.0, 40.0], [720.0, 390.0, 25.0], [420.0, 300.0, 35.0]])
 DEFAULT, PHYSICAL = rollouts.DEFAULT_RULES, rollouts.PHYSICAL_RULES
@@ -33,18 +40,40 @@ def random_landmarks(rng, n):
     return np.array(lms)
 
 
-def run(env, starts, heads, method, config=None, lanes=rollouts.DEFAULT_LANES, key=0, masks=None,
-        record_paths=False, first_move="homing", collisions="ignore", program=None):
+def run(
+    env,
+    starts,
+    heads,
+    method,
+    config=None,
+    lanes=rollouts.DEFAULT_LANES,
+    key=0,
+    masks=None,
+    record_paths=False,
+    first_move="homing",
+    collisions="ignore",
+    program=None,
+):
     """`rollouts.run_trials` with trial i on noise stream i under one mask; lanes default as the public API
     (so that these programs are the ones `catchment` and `success_rate` compile)."""
     n = starts.shape[0]
     masks = env.valid[None] if masks is None else masks
     module = registry.METHODS[method] if program is None else registry.program(method, program)[0]
-    return rollouts.run_trials(env, jnp.asarray(starts), jnp.asarray(heads), jnp.arange(n, dtype=jnp.int32),
-                               jnp.zeros(n, jnp.int32), masks, jax.random.PRNGKey(key),
-                               make_sensor() if config is None else config,
-                               module, lanes=lanes, record_paths=record_paths, first_move=first_move,
-                               collisions=collisions)
+    return rollouts.run_trials(
+        env,
+        jnp.asarray(starts),
+        jnp.asarray(heads),
+        jnp.arange(n, dtype=jnp.int32),
+        jnp.zeros(n, jnp.int32),
+        masks,
+        jax.random.PRNGKey(key),
+        make_sensor() if config is None else config,
+        module,
+        lanes=lanes,
+        record_paths=record_paths,
+        first_move=first_move,
+        collisions=collisions,
+    )
 
 
 def angle_diff(a, b):

@@ -50,12 +50,30 @@ def test_a_huge_heading_is_reduced_in_float64_before_the_core():
     assert np.array_equal(np.asarray(a.direction), np.asarray(b.direction), equal_nan=True)
 
 
-@pytest.mark.parametrize("spec, field", [
-    ({"name": "e", "arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": 200, "y": 200, "r": 20}],
-      "lanmarks": []}, "lanmarks"),
-    ({"name": "e", "arena": [0, 0, 1000, 1000], "home": [500, 500],
-      "landmarks": [{"x": 200, "y": 200, "r": 20, "radius": 30}]}, "landmarks[0].radius"),
-])
+@pytest.mark.parametrize(
+    "spec, field",
+    [
+        (
+            {
+                "name": "e",
+                "arena": [0, 0, 1000, 1000],
+                "home": [500, 500],
+                "landmarks": [{"x": 200, "y": 200, "r": 20}],
+                "lanmarks": [],
+            },
+            "lanmarks",
+        ),
+        (
+            {
+                "name": "e",
+                "arena": [0, 0, 1000, 1000],
+                "home": [500, 500],
+                "landmarks": [{"x": 200, "y": 200, "r": 20, "radius": 30}],
+            },
+            "landmarks[0].radius",
+        ),
+    ],
+)
 def test_unknown_fields_of_an_environment_file_are_named(tmp_path, capsys, spec, field):
     path = tmp_path / "env.json"
     path.write_text(json.dumps(spec))
@@ -88,13 +106,16 @@ def test_the_help_says_what_each_noise_perturbs(capsys):
     assert "MFDID (docs/model.md" in text and "rollouts only: error of the executed heading" in text
 
 
-@pytest.mark.parametrize("argv", [
-    ["catchment", "env1", "--max-steps", "0"],
-    ["catchment", "env1", "--method", "alv", "--levels", "3"],
-    ["success-rate", "env1", "--method", "delv,alv", "--levels", "3", "--trials", "2"],
-    ["success-rate", "env1", "--trials", "0"],
-    ["trajectories", "env1", "--start", "330", "640", "--method", "alv", "--home-radius", "-1"],
-])
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["catchment", "env1", "--max-steps", "0"],
+        ["catchment", "env1", "--method", "alv", "--levels", "3"],
+        ["success-rate", "env1", "--method", "delv,alv", "--levels", "3", "--trials", "2"],
+        ["success-rate", "env1", "--trials", "0"],
+        ["trajectories", "env1", "--start", "330", "640", "--method", "alv", "--home-radius", "-1"],
+    ],
+)
 def test_rollout_commands_validate_everything_before_announcing_work(tmp_path, capsys, argv):
     out = tmp_path / "r.csv"
     assert main(argv + ["--out", str(out)]) == 2
@@ -102,11 +123,14 @@ def test_rollout_commands_validate_everything_before_announcing_work(tmp_path, c
     assert not out.exists()
 
 
-@pytest.mark.parametrize("argv, field", [
-    (["vector-map", "env1", "--spacing", "5000"], "spacing"),
-    (["catchment", "env1", "--spacing", "5000"], "spacing"),
-    (["success-rate", "env1", "--distances", "5000", "--trials", "2"], "distances"),
-])
+@pytest.mark.parametrize(
+    "argv, field",
+    [
+        (["vector-map", "env1", "--spacing", "5000"], "spacing"),
+        (["catchment", "env1", "--spacing", "5000"], "spacing"),
+        (["success-rate", "env1", "--distances", "5000", "--trials", "2"], "distances"),
+    ],
+)
 def test_what_cannot_produce_a_result_is_refused(tmp_path, capsys, argv, field):
     out = tmp_path / "r.csv"
     assert main(argv + ["--out", str(out)]) == 2
@@ -114,10 +138,13 @@ def test_what_cannot_produce_a_result_is_refused(tmp_path, capsys, argv, field):
     assert not out.exists()
 
 
-@pytest.mark.parametrize("argv", [
-    ["vector-map", "env1", "--method", "delv", "--hide", "0", "1", "2", "3", "--spacing", "200"],
-    ["catchment", "ring3", "--method", "delv", "--occlude", "3", "--spacing", "200"],
-])
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["vector-map", "env1", "--method", "delv", "--hide", "0", "1", "2", "3", "--spacing", "200"],
+        ["catchment", "ring3", "--method", "delv", "--occlude", "3", "--spacing", "200"],
+    ],
+)
 def test_a_result_with_every_point_invalid_warns_in_one_line(tmp_path, capsys, argv):
     out = tmp_path / "r.csv"
     assert main(argv + ["--out", str(out)]) == 0
@@ -131,5 +158,7 @@ def test_a_channel_for_a_method_that_reads_no_image_is_refused(tmp_path, capsys)
     assert main(["vector-map", "env1", "--method", "delv", "--channel", "gray", "--out", str(out)]) == 2
     assert error_line(capsys).startswith("delvjax: error: channel:")
     assert not out.exists()
-    assert main(["vector-map", "env1", "--method", "warping", "--channel", "gray", "--spacing", "200",
-                 "--out", str(out)]) == 0
+    assert (
+        main(["vector-map", "env1", "--method", "warping", "--channel", "gray", "--spacing", "200", "--out", str(out)])
+        == 0
+    )

@@ -12,16 +12,35 @@ import pytest
 
 from delvjax.cli._main import main
 
-GOOD = {"name": "t", "arena": [0, 0, 1000, 1000], "home": [500, 500],
-        "landmarks": [{"x": 300, "y": 600, "r": 30}, {"x": 700, "y": 650, "r": 20}, {"x": 600, "y": 300, "r": 25}]}
+GOOD = {
+    "name": "t",
+    "arena": [0, 0, 1000, 1000],
+    "home": [500, 500],
+    "landmarks": [{"x": 300, "y": 600, "r": 30}, {"x": 700, "y": 650, "r": 20}, {"x": 600, "y": 300, "r": 25}],
+}
 
 
 def test_vector_map_writes_csv_plot_and_summary(tmp_path):
     out, plot, summary = tmp_path / "m.csv", tmp_path / "m.png", tmp_path / "m.json"
     env = tmp_path / "env.json"
     env.write_text(json.dumps(GOOD))
-    rc = main(["vector-map", str(env), "--method", "delv", "--spacing", "100", "--out", str(out), "--plot", str(plot),
-               "--summary", str(summary), "--classes"])
+    rc = main(
+        [
+            "vector-map",
+            str(env),
+            "--method",
+            "delv",
+            "--spacing",
+            "100",
+            "--out",
+            str(out),
+            "--plot",
+            str(plot),
+            "--summary",
+            str(summary),
+            "--classes",
+        ]
+    )
     assert rc == 0
     rows = list(csv.DictReader(out.open()))
     assert set("x,y,heading_deg,direction_deg,error_deg,valid".split(",")) <= set(rows[0])
@@ -34,8 +53,13 @@ def test_vector_map_writes_csv_plot_and_summary(tmp_path):
 def test_console_script_end_to_end(tmp_path):
     exe = shutil.which("delvjax") or f"{sys.executable} -m delvjax.cli"
     out = tmp_path / "sub" / "alv.csv"
-    res = subprocess.run(f"{exe} vector-map env3 --method alv --spacing 100 --heading-deg 90 --out {out}",
-                         shell=True, capture_output=True, text=True, timeout=300)
+    res = subprocess.run(
+        f"{exe} vector-map env3 --method alv --spacing 100 --heading-deg 90 --out {out}",
+        shell=True,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert res.returncode == 0, res.stderr
     rows = list(csv.DictReader(out.open()))
     assert all(abs(float(r["heading_deg"]) - 90.0) < 1e-3 for r in rows)
@@ -65,7 +89,11 @@ BAD_ENVS = [
     ("missing landmarks", _mut(["landmarks"], KeyError), "landmarks"),
     ("missing r", _mut(["landmarks", 0, "r"], KeyError), "landmarks[0].r"),
     ("non-numeric", _mut(["landmarks", 1, "x"], "far"), "landmarks[1].x"),
-    ("nan", '{"arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": NaN, "y": 1, "r": 1}]}', "landmarks[0].x"),
+    (
+        "nan",
+        '{"arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": NaN, "y": 1, "r": 1}]}',
+        "landmarks[0].x",
+    ),
     ("zero radius", _mut(["landmarks", 2, "r"], 0), "landmarks[2].r"),
     ("negative radius", _mut(["landmarks", 2, "r"], -3), "landmarks[2].r"),
     ("overlap", _mut(["landmarks", 1], {"x": 310, "y": 600, "r": 20}), "landmarks[1]"),
@@ -85,9 +113,15 @@ def test_bad_environment_file(tmp_path, capsys, label, spec, field):
 
 
 BAD_FLAGS = [
-    (["--d", "0"], "d"), (["--d", "-5"], "d"), (["--d", "nan"], "d"), (["--levels", "0"], "levels"),
-    (["--spacing", "-25"], "spacing"), (["--method", "magic"], "method"), (["--background", "sky"], "background"),
-    (["--bearing-noise-deg", "-1"], "bearing_noise_deg"), (["--hide", "7"], "hide"),
+    (["--d", "0"], "d"),
+    (["--d", "-5"], "d"),
+    (["--d", "nan"], "d"),
+    (["--levels", "0"], "levels"),
+    (["--spacing", "-25"], "spacing"),
+    (["--method", "magic"], "method"),
+    (["--background", "sky"], "background"),
+    (["--bearing-noise-deg", "-1"], "bearing_noise_deg"),
+    (["--hide", "7"], "hide"),
 ]
 
 

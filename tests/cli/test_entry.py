@@ -13,9 +13,11 @@ from delvjax.cli._main import build_parser
 
 
 def test_help_loads_neither_jax_nor_a_command():
-    code = ("import sys; from delvjax.cli import main; main(['--help']); "
-            "print(sorted(m for m in ('jax', 'equinox', 'matplotlib', 'xarray', 'PIL', 'delvjax.cli._main') "
-            "if m in sys.modules))")
+    code = (
+        "import sys; from delvjax.cli import main; main(['--help']); "
+        "print(sorted(m for m in ('jax', 'equinox', 'matplotlib', 'xarray', 'PIL', 'delvjax.cli._main') "
+        "if m in sys.modules))"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip().splitlines()[-1] == "[]", out
     assert "optimise-layout" in out
@@ -36,7 +38,9 @@ def test_every_other_call_reaches_the_commands(capsys):
 
 
 def test_names_load_on_first_use():
-    code = ("import sys, delvjax; before = 'jax' in sys.modules; delvjax.DELV(); "
-            "print(before, 'jax' in sys.modules, delvjax.core.maps.SPACING)")
+    code = (
+        "import sys, delvjax; before = 'jax' in sys.modules; delvjax.DELV(); "
+        "print(before, 'jax' in sys.modules, delvjax.core.maps.SPACING)"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.split() == ["False", "True", "25.0"]

@@ -48,8 +48,10 @@ def test_catchment_is_bit_identical_for_1_7_and_256_lanes(method):
 
 @pytest.mark.parametrize("method", ["delv", "warping"])
 def test_vector_map_is_bit_identical_for_every_chunk_size(method):
-    maps = [delvjax.vector_map("env1", method=method, spacing=50.0, batch_size=b, bearing_noise_deg=1.0)
-            for b in (16384, 1, 7, 100)]
+    maps = [
+        delvjax.vector_map("env1", method=method, spacing=50.0, batch_size=b, bearing_noise_deg=1.0)
+        for b in (16384, 1, 7, 100)
+    ]
     for vm in maps[1:]:
         for f in ("direction", "valid", "heading", "error_deg"):
             assert np.array_equal(np.asarray(getattr(vm, f)), np.asarray(getattr(maps[0], f)), equal_nan=True), f

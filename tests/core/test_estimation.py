@@ -22,14 +22,24 @@ def exact_snapshot(points: np.ndarray, pos: np.ndarray, heading: float) -> Snaps
     """A snapshot whose blobs are the exact bearings of `points` (no pixels)."""
     rel = points - pos
     b = np.sort(np.mod(np.arctan2(rel[:, 1], rel[:, 0]) - heading, 2 * np.pi))
-    return Snapshot(mask=jnp.zeros(360, bool), gray=jnp.zeros(360), bearing=jnp.asarray(b, jnp.float32),
-                    width=jnp.zeros(len(b), jnp.float32), valid=jnp.ones(len(b), bool))
+    return Snapshot(
+        mask=jnp.zeros(360, bool),
+        gray=jnp.zeros(360),
+        bearing=jnp.asarray(b, jnp.float32),
+        width=jnp.zeros(len(b), jnp.float32),
+        valid=jnp.ones(len(b), bool),
+    )
 
 
 def exact_move(points, start, heading, d, psi=0.0, compass=0.0) -> UnitMove:
     end = start + d * np.array([np.cos(heading), np.sin(heading)])
-    return UnitMove(start=exact_snapshot(points, start, heading), end=exact_snapshot(points, end, heading + psi),
-                    d_hat=jnp.float32(d), psi_hat=jnp.float32(psi), compass=jnp.float32(compass))
+    return UnitMove(
+        start=exact_snapshot(points, start, heading),
+        end=exact_snapshot(points, end, heading + psi),
+        d_hat=jnp.float32(d),
+        psi_hat=jnp.float32(psi),
+        compass=jnp.float32(compass),
+    )
 
 
 @pytest.mark.parametrize("psi_deg", [0.0, 7.0, -12.0])
@@ -42,8 +52,12 @@ def test_distances_are_exact_with_exact_bearings(psi_deg):
     end = start + d * np.array([np.cos(h), np.sin(h)])
     order_p = np.argsort(np.mod(np.arctan2(*(lms - start).T[::-1]) - h, 2 * np.pi))
     order_c = np.argsort(np.mod(np.arctan2(*(lms - end).T[::-1]) - h - np.radians(psi_deg), 2 * np.pi))
-    np.testing.assert_allclose(np.asarray(start_distances(move, cfg)), np.linalg.norm(lms - start, axis=1)[order_p], rtol=2e-3)
-    np.testing.assert_allclose(np.asarray(end_distances(move, cfg)), np.linalg.norm(lms - end, axis=1)[order_c], rtol=2e-3)
+    np.testing.assert_allclose(
+        np.asarray(start_distances(move, cfg)), np.linalg.norm(lms - start, axis=1)[order_p], rtol=2e-3
+    )
+    np.testing.assert_allclose(
+        np.asarray(end_distances(move, cfg)), np.linalg.norm(lms - end, axis=1)[order_c], rtol=2e-3
+    )
 
 
 def test_undefined_distance_becomes_r_max():
@@ -121,13 +135,18 @@ def test_alv_potential_argument():
 
     for x in np.random.default_rng(0).uniform(100, 900, size=(10, 2)):
         x = jnp.asarray(x)
-        np.testing.assert_allclose(np.asarray(alv(x) - alv(home)), -np.asarray(jax.grad(alv_potential)(x, lms, home)), atol=1e-5)
+        np.testing.assert_allclose(
+            np.asarray(alv(x) - alv(home)), -np.asarray(jax.grad(alv_potential)(x, lms, home)), atol=1e-5
+        )
     np.testing.assert_allclose(np.asarray(jax.grad(alv_potential)(home, lms, home)), 0.0, atol=1e-5)
     hess = np.asarray(jax.hessian(alv_potential)(home, lms, home))
     rel = np.asarray(lms - home)
     norm3 = np.linalg.norm(rel, axis=1) ** 3
-    d_eq314 = sum((rel[i, 0] * rel[j, 1] - rel[j, 0] * rel[i, 1]) ** 2 / (norm3[i] * norm3[j])
-                  for i in range(len(rel)) for j in range(i + 1, len(rel)))
+    d_eq314 = sum(
+        (rel[i, 0] * rel[j, 1] - rel[j, 0] * rel[i, 1]) ** 2 / (norm3[i] * norm3[j])
+        for i in range(len(rel))
+        for j in range(i + 1, len(rel))
+    )
     np.testing.assert_allclose(np.linalg.det(hess), d_eq314, rtol=1e-3)
     assert d_eq314 > 0 and hess[0, 0] > 0
 
@@ -181,8 +200,16 @@ def test_one_pair_with_a_heading_takes_the_first_shift():
     alpha = jnp.array([0.7])
     rot = np.array([[np.cos(0.7), -np.sin(0.7)], [np.sin(0.7), np.cos(0.7)]])
     for ref_ok, cur_ok, expect in [
-        (jnp.array([True, True, True]), jnp.array([True, False, False]), np.asarray(ref_v[0]) - rot @ np.asarray(cur_v[0])),
-        (jnp.array([True, False, False]), jnp.array([True, True, False]), np.asarray(ref_v[0]) - rot @ np.asarray(cur_v[0])),
+        (
+            jnp.array([True, True, True]),
+            jnp.array([True, False, False]),
+            np.asarray(ref_v[0]) - rot @ np.asarray(cur_v[0]),
+        ),
+        (
+            jnp.array([True, False, False]),
+            jnp.array([True, True, False]),
+            np.asarray(ref_v[0]) - rot @ np.asarray(cur_v[0]),
+        ),
     ]:
         p, a, var, n = match_arrangement(ref_v, ref_ok, cur_v, cur_ok, alpha)
         assert int(n) == 1 and float(var) == 0.0 and float(a) == pytest.approx(0.7)
@@ -203,8 +230,11 @@ def test_delv_with_compass_homes_on_one_landmark():
         x = rng.uniform(150.0, 850.0, size=2)
         start = x - 50.0 * np.array([np.cos(h), np.sin(h)])
         rel = lm[0] - start
-        if np.linalg.norm(lm[0] - x) < 100 or np.linalg.norm(x - home) < 100 \
-                or abs(np.sin(np.arctan2(rel[1], rel[0]) - h)) < 0.05:
+        if (
+            np.linalg.norm(lm[0] - x) < 100
+            or np.linalg.norm(x - home) < 100
+            or abs(np.sin(np.arctan2(rel[1], rel[0]) - h)) < 0.05
+        ):
             continue  # no parallax straight ahead/behind (R = r_max), and a tiny p near home
         done += 1
         view = exact_move(lm, start, h, 50.0, compass=h)

@@ -112,6 +112,10 @@ def test_metrics():
     assert rates == {"gt45_pct": pytest.approx(200 / 3), "gt90_pct": pytest.approx(100 / 3)}
     mean, half, n = t_interval(np.array([1.0, 2.0, 3.0, 4.0]))
     assert (mean, n) == (2.5, 4) and half == pytest.approx(3.182446 * np.std([1, 2, 3, 4], ddof=1) / 2, rel=1e-5)
-    rows = error_curve(jnp.array([10.0, 20.0, 30.0, 90.0]), jnp.array([[510.0, 500.0], [530.0, 500.0], [560.0, 500.0], [500.0, 580.0]]),
-                       home, jnp.array([True, True, True, True]))
+    rows = error_curve(
+        jnp.array([10.0, 20.0, 30.0, 90.0]),
+        jnp.array([[510.0, 500.0], [530.0, 500.0], [560.0, 500.0], [500.0, 580.0]]),
+        home,
+        jnp.array([True, True, True, True]),
+    )
     assert [r["n"] for r in rows] == [2, 2] and rows[0]["mean_deg"] == 15.0

@@ -7,37 +7,37 @@ is drawn as nx x ny cells with nx * ny = 12), so each method compiles once.
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 import math
-import tempfile
-from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, event, example, given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import delvjax
 from tests import hints_unchecked
+from tests.cases.strategies import FAST, JUNK
 from delvjax import InputError
-from delvjax.evaluate._vector_map import map_request
-from delvjax.cli._main import main
 from delvjax.envs._presets import env_from_dict, load_env
 
 PAD = 12
 GRIDS = [(1, 12), (2, 6), (3, 4), (4, 3), (6, 2), (12, 1)]  # nx * ny = 12 grid points: one shape
 METHODS = ("delv", "alv", "warping")
-FAST = dict(deadline=None, database=None, suppress_health_check=[HealthCheck.too_slow])
 
 
 def fits(lms, x, y, r, arena, home) -> bool:
     """docs/model.md §2.1 / §7: r > 0, inside the arena, not covering home, overlapping no other."""
     xmin, ymin, xmax, ymax = arena
-    return (r > 0 and math.hypot(x - home[0], y - home[1]) > r
-            and xmin <= x - r and x + r <= xmax and ymin <= y - r and y + r <= ymax
-            and all(math.hypot(x - a, y - b) >= r + c for a, b, c in lms))
+    return (
+        r > 0
+        and math.hypot(x - home[0], y - home[1]) > r
+        and xmin <= x - r
+        and x + r <= xmax
+        and ymin <= y - r
+        and y + r <= ymax
+        and all(math.hypot(x - a, y - b) >= r + c for a, b, c in lms)
+    )
 
 
 @st.composite
@@ -63,16 +63,24 @@ def scenes(draw):
             lms.append((x, y, r))
     if not lms:  # a landmark in the arena corner farthest from home always fits when it is small
         r = min(w, h) / 8
-        lm = (x0 + 1.5 * r if home[0] - x0 > w / 2 else x0 + w - 1.5 * r,
-              y0 + 1.5 * r if home[1] - y0 > h / 2 else y0 + h - 1.5 * r, r)
+        lm = (
+            x0 + 1.5 * r if home[0] - x0 > w / 2 else x0 + w - 1.5 * r,
+            y0 + 1.5 * r if home[1] - y0 > h / 2 else y0 + h - 1.5 * r,
+            r,
+        )
         assert fits([], *lm, arena, home)
         lms.append(lm)
     return lms, home, arena, s
 
 
 @settings(max_examples=25, **FAST)
-@given(scene=scenes(), seed=st.integers(0, 2**32 - 1), clearance=st.floats(0.0, 50.0), d=st.floats(0.5, 500.0),
-       noise=st.sampled_from([{}, {"bearing_noise_deg": 3.0, "step_noise": 0.1, "turn_noise_deg": 5.0}]))
+@given(
+    scene=scenes(),
+    seed=st.integers(0, 2**32 - 1),
+    clearance=st.floats(0.0, 50.0),
+    d=st.floats(0.5, 500.0),
+    noise=st.sampled_from([{}, {"bearing_noise_deg": 3.0, "step_noise": 0.1, "turn_noise_deg": 5.0}]),
+)
 def test_valid_environments_give_finite_results_where_valid(scene, seed, clearance, d, noise):
     lms, home, arena, spacing = scene
     env = delvjax.make_env(lms, home=home, arena=arena, pad_to=PAD)
@@ -90,10 +98,6 @@ def test_valid_environments_give_finite_results_where_valid(scene, seed, clearan
         assert ((error >= 0.0) & (error <= 180.0)).all()
 
 
-JUNK = st.one_of(st.sampled_from([math.nan, math.inf, -math.inf, 10**400, "1", None, True, [], {}]),
-                 st.text(max_size=3), st.lists(st.integers(), max_size=2))
-
-
 @st.composite
 def broken_specs(draw):
     """(environment dictionary with one documented fault, the field its error must name)."""
@@ -105,12 +109,34 @@ def broken_specs(draw):
         lms.append((x0 + w - 50.0, y0 + h - 50.0, draw(st.floats(0.01, 45.0))))
     spec = {"name": "t", "arena": arena, "home": home, "landmarks": [{"x": x, "y": y, "r": r} for x, y, r in lms]}
     n, i = len(lms), draw(st.integers(0, len(lms) - 1))
-    fault = draw(st.sampled_from(["number", "radius", "overlap", "home_covered", "landmark_outside", "home_outside",
-                                  "arena_order", "arena_shape", "no_landmarks", "missing", "unknown", "lm_missing",
-                                  "lm_unknown", "lm_type", "name", "type"]))
+    fault = draw(
+        st.sampled_from(
+            [
+                "number",
+                "radius",
+                "overlap",
+                "home_covered",
+                "landmark_outside",
+                "home_outside",
+                "arena_order",
+                "arena_shape",
+                "no_landmarks",
+                "missing",
+                "unknown",
+                "lm_missing",
+                "lm_unknown",
+                "lm_type",
+                "name",
+                "type",
+            ]
+        )
+    )
     if fault == "number":
-        field = draw(st.sampled_from([f"arena[{k}]" for k in range(4)] + ["home[0]", "home[1]"]
-                                     + [f"landmarks[{i}].{k}" for k in "xyr"]))
+        field = draw(
+            st.sampled_from(
+                [f"arena[{k}]" for k in range(4)] + ["home[0]", "home[1]"] + [f"landmarks[{i}].{k}" for k in "xyr"]
+            )
+        )
         key, sub = field.split("[", 1)
         target = spec["landmarks"][i] if key == "landmarks" else spec[key]
         target[sub[-1] if key == "landmarks" else int(sub[0])] = draw(JUNK)
@@ -140,7 +166,10 @@ def broken_specs(draw):
         spec["arena"][k + 2] = arena[k] - draw(st.floats(0.0, 1e4))
         return spec, "arena"
     if fault == "arena_shape":
-        return {**spec, "arena": draw(st.lists(st.floats(0, 1), max_size=6).filter(lambda v: len(v) != 4) | JUNK)}, "arena"
+        return {
+            **spec,
+            "arena": draw(st.lists(st.floats(0, 1), max_size=6).filter(lambda v: len(v) != 4) | JUNK),
+        }, "arena"
     if fault == "no_landmarks":
         return {**spec, "landmarks": draw(JUNK.filter(lambda v: not (isinstance(v, list) and v)))}, "landmarks"
     if fault == "missing":
@@ -181,10 +210,12 @@ def test_an_invalid_environment_is_an_input_error_naming_the_field(case, tmp_pat
 
 
 @settings(max_examples=80, **FAST)
-@given(landmarks=st.one_of(st.just([(200.0, 200.0, 20.0)]), JUNK, st.lists(st.lists(st.floats(), max_size=4), max_size=3)),
-       home=st.one_of(st.just((500.0, 500.0)), st.just(np.array([500, 500], np.float32)), JUNK),
-       arena=st.one_of(st.just((0.0, 0.0, 1000.0, 1000.0)), st.just(np.array([0, 0, 1000, 1000])), JUNK),
-       pad_to=st.one_of(st.none(), st.integers(-2, 3), JUNK, st.sampled_from([2.5, 10**6, 2**63])))
+@given(
+    landmarks=st.one_of(st.just([(200.0, 200.0, 20.0)]), JUNK, st.lists(st.lists(st.floats(), max_size=4), max_size=3)),
+    home=st.one_of(st.just((500.0, 500.0)), st.just(np.array([500, 500], np.float32)), JUNK),
+    arena=st.one_of(st.just((0.0, 0.0, 1000.0, 1000.0)), st.just(np.array([0, 0, 1000, 1000])), JUNK),
+    pad_to=st.one_of(st.none(), st.integers(-2, 3), JUNK, st.sampled_from([2.5, 10**6, 2**63])),
+)
 def test_make_env_builds_an_env_or_names_the_argument(landmarks, home, arena, pad_to):
     try:
         with hints_unchecked():  # junk of every type on purpose: make_env's own errors are tested
@@ -195,16 +226,20 @@ def test_make_env_builds_an_env_or_names_the_argument(landmarks, home, arena, pa
     assert env.landmarks.shape[0] == (env.n_landmarks if pad_to is None else pad_to)
 
 
-JSON_VALUES = st.recursive(st.none() | st.booleans() | st.floats() | st.integers() | st.text(max_size=3),
-                           lambda kids: st.lists(kids, max_size=3) | st.dictionaries(
-                               st.sampled_from(["arena", "home", "landmarks", "name", "x", "y", "r"]), kids, max_size=4),
-                           max_leaves=12)
+JSON_VALUES = st.recursive(
+    st.none() | st.booleans() | st.floats() | st.integers() | st.text(max_size=3),
+    lambda kids: (
+        st.lists(kids, max_size=3)
+        | st.dictionaries(st.sampled_from(["arena", "home", "landmarks", "name", "x", "y", "r"]), kids, max_size=4)
+    ),
+    max_leaves=12,
+)
 
 
 @settings(max_examples=80, **FAST)
 @given(content=st.one_of(JSON_VALUES.map(json.dumps).map(str.encode), st.binary(max_size=30)))
 @example(content=b"[" * 100_000)  # nesting deeper than the JSON decoder's recursion limit
-@example(content=b'{"arena": [' + b"1" * 5000 + b', 0, 1, 1]}')  # more digits than int() converts
+@example(content=b'{"arena": [' + b"1" * 5000 + b", 0, 1, 1]}")  # more digits than int() converts
 def test_any_file_is_an_environment_or_an_input_error(content, tmp_path_factory):
     path = tmp_path_factory.getbasetemp() / "any.json"
     path.write_bytes(content)
@@ -212,89 +247,3 @@ def test_any_file_is_an_environment_or_an_input_error(content, tmp_path_factory)
         assert isinstance(load_env(path), delvjax.Env)
     except InputError as exc:
         assert str(exc).startswith(f"{exc.field}: ")
-
-
-NUM_BAD, INT_BAD = ["0", "-1", "nan", "inf", "abc", "1e400"], ["0", "-2", "1.5", "abc", "99999999999"]
-SCENE = {  # option: (good values, bad values); the one good method, alv, reads no image and has no DELV/warping settings
-    "--method": (["alv"], ["nosuch", "", ",", "ALV"]), "--d": (["30"], NUM_BAD),
-    "--clearance": (["0", "15"], ["-1", "nan", "inf", "abc"]), "--heading-deg": (["1e30", "-725.5"], ["nan", "inf", "x"]),
-    "--seed": (["0", "4294967295"], ["-1", "4294967296", "1.5", "abc"]), "--background": (["walls"], ["", "sky"]),
-    "--channel": ([], ["gray", "mask", "rgb"]), "--levels": ([], [*INT_BAD, "3"]), "--n-heading": ([], [*INT_BAD, "4"]),
-    "--n-psi": ([], ["7", "0", "8"]), "--rho-min": ([], ["0.5", "0", "2", "nan"]), "--mfdid-blur-deg": ([], ["3", "-1"]),
-    "--hide": ([], ["99", "-1", "abc", ["0", "99"]]), "--bearing-noise-deg": (["0", "2"], ["-1", "nan", "inf", "abc"]),
-    "--step-noise": (["0.1"], ["-0.1", "nan"]), "--motion-heading-noise-deg": (["5"], ["-5", "inf"]),
-}
-GRID = {"--spacing": (["500"], ["0", "-1", "nan", "inf", "abc", "1e30"])}
-ROLL = {"--max-steps": (["1", "3"], INT_BAD), "--home-radius": (["20"], NUM_BAD), "--lanes": (["64"], INT_BAD),
-        "--first-move": (["homing", "release"], ["", "jump"]), "--collisions": (["ignore", "fail"], ["bounce"])}
-COMMANDS = {
-    "vector-map": {**SCENE, **GRID},
-    "catchment": {**SCENE, **GRID, **ROLL, "--occlude": ([], ["5", "-1", "abc"])},
-    "success-rate": {**SCENE, **ROLL, "--trials": (["1"], INT_BAD), "--trials-out": ([], ["{o}/t.txt"]),
-                     "--distances": (["100", ["50", "150"]], ["0", "-5", "nan", "1e9", "abc"])},
-    "trajectories": {**SCENE, **ROLL, "--n-starts": (["1", "2"], INT_BAD),
-                     "--start": ([["300", "300"]], [["nan", "1"], ["-5", "5"], ["765", "615"], ["abc", "1"]])},
-}
-COMMON = {"env": (["env1"], ["nosuch", "", "{o}", "{f}"]),  # {o}: a folder, {f}: a file that is not JSON
-          "out": ([["--out", "{o}/o.csv"], ["--summary", "{o}/s.json"]],
-                  [[], ["--out", "{o}/o.txt"], ["--plot", "{o}/p.gif"], ["--summary", "{o}/s.csv"], ["--out", "{f}/x.csv"]])}
-
-
-@st.composite
-def cli_args(draw):
-    """(argv with {o} and {f} placeholders, some value is bad, junk tokens appended). Only vector-map may run
-    (alv on env1, 4 grid points: two compiled programs); a rollout command always gets a bad value."""
-    cmd = draw(st.sampled_from(sorted(COMMANDS)))
-    pool = {**COMMON, **COMMANDS[cmd]}
-    names = ["env", "out", "--method", *(["--spacing"] if "--spacing" in pool else [])]
-    clean = draw(st.integers(0, 2)) == 0  # only good values drawn (a rollout command still gets one bad one)
-    rest = sorted(n for n in set(pool) - set(names) if pool[n][0] or not clean)
-    names += draw(st.permutations(rest))[:draw(st.integers(0, 6))]
-    picks = {}
-    for name in names:
-        good, bad = pool[name]
-        is_bad = not good or (not clean and draw(st.integers(0, 3)) == 0)
-        picks[name] = (draw(st.sampled_from(bad if is_bad else good)), is_bad)
-    if cmd != "vector-map" and not any(b for _, b in picks.values()):
-        name = draw(st.sampled_from(names))
-        picks[name] = (draw(st.sampled_from(pool[name][1])), True)
-    argv = [cmd, picks.pop("env")[0]] + picks["out"][0]
-    for name, (value, _) in picks.items():
-        argv += [] if name == "out" else [name, *(value if isinstance(value, list) else [value])]
-    bad = any(b for _, b in picks.values()) or argv[1] != "env1"
-    junk = draw(st.lists(st.text(max_size=4), max_size=2)) if bad else []
-    return argv + junk, bad, bool(junk)
-
-
-@settings(max_examples=60, **FAST)
-@given(case=cli_args())
-def test_random_command_lines_exit_0_or_2_without_a_traceback(case, tmp_path_factory):
-    argv, bad, junk = case
-    base = tmp_path_factory.getbasetemp()
-    (base / "notjson").write_text("not json")
-    out = tempfile.mkdtemp(dir=base)
-    argv = [a.replace("{o}", out).replace("{f}", str(base / "notjson")) for a in argv]
-    err = io.StringIO()
-    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
-        try:
-            code = main(argv)
-        except SystemExit as exc:  # argparse: usage errors exit 2, --help exits 0
-            code = exc.code
-    event(f"{argv[0]} exit {code}")
-    assert code in ((0, 2) if junk else (2,) if bad else (0,)), (argv, err.getvalue())
-    assert "Traceback" not in err.getvalue()
-    if code == 2:
-        assert not list(Path(out).iterdir()), (argv, "bad input wrote a file")
-
-
-@settings(max_examples=100, **FAST)
-@given(name=st.sampled_from(["levels", "n_heading", "n_alpha", "batch_size", "clearance", "heading_deg", "seed", "d",
-                             "step_noise", "mfdid_blur_deg"]),
-       value=st.one_of(JUNK, st.floats(), st.integers(-2**40, 2**70)))
-def test_api_options_are_accepted_or_refused_by_name(name, value):
-    method = {"n_alpha": "warping", "mfdid_blur_deg": "mfdid"}.get(name, "delv")
-    try:
-        with hints_unchecked():  # values of every type on purpose: map_request's own errors are tested
-            map_request("env1", method=method, spacing=500, **{name: value})
-    except InputError as exc:  # a huge clearance leaves no grid point: named as spacing
-        assert exc.field in (name, "spacing" if name == "clearance" else name), str(exc)

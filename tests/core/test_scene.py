@@ -14,8 +14,12 @@ from delvjax.core.maps import grid_included, grid_points
 from delvjax.core.scene import ASYMMETRY_CM, rotation_mismatch
 from delvjax.envs._presets import PRESETS, env_to_dict
 
-GOOD = {"name": "t", "arena": [0, 0, 1000, 1000], "home": [500, 500],
-        "landmarks": [{"x": 300, "y": 600, "r": 30}, {"x": 700, "y": 650, "r": 20}, {"x": 600, "y": 300, "r": 25}]}
+GOOD = {
+    "name": "t",
+    "arena": [0, 0, 1000, 1000],
+    "home": [500, 500],
+    "landmarks": [{"x": 300, "y": 600, "r": 30}, {"x": 700, "y": 650, "r": 20}, {"x": 600, "y": 300, "r": 25}],
+}
 
 
 def test_presets_load_and_round_trip(tmp_path):
@@ -45,20 +49,23 @@ def _bad(tmp_path, spec, field):
     return str(exc.value)
 
 
-@pytest.mark.parametrize("mutate, field", [
-    (lambda s: s.pop("landmarks"), "landmarks"),
-    (lambda s: s.pop("home"), "home"),
-    (lambda s: s.__setitem__("arena", [1000, 0, 0, 1000]), "arena"),
-    (lambda s: s.__setitem__("home", [1500, 500]), "home"),
-    (lambda s: s.__setitem__("home", ["a", 500]), "home[0]"),
-    (lambda s: s["landmarks"][1].__setitem__("r", -4), "landmarks[1].r"),
-    (lambda s: s["landmarks"][1].__setitem__("r", 0), "landmarks[1].r"),
-    (lambda s: s["landmarks"][0].pop("y"), "landmarks[0].y"),
-    (lambda s: s["landmarks"][2].__setitem__("x", "abc"), "landmarks[2].x"),
-    (lambda s: s["landmarks"].append({"x": 505, "y": 500, "r": 10}), "landmarks[3]"),
-    (lambda s: s["landmarks"].append({"x": 310, "y": 600, "r": 10}), "landmarks[3]"),
-    (lambda s: s.__setitem__("landmarks", []), "landmarks"),
-])
+@pytest.mark.parametrize(
+    "mutate, field",
+    [
+        (lambda s: s.pop("landmarks"), "landmarks"),
+        (lambda s: s.pop("home"), "home"),
+        (lambda s: s.__setitem__("arena", [1000, 0, 0, 1000]), "arena"),
+        (lambda s: s.__setitem__("home", [1500, 500]), "home"),
+        (lambda s: s.__setitem__("home", ["a", 500]), "home[0]"),
+        (lambda s: s["landmarks"][1].__setitem__("r", -4), "landmarks[1].r"),
+        (lambda s: s["landmarks"][1].__setitem__("r", 0), "landmarks[1].r"),
+        (lambda s: s["landmarks"][0].pop("y"), "landmarks[0].y"),
+        (lambda s: s["landmarks"][2].__setitem__("x", "abc"), "landmarks[2].x"),
+        (lambda s: s["landmarks"].append({"x": 505, "y": 500, "r": 10}), "landmarks[3]"),
+        (lambda s: s["landmarks"].append({"x": 310, "y": 600, "r": 10}), "landmarks[3]"),
+        (lambda s: s.__setitem__("landmarks", []), "landmarks"),
+    ],
+)
 def test_bad_environment_fields_are_named(tmp_path, mutate, field):
     spec = json.loads(json.dumps(GOOD))
     mutate(spec)
@@ -100,8 +107,10 @@ def test_env1_is_asymmetric_and_env2_is_not():
     for deg, value in env1.items():
         a = np.radians(deg)
         rot = lms @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
-        brute = min(max(np.linalg.norm(rot[i] - lms[j]) for i, j in enumerate(perm))
-                    for perm in itertools.permutations(range(len(lms))))
+        brute = min(
+            max(np.linalg.norm(rot[i] - lms[j]) for i, j in enumerate(perm))
+            for perm in itertools.permutations(range(len(lms)))
+        )
         assert value == pytest.approx(brute, abs=1e-6)
 
 

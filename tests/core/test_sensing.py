@@ -24,7 +24,9 @@ def test_render_matches_reference(random_envs, background):
     agree, total = 0, 0
     for i, (lm, env) in enumerate(random_envs[:8]):
         pos, hd = _poses(i)
-        masks, grays = jax.vmap(lambda p, h: render(env, env.valid, p, h, cfg))(jnp.asarray(pos, jnp.float32), jnp.asarray(hd, jnp.float32))
+        masks, grays = jax.vmap(lambda p, h: render(env, env.valid, p, h, cfg))(
+            jnp.asarray(pos, jnp.float32), jnp.asarray(hd, jnp.float32)
+        )
         for p, h, m, g in zip(pos, hd, np.asarray(masks), np.asarray(grays)):
             rm, rg = ref.render(lm, p, h, [0, 0, 1000, 1000], background)
             agree += int(np.sum(rm == m))
@@ -69,7 +71,7 @@ def test_blobs_match_reference():
         expect = ref.extract_blobs(m)
         assert v.sum() == len(expect)
         np.testing.assert_allclose(b[v], expect, atol=1e-5)
-        assert not v[len(expect):].any()
+        assert not v[len(expect) :].any()
 
 
 def test_visual_compass_matches_reference_and_recovers_rotation(random_envs):

@@ -21,8 +21,16 @@ from delvjax.envs._presets import make_env
 
 def write_env(path, landmarks):
     """A docs/model.md §7 environment file."""
-    path.write_text(json.dumps({"name": "four", "arena": ARENA, "home": HOME,
-                                "landmarks": [{"x": x, "y": y, "r": r} for x, y, r in landmarks.tolist()]}))
+    path.write_text(
+        json.dumps(
+            {
+                "name": "four",
+                "arena": ARENA,
+                "home": HOME,
+                "landmarks": [{"x": x, "y": y, "r": r} for x, y, r in landmarks.tolist()],
+            }
+        )
+    )
     return str(path)
 
 
@@ -33,34 +41,114 @@ def read_rows(path):
 
 def test_cli_catchment_success_rate_trajectories(tmp_path):
     out = tmp_path / "c.csv"
-    assert main(["catchment", "env1", "--method", "alv", "--spacing", "200", "--out", str(out), "--occlude", "1",
-                 "--summary", str(tmp_path / "c.json")]) == 0
+    assert (
+        main(
+            [
+                "catchment",
+                "env1",
+                "--method",
+                "alv",
+                "--spacing",
+                "200",
+                "--out",
+                str(out),
+                "--occlude",
+                "1",
+                "--summary",
+                str(tmp_path / "c.json"),
+            ]
+        )
+        == 0
+    )
     header = out.read_text().splitlines()[0].split(",")
     assert header[:5] == ["x", "y", "heading_deg", "success", "steps"] and "hidden" in header
     env = delvjax.load_env("env1")
     n_points = int(np.sum(np.asarray(grid_included(env, jnp.asarray(grid_points(env.arena, 200.0)), 10.0))))
     assert len(out.read_text().splitlines()) == 1 + env.n_landmarks * n_points  # C(N, 1) masks
-    assert main(["success-rate", "ring4", "--method", "alv,acv", "--trials", "10", "--distances", "50", "250", "450",
-                 "--seed", "2", "--out", str(tmp_path / "s.csv")]) == 0
+    assert (
+        main(
+            [
+                "success-rate",
+                "ring4",
+                "--method",
+                "alv,acv",
+                "--trials",
+                "10",
+                "--distances",
+                "50",
+                "250",
+                "450",
+                "--seed",
+                "2",
+                "--out",
+                str(tmp_path / "s.csv"),
+            ]
+        )
+        == 0
+    )
     rows = read_rows(tmp_path / "s.csv")
     assert len(rows) == 2 * 3 and all(r["first_move"] == "release" and r["collisions"] == "ignore" for r in rows)
     four = write_env(tmp_path / "four.json", FOUR)
-    assert main(["trajectories", four, "--method", "alv", "--start", "100", "100", "--start", "800", "300",
-                 "--start", "150", "850", "--start", "850", "850", "--out", str(tmp_path / "t.csv"),
-                 "--plot", str(tmp_path / "t.png")]) == 0
+    assert (
+        main(
+            [
+                "trajectories",
+                four,
+                "--method",
+                "alv",
+                "--start",
+                "100",
+                "100",
+                "--start",
+                "800",
+                "300",
+                "--start",
+                "150",
+                "850",
+                "--start",
+                "850",
+                "850",
+                "--out",
+                str(tmp_path / "t.csv"),
+                "--plot",
+                str(tmp_path / "t.png"),
+            ]
+        )
+        == 0
+    )
     assert (tmp_path / "t.png").stat().st_size > 0
     rows = read_rows(tmp_path / "t.csv")
     assert rows and all(r["first_move"] == "release" and r["collisions"] == "ignore" for r in rows)
 
 
-@pytest.mark.parametrize("flags, rules", [([], DEFAULT),
-                                          (["--first-move", "release", "--collisions", "fail"], PHYSICAL)],
-                         ids=["default", "physical"])
+@pytest.mark.parametrize(
+    "flags, rules",
+    [([], DEFAULT), (["--first-move", "release", "--collisions", "fail"], PHYSICAL)],
+    ids=["default", "physical"],
+)
 def test_cli_catchment_records_the_rules(tmp_path, flags, rules):
     """The rules are constant CSV columns and a "rules" dict in the summary JSON."""
     out, summary = tmp_path / "c.csv", tmp_path / "c.json"
-    assert main(["catchment", "env1", "--method", "alv", "--spacing", "200", "--occlude", "1", "--out", str(out),
-                 "--summary", str(summary)] + flags) == 0
+    assert (
+        main(
+            [
+                "catchment",
+                "env1",
+                "--method",
+                "alv",
+                "--spacing",
+                "200",
+                "--occlude",
+                "1",
+                "--out",
+                str(out),
+                "--summary",
+                str(summary),
+            ]
+            + flags
+        )
+        == 0
+    )
     rows = read_rows(out)
     assert rows and {(r["first_move"], r["collisions"]) for r in rows} == {(rules["first_move"], rules["collisions"])}
     if rules["collisions"] == "ignore":
@@ -70,19 +158,22 @@ def test_cli_catchment_records_the_rules(tmp_path, flags, rules):
     assert all(row["landmark_count"] == 0 for row in data["per_mask"]) or rules["collisions"] == "fail"
 
 
-@pytest.mark.parametrize("argv, field", [
-    (["catchment", "env1", "--occlude", "99"], "occlude"),
-    (["catchment", "env1", "--bearing-noise-deg", "-1"], "bearing_noise_deg"),
-    (["catchment", "env1", "--max-steps", "0"], "max_steps"),
-    (["catchment", "env1", "--first-move", "bogus"], "first_move"),
-    (["catchment", "env1", "--collisions", "bounce"], "collisions"),
-    (["success-rate", "env1", "--motion-step-noise", "-0.1"], "motion_step_noise"),
-    (["success-rate", "env1", "--trials", "0"], "trials"),
-    (["success-rate", "env1", "--first-move", "bogus"], "first_move"),
-    (["trajectories", "env1", "--start", "1500", "500"], "starts[0]"),
-    (["trajectories", "env1", "--home-radius", "0"], "home_radius"),
-    (["trajectories", "env1", "--collisions", "bounce"], "collisions"),
-])
+@pytest.mark.parametrize(
+    "argv, field",
+    [
+        (["catchment", "env1", "--occlude", "99"], "occlude"),
+        (["catchment", "env1", "--bearing-noise-deg", "-1"], "bearing_noise_deg"),
+        (["catchment", "env1", "--max-steps", "0"], "max_steps"),
+        (["catchment", "env1", "--first-move", "bogus"], "first_move"),
+        (["catchment", "env1", "--collisions", "bounce"], "collisions"),
+        (["success-rate", "env1", "--motion-step-noise", "-0.1"], "motion_step_noise"),
+        (["success-rate", "env1", "--trials", "0"], "trials"),
+        (["success-rate", "env1", "--first-move", "bogus"], "first_move"),
+        (["trajectories", "env1", "--start", "1500", "500"], "starts[0]"),
+        (["trajectories", "env1", "--home-radius", "0"], "home_radius"),
+        (["trajectories", "env1", "--collisions", "bounce"], "collisions"),
+    ],
+)
 def test_bad_input_exits_2_without_output(tmp_path, capsys, argv, field):
     out = tmp_path / "o.csv"
     assert main(argv + ["--out", str(out)]) == 2
@@ -105,8 +196,9 @@ def test_api_bad_input_raises_input_error():
 
 
 @pytest.mark.parametrize("call", [delvjax.catchment, delvjax.success_rate, delvjax.trajectories])
-@pytest.mark.parametrize("field, value", [("first_move", "x"), ("collisions", "x"), ("first_move", "Homing"),
-                                          ("collisions", None)])
+@pytest.mark.parametrize(
+    "field, value", [("first_move", "x"), ("collisions", "x"), ("first_move", "Homing"), ("collisions", None)]
+)
 def test_bad_rules_raise_input_error_naming_the_field(call, field, value):
     with pytest.raises(InputError, match=field) as info:
         call("env1", **{field: value})

@@ -29,25 +29,50 @@ def test_an_optimised_layout_beats_its_start_on_the_hard_metrics():
 
 def test_delvjax_optimise_layout_writes_a_loadable_environment(tmp_path, capsys):
     out = tmp_path / "lay"
-    assert main(["optimise-layout", "--landmarks", "3", "--seed", "10", "--spacing", "200", "--steps", "3",
-                 "--method", "alv", "--out", str(out)]) == 0
-    assert sorted(p.name for p in out.iterdir()) == ["comparison.csv", "layout.json", "layout.png",
-                                                     "optimised_env.json"]
+    assert (
+        main(
+            [
+                "optimise-layout",
+                "--landmarks",
+                "3",
+                "--seed",
+                "10",
+                "--spacing",
+                "200",
+                "--steps",
+                "3",
+                "--method",
+                "alv",
+                "--out",
+                str(out),
+            ]
+        )
+        == 0
+    )
+    assert sorted(p.name for p in out.iterdir()) == [
+        "comparison.csv",
+        "layout.json",
+        "layout.png",
+        "optimised_env.json",
+    ]
     env = load_env(out / "optimised_env.json")
     assert env.n_landmarks == 3
     summary = json.loads((out / "layout.json").read_text())
     assert [row["layout"] for row in summary["rows"]] == ["start", "optimised"]
 
 
-@pytest.mark.parametrize("args, field", [
-    (["--landmarks", "0"], "landmarks"),
-    (["env1", "--landmarks", "3"], "env"),
-    ([], "env"),
-    (["env1", "--method", "warping"], "method"),
-    (["env1", "--occlude", "9"], "occlude"),
-    (["env1", "--steps", "0"], "steps"),
-    (["env1", "--tau", "0"], "tau"),
-])
+@pytest.mark.parametrize(
+    "args, field",
+    [
+        (["--landmarks", "0"], "landmarks"),
+        (["env1", "--landmarks", "3"], "env"),
+        ([], "env"),
+        (["env1", "--method", "warping"], "method"),
+        (["env1", "--occlude", "9"], "occlude"),
+        (["env1", "--steps", "0"], "steps"),
+        (["env1", "--tau", "0"], "tau"),
+    ],
+)
 def test_bad_layout_requests_are_refused_before_any_work(tmp_path, capsys, args, field):
     out = tmp_path / "lay"
     assert main(["optimise-layout", "--out", str(out)] + args) == 2
@@ -55,10 +80,13 @@ def test_bad_layout_requests_are_refused_before_any_work(tmp_path, capsys, args,
     assert not out.exists()
 
 
-@pytest.mark.parametrize("landmarks, message", [
-    ([{"x": 400, "y": 400, "r": 50}, {"x": 430, "y": 400, "r": 50}], "overlaps landmarks[0]"),
-    ([{"x": 500, "y": 510, "r": 30}, {"x": 200, "y": 200, "r": 20}], "covers home"),
-])
+@pytest.mark.parametrize(
+    "landmarks, message",
+    [
+        ([{"x": 400, "y": 400, "r": 50}, {"x": 430, "y": 400, "r": 50}], "overlaps landmarks[0]"),
+        ([{"x": 500, "y": 510, "r": 30}, {"x": 200, "y": 200, "r": 20}], "covers home"),
+    ],
+)
 def test_a_start_layout_with_overlapping_landmarks_or_one_over_home_is_refused(tmp_path, capsys, landmarks, message):
     path = tmp_path / "bad.json"
     path.write_text(json.dumps({"arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": landmarks}))

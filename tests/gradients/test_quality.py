@@ -74,8 +74,9 @@ def _soft_and_hard(name: str, sharpness: float, **options):
         home = soft_home(env, k_home, sensor, sharpness)
 
         def one(p, h, i):
-            view = soft_observe(env, jnp.ones(env.landmarks.shape[0], bool), map_poses(p, h, k_views, i, sensor),
-                                sensor, sharpness)
+            view = soft_observe(
+                env, jnp.ones(env.landmarks.shape[0], bool), map_poses(p, h, k_views, i, sensor), sensor, sharpness
+            )
             _, a, v = soft_direction(module, home, view, tau)
             b, w = hard(as_unit_move(home, 360), as_unit_move(view, 360))
             return a, v, b, w, jnp.sum(view.end.valid)
@@ -107,18 +108,26 @@ def test_soft_alv_and_acv_equal_the_hard_ones_at_small_tau_and_sharp_visibility(
 
 def _quality_at(name: str, landmarks=None, home=None, **options) -> float:
     base = load_env("env1")
-    env = Env(jnp.asarray(base.landmarks if landmarks is None else landmarks, jnp.float32), base.valid,
-              jnp.asarray(base.home if home is None else home, jnp.float32), base.arena, name="fd")
+    env = Env(
+        jnp.asarray(base.landmarks if landmarks is None else landmarks, jnp.float32),
+        base.valid,
+        jnp.asarray(base.home if home is None else home, jnp.float32),
+        base.arena,
+        name="fd",
+    )
     return float(delvjax.homing_quality(env, name, spacing=100, tau=0.05, **options))
 
 
-@pytest.mark.parametrize("name, options, scalars", [
-    ("delv", {"bearing_noise_deg": 1.0}, {"d": 50.0, "bearing_noise_deg": 1.0}),
-    ("delv", {"levels": 4, "scale": 1000.0}, {"scale": 1000.0}),
-    ("delv-compass", {"compass_noise_deg": 2.0, "bearing_noise_deg": 0.5}, {"compass_noise_deg": 2.0}),
-    ("alv", {"compass_noise_deg": 2.0}, {"compass_noise_deg": 2.0}),
-    ("acv", {"bearing_noise_deg": 1.0}, {"bearing_noise_deg": 1.0}),
-])
+@pytest.mark.parametrize(
+    "name, options, scalars",
+    [
+        ("delv", {"bearing_noise_deg": 1.0}, {"d": 50.0, "bearing_noise_deg": 1.0}),
+        ("delv", {"levels": 4, "scale": 1000.0}, {"scale": 1000.0}),
+        ("delv-compass", {"compass_noise_deg": 2.0, "bearing_noise_deg": 0.5}, {"compass_noise_deg": 2.0}),
+        ("alv", {"compass_noise_deg": 2.0}, {"compass_noise_deg": 2.0}),
+        ("acv", {"bearing_noise_deg": 1.0}, {"bearing_noise_deg": 1.0}),
+    ],
+)
 def test_gradients_match_central_finite_differences(name, options, scalars):
     value, grads = delvjax.homing_quality_grad("env1", name, spacing=100, tau=0.05, **options)
     assert value == pytest.approx(_quality_at(name, **options), rel=1e-5)
@@ -129,14 +138,27 @@ def test_gradients_match_central_finite_differences(name, options, scalars):
         a, b = lm.copy(), lm.copy()
         a[i, j] += h
         b[i, j] -= h
-        checks.append(((_quality_at(name, a, **options) - _quality_at(name, b, **options)) / (2 * h),
-                       grads["landmarks"][i, j], f"landmarks[{i}, {j}]"))
+        checks.append(
+            (
+                (_quality_at(name, a, **options) - _quality_at(name, b, **options)) / (2 * h),
+                grads["landmarks"][i, j],
+                f"landmarks[{i}, {j}]",
+            )
+        )
     home = np.asarray(load_env("env1").home, np.float64)
-    checks.append(((_quality_at(name, home=home + [0, h], **options) - _quality_at(name, home=home - [0, h], **options))
-                   / (2 * h), grads["home"][1], "home[1]"))
+    checks.append(
+        (
+            (_quality_at(name, home=home + [0, h], **options) - _quality_at(name, home=home - [0, h], **options))
+            / (2 * h),
+            grads["home"][1],
+            "home[1]",
+        )
+    )
     for key, x0 in scalars.items():
         step = {"scale": 1e-3 * x0, "d": 0.05}.get(key, 0.005)  # sigmas: the quality has kinks (guards) 0.05 deg away
-        fd = (_quality_at(name, **{**options, key: x0 + step}) - _quality_at(name, **{**options, key: x0 - step})) / (2 * step)
+        fd = (_quality_at(name, **{**options, key: x0 + step}) - _quality_at(name, **{**options, key: x0 - step})) / (
+            2 * step
+        )
         checks.append((fd, grads[key], key))
     # absolute slack: 1 % of the largest landmark derivative (at least 2e-6); a derivative far below that
     # meets kinks (the home-frame list of docs/model.md §3.3 changes its start where a bearing crosses 0)
@@ -179,22 +201,31 @@ def test_delvjax_sensitivity_writes_figures_and_numbers(tmp_path, capsys):
     out = tmp_path / "sens"
     assert main(["sensitivity", "env1", "--out", str(out), "--spacing", "200", "--methods", "alv", "warping"]) == 0
     names = sorted(p.name for p in out.iterdir())
-    assert names == ["landmarks.csv", "parameters.csv", "sensitivity.json", "sensitivity_landmarks.png",
-                     "sensitivity_parameters.png"]
+    assert names == [
+        "landmarks.csv",
+        "parameters.csv",
+        "sensitivity.json",
+        "sensitivity_landmarks.png",
+        "sensitivity_parameters.png",
+    ]
     rows = list(csv.DictReader((out / "landmarks.csv").open()))
-    value, grads = delvjax.homing_quality_grad("env1", "alv", spacing=200, bearing_noise_deg=1.0,
-                                               odometry_turn_noise_deg=1.0, compass_noise_deg=2.0)
+    value, grads = delvjax.homing_quality_grad(
+        "env1", "alv", spacing=200, bearing_noise_deg=1.0, odometry_turn_noise_deg=1.0, compass_noise_deg=2.0
+    )
     assert [float(r["dq_dx_per_cm"]) for r in rows] == pytest.approx(grads["landmarks"][:, 0].tolist(), rel=1e-4)
     summary = json.loads((out / "sensitivity.json").read_text())
     assert summary["methods"]["alv"]["quality"] == pytest.approx(value, rel=1e-5)
     assert summary["methods"]["warping"]["per_unit"]["d"] == 0.0  # warping reads no unit movement
 
 
-@pytest.mark.parametrize("args, field", [
-    (["--methods", "mfdid"], "methods"),
-    (["--tau", "0"], "tau"),
-    (["--spacing", "-1"], "spacing"),
-])
+@pytest.mark.parametrize(
+    "args, field",
+    [
+        (["--methods", "mfdid"], "methods"),
+        (["--tau", "0"], "tau"),
+        (["--spacing", "-1"], "spacing"),
+    ],
+)
 def test_delvjax_sensitivity_refuses_bad_input_before_any_work(tmp_path, capsys, args, field):
     from delvjax.cli._main import main
 
@@ -216,8 +247,14 @@ def test_least_squares_refinement_removes_the_heading_grid():
     env, module, sensor, _, _, _ = scene_request("env1", "delv", 10.0, None, 0, n_heading=36)
     env = env.arrays()
     home = record_home(env, jax.random.PRNGKey(0), sensor)
-    view, _ = unit_move(env, jnp.array([450.0, 700.0]), jnp.float32(1.0), jax.random.PRNGKey(1), sensor,
-                        end_at=jnp.array([450.0, 700.0]))
+    view, _ = unit_move(
+        env,
+        jnp.array([450.0, 700.0]),
+        jnp.float32(1.0),
+        jax.random.PRNGKey(1),
+        sensor,
+        end_at=jnp.array([450.0, 700.0]),
+    )
     args = (*reference_vectors(home, module), *current_vectors(view, module), module.alphas(home, view))
     _, coarse, var0, _ = match_arrangement(*args)
     _, fine, var1, _ = refined_match(*args)

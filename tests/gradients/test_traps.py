@@ -13,8 +13,15 @@ from delvjax.core.soft.traps import KINDS, classify, field_zeros
 from delvjax.gradients._traps import find_traps
 
 
-@pytest.mark.parametrize("jac, kind", [([[-1, 0], [0, -2]], "sink"), ([[-1, 3], [-3, -1]], "sink"),
-                                       ([[1, 0], [0, 2]], "source"), ([[1, 0], [0, -1]], "saddle")])
+@pytest.mark.parametrize(
+    "jac, kind",
+    [
+        ([[-1, 0], [0, -2]], "sink"),
+        ([[-1, 3], [-3, -1]], "sink"),
+        ([[1, 0], [0, 2]], "source"),
+        ([[1, 0], [0, -1]], "saddle"),
+    ],
+)
 def test_a_zero_is_classified_from_its_jacobian(jac, kind):
     assert KINDS[int(classify(jnp.asarray(jac, jnp.float32)))] == kind
 
@@ -23,8 +30,9 @@ def test_the_alv_field_flows_to_home_only():
     """§3.3.2: the ALV field is minus the gradient of a convex potential, so home is its one zero, a sink."""
     p = quality_problem("env1", "alv", spacing=100)
     starts = jnp.asarray([[450.0, 450.0], [560.0, 530.0], [520.0, 440.0], [470.0, 560.0]])
-    z, _, kind, _, residual = (np.asarray(a) for a in field_zeros(p.env, starts, p.sensor, p.method, p.key, p.tau,
-                                                                    p.sharpness))
+    z, _, kind, _, residual = (
+        np.asarray(a) for a in field_zeros(p.env, starts, p.sensor, p.method, p.key, p.tau, p.sharpness)
+    )
     assert np.all(residual < 1e-3)
     assert np.all(np.hypot(*(z - np.asarray(p.env.home)).T) < 5.0) and all(KINDS[k] == "sink" for k in kind)
 

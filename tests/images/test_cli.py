@@ -16,18 +16,22 @@ from tests.cases.images_io import error_line, no_leftovers, entries, read_csv, s
 
 # --- vector-map / catchment --images options ---------------------------------------------------------
 
-@pytest.mark.parametrize("command, flags, field", [
-    ("vector-map", ["--bearing-noise-deg", "2"], "--bearing-noise-deg"),
-    ("vector-map", ["--hide", "0"], "--hide"),
-    ("vector-map", ["--heading-deg", "90"], "--heading-deg"),
-    ("vector-map", ["--d", "10"], "--d"),
-    ("vector-map", ["--turn-noise-deg", "3"], "--turn-noise-deg"),
-    ("vector-map", ["robot"], "env"),
-    ("catchment", ["--lanes", "8"], "--lanes"),
-    ("catchment", ["--first-move", "homing"], "--first-move"),
-    ("catchment", ["--step-noise", "0.1"], "--step-noise"),
-    ("catchment", ["env1"], "env"),
-])
+
+@pytest.mark.parametrize(
+    "command, flags, field",
+    [
+        ("vector-map", ["--bearing-noise-deg", "2"], "--bearing-noise-deg"),
+        ("vector-map", ["--hide", "0"], "--hide"),
+        ("vector-map", ["--heading-deg", "90"], "--heading-deg"),
+        ("vector-map", ["--d", "10"], "--d"),
+        ("vector-map", ["--turn-noise-deg", "3"], "--turn-noise-deg"),
+        ("vector-map", ["robot"], "env"),
+        ("catchment", ["--lanes", "8"], "--lanes"),
+        ("catchment", ["--first-move", "homing"], "--first-move"),
+        ("catchment", ["--step-noise", "0.1"], "--step-noise"),
+        ("catchment", ["env1"], "env"),
+    ],
+)
 def test_options_that_do_not_apply_to_images_are_refused(small_db, tmp_path, capsys, command, flags, field):
     out = tmp_path / "m.csv"
     argv = [command, *flags, "--images", str(small_db), "--out", str(out)]
@@ -76,8 +80,24 @@ def test_catchment_on_a_database(small_db, tmp_path, capsys):
     res = {}
     for rule in ("ignore", "fail"):
         out, summary = tmp_path / f"{rule}.csv", tmp_path / f"{rule}.json"
-        assert main(["catchment", "--images", str(small_db), "--method", "delv", "--collisions", rule,
-                     "--out", str(out), "--summary", str(summary)]) == 0
+        assert (
+            main(
+                [
+                    "catchment",
+                    "--images",
+                    str(small_db),
+                    "--method",
+                    "delv",
+                    "--collisions",
+                    rule,
+                    "--out",
+                    str(out),
+                    "--summary",
+                    str(summary),
+                ]
+            )
+            == 0
+        )
         res[rule] = json.loads(summary.read_text()), read_csv(out)
     capsys.readouterr()
     for rule, (s, rows) in res.items():
@@ -100,9 +120,28 @@ def test_catchment_on_a_database(small_db, tmp_path, capsys):
 def test_noisy_rollouts_repeat_with_the_same_seed(small_db, tmp_path, capsys):
     def run(seed: int, tag: str):
         out, summary = tmp_path / f"{tag}.csv", tmp_path / f"{tag}.json"
-        assert main(["catchment", "--images", str(small_db), "--method", "alv", "--seed", str(seed),
-                     "--motion-heading-noise-deg", "40", "--motion-step-noise", "0.3", "--out", str(out),
-                     "--summary", str(summary)]) == 0
+        assert (
+            main(
+                [
+                    "catchment",
+                    "--images",
+                    str(small_db),
+                    "--method",
+                    "alv",
+                    "--seed",
+                    str(seed),
+                    "--motion-heading-noise-deg",
+                    "40",
+                    "--motion-step-noise",
+                    "0.3",
+                    "--out",
+                    str(out),
+                    "--summary",
+                    str(summary),
+                ]
+            )
+            == 0
+        )
         return out.read_bytes(), summary_numbers(summary)
 
     a, b, c = run(5, "a"), run(5, "b"), run(6, "c")
@@ -112,6 +151,7 @@ def test_noisy_rollouts_repeat_with_the_same_seed(small_db, tmp_path, capsys):
 
 
 # --- edge databases ----------------------------------------------------------------------------------
+
 
 def test_a_database_of_one_image(small_db, tmp_path, capsys):
     home = next(r for r in entries(small_db) if r["X [mm]"] == "900.0" and r["Y [mm]"] == "900.0")
@@ -143,8 +183,22 @@ def test_a_home_without_an_axis_neighbour_does_not_pass_silently(small_db, tmp_p
             r["X [mm]"], r["Y [mm]"] = str(float(r["X [mm]"]) + 70), str(float(r["Y [mm]"]) + 70)
     iso = write_plain(tmp_path / "iso", small_db, rows)
     out = tmp_path / "m.csv"
-    rc = main(["vector-map", "--images", str(iso), "--method", "delv", "--home", "90", "90", "--spacing", "20",
-               "--out", str(out)])
+    rc = main(
+        [
+            "vector-map",
+            "--images",
+            str(iso),
+            "--method",
+            "delv",
+            "--home",
+            "90",
+            "90",
+            "--spacing",
+            "20",
+            "--out",
+            str(out),
+        ]
+    )
     err = capsys.readouterr().err
     if rc == 2:  # refused, naming home
         assert "delvjax: error: home" in err and not out.exists(), err

@@ -81,28 +81,52 @@ def _robot_database(iw, pts, headings):
     settings = ImageSettings(camera=DB_CAMERA, pixel_noise=jnp.float32(0.0))
     rings = render_rings(iw, settings, pts, headings, jax.random.PRNGKey(0))
     home_index = int(np.argmin(np.linalg.norm(pts - np.asarray(iw.home), axis=1)))
-    return LoadedDatabase("robot", rings, [], pts[home_index].astype(float), home_index,
-                          np.asarray(iw.world.arena, float), iw.spacing, settings.camera, iw.extractor, iw.obstacles())
+    return LoadedDatabase(
+        "robot",
+        rings,
+        [],
+        pts[home_index].astype(float),
+        home_index,
+        np.asarray(iw.world.arena, float),
+        iw.spacing,
+        settings.camera,
+        iw.extractor,
+        iw.obstacles(),
+    )
 
 
 def _snapshot(snaps, i, k):
     """Database snapshot i seen with column k as column 0 (the reference roll), as a `Snapshot`."""
     valid = np.asarray(snaps.valid[i])
-    mask, gray, b, w = ref_db.rolled_snapshot(np.asarray(snaps.mask[i]), np.asarray(snaps.gray[i]),
-                                           np.asarray(snaps.bearing[i])[valid], np.asarray(snaps.width[i])[valid], k)
+    mask, gray, b, w = ref_db.rolled_snapshot(
+        np.asarray(snaps.mask[i]),
+        np.asarray(snaps.gray[i]),
+        np.asarray(snaps.bearing[i])[valid],
+        np.asarray(snaps.width[i])[valid],
+        k,
+    )
     pad = len(valid) - len(b)
-    return Snapshot(mask=jnp.asarray(mask), gray=jnp.asarray(gray),
-                    bearing=jnp.asarray(np.concatenate([b, np.zeros(pad)]), jnp.float32),
-                    width=jnp.asarray(np.concatenate([w, np.zeros(pad)]), jnp.float32),
-                    valid=jnp.asarray(np.arange(len(valid)) < len(b)), channel=snaps.channel)
+    return Snapshot(
+        mask=jnp.asarray(mask),
+        gray=jnp.asarray(gray),
+        bearing=jnp.asarray(np.concatenate([b, np.zeros(pad)]), jnp.float32),
+        width=jnp.asarray(np.concatenate([w, np.zeros(pad)]), jnp.float32),
+        valid=jnp.asarray(np.arange(len(valid)) < len(b)),
+        channel=snaps.channel,
+    )
 
 
 def _move(db, start, end, k, d, alpha_r):
     """(UnitMove from start to end rolled by k, world heading of its end view's column 0)."""
     s, h = db.rings.snapshots, np.asarray(db.rings.headings, float)
     heading_end = h[end] + k * 2 * np.pi / db.camera.cols
-    view = UnitMove(start=_snapshot(s, start, k), end=_snapshot(s, end, k), d_hat=jnp.float32(d),
-                    psi_hat=jnp.float32(wrap(h[end] - h[start])), compass=jnp.float32(wrap(heading_end - alpha_r)))
+    view = UnitMove(
+        start=_snapshot(s, start, k),
+        end=_snapshot(s, end, k),
+        d_hat=jnp.float32(d),
+        psi_hat=jnp.float32(wrap(h[end] - h[start])),
+        compass=jnp.float32(wrap(heading_end - alpha_r)),
+    )
     return view, heading_end
 
 
@@ -209,18 +233,32 @@ def test_nearest_snapshot_rollouts_match_reference_trials():
     starts = rng.uniform(5, 175, (40, 2))
     step, radius, noise, max_steps = spacing, spacing, (np.radians(15.0), 0.1), 25
     key = jax.random.PRNGKey(11)
-    field = Field(jnp.asarray(pos, jnp.float32), jnp.asarray(direction, jnp.float32), jnp.asarray(valid),
-                  jnp.asarray(home, jnp.float32), jnp.asarray(arena, jnp.float32), jnp.asarray(cyl, jnp.float32),
-                  jnp.asarray(boxes, jnp.float32))
-    paths = nearest_snapshot_rollouts(field, jnp.asarray(starts, jnp.float32), key, jnp.float32(step),
-                                      jnp.float32(radius), jnp.asarray(noise, jnp.float32), max_steps)
+    field = Field(
+        jnp.asarray(pos, jnp.float32),
+        jnp.asarray(direction, jnp.float32),
+        jnp.asarray(valid),
+        jnp.asarray(home, jnp.float32),
+        jnp.asarray(arena, jnp.float32),
+        jnp.asarray(cyl, jnp.float32),
+        jnp.asarray(boxes, jnp.float32),
+    )
+    paths = nearest_snapshot_rollouts(
+        field,
+        jnp.asarray(starts, jnp.float32),
+        key,
+        jnp.float32(step),
+        jnp.float32(radius),
+        jnp.asarray(noise, jnp.float32),
+        max_steps,
+    )
     # trial i, move t draws N(0, 1) x 2 from fold_in(fold_in(key, i), t)
     draw = jax.jit(lambda i, t: jax.random.normal(jax.random.fold_in(jax.random.fold_in(key, i), t), (2,)))
     draws = np.asarray(jax.vmap(jax.vmap(draw, (None, 0)), (0, None))(jnp.arange(len(starts)), jnp.arange(max_steps)))
     outcomes = []
     for i, s in enumerate(starts):
-        code, steps, path = ref_db.rollout_trial(pos, direction, valid, home, arena, cyl, boxes, s, draws[i], step,
-                                              radius, noise[0], noise[1], max_steps)
+        code, steps, path = ref_db.rollout_trial(
+            pos, direction, valid, home, arena, cyl, boxes, s, draws[i], step, radius, noise[0], noise[1], max_steps
+        )
         assert (int(paths.outcome[i]), int(paths.steps[i])) == (code, steps), i
         np.testing.assert_allclose(np.asarray(paths.path[i]), path, atol=2e-3)
         outcomes.append(code)

@@ -19,10 +19,23 @@ from delvjax.core.images import Catadioptric
 from delvjax.images._disk import BOB_COLUMNS, ENTRIES, METADATA, POSITIONS, file_columns, read_index
 from delvjax.images._worlds import image_world
 
-from tests.cases.images_io import render_db, entries, write_plain, leaves_equal, read_csv, by_position, summary_numbers, SMALL, SEED, HEADER, CYLINDERS
+from tests.cases.images_io import (
+    render_db,
+    entries,
+    write_plain,
+    leaves_equal,
+    read_csv,
+    by_position,
+    summary_numbers,
+    SMALL,
+    SEED,
+    HEADER,
+    CYLINDERS,
+)
 
 
 # --- the BoB layout --------------------------------------------------------------------------------
+
 
 def test_render_db_writes_the_bob_layout(default_db):
     iw = image_world("robot")
@@ -72,6 +85,7 @@ def test_small_render_has_the_stated_size_and_metadata(small_db, donut_db):
 
 # --- bit for bit -----------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("kind", ["panorama", "donut"])
 def test_loaded_rings_equal_the_in_memory_rings(small_db, donut_db, kind):
     """8-bit quantization before the pipeline: the rings of the files equal render_rings, bit for bit."""
@@ -107,8 +121,19 @@ def test_a_file_is_the_unmirrored_view(small_db):
     iw = image_world("robot")
     pts, _ = world_grid(iw, iw.spacing)
     s = ImageSettings(camera=camera(12, 72))
-    mem = np.asarray(render_images(lit(iw.world, None), s.camera, None, pts, np.zeros(len(pts), np.float32),
-                                   np.arange(len(pts)), jax.random.PRNGKey(SEED), s.pixel_noise, s.gain_noise))
+    mem = np.asarray(
+        render_images(
+            lit(iw.world, None),
+            s.camera,
+            None,
+            pts,
+            np.zeros(len(pts), np.float32),
+            np.arange(len(pts)),
+            jax.random.PRNGKey(SEED),
+            s.pixel_noise,
+            s.gain_noise,
+        )
+    )
     rows = entries(small_db)
     for i, r in enumerate(rows):
         with Image.open(small_db / r["Filename"]) as im:
@@ -138,6 +163,7 @@ def test_render_db_files_do_not_depend_on_chunk(small_db, tmp_path):
 
 # --- import ----------------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("kind", ["panorama", "donut"])
 def test_import_of_a_bob_database_round_trips(small_db, donut_db, tmp_path, capsys, kind):
     src = small_db if kind == "panorama" else donut_db
@@ -165,14 +191,30 @@ def test_import_of_a_bob_database_round_trips(small_db, donut_db, tmp_path, caps
 def test_a_plain_folder_is_imported_and_evaluated_to_the_same_numbers(small_db, plain_db, tmp_path, capsys):
     imported = tmp_path / "imported"
     assert main(["images", "import", str(plain_db), "--out", str(imported)]) == 0
-    assert [float(r["X [mm]"]) for r in entries(imported)] == [float(x) * 10 for x in
-                                                               (r["x"] for r in read_csv(plain_db / POSITIONS))]
+    assert [float(r["X [mm]"]) for r in entries(imported)] == [
+        float(x) * 10 for x in (r["x"] for r in read_csv(plain_db / POSITIONS))
+    ]
     results = {}
     for name, folder in [("bob", small_db), ("imported", imported), ("plain", plain_db)]:
         out, summary = tmp_path / f"{name}.csv", tmp_path / f"{name}.json"
         plot = ["--plot", str(tmp_path / "bob.png")] if name == "bob" else []
-        assert main(["vector-map", "--images", str(folder), "--method", "delv", "--out", str(out),
-                     "--summary", str(summary), *plot]) == 0
+        assert (
+            main(
+                [
+                    "vector-map",
+                    "--images",
+                    str(folder),
+                    "--method",
+                    "delv",
+                    "--out",
+                    str(out),
+                    "--summary",
+                    str(summary),
+                    *plot,
+                ]
+            )
+            == 0
+        )
         results[name] = by_position(read_csv(out)), summary_numbers(summary)
     capsys.readouterr()
     with Image.open(tmp_path / "bob.png") as im:

@@ -20,6 +20,7 @@ from tests.cases.images_io import writer_argv, error_line, no_leftovers, entries
 
 # --- reading errors: exit 2, one line naming the file, nothing at --out ----------------------------
 
+
 def _break_missing(src: Path) -> list[str]:
     text = (src / POSITIONS).read_text().replace("p4.png", "ghost.png")
     (src / POSITIONS).write_text(text)
@@ -54,9 +55,14 @@ def _break_outside(src: Path) -> list[str]:
     return [str(src / first), "outside the arena"]
 
 
-BREAKS = {"missing image": (_break_missing, []), "garbage png": (_break_garbage, []),
-          "other size": (_break_size, []), "non-numeric": (_break_number, []), "no csv": (_break_no_csv, []),
-          "outside arena": (_break_outside, ["--arena", "0", "0", "100", "100"])}
+BREAKS = {
+    "missing image": (_break_missing, []),
+    "garbage png": (_break_garbage, []),
+    "other size": (_break_size, []),
+    "non-numeric": (_break_number, []),
+    "no csv": (_break_no_csv, []),
+    "outside arena": (_break_outside, ["--arena", "0", "0", "100", "100"]),
+}
 
 
 @pytest.mark.parametrize("command", ["import", "vector-map"])
@@ -67,8 +73,11 @@ def test_a_bad_plain_folder_exits_2_naming_the_file(plain9, tmp_path, capsys, co
     breaker, extra = BREAKS[case]
     needed = breaker(src)
     out = tmp_path / ("out" if command == "import" else "m.csv")
-    argv = (["images", "import", str(src), "--out", str(out)] if command == "import"
-            else ["vector-map", "--images", str(src), "--out", str(out)])
+    argv = (
+        ["images", "import", str(src), "--out", str(out)]
+        if command == "import"
+        else ["vector-map", "--images", str(src), "--out", str(out)]
+    )
     assert main(argv + extra) == 2
     line = error_line(capsys)
     assert all(n in line for n in needed), (needed, line)
@@ -149,8 +158,9 @@ def test_an_out_folder_that_cannot_be_made_is_refused(plain9, tmp_path, capsys, 
     assert sorted(p.name for p in tmp_path.iterdir()) == (["file"] if where == "under a file" else [])
 
 
-@pytest.mark.parametrize("exc", [OSError(28, "No space left on device"), KeyboardInterrupt()],
-                         ids=["disk full", "interrupted"])
+@pytest.mark.parametrize(
+    "exc", [OSError(28, "No space left on device"), KeyboardInterrupt()], ids=["disk full", "interrupted"]
+)
 def test_a_render_that_fails_midway_leaves_nothing(tmp_path, monkeypatch, exc):
     calls = []
     add = image_db.DatabaseWriter.add
@@ -183,11 +193,19 @@ def test_an_import_that_fails_midway_leaves_nothing(small_db, tmp_path, capsys):
     no_leftovers(out)
 
 
-@pytest.mark.parametrize("flags, field", [
-    (["--cols", "70"], "cols"), (["--rows", "0"], "rows"), (["--spacing", "0"], "spacing"),
-    (["--spacing", "500"], "spacing"), (["--pixel-noise", "-0.1"], "pixel_noise"), (["--seed", "-1"], "seed"),
-    (["--chunk", "0"], "chunk"), (["--max-points", "10"], "spacing"),
-])
+@pytest.mark.parametrize(
+    "flags, field",
+    [
+        (["--cols", "70"], "cols"),
+        (["--rows", "0"], "rows"),
+        (["--spacing", "0"], "spacing"),
+        (["--spacing", "500"], "spacing"),
+        (["--pixel-noise", "-0.1"], "pixel_noise"),
+        (["--seed", "-1"], "seed"),
+        (["--chunk", "0"], "chunk"),
+        (["--max-points", "10"], "spacing"),
+    ],
+)
 def test_render_db_checks_its_options_before_any_work(tmp_path, capsys, flags, field):
     out = tmp_path / "db"
     assert main(["images", "render-db", "robot", *SMALL, *flags, "--out", str(out)]) == 2

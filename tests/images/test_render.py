@@ -23,8 +23,9 @@ panoramas = eqx.filter_jit(render.panoramas)
 donut = eqx.filter_jit(render.donut)
 unwrap = eqx.filter_jit(pipeline.unwrap)
 call_method = eqx.filter_jit(lambda method, home, view: method(home, view))
-extract = eqx.filter_jit(lambda extractor, image, cam: extractor(pipeline.to_uint8(image).astype(jnp.float32) / 255.0,
-                                                                 cam))
+extract = eqx.filter_jit(
+    lambda extractor, image, cam: extractor(pipeline.to_uint8(image).astype(jnp.float32) / 255.0, cam)
+)
 
 
 def _random_world(rng):
@@ -36,11 +37,22 @@ def _random_world(rng):
         boxes.append((x0, y0, x0 + rng.uniform(20, 80), y0 + rng.uniform(20, 80), rng.uniform(20, 150)))
     cyl += [(0.0,) * 4] * (4 - len(cyl))
     boxes += [(0.0,) * 5] * (3 - len(boxes))
-    return make_world(cylinders=cyl, cylinder_rgb=rng.uniform(0, 1, (4, 3)), boxes=boxes,
-                      box_rgb=rng.uniform(0, 1, (3, 3)), arena=(0.0, 0.0, 600.0, 600.0),
-                      wall_height=rng.uniform(40, 200), light_azimuth_deg=rng.uniform(0, 360),
-                      light_elevation_deg=rng.uniform(10, 80), ambient=rng.uniform(0.2, 0.6),
-                      texture=rng.uniform(0, 1)), np.array(cyl), np.array(boxes)
+    return (
+        make_world(
+            cylinders=cyl,
+            cylinder_rgb=rng.uniform(0, 1, (4, 3)),
+            boxes=boxes,
+            box_rgb=rng.uniform(0, 1, (3, 3)),
+            arena=(0.0, 0.0, 600.0, 600.0),
+            wall_height=rng.uniform(40, 200),
+            light_azimuth_deg=rng.uniform(0, 360),
+            light_elevation_deg=rng.uniform(10, 80),
+            ambient=rng.uniform(0.2, 0.6),
+            texture=rng.uniform(0, 1),
+        ),
+        np.array(cyl),
+        np.array(boxes),
+    )
 
 
 def _free_poses(rng, cyl, boxes, n):
@@ -89,16 +101,22 @@ def test_panorama_of_random_worlds_matches_reference():
     assert differ <= 0.01 * total, differ / total  # measured: no pixel differs by more than 1e-4 (max 1.3e-5)
 
 
-@pytest.mark.parametrize("dist, radius, height, bearing_deg, heading_deg",
-                         [(100.0, 8.0, 60.0, 0.0, 0.0), (140.0, 15.0, 75.0, 100.0, 30.0), (260.0, 30.0, 60.0, 250.0, 0.0)])
+@pytest.mark.parametrize(
+    "dist, radius, height, bearing_deg, heading_deg",
+    [(100.0, 8.0, 60.0, 0.0, 0.0), (140.0, 15.0, 75.0, 100.0, 30.0), (260.0, 30.0, 60.0, 250.0, 0.0)],
+)
 def test_one_cylinder_has_its_analytic_size(dist, radius, height, bearing_deg, heading_deg):
     """Columns covered: 2 asin(r / D) (within one pixel) about column (bearing - heading) (counter-clockwise);
     rows: from the top edge at atan((H - h_c) / (D - r)) down to the foot at -atan(h_c / (D - r)), 1 deg per
     row with row centres at half degrees (the cases put both edges 0.15-0.35 deg past a whole degree, so a
     half-row error in the elevations fails)."""
     b = math.radians(bearing_deg)
-    world = make_world(cylinders=[(500.0 + dist * math.cos(b), 500.0 + dist * math.sin(b), radius, height)],
-                       cylinder_rgb=[RED], arena=(0.0, 0.0, 1000.0, 1000.0), wall_height=40.0)
+    world = make_world(
+        cylinders=[(500.0 + dist * math.cos(b), 500.0 + dist * math.sin(b), radius, height)],
+        cylinder_rgb=[RED],
+        arena=(0.0, 0.0, 1000.0, 1000.0),
+        wall_height=40.0,
+    )
     cam = Camera()  # 60 rows from +30 to -30 deg, 360 columns: 1 deg per pixel
     img = panorama(world, cam, jnp.array([500.0, 500.0]), jnp.float32(math.radians(heading_deg)))
     mask = np.asarray(pipeline.segment(pipeline.rgb_to_hsv(img), 0.0, 40.0, 0.5, 0.15))
@@ -155,8 +173,15 @@ def test_unwrap_is_bilinear_sampling():
 # ----------------------------------------------------------------------------- §5 pipeline
 def test_rgb_to_hsv_is_the_hexcone():
     rng = np.random.default_rng(2)
-    rgb = np.concatenate([rng.uniform(0, 1, (400, 3)), np.round(rng.uniform(0, 1, (100, 3)), 1),  # ties
-                          np.eye(3), 1 - np.eye(3), [[0, 0, 0], [1, 1, 1], [0.5, 0.5, 0.5]]]).astype(np.float32)
+    rgb = np.concatenate(
+        [
+            rng.uniform(0, 1, (400, 3)),
+            np.round(rng.uniform(0, 1, (100, 3)), 1),  # ties
+            np.eye(3),
+            1 - np.eye(3),
+            [[0, 0, 0], [1, 1, 1], [0.5, 0.5, 0.5]],
+        ]
+    ).astype(np.float32)
     got = np.asarray(pipeline.rgb_to_hsv(jnp.asarray(rgb)))
     assert ((got[:, 0] >= 0) & (got[:, 0] < 1)).all()
     for g, c in zip(got, rgb.astype(float)):
@@ -199,8 +224,9 @@ def test_band_rings_and_blobs_match_reference():
     n_blobs = 0
     for i in range(12):
         band, height, fill = settings[i % len(settings)]
-        ex = pipeline.Extractor(band_deg=jnp.float32(band), band_height_deg=jnp.float32(height),
-                                fill=jnp.float32(fill), max_blobs=6)
+        ex = pipeline.Extractor(
+            band_deg=jnp.float32(band), band_height_deg=jnp.float32(height), fill=jnp.float32(fill), max_blobs=6
+        )
         img = _striped_image(rng, cam.rows, cam.cols)
         share, gray = rings(ex, jnp.asarray(img))
         want_share, want_gray = ref.band_rings(img.astype(float), band, height)
@@ -210,7 +236,7 @@ def test_band_rings_and_blobs_match_reference():
         mask, bearings, widths = ref.ring_blobs(want_share, fill)
         np.testing.assert_array_equal(np.asarray(s.mask), mask)
         valid = np.asarray(s.valid)
-        assert valid.sum() == len(bearings) and not valid[len(bearings):].any()
+        assert valid.sum() == len(bearings) and not valid[len(bearings) :].any()
         np.testing.assert_allclose(np.asarray(s.bearing)[valid], bearings, atol=1e-5)
         np.testing.assert_allclose(np.asarray(s.width)[valid], widths, atol=1e-5)
         n_blobs += len(bearings)
@@ -232,5 +258,6 @@ def test_robot_blobs_from_home_are_the_true_bearings():
     # turning the camera turns the bearings the other way by whole pixels
     img = panorama(iw.world, cam, jnp.array([90.0, 90.0]), jnp.float32(np.radians(30.0)))
     turned = extract(iw.extractor, img, cam)
-    np.testing.assert_allclose(np.sort(np.mod(np.asarray(turned.bearing) + np.radians(30.0), 2 * np.pi)),
-                               np.asarray(snap.bearing), atol=1e-4)
+    np.testing.assert_allclose(
+        np.sort(np.mod(np.asarray(turned.bearing) + np.radians(30.0), 2 * np.pi)), np.asarray(snap.bearing), atol=1e-4
+    )

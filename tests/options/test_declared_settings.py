@@ -55,8 +55,12 @@ def test_the_setting_is_a_cli_flag_with_its_help(toy, capsys):
 def test_the_cli_flag_sets_the_field_and_a_bad_value_is_refused_naming_it(toy, tmp_path, capsys):
     def mean_error(turn: str) -> float:
         out = tmp_path / f"s{turn}.json"
-        assert main(["vector-map", "env1", "--method", "toy", "--spacing", "200", "--turn-deg", turn,
-                     "--summary", str(out)]) == 0
+        assert (
+            main(
+                ["vector-map", "env1", "--method", "toy", "--spacing", "200", "--turn-deg", turn, "--summary", str(out)]
+            )
+            == 0
+        )
         return json.loads(out.read_text())["mean_error_deg"]
 
     straight, turned = mean_error("0"), mean_error("90")
@@ -79,8 +83,10 @@ def test_the_setting_is_an_api_keyword(toy):
 
 
 def test_the_setting_is_a_sweep_axis(toy, tmp_path):
-    text = ('[sweep]\nkind = "vector-map"\nmetrics = ["mean_error_deg"]\n'
-            '[axes]\nmethod = ["toy"]\nspacing = [200]\nturn_deg = [0.0, 90.0]\n')
+    text = (
+        '[sweep]\nkind = "vector-map"\nmetrics = ["mean_error_deg"]\n'
+        '[axes]\nmethod = ["toy"]\nspacing = [200]\nturn_deg = [0.0, 90.0]\n'
+    )
     spec = parse_sweep(text)
     assert spec.axes["turn_deg"] == [0.0, 90.0]
     data = run_sweep(spec)

@@ -25,15 +25,18 @@ def refused(capsys, argv, field) -> str:
     return err[0]
 
 
-@pytest.mark.parametrize("argv, field", [
-    (["vector-map", "env1", "--spacing", "0.01"], "spacing"),  # 1e10 points: MemoryError traceback before
-    (["vector-map", "env1", "--spacing", "0.1"], "spacing"),   # 1e8 points: sat at 7.6 GB before
-    (["catchment", "env1", "--spacing", "0.5"], "spacing"),
-    (["catchment", "env1", "--spacing", "5", "--occlude", "1"], "spacing"),  # 4e4 points x 3 masks > limit 1e5
-    (["success-rate", "env1", "--trials", "100000000"], "trials"),
-    (["trajectories", "env1", "--max-steps", "200000000"], "max_steps"),
-    (["trajectories", "env1", "--n-starts", "2000000"], "n_starts"),
-])
+@pytest.mark.parametrize(
+    "argv, field",
+    [
+        (["vector-map", "env1", "--spacing", "0.01"], "spacing"),  # 1e10 points: MemoryError traceback before
+        (["vector-map", "env1", "--spacing", "0.1"], "spacing"),  # 1e8 points: sat at 7.6 GB before
+        (["catchment", "env1", "--spacing", "0.5"], "spacing"),
+        (["catchment", "env1", "--spacing", "5", "--occlude", "1"], "spacing"),  # 4e4 points x 3 masks > limit 1e5
+        (["success-rate", "env1", "--trials", "100000000"], "trials"),
+        (["trajectories", "env1", "--max-steps", "200000000"], "max_steps"),
+        (["trajectories", "env1", "--n-starts", "2000000"], "n_starts"),
+    ],
+)
 def test_a_run_above_max_points_is_refused_with_an_estimate(tmp_path, capsys, argv, field):
     out = tmp_path / "r.csv"
     extra = ["--max-points", "100000"] if "--occlude" in argv else []
@@ -52,9 +55,17 @@ def test_max_points_is_the_users_to_raise(tmp_path, capsys):
     assert MAX_POINTS == 1_000_000
 
 
-@pytest.mark.parametrize("arena, spacing", [((0, 0, 1000, 1000), 25.0), ((0, 0, 1000, 1000), 30.0),
-                                            ((-7.5, 3.0, 333.3, 99.9), 0.7), ((0, 0, 1, 1), 2.0),
-                                            ((0, 0, 1e4, 10), 0.1), ((5, 5, 6, 7), 1e-3)])
+@pytest.mark.parametrize(
+    "arena, spacing",
+    [
+        ((0, 0, 1000, 1000), 25.0),
+        ((0, 0, 1000, 1000), 30.0),
+        ((-7.5, 3.0, 333.3, 99.9), 0.7),
+        ((0, 0, 1, 1), 2.0),
+        ((0, 0, 1e4, 10), 0.1),
+        ((5, 5, 6, 7), 1e-3),
+    ],
+)
 def test_the_grid_count_is_known_before_the_grid_is_built(arena, spacing):
     n = grid_count(arena, spacing)
     built = maps.grid_points(np.asarray(arena), spacing).shape[0]
@@ -65,8 +76,15 @@ def test_a_grid_in_many_chunks_reports_progress_and_gives_the_one_chunk_numbers(
     calls = []
     vm = delvjax.vector_map("env1", spacing=50.0, batch_size=100)
     env = delvjax.load_env("env1")
-    chunked = maps.vector_map(env, delvjax.DELV(), delvjax.Sensor(), spacing=50.0, key=jax.random.PRNGKey(0),
-                              batch_size=128, progress=lambda n, total: calls.append((n, total)))
+    chunked = maps.vector_map(
+        env,
+        delvjax.DELV(),
+        delvjax.Sensor(),
+        spacing=50.0,
+        key=jax.random.PRNGKey(0),
+        batch_size=128,
+        progress=lambda n, total: calls.append((n, total)),
+    )
     assert [t for _, t in calls] == [400] * 4 and [n for n, _ in calls] == [128] * 3 + [16]  # chunks of 128, then 16
     assert np.array_equal(np.asarray(chunked.direction), np.asarray(vm.direction), equal_nan=True)
 

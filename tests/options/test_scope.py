@@ -16,10 +16,13 @@ def error_line(capsys) -> str:
     return err[0]
 
 
-@pytest.mark.parametrize("argv", [
-    ["success-rate", "env1", "--trials", "2", "--distances", "100"],
-    ["trajectories", "env1", "--start", "400", "400"],
-])
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["success-rate", "env1", "--trials", "2", "--distances", "100"],
+        ["trajectories", "env1", "--start", "400", "400"],
+    ],
+)
 def test_spacing_is_refused_where_no_grid_is_evaluated(tmp_path, capsys, argv):
     out = tmp_path / "r.csv"
     assert main(argv + ["--spacing", "50", "--out", str(out)]) == 2
@@ -27,8 +30,9 @@ def test_spacing_is_refused_where_no_grid_is_evaluated(tmp_path, capsys, argv):
     assert not out.exists()
 
 
-@pytest.mark.parametrize("command, offered", [("vector-map", True), ("catchment", True), ("success-rate", False),
-                                              ("trajectories", False)])
+@pytest.mark.parametrize(
+    "command, offered", [("vector-map", True), ("catchment", True), ("success-rate", False), ("trajectories", False)]
+)
 def test_the_help_offers_spacing_only_where_it_is_used(capsys, command, offered):
     with pytest.raises(SystemExit):
         main([command, "--help"])

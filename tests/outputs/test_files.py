@@ -69,8 +69,14 @@ def test_an_unwritable_plot_folder_is_refused_before_any_work(tmp_path, capsys, 
     folder = bad_plot_folder(tmp_path, kind, monkeypatch)
     before = files_under(tmp_path)
     plot = folder / "p.png"
-    argv = COMMANDS[command] + ["--out", str(tmp_path / "r.csv"), "--summary", str(tmp_path / "s.json"),
-                                "--plot", str(plot)]
+    argv = COMMANDS[command] + [
+        "--out",
+        str(tmp_path / "r.csv"),
+        "--summary",
+        str(tmp_path / "s.json"),
+        "--plot",
+        str(plot),
+    ]
     try:
         assert main(argv) == 2
     finally:
@@ -100,8 +106,11 @@ def test_two_options_naming_one_file_are_refused(tmp_path, capsys):
 
 def test_an_output_over_the_environment_file_is_refused(tmp_path, capsys):
     env = tmp_path / "env.json"
-    env.write_text(json.dumps({"name": "e", "arena": [0, 0, 1000, 1000], "home": [500, 500],
-                               "landmarks": [{"x": 200, "y": 200, "r": 20}]}))
+    env.write_text(
+        json.dumps(
+            {"name": "e", "arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": 200, "y": 200, "r": 20}]}
+        )
+    )
     text = env.read_text()
     assert main(["vector-map", str(env), "--summary", str(env)]) == 2
     assert "--summary: names the same file as env" in error_line(capsys)
@@ -118,11 +127,20 @@ def test_a_figure_that_fails_to_render_leaves_no_output(tmp_path, capsys, monkey
     monkeypatch.setattr(Figure, "savefig", broken)
     (tmp_path / "old.json").write_text("old")
     plot = tmp_path / "new" / "deeper" / "p.png"
-    argv = COMMANDS["vector-map"] + ["--out", str(tmp_path / "new" / "r.csv"), "--summary",
-                                     str(tmp_path / "old.json"), "--plot", str(plot)]
+    argv = COMMANDS["vector-map"] + [
+        "--out",
+        str(tmp_path / "new" / "r.csv"),
+        "--summary",
+        str(tmp_path / "old.json"),
+        "--plot",
+        str(plot),
+    ]
     assert main(argv) == 2
     line = capsys.readouterr().err.strip().splitlines()[-1]  # after the progress lines
-    assert line == f"delvjax: error: --plot: could not be written (RuntimeError: renderer failed second line), got {str(plot)!r}"
+    assert (
+        line
+        == f"delvjax: error: --plot: could not be written (RuntimeError: renderer failed second line), got {str(plot)!r}"
+    )
     assert files_under(tmp_path) == ["old.json"] and (tmp_path / "old.json").read_text() == "old"
 
 

@@ -28,6 +28,7 @@ from tests.cases.reproduce import MAY_BE_NAN, METHOD_OF_LABEL, PNG_MAGIC, TINY, 
 
 # --- 1. every study at the tiny size --------------------------------------------------------
 
+
 def test_every_study_ran(run):
     out, result, _ = run
     assert result["ran"] == list(studies.STUDIES)
@@ -68,8 +69,9 @@ def test_study_writes_each_file_once(run, name):
     for t in rec["tables"]:  # the report links each table's CSV as its data: it must hold the table
         with open(out / name / t["file"], newline="") as fh:
             csv_rows = list(csv.reader(fh))
-        assert csv_rows[0] == list(dict.fromkeys(k for r in t["rows"] for k in r)), \
+        assert csv_rows[0] == list(dict.fromkeys(k for r in t["rows"] for k in r)), (
             f"{name}/{t['file']} does not hold table {t['id']}"
+        )
         assert len(csv_rows) == len(t["rows"]) + 1
 
 
@@ -80,8 +82,9 @@ def test_every_number_is_finite(run):
         assert numbers or name == "environments", f"{name} records no number"
         for key, value in numbers.items():
             values = value if isinstance(value, list) else [value]
-            ok = bool(values) and all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-                                      for v in values)
+            ok = bool(values) and all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in values
+            )
             if not ok and not (MAY_BE_NAN.match(key) and value is None):
                 bad[f"{name}:{key}"] = value
     assert not bad, f"numbers that are not finite (NaN is written as null): {bad}"
@@ -110,13 +113,16 @@ def _rows_by_key(table: dict) -> dict[tuple, dict]:
     return rows
 
 
-@pytest.mark.parametrize("table_id,envs,column,source,field", [
-    ("table5_1", ("env1", "env2", "env3"), "thesis e>45 %", thesis.ERROR_POINTS["table5_1"], "gt45"),
-    ("table5_1", ("env1", "env2", "env3"), "thesis e>90 %", thesis.ERROR_POINTS["table5_1"], "gt90"),
-    ("table5_2", ("ring3", "ring4", "ring5", "ring6"), "thesis e>45 %", thesis.ERROR_POINTS["table5_2"], "gt45"),
-    ("table5_3", ("env1", "env2", "env3"), "thesis %", thesis.CATCHMENT["table5_3"], None),
-    ("table5_4", ("ring3", "ring4", "ring5", "ring6"), "thesis %", thesis.CATCHMENT["table5_4"], None),
-])
+@pytest.mark.parametrize(
+    "table_id,envs,column,source,field",
+    [
+        ("table5_1", ("env1", "env2", "env3"), "thesis e>45 %", thesis.ERROR_POINTS["table5_1"], "gt45"),
+        ("table5_1", ("env1", "env2", "env3"), "thesis e>90 %", thesis.ERROR_POINTS["table5_1"], "gt90"),
+        ("table5_2", ("ring3", "ring4", "ring5", "ring6"), "thesis e>45 %", thesis.ERROR_POINTS["table5_2"], "gt45"),
+        ("table5_3", ("env1", "env2", "env3"), "thesis %", thesis.CATCHMENT["table5_3"], None),
+        ("table5_4", ("ring3", "ring4", "ring5", "ring6"), "thesis %", thesis.CATCHMENT["table5_4"], None),
+    ],
+)
 def test_occlusion_tables_mirror_the_thesis(run, table_id, envs, column, source, field):
     out, _, _ = run
     table = _table(out, "occlusion", table_id)
@@ -129,8 +135,9 @@ def test_occlusion_tables_mirror_the_thesis(run, table_id, envs, column, source,
             values = values[field] if field else values
             for k, value in enumerate(values):  # every thesis cell has its row, with the thesis's number
                 assert (env_name, method, k) in rows, f"{table_id}: no row {env_name} {method} k={k}"
-                assert _leading_number(rows[env_name, method, k][column]) == pytest.approx(value), \
+                assert _leading_number(rows[env_name, method, k][column]) == pytest.approx(value), (
                     f"{table_id} {env_name} {method} k={k}: {rows[env_name, method, k][column]!r} != {value}"
+                )
             ks = sorted(k for e, m, k in rows if e == env_name and m == method)
             assert ks == list(range(len(ks))) and len(ks) >= 3
 
@@ -138,8 +145,9 @@ def test_occlusion_tables_mirror_the_thesis(run, table_id, envs, column, source,
 def test_table5_3_shows_both_thesis_numbers_for_env1_delv(run):
     out, _, _ = run
     rows = _rows_by_key(_table(out, "occlusion", "table5_3"))
-    for k, (table_value, fig_value) in enumerate(zip(thesis.CATCHMENT["table5_3"]["env1"]["delv-compass"],
-                                                     thesis.CATCHMENT["fig5_10"]["env1"]["delv-compass"])):
+    for k, (table_value, fig_value) in enumerate(
+        zip(thesis.CATCHMENT["table5_3"]["env1"]["delv-compass"], thesis.CATCHMENT["fig5_10"]["env1"]["delv-compass"])
+    ):
         cell = str(rows["env1", "delv-compass", k]["thesis %"])
         assert _leading_number(cell) == pytest.approx(table_value)
         assert f"{fig_value:g}" in cell, f"k={k}: Fig 5.10's {fig_value} missing from {cell!r}"
@@ -148,9 +156,10 @@ def test_table5_3_shows_both_thesis_numbers_for_env1_delv(run):
 
 def test_catchment_tables_mirror_the_thesis(run):
     out, _, _ = run
-    for study, table_id, column, fig, method in (("no_compass", "catchment_fig4_5", "thesis %", "fig4_5", "delv"),
-                                                 ("with_compass", "catchment_fig5_5", "thesis with compass %",
-                                                  "fig5_5", "delv-compass")):
+    for study, table_id, column, fig, method in (
+        ("no_compass", "catchment_fig4_5", "thesis %", "fig4_5", "delv"),
+        ("with_compass", "catchment_fig5_5", "thesis with compass %", "fig5_5", "delv-compass"),
+    ):
         rows = {r["env"]: r for r in _table(out, study, table_id)["rows"]}
         assert set(rows) == {"env1", "env2", "env3"}
         for env_name, row in rows.items():
@@ -174,6 +183,7 @@ def test_numbers_the_claims_read_are_present(run):
 
 # --- 2. the claims table ---------------------------------------------------------------------
 
+
 def test_claims_are_evaluated_on_the_real_numbers(run):
     out, _, _ = run
     rows = claims.evaluate(numbers_by_study(out))
@@ -187,7 +197,9 @@ def test_claims_are_evaluated_on_the_real_numbers(run):
 
 
 # claims whose check reads numbers that no study records yet (n/a until a study provides them)
-AWAITING_NUMBERS: set[str] = set()  # (delvjax.studies.runs.landmark_number now records error_curve:random{3,4,5}:warping)
+AWAITING_NUMBERS: set[str] = (
+    set()
+)  # (delvjax.studies.runs.landmark_number now records error_curve:random{3,4,5}:warping)
 
 
 def _set(numbers: dict, key: str, value) -> dict:
@@ -207,14 +219,19 @@ def _verdict(numbers: dict, claim_id: str) -> dict:
 FLIPS = {
     "delv_success_over_90": (
         {"success:env1:delv": [10.0] * 9},
-        {"success:env1:delv": [100.0, 100.0, 100.0, 99.0, 98.0, 97.0, 96.0, 94.0, 92.0],  # lowest far away
-         "success:env1:delv:physical": [100.0, 100.0, 100.0, 99.0, 98.0, 97.0, 96.0, 94.0, 92.0]}),
+        {
+            "success:env1:delv": [100.0, 100.0, 100.0, 99.0, 98.0, 97.0, 96.0, 94.0, 92.0],  # lowest far away
+            "success:env1:delv:physical": [100.0, 100.0, 100.0, 99.0, 98.0, 97.0, 96.0, 94.0, 92.0],
+        },
+    ),
     "occlusion_increases_errors": (
         {"occlusion:env1:delv-compass:gt45": [30.0, 20.0, 10.0]},
-        {"occlusion:env1:delv-compass:gt45": [5.0, 10.0, 20.0]}),
+        {"occlusion:env1:delv-compass:gt45": [5.0, 10.0, 20.0]},
+    ),
     "delv_nocompass_catchment_all_envs": (
         {"catchment:env1:delv": 10.0, "catchment:env2:delv": 10.0, "catchment:env3:delv": 50.0},
-        {"catchment:env1:delv": 98.0, "catchment:env2:delv": 95.0, "catchment:env3:delv": 78.0}),
+        {"catchment:env1:delv": 98.0, "catchment:env2:delv": 95.0, "catchment:env3:delv": 78.0},
+    ),
 }
 
 
@@ -238,10 +255,13 @@ def test_claim_verdict_follows_the_numbers(run, claim_id):
     assert numbers_by_study(out) == real  # evaluate() read copies
 
 
-@pytest.mark.parametrize("study,claim_ids", [
-    ("occlusion", ("occlusion_increases_errors", "acv_catchment_shrinks_faster")),
-    ("image_matching", ("delv_success_over_90", "warping_fails_outside_hull")),
-])
+@pytest.mark.parametrize(
+    "study,claim_ids",
+    [
+        ("occlusion", ("occlusion_increases_errors", "acv_catchment_shrinks_faster")),
+        ("image_matching", ("delv_success_over_90", "warping_fails_outside_hull")),
+    ],
+)
 def test_claim_without_its_study_is_not_applicable(run, study, claim_ids):
     out, _, _ = run
     numbers = numbers_by_study(out)
@@ -252,5 +272,3 @@ def test_claim_without_its_study_is_not_applicable(run, study, claim_ids):
         assert "needs" in rows[claim_id]["why"]
     full = {r["id"]: r["verdict"] for r in claims.evaluate(numbers_by_study(out))}
     assert all(full[c] != "n/a" for c in claim_ids)
-
-

@@ -24,6 +24,7 @@ from tests.cases.reproduce import PNG_MAGIC, TINY, VERDICTS, dot_files, numbers_
 
 # --- 3. the report ---------------------------------------------------------------------------
 
+
 def test_report_is_self_contained_with_claims_settings_versions(run):
     out, result, _ = run
     html_path, md_path = out / "report.html", out / "report.md"
@@ -59,6 +60,7 @@ def test_report_is_self_contained_with_claims_settings_versions(run):
 
 
 # --- 4. resume ---------------------------------------------------------------------------------
+
 
 def test_second_run_does_nothing_and_is_fast(run):
     out, first, _ = run
@@ -133,7 +135,8 @@ def test_a_source_edited_during_the_run_leaves_the_study_stale(run, monkeypatch)
 
     monkeypatch.setattr(module, "run", edit_then_run)
     assert reproduce.reproduce(out, only="environments", force=True, settings=TINY, progress=False)["ran"] == [
-        "environments"]
+        "environments"
+    ]
     assert read_record(out, "environments")["hash"] == real_hash(module, TINY)  # the code that ran
     assert not reproduce.is_current(out / "environments", reproduce.study_hash(module, TINY))  # stale for the edit
     monkeypatch.undo()
@@ -185,6 +188,7 @@ def test_changed_settings_rerun(run):
 
 # --- 5. atomic writes ----------------------------------------------------------------------------
 
+
 def test_no_temporary_files_are_left(run):
     out, _, _ = run
     assert (out / "report.html").is_file()
@@ -192,6 +196,7 @@ def test_no_temporary_files_are_left(run):
 
 
 # --- 6. bad input --------------------------------------------------------------------------------
+
 
 def _error_line(capsys) -> str:
     err = capsys.readouterr().err.strip().splitlines()
@@ -238,10 +243,17 @@ def test_list_prints_every_study(capsys):
 
 # --- 7. importable from outside the repository ---------------------------------------------------
 
+
 def test_studies_importable_outside_the_repo(tmp_path):
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
-    proc = subprocess.run([sys.executable, "-c", "import delvjax.studies, delvjax.reproduce._run as r; print(list(r.registry()))"],
-                          cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
+    proc = subprocess.run(
+        [sys.executable, "-c", "import delvjax.studies, delvjax.reproduce._run as r; print(list(r.registry()))"],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert proc.returncode == 0, proc.stderr[-2000:]
     printed = proc.stdout.strip().splitlines()[-1]
     for name in studies.STUDIES:

@@ -22,8 +22,11 @@ CHEAP = ["environments", "step_distance", "landmark_number", "with_compass"]
 
 def _tables_and_numbers(out, name):
     rec = read_record(out, name)
-    return rec["numbers"], [t["rows"] for t in rec["tables"]], {f: (out / name / f).read_bytes()
-                                                                 for f in rec["files"] if f.endswith(".csv")}
+    return (
+        rec["numbers"],
+        [t["rows"] for t in rec["tables"]],
+        {f: (out / name / f).read_bytes() for f in rec["files"] if f.endswith(".csv")},
+    )
 
 
 @pytest.mark.parametrize("workers", [1, 3])

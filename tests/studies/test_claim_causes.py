@@ -4,7 +4,18 @@ when they show something else. Pure Python, synthetic numbers (as tests/studies/
 
 from __future__ import annotations
 
-from tests.cases.claims import E3, compass_err, flat, merge, random_curves, step_errors, steps, success, success3, verdict
+from tests.cases.claims import (
+    E3,
+    compass_err,
+    flat,
+    merge,
+    random_curves,
+    step_errors,
+    steps,
+    success,
+    success3,
+    verdict,
+)
 from tests.cases.claims import FALLING, OURS_PHYSICAL
 
 
@@ -14,10 +25,15 @@ def _flat(key: str, counts: dict) -> dict:
 
 
 def _step_loss(fails: dict, wide: float | None = 100.0) -> dict:
-    numbers = merge(steps([flat(10)] * 4, [100.0, 100.0, 100.0, 85.7]),
-                    *[_flat(f"catchment_failures:env1:delv:d={d}", {"timeout": 0, "landmark": 0, "arena": 0})
-                      for d in (20, 50, 100)],
-                    _flat("catchment_failures:env1:delv:d=150", fails), {"step_distance:home_radius_cm": 50.0})
+    numbers = merge(
+        steps([flat(10)] * 4, [100.0, 100.0, 100.0, 85.7]),
+        *[
+            _flat(f"catchment_failures:env1:delv:d={d}", {"timeout": 0, "landmark": 0, "arena": 0})
+            for d in (20, 50, 100)
+        ],
+        _flat("catchment_failures:env1:delv:d=150", fails),
+        {"step_distance:home_radius_cm": 50.0},
+    )
     if wide is not None:
         numbers["catchment:env1:delv:d=150:home_radius=75"] = wide
     return numbers
@@ -45,10 +61,12 @@ def test_errors_largest_near_home_get_their_cause():
 
 
 def test_compass_gaps_name_the_wrong_heading_hypotheses():
-    numbers = merge({f"map:{e}:delv-compass:mean_error_deg": v for e, v in zip(E3, (7.9, 7.6, 11.1))},
-                    {f"map:{e}:delv:mean_error_deg": v for e, v in zip(E3, (10.3, 6.7, 31.3))},
-                    {f"map:{e}:delv:heading_slip_pct": v for e, v in zip(E3, (0.5, 0.0, 14.9))},
-                    {f"map:{e}:delv:mean_error_without_slips_deg": v for e, v in zip(E3, (9.8, 6.7, 17.0))})
+    numbers = merge(
+        {f"map:{e}:delv-compass:mean_error_deg": v for e, v in zip(E3, (7.9, 7.6, 11.1))},
+        {f"map:{e}:delv:mean_error_deg": v for e, v in zip(E3, (10.3, 6.7, 31.3))},
+        {f"map:{e}:delv:heading_slip_pct": v for e, v in zip(E3, (0.5, 0.0, 14.9))},
+        {f"map:{e}:delv:mean_error_without_slips_deg": v for e, v in zip(E3, (9.8, 6.7, 17.0))},
+    )
     row = verdict("compass_slightly_smaller_error", numbers)
     assert row["verdict"] == "partly"
     assert "a wrong heading hypothesis wins at env3 14.9 % of the points (mean error 17.0° at the others)" in row["why"]
@@ -58,8 +76,10 @@ def test_compass_gaps_name_the_wrong_heading_hypotheses():
 
 
 def test_far_failures_under_the_physical_rules_are_counted():
-    numbers = merge(success([100.0] * 9, OURS_PHYSICAL),
-                    _flat("success_failures_far:env1:delv:physical", {"timeout": 2, "landmark": 40, "arena": 0}))
+    numbers = merge(
+        success([100.0] * 9, OURS_PHYSICAL),
+        _flat("success_failures_far:env1:delv:physical", {"timeout": 2, "landmark": 40, "arena": 0}),
+    )
     row = verdict("delv_success_over_90", numbers)
     assert row["verdict"] == "partly" and "40 of the 42 failures of the far 3 distances" in row["why"]
     assert "failures of the far" not in verdict("delv_success_over_90", success([100.0] * 9, OURS_PHYSICAL))["why"]
@@ -67,13 +87,17 @@ def test_far_failures_under_the_physical_rules_are_counted():
 
 def test_delv_as_good_far_away_names_what_ends_the_others_trials():
     far_ok = [100.0] * 6 + [95.0] * 3
-    numbers = merge(success3(far_ok, [100.0] * 6 + [90.0] * 3, [100.0] * 9),
-                    _flat("success_failures_far:env1:delv-compass", {"timeout": 15, "landmark": 0, "arena": 0}),
-                    _flat("success_failures_far:env1:acv", {"timeout": 30, "landmark": 0, "arena": 0}),
-                    _flat("success_failures_far:env1:alv", {"timeout": 0, "landmark": 0, "arena": 0}))
+    numbers = merge(
+        success3(far_ok, [100.0] * 6 + [90.0] * 3, [100.0] * 9),
+        _flat("success_failures_far:env1:delv-compass", {"timeout": 15, "landmark": 0, "arena": 0}),
+        _flat("success_failures_far:env1:acv", {"timeout": 30, "landmark": 0, "arena": 0}),
+        _flat("success_failures_far:env1:alv", {"timeout": 0, "landmark": 0, "arena": 0}),
+    )
     why = verdict("delv_compass_success_near_far", numbers)["why"]
-    assert "far from home DELV succeeds at least as often as ACV (failures timeout/landmark/arena of the far 3 " \
-           "distances: DELV 15/0/0, ACV 30/0/0" in why
+    assert (
+        "far from home DELV succeeds at least as often as ACV (failures timeout/landmark/arena of the far 3 "
+        "distances: DELV 15/0/0, ACV 30/0/0" in why
+    )
 
 
 def test_delv_and_alv_that_do_not_mix_name_alvs_steady_error():

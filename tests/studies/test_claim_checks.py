@@ -18,118 +18,163 @@ CASES = {
     "delv_nocompass_catchment_all_envs": {
         "holds": c_catch_envs(98.52, 95.41, 77.66),
         "fails": c_catch_envs(10.0, 10.0, 50.0),
-        "partly": c_catch_envs(100.0, 100.0, 98.66),        # env3 lowest by 1.3 points only (the full run)
-        CANNOT_TELL: c_catch_envs(100.0, 100.0, 99.5)},
-    "errors_outside_landmark_hull": {
-        "holds": hull(0.5, 5.0), "fails": hull(10.0, 2.0), CANNOT_TELL: hull(0.0, 0.0)},
+        "partly": c_catch_envs(100.0, 100.0, 98.66),  # env3 lowest by 1.3 points only (the full run)
+        CANNOT_TELL: c_catch_envs(100.0, 100.0, 99.5),
+    },
+    "errors_outside_landmark_hull": {"holds": hull(0.5, 5.0), "fails": hull(10.0, 2.0), CANNOT_TELL: hull(0.0, 0.0)},
     "step_distance_rarely_matters": {
         "holds": steps([flat(10)] * 4, [90.0, 92.0, 91.0, 89.0]),
         "fails": steps([flat(10)] * 3 + [flat(40)], [99.0, 90.0, 80.0, 60.0]),
-        CANNOT_TELL: steps([flat(10)] * 4, [100.0] * 4)},
+        CANNOT_TELL: steps([flat(10)] * 4, [100.0] * 4),
+    },
     "small_step_slightly_better": {
-        "holds": step_errors(10.0, 11.0, 14.0, 15.0), "fails": step_errors(15.0, 14.0, 10.0, 11.0),
-        "partly": step_errors(14.2, 10.9, 10.82, 12.33)},    # the full run: a tie
+        "holds": step_errors(10.0, 11.0, 14.0, 15.0),
+        "fails": step_errors(15.0, 14.0, 10.0, 11.0),
+        "partly": step_errors(14.2, 10.9, 10.82, 12.33),
+    },  # the full run: a tie
     "few_landmarks_error_below_90": {
-        "holds": random_curves("delv", [RISING] * 3), "fails": random_curves("delv", [flat(95)] * 3),
-        "partly": random_curves("delv", [FALLING] * 3)},     # below 90 but largest near home
+        "holds": random_curves("delv", [RISING] * 3),
+        "fails": random_curves("delv", [flat(95)] * 3),
+        "partly": random_curves("delv", [FALLING] * 3),
+    },  # below 90 but largest near home
     "warping_sensitive_to_landmark_number": {
-        "holds": merge(random_curves("warping", [flat(60), flat(40), flat(30)]),
-                       random_curves("delv", [flat(10), flat(11), flat(12)])),
-        "fails": merge(random_curves("warping", [flat(30), flat(30), flat(31)]),
-                       random_curves("delv", [flat(10), flat(20), flat(30)])),
-        "n/a": random_curves("delv", [flat(10)] * 3)},       # no study records the warping curves yet
+        "holds": merge(
+            random_curves("warping", [flat(60), flat(40), flat(30)]),
+            random_curves("delv", [flat(10), flat(11), flat(12)]),
+        ),
+        "fails": merge(
+            random_curves("warping", [flat(30), flat(30), flat(31)]),
+            random_curves("delv", [flat(10), flat(20), flat(30)]),
+        ),
+        "n/a": random_curves("delv", [flat(10)] * 3),
+    },  # no study records the warping curves yet
     "delv_smaller_error_than_warping": {
-        "holds": warping_err(flat(5), flat(30), 5.0, 30.0), "fails": warping_err(flat(30), flat(5), 30.0, 5.0)},
+        "holds": warping_err(flat(5), flat(30), 5.0, 30.0),
+        "fails": warping_err(flat(30), flat(5), 30.0, 5.0),
+    },
     "delv_success_over_90": {
-        "holds": success(FAR_LOW, FAR_LOW), "fails": success([10.0] * 9, [10.0] * 9),
-        "partly": success([100.0] * 9, OURS_PHYSICAL),        # the far decrease only where success falls to 82 %
-        CANNOT_TELL: success([100.0] * 9, [100.0] * 9)},
+        "holds": success(FAR_LOW, FAR_LOW),
+        "fails": success([10.0] * 9, [10.0] * 9),
+        "partly": success([100.0] * 9, OURS_PHYSICAL),  # the far decrease only where success falls to 82 %
+        CANNOT_TELL: success([100.0] * 9, [100.0] * 9),
+    },
     "delv_beats_warping_success": {
         "holds": beats([100.0] * 9, WARPING_SUCCESS, 100.0, 60.0),
         "fails": beats(WARPING_SUCCESS, [100.0] * 9, 60.0, 100.0),
-        CANNOT_TELL: beats([100.0] * 9, [100.0] * 9, 100.0, 100.0)},
+        CANNOT_TELL: beats([100.0] * 9, [100.0] * 9, 100.0, 100.0),
+    },
     "warping_fails_outside_hull": {
-        "holds": fail_hull(1.6, 44.6, 0.0), "fails": fail_hull(20.0, 10.0, 30.0), CANNOT_TELL: fail_hull(0.0, 0.0, 0.0)},
+        "holds": fail_hull(1.6, 44.6, 0.0),
+        "fails": fail_hull(20.0, 10.0, 30.0),
+        CANNOT_TELL: fail_hull(0.0, 0.0, 0.0),
+    },
     "quantized_error_small_and_level_insensitive": {
-        "holds": quant(flat(10), flat(12)), "fails": quant(flat(10), flat(60))},
+        "holds": quant(flat(10), flat(12)),
+        "fails": quant(flat(10), flat(60)),
+    },
     "fewer_levels_more_failures_three_suffice": {
-        "holds": levels_success([60.0, 75.0, 88.0, 90.0, 91.0]), "fails": levels_success([90.0, 80.0, 50.0, 85.0, 95.0]),
+        "holds": levels_success([60.0, 75.0, 88.0, 90.0, 91.0]),
+        "fails": levels_success([90.0, 80.0, 50.0, 85.0, 95.0]),
         "holds#full run": levels_success([73.6, 81.6, 100.0, 100.0, 100.0]),  # at 100 % while level 1 loses
-        CANNOT_TELL: levels_success([100.0] * 5)},
-    "surrounding_landmarks_lower_error": {
-        "holds": surround(7.0, 26.0), "fails": surround(30.0, 10.0)},
-    "robot_images_delv_errs_more_but_homes": {
-        "holds": robot(13.0, 8.0, 90.0), "fails": robot(8.0, 8.0, 50.0)},
+        CANNOT_TELL: levels_success([100.0] * 5),
+    },
+    "surrounding_landmarks_lower_error": {"holds": surround(7.0, 26.0), "fails": surround(30.0, 10.0)},
+    "robot_images_delv_errs_more_but_homes": {"holds": robot(13.0, 8.0, 90.0), "fails": robot(8.0, 8.0, 50.0)},
     "robot_images_delv_beats_warping": {
         "holds": robot_vs(8.0, 20.0, 90.0, 70.0),
-        "fails": robot_vs(13.3, 8.8, 95.0, 80.0),           # image matching errs less: fails whatever the catchment
-        CANNOT_TELL: robot_vs(8.0, 20.0, 100.0, 100.0)},
-    "robot_images_quantized_similar": {
-        "holds": robot_q(10.0, 12.0), "fails": robot_q(10.0, 40.0)},
-    "compass_slightly_smaller_error": {
-        "holds": compass_err(8.0, 10.0), "fails": compass_err(12.0, 10.0)},
+        "fails": robot_vs(13.3, 8.8, 95.0, 80.0),  # image matching errs less: fails whatever the catchment
+        CANNOT_TELL: robot_vs(8.0, 20.0, 100.0, 100.0),
+    },
+    "robot_images_quantized_similar": {"holds": robot_q(10.0, 12.0), "fails": robot_q(10.0, 40.0)},
+    "compass_slightly_smaller_error": {"holds": compass_err(8.0, 10.0), "fails": compass_err(12.0, 10.0)},
     "compass_catchment_env2_similar_env3_better": {
         "holds": compass_catch([(92.01, 98.52), (97.04, 95.41), (84.91, 77.66)]),
         "fails": compass_catch([(99.0, 90.0), (60.0, 90.0), (70.0, 85.0)]),
-        CANNOT_TELL: compass_catch([(100.0, 100.0), (100.0, 100.0), (100.0, 98.66)])},  # the full run
+        CANNOT_TELL: compass_catch([(100.0, 100.0), (100.0, 100.0), (100.0, 98.66)]),
+    },  # the full run
     "delv_vs_acv_alv_error_mixed": {
         "holds": curves3(flat(10), flat(15, 13) + [5.0], flat(15, 7) + flat(5, 7)),
         "fails": curves3(flat(20), flat(10), flat(10)),
-        "partly": curves3(flat(10), flat(15, 13) + [5.0], flat(15, 12) + flat(5, 2))},  # 12 of 14 one way: no mix
+        "partly": curves3(flat(10), flat(15, 13) + [5.0], flat(15, 12) + flat(5, 2)),
+    },  # 12 of 14 one way: no mix
     "delv_compass_success_near_far": {
         "holds": success3([100.0, 100.0, 100.0, 95.0, 95.0, 95.0, 85.0, 85.0, 85.0], *[[95.0] * 6 + [90.0] * 3] * 2),
-        "fails": success3([60.0, 60.0, 60.0, 70.0, 70.0, 70.0, 95.0, 95.0, 95.0],
-                          *[[100.0, 100.0, 100.0, 95.0, 95.0, 95.0, 80.0, 80.0, 80.0]] * 2),
-        CANNOT_TELL: success3([100.0] * 9, [100.0] * 9, [100.0] * 9)},
+        "fails": success3(
+            [60.0, 60.0, 60.0, 70.0, 70.0, 70.0, 95.0, 95.0, 95.0],
+            *[[100.0, 100.0, 100.0, 95.0, 95.0, 95.0, 80.0, 80.0, 80.0]] * 2,
+        ),
+        CANNOT_TELL: success3([100.0] * 9, [100.0] * 9, [100.0] * 9),
+    },
     "matching_tolerates_unequal_landmark_numbers": {
         "holds": tolerate([95.0, 90.0, 80.0], [5.0, 8.0, 12.0]),
         "fails": tolerate([95.0, 40.0, 30.0], [5.0, 40.0, 50.0]),
-        "partly": THESIS_OCCLUSION,                          # the thesis's own Table 5.3 contradicts §3.2.4
-        CANNOT_TELL: tolerate([100.0, 100.0, 100.0], [1.0, 2.0, 3.0], others=(100.0, 99.5, 99.0))},
+        "partly": THESIS_OCCLUSION,  # the thesis's own Table 5.3 contradicts §3.2.4
+        CANNOT_TELL: tolerate([100.0, 100.0, 100.0], [1.0, 2.0, 3.0], others=(100.0, 99.5, 99.0)),
+    },
     "occlusion_increases_errors": {
-        "holds": same("gt45", [8.75, 13.99, 20.48], envs=("env1",)), "fails": same("gt45", [30.0, 20.0, 10.0], envs=("env1",)),
-        "partly": same("gt45", [5.0, 6.5, 8.0], envs=("env1",))},
+        "holds": same("gt45", [8.75, 13.99, 20.48], envs=("env1",)),
+        "fails": same("gt45", [30.0, 20.0, 10.0], envs=("env1",)),
+        "partly": same("gt45", [5.0, 6.5, 8.0], envs=("env1",)),
+    },
     "acv_error_grows_faster_than_delv": {
-        "holds": T51_GT45, "fails": pair("gt45", [10.0, 40.0, 80.0], [5.0, 10.0, 15.0])},
+        "holds": T51_GT45,
+        "fails": pair("gt45", [10.0, 40.0, 80.0], [5.0, 10.0, 15.0]),
+    },
     "error_rate_gt90_acv_lower_without_occlusion": {
-        "holds": T5_GT90, "fails": pair("gt90", [1.0, 20.0, 30.0], [10.0, 2.0, 3.0], envs=L6),
-        CANNOT_TELL: pair("gt90", [0.0, 0.0, 0.0], [0.0, 0.0, 0.0], envs=L6)},
+        "holds": T5_GT90,
+        "fails": pair("gt90", [1.0, 20.0, 30.0], [10.0, 2.0, 3.0], envs=L6),
+        CANNOT_TELL: pair("gt90", [0.0, 0.0, 0.0], [0.0, 0.0, 0.0], envs=L6),
+    },
     "acv_larger_catchment_small_occlusion": {
-        "holds": T53, "fails": pair("catchment", [100.0, 80.0, 60.0], [80.0, 50.0, 20.0], envs=("env1",)),
-        CANNOT_TELL: pair("catchment", [100.0, 100.0, 90.0], [100.0, 100.0, 50.0], envs=("env1",))},
+        "holds": T53,
+        "fails": pair("catchment", [100.0, 80.0, 60.0], [80.0, 50.0, 20.0], envs=("env1",)),
+        CANNOT_TELL: pair("catchment", [100.0, 100.0, 90.0], [100.0, 100.0, 50.0], envs=("env1",)),
+    },
     "occlusion_catchment_both_severely_decrease": {
-        "holds": T53, "fails": pair("catchment", [95.0, 94.0, 93.0], [95.0, 94.0, 93.0]),
-        "partly": pair("catchment", [100.0, 98.0, 97.0], [100.0, 50.0, 20.0])},
+        "holds": T53,
+        "fails": pair("catchment", [95.0, 94.0, 93.0], [95.0, 94.0, 93.0]),
+        "partly": pair("catchment", [100.0, 98.0, 97.0], [100.0, 50.0, 20.0]),
+    },
     "acv_catchment_shrinks_faster": {
-        "holds": T53, "fails": pair("catchment", [100.0, 50.0, 20.0], [100.0, 90.0, 80.0]),
-        "partly": pair("catchment", [100.0, 99.0, 98.0], [100.0, 50.0, 20.0]),   # DELV barely shrinks
-        CANNOT_TELL: pair("catchment", [100.0] * 3, [100.0] * 3)},
+        "holds": T53,
+        "fails": pair("catchment", [100.0, 50.0, 20.0], [100.0, 90.0, 80.0]),
+        "partly": pair("catchment", [100.0, 99.0, 98.0], [100.0, 50.0, 20.0]),  # DELV barely shrinks
+        CANNOT_TELL: pair("catchment", [100.0] * 3, [100.0] * 3),
+    },
     "alv_perfect_then_collapses_under_occlusion": {
         "holds": alv_case([100.0, 10.0, 15.0], [0.0, 10.0, 15.0], [95.0, 60.0, 50.0]),
-        "fails": alv_case([80.0, 80.0, 80.0], [20.0, 30.0, 40.0], [50.0, 40.0, 30.0])},
-    "k3_collapse": {
-        "holds": THESIS_OCCLUSION, "fails": k3([90.0, 85.0, 80.0, 75.0])},
+        "fails": alv_case([80.0, 80.0, 80.0], [20.0, 30.0, 40.0], [50.0, 40.0, 30.0]),
+    },
+    "k3_collapse": {"holds": THESIS_OCCLUSION, "fails": k3([90.0, 85.0, 80.0, 75.0])},
     "visual_compass_not_exact": {
         "holds": visual_err({"delv-compass": 5.0, "acv": 10.0, "alv": 20.0}),
-        "fails": visual_err({m: 0.2 for m in TRUE3}, gt5=0.0)},
+        "fails": visual_err({m: 0.2 for m in TRUE3}, gt5=0.0),
+    },
     "visual_compass_catchment_order": {
-        "holds": visual_catch([74.85, 47.04, 40.68]), "fails": visual_catch([40.0, 47.0, 75.0]),
-        CANNOT_TELL: visual_catch([100.0, 100.0, 100.0])},
+        "holds": visual_catch([74.85, 47.04, 40.68]),
+        "fails": visual_catch([40.0, 47.0, 75.0]),
+        CANNOT_TELL: visual_catch([100.0, 100.0, 100.0]),
+    },
     "visual_compass_error_order": {
         "holds": visual_err({"delv-compass": 4.0, "acv": 4.0, "alv": 31.0}),
         "fails": visual_err({"delv-compass": 42.0, "acv": 4.0, "alv": 1.0}),
-        CANNOT_TELL: visual_err({m: 0.1 for m in TRUE3})},
+        CANNOT_TELL: visual_err({m: 0.1 for m in TRUE3}),
+    },
     "delv_least_compass_dependent": {
         "holds": dependence([95.0, 60.0, 50.0], [2.0, 14.0, 21.0], [95.0, 60.0, 50.0]),
         "fails": dependence([50.0, 90.0, 95.0], [30.0, 2.0, 1.0], [50.0, 90.0, 95.0]),
-        CANNOT_TELL: dependence([100.0] * 3, [0.1] * 3, [99.5] * 3)},
+        CANNOT_TELL: dependence([100.0] * 3, [0.1] * 3, [99.5] * 3),
+    },
     "delv_acv_similar_without_occlusion": {
-        "holds": similar(8.0, 10.0, 92.0, 100.0), "fails": similar(8.0, 40.0, 50.0, 97.0),
-        CANNOT_TELL: similar(8.0, 10.0, 100.0, 100.0)},
+        "holds": similar(8.0, 10.0, 92.0, 100.0),
+        "fails": similar(8.0, 40.0, 50.0, 97.0),
+        CANNOT_TELL: similar(8.0, 10.0, 100.0, 100.0),
+    },
 }
 
 
 # --- the tests ------------------------------------------------------------------------------
+
 
 def test_every_claim_has_a_check_and_cases():
     ids = [c["id"] for c in thesis.CLAIMS]
@@ -161,10 +206,17 @@ def test_ceiling_helpers():
 
 def test_the_full_run_at_the_ceiling_is_not_holds():
     """The review's cases: env3 lowest by 1.3 points and compass catchments at 100 % passed before."""
-    assert verdict("delv_nocompass_catchment_all_envs", CASES["delv_nocompass_catchment_all_envs"]["partly"])[
-        "verdict"] != "holds"
-    assert verdict("compass_catchment_env2_similar_env3_better",
-                   CASES["compass_catchment_env2_similar_env3_better"][CANNOT_TELL])["verdict"] == CANNOT_TELL
+    assert (
+        verdict("delv_nocompass_catchment_all_envs", CASES["delv_nocompass_catchment_all_envs"]["partly"])["verdict"]
+        != "holds"
+    )
+    assert (
+        verdict(
+            "compass_catchment_env2_similar_env3_better",
+            CASES["compass_catchment_env2_similar_env3_better"][CANNOT_TELL],
+        )["verdict"]
+        == CANNOT_TELL
+    )
 
 
 def test_missing_numbers_are_not_applicable():
@@ -175,8 +227,10 @@ def test_missing_numbers_are_not_applicable():
 def test_report_counts_cannot_tell():
     from delvjax.reproduce._report import VERDICT_MARK, claims_section
 
-    rows = [{"id": f"c{i}", "section": "§1", "quote": "q", "statement": "s", "ours": "1", "verdict": v, "why": "w"}
-            for i, v in enumerate(["holds", "partly", "fails", CANNOT_TELL, CANNOT_TELL, "n/a"])]
+    rows = [
+        {"id": f"c{i}", "section": "§1", "quote": "q", "statement": "s", "ours": "1", "verdict": v, "why": "w"}
+        for i, v in enumerate(["holds", "partly", "fails", CANNOT_TELL, CANNOT_TELL, "n/a"])
+    ]
     text = claims_section(rows)
     assert text.startswith("**1 hold, 1 partly, 1 fail, 2 cannot tell, 1 not run** of 6 claims.")
     assert VERDICT_MARK[CANNOT_TELL] in text and set(VERDICT_MARK) == set(VERDICTS)
@@ -190,7 +244,7 @@ def _norm(s: str) -> str:
 @pytest.mark.parametrize("claim", thesis.CLAIMS, ids=lambda c: c["id"])
 def test_quote_is_verbatim_at_its_line(claim):
     lines = THESIS_TEXT.read_text().split("\n")
-    near = _norm(" ".join(lines[claim["line"] - 1:claim["line"] + 8]))  # a quote may run past a figure caption
+    near = _norm(" ".join(lines[claim["line"] - 1 : claim["line"] + 8]))  # a quote may run past a figure caption
     for fragment in claim["quote"].split("..."):
         if _norm(fragment):
             assert _norm(fragment) in near, (claim["id"], fragment)
@@ -201,9 +255,11 @@ def test_quote_is_verbatim_at_its_line(claim):
 @pytest.mark.skipif(not THESIS_TEXT.is_file(), reason="the thesis's plain-text copy is not on this machine")
 def test_new_notes_point_at_their_lines():
     lines = THESIS_TEXT.read_text().split("\n")
-    for key, phrase in (("sec6_3_3_warping_inside_outside_hull", "such as warping maintain a similar level of performance"),
-                        ("sec3_2_4_vs_table5_3", "it does not severely damage the homing rate"),
-                        ("sec4_2_step_distance_direction", "Small d s might have a slight improvement in")):
+    for key, phrase in (
+        ("sec6_3_3_warping_inside_outside_hull", "such as warping maintain a similar level of performance"),
+        ("sec3_2_4_vs_table5_3", "it does not severely damage the homing rate"),
+        ("sec4_2_step_distance_direction", "Small d s might have a slight improvement in"),
+    ):
         assert phrase in lines[thesis.NOTES[key]["line"] - 1], key
 
 

@@ -12,7 +12,12 @@ import numpy as np
 import pytest
 
 from delvjax.reproduce import _run as reproduce
-from delvjax.studies.runs import fit, _fit_causes as fit_causes, _fit_cells as fit_cells, _fit_model as fit_model
+from delvjax.studies.runs import (
+    _fit_causes as fit_causes,
+    _fit_design as fit_design,
+    _fit_cells as fit_cells,
+    _fit_model as fit_model,
+)
 from delvjax.studies import thesis
 from delvjax.studies.thesis._notes import NOTES
 
@@ -22,12 +27,22 @@ def test_targets_are_the_thesis_numbers_of_the_seven_tables_without_the_copied_r
     per_table = {t: sum(i.table == t for i in items) for t in fit_model.TABLES}
     # Figs 4.5, 5.5: three envs; Fig 5.10: k = 0..2; Tables 5.1/5.3: 3 envs x 3 methods x k = 0..2 (5.1: two
     # fields); Tables 5.2/5.4 without ring4: ring3 (k = 0..2) and ring5, ring6 (k = 0..3), 3 methods.
-    assert per_table == {"fig4_5": 3, "fig5_5": 3, "fig5_10": 3, "table5_1": 54, "table5_2": 66, "table5_3": 27,
-                         "table5_4": 33}
+    assert per_table == {
+        "fig4_5": 3,
+        "fig5_5": 3,
+        "fig5_10": 3,
+        "table5_1": 54,
+        "table5_2": 66,
+        "table5_3": 27,
+        "table5_4": 33,
+    }
     assert not any(i.env == "ring4" for i in items)
     assert {i.field for i in items} == {"catchment", "gt45", "gt90"}
-    acv = next(i for i in items if i.table == "table5_2" and i.env == "ring5" and i.method == "acv"
-               and i.field == "gt90" and i.k == 2)
+    acv = next(
+        i
+        for i in items
+        if i.table == "table5_2" and i.env == "ring5" and i.method == "acv" and i.field == "gt90" and i.k == 2
+    )
     assert acv.value == thesis.ERROR_POINTS["table5_2"]["ring5"]["acv"]["gt90"][2]
     assert len(fit_model.targets(("table5_3",), ("env1",))) == 9
     cells = fit_model.cells(items)
@@ -53,8 +68,10 @@ def test_the_objective_is_zero_when_ours_equals_the_thesis_and_the_mean_gap_othe
 def test_align_reads_each_target_from_its_cell_and_field():
     items = fit_model.targets(("fig5_10", "table5_1"), ("env1",))
     cells = fit_model.cells(items)
-    values = {f: np.arange(2 * len(cells), dtype=float).reshape(2, len(cells)) + 1000 * j
-              for j, f in enumerate(("catchment", "gt45", "gt90"))}
+    values = {
+        f: np.arange(2 * len(cells), dtype=float).reshape(2, len(cells)) + 1000 * j
+        for j, f in enumerate(("catchment", "gt45", "gt90"))
+    }
     ours = fit_model.align(values, cells, items)
     assert ours.shape == (2, len(items))
     for i, t in enumerate(items):
@@ -88,14 +105,26 @@ def test_the_search_finds_the_minimiser_of_a_separable_objective_in_two_batches(
 
 def test_the_joint_factorial_finds_an_interaction_one_setting_at_a_time_misses():
     """From the defaults a = 1 looks best and b = 1 too; jointly a = 2, b = 1 is the minimum (an interaction)."""
-    table = {(0.0, 0.0): 10.0, (1.0, 0.0): 8.0, (2.0, 0.0): 9.0, (3.0, 0.0): 12.0, (0.0, 0.5): 11.0, (0.0, 1.0): 7.0,
-             (1.0, 1.0): 6.0, (2.0, 1.0): 1.0, (1.0, 0.5): 9.0, (2.0, 0.5): 9.0}
+    table = {
+        (0.0, 0.0): 10.0,
+        (1.0, 0.0): 8.0,
+        (2.0, 0.0): 9.0,
+        (3.0, 0.0): 12.0,
+        (0.0, 0.5): 11.0,
+        (0.0, 1.0): 7.0,
+        (1.0, 1.0): 6.0,
+        (2.0, 1.0): 1.0,
+        (1.0, 0.5): 9.0,
+        (2.0, 0.5): 9.0,
+    }
     evaluate, calls = counting(lambda p: table.get((p["a"], p["b"]), 50.0) + 0.01 * (p["c"] - 10.0))
     res = fit_model.search(evaluate, GRID, DEFAULT)
     assert res.fitted == {"a": 2.0, "b": 1.0, "c": 10.0}
     assert res.joint == ("b", "a") and len(calls) == 2  # gains 3 and 2 on the defaults; c only loses
-    brute = min(((a, b, c) for a in GRID["a"] for b in GRID["b"] for c in GRID["c"]),
-                key=lambda x: table.get(x[:2], 50.0) + 0.01 * (x[2] - 10.0))
+    brute = min(
+        ((a, b, c) for a in GRID["a"] for b in GRID["b"] for c in GRID["c"]),
+        key=lambda x: table.get(x[:2], 50.0) + 0.01 * (x[2] - 10.0),
+    )
     assert brute == (2.0, 1.0, 10.0)
 
 
@@ -117,18 +146,26 @@ def test_the_fitted_point_is_the_best_evaluated_and_never_worse_than_the_default
 def test_every_unreached_number_gets_the_cause_its_case_calls_for():
     T = fit_model.Target
     assert fit_causes.likely_cause(T("table5_4", "ring5", "delv-compass", 3, "catchment", 2.96), 44.7).endswith(
-        "(thesis note table5_4_k3_delv_equal)")
+        "(thesis note table5_4_k3_delv_equal)"
+    )
     assert all(note in NOTES for note in fit_causes.NOTED.values())
-    assert fit_causes.likely_cause(T("fig5_5", "env3", "delv-compass", 0, "catchment", 84.91), 100.0).startswith("ceiling")
+    assert fit_causes.likely_cause(T("fig5_5", "env3", "delv-compass", 0, "catchment", 84.91), 100.0).startswith(
+        "ceiling"
+    )
     assert not fit_causes.likely_cause(T("fig5_5", "env3", "delv-compass", 0, "catchment", 84.91), 97.0).startswith(
-        "ceiling")  # below the ceiling under the defaults: another cause
+        "ceiling"
+    )  # below the ceiling under the defaults: another cause
     assert "per-choice" in fit_causes.likely_cause(T("table5_3", "env1", "delv-compass", 1, "catchment", 49.11), 75.4)
     # the two env3 numbers of the last full run: the layout probe (studies/runs/causes_probe.py) explains them
     assert fit_causes.likely_cause(T("table5_3", "env3", "delv-compass", 1, "catchment", 69.08), 99.6).startswith(
-        "env3's coordinates")
-    assert fit_causes.likely_cause(T("table5_1", "env3", "acv", 0, "gt45", 33.33), 57.8).startswith("env3's coordinates")
+        "env3's coordinates"
+    )
+    assert fit_causes.likely_cause(T("table5_1", "env3", "acv", 0, "gt45", 33.33), 57.8).startswith(
+        "env3's coordinates"
+    )
     assert fit_causes.likely_cause(T("table5_3", "env2", "delv-compass", 1, "catchment", 53.96), 99.0).startswith(
-        "not explained: ours keeps >= 95")  # the same case on another layout stays unexplained
+        "not explained: ours keeps >= 95"
+    )  # the same case on another layout stays unexplained
     assert "rings" in fit_causes.likely_cause(T("table5_4", "ring6", "acv", 1, "catchment", 77.96), 39.6)
     assert fit_causes.likely_cause(T("table5_1", "env1", "acv", 0, "gt45", 9.8), 40.0).startswith("not explained")
 
@@ -159,7 +196,11 @@ def test_the_reduced_fit_runs_end_to_end_and_writes_its_tables(tiny_fit):
         rows = list(csv.DictReader(fh))
     assert [r["settings"] for r in rows] == ["defaults", "bearing_noise_deg=2"]
     n = rec["numbers"]
-    assert n["fit:targets"] == len(fit_model.targets(fit.QUICK_DESIGN["tables"], fit.QUICK_DESIGN["envs"])) == 90
+    assert (
+        n["fit:targets"]
+        == len(fit_model.targets(fit_design.QUICK_DESIGN["tables"], fit_design.QUICK_DESIGN["envs"]))
+        == 90
+    )
     assert n["fit:objective:fitted"] <= n["fit:objective:default"]
     assert 0.0 < n["fit:objective:default"] < 100.0 and n["fit:spacing"] == 200.0
     assert all(f"fit:setting:{s}" in n for s in fit_cells.DEFAULTS)
@@ -180,8 +221,11 @@ def test_a_fit_cell_equals_the_studies_catchment_under_the_default_rules(tiny_fi
 
     out, _ = tiny_fit
     with open(out / "fit" / "fit_targets.csv", newline="") as fh:
-        ours = {(r["table"], r["field"]): float(r["ours_default"]) for r in csv.DictReader(fh)
-                if r["env"] == "env1" and r["method"] == "delv-compass" and r["k"] == "1"}
+        ours = {
+            (r["table"], r["field"]): float(r["ours_default"])
+            for r in csv.DictReader(fh)
+            if r["env"] == "env1" and r["method"] == "delv-compass" and r["k"] == "1"
+        }
     ctx = SimpleNamespace(settings=reproduce.Settings(spacing=200.0, trials=10))
     s = catchment_summary(common.catchment(ctx, common.env("env1"), "delv-compass", occlude=1))
     assert math.isclose(ours[("table5_3", "catchment")], s["catchment_pct"]["mean"], abs_tol=1e-6)

@@ -15,8 +15,10 @@ import delvjax
 from delvjax.cli._main import main
 
 SWEEP = "[axes]\nmethod = ['delv', 'alv']\nd = [30, 60]\nseed = [0, 1]\nspacing = [200]\n"
-CATCHMENT = ("[sweep]\nkind = 'catchment'\n[axes]\nmethod = ['alv']\nocclude = [0, 1]\nseed = [0, 1, 2]\n"
-             "bearing_noise_deg = [4.0]\nspacing = [150]\n")
+CATCHMENT = (
+    "[sweep]\nkind = 'catchment'\n[axes]\nmethod = ['alv']\nocclude = [0, 1]\nseed = [0, 1, 2]\n"
+    "bearing_noise_deg = [4.0]\nspacing = [150]\n"
+)
 
 
 def free_port() -> int:
@@ -32,12 +34,30 @@ def test_two_processes_give_the_one_process_numbers(tmp_path, text, devices):
     path.write_text(text)
     assert main(["sweep", str(path), "--out", str(tmp_path / "one")]) == 0
     port, two = free_port(), tmp_path / "two"
-    env = dict(os.environ, JAX_PLATFORMS="cpu", DELVJAX_CACHE_DIR="",
-               XLA_FLAGS=f"--xla_force_host_platform_device_count={devices}")
-    cmd = [sys.executable, "-m", "delvjax.cli", "sweep", str(path), "--out", str(two),
-           "--coordinator", f"127.0.0.1:{port}", "--num-processes", "2", "--process-id"]
-    procs = [subprocess.Popen(cmd + [str(i)], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-             for i in (0, 1)]
+    env = dict(
+        os.environ,
+        JAX_PLATFORMS="cpu",
+        DELVJAX_CACHE_DIR="",
+        XLA_FLAGS=f"--xla_force_host_platform_device_count={devices}",
+    )
+    cmd = [
+        sys.executable,
+        "-m",
+        "delvjax.cli",
+        "sweep",
+        str(path),
+        "--out",
+        str(two),
+        "--coordinator",
+        f"127.0.0.1:{port}",
+        "--num-processes",
+        "2",
+        "--process-id",
+    ]
+    procs = [
+        subprocess.Popen(cmd + [str(i)], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        for i in (0, 1)
+    ]
     outs = [p.communicate(timeout=240) for p in procs]
     assert [p.returncode for p in procs] == [0, 0], [o[1][-1500:] for o in outs]
     assert "wrote" in outs[0][0] and "wrote" not in outs[1][0]  # process 0 writes, process 1 only computes
@@ -50,9 +70,11 @@ def test_two_processes_give_the_one_process_numbers(tmp_path, text, devices):
 def test_process_options_are_checked_before_any_work(tmp_path, capsys):
     path = tmp_path / "s.toml"
     path.write_text(SWEEP)
-    for extra, field in [(["--coordinator", "127.0.0.1:1"], "--coordinator"),
-                         (["--coordinator", "nohost", "--num-processes", "2", "--process-id", "0"], "--coordinator"),
-                         (["--coordinator", "h:1", "--num-processes", "2", "--process-id", "2"], "--process-id")]:
+    for extra, field in [
+        (["--coordinator", "127.0.0.1:1"], "--coordinator"),
+        (["--coordinator", "nohost", "--num-processes", "2", "--process-id", "0"], "--coordinator"),
+        (["--coordinator", "h:1", "--num-processes", "2", "--process-id", "2"], "--process-id"),
+    ]:
         assert main(["sweep", str(path), "--out", str(tmp_path / "o")] + extra) == 2
         assert capsys.readouterr().err.startswith(f"delvjax: error: {field}:")
     assert not (tmp_path / "o").exists()
@@ -61,7 +83,8 @@ def test_process_options_are_checked_before_any_work(tmp_path, capsys):
 def test_importing_delvjax_leaves_the_jax_backend_alone():
     """jax.distributed.initialize must run before JAX starts its backend, so importing delvjax (the CLI,
     every method, the studies) must not start it (an optimistix solver built at import time did)."""
-    code = ("from jax._src import xla_bridge as xb; import delvjax, delvjax.cli, studies; "
-            "import sys; sys.exit(1 if xb._backends else 0)")
+    code = (
+        "from jax._src import xla_bridge as xb; import delvjax, delvjax.cli, studies; "
+        "import sys; sys.exit(1 if xb._backends else 0)"
+    )
     assert subprocess.run([sys.executable, "-c", code], env=dict(os.environ, JAX_PLATFORMS="cpu")).returncode == 0
-

@@ -51,9 +51,18 @@ def test_a_catchment_cell_equals_the_catchment_run_with_its_options(catchments):
     for method in ("delv", "alv"):
         for occlude in (0, 1):
             for first_move in ("homing", "release"):
-                ref = catchment_summary(delvjax.catchment(
-                    "env1", method, spacing=100, seed=4, occlude=occlude or None, first_move=first_move,
-                    collisions="fail", bearing_noise_deg=3.0))
+                ref = catchment_summary(
+                    delvjax.catchment(
+                        "env1",
+                        method,
+                        spacing=100,
+                        seed=4,
+                        occlude=occlude or None,
+                        first_move=first_move,
+                        collisions="fail",
+                        bearing_noise_deg=3.0,
+                    )
+                )
                 cell = ds.sel({"method": method, "occlude": occlude, "first_move": first_move}).squeeze()
                 where = (method, occlude, first_move)
                 assert int(cell.points) == ref["points"], where
@@ -109,14 +118,24 @@ def test_every_example_file_is_a_valid_sweep_of_its_kind(kind):
     assert spec.kind == kind and spec.n_cells >= 8
 
 
-@pytest.mark.parametrize("text, field", [
-    ("[sweep]\nkind = 'catchment'\n[axes]\nocclude = [9]", "cell (occlude=9, env=env1, method=delv, spacing=25.0, seed=0)"),
-    ("[sweep]\nkind = 'catchment'\n[axes]\nfirst_move = ['walk']", "cell (first_move=walk, env=env1, method=delv, "
-                                                                   "spacing=25.0, seed=0)"),
-    ("[sweep]\nkind = 'success-rate'\ndistances = [5000]", "cell (env=env1, method=delv, seed=0)"),
-    ("[sweep]\nkind = 'catchment'\n[axes]\nmax_steps = [0]", "cell (max_steps=0, env=env1, method=delv, spacing=25.0, "
-                                                             "seed=0)"),
-])
+@pytest.mark.parametrize(
+    "text, field",
+    [
+        (
+            "[sweep]\nkind = 'catchment'\n[axes]\nocclude = [9]",
+            "cell (occlude=9, env=env1, method=delv, spacing=25.0, seed=0)",
+        ),
+        (
+            "[sweep]\nkind = 'catchment'\n[axes]\nfirst_move = ['walk']",
+            "cell (first_move=walk, env=env1, method=delv, spacing=25.0, seed=0)",
+        ),
+        ("[sweep]\nkind = 'success-rate'\ndistances = [5000]", "cell (env=env1, method=delv, seed=0)"),
+        (
+            "[sweep]\nkind = 'catchment'\n[axes]\nmax_steps = [0]",
+            "cell (max_steps=0, env=env1, method=delv, spacing=25.0, seed=0)",
+        ),
+    ],
+)
 def test_an_impossible_rollout_cell_is_refused_before_any_work(text, field):
     with pytest.raises(InputError) as exc:
         run_sweep(parse_sweep(text))
@@ -143,14 +162,25 @@ def test_random_layouts_on_the_env_axis_are_the_seeded_random_envs():
     ds = run_sweep(spec)
     assert ds.attrs["programs_compiled"] <= 1  # 4 and 3 or 5 landmarks padded to one shape
     for label, (seed, n) in spec.random_envs.items():
-        ref = delvjax.summarize_map(*(lambda v: (v.error_deg, v.valid, v.included))(
-            delvjax.vector_map(random_env(seed, n, pad_to=5), spacing=150)))  # padded: one program for both counts
+        ref = delvjax.summarize_map(
+            *(lambda v: (v.error_deg, v.valid, v.included))(
+                delvjax.vector_map(random_env(seed, n, pad_to=5), spacing=150)
+            )
+        )  # padded: one program for both counts
         assert float(ds.gt45_pct.sel({"env": label}).squeeze()) == pytest.approx(ref["gt45_pct"], abs=1e-9), label
 
 
-@pytest.mark.parametrize("raw", ["{random = 0, landmarks = 3}", "{random = 2}", "{random = 2, landmarks = 99}",
-                                 "{random = 2, landmarks = 3, seed = -1}", "{random = 2, landmarks = 3, colour = 1}",
-                                 "{random = 100000, landmarks = 3}"])
+@pytest.mark.parametrize(
+    "raw",
+    [
+        "{random = 0, landmarks = 3}",
+        "{random = 2}",
+        "{random = 2, landmarks = 99}",
+        "{random = 2, landmarks = 3, seed = -1}",
+        "{random = 2, landmarks = 3, colour = 1}",
+        "{random = 100000, landmarks = 3}",
+    ],
+)
 def test_a_bad_random_layout_table_names_the_env_axis(raw):
     with pytest.raises(InputError) as exc:
         parse_sweep(f"[axes]\nenv = [{raw}]\n")
@@ -165,11 +195,14 @@ def test_sweep_example_prints_the_example_of_a_kind(kind, capsys):
     assert parse_sweep(capsys.readouterr().out).kind == kind
 
 
-@pytest.mark.parametrize("text, field", [
-    ("[axes]\nd = {start = 1, stop = 1e12, step = 1}", "axes.d"),
-    ("[axes]\nd = {start = 1, stop = 2, num = 1000000000}", "axes.d"),
-    ("[axes]\nd = {start = 1, stop = 1000, num = 1000}\nseed = {start = 0, stop = 99999}", "axes"),
-])
+@pytest.mark.parametrize(
+    "text, field",
+    [
+        ("[axes]\nd = {start = 1, stop = 1e12, step = 1}", "axes.d"),
+        ("[axes]\nd = {start = 1, stop = 2, num = 1000000000}", "axes.d"),
+        ("[axes]\nd = {start = 1, stop = 1000, num = 1000}\nseed = {start = 0, stop = 99999}", "axes"),
+    ],
+)
 def test_a_huge_sweep_is_refused_at_once(text, field):
     import time
 

@@ -39,7 +39,14 @@ def cli_sweep(tmp_path, text: str) -> tuple[int, object, object]:
 
 def test_the_example_file_is_valid_and_printed(capsys):
     spec = parse_sweep(EXAMPLE)
-    assert spec.shape == (2, 2, 4, 2, 3, 1, ) and list(spec.axes)[:3] == ["env", "method", "d"]
+    assert spec.shape == (
+        2,
+        2,
+        4,
+        2,
+        3,
+        1,
+    ) and list(spec.axes)[:3] == ["env", "method", "d"]
     assert spec.axes["d"] == [10, 40, 70, 100] and spec.axes["seed"] == [0, 1, 2]
     assert main(["sweep", "--example"]) == 0
     assert capsys.readouterr().out == EXAMPLE
@@ -68,27 +75,30 @@ def test_the_numbers_do_not_depend_on_how_cells_are_chunked(small, monkeypatch):
         assert np.array_equal(small[name].values, chunked[name].values, equal_nan=True), name
 
 
-@pytest.mark.parametrize("text, field", [
-    ("[axes]\nd = []", "axes.d"),
-    ("[axes]\nd = {start = 5, stop = 1}", "axes.d"),
-    ("[axes]\nd = [1, 1]", "axes.d"),
-    ("[axes]\nlevls = [1]", "axes.levls"),
-    ("[axes]\nmotion_step_noise = [0.1]", "axes.motion_step_noise"),  # a rollout axis in a vector-map sweep
-    ("[sweep]\nkind = 'success-rate'\n[axes]\nspacing = [10]", "axes.spacing"),
-    ("[axes]\nmethod = [1]", "axes.method"),
-    ("[axes]\nfirst_move = [1]", "axes.first_move"),
-    ("[sweep]\nmetrics = ['catchment']", "sweep.metrics[0]"),
-    ("[sweep]\nmetrics = ['catchment_pct']", "sweep.metrics[0]"),  # a catchment metric in a vector-map sweep
-    ("[sweep]\nkind = 'catchment'\nmetrics = ['success_pct']", "sweep.metrics[0]"),
-    ("[sweep]\nkind = 'catchments'", "sweep.kind"),
-    ("[sweep]\ntrials = 5", "sweep.trials"),
-    ("[sweep]\nkind = 'success-rate'\ntrials = 0", "sweep.trials"),
-    ("[sweep]\nkind = 'success-rate'\ndistances = []", "sweep.distances"),
-    ("[sweep]\nkind = 'success-rate'\ndistances = ['a']", "sweep.distances"),
-    ("[sweep]\nmetric = ['gt45_pct']", "sweep.metric"),
-    ("[axis]\nd = [1]", "axis"),
-    ("d = [", "sweep"),
-])
+@pytest.mark.parametrize(
+    "text, field",
+    [
+        ("[axes]\nd = []", "axes.d"),
+        ("[axes]\nd = {start = 5, stop = 1}", "axes.d"),
+        ("[axes]\nd = [1, 1]", "axes.d"),
+        ("[axes]\nlevls = [1]", "axes.levls"),
+        ("[axes]\nmotion_step_noise = [0.1]", "axes.motion_step_noise"),  # a rollout axis in a vector-map sweep
+        ("[sweep]\nkind = 'success-rate'\n[axes]\nspacing = [10]", "axes.spacing"),
+        ("[axes]\nmethod = [1]", "axes.method"),
+        ("[axes]\nfirst_move = [1]", "axes.first_move"),
+        ("[sweep]\nmetrics = ['catchment']", "sweep.metrics[0]"),
+        ("[sweep]\nmetrics = ['catchment_pct']", "sweep.metrics[0]"),  # a catchment metric in a vector-map sweep
+        ("[sweep]\nkind = 'catchment'\nmetrics = ['success_pct']", "sweep.metrics[0]"),
+        ("[sweep]\nkind = 'catchments'", "sweep.kind"),
+        ("[sweep]\ntrials = 5", "sweep.trials"),
+        ("[sweep]\nkind = 'success-rate'\ntrials = 0", "sweep.trials"),
+        ("[sweep]\nkind = 'success-rate'\ndistances = []", "sweep.distances"),
+        ("[sweep]\nkind = 'success-rate'\ndistances = ['a']", "sweep.distances"),
+        ("[sweep]\nmetric = ['gt45_pct']", "sweep.metric"),
+        ("[axis]\nd = [1]", "axis"),
+        ("d = [", "sweep"),
+    ],
+)
 def test_a_bad_sweep_file_names_its_field(text, field):
     with pytest.raises(InputError) as exc:
         parse_sweep(text)
@@ -128,8 +138,10 @@ for i, text in enumerate(sys.argv[2:]):
 np.savez(sys.argv[1], **results)
 """
 TINY = "[axes]\nd = [30, 60]\nseed = [0, 1, 2]\nbearing_noise_deg = [2.0]\nspacing = [150]\n"
-TINY_CATCHMENT = ("[sweep]\nkind = 'catchment'\n[axes]\nocclude = [0, 1]\nseed = [0, 1, 2]\n"
-                  "bearing_noise_deg = [4.0]\nmethod = ['alv']\nspacing = [150]\n")
+TINY_CATCHMENT = (
+    "[sweep]\nkind = 'catchment'\n[axes]\nocclude = [0, 1]\nseed = [0, 1, 2]\n"
+    "bearing_noise_deg = [4.0]\nmethod = ['alv']\nspacing = [150]\n"
+)
 
 
 def test_cells_split_over_four_devices_give_the_one_device_numbers(tmp_path):
@@ -141,8 +153,9 @@ def test_cells_split_over_four_devices_give_the_one_device_numbers(tmp_path):
 
     out = tmp_path / "four.npz"
     env = dict(os.environ, XLA_FLAGS="--xla_force_host_platform_device_count=4", JAX_PLATFORMS="cpu")
-    run = subprocess.run([sys.executable, "-c", FOUR, str(out), TINY, TINY_CATCHMENT], env=env,
-                         capture_output=True, text=True)
+    run = subprocess.run(
+        [sys.executable, "-c", FOUR, str(out), TINY, TINY_CATCHMENT], env=env, capture_output=True, text=True
+    )
     assert run.returncode == 0, run.stderr[-2000:]
     four = np.load(out)
     for i, text in enumerate((TINY, TINY_CATCHMENT)):
@@ -185,11 +198,16 @@ def test_sweep_figures_heat_maps_and_lines_with_intervals_over_seeds(small, tmp_
     fig, rows = sweep_figure(small, "d", "bearing_noise_deg", "gt45_pct")  # one panel per method
     assert len([a for a in fig.axes if a.get_visible() and a.get_title()]) == 2 and len(rows) == 2 * 2 * 2
     cell = small.gt45_pct.sel({"method": "alv", "d": 60, "bearing_noise_deg": 3.0}).values.mean()
-    assert [r["gt45_pct"] for r in rows if r["panel"] == "method=alv" and r["d"] == 60
-            and r["bearing_noise_deg"] == 3.0] == [pytest.approx(cell)]
+    assert [
+        r["gt45_pct"] for r in rows if r["panel"] == "method=alv" and r["d"] == 60 and r["bearing_noise_deg"] == 3.0
+    ] == [pytest.approx(cell)]
     _, lines = sweep_figure(small, "d", None, "mean_error_deg")  # two seeds: a finite 95 % interval
     assert len(lines) == 2 * 2 * 2 and all(r["ci95_lo"] < r["mean_error_deg"] < r["ci95_hi"] for r in lines)
-    for args, flag in [(("dd", None, "gt45_pct"), "--x"), (("d", "d", "gt45_pct"), "--y"), (("d", None, "x"), "--metric")]:
+    for args, flag in [
+        (("dd", None, "gt45_pct"), "--x"),
+        (("d", "d", "gt45_pct"), "--y"),
+        (("d", None, "x"), "--metric"),
+    ]:
         with pytest.raises(InputError) as exc:
             check_plot(small, *args)
         assert exc.value.field == flag
@@ -204,8 +222,10 @@ def test_plot_sweep_writes_the_figure_and_its_numbers(tmp_path, capsys):
     assert "--x: is not an axis" in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("command", [None, "envs", "vector-map", "catchment", "success-rate", "trajectories",
-                                     "reproduce", "sweep", "plot-sweep"])
+@pytest.mark.parametrize(
+    "command",
+    [None, "envs", "vector-map", "catchment", "success-rate", "trajectories", "reproduce", "sweep", "plot-sweep"],
+)
 def test_every_help_text_prints(command, capsys):
     """argparse %-formats help strings: a bare "95 %" once broke `delvjax --help`."""
     with pytest.raises(SystemExit) as exc:

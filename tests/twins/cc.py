@@ -4,6 +4,7 @@ Same semantics as delvjax's `cc_home_vector` (see its module docstring for the e
 written with explicit Python loops over the landmarks in float64, to be read and to check
 the vectorised JAX version against.
 """
+
 import math
 
 import numpy as np

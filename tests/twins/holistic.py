@@ -15,6 +15,7 @@ mod n, round half to even (np.rint), angles in float64.
 Both use `reference.render` for the images, so `reference_direction` below is a full
 NumPy path from the scene to the world-frame homing direction.
 """
+
 import math
 
 import numpy as np
@@ -83,7 +84,7 @@ def mfdid_direction(S, C, compass):
     H = np.zeros(2)
     for j in range(n):
         t = compass + TWO_PI * j / n
-        x = (t * n / TWO_PI) % n                     # position in S's pixel grid
+        x = (t * n / TWO_PI) % n  # position in S's pixel grid
         i0 = int(math.floor(x)) % n
         w = x - math.floor(x)
         s = (1 - w) * S[i0] + w * S[(i0 + 1) % n]
@@ -94,8 +95,9 @@ def mfdid_direction(S, C, compass):
     return wrap(math.atan2(H[1], H[0]) - compass)
 
 
-def reference_direction(landmarks, arena, home, point, heading, method, channel="mask",
-                        background="distant", alpha_r=0.0, n_pix=360, **hyp):
+def reference_direction(
+    landmarks, arena, home, point, heading, method, channel="mask", background="distant", alpha_r=0.0, n_pix=360, **hyp
+):
     """Noise-free world-frame homing direction of `warping` or `mfdid` at `point`."""
     home, point, h = np.asarray(home, float), np.asarray(point, float), float(heading)
     s_mask, s_gray = render(landmarks, home, alpha_r, arena, background, n_pix)

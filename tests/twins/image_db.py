@@ -64,8 +64,22 @@ def trial_status(x, home, home_radius, arena, cylinders, boxes, tol=1e-3):
     return RUNNING
 
 
-def rollout_trial(positions, direction, valid, home, arena, cylinders, boxes, start, draws, step, home_radius,
-                  heading_noise, step_noise, max_steps):
+def rollout_trial(
+    positions,
+    direction,
+    valid,
+    home,
+    arena,
+    cylinders,
+    boxes,
+    start,
+    draws,
+    step,
+    home_radius,
+    heading_noise,
+    step_noise,
+    max_steps,
+):
     """One nearest-snapshot trial: (outcome, steps, path (max_steps + 1, 2)). draws[t] = the two N(0, 1)
     numbers of move t (heading error, step error)."""
     positions = np.asarray(positions, dtype=float)

@@ -5,6 +5,7 @@ the database's unit moves and a nearest-snapshot rollout.
 Written from docs/images.md in float64 with explicit Python loops; slow on purpose, meant to be
 read. A world is a plain dict of NumPy arrays (`world_dict` turns a delvjax `World` into one).
 """
+
 import math
 
 import numpy as np
@@ -16,8 +17,19 @@ FAR = math.inf
 
 def world_dict(world):
     """A delvjax `World` (or anything with its fields) as a dict of float64 NumPy arrays."""
-    names = ("cylinders", "cylinder_rgb", "boxes", "box_rgb", "arena", "wall_height", "floor_rgb", "ceiling_rgb",
-             "light", "ambient", "texture")
+    names = (
+        "cylinders",
+        "cylinder_rgb",
+        "boxes",
+        "box_rgb",
+        "arena",
+        "wall_height",
+        "floor_rgb",
+        "ceiling_rgb",
+        "light",
+        "ambient",
+        "texture",
+    )
     return {k: np.asarray(getattr(world, k), dtype=float) for k in names}
 
 
@@ -137,23 +149,25 @@ def panorama(world, pos, heading, rows, cols, cam_height=25.0, top_deg=30.0, bot
     return out
 
 
-def donut_pixel(world, pos, heading, size, row, col, cam_height=25.0, inner=0.2, outer=0.95, e_in_deg=-30.0,
-                e_out_deg=30.0):
+def donut_pixel(
+    world, pos, heading, size, row, col, cam_height=25.0, inner=0.2, outer=0.95, e_in_deg=-30.0, e_out_deg=30.0
+):
     """RGB of donut pixel (row, col): equiangular mirror, black outside inner <= rho <= outer."""
     c = (size - 1) / 2.0
-    dx, dy = col - c, c - row                     # image up is +y
+    dx, dy = col - c, c - row  # image up is +y
     rho = math.hypot(dx, dy) / (size / 2.0)
     if not inner <= rho <= outer:
         return np.zeros(3)
     e = math.radians(e_in_deg + (rho - inner) / (outer - inner) * (e_out_deg - e_in_deg))
-    azimuth = math.atan2(dy, dx) - math.pi / 2    # the robot's forward points up
+    azimuth = math.atan2(dy, dx) - math.pi / 2  # the robot's forward points up
     return ray_colour(world, pos, cam_height, heading + azimuth, e)
 
 
 def donut(world, pos, heading, size, **mirror):
     """(size, size, 3) catadioptric image (`donut_pixel` of every pixel)."""
-    return np.array([[donut_pixel(world, pos, heading, size, r, c, **mirror) for c in range(size)]
-                     for r in range(size)])
+    return np.array(
+        [[donut_pixel(world, pos, heading, size, r, c, **mirror) for c in range(size)] for r in range(size)]
+    )
 
 
 # ----------------------------------------------------------------------------- docs/images.md §5
@@ -169,8 +183,7 @@ def bilinear(image, y, x):
     return out
 
 
-def unwrap(image, rows, cols, top_deg=30.0, bottom_deg=-30.0, inner=0.2, outer=0.95, e_in_deg=-30.0,
-           e_out_deg=30.0):
+def unwrap(image, rows, cols, top_deg=30.0, bottom_deg=-30.0, inner=0.2, outer=0.95, e_in_deg=-30.0, e_out_deg=30.0):
     """Donut (S, S, 3) -> panorama (rows, cols, 3): pixel (i, j) samples radius rho(e_i), angle 2 pi j / W + pi / 2."""
     size = image.shape[0]
     c = (size - 1) / 2.0

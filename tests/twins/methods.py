@@ -9,11 +9,22 @@ wrap() maps to (-pi, pi]; a bearing is relative to the agent's heading; pixel j 
 an n_pix ring image looks along bearing 2*pi*j/n_pix.  Landmarks: (L, 3) array of
 [x, y, r].  Arena: [xmin, ymin, xmax, ymax].
 """
+
 import math
 
 import numpy as np
 
-from tests.twins.sensing import TWO_PI, _angle, _unit, estimate_distances_end, estimate_distances_start, extract_blobs, quantize, render, wrap
+from tests.twins.sensing import (
+    TWO_PI,
+    _angle,
+    _unit,
+    estimate_distances_end,
+    estimate_distances_start,
+    extract_blobs,
+    quantize,
+    render,
+    wrap,
+)
 
 
 # ----------------------------------------------------------------------------- docs/model.md §3.4
@@ -47,19 +58,36 @@ def match_arrangement(ref_vecs, cur_vecs, alphas, min_pairs=2, cur_bearings=None
         for alpha in alphas:
             order = list(range(M)) if cur_bearings is None else home_frame_order(cur_bearings, alpha)
             ca, sa = math.cos(alpha), math.sin(alpha)
-            e = [(ref[i][0] - (ca * cur[order[j]][0] - sa * cur[order[j]][1]),   # Eq 3.4: V^R_i - Rot(alpha) V_j
-                  ref[i][1] - (sa * cur[order[j]][0] + ca * cur[order[j]][1])) for (i, j) in pairs]
+            e = [
+                (
+                    ref[i][0] - (ca * cur[order[j]][0] - sa * cur[order[j]][1]),  # Eq 3.4: V^R_i - Rot(alpha) V_j
+                    ref[i][1] - (sa * cur[order[j]][0] + ca * cur[order[j]][1]),
+                )
+                for (i, j) in pairs
+            ]
             px, py = sum(x for x, _ in e) / len(e), sum(y for _, y in e) / len(e)  # Eq 3.5
-            var = sum((x - px) ** 2 + (y - py) ** 2 for x, y in e)               # Eq 3.6
+            var = sum((x - px) ** 2 + (y - py) ** 2 for x, y in e)  # Eq 3.6
             if best is None or var < best[3]:
                 best = (k, float(alpha), np.array([px, py]), var)
     return best
 
 
-def delv_direction(home_start_b, home_end_b, here_start_b, here_end_b,
-                   d_hat_home, psi_hat_home, d_hat_here, psi_hat_here,
-                   levels=None, scale=1000.0, r_max=2000.0, n_heading=360,
-                   alpha_fixed=None, order="home"):
+def delv_direction(
+    home_start_b,
+    home_end_b,
+    here_start_b,
+    here_end_b,
+    d_hat_home,
+    psi_hat_home,
+    d_hat_here,
+    psi_hat_here,
+    levels=None,
+    scale=1000.0,
+    r_max=2000.0,
+    n_heading=360,
+    alpha_fixed=None,
+    order="home",
+):
     """docs/model.md §3.3-3.4: DELV homing direction in the agent frame (nan if undefined); `order`
     "home" pairs the current list in the home frame of each hypothesis, "agent" as sensed."""
     home_start_b, here_end_b = np.asarray(home_start_b), np.asarray(here_end_b)
@@ -74,9 +102,14 @@ def delv_direction(home_start_b, home_end_b, here_start_b, here_end_b,
     if alpha_fixed is None:
         alphas = [TWO_PI * a / n_heading for a in range(n_heading)]
     else:
-        alphas = [alpha_fixed]                        # compass / visual compass: only k
-    res = match_arrangement(ref, cur, alphas, min_pairs=2 if alpha_fixed is None else 1,
-                            cur_bearings=here_end_b if order == "home" else None)
+        alphas = [alpha_fixed]  # compass / visual compass: only k
+    res = match_arrangement(
+        ref,
+        cur,
+        alphas,
+        min_pairs=2 if alpha_fixed is None else 1,
+        cur_bearings=here_end_b if order == "home" else None,
+    )
     if res is None:
         return math.nan, {"k": None, "alpha": None, "p": None, "var": None}
     k, alpha, p, var = res
@@ -104,8 +137,8 @@ def alv_direction(home_b, here_b, compass):
 # ----------------------------------------------------------------------------- docs/model.md §4.2
 def acv_direction(home_b, here_b, compass):
     """ACV: pair sorted bearings by the best cyclic shift, sum correction vectors."""
-    theta = sorted(float(b) % TWO_PI for b in home_b)             # reference (N)
-    a = sorted(float(b + compass) % TWO_PI for b in here_b)       # current (M)
+    theta = sorted(float(b) % TWO_PI for b in home_b)  # reference (N)
+    a = sorted(float(b + compass) % TWO_PI for b in here_b)  # current (M)
     N, M = len(theta), len(a)
     if N == 0 or M == 0:
         return math.nan
@@ -116,7 +149,7 @@ def acv_direction(home_b, here_b, compass):
         if cost < best_cost:
             best_pairs, best_cost = pairs, cost
     HV = np.zeros(2)
-    for (i, j) in best_pairs:
+    for i, j in best_pairs:
         w = wrap(theta[i] - a[j])
         ang = a[j] + math.pi / 2 if w < 0 else a[j] - math.pi / 2
         HV += abs(w) * _unit(ang)
@@ -139,9 +172,23 @@ def visual_compass(home_gray, here_gray):
 
 
 # ----------------------------------------------------------------------------- docs/model.md §5
-def reference_direction(landmarks, arena, home, point, heading, method, d=50.0,
-                        levels=None, background="distant", alpha_r=0.0, scale=1000.0,
-                        r_max=2000.0, n_heading=360, n_pix=360, visible=None):
+def reference_direction(
+    landmarks,
+    arena,
+    home,
+    point,
+    heading,
+    method,
+    d=50.0,
+    levels=None,
+    background="distant",
+    alpha_r=0.0,
+    scale=1000.0,
+    r_max=2000.0,
+    n_heading=360,
+    n_pix=360,
+    visible=None,
+):
     """Noise-free world-frame homing direction at `point` with heading `heading`.
     `visible` (bool per landmark, default all): the landmarks seen in the current views
     (occlusion, docs/model.md §5); the home snapshots always see every landmark."""
@@ -159,14 +206,26 @@ def reference_direction(landmarks, arena, home, point, heading, method, d=50.0,
     here_start_b, here_end_b = extract_blobs(xs_mask), extract_blobs(xe_mask)
     compass = wrap(h - alpha_r)
     if method in ("delv", "delv-compass", "delv-visual"):
-        alpha_fixed = None                                      # full heading search
+        alpha_fixed = None  # full heading search
         if method == "delv-compass":
             alpha_fixed = compass
         elif method == "delv-visual":
             alpha_fixed = visual_compass(hs_gray, xe_gray)
-        agent, _ = delv_direction(home_start_b, home_end_b, here_start_b, here_end_b,
-                                  d, 0.0, d, 0.0, levels=levels, scale=scale,
-                                  r_max=r_max, n_heading=n_heading, alpha_fixed=alpha_fixed)
+        agent, _ = delv_direction(
+            home_start_b,
+            home_end_b,
+            here_start_b,
+            here_end_b,
+            d,
+            0.0,
+            d,
+            0.0,
+            levels=levels,
+            scale=scale,
+            r_max=r_max,
+            n_heading=n_heading,
+            alpha_fixed=alpha_fixed,
+        )
     elif method in ("alv", "acv", "alv-visual", "acv-visual"):
         if method.endswith("-visual"):
             compass = visual_compass(hs_gray, xe_gray)
@@ -185,5 +244,3 @@ def angular_error_deg(direction_world, point, home):
         return 180.0
     to_home = math.atan2(home[1] - point[1], home[0] - point[0])
     return math.degrees(abs(wrap(direction_world - to_home)))
-
-

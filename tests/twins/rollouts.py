@@ -14,11 +14,20 @@ Rules (docs/model.md §5): collisions="fail" ends a trial whose move ends inside
 (distance to its centre < r) as LANDMARK, whereas with collisions="ignore" (the default)
 landmarks are no obstacles. first_move="release", collisions="fail" are the physical rules.
 """
+
 import math
 
 import numpy as np
 
-from tests.twins.methods import acv_direction, alv_direction, delv_direction, extract_blobs, render, visual_compass, wrap
+from tests.twins.methods import (
+    acv_direction,
+    alv_direction,
+    delv_direction,
+    extract_blobs,
+    render,
+    visual_compass,
+    wrap,
+)
 
 SUCCESS, TIMEOUT, LANDMARK, ARENA = range(4)
 FIRST_MOVES = ("release", "homing")
@@ -41,8 +50,9 @@ class HomeRecord:
         self.d, self.alpha_r = d, alpha_r
 
 
-def move_direction(record, landmarks, arena, start, end, heading, method, levels=None, background="distant",
-                   n_heading=360, n_pix=360):
+def move_direction(
+    record, landmarks, arena, start, end, heading, method, levels=None, background="distant", n_heading=360, n_pix=360
+):
     """Agent-frame homing direction at `end` after the straight move start -> end with `heading` (nan if invalid).
 
     Odometry reports d_hat = d and no turn; the compass reads heading - alpha_r exactly."""
@@ -54,20 +64,33 @@ def move_direction(record, landmarks, arena, start, end, heading, method, levels
         compass = visual_compass(record.gray, e_gray)
     if method.startswith("delv"):
         fixed = None if method == "delv" else compass
-        agent, _ = delv_direction(record.start_b, record.end_b, start_b, end_b, record.d, 0.0, record.d, 0.0,
-                                  levels=levels, n_heading=n_heading, alpha_fixed=fixed)
+        agent, _ = delv_direction(
+            record.start_b,
+            record.end_b,
+            start_b,
+            end_b,
+            record.d,
+            0.0,
+            record.d,
+            0.0,
+            levels=levels,
+            n_heading=n_heading,
+            alpha_fixed=fixed,
+        )
         return agent
     fn = alv_direction if method.startswith("alv") else acv_direction
     return fn(record.start_b, end_b, compass)
 
 
-def release_direction(record, landmarks, arena, start, heading, method, d=50.0, levels=None, background="distant",
-                      n_heading=360):
+def release_direction(
+    record, landmarks, arena, start, heading, method, d=50.0, levels=None, background="distant", n_heading=360
+):
     """World homing direction at the release point `start` with release `heading` (nan if invalid):
     the vector map's direction there (a unit move of length d along `heading` that ends at `start`)."""
     start = np.asarray(start, float)
-    agent = move_direction(record, landmarks, arena, start - d * _unit(heading), start, heading, method, levels,
-                           background, n_heading)
+    agent = move_direction(
+        record, landmarks, arena, start - d * _unit(heading), start, heading, method, levels, background, n_heading
+    )
     return math.nan if math.isnan(agent) else float(wrap(heading + agent))
 
 
@@ -85,9 +108,24 @@ def status(landmarks_all, arena, home, pos, home_radius, collide=False):
     return None
 
 
-def reference_rollout(landmarks, arena, home, start, heading, method, d=50.0, home_radius=50.0, max_steps=50,
-                      visible=None, levels=None, background="distant", n_heading=360, record=None,
-                      first_move="release", collisions="ignore"):
+def reference_rollout(
+    landmarks,
+    arena,
+    home,
+    start,
+    heading,
+    method,
+    d=50.0,
+    home_radius=50.0,
+    max_steps=50,
+    visible=None,
+    levels=None,
+    background="distant",
+    n_heading=360,
+    record=None,
+    first_move="release",
+    collisions="ignore",
+):
     """Noise-free rollout from `start` with release `heading` (rad): (outcome, steps, path list).
 
     `visible` (bool per landmark) hides landmarks from the views during homing (the home
@@ -132,5 +170,8 @@ if __name__ == "__main__":
     arena, home = [0, 0, 1000, 1000], [500, 500]
     for method in ("alv", "acv", "delv-compass"):
         for rules in ({}, {"first_move": "release", "collisions": "fail"}):
-            print(method, rules or "default rules",
-                  reference_rollout(lms, arena, home, [200, 200], 0.3, method, **rules)[:2])
+            print(
+                method,
+                rules or "default rules",
+                reference_rollout(lms, arena, home, [200, 200], 0.3, method, **rules)[:2],
+            )

@@ -4,6 +4,7 @@
 Explicit Python loops over pixels and blobs; slow on purpose, meant to be read. The methods
 built on it are in `reference.py`.
 """
+
 import math
 
 import numpy as np
@@ -15,7 +16,7 @@ TWO_PI = 2.0 * math.pi
 def wrap(a):
     """Map angle(s) to (-pi, pi]."""
     a = np.asarray(a, dtype=float)
-    r = math.pi - np.mod(math.pi - a, TWO_PI)   # np.mod in [0, 2pi) -> r in (-pi, pi]
+    r = math.pi - np.mod(math.pi - a, TWO_PI)  # np.mod in [0, 2pi) -> r in (-pi, pi]
     r = np.where(r <= -math.pi, r + TWO_PI, r)  # guard against rounding to exactly -pi
     return float(r) if r.ndim == 0 else r
 
@@ -43,7 +44,7 @@ def _ray_cylinder(o, u, c, r):
     if dist2 < r * r:
         return 0.0
     t_ca = vx * float(u[0]) + vy * float(u[1])  # distance along the ray to the closest approach
-    perp2 = dist2 - t_ca * t_ca          # squared distance of the centre from the ray
+    perp2 = dist2 - t_ca * t_ca  # squared distance of the centre from the ray
     if t_ca <= 0.0 or perp2 > r * r:
         return None
     return t_ca - math.sqrt(max(r * r - perp2, 0.0))
@@ -58,10 +59,10 @@ def _wall_fraction(o, u, arena):
     t = min(tx, ty)
     x = min(max(o[0] + t * u[0], xmin), xmax)
     y = min(max(o[1] + t * u[1], ymin), ymax)
-    if tx < ty:                      # leaves through a vertical wall
-        s = W + (y - ymin) if u[0] > 0 else 2 * W + H + (ymax - y)        # right / left
-    else:                            # leaves through a horizontal wall (corners agree)
-        s = W + H + (xmax - x) if u[1] > 0 else x - xmin                  # top / bottom
+    if tx < ty:  # leaves through a vertical wall
+        s = W + (y - ymin) if u[0] > 0 else 2 * W + H + (ymax - y)  # right / left
+    else:  # leaves through a horizontal wall (corners agree)
+        s = W + H + (xmax - x) if u[1] > 0 else x - xmin  # top / bottom
     return s / (2 * W + 2 * H)
 
 
@@ -72,10 +73,10 @@ def render(landmarks, pos, heading, arena, background="distant", n_pix=360):
     mask = np.zeros(n_pix, dtype=bool)
     gray = np.zeros(n_pix, dtype=float)
     for j in range(n_pix):
-        phi = heading + TWO_PI * j / n_pix          # world angle of pixel j's ray
+        phi = heading + TWO_PI * j / n_pix  # world angle of pixel j's ray
         u = (math.cos(phi), math.sin(phi))
-        best = math.inf                             # nearest cylinder hit
-        for (cx, cy, r) in landmarks:
+        best = math.inf  # nearest cylinder hit
+        for cx, cy, r in landmarks:
             t = _ray_cylinder(o, u, (cx, cy), r)
             if t is not None and t < best:
                 best = t
@@ -102,11 +103,11 @@ def extract_blobs(mask):
         return np.zeros(0)
     bearings = []
     for j in range(n):
-        if mask[j] and not mask[j - 1]:             # run starts at j (j-1 wraps for j=0)
+        if mask[j] and not mask[j - 1]:  # run starts at j (j-1 wraps for j=0)
             length = 0
             while mask[(j + length) % n]:
                 length += 1
-            mid = j + (length - 1) / 2.0            # midpoint of first and last pixel
+            mid = j + (length - 1) / 2.0  # midpoint of first and last pixel
             bearings.append((mid * TWO_PI / n) % TWO_PI)
     return np.array(sorted(bearings))
 
@@ -145,9 +146,9 @@ def estimate_distances_end(start_b, end_b, d_hat, psi_hat, r_max=2000.0):
     if len(start_b) == 0:
         return out
     for j, beta in enumerate(end_b):
-        beta_p = beta + psi_hat                      # end bearing in the start frame
-        theta = start_b[_nearest(beta_p, start_b)]   # partner: nearest start blob
-        delta = wrap(beta_p - theta)                 # parallax
+        beta_p = beta + psi_hat  # end bearing in the start frame
+        theta = start_b[_nearest(beta_p, start_b)]  # partner: nearest start blob
+        delta = wrap(beta_p - theta)  # parallax
         sd = math.sin(delta)
         R = d_hat * _sin_on_lattice(theta) / sd if abs(sd) >= 1e-9 else math.inf
         out[j] = _valid_or_rmax(R, sd, r_max)
@@ -160,9 +161,9 @@ def estimate_distances_start(start_b, end_b, d_hat, psi_hat, r_max=2000.0):
     out = np.full(len(start_b), float(r_max))
     if len(end_b) == 0:
         return out
-    end_p = [b + psi_hat for b in end_b]             # end bearings in the start frame
+    end_p = [b + psi_hat for b in end_b]  # end bearings in the start frame
     for i, theta in enumerate(start_b):
-        beta_p = end_p[_nearest(theta, end_p)]       # partner: nearest end blob
+        beta_p = end_p[_nearest(theta, end_p)]  # partner: nearest end blob
         delta = wrap(beta_p - theta)
         sd = math.sin(delta)
         R = d_hat * _sin_on_lattice(theta + delta) / sd if abs(sd) >= 1e-9 else math.inf
@@ -177,5 +178,3 @@ def quantize(R, levels, scale=1000.0):
     if levels is None:
         return R.copy()
     return scale * np.clip(np.ceil(R * levels / scale), 1, levels) / levels
-
-

@@ -5,5 +5,18 @@ from .world import Camera, Catadioptric, World
 from .render import donut, panorama, panoramas
 from .pipeline import Extractor, camera_noise, rgb_to_hsv, ring_snapshot, segment, to_uint8, unwrap
 
-__all__ = ["Camera", "Catadioptric", "World", "donut", "panorama", "panoramas", "Extractor", "camera_noise",
-           "rgb_to_hsv", "ring_snapshot", "segment", "to_uint8", "unwrap"]
+__all__ = [
+    "Camera",
+    "Catadioptric",
+    "World",
+    "donut",
+    "panorama",
+    "panoramas",
+    "Extractor",
+    "camera_noise",
+    "rgb_to_hsv",
+    "ring_snapshot",
+    "segment",
+    "to_uint8",
+    "unwrap",
+]

@@ -63,18 +63,25 @@ def neighbour(positions: np.ndarray, targets: np.ndarray, spacing: float) -> np.
     return np.where(np.isfinite(dist), idx, -1)
 
 
-def _plan(positions: np.ndarray, headings: np.ndarray, start: np.ndarray, end: np.ndarray, ok: np.ndarray,
-          n_pix: int) -> MovePlan:
+def _plan(
+    positions: np.ndarray, headings: np.ndarray, start: np.ndarray, end: np.ndarray, ok: np.ndarray, n_pix: int
+) -> MovePlan:
     """The `MovePlan` of moves start -> end: the roll turns column 0 of the start view to the move."""
     delta = positions[end] - positions[start]
     move_dir = np.arctan2(delta[:, 1], delta[:, 0])
     shift = np.round((move_dir - np.asarray(headings)[start]) / (2 * np.pi / n_pix)).astype(np.int64) % n_pix
-    return MovePlan(start=start.astype(np.int32), end=end.astype(np.int32), shift=shift.astype(np.int32),
-                    d_hat=np.linalg.norm(delta, axis=-1).astype(np.float32), ok=ok)
+    return MovePlan(
+        start=start.astype(np.int32),
+        end=end.astype(np.int32),
+        shift=shift.astype(np.int32),
+        d_hat=np.linalg.norm(delta, axis=-1).astype(np.float32),
+        ok=ok,
+    )
 
 
-def first_neighbours(positions: np.ndarray, points: np.ndarray, offsets: np.ndarray, spacing: float
-                     ) -> tuple[np.ndarray, np.ndarray]:
+def first_neighbours(
+    positions: np.ndarray, points: np.ndarray, offsets: np.ndarray, spacing: float
+) -> tuple[np.ndarray, np.ndarray]:
     """For each point index: the first of `points + spacing * offset` (in `offsets` order) in the
     database (the point itself where none is) and whether one was."""
     cands = np.stack([neighbour(positions, positions[points] + spacing * o, spacing) for o in offsets], -1)
@@ -105,19 +112,31 @@ def rolled(snap: Snapshot, shift: Array) -> Snapshot:
     n = snap.mask.shape[-1]
     turn = shift.astype(jnp.float32) * jnp.float32(2 * np.pi / n)
     bearing, valid, width = sort_blobs(snap.bearing - turn, snap.valid, snap.width)
-    return Snapshot(mask=jnp.roll(snap.mask, -shift), gray=jnp.roll(snap.gray, -shift), bearing=bearing,
-                    width=width, valid=valid, channel=snap.channel)
+    return Snapshot(
+        mask=jnp.roll(snap.mask, -shift),
+        gray=jnp.roll(snap.gray, -shift),
+        bearing=bearing,
+        width=width,
+        valid=valid,
+        channel=snap.channel,
+    )
 
 
-def view_of(db: RingDatabase, start: Array, end: Array, shift: Array, d_hat: Array, alpha_r: Array
-            ) -> tuple[UnitMove, Array]:
+def view_of(
+    db: RingDatabase, start: Array, end: Array, shift: Array, d_hat: Array, alpha_r: Array
+) -> tuple[UnitMove, Array]:
     """The unit move from database point `start` to `end` in the frame rolled by `shift`, and the
     world heading of its end view's column 0."""
     pick = lambda i: rolled(jax.tree.map(lambda a: a[i], db.snapshots), shift)  # noqa: E731
     turn = shift.astype(jnp.float32) * jnp.float32(2 * np.pi / db.snapshots.mask.shape[-1])
     heading_end = db.headings[end] + turn
-    view = UnitMove(start=pick(start), end=pick(end), d_hat=d_hat, psi_hat=wrap(db.headings[end] - db.headings[start]),
-                    compass=wrap(heading_end - alpha_r))
+    view = UnitMove(
+        start=pick(start),
+        end=pick(end),
+        d_hat=d_hat,
+        psi_hat=wrap(db.headings[end] - db.headings[start]),
+        compass=wrap(heading_end - alpha_r),
+    )
     return view, heading_end
 
 
@@ -130,8 +149,9 @@ def home_view(db: RingDatabase, plan: MovePlan) -> tuple[UnitMove, Array]:
 
 
 @jax.jit
-def database_directions(db: RingDatabase, plan: MovePlan, home_db: RingDatabase, home: MovePlan,
-                        method: HomingMethod, home_point: Array) -> tuple[Array, Array, Array]:
+def database_directions(
+    db: RingDatabase, plan: MovePlan, home_db: RingDatabase, home: MovePlan, method: HomingMethod, home_point: Array
+) -> tuple[Array, Array, Array]:
     """World homing direction (rad, NaN where invalid), validity and angular error (deg, 180 where
     invalid) at every point of `plan` (docs/images.md §6), `batching.WIDTH` points at a time. The home
     record is the move `home` in `home_db` (the same database, or another rendering of it)."""

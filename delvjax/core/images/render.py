@@ -59,8 +59,9 @@ def wall_hit(arena: Array, origin: Array, u: Array) -> tuple[Array, Array]:
     t_axis = jnp.maximum((bound - origin) / safe, 0.0)  # (..., 2)
     x_side = t_axis[..., 0] <= t_axis[..., 1]
     t = jnp.minimum(t_axis[..., 0], t_axis[..., 1])
-    normal = jnp.stack([jnp.where(x_side, -jnp.sign(safe[..., 0]), 0.0),
-                        jnp.where(x_side, 0.0, -jnp.sign(safe[..., 1]))], -1)
+    normal = jnp.stack(
+        [jnp.where(x_side, -jnp.sign(safe[..., 0]), 0.0), jnp.where(x_side, 0.0, -jnp.sign(safe[..., 1]))], -1
+    )
     return t, normal
 
 
@@ -77,8 +78,10 @@ def radiance(world: World, origin: Array, height: Array, u: Array, tan_e: Array)
     t_b, n_b = box_hits(world.boxes, origin, u)
     t_obj = jnp.concatenate([t_c, t_b], -1)  # (..., M)
     heights = jnp.concatenate([world.cylinders[:, 3], world.boxes[:, 4]])
-    rgb = jnp.concatenate([world.cylinder_rgb, world.box_rgb]) * jnp.concatenate(
-        [lambert(world, n_c), lambert(world, n_b)], -1)[..., None]  # (..., M, 3)
+    rgb = (
+        jnp.concatenate([world.cylinder_rgb, world.box_rgb])
+        * jnp.concatenate([lambert(world, n_c), lambert(world, n_b)], -1)[..., None]
+    )  # (..., M, 3)
     tan_o = tan_e[..., None]
     z = height + t_obj * tan_o
     seen = (t_obj < FAR) & (z >= 0.0) & (z <= heights)
@@ -95,9 +98,13 @@ def radiance(world: World, origin: Array, height: Array, u: Array, tan_e: Array)
     grey = 0.5 + world.texture * (background_of_angle(2.0 * jnp.pi * wall_coordinate(origin, u, world.arena)) - 0.5)
     wall_rgb = (grey * lambert(world, n_w))[..., None] * jnp.ones(3)
     floor_rgb = world.floor_rgb * (world.ambient + (1.0 - world.ambient) * jnp.maximum(world.light[2], 0.0))
-    back = jnp.where((t_floor < t_w)[..., None], floor_rgb,
-                     jnp.where((z_wall <= world.wall_height)[..., None], jnp.broadcast_to(wall_rgb, shape + (3,)),
-                               world.ceiling_rgb))
+    back = jnp.where(
+        (t_floor < t_w)[..., None],
+        floor_rgb,
+        jnp.where(
+            (z_wall <= world.wall_height)[..., None], jnp.broadcast_to(wall_rgb, shape + (3,)), world.ceiling_rgb
+        ),
+    )
     return jnp.where((t_near < jnp.minimum(t_w, t_floor))[..., None], obj_rgb, back)
 
 

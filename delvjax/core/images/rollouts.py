@@ -59,8 +59,9 @@ def status(field: Field, x: Array, home_radius: Array) -> Array:
     return jnp.where(in_cyl | in_box, LANDMARK, jnp.where(outside, ARENA, jnp.where(home, SUCCESS, RUNNING)))
 
 
-def one_trial(field: Field, start: Array, key: Array, step: Array, home_radius: Array, noise: Array,
-              max_steps: int) -> tuple[Array, Array, Array]:
+def one_trial(
+    field: Field, start: Array, key: Array, step: Array, home_radius: Array, noise: Array, max_steps: int
+) -> tuple[Array, Array, Array]:
     """(outcome, steps, path (max_steps + 1, 2)) of one rollout from `start`; noise = (motion_heading rad,
     motion_step); the draws of move t come from fold_in(key, t)."""
 
@@ -83,8 +84,9 @@ def one_trial(field: Field, start: Array, key: Array, step: Array, home_radius: 
 
 
 @eqx.filter_jit
-def nearest_snapshot_rollouts(field: Field, starts: Array, key: Array, step: Array, home_radius: Array,
-                              noise: Array, max_steps: int) -> Paths:
+def nearest_snapshot_rollouts(
+    field: Field, starts: Array, key: Array, step: Array, home_radius: Array, noise: Array, max_steps: int
+) -> Paths:
     """Rollouts from every start (T, 2), `batching.WIDTH` at a time; trial i draws from fold_in(key, i)."""
     keys = jax.vmap(lambda i: jax.random.fold_in(key, i))(jnp.arange(starts.shape[0]))
     run = lambda s, k: one_trial(field, s, k, step, home_radius, noise, max_steps)  # noqa: E731

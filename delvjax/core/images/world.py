@@ -34,10 +34,20 @@ class World(eqx.Module):
     texture: Array
 
 
-def make_world(cylinders=(), cylinder_rgb=(), boxes=(), box_rgb=(), arena=(0.0, 0.0, 1000.0, 1000.0),
-               wall_height: float = 120.0, floor_rgb=(0.45, 0.43, 0.40), ceiling_rgb=(0.92, 0.92, 0.95),
-               light_azimuth_deg: float = 45.0, light_elevation_deg: float = 50.0, ambient: float = 0.45,
-               texture: float = 1.0) -> World:
+def make_world(
+    cylinders=(),
+    cylinder_rgb=(),
+    boxes=(),
+    box_rgb=(),
+    arena=(0.0, 0.0, 1000.0, 1000.0),
+    wall_height: float = 120.0,
+    floor_rgb=(0.45, 0.43, 0.40),
+    ceiling_rgb=(0.92, 0.92, 0.95),
+    light_azimuth_deg: float = 45.0,
+    light_elevation_deg: float = 50.0,
+    ambient: float = 0.45,
+    texture: float = 1.0,
+) -> World:
     """A `World` from plain numbers (an empty list of cylinders or boxes becomes one padding row)."""
 
     def table(rows, width: int) -> np.ndarray:
@@ -47,9 +57,19 @@ def make_world(cylinders=(), cylinder_rgb=(), boxes=(), box_rgb=(), arena=(0.0, 
     az, el = np.radians(light_azimuth_deg), np.radians(light_elevation_deg)
     light = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)], np.float32)
     f = lambda v: jnp.asarray(np.asarray(v, np.float32))  # noqa: E731
-    return World(cylinders=f(table(cylinders, 4)), cylinder_rgb=f(table(cylinder_rgb, 3)), boxes=f(table(boxes, 5)),
-                 box_rgb=f(table(box_rgb, 3)), arena=f(arena), wall_height=f(wall_height), floor_rgb=f(floor_rgb),
-                 ceiling_rgb=f(ceiling_rgb), light=f(light), ambient=f(ambient), texture=f(texture))
+    return World(
+        cylinders=f(table(cylinders, 4)),
+        cylinder_rgb=f(table(cylinder_rgb, 3)),
+        boxes=f(table(boxes, 5)),
+        box_rgb=f(table(box_rgb, 3)),
+        arena=f(arena),
+        wall_height=f(wall_height),
+        floor_rgb=f(floor_rgb),
+        ceiling_rgb=f(ceiling_rgb),
+        light=f(light),
+        ambient=f(ambient),
+        texture=f(texture),
+    )
 
 
 class Camera(eqx.Module):

@@ -16,5 +16,19 @@ from .mfdid import MFDID
 from .program import Program
 from .warping import Warping
 
-__all__ = ["ACV", "ALV", "CartwrightCollett", "Compass", "DELV", "DELVGap", "DELVRefined", "HeadingSource", "HomingMethod", "MFDID", "Method", "Program",
-           "VisualCompass", "Warping"]
+__all__ = [
+    "ACV",
+    "ALV",
+    "CartwrightCollett",
+    "Compass",
+    "DELV",
+    "DELVGap",
+    "DELVRefined",
+    "HeadingSource",
+    "HomingMethod",
+    "MFDID",
+    "Method",
+    "Program",
+    "VisualCompass",
+    "Warping",
+]

@@ -38,8 +38,12 @@ from ..search import first_argmin
 
 
 def cc_home_vector(
-    ref_bearing: Blobs, ref_width: Blobs, ref_valid: BlobFlags,
-    cur_bearing: Blobs, cur_width: Blobs, cur_valid: BlobFlags,
+    ref_bearing: Blobs,
+    ref_width: Blobs,
+    ref_valid: BlobFlags,
+    cur_bearing: Blobs,
+    cur_width: Blobs,
+    cur_valid: BlobFlags,
     radial_weight: float | Array = 1.0,
 ) -> tuple[Point, Flag]:
     """Home vector H (2,) of the snapshot model, and whether it is defined.
@@ -68,8 +72,15 @@ class CartwrightCollett(HomingMethod):
 
     def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
         heading = self.heading(home, view)
-        h, valid = cc_home_vector(home.start.bearing, home.start.width, home.start.valid,
-                                  view.end.bearing + heading, view.end.width, view.end.valid, self.radial_weight)
+        h, valid = cc_home_vector(
+            home.start.bearing,
+            home.start.width,
+            home.start.valid,
+            view.end.bearing + heading,
+            view.end.width,
+            view.end.valid,
+            self.radial_weight,
+        )
         return jnp.where(valid, wrap(angle_of(h) - heading), jnp.nan), valid
 
     def reads_gray(self, channel: str) -> bool:

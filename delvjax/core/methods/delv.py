@@ -16,8 +16,22 @@ from ..search import first_argmin
 from ..settings import setting
 from ..geometry import TWO_PI, angle_of, rotate, safe_norm, wrap
 from ..sensing import UnitMove
-from ..types import (Blobs, BlobFlags, BlobVectors, CurrentFlags, CurrentVectors, Direction, Hypotheses, Pairing, Move, PairingFlags, Point, Real, RowFlags,
-                     Scalar)
+from ..types import (
+    Blobs,
+    BlobFlags,
+    BlobVectors,
+    CurrentFlags,
+    CurrentVectors,
+    Direction,
+    Hypotheses,
+    Pairing,
+    Move,
+    PairingFlags,
+    Point,
+    Real,
+    RowFlags,
+    Scalar,
+)
 from .base import HomingMethod
 from .heading import HeadingSource
 from .pairing import shift_pairs
@@ -60,8 +74,9 @@ def mod_two_pi_of_sum(bearing: Blobs, alphas: Hypotheses, tie: float) -> Array:
     return jnp.where(x >= y, x - y, x)
 
 
-def rotated_rows(cur_idx: Pairing, cur_valid: CurrentFlags, alphas: Hypotheses,
-                 offsets: Array | None) -> tuple[Array, Array]:
+def rotated_rows(
+    cur_idx: Pairing, cur_valid: CurrentFlags, alphas: Hypotheses, offsets: Array | None
+) -> tuple[Array, Array]:
     """The current indices of every pairing when the current list starts at another blob.
 
     `cur_idx` (K, S) indexes the list as sorted (agent frame). Returns (rows (R, K, S), row_of (A,)):
@@ -78,8 +93,14 @@ def rotated_rows(cur_idx: Pairing, cur_valid: CurrentFlags, alphas: Hypotheses,
     return jnp.minimum((cur_idx[None] + rot) % m, last), offsets.astype(jnp.int32)
 
 
-def match_arrangement(ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: CurrentVectors, cur_valid: CurrentFlags,
-                      alphas: Hypotheses, offsets: Array | None = None) -> tuple[Point, Scalar, Scalar, Array]:
+def match_arrangement(
+    ref_v: BlobVectors,
+    ref_valid: BlobFlags,
+    cur_v: CurrentVectors,
+    cur_valid: CurrentFlags,
+    alphas: Hypotheses,
+    offsets: Array | None = None,
+) -> tuple[Point, Scalar, Scalar, Array]:
     """Best cyclic shift k and heading hypothesis alpha (Eqs 3.4-3.6): (p (2,), alpha, var, n_pairs).
 
     For each k and alpha: e_i = V^R_i - Rot(alpha) V_j(i), p = mean e_i, var = sum |e_i - p|^2;
@@ -97,9 +118,17 @@ def match_arrangement(ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: CurrentVe
     return p, alpha, var, n
 
 
-def pairing_table(ref_v: BlobVectors, cur_v: CurrentVectors, ref_idx: Pairing, cur_idx: Array, pair_ok: PairingFlags,
-                  row_ok: RowFlags, n: Array, alphas: Hypotheses,
-                  row_of: Array | None = None) -> tuple[Array, Array, Array]:
+def pairing_table(
+    ref_v: BlobVectors,
+    cur_v: CurrentVectors,
+    ref_idx: Pairing,
+    cur_idx: Array,
+    pair_ok: PairingFlags,
+    row_ok: RowFlags,
+    n: Array,
+    alphas: Hypotheses,
+    row_of: Array | None = None,
+) -> tuple[Array, Array, Array]:
     """var of every pairing (row) x heading hypothesis, (H, A) (inf on rows that are not row_ok), and
     the rows' mean reference vectors (H, 2) and mean current vectors (R, H, 2).
 
@@ -137,9 +166,17 @@ def best_index(var: Array) -> tuple[Array, Array]:
     return best // var.shape[1], best % var.shape[1]
 
 
-def best_pairing(ref_v: BlobVectors, cur_v: CurrentVectors, ref_idx: Pairing, cur_idx: Array, pair_ok: PairingFlags,
-                 row_ok: RowFlags, n: Array, alphas: Hypotheses,
-                 row_of: Array | None = None) -> tuple[Point, Scalar, Scalar]:
+def best_pairing(
+    ref_v: BlobVectors,
+    cur_v: CurrentVectors,
+    ref_idx: Pairing,
+    cur_idx: Array,
+    pair_ok: PairingFlags,
+    row_ok: RowFlags,
+    n: Array,
+    alphas: Hypotheses,
+    row_of: Array | None = None,
+) -> tuple[Point, Scalar, Scalar]:
     """The first minimum of var over pairings (rows) x heading hypotheses (`pairing_table`): (p (2,), alpha, var)."""
     var, a_mean, b_mean = pairing_table(ref_v, cur_v, ref_idx, cur_idx, pair_ok, row_ok, n, alphas, row_of)
     h_best, a_best = best_index(var)
@@ -149,8 +186,15 @@ def best_pairing(ref_v: BlobVectors, cur_v: CurrentVectors, ref_idx: Pairing, cu
     return p, alpha, var[h_best, a_best]
 
 
-def delv_direction(home: UnitMove, view: UnitMove, settings: DistanceSettings, alphas: Hypotheses, min_pairs: int,
-                   match: Callable = match_arrangement, order: str = "home") -> Direction:
+def delv_direction(
+    home: UnitMove,
+    view: UnitMove,
+    settings: DistanceSettings,
+    alphas: Hypotheses,
+    min_pairs: int,
+    match: Callable = match_arrangement,
+    order: str = "home",
+) -> Direction:
     """Homing direction from the best (k, alpha) of `match`; invalid (NaN) when n < `min_pairs` or |p| = 0.
 
     `min_pairs` is static: 2 without a compass (one pair fits every heading), 1 with a
@@ -184,13 +228,19 @@ class DELV(HomingMethod):
             bearing, the earlier rule; with occlusion its wrap point moves with the heading).
     """
 
-    levels: Real = setting(0, converter=lambda q: 0 if q is None else q, check="positive_int",
-                          help="distance quantization levels Q >= 1 (Eq 3.17)", shown_default="continuous")
+    levels: Real = setting(
+        0,
+        converter=lambda q: 0 if q is None else q,
+        check="positive_int",
+        help="distance quantization levels Q >= 1 (Eq 3.17)",
+        shown_default="continuous",
+    )
     scale: Real = setting(1000.0, check="positive", unit="cm", help="quantization scale a")
     r_max: Real = setting(2000.0, check="positive", unit="cm", help="cap of estimated distances")
     heading: HeadingSource | None = None
-    n_heading: int = setting(360, static=True, check="positive_int", limit=36_000,
-                             help="heading hypotheses without a compass")
+    n_heading: int = setting(
+        360, static=True, check="positive_int", limit=36_000, help="heading hypotheses without a compass"
+    )
     order: str = eqx.field(static=True, default="home")
 
     def __check_init__(self):
@@ -203,14 +253,28 @@ class DELV(HomingMethod):
             return TWO_PI * jnp.arange(self.n_heading, dtype=jnp.float32) / self.n_heading
         return jnp.reshape(self.heading(home, view), (1,))
 
-    def match(self, ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: CurrentVectors, cur_valid: CurrentFlags,
-              alphas: Hypotheses, offsets: Array | None = None) -> tuple[Point, Scalar, Scalar, Array]:
+    def match(
+        self,
+        ref_v: BlobVectors,
+        ref_valid: BlobFlags,
+        cur_v: CurrentVectors,
+        cur_valid: CurrentFlags,
+        alphas: Hypotheses,
+        offsets: Array | None = None,
+    ) -> tuple[Point, Scalar, Scalar, Array]:
         """The arrangement search (`match_arrangement`): (p, alpha, var, n)."""
         return match_arrangement(ref_v, ref_valid, cur_v, cur_valid, alphas, offsets)
 
     def __call__(self, home: UnitMove, view: UnitMove) -> Direction:
-        return delv_direction(home, view, self, self.alphas(home, view), min_pairs=1 if self.heading is not None else 2,
-                              match=self.match, order=self.order)
+        return delv_direction(
+            home,
+            view,
+            self,
+            self.alphas(home, view),
+            min_pairs=1 if self.heading is not None else 2,
+            match=self.match,
+            order=self.order,
+        )
 
     def reads_start_view(self) -> bool:
         return True

@@ -58,9 +58,14 @@ def _hypotheses(size: int) -> tuple[np.ndarray, np.ndarray]:
     subset[(s + k) mod c], 0 for s >= c; top (size + 1, H): largest slot, -1 for the empty
     subset, `size` on padding rows, which therefore never go live).
     """
-    tables = [[([subset[(s + k) % c] if s < c else 0 for s in range(size)], subset[-1] if c else -1)
-               for subset in itertools.combinations(range(size), c) for k in range(max(c, 1))]
-              for c in range(size + 1)]
+    tables = [
+        [
+            ([subset[(s + k) % c] if s < c else 0 for s in range(size)], subset[-1] if c else -1)
+            for subset in itertools.combinations(range(size), c)
+            for k in range(max(c, 1))
+        ]
+        for c in range(size + 1)
+    ]
     h = max(len(rows) for rows in tables)
     big = np.zeros((size + 1, h, size), np.int32)
     top = np.full((size + 1, h), size, np.int32)
@@ -70,8 +75,9 @@ def _hypotheses(size: int) -> tuple[np.ndarray, np.ndarray]:
     return big, top
 
 
-def match_arrangement_gapped(ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array,
-                             alphas: Array, offsets: Array | None = None) -> tuple[Array, Array, Array, Array]:
+def match_arrangement_gapped(
+    ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array, alphas: Array, offsets: Array | None = None
+) -> tuple[Array, Array, Array, Array]:
     """Best order-preserving cyclic pairing (may skip entries of the larger list) and alpha.
 
     Same signature and outputs as `delv.match_arrangement`: (p (2,), alpha, var, n_pairs)
@@ -87,8 +93,9 @@ def match_arrangement_gapped(ref_v: Array, ref_valid: Array, cur_v: Array, cur_v
     return tuple(jnp.where(equal, x, y) for x, y in zip(same, gapped))
 
 
-def _search(ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array,
-            alphas: Array) -> tuple[Array, Array, Array, Array]:
+def _search(
+    ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array, alphas: Array
+) -> tuple[Array, Array, Array, Array]:
     """The table search of `match_arrangement_gapped`, for any N, M. var(alpha) per pairing
     from centred pair vectors a'_i, b'_i: sum |a'|^2 + |b'|^2 - 2 Re(e^{i alpha} sum conj(a') b')."""
     size = max(ref_valid.shape[0], cur_valid.shape[0])
@@ -110,6 +117,13 @@ class DELVGap(DELV):
     """DELV (docs/model.md §3) with gap-aware matching (§3.5): the settings and heading source of
     `DELV`; only the arrangement search differs (`match_arrangement_gapped`)."""
 
-    def match(self, ref_v: Array, ref_valid: Array, cur_v: Array, cur_valid: Array, alphas: Array,
-              offsets: Array | None = None):
+    def match(
+        self,
+        ref_v: Array,
+        ref_valid: Array,
+        cur_v: Array,
+        cur_valid: Array,
+        alphas: Array,
+        offsets: Array | None = None,
+    ):
         return match_arrangement_gapped(ref_v, ref_valid, cur_v, cur_valid, alphas, offsets)

@@ -34,8 +34,14 @@ def solver() -> optx.GaussNewton:
     return optx.GaussNewton(rtol=1e-6, atol=1e-6)
 
 
-def refined_match(ref_v: BlobVectors, ref_valid: BlobFlags, cur_v: BlobVectors, cur_valid: BlobFlags,
-                  alphas: Hypotheses, offsets: Array | None = None) -> tuple[Point, Scalar, Scalar, Array]:
+def refined_match(
+    ref_v: BlobVectors,
+    ref_valid: BlobFlags,
+    cur_v: BlobVectors,
+    cur_valid: BlobFlags,
+    alphas: Hypotheses,
+    offsets: Array | None = None,
+) -> tuple[Point, Scalar, Scalar, Array]:
     """`match_arrangement` (with its `offsets`), then least squares on (alpha, p) for its pairing:
     (p, alpha, var, n)."""
     ref_idx, cur_idx, pair_ok, shift_ok = shift_pairs(ref_valid, cur_valid)

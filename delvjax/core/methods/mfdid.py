@@ -74,8 +74,9 @@ class MFDID(HomingMethod):
     blur_deg: Gaussian low-pass of both images, degrees (0 = the raw images).
     """
 
-    blur_deg: Real = setting(0.0, check="non_negative", unit="deg", option="mfdid_blur_deg",
-                              help="Gaussian low-pass of both images")
+    blur_deg: Real = setting(
+        0.0, check="non_negative", unit="deg", option="mfdid_blur_deg", help="Gaussian low-pass of both images"
+    )
     heading: HeadingSource = Compass()
 
     def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:

@@ -31,6 +31,7 @@ class Program(HomingMethod):
             def run(home, view):
                 angle, valid = method(home, view)
                 return jnp.asarray(angle, jnp.float32), jnp.asarray(valid, bool)
+
             return run
 
         return jax.lax.switch(self.index, [branch(m) for m in self.methods], home, view)

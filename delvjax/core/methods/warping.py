@@ -57,7 +57,9 @@ def check_hypotheses(config: "Warping", n_pix: int) -> None:
     if not 0.0 < config.rho_min <= config.rho_max < 1.0:
         raise InputError("rho", (config.rho_min, config.rho_max), "must satisfy 0 < rho_min <= rho_max < 1")
     if n_pix % config.n_psi:
-        raise InputError("n_psi", config.n_psi, f"must divide n_pix = {n_pix} (psi hypotheses are whole-pixel rotations)")
+        raise InputError(
+            "n_psi", config.n_psi, f"must divide n_pix = {n_pix} (psi hypotheses are whole-pixel rotations)"
+        )
     if (n_pix + 1) << max(1, (config.n_psi - 1).bit_length()) >= 2**31:
         raise InputError("n_psi", config.n_psi, "too large: the search key distance << bits | psi must fit in int32")
 

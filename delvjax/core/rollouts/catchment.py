@@ -19,10 +19,19 @@ from ..methods.base import HomingMethod
 from ..metrics import angular_error_deg, error_point_rates
 from ..scene import Env
 from ..sensor import Sensor
-from ..types import (GridFlag, GridFloat, GridPoints, MaskGridFlag, MaskGridFloat, MaskGridInt, MaskGridPoints,
-                     Masks)
-from .rules import (DEFAULT_FIRST_MOVE, DEFAULT_LANES, EXCLUDED, NEAR_WALL, HOME_RADIUS, MAX_STEPS, OUTCOMES, SUCCESS, Outcomes,
-                    catchment_counted)
+from ..types import GridFlag, GridFloat, GridPoints, MaskGridFlag, MaskGridFloat, MaskGridInt, MaskGridPoints, Masks
+from .rules import (
+    DEFAULT_FIRST_MOVE,
+    DEFAULT_LANES,
+    EXCLUDED,
+    NEAR_WALL,
+    HOME_RADIUS,
+    MAX_STEPS,
+    OUTCOMES,
+    SUCCESS,
+    Outcomes,
+    catchment_counted,
+)
 from .trials import run_trials
 from ..types import Real
 
@@ -79,11 +88,23 @@ class Catchment(Outcomes):
         return 100.0 * np.asarray(self.success)[:, inc].mean(axis=1)
 
 
-def catchment_area(env: Env, method: HomingMethod, sensor: Sensor, spacing: float = SPACING, heading: float | None = None,
-                   key: Array | None = None, clearance: Real = CLEARANCE, masks: np.ndarray | None = None,
-                   hidden: Sequence[tuple[int, ...]] = ((),), home_radius: Real = HOME_RADIUS, max_steps: int = MAX_STEPS,
-                   lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE, collisions: str = "ignore",
-                   progress: Callable[[int, int], None] | None = None) -> Catchment:
+def catchment_area(
+    env: Env,
+    method: HomingMethod,
+    sensor: Sensor,
+    spacing: float = SPACING,
+    heading: float | None = None,
+    key: Array | None = None,
+    clearance: Real = CLEARANCE,
+    masks: np.ndarray | None = None,
+    hidden: Sequence[tuple[int, ...]] = ((),),
+    home_radius: Real = HOME_RADIUS,
+    max_steps: int = MAX_STEPS,
+    lanes: int = DEFAULT_LANES,
+    first_move: str = DEFAULT_FIRST_MOVE,
+    collisions: str = "ignore",
+    progress: Callable[[int, int], None] | None = None,
+) -> Catchment:
     """Rollouts from every grid point under every mask in `masks` (M, L), one program (docs/model.md §5).
 
     Headings: fixed (rad) or per point from `key` as in `maps.random_headings`. The trial of
@@ -103,14 +124,32 @@ def catchment_area(env: Env, method: HomingMethod, sensor: Sensor, spacing: floa
     if cells.size == 0:
         raise InputError("spacing", spacing, "leaves no grid point clear of the landmarks (r + clearance)")
     if not counted.any():
-        raise InputError("d", float(np.max(np.asarray(sensor.d))), "leaves no grid point at least d from every wall "
-                         "(the catchment under first_move \"release\" counts only those)")
+        raise InputError(
+            "d",
+            float(np.max(np.asarray(sensor.d))),
+            "leaves no grid point at least d from every wall "
+            '(the catchment under first_move "release" counts only those)',
+        )
     n_masks, n_inc = masks.shape[0], cells.size
     trial_cell = np.tile(cells, n_masks).astype(np.int32)
     trial_mask = np.repeat(np.arange(n_masks, dtype=np.int32), n_inc)
-    trials = run_trials(env, points[trial_cell], headings[trial_cell], trial_cell, trial_mask, masks, key, sensor, method,
-                        home_radius=home_radius, max_steps=max_steps, lanes=lanes, first_move=first_move,
-                        collisions=collisions, progress=progress)
+    trials = run_trials(
+        env,
+        points[trial_cell],
+        headings[trial_cell],
+        trial_cell,
+        trial_mask,
+        masks,
+        key,
+        sensor,
+        method,
+        home_radius=home_radius,
+        max_steps=max_steps,
+        lanes=lanes,
+        first_move=first_move,
+        collisions=collisions,
+        progress=progress,
+    )
 
     def per_cell(values, fill):
         values = np.asarray(values)
@@ -123,14 +162,23 @@ def catchment_area(env: Env, method: HomingMethod, sensor: Sensor, spacing: floa
     error = angular_error_deg(direction, valid, points[None], env.home)
     outcome = per_cell(trials.outcome, EXCLUDED)
     outcome = jnp.where(jnp.asarray(counted | ~included)[None, :], outcome, NEAR_WALL)
-    return Catchment(points=jax.device_put(points), included=jax.device_put(included),
-                     counted=jax.device_put(counted), heading=jax.device_put(headings),
-                     visible=jax.device_put(masks),
-                     outcome=outcome, steps=per_cell(trials.steps, 0),
-                     end=per_cell(trials.end, jnp.nan), invalid_steps=per_cell(trials.invalid_steps, 0),
-                     direction=direction, valid=valid, error_deg=error,
-                     hidden=tuple(tuple(int(i) for i in h) for h in hidden), first_move=first_move,
-                     collisions=collisions)
+    return Catchment(
+        points=jax.device_put(points),
+        included=jax.device_put(included),
+        counted=jax.device_put(counted),
+        heading=jax.device_put(headings),
+        visible=jax.device_put(masks),
+        outcome=outcome,
+        steps=per_cell(trials.steps, 0),
+        end=per_cell(trials.end, jnp.nan),
+        invalid_steps=per_cell(trials.invalid_steps, 0),
+        direction=direction,
+        valid=valid,
+        error_deg=error,
+        hidden=tuple(tuple(int(i) for i in h) for h in hidden),
+        first_move=first_move,
+        collisions=collisions,
+    )
 
 
 def under_release(result: Catchment, arena, d) -> Catchment:
@@ -157,16 +205,28 @@ def catchment_summary(result: Catchment) -> dict:
     for m, hidden in enumerate(result.hidden):  # M <= 20 rows of post-processing
         rates = error_point_rates(np.asarray(result.error_deg)[m], inc)
         ok = outcome[m] == SUCCESS
-        per_mask.append({
-            "hidden": list(hidden), "catchment_pct": float(pct[m]), **rates,
-            "invalid_pct": 100.0 * float((~np.asarray(result.valid)[m][inc]).mean()),
-            "mean_steps_success": float(steps[m][ok].mean()) if ok.any() else float("nan"),
-            **{f"{name}_count": int((outcome[m] == code).sum()) for code, name in enumerate(OUTCOMES)},
-        })
+        per_mask.append(
+            {
+                "hidden": list(hidden),
+                "catchment_pct": float(pct[m]),
+                **rates,
+                "invalid_pct": 100.0 * float((~np.asarray(result.valid)[m][inc]).mean()),
+                "mean_steps_success": float(steps[m][ok].mean()) if ok.any() else float("nan"),
+                **{f"{name}_count": int((outcome[m] == code).sum()) for code, name in enumerate(OUTCOMES)},
+            }
+        )
 
     def spread(field):
         v = np.array([row[field] for row in per_mask])
         return {"mean": float(v.mean()), "min": float(v.min()), "max": float(v.max())}
 
-    return {"rules": result.rules, "points": int(inc.sum()), "catchment_points": int(counted.sum()), "masks": len(per_mask), "catchment_pct": spread("catchment_pct"),
-            "gt45_pct": spread("gt45_pct"), "gt90_pct": spread("gt90_pct"), "per_mask": per_mask}
+    return {
+        "rules": result.rules,
+        "points": int(inc.sum()),
+        "catchment_points": int(counted.sum()),
+        "masks": len(per_mask),
+        "catchment_pct": spread("catchment_pct"),
+        "gt45_pct": spread("gt45_pct"),
+        "gt90_pct": spread("gt90_pct"),
+        "per_mask": per_mask,
+    }

@@ -80,16 +80,28 @@ def _trials(cell: RolloutCell, starts, headings, key_index, mask_index, n_valid,
     """`run_trials`' block program for one cell's trials (the first `n_valid` are run)."""
     k_home, k_roll, _ = rollout_keys(cell.key)
     _, k_views, _ = stream_keys(cell.key)
-    rollout = Rollout(env=cell.env, home=record_home(cell.env, k_home, cell.sensor), method=cell.method,
-                      sensor=cell.sensor, key_index=key_index, mask_index=mask_index, masks=cell.masks, k_roll=k_roll,
-                      k_views=k_views, radius=cell.radius, max_steps=max_steps, homing_first=cell.homing_first,
-                      collide=cell.collide)
+    rollout = Rollout(
+        env=cell.env,
+        home=record_home(cell.env, k_home, cell.sensor),
+        method=cell.method,
+        sensor=cell.sensor,
+        key_index=key_index,
+        mask_index=mask_index,
+        masks=cell.masks,
+        k_roll=k_roll,
+        k_views=k_views,
+        radius=cell.radius,
+        max_steps=max_steps,
+        homing_first=cell.homing_first,
+        collide=cell.collide,
+    )
     return run_block(rollout, starts, headings, n_valid, lanes)
 
 
 @partial(jax.jit, static_argnames=("max_steps", "lanes"))
-def catchment_cells(cells: RolloutCell, points: Array, included: Array, counted: Array, max_steps: int,
-                    lanes: int) -> CatchmentSums:
+def catchment_cells(
+    cells: RolloutCell, points: Array, included: Array, counted: Array, max_steps: int, lanes: int
+) -> CatchmentSums:
     """Catchment sums of C stacked cells (`catchment_area`'s trials: every included grid point of
     `points` (P, 2) under every mask, random release headings per point from each cell's key).
     `included`, `counted`: (C, P)."""
@@ -115,21 +127,32 @@ def catchment_cells(cells: RolloutCell, points: Array, included: Array, counted:
         count = lambda m: jnp.sum(m & counts).astype(jnp.int32)  # noqa: E731
         e = jnp.where(run, err, 0.0)
         n_cnt = jnp.sum(inc & cnt).astype(jnp.int32)
-        return CatchmentSums(points=n_inc, trials=n_valid, counted_points=n_cnt, counted=cell.n_masks * n_cnt, successes=jnp.sum(per_mask),
-                             success_min=jnp.min(jnp.where(used, per_mask, n_cnt)),
-                             success_max=jnp.max(jnp.where(used, per_mask, 0)), timeout=count(res.outcome == TIMEOUT),
-                             landmark=count(res.outcome == LANDMARK), arena=count(res.outcome == ARENA),
-                             steps_success=jnp.sum(jnp.where(ok, res.steps, 0)), invalid=jnp.sum(~res.first_valid & run).astype(jnp.int32),
-                             gt45=jnp.sum((err > 45.0) & run).astype(jnp.int32),
-                             gt90=jnp.sum((err > 90.0) & run).astype(jnp.int32), error_sum=jnp.sum(e),
-                             error_sq_sum=jnp.sum(e * e))
+        return CatchmentSums(
+            points=n_inc,
+            trials=n_valid,
+            counted_points=n_cnt,
+            counted=cell.n_masks * n_cnt,
+            successes=jnp.sum(per_mask),
+            success_min=jnp.min(jnp.where(used, per_mask, n_cnt)),
+            success_max=jnp.max(jnp.where(used, per_mask, 0)),
+            timeout=count(res.outcome == TIMEOUT),
+            landmark=count(res.outcome == LANDMARK),
+            arena=count(res.outcome == ARENA),
+            steps_success=jnp.sum(jnp.where(ok, res.steps, 0)),
+            invalid=jnp.sum(~res.first_valid & run).astype(jnp.int32),
+            gt45=jnp.sum((err > 45.0) & run).astype(jnp.int32),
+            gt90=jnp.sum((err > 90.0) & run).astype(jnp.int32),
+            error_sum=jnp.sum(e),
+            error_sq_sum=jnp.sum(e * e),
+        )
 
     return jax.lax.map(one, (cells, included, counted))
 
 
 @partial(jax.jit, static_argnames=("trials", "max_steps", "lanes"))
-def success_cells(cells: RolloutCell, distances: Array, clearance: Array, trials: int, max_steps: int,
-                  lanes: int) -> SuccessSums:
+def success_cells(
+    cells: RolloutCell, distances: Array, clearance: Array, trials: int, max_steps: int, lanes: int
+) -> SuccessSums:
     """Success-rate sums of C stacked cells: `success_rate_trials`' `trials` release points per
     distance (D,), each run under every mask of the cell (common random numbers across masks)."""
     n_bins = distances.shape[0]
@@ -137,18 +160,28 @@ def success_cells(cells: RolloutCell, distances: Array, clearance: Array, trials
     def one(cell):
         _, _, k_start = rollout_keys(cell.key)
         starts, heads, placed = jax.vmap(
-            lambda b, r: release_points(cell.env, jax.random.fold_in(k_start, b), trials, r, clearance))(
-            jnp.arange(n_bins), distances)
+            lambda b, r: release_points(cell.env, jax.random.fold_in(k_start, b), trials, r, clearance)
+        )(jnp.arange(n_bins), distances)
         rows, n_items = cell.masks.shape[0], n_bins * trials
         t = jnp.arange(rows * n_items, dtype=jnp.int32)
         item = t % n_items
         n_valid = cell.n_masks * n_items
-        res = _trials(cell, starts.reshape(n_items, 2)[item], heads.reshape(n_items)[item], item, t // n_items,
-                      n_valid, max_steps, lanes)
+        res = _trials(
+            cell,
+            starts.reshape(n_items, 2)[item],
+            heads.reshape(n_items)[item],
+            item,
+            t // n_items,
+            n_valid,
+            max_steps,
+            lanes,
+        )
         placed = placed.reshape(n_items)[item] & (t < n_valid)
         ok = placed & (res.outcome == SUCCESS)
         bins = item // trials
-        return SuccessSums(placed=jax.ops.segment_sum(placed.astype(jnp.int32), bins, n_bins),
-                           successes=jax.ops.segment_sum(ok.astype(jnp.int32), bins, n_bins))
+        return SuccessSums(
+            placed=jax.ops.segment_sum(placed.astype(jnp.int32), bins, n_bins),
+            successes=jax.ops.segment_sum(ok.astype(jnp.int32), bins, n_bins),
+        )
 
     return jax.lax.map(one, cells)

@@ -65,16 +65,22 @@ def run_block(rollout: Rollout, starts: Array, headings: Array, n_valid: Array, 
         ts = jnp.minimum(t, n_trials - 1)
         status = jnp.where(ok, position_status(rollout.env, starts[ts], rollout.radius, rollout.collide), RUNNING)
         zero = jnp.zeros((), jnp.int32)
-        return Lanes(t=t, pos=starts[ts], heading=headings[ts], status=status, first=jnp.ones((), bool),
-                     step=zero, invalid=zero)
+        return Lanes(
+            t=t, pos=starts[ts], heading=headings[ts], status=status, first=jnp.ones((), bool), step=zero, invalid=zero
+        )
 
     lane_t = jnp.arange(n_slots, dtype=jnp.int32)
     lanes0 = jax.vmap(fresh)(jnp.where((lane_t < n_valid) & (lane_t < n_lanes), lane_t, n_trials))
     zeros_t = jnp.zeros(n_trials, jnp.int32)
-    out0 = Results(outcome=jnp.full(n_trials, RUNNING, jnp.int32), steps=zeros_t, invalid=zeros_t,
-                   end=jnp.zeros((n_trials, 2), jnp.float32), first_dir=jnp.full(n_trials, jnp.nan, jnp.float32),
-                   first_valid=jnp.zeros(n_trials, bool),
-                   path=jnp.full((n_trials, max_steps + 1, 2), jnp.nan, jnp.float32).at[:, 0].set(starts))
+    out0 = Results(
+        outcome=jnp.full(n_trials, RUNNING, jnp.int32),
+        steps=zeros_t,
+        invalid=zeros_t,
+        end=jnp.zeros((n_trials, 2), jnp.float32),
+        first_dir=jnp.full(n_trials, jnp.nan, jnp.float32),
+        first_valid=jnp.zeros(n_trials, bool),
+        path=jnp.full((n_trials, max_steps + 1, 2), jnp.nan, jnp.float32).at[:, 0].set(starts),
+    )
 
     def cond(state):
         return jnp.any(state[0].t < n_valid)
@@ -87,11 +93,14 @@ def run_block(rollout: Rollout, starts: Array, headings: Array, n_valid: Array, 
         moving = active & ~lane.first & (lane.status == RUNNING)
         ts = jnp.minimum(lane.t, n_trials - 1)
         end, new_heading, status, valid, direction = fixed_width_map(
-            rollout.advance, (ts, lane.pos, lane.heading, lane.step, lane.first), active)
+            rollout.advance, (ts, lane.pos, lane.heading, lane.step, lane.first), active
+        )
         idx0 = jnp.where(first, lane.t, n_trials)
-        out = eqx.tree_at(lambda o: (o.first_dir, o.first_valid), out,
-                          (out.first_dir.at[idx0].set(direction, mode="drop"),
-                           out.first_valid.at[idx0].set(valid, mode="drop")))
+        out = eqx.tree_at(
+            lambda o: (o.first_dir, o.first_valid),
+            out,
+            (out.first_dir.at[idx0].set(direction, mode="drop"), out.first_valid.at[idx0].set(valid, mode="drop")),
+        )
         lane = Lanes(
             t=lane.t,
             pos=jnp.where(moving[:, None], end, lane.pos),
@@ -105,11 +114,15 @@ def run_block(rollout: Rollout, starts: Array, headings: Array, n_valid: Array, 
         # 2. write the lanes whose trial has ended (after its first direction)
         done = active & ~lane.first & (lane.status != RUNNING)
         idx = jnp.where(done, lane.t, n_trials)
-        out = Results(outcome=out.outcome.at[idx].set(lane.status, mode="drop"),
-                      steps=out.steps.at[idx].set(lane.step, mode="drop"),
-                      invalid=out.invalid.at[idx].set(lane.invalid, mode="drop"),
-                      end=out.end.at[idx].set(lane.pos, mode="drop"),
-                      first_dir=out.first_dir, first_valid=out.first_valid, path=path)
+        out = Results(
+            outcome=out.outcome.at[idx].set(lane.status, mode="drop"),
+            steps=out.steps.at[idx].set(lane.step, mode="drop"),
+            invalid=out.invalid.at[idx].set(lane.invalid, mode="drop"),
+            end=out.end.at[idx].set(lane.pos, mode="drop"),
+            first_dir=out.first_dir,
+            first_valid=out.first_valid,
+            path=path,
+        )
         # 3. refill them from the queue
         new_t = next_t + jnp.cumsum(done) - 1
         new_t = jnp.where(new_t >= n_valid, n_trials, new_t).astype(jnp.int32)

@@ -17,9 +17,16 @@ START_TRIES = 64  # candidate release points per trial before a trial counts as 
 
 
 @partial(jax.jit, static_argnames=("n", "tries"))
-def release_points(env: Env, key: Array, n: int, distance: Array | None = None, clearance: Real = CLEARANCE,
-                   min_home_distance: Real = 0.0, margin: Real = 0.0,
-                   tries: int = START_TRIES) -> tuple[Array, Array, Array]:
+def release_points(
+    env: Env,
+    key: Array,
+    n: int,
+    distance: Array | None = None,
+    clearance: Real = CLEARANCE,
+    min_home_distance: Real = 0.0,
+    margin: Real = 0.0,
+    tries: int = START_TRIES,
+) -> tuple[Array, Array, Array]:
     """n seeded release points: (points (n, 2), headings (n,), placed (n,)).
 
     Trial t draws candidates j = 0.. tries-1 from fold_in(fold_in(key, t), j): a uniform

@@ -72,8 +72,12 @@ def catchment_counted(arena, points, included, first_move: str, d) -> np.ndarray
     """Grid points whose rollout counts in the catchment (docs/model.md §5): `included` and at
     least `wall_margin` from every wall; (P,) bool, NumPy (input preparation)."""
     a, pts, m = np.asarray(arena, np.float64), np.asarray(points, np.float64), wall_margin(first_move, d)
-    clear = ((pts[:, 0] >= a[0] + m - 1e-3) & (pts[:, 0] <= a[2] - m + 1e-3)
-             & (pts[:, 1] >= a[1] + m - 1e-3) & (pts[:, 1] <= a[3] - m + 1e-3))
+    clear = (
+        (pts[:, 0] >= a[0] + m - 1e-3)
+        & (pts[:, 0] <= a[2] - m + 1e-3)
+        & (pts[:, 1] >= a[1] + m - 1e-3)
+        & (pts[:, 1] <= a[3] - m + 1e-3)
+    )
     return np.asarray(included, bool) & clear
 
 

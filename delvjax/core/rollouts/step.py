@@ -62,10 +62,10 @@ class Rollout(eqx.Module):
         (end, new heading, status, valid, world direction)."""
         at_release = map_poses(pos, heading, self.k_views, self.key_index[t], self.sensor)
         k = jax.random.fold_in(jax.random.fold_in(self.k_roll, self.key_index[t]), step)
-        poses = jax.tree.map(lambda a, b: jnp.where(first, a, b), at_release,
-                             move_poses(pos, heading, k, self.sensor))
-        direction, valid = direction_from(self.env, self.masks[self.mask_index[t]], poses, self.home, self.method,
-                                          self.sensor)
+        poses = jax.tree.map(lambda a, b: jnp.where(first, a, b), at_release, move_poses(pos, heading, k, self.sensor))
+        direction, valid = direction_from(
+            self.env, self.masks[self.mask_index[t]], poses, self.home, self.method, self.sensor
+        )
         new_heading = jnp.where(valid, direction, wrap(poses.heading_end))
         # first_move "release" (thesis Algorithm 2): a method that needs a unit movement first moves d
         # along the release heading; one that reads only the current view turns to its direction here

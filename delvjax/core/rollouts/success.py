@@ -19,8 +19,19 @@ from ..scene import Env
 from ..sensor import Sensor
 from ..types import BinTrialFlag, BinTrialFloat, BinTrialInt, BinTrialPoints, Bins
 from .release import release_points
-from .rules import (DEFAULT_DISTANCES, DEFAULT_FIRST_MOVE, DEFAULT_LANES, EXCLUDED, HOME_RADIUS, MAX_STEPS, OUTCOMES, SUCCESS,
-                    TRIALS_PER_DISTANCE, Outcomes, rollout_keys)
+from .rules import (
+    DEFAULT_DISTANCES,
+    DEFAULT_FIRST_MOVE,
+    DEFAULT_LANES,
+    EXCLUDED,
+    HOME_RADIUS,
+    MAX_STEPS,
+    OUTCOMES,
+    SUCCESS,
+    TRIALS_PER_DISTANCE,
+    Outcomes,
+    rollout_keys,
+)
 from .trials import run_trials
 from ..types import Real
 
@@ -50,15 +61,22 @@ class SuccessRate(Outcomes):
         for b, dist in enumerate(np.asarray(self.distances)):  # D <= a dozen bins: post-processing
             ok = outcome[b] == SUCCESS
             n_placed = int(placed[b].sum())
-            rows.append({
-                "distance_cm": float(dist), "trials": int(placed.shape[1]), "placed": n_placed,
-                "successes": int(ok.sum()),
-                "success_pct": 100.0 * float(ok.sum()) / n_placed if n_placed else float("nan"),
-                **wilson_interval_pct(int(ok.sum()), n_placed),
-                "mean_steps_success": float(steps[b][ok].mean()) if ok.any() else float("nan"),
-                **{f"{name}_count": int((outcome[b] == code).sum()) for code, name in enumerate(OUTCOMES)
-                   if code != SUCCESS},
-            })
+            rows.append(
+                {
+                    "distance_cm": float(dist),
+                    "trials": int(placed.shape[1]),
+                    "placed": n_placed,
+                    "successes": int(ok.sum()),
+                    "success_pct": 100.0 * float(ok.sum()) / n_placed if n_placed else float("nan"),
+                    **wilson_interval_pct(int(ok.sum()), n_placed),
+                    "mean_steps_success": float(steps[b][ok].mean()) if ok.any() else float("nan"),
+                    **{
+                        f"{name}_count": int((outcome[b] == code).sum())
+                        for code, name in enumerate(OUTCOMES)
+                        if code != SUCCESS
+                    },
+                }
+            )
         return rows
 
 
@@ -66,6 +84,7 @@ def wilson_pct(successes, trials, confidence: float = 0.95) -> tuple[np.ndarray,
     """The Wilson score interval of success rates, in % (scipy's binomtest), for counts or arrays of
     counts: (lo, hi), NaN where there are no trials. The one Wilson interval of delvjax (success-rate
     tables, sweeps, figures)."""
+
     def one(k, n):
         if n == 0:
             return float("nan"), float("nan")
@@ -85,11 +104,22 @@ def wilson_interval_pct(successes: int, trials: int, confidence: float = 0.95) -
     return {"ci_lo_pct": float(lo), "ci_hi_pct": float(hi)}
 
 
-def success_rate_trials(env: Env, method: HomingMethod, sensor: Sensor, distances: Sequence[float] = DEFAULT_DISTANCES,
-                        trials: int = TRIALS_PER_DISTANCE, heading: float | None = None, key: Array | None = None,
-                        clearance: Real = CLEARANCE, visible: ArrayLike | None = None, home_radius: Real = HOME_RADIUS,
-                        max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
-                        collisions: str = "ignore") -> SuccessRate:
+def success_rate_trials(
+    env: Env,
+    method: HomingMethod,
+    sensor: Sensor,
+    distances: Sequence[float] = DEFAULT_DISTANCES,
+    trials: int = TRIALS_PER_DISTANCE,
+    heading: float | None = None,
+    key: Array | None = None,
+    clearance: Real = CLEARANCE,
+    visible: ArrayLike | None = None,
+    home_radius: Real = HOME_RADIUS,
+    max_steps: int = MAX_STEPS,
+    lanes: int = DEFAULT_LANES,
+    first_move: str = DEFAULT_FIRST_MOVE,
+    collisions: str = "ignore",
+) -> SuccessRate:
     """`trials` rollouts per release distance: random direction from home, random heading (docs/model.md §5)."""
     key = jax.random.PRNGKey(0) if key is None else key
     dist = np.asarray(distances, np.float32)
@@ -99,16 +129,35 @@ def success_rate_trials(env: Env, method: HomingMethod, sensor: Sensor, distance
         heads = np.full_like(heads, heading)
     visible = np.asarray(env.valid if visible is None else visible, bool)
     total = n_bins * trials
-    res = run_trials(env, starts.reshape(total, 2), heads.reshape(total), np.arange(total, dtype=np.int32),
-                     np.zeros(total, np.int32), visible[None, :], key, sensor, method,
-                     home_radius=home_radius, max_steps=max_steps, lanes=lanes, first_move=first_move,
-                     collisions=collisions)
+    res = run_trials(
+        env,
+        starts.reshape(total, 2),
+        heads.reshape(total),
+        np.arange(total, dtype=np.int32),
+        np.zeros(total, np.int32),
+        visible[None, :],
+        key,
+        sensor,
+        method,
+        home_radius=home_radius,
+        max_steps=max_steps,
+        lanes=lanes,
+        first_move=first_move,
+        collisions=collisions,
+    )
     placed_flat = placed.reshape(total)
     outcome = np.where(placed_flat, np.asarray(res.outcome), EXCLUDED).reshape(n_bins, trials)
     steps = np.where(placed_flat, np.asarray(res.steps), 0).reshape(n_bins, trials)
-    return SuccessRate(**{k: jax.device_put(v) for k, v in dict(distances=dist, start=starts, heading=heads, placed=placed,
-                                                                outcome=outcome, steps=steps).items()},
-                       first_move=first_move, collisions=collisions)
+    return SuccessRate(
+        **{
+            k: jax.device_put(v)
+            for k, v in dict(
+                distances=dist, start=starts, heading=heads, placed=placed, outcome=outcome, steps=steps
+            ).items()
+        },
+        first_move=first_move,
+        collisions=collisions,
+    )
 
 
 @partial(jax.jit, static_argnames=("trials",))
@@ -116,4 +165,5 @@ def _release_bins(env: Env, key: Array, distances: Array, trials: int, clearance
     """`release_points` for every distance bin b, from fold_in(key_start, b)."""
     _, _, k_start = rollout_keys(key)
     return jax.vmap(lambda b, r: release_points(env, jax.random.fold_in(k_start, b), trials, r, clearance))(
-        jnp.arange(distances.shape[0]), distances)
+        jnp.arange(distances.shape[0]), distances
+    )

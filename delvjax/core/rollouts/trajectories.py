@@ -33,18 +33,50 @@ class Trajectories(Outcomes):
     collisions: str = eqx.field(static=True, default="ignore")
 
 
-def trajectory_trials(env: Env, method: HomingMethod, sensor: Sensor, starts: Array, headings: Array,
-                      key: Array | None = None, visible: Array | None = None, home_radius: Real = HOME_RADIUS,
-                      max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, first_move: str = DEFAULT_FIRST_MOVE,
-                      collisions: str = "ignore") -> Trajectories:
+def trajectory_trials(
+    env: Env,
+    method: HomingMethod,
+    sensor: Sensor,
+    starts: Array,
+    headings: Array,
+    key: Array | None = None,
+    visible: Array | None = None,
+    home_radius: Real = HOME_RADIUS,
+    max_steps: int = MAX_STEPS,
+    lanes: int = DEFAULT_LANES,
+    first_move: str = DEFAULT_FIRST_MOVE,
+    collisions: str = "ignore",
+) -> Trajectories:
     """Rollouts from `starts` (T, 2) with `headings` (T,) rad, recording every position."""
     key = jax.random.PRNGKey(0) if key is None else key
     starts = np.asarray(starts, np.float32)
     headings = np.asarray(headings, np.float32)
     n = starts.shape[0]
     visible = np.asarray(env.valid if visible is None else visible, bool)
-    res = run_trials(env, starts, headings, np.arange(n, dtype=np.int32), np.zeros(n, np.int32),
-                     visible[None, :], key, sensor, method, home_radius=home_radius, max_steps=max_steps,
-                     lanes=lanes, record_paths=True, first_move=first_move, collisions=collisions)
-    return Trajectories(start=jax.device_put(starts), heading=jax.device_put(headings), path=res.path, outcome=res.outcome, steps=res.steps,
-                        invalid_steps=res.invalid_steps, first_move=first_move, collisions=collisions)
+    res = run_trials(
+        env,
+        starts,
+        headings,
+        np.arange(n, dtype=np.int32),
+        np.zeros(n, np.int32),
+        visible[None, :],
+        key,
+        sensor,
+        method,
+        home_radius=home_radius,
+        max_steps=max_steps,
+        lanes=lanes,
+        record_paths=True,
+        first_move=first_move,
+        collisions=collisions,
+    )
+    return Trajectories(
+        start=jax.device_put(starts),
+        heading=jax.device_put(headings),
+        path=res.path,
+        outcome=res.outcome,
+        steps=res.steps,
+        invalid_steps=res.invalid_steps,
+        first_move=first_move,
+        collisions=collisions,
+    )

@@ -85,8 +85,9 @@ def device_block(lanes: int):
     """The per-device program of a block: one device's trials with `lanes` lanes (counts: (1,))."""
 
     def run(shared: Rollout, key_index, mask_index, starts, headings, counts):
-        rollout = eqx.tree_at(lambda r: (r.key_index, r.mask_index), shared, (key_index, mask_index),
-                              is_leaf=lambda x: x is None)
+        rollout = eqx.tree_at(
+            lambda r: (r.key_index, r.mask_index), shared, (key_index, mask_index), is_leaf=lambda x: x is None
+        )
         return run_block(rollout, starts, headings, counts[0], lanes)
 
     return run
@@ -98,11 +99,24 @@ def home_record(env: Env, key: Array, sensor: Sensor) -> UnitMove:
     return record_home(env, rollout_keys(key)[0], sensor)
 
 
-def run_trials(env: Env, starts: TrialPoints, headings: PerTrial, key_index: PerTrialInt, mask_index: PerTrialInt, masks: Masks,
-               key: Array, sensor: Sensor, method: HomingMethod, home_radius: Real = HOME_RADIUS,
-               max_steps: int = MAX_STEPS, lanes: int = DEFAULT_LANES, record_paths: bool = False,
-               first_move: str = DEFAULT_FIRST_MOVE, collisions: str = "ignore",
-               progress: Callable[[int, int], None] | None = None) -> Trials:
+def run_trials(
+    env: Env,
+    starts: TrialPoints,
+    headings: PerTrial,
+    key_index: PerTrialInt,
+    mask_index: PerTrialInt,
+    masks: Masks,
+    key: Array,
+    sensor: Sensor,
+    method: HomingMethod,
+    home_radius: Real = HOME_RADIUS,
+    max_steps: int = MAX_STEPS,
+    lanes: int = DEFAULT_LANES,
+    record_paths: bool = False,
+    first_move: str = DEFAULT_FIRST_MOVE,
+    collisions: str = "ignore",
+    progress: Callable[[int, int], None] | None = None,
+) -> Trials:
     """Roll out T trials (docs/model.md §5), in blocks of one compiled program.
 
     starts: (T, 2) cm; headings: (T,) release headings rad; key_index: (T,) int, the trial's
@@ -133,24 +147,54 @@ def run_trials(env: Env, starts: TrialPoints, headings: PerTrial, key_index: Per
     blocks = []
     for i in range(0, padded, block):  # chunked driver: every block is the same compiled program
         rows = slice(i, i + block)
-        rollout = Rollout(env=env, home=home_record(env, key, sensor), method=method, sensor=sensor,
-                          key_index=key_index[rows], mask_index=mask_index[rows], masks=masks, k_roll=k_roll,
-                          k_views=k_views, radius=np.float32(home_radius), max_steps=max_steps,
-                          homing_first=np.bool_(first_move == "homing"), collide=np.bool_(collisions == "fail"))
+        rollout = Rollout(
+            env=env,
+            home=home_record(env, key, sensor),
+            method=method,
+            sensor=sensor,
+            key_index=key_index[rows],
+            mask_index=mask_index[rows],
+            masks=masks,
+            k_roll=k_roll,
+            k_views=k_views,
+            radius=np.float32(home_radius),
+            max_steps=max_steps,
+            homing_first=np.bool_(first_move == "homing"),
+            collide=np.bool_(collisions == "fail"),
+        )
         n_valid = min(block, n - i)
         if mesh is None:
             res = run_block(rollout, starts[rows], headings[rows], np.int32(n_valid), lanes)
         else:  # device d runs trials [d q, (d + 1) q) of the block, q = ceil(n_valid / D): whole trials, same program
             take, counts, keep = device_split(n_valid, mesh.size, per_device)
-            shared = eqx.tree_at(lambda r: (r.key_index, r.mask_index), rollout, (None, None), is_leaf=lambda x: x is None)
-            res = over_devices(device_block(-(-lanes // mesh.size)), mesh, 1, shared, rollout.key_index[take],
-                               rollout.mask_index[take], starts[rows][take], headings[rows][take], counts)
+            shared = eqx.tree_at(
+                lambda r: (r.key_index, r.mask_index), rollout, (None, None), is_leaf=lambda x: x is None
+            )
+            res = over_devices(
+                device_block(-(-lanes // mesh.size)),
+                mesh,
+                1,
+                shared,
+                rollout.key_index[take],
+                rollout.mask_index[take],
+                starts[rows][take],
+                headings[rows][take],
+                counts,
+            )
             res = jax.tree.map(lambda a: np.asarray(a)[keep], res)
         res = res if record_paths else eqx.tree_at(lambda r: r.path, res, None, is_leaf=lambda x: x is None)
         blocks.append(jax.tree.map(np.asarray, res))  # waits for the block, so progress is real
         if progress is not None:
             progress(n_valid, n)
     res = jax.tree.map(lambda *a: jax.device_put(np.concatenate(a)[:n]), *blocks)
-    return Trials(outcome=res.outcome, steps=res.steps, end=res.end, invalid_steps=res.invalid,
-                  first_direction=res.first_dir, first_valid=res.first_valid, path=res.path if record_paths else None,
-                  first_move=first_move, collisions=collisions)
+    return Trials(
+        outcome=res.outcome,
+        steps=res.steps,
+        end=res.end,
+        invalid_steps=res.invalid,
+        first_direction=res.first_dir,
+        first_valid=res.first_valid,
+        path=res.path if record_paths else None,
+        first_move=first_move,
+        collisions=collisions,
+    )

@@ -45,12 +45,20 @@ def check_differentiable(method: HomingMethod) -> None:
     shifts or descend image differences; the visual compass reads a gray image)."""
     name = type(method).__name__
     if type(method) not in DIFFERENTIABLE:
-        raise InputError("method", name, "has no differentiable (soft) version: the soft path covers DELV, ALV and ACV "
-                                         "(image methods and gap-aware DELV make discrete pixel or gap choices)")
+        raise InputError(
+            "method",
+            name,
+            "has no differentiable (soft) version: the soft path covers DELV, ALV and ACV "
+            "(image methods and gap-aware DELV make discrete pixel or gap choices)",
+        )
     heading = getattr(method, "heading", None)
     if heading is not None and type(heading) is not Compass:
-        raise InputError("method", name, f"with the heading source {type(heading).__name__} has no soft version "
-                                         "(the visual compass searches pixel shifts of a gray image)")
+        raise InputError(
+            "method",
+            name,
+            f"with the heading source {type(heading).__name__} has no soft version "
+            "(the visual compass searches pixel shifts of a gray image)",
+        )
 
 
 def _partner_parallax(rows: Array, cols: Array, col_ok: Array, tau: Array) -> Array:
@@ -105,8 +113,9 @@ def soft_delv(method: DELV, home: SoftMove, view: SoftMove, tau: Array) -> tuple
     z_im = jnp.sum(w * (a_c[..., 0] * b_c[..., 1] - a_c[..., 1] * b_c[..., 0]), axis=1)
     var = const[:, None] - 2.0 * (jnp.cos(alphas)[None, :] * z_re[:, None] - jnp.sin(alphas)[None, :] * z_im[:, None])
     scale = jnp.maximum(jnp.sum(jnp.where(row_ok, const, 0.0)) / jnp.maximum(jnp.sum(row_ok), 1), 1e-6)
-    logits = jnp.where(row_ok[:, None], -(var - jnp.min(jnp.where(row_ok[:, None], var, jnp.inf))) / (tau * scale),
-                       -jnp.inf)
+    logits = jnp.where(
+        row_ok[:, None], -(var - jnp.min(jnp.where(row_ok[:, None], var, jnp.inf))) / (tau * scale), -jnp.inf
+    )
     sel = jax.nn.softmax(jnp.where(jnp.any(row_ok), logits, 0.0).reshape(-1)).reshape(var.shape)
     p = a_mean[:, None, :] - rotate(b_mean[:, None, :], alphas[None, :])  # (H, A, 2)
     v = rotate(-p, -alphas[None, :])

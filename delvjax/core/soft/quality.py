@@ -24,8 +24,17 @@ from .methods import soft_direction
 from .sensing import soft_home, soft_observe
 
 
-def soft_field(env: Env, points: Array, headings: Array, key: Array, sensor: Sensor, method: HomingMethod,
-               tau: Array, sharpness: Array, visible: Array | None = None) -> tuple[Array, Array]:
+def soft_field(
+    env: Env,
+    points: Array,
+    headings: Array,
+    key: Array,
+    sensor: Sensor,
+    method: HomingMethod,
+    tau: Array,
+    sharpness: Array,
+    visible: Array | None = None,
+) -> tuple[Array, Array]:
     """Soft homing vectors in the world frame (P, 2) and validity (P,) at `points` (the vector map's
     unit moves ending there with `headings`, streams of `key`); `visible` (L,) the landmarks the
     current views see (occlusion; the home record sees all)."""
@@ -49,8 +58,18 @@ def alignment_loss(vectors: Array, valid: Array, points: Array, home: Array) -> 
     return jnp.where(valid, 1.0 - cos, 2.0)
 
 
-def soft_quality(env: Env, points: Array, included: Array, headings: Array, key: Array, sensor: Sensor,
-                 method: HomingMethod, tau: Array, sharpness: Array, visible: Array | None = None) -> Array:
+def soft_quality(
+    env: Env,
+    points: Array,
+    included: Array,
+    headings: Array,
+    key: Array,
+    sensor: Sensor,
+    method: HomingMethod,
+    tau: Array,
+    sharpness: Array,
+    visible: Array | None = None,
+) -> Array:
     """Mean `alignment_loss` of the soft field over the included grid points (lower is better)."""
     vec, valid = soft_field(env, points, headings, key, sensor, method, tau, sharpness, visible)
     loss = alignment_loss(vec, valid, points, env.home)

@@ -54,8 +54,9 @@ class SoftMove(eqx.Module):
     compass: Array
 
 
-def analytic_blobs(env: Env, visible: Array, pos: Array, heading: Array,
-                   sharpness: float | Array = VISIBILITY_WIDTH) -> tuple[Array, Array, Array]:
+def analytic_blobs(
+    env: Env, visible: Array, pos: Array, heading: Array, sharpness: float | Array = VISIBILITY_WIDTH
+) -> tuple[Array, Array, Array]:
     """Per landmark (unsorted): bearing in the agent frame (rad), angular width (rad) and soft
     visibility weight; invalid, hidden or enclosing (pos inside the cylinder) landmarks weigh 0."""
     rel = env.landmarks[:, :2] - pos
@@ -74,8 +75,15 @@ def analytic_blobs(env: Env, visible: Array, pos: Array, heading: Array,
     return bearing, 2.0 * half, weight
 
 
-def soft_snapshot(env: Env, visible: Array, pos: Array, heading: Array, key: Array, sensor: Sensor,
-                  sharpness: float | Array = VISIBILITY_WIDTH) -> SoftSnapshot:
+def soft_snapshot(
+    env: Env,
+    visible: Array,
+    pos: Array,
+    heading: Array,
+    key: Array,
+    sensor: Sensor,
+    sharpness: float | Array = VISIBILITY_WIDTH,
+) -> SoftSnapshot:
     """`analytic_blobs` sorted into slots, with the bearing noise of `sensing.snapshot`."""
     bearing, width, weight = analytic_blobs(env, visible, pos, heading, sharpness)
     bearing, width, weight = _sorted(bearing, weight > 0.5, width, weight)
@@ -93,14 +101,19 @@ def _sorted(bearing: Array, valid: Array, *carried: Array) -> tuple[Array, ...]:
     return (jnp.where(ok, wrap_positive(bearing[order]), 0.0), *(jnp.where(ok, c[order], 0.0) for c in carried))
 
 
-def soft_observe(env: Env, visible: Array, poses: MovePoses, sensor: Sensor,
-                 sharpness: float | Array = VISIBILITY_WIDTH) -> SoftMove:
+def soft_observe(
+    env: Env, visible: Array, poses: MovePoses, sensor: Sensor, sharpness: float | Array = VISIBILITY_WIDTH
+) -> SoftMove:
     """`sensing.observe_poses` with analytic snapshots: the same keys, odometry and compass."""
     k_compass, k_start, k_end = sensor.noise.observation_keys(poses.key)
     compass = wrap(poses.heading_end - sensor.alpha_r + sensor.noise.compass_error(k_compass))
-    return SoftMove(start=soft_snapshot(env, visible, poses.start, poses.heading_start, k_start, sensor, sharpness),
-                    end=soft_snapshot(env, visible, poses.end, poses.heading_end, k_end, sensor, sharpness),
-                    d_hat=jnp.asarray(sensor.d, jnp.float32), psi_hat=poses.psi_hat, compass=compass)
+    return SoftMove(
+        start=soft_snapshot(env, visible, poses.start, poses.heading_start, k_start, sensor, sharpness),
+        end=soft_snapshot(env, visible, poses.end, poses.heading_end, k_end, sensor, sharpness),
+        d_hat=jnp.asarray(sensor.d, jnp.float32),
+        psi_hat=poses.psi_hat,
+        compass=compass,
+    )
 
 
 def soft_home(env: Env, key: Array, sensor: Sensor, sharpness: float | Array = VISIBILITY_WIDTH) -> SoftMove:
@@ -114,8 +127,14 @@ def as_unit_move(move: SoftMove, n_pix: int) -> UnitMove:
     the hard methods run on exactly what the soft ones see (the tau -> 0 comparison)."""
 
     def snap(s: SoftSnapshot) -> Snapshot:
-        return Snapshot(mask=jnp.zeros(n_pix, bool), gray=jnp.zeros(n_pix, jnp.float32), bearing=s.bearing,
-                        width=s.width, valid=s.valid)
+        return Snapshot(
+            mask=jnp.zeros(n_pix, bool),
+            gray=jnp.zeros(n_pix, jnp.float32),
+            bearing=s.bearing,
+            width=s.width,
+            valid=s.valid,
+        )
 
-    return UnitMove(start=snap(move.start), end=snap(move.end), d_hat=move.d_hat, psi_hat=move.psi_hat,
-                    compass=move.compass)
+    return UnitMove(
+        start=snap(move.start), end=snap(move.end), d_hat=move.d_hat, psi_hat=move.psi_hat, compass=move.compass
+    )

@@ -45,8 +45,9 @@ def solver() -> optx.LevenbergMarquardt:
     return optx.LevenbergMarquardt(rtol=1e-6, atol=1e-6)
 
 
-def soft_vector(x: Array, env: Env, sensor: Sensor, method: HomingMethod, key: Array, tau: Array,
-                sharpness: Array) -> Array:
+def soft_vector(
+    x: Array, env: Env, sensor: Sensor, method: HomingMethod, key: Array, tau: Array, sharpness: Array
+) -> Array:
     """H(x): the mean soft homing vector (world frame) over FIELD_HEADINGS arrival headings, (2,)."""
     k_home, k_views, _ = stream_keys(key)
     home = soft_home(env, k_home, sensor, sharpness)
@@ -69,8 +70,9 @@ def classify(jac: Array) -> Array:
 
 
 @jax.jit
-def field_zeros(env: Env, starts: Array, sensor: Sensor, method: HomingMethod, key: Array, tau: Array,
-                sharpness: Array) -> tuple[Array, Array, Array, Array, Array]:
+def field_zeros(
+    env: Env, starts: Array, sensor: Sensor, method: HomingMethod, key: Array, tau: Array, sharpness: Array
+) -> tuple[Array, Array, Array, Array, Array]:
     """Root finding from every start (damped Newton, Levenberg-Marquardt, on H): (points (S, 2),
     solver converged (S,), kind (S,) into KINDS, Jacobian (S, 2, 2), residual |H| at the point
     relative to the median |H| at the starts (S,)). A point with a residual that is not small is a
@@ -80,7 +82,13 @@ def field_zeros(env: Env, starts: Array, sensor: Sensor, method: HomingMethod, k
     def one(y0):
         sol = optx.root_find(field, solver(), y0, max_steps=64, throw=False)
         jac = jax.jacfwd(lambda x: field(x, None))(sol.value)
-        return sol.value, sol.result == optx.RESULTS.successful, classify(jac), jac, jnp.linalg.norm(field(sol.value, None))
+        return (
+            sol.value,
+            sol.result == optx.RESULTS.successful,
+            classify(jac),
+            jac,
+            jnp.linalg.norm(field(sol.value, None)),
+        )
 
     zeros, ok, kind, jac, residual = jax.vmap(one)(starts)
     scale = jnp.median(jax.vmap(lambda x: jnp.linalg.norm(field(x, None)))(starts))
@@ -88,8 +96,9 @@ def field_zeros(env: Env, starts: Array, sensor: Sensor, method: HomingMethod, k
 
 
 @jax.jit
-def two_cycles(env: Env, starts: Array, sensor: Sensor, method: HomingMethod, key: Array, tau: Array,
-               sharpness: Array) -> tuple[Array, Array, Array]:
+def two_cycles(
+    env: Env, starts: Array, sensor: Sensor, method: HomingMethod, key: Array, tau: Array, sharpness: Array
+) -> tuple[Array, Array, Array]:
     """Period-2 orbits of the rollout map x -> x + d H(x) / |H(x)| (a unit step along the soft field):
     zeros of S(S(x)) - x, root-found from every start. Returns (x (S, 2), its partner S(x) (S, 2),
     residual |S(S(x)) - x| in cm (S,)). An agent on such an orbit steps back and forth between x and

@@ -19,7 +19,6 @@ TWO_PI = 2.0 * math.pi
 B = 6
 
 
-
 # home at the origin; cylinders (x, y, r) in cm, all on one side as in a bee's landmark array
 SCENE = np.array([[300.0, 50.0, 30.0], [120.0, 260.0, 25.0], [-60.0, 220.0, 40.0], [250.0, -150.0, 20.0]])
 
@@ -62,7 +61,9 @@ def random_sets(n: int = 200, seed: int = 0) -> list[np.ndarray]:
             cb, cw = cb[order], cw[order]
         else:
             cb, cw = np.sort(rng.uniform(0, TWO_PI, n_cur)), rng.uniform(0.05, 0.8, n_cur)
-        for k, (vals, m) in enumerate(((rb, n_ref), (rw, n_ref), (None, n_ref), (cb, n_cur), (cw, n_cur), (None, n_cur))):
+        for k, (vals, m) in enumerate(
+            ((rb, n_ref), (rw, n_ref), (None, n_ref), (cb, n_cur), (cw, n_cur), (None, n_cur))
+        ):
             if vals is None:
                 arrs[k][i, :m] = True
             else:
@@ -71,8 +72,10 @@ def random_sets(n: int = 200, seed: int = 0) -> list[np.ndarray]:
 
 
 def twin_batch(arrs, **kw):
-    out = [cc_home_vector_ref(*(np.asarray(a[i], np.float64) if a.dtype != bool else a[i] for a in arrs), **kw)
-           for i in range(arrs[0].shape[0])]
+    out = [
+        cc_home_vector_ref(*(np.asarray(a[i], np.float64) if a.dtype != bool else a[i] for a in arrs), **kw)
+        for i in range(arrs[0].shape[0])
+    ]
     return np.array([h for h, _ in out]), np.array([ok for _, ok in out])
 
 
@@ -139,14 +142,17 @@ def test_rotated_view_is_tangential_and_reduces_bearing_error(eps):
     tangential = np.sign(eps) * np.column_stack([np.cos(c + math.pi / 2), np.sin(c + math.pi / 2)])
     np.testing.assert_allclose(h, tangential.sum(axis=0), atol=1e-5)
     np.testing.assert_allclose(h_ref, tangential.sum(axis=0), atol=1e-12)
-    np.testing.assert_allclose(np.asarray(cc_home_vector(*map(jnp.asarray, snap), *map(jnp.asarray, cur),
-                                                          radial_weight=7.0)[0]), h, atol=1e-6)
+    np.testing.assert_allclose(
+        np.asarray(cc_home_vector(*map(jnp.asarray, snap), *map(jnp.asarray, cur), radial_weight=7.0)[0]), h, atol=1e-6
+    )
     # each landmark alone: a small step along its own vector shrinks its own bearing error
     # (this checks the tangential sign geometrically, on the JAX function itself)
     step = 2.0  # cm; landmarks are ~250 cm away
     for k in range(len(SCENE)):
         only = np.arange(B) == k
-        h_k, ok_k = cc_home_vector(*map(jnp.asarray, (snap[0], snap[1], only)), *map(jnp.asarray, (cur[0], cur[1], only)))
+        h_k, ok_k = cc_home_vector(
+            *map(jnp.asarray, (snap[0], snap[1], only)), *map(jnp.asarray, (cur[0], cur[1], only))
+        )
         assert bool(ok_k)
         p = step * np.asarray(h_k) / np.linalg.norm(h_k)
         before, after = _bearing_errors(rotated, (0.0, 0.0), snap)[k], _bearing_errors(rotated, p, snap)[k]

@@ -51,8 +51,11 @@ def test_table_order_is_combinations_then_shift(size):
     for n in range(size + 1):
         for n_big in range(max(n, 1), size + 1):
             live = [tuple(row[:n]) for row, t in zip(big[n], top[n]) if t < n_big]
-            want = [tuple(c[(s + k) % n] for s in range(n))
-                    for c in itertools.combinations(range(n_big), n) for k in range(max(n, 1))]
+            want = [
+                tuple(c[(s + k) % n] for s in range(n))
+                for c in itertools.combinations(range(n_big), n)
+                for k in range(max(n, 1))
+            ]
             assert live == want, (n, n_big)
 
 
@@ -77,7 +80,7 @@ def test_equal_counts_bitwise_equal_to_match_arrangement():
     assert np.all(n0[~same] == 2)
     assert np.all(np.abs(np.remainder(alpha[~same] - alpha0[~same], 2 * np.pi) - np.pi) < 1e-4)
     ref, ref_ok, cur, cur_ok = (np.asarray(x) for x in args)
-    scale = np.sum(ref ** 2 * ref_ok[..., None], axis=(1, 2)) + np.sum(cur ** 2 * cur_ok[..., None], axis=(1, 2))
+    scale = np.sum(ref**2 * ref_ok[..., None], axis=(1, 2)) + np.sum(cur**2 * cur_ok[..., None], axis=(1, 2))
     np.testing.assert_allclose(p[same], p0[same], rtol=0, atol=1e-3)
     assert np.all(np.abs(var[~low] - var0[~low]) <= 1e-6 * scale[~low])
 
@@ -105,8 +108,11 @@ def test_unequal_counts_match_numpy_twin():
             continue
         # A different winner is only allowed where the twin has a candidate at the same alpha and p
         # whose var is within 1e-3 (relative) of the twin's minimum: a near-tie decided by rounding.
-        tied = [v for _, _, a, q, v in reference_gap.candidates(r, c, ALPHAS64)
-                if a == float(alpha[b]) and np.allclose(q, p[b], rtol=0, atol=1e-4 * math.sqrt(scale))]
+        tied = [
+            v
+            for _, _, a, q, v in reference_gap.candidates(r, c, ALPHAS64)
+            if a == float(alpha[b]) and np.allclose(q, p[b], rtol=0, atol=1e-4 * math.sqrt(scale))
+        ]
         assert tied and min(tied) - var_np <= 1e-3 * max(var_np, 1e-6 * scale), (b, N, M)
         half_turn = abs(math.remainder(float(alpha[b]) - alpha_np, 2 * math.pi)) > math.pi - 1e-4
         near_ties += not (min(N, M) == 2 and half_turn)

@@ -47,11 +47,14 @@ def views(env, points, headings, cfg: Sensor) -> tuple[np.ndarray, np.ndarray]:
     channel = 0 if cfg.channel == "mask" else 1
     everything = jnp.ones(env.landmarks.shape[0], bool)
     home = render(env, everything, env.home, jnp.float32(cfg.alpha_r), cfg)[channel]
-    here = jax.vmap(lambda p, h: render(env, everything, p, h, cfg)[channel])(jnp.asarray(points), jnp.asarray(headings))
+    here = jax.vmap(lambda p, h: render(env, everything, p, h, cfg)[channel])(
+        jnp.asarray(points), jnp.asarray(headings)
+    )
     return np.asarray(home), np.asarray(here)
 
 
 # --- the warp table and its rounding rule ------------------------------------------------
+
 
 def test_warp_table_rounding_is_unambiguous_and_psi_is_a_pixel_shift():
     cfg = Warping()
@@ -60,7 +63,11 @@ def test_warp_table_rounding_is_unambiguous_and_psi_is_a_pixel_shift():
     alpha = 2 * math.pi * np.arange(cfg.n_alpha) / cfg.n_alpha
     rho = rh.rho_values()
     assert np.allclose(warping.rho_values(cfg), np.arange(0.10, 0.80001, 0.05))
-    x = (g[None, None] - np.arcsin(rho[None, :, None] * np.sin(g[None, None] - alpha[:, None, None]))) * n / (2 * math.pi)
+    x = (
+        (g[None, None] - np.arcsin(rho[None, :, None] * np.sin(g[None, None] - alpha[:, None, None])))
+        * n
+        / (2 * math.pi)
+    )
     assert np.min(np.abs(np.abs(x - np.floor(x)) - 0.5)) > 1e-5  # no angle near a pixel boundary
     table = warping.warp_indices(cfg, n).reshape(cfg.n_alpha, cfg.n_rho, n)
     for a, r, m in [(0, 0, 0), (7, 3, 11), (71, 14, 71), (36, 8, 40)]:  # the twin's literal g = phi + psi
@@ -81,6 +88,7 @@ def test_rotated_words_are_the_packed_rotations():
 
 # --- analytic: the warp equation where it is exact ---------------------------------------
 
+
 def test_warping_is_accurate_where_every_landmark_is_equidistant_from_home():
     """ring6: six landmarks 250 cm from home. With headings on the psi grid (5 degrees) the
     warp model holds exactly up to pixel rounding; points up to rho = 0.8 (200 cm)."""
@@ -96,13 +104,18 @@ def test_warping_is_accurate_where_every_landmark_is_equidistant_from_home():
 
 
 def test_warping_invalid_when_the_home_image_is_uniform():
-    env = delvjax.Env(landmarks=jnp.array([[300.0, 300.0, 20.0]]), valid=jnp.array([False]),  # nothing to see
-                      home=jnp.array([500.0, 500.0]), arena=jnp.array([0.0, 0.0, 1000.0, 1000.0]))
+    env = delvjax.Env(
+        landmarks=jnp.array([[300.0, 300.0, 20.0]]),
+        valid=jnp.array([False]),  # nothing to see
+        home=jnp.array([500.0, 500.0]),
+        arena=jnp.array([0.0, 0.0, 1000.0, 1000.0]),
+    )
     d, v = maps.homing_directions(env, jnp.array([[300.0, 300.0]]), jnp.array([0.3]), KEY, Sensor(), Warping())
     assert not bool(v[0]) and math.isnan(float(d[0]))
 
 
 # --- analytic: the MFDID sign convention ---------------------------------------------------
+
 
 @pytest.mark.parametrize("channel", ["mask", "gray"])
 def test_mfdid_points_home_for_small_displacements(channel):
@@ -134,8 +147,12 @@ def test_mfdid_home_vector_is_minus_the_gradient_of_the_image_distance():
     C = image(x)
     h = np.asarray(mfdid.home_vector(jnp.asarray(S, jnp.float32), jnp.asarray(C, jnp.float32), jnp.float32(0.0)))
     eps = 0.5
-    grad = np.array([(np.sum((image(x + e) - S) ** 2) - np.sum((image(x - e) - S) ** 2)) / (2 * eps)
-                     for e in (np.array([eps, 0.0]), np.array([0.0, eps]))])
+    grad = np.array(
+        [
+            (np.sum((image(x + e) - S) ** 2) - np.sum((image(x - e) - S) ** 2)) / (2 * eps)
+            for e in (np.array([eps, 0.0]), np.array([0.0, eps]))
+        ]
+    )
     cos = -grad @ h / (np.linalg.norm(grad) * np.linalg.norm(h))
     assert cos > 0.95, cos
 
@@ -145,8 +162,9 @@ def test_mfdid_home_vector_is_minus_the_gradient_of_the_image_distance():
 COARSE = dict(n_alpha=24, n_psi=24, n_rho=5)  # same code paths, 27x fewer hypotheses for the slow twin
 
 
-@pytest.mark.parametrize("hyp, cases", [({}, [(0, 2), (1, 2)]), (COARSE, [(2, 8), (3, 8), (4, 8)])],
-                         ids=["72x15x72", "24x5x24"])
+@pytest.mark.parametrize(
+    "hyp, cases", [({}, [(0, 2), (1, 2)]), (COARSE, [(2, 8), (3, 8), (4, 8)])], ids=["72x15x72", "24x5x24"]
+)
 def test_warping_mask_search_equals_the_twin_exactly(hyp, cases):
     """Same images in both: the minimum distance is exact; >= 90% of directions within 2 deg
     (ties between hypotheses are common on binary images)."""
@@ -219,6 +237,7 @@ def test_predicted_images_stay_unbatched_under_vmap():
 
 # --- interfaces and bad input ---------------------------------------------------------------
 
+
 def test_api_runs_both_methods_and_channels():
     for method, channel in [("warping", "gray"), ("mfdid", "mask")]:
         vm = delvjax.vector_map("env1", method=method, channel=channel, spacing=200.0)
@@ -227,8 +246,18 @@ def test_api_runs_both_methods_and_channels():
     assert coarse.direction.shape == (25,)
 
 
-@pytest.mark.parametrize("flags", [["--channel", "rgb"], ["--background", "sky"], ["--n-alpha", "0"],
-                                   ["--n-psi", "-5"], ["--n-rho", "0"], ["--n-psi", "7"], ["--rho-max", "1.5"]])
+@pytest.mark.parametrize(
+    "flags",
+    [
+        ["--channel", "rgb"],
+        ["--background", "sky"],
+        ["--n-alpha", "0"],
+        ["--n-psi", "-5"],
+        ["--n-rho", "0"],
+        ["--n-psi", "7"],
+        ["--rho-max", "1.5"],
+    ],
+)
 def test_cli_bad_input_exits_2_without_output(tmp_path, capsys, flags):
     out = tmp_path / "map.csv"
     assert cli.main(["vector-map", "env1", "--method", "warping", "--out", str(out), *flags]) == 2

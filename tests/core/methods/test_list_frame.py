@@ -30,9 +30,14 @@ def padded_snapshot(points: np.ndarray, seen: np.ndarray, pos: np.ndarray, headi
     rel = points[seen] - pos
     b = np.sort(np.mod(np.arctan2(rel[:, 1], rel[:, 0]) - heading, 2 * np.pi))
     bearing = np.zeros(B, np.float32)
-    bearing[:len(b)] = b
-    return Snapshot(mask=jnp.zeros(360, bool), gray=jnp.zeros(360), bearing=jnp.asarray(bearing),
-                    width=jnp.zeros(B, jnp.float32), valid=jnp.asarray(np.arange(B) < len(b)))
+    bearing[: len(b)] = b
+    return Snapshot(
+        mask=jnp.zeros(360, bool),
+        gray=jnp.zeros(360),
+        bearing=jnp.asarray(bearing),
+        width=jnp.zeros(B, jnp.float32),
+        valid=jnp.asarray(np.arange(B) < len(b)),
+    )
 
 
 def cases(seed: int):
@@ -50,12 +55,25 @@ def cases(seed: int):
         rho = np.radians(float(rng.integers(1, 360)))  # whole degrees: on the hypothesis lattice
         start = x - 50.0 * np.array([np.cos(h), np.sin(h)])
         home_end = home + 50.0 * np.array([1.0, 0.0])
-        homes.append(UnitMove(start=padded_snapshot(lms, everything, home, 0.0),
-                              end=padded_snapshot(lms, everything, home_end, 0.0),
-                              d_hat=jnp.float32(50), psi_hat=jnp.float32(0), compass=jnp.float32(0)))
+        homes.append(
+            UnitMove(
+                start=padded_snapshot(lms, everything, home, 0.0),
+                end=padded_snapshot(lms, everything, home_end, 0.0),
+                d_hat=jnp.float32(50),
+                psi_hat=jnp.float32(0),
+                compass=jnp.float32(0),
+            )
+        )
         for out, turn in ((plain, 0.0), (turned, rho)):
-            out.append(UnitMove(start=padded_snapshot(lms, seen, start, h), end=padded_snapshot(lms, seen, x, h + turn),
-                                d_hat=jnp.float32(50), psi_hat=jnp.float32(turn), compass=jnp.float32(h + turn)))
+            out.append(
+                UnitMove(
+                    start=padded_snapshot(lms, seen, start, h),
+                    end=padded_snapshot(lms, seen, x, h + turn),
+                    d_hat=jnp.float32(50),
+                    psi_hat=jnp.float32(turn),
+                    compass=jnp.float32(h + turn),
+                )
+            )
         rhos.append(rho)
         heads.append(h)
     stack = lambda moves: jax.tree.map(lambda *a: jnp.stack(a), *moves)  # noqa: E731
@@ -84,9 +102,11 @@ def world_shift(method, seed: int) -> tuple[np.ndarray, np.ndarray]:
     return np.abs(np.asarray(wrap(jnp.asarray(world1 - world0)))), both
 
 
-@pytest.mark.parametrize("method", [DELV(), DELV(heading=Compass()), DELVGap(), DELVGap(heading=Compass()),
-                                    ACV(), ALV()], ids=["delv", "delv-compass", "delv-gap", "delv-gap-compass",
-                                                        "acv", "alv"])
+@pytest.mark.parametrize(
+    "method",
+    [DELV(), DELV(heading=Compass()), DELVGap(), DELVGap(heading=Compass()), ACV(), ALV()],
+    ids=["delv", "delv-compass", "delv-gap", "delv-gap-compass", "acv", "alv"],
+)
 def test_turned_view_gives_the_same_world_direction(method):
     shift, both = world_shift(method, seed=3)
     assert both.sum() >= CASES // 4
@@ -127,8 +147,13 @@ def test_home_frame_offsets_equal_the_remainder_formula_bit_for_bit():
     rng = np.random.default_rng(7)
     alphas = TWO_PI * jnp.arange(360, dtype=jnp.float32) / 360
     top = np.nextafter(np.float32(TWO_PI), np.float32(0))
-    views = np.concatenate([rng.uniform(0, TWO_PI, (200, 6)), (rng.integers(0, 720, (200, 6)) + 0.5) * np.pi / 360,
-                            np.tile([0.0, top, np.pi, 1e-7, top - 1e-6, 3.0], (1, 1))]).astype(np.float32)
+    views = np.concatenate(
+        [
+            rng.uniform(0, TWO_PI, (200, 6)),
+            (rng.integers(0, 720, (200, 6)) + 0.5) * np.pi / 360,
+            np.tile([0.0, top, np.pi, 1e-7, top - 1e-6, 3.0], (1, 1)),
+        ]
+    ).astype(np.float32)
     views = np.sort(views, axis=1)
     valid = rng.random(views.shape) < 0.8
     remainder = jax.jit(jax.vmap(lambda b: jnp.mod(b[:, None] + alphas[None, :] + TIE_RAD, TWO_PI)))

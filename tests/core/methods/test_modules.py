@@ -63,9 +63,15 @@ def test_options_set_only_the_fields_a_method_has_and_name_the_bad_one():
     assert warping.n_alpha == 36
     shared, _ = make_setup("alv", program=["delv-compass", "alv"], levels=4)  # DELV in the program takes it
     assert shared.methods[0].levels == 4 and configure(METHODS["alv"], levels=3) is METHODS["alv"]
-    for method_name, bad in (("delv", dict(levels=0)), ("delv", dict(d=-1.0)), ("warping", dict(n_psi=7)),
-                             ("delv", dict(unknown_option=1.0)), ("alv", dict(levels=3)),
-                             ("delv", dict(n_alpha=36)), ("warping", dict(mfdid_blur_deg=2.0))):
+    for method_name, bad in (
+        ("delv", dict(levels=0)),
+        ("delv", dict(d=-1.0)),
+        ("warping", dict(n_psi=7)),
+        ("delv", dict(unknown_option=1.0)),
+        ("alv", dict(levels=3)),
+        ("delv", dict(n_alpha=36)),
+        ("warping", dict(mfdid_blur_deg=2.0)),
+    ):
         with pytest.raises(InputError) as err:
             make_setup(method_name, **bad)
         assert next(iter(bad)) in str(err.value)
@@ -93,13 +99,24 @@ def test_cartwright_collett_on_rendered_views_equals_its_twin():
     home = record_home(env, jax.random.PRNGKey(0), sensor)
     rng = np.random.default_rng(3)
     for point in rng.uniform(150.0, 850.0, size=(12, 2)):
-        view, _ = unit_move(env, jnp.asarray(point, jnp.float32), jnp.float32(rng.uniform(0, 2 * np.pi)),
-                            jax.random.PRNGKey(1), sensor, end_at=jnp.asarray(point, jnp.float32))
+        view, _ = unit_move(
+            env,
+            jnp.asarray(point, jnp.float32),
+            jnp.float32(rng.uniform(0, 2 * np.pi)),
+            jax.random.PRNGKey(1),
+            sensor,
+            end_at=jnp.asarray(point, jnp.float32),
+        )
         angle, valid = METHODS["cc"](home, view)
         c = float(view.compass)
-        h, ok = cc_home_vector_ref(np.asarray(home.start.bearing), np.asarray(home.start.width),
-                                   np.asarray(home.start.valid), np.asarray(view.end.bearing) + c,
-                                   np.asarray(view.end.width), np.asarray(view.end.valid))
+        h, ok = cc_home_vector_ref(
+            np.asarray(home.start.bearing),
+            np.asarray(home.start.width),
+            np.asarray(home.start.valid),
+            np.asarray(view.end.bearing) + c,
+            np.asarray(view.end.width),
+            np.asarray(view.end.valid),
+        )
         assert bool(valid) == ok
         if ok:
             expected = math.atan2(h[1], h[0]) - c
@@ -112,16 +129,19 @@ def test_gap_aware_delv_equals_delv_where_the_counts_agree_and_helps_with_a_land
     env = delvjax.load_env("env1")
     kw = dict(spacing=100.0, seed=4)
     ref = delvjax.vector_map(env, method="delv-compass", **kw)
-    blobs = jax.vmap(lambda p: jnp.sum(blob_runs(render(env.arrays(), env.valid, p, jnp.float32(0.0), Sensor())[0],
-                                                 4)[2]))(ref.points)
+    blobs = jax.vmap(
+        lambda p: jnp.sum(blob_runs(render(env.arrays(), env.valid, p, jnp.float32(0.0), Sensor())[0], 4)[2])
+    )(ref.points)
     same = np.asarray(blobs) == env.n_landmarks
     assert same.sum() > 50
     for linear, gapped in (("delv-compass", "delv-gap-compass"), ("delv", "delv-gap")):
         a, b = delvjax.vector_map(env, method=linear, **kw), delvjax.vector_map(env, method=gapped, **kw)
         assert np.array_equal(np.asarray(a.direction)[same], np.asarray(b.direction)[same], equal_nan=True)
     inc = np.asarray(ref.included)
-    errors = {m: float(np.asarray(delvjax.vector_map(env, method=m, hidden=[1], **kw).error_deg)[inc].mean())
-              for m in ("delv-compass", "delv-gap-compass")}
+    errors = {
+        m: float(np.asarray(delvjax.vector_map(env, method=m, hidden=[1], **kw).error_deg)[inc].mean())
+        for m in ("delv-compass", "delv-gap-compass")
+    }
     assert errors["delv-gap-compass"] < 0.6 * errors["delv-compass"], errors
 
 

@@ -36,14 +36,22 @@ def test_method_agrees_with_reference(random_envs, batch, method):
     levels = 3 if method == "delv-compass" else None
     sensor, module = Sensor(), configure(METHODS[method], levels=levels)
     direction, valid = jax.vmap(homing_directions, in_axes=(0, None, None, None, None, None))(
-        envs, points, headings, key, sensor, module)
+        envs, points, headings, key, sensor, module
+    )
     direction, valid = np.asarray(direction), np.asarray(valid)
     rng = np.random.default_rng(0)
     agree, total = 0, 0
     for e, (lms, _) in enumerate(random_envs):  # the twin is per point by design
         for i in rng.choice(np.nonzero(included[e])[0], SUBSET[method], replace=False):
-            expect = ref.reference_direction(lms, [0, 0, 1000, 1000], [500, 500], np.asarray(points[i], float),
-                                             float(headings[i]), method, levels=levels)
+            expect = ref.reference_direction(
+                lms,
+                [0, 0, 1000, 1000],
+                [500, 500],
+                np.asarray(points[i], float),
+                float(headings[i]),
+                method,
+                levels=levels,
+            )
             total += 1
             if np.isnan(expect) or not valid[e, i]:
                 agree += int(np.isnan(expect) and not valid[e, i])
@@ -60,7 +68,8 @@ def test_one_visible_landmark_agrees_with_reference(random_envs, batch, method, 
     envs, points, headings, key, included = batch
     visible = jnp.arange(envs.landmarks.shape[1]) == 0
     direction, valid = jax.vmap(homing_directions, in_axes=(0, None, None, None, None, None, None))(
-        envs, points, headings, key, Sensor(), METHODS[method], visible)
+        envs, points, headings, key, Sensor(), METHODS[method], visible
+    )
     direction, valid = np.asarray(direction), np.asarray(valid)
     if method == "delv":
         assert not valid.any() and np.isnan(direction).all()
@@ -70,8 +79,15 @@ def test_one_visible_landmark_agrees_with_reference(random_envs, batch, method, 
     agree, total = 0, 0
     for e, (lms, _) in enumerate(random_envs):
         for i in rng.choice(np.nonzero(included[e])[0], points_per_env, replace=False):
-            expect = ref.reference_direction(lms, [0, 0, 1000, 1000], [500, 500], np.asarray(points[i], float),
-                                             float(headings[i]), method, visible=np.arange(len(lms)) == 0)
+            expect = ref.reference_direction(
+                lms,
+                [0, 0, 1000, 1000],
+                [500, 500],
+                np.asarray(points[i], float),
+                float(headings[i]),
+                method,
+                visible=np.arange(len(lms)) == 0,
+            )
             total += 1
             if np.isnan(expect) or not valid[e, i]:
                 agree += int(np.isnan(expect) and not valid[e, i])

@@ -77,13 +77,18 @@ def test_a_view_only_homing_run_restated_under_release_is_the_release_run(method
 
     env = delvjax.load_env("env1")
     masks, hidden = rollouts.occlusion_masks(env, 1)
-    runs = {fm: rollouts.catchment_area(env.arrays(), get_method(method), Sensor(), spacing=80, masks=masks,
-                                        hidden=hidden, first_move=fm) for fm in ("release", "homing")}
+    runs = {
+        fm: rollouts.catchment_area(
+            env.arrays(), get_method(method), Sensor(), spacing=80, masks=masks, hidden=hidden, first_move=fm
+        )
+        for fm in ("release", "homing")
+    }
     restated = rollouts.under_release(runs["homing"], env.arena, Sensor().d)
     assert restated.first_move == "release"
     for field in ("counted", "outcome", "steps", "end", "invalid_steps", "direction", "valid", "error_deg"):
-        np.testing.assert_array_equal(np.asarray(getattr(restated, field)), np.asarray(getattr(runs["release"], field)),
-                                      err_msg=field)
+        np.testing.assert_array_equal(
+            np.asarray(getattr(restated, field)), np.asarray(getattr(runs["release"], field)), err_msg=field
+        )
     assert (np.asarray(runs["homing"].counted) != np.asarray(restated.counted)).any()  # the wall cells changed
     with pytest.raises(delvjax.InputError) as exc:
         rollouts.under_release(runs["release"], env.arena, Sensor().d)

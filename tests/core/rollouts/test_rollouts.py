@@ -20,7 +20,18 @@ import numpy as np
 import pytest
 
 from tests.twins.rollouts import HomeRecord, reference_rollout, release_direction
-from tests.cases.rollouts import ARENA, DEFAULT, FOUR, HOME, NOISE, PHYSICAL, RULE_SETS, angle_diff, random_landmarks, run
+from tests.cases.rollouts import (
+    ARENA,
+    DEFAULT,
+    FOUR,
+    HOME,
+    NOISE,
+    PHYSICAL,
+    RULE_SETS,
+    angle_diff,
+    random_landmarks,
+    run,
+)
 
 import delvjax
 from delvjax.core import rollouts
@@ -31,6 +42,7 @@ from delvjax.options._settings import make_sensor
 from delvjax.envs._presets import make_env
 
 # --- analytic -------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("rules", RULE_SETS, ids=["default", "physical"])
 def test_alv_homes_from_every_interior_start_of_a_symmetric_ring(rules):
@@ -46,6 +58,7 @@ def test_alv_homes_from_every_interior_start_of_a_symmetric_ring(rules):
 
 
 # --- the NumPy twin ---------------------------------------------------------------------------
+
 
 def test_success_flags_match_the_numpy_reference_rollout():
     """Under both rule sets, >= 98% identical success flags on random environments (float32 vs float64
@@ -68,8 +81,9 @@ def test_success_flags_match_the_numpy_reference_rollout():
                 res = run(env, starts, heads, method, **rules)
                 landmark_outcomes[k] += int(np.sum(np.asarray(res.outcome) == rollouts.LANDMARK))
                 for i in range(10 * k, 10 * k + n):
-                    outcome, steps, _ = reference_rollout(lms, ARENA, HOME, starts[i], heads[i], method,
-                                                          record=record, **rules)
+                    outcome, steps, _ = reference_rollout(
+                        lms, ARENA, HOME, starts[i], heads[i], method, record=record, **rules
+                    )
                     same[k] += (outcome == rollouts.SUCCESS) == bool(res.success[i])
                     total[k] += 1
     for k, rules in enumerate(RULE_SETS):
@@ -79,6 +93,7 @@ def test_success_flags_match_the_numpy_reference_rollout():
 
 
 # --- the rules ----------------------------------------------------------------------------------
+
 
 def test_paths_follow_the_rules():
     """first_move="release" (Algorithm 2): a DELV agent's first move goes along the release heading, d
@@ -92,10 +107,11 @@ def test_paths_follow_the_rules():
     assert res.outcome[3] == rollouts.ARENA and steps[3] == 1  # first move leaves the arena
     for t in range(4):
         assert np.allclose(path[t, steps[t]], res.end[t])
-        assert np.isnan(path[t, steps[t] + 1:]).all() and np.isfinite(path[t, :steps[t] + 1]).all()
+        assert np.isnan(path[t, steps[t] + 1 :]).all() and np.isfinite(path[t, : steps[t] + 1]).all()
         if steps[t] > 0:
-            assert np.allclose(path[t, 1] - path[t, 0], 50.0 * np.array([math.cos(heads[t]), math.sin(heads[t])]),
-                               atol=1e-3)
+            assert np.allclose(
+                path[t, 1] - path[t, 0], 50.0 * np.array([math.cos(heads[t]), math.sin(heads[t])]), atol=1e-3
+            )
     for t in (0, 1):
         assert res.outcome[t] == rollouts.SUCCESS
         assert np.hypot(*(path[t, steps[t]] - 500.0)) <= 50.0 < np.hypot(*(path[t, steps[t] - 1] - 500.0))
@@ -161,7 +177,7 @@ def test_collisions_fail_ends_inside_a_landmark_and_ignore_passes_through():
     n = int(fail.steps[0])
     assert fail.outcome[0] == rollouts.LANDMARK and inside(np.asarray(fail.path)[0, n])
     assert ignore.outcome[0] == rollouts.SUCCESS and int(ignore.steps[0]) > n
-    assert np.array_equal(np.asarray(ignore.path)[0, :n + 1], np.asarray(fail.path)[0, :n + 1])  # through it
+    assert np.array_equal(np.asarray(ignore.path)[0, : n + 1], np.asarray(fail.path)[0, : n + 1])  # through it
     for t in range(1, 4):  # trials that meet no landmark do not depend on the rule
         assert fail.outcome[t] == ignore.outcome[t] == rollouts.SUCCESS and fail.steps[t] == ignore.steps[t]
 
@@ -174,12 +190,14 @@ def test_collisions_fail_ends_inside_a_landmark_and_ignore_passes_through():
     assert s_fail["per_mask"][0]["landmark_count"] > 0
     hit = np.asarray(c_fail.outcome) == rollouts.LANDMARK
     for field in ("outcome", "steps", "end"):
-        assert np.array_equal(np.asarray(getattr(c_fail, field))[~hit], np.asarray(getattr(c_ignore, field))[~hit],
-                              equal_nan=True)
+        assert np.array_equal(
+            np.asarray(getattr(c_fail, field))[~hit], np.asarray(getattr(c_ignore, field))[~hit], equal_nan=True
+        )
     assert s_ignore["catchment_pct"]["mean"] >= s_fail["catchment_pct"]["mean"]
 
 
 # --- properties ---------------------------------------------------------------------------------
+
 
 def test_deterministic_and_independent_of_lanes_with_every_noise_source():
     env = make_env(random_landmarks(np.random.default_rng(1), 4))  # shapes of the reference test: one compile less

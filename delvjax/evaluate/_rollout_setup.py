@@ -1,0 +1,147 @@
+"""The validated setup every rollout of the Python API shares (docs/model.md §5): the keywords and
+their config objects (`Grid`, `Rules`), the visibility masks, release distances and start points."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import NamedTuple
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+from jax import Array
+
+from ._vector_map import scene_request, visible_mask
+from ..core.errors import InputError
+from ._config import GRID_DEFAULTS, RULES_DEFAULTS, Grid, Rules, unpack
+from ..core.methods import HomingMethod
+from ..core.rollouts import (
+    ARENA,
+    DEFAULT_FIRST_MOVE,
+    LANDMARK,
+    check_rules,
+    hidden_masks,
+    occlusion_masks,
+    position_status,
+)
+from ..core.scene import Env
+from ..options._limits import check_size
+from ..options._checks import finite, occlusion_count, positive, positive_int
+
+
+class RolloutSetup(NamedTuple):
+    """The validated keywords every rollout shares (`_rollout_options`)."""
+
+    env: Env
+    method: HomingMethod
+    sensor: object
+    heading: float | None
+    key: Array
+    max_steps: int
+    home_radius: float
+    lanes: int
+    clearance: float
+    first_move: str
+    collisions: str
+
+
+def _rollout_options(
+    env,
+    method,
+    max_steps,
+    home_radius,
+    lanes,
+    clearance,
+    heading_deg,
+    seed,
+    options,
+    first_move=DEFAULT_FIRST_MOVE,
+    collisions="ignore",
+    program=None,
+    grid: Grid | None = None,
+    rules: Rules | None = None,
+) -> RolloutSetup:
+    """Validate the shared keywords before any work (`api.scene_request` plus the rollout limits and
+    rules), taking the grid's clearance and heading and the rules from `grid=` and `rules=` if given."""
+    clearance, heading_deg, max_steps, home_radius, first_move, collisions, lanes = _configured(
+        grid,
+        rules,
+        clearance=clearance,
+        heading_deg=heading_deg,
+        max_steps=max_steps,
+        home_radius=home_radius,
+        first_move=first_move,
+        collisions=collisions,
+        lanes=lanes,
+    )
+    check_rules(first_move, collisions)
+    env, module, sensor, heading, key, clearance = scene_request(
+        env, method, clearance, heading_deg, seed, program, **options
+    )
+    max_steps = positive_int(max_steps, "max_steps")
+    home_radius = positive(home_radius, "home_radius")
+    lanes = positive_int(lanes, "lanes")
+    return RolloutSetup(
+        env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance, first_move, collisions
+    )
+
+
+def _configured(grid: Grid | None, rules: Rules | None, **given) -> tuple:
+    """The values of the grid and rule keywords `given` (in their order), from `grid=` and `rules=`
+    where those are given (evaluate/_config.py)."""
+    values = {
+        **unpack(grid, Grid, {k: v for k, v in given.items() if k in GRID_DEFAULTS}, GRID_DEFAULTS),
+        **unpack(rules, Rules, {k: v for k, v in given.items() if k in RULES_DEFAULTS}, RULES_DEFAULTS),
+    }
+    return tuple(values[k] for k in given)
+
+
+def _masks(env: Env, occlude: int | None, hidden: list[int] | None) -> tuple[np.ndarray, list[tuple[int, ...]]]:
+    """The visibility masks (M, L) of `occlude=k` (every choice of k hidden landmarks) or of `hidden`."""
+    if occlude is not None and hidden:
+        raise InputError("occlude", occlude, "cannot be combined with hidden")
+    if occlude is not None:
+        return occlusion_masks(env, occlusion_count(occlude, env.n_landmarks))
+    visible_mask(env, hidden)  # validates the indices
+    return hidden_masks(env, hidden)
+
+
+def _distances(
+    env: Env, distances: Sequence[float], trials: int, max_points: int, copies: int = 1
+) -> tuple[list[float], int]:
+    """Validated release distances (each < the farthest arena corner from home) and trials per distance."""
+    trials = positive_int(trials, "trials")
+    if isinstance(distances, (str, bytes)) or not hasattr(distances, "__len__") or len(distances) == 0:
+        raise InputError("distances", distances, "must be a non-empty list of distances in cm")
+    distances = [positive(v, "distances") for v in distances]
+    check_size(len(distances) * trials * copies, max_points, "trials", trials, "trial")
+    corners = np.asarray(env.arena, float)[[[0, 1], [2, 1], [2, 3], [0, 3]]]
+    reach = float(np.max(np.hypot(*(corners - np.asarray(env.home, float)).T)))
+    for v in distances:
+        if v >= reach:
+            raise InputError(
+                "distances", v, f"must be < {reach:.0f} cm: no release point that far from home lies in the arena"
+            )
+    return distances, trials
+
+
+def _announce(announce: Callable[[], None] | None) -> None:
+    if announce is not None:
+        announce()
+
+
+def _check_starts(env: Env, starts) -> Array:
+    """Release points given by the user: a non-empty list of (x, y) inside the arena, outside every landmark."""
+    if isinstance(starts, (str, bytes)) or not hasattr(starts, "__len__") or len(starts) == 0:
+        raise InputError("starts", starts, "must be a non-empty list of (x, y) points")
+    rows = []
+    for i, s in enumerate(starts):
+        if not hasattr(s, "__len__") or len(s) != 2:
+            raise InputError(f"starts[{i}]", s, "must be an (x, y) pair")
+        rows.append([finite(v, f"starts[{i}]") for v in s])
+    pts = np.asarray(rows, np.float32)
+    status = np.asarray(jax.vmap(lambda p: position_status(env, p, jnp.float32(0.0)))(jnp.asarray(pts)))
+    for i, code in enumerate(status):
+        if code in (LANDMARK, ARENA):
+            raise InputError(f"starts[{i}]", starts[i], "must lie inside the arena and outside every landmark")
+    return jnp.asarray(pts)

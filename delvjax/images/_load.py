@@ -1,0 +1,212 @@
+"""Loading an image database (docs/images.md §6): a BoB database or a plain folder read into ring
+snapshots at its positions, with its camera, extractor, spacing and arena checked first (`InputError`
+naming the field, or the file, and the value)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from collections.abc import Callable
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from ._render import DEFAULT_CHUNK, chunks, extract_rings, full, head
+from ..core.errors import InputError
+from ..core.images import Camera, Catadioptric, Extractor
+from ..core.images.database import RingDatabase, home_plan
+from ..core.sensing import Snapshot
+from ._disk import DatabaseIndex, read_image, read_images, read_index
+from ..options._checks import finite, positive, positive_int
+
+
+EXTRACTOR_FIELDS = (
+    "hue_deg",
+    "hue_width_deg",
+    "sat_min",
+    "val_min",
+    "band_deg",
+    "band_height_deg",
+    "fill",
+    "max_blobs",
+)
+
+
+@dataclass
+class LoadedDatabase:
+    """A database as ring snapshots with what evaluating it needs (docs/images.md §6)."""
+
+    name: str
+    rings: RingDatabase
+    files: list[Path]
+    home: np.ndarray
+    home_index: int
+    arena: np.ndarray
+    spacing: float
+    camera: Camera
+    extractor: Extractor
+    obstacles: dict = field(default_factory=lambda: {"cylinders": [], "boxes": []})
+    mirror: Catadioptric | None = None
+
+
+def _pair(value, name: str, n: int) -> np.ndarray:
+    v = [finite(x, name) for x in (value if isinstance(value, (list, tuple, np.ndarray)) else [value])]
+    if len(v) != n:
+        raise InputError(name, value, f"must be {n} numbers")
+    return np.asarray(v, np.float64)
+
+
+def database_spacing(index: DatabaseIndex, spacing) -> float:
+    if spacing is not None:
+        return positive(spacing, "spacing")
+    if "spacing_cm" in index.meta:
+        return positive(index.meta["spacing_cm"], "spacing_cm")
+    if len(index.positions) < 2:
+        raise InputError("images", str(index.folder), "has one image: give the spacing (unit move) explicitly")
+    from scipy.spatial import cKDTree  # scipy: loaded only where this is used, so that `import delvjax` stays light
+
+    dist, _ = cKDTree(index.positions).query(index.positions, k=2)
+    return positive(float(np.median(dist[:, 1])), "spacing (median distance between neighbouring images)")
+
+
+def database_arena(index: DatabaseIndex, arena, spacing: float) -> np.ndarray:
+    if arena is not None:
+        a = _pair(arena, "arena", 4)
+    elif "arena_cm" in index.meta:
+        a = _pair(index.meta["arena_cm"], "arena_cm", 4)
+    else:
+        a = np.concatenate([index.positions.min(0) - spacing / 2, index.positions.max(0) + spacing / 2])
+    if not (a[0] < a[2] and a[1] < a[3]):
+        raise InputError("arena", a.tolist(), "must be xmin < xmax and ymin < ymax")
+    p = index.positions
+    out = (p[:, 0] < a[0]) | (p[:, 0] > a[2]) | (p[:, 1] < a[1]) | (p[:, 1] > a[3])
+    if out.any():
+        i = int(np.argmax(out))
+        raise InputError(
+            "image", str(index.files[i]), f"position ({p[i, 0]:g}, {p[i, 1]:g}) cm lies outside the arena {a.tolist()}"
+        )
+    return a
+
+
+def _extractor(index: DatabaseIndex, overrides: dict | None, channel: str | None, n_blobs: int | None) -> Extractor:
+    settings = dict(index.meta.get("extractor") or {})
+    for k, v in (overrides or {}).items():
+        if k not in EXTRACTOR_FIELDS:
+            raise InputError(k, v, f"unknown extractor setting (choose from {', '.join(EXTRACTOR_FIELDS)})")
+        settings[k] = v
+    out = {
+        k: (positive_int(v, k) if k == "max_blobs" else finite(v, k))
+        for k, v in settings.items()
+        if k in EXTRACTOR_FIELDS
+    }
+    if n_blobs is not None:
+        out["max_blobs"] = positive_int(n_blobs, "max_blobs")
+    if channel is not None:
+        if channel not in ("mask", "gray"):
+            raise InputError("channel", channel, "must be mask or gray")
+        out["channel"] = channel
+    return Extractor(**out)
+
+
+def _camera(index: DatabaseIndex, shape: tuple[int, ...]) -> tuple[Camera, Catadioptric | None]:
+    top, bottom = index.meta.get("elevation_deg", (30.0, -30.0))
+    height = float(index.meta.get("camera_height_cm", 25.0))
+    if not index.needs_unwrapping:
+        return Camera(
+            height=height, elev_top_deg=float(top), elev_bottom_deg=float(bottom), rows=shape[0], cols=shape[1]
+        ), None
+    if shape[0] != shape[1]:
+        raise InputError(
+            "image", str(index.files[0]), f"is a donut image of {shape[1]} x {shape[0]} pixels: it must be square"
+        )
+    rows, cols = index.meta.get("panorama", (60, 360))
+    mirror = Catadioptric(
+        height=height,
+        size=shape[0],
+        **{k: float(v) for k, v in (index.meta.get("catadioptric") or {}).items() if k != "size"},
+    )
+    return Camera(
+        height=height, elev_top_deg=float(top), elev_bottom_deg=float(bottom), rows=int(rows), cols=int(cols)
+    ), mirror
+
+
+def check_home_move(positions: np.ndarray, home_index: int, spacing: float, field: str, value) -> None:
+    """`InputError` when home has no image one spacing away along an axis (the home record's unit move,
+    docs/images.md §6)."""
+    if not home_plan(positions, np.zeros(len(positions)), home_index, spacing, 4).ok[0]:
+        raise InputError(
+            field,
+            str(value),
+            f"has no image {spacing:g} cm (one spacing) east, north, west or south "
+            "of it: the home record needs that unit move",
+        )
+
+
+def load_database(
+    src: str | Path,
+    home=None,
+    arena=None,
+    spacing: float | None = None,
+    channel: str | None = None,
+    extractor: dict | None = None,
+    max_blobs: int | None = None,
+    chunk: int = DEFAULT_CHUNK,
+    progress: Callable[[int, int], None] | None = None,
+    sink: Callable[[np.ndarray, slice], None] | None = None,
+) -> LoadedDatabase:
+    """Read a database (docs/images.md §4) into ring snapshots, `chunk` images at a time. home, arena,
+    spacing: override the metadata (else: the metadata, else the point nearest the arena's centre,
+    the positions' extent, the median neighbour distance); extractor: Extractor settings by name;
+    sink(images, rows): called with every chunk of images read (`import_database`)."""
+    index = read_index(src)
+    chunk = positive_int(chunk, "chunk")
+    spacing = database_spacing(index, spacing)
+    a = database_arena(index, arena, spacing)
+    ex = _extractor(index, extractor, channel, max_blobs)
+    target = (
+        _pair(home, "home", 2)
+        if home is not None
+        else (np.asarray(index.meta["home_cm"], float) if "home_cm" in index.meta else (a[:2] + a[2:]) / 2)
+    )
+    dist = np.linalg.norm(index.positions - target, axis=-1)
+    home_index = int(np.argmin(dist))
+    if home is not None and dist[home_index] > spacing / 2:
+        raise InputError("home", list(target), f"has no image within spacing / 2 = {spacing / 2:g} cm")
+    check_home_move(index.positions, home_index, spacing, "home", index.files[home_index])
+    shape = read_image(index.files[0]).shape
+    cam, mirror = _camera(index, shape)
+    if not mirror and cam.cols % 4:
+        raise InputError("image", str(index.files[0]), f"is {cam.cols} columns wide: it must be a multiple of 4")
+    parts = []
+    size = min(chunk, len(index.files))
+    for lo, hi in chunks(len(index.files), size):
+        images = read_images(index, range(lo, hi), shape)
+        parts.append(head(extract_rings(jnp.asarray(full(images, size)), cam, mirror, ex), hi - lo))
+        if sink:
+            sink(images, slice(lo, hi))
+        if progress:
+            progress(hi - lo, len(index.files))
+    snaps = jax.tree.map(lambda *x: jnp.concatenate(x), *parts)
+    rings = RingDatabase(snaps, jnp.asarray(index.positions), jnp.asarray(index.headings))
+    obstacles = index.meta.get("obstacles") or {"cylinders": [], "boxes": []}
+    return LoadedDatabase(
+        index.meta.get("world", index.folder.name),
+        rings,
+        index.files,
+        index.positions[home_index].astype(np.float64),
+        home_index,
+        a,
+        spacing,
+        cam,
+        ex,
+        obstacles,
+        mirror,
+    )
+
+
+def with_channel(db: RingDatabase, channel: str) -> RingDatabase:
+    """The database with the image methods reading `channel` (mask or gray) of every snapshot."""
+    s = db.snapshots
+    snap = Snapshot(mask=s.mask, gray=s.gray, bearing=s.bearing, width=s.width, valid=s.valid, channel=channel)
+    return RingDatabase(snap, db.positions, db.headings)
