@@ -129,7 +129,6 @@ def vector_map(
     key = jax.random.PRNGKey(0) if key is None else key
     points = grid_points(env.arena, spacing)
     heading = None if heading is None else jnp.asarray(heading, jnp.float32)
-    env = env.arrays()
     n = points.shape[0]
     mesh = local_mesh()
     per_device = padded(-(-min(batch_size, n) // n_devices(mesh)))
@@ -241,7 +240,6 @@ def sweep(
     key = jax.random.PRNGKey(0) if key is None else key
     points = jnp.asarray(grid_points(env.arena, spacing))
     heading = None if heading is None else jnp.asarray(heading, jnp.float32)
-    env = env.arrays()
 
     def one(v):
         m, s = replace_field(method, sensor, name, v)

@@ -21,26 +21,58 @@ DEFAULT_ARENA = (0.0, 0.0, 1000.0, 1000.0)
 DEFAULT_HOME = (500.0, 500.0)
 
 
+class Name:
+    """An environment's name as compiled programs see it: every `Name` equals every other and they hash
+    alike, so jit, vmap, the compilation caches and tree operations treat scenes that differ only in
+    name as one program (no recompilation per environment, no stripping of names before a call).
+    The text is `Env.name`; only this class's own comparisons ignore it."""
+
+    __slots__ = ("text",)
+
+    def __init__(self, text: str) -> None:
+        self.text = str(text)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Name)
+
+    def __hash__(self) -> int:
+        return hash(Name)
+
+    def __repr__(self) -> str:
+        return repr(self.text)
+
+
 class Env(eqx.Module):
-    """landmarks: (L, 3) [x, y, r] cm; valid: (L,) bool; home: (2,); arena: (4,) [xmin, ymin, xmax, ymax]."""
+    """landmarks: (L, 3) [x, y, r] cm; valid: (L,) bool; home: (2,); arena: (4,) [xmin, ymin, xmax, ymax];
+    name: a label for outputs and figures, which compiled programs ignore (`Name`)."""
 
     landmarks: Array
     valid: Array
     home: Array
     arena: Array
-    name: str = eqx.field(static=True, default="env")
+    label: Name = eqx.field(static=True)
+
+    def __init__(self, landmarks: Array, valid: Array, home: Array, arena: Array, name: str = "env") -> None:
+        self.landmarks, self.valid, self.home, self.arena = landmarks, valid, home, arena
+        self.label = Name(name)
+
+    @property
+    def name(self) -> str:
+        return self.label.text
 
     @property
     def n_landmarks(self) -> int:
         return int(np.sum(np.asarray(self.valid)))
 
     def arrays(self) -> "Env":
-        """The same scene with a neutral name: jitted code compiles once per shape, not per name."""
+        """The same scene named "env". Not needed before a jitted call (names never recompile, `Name`);
+        kept for callers of earlier releases and for digests that should not depend on the name."""
         return Env(self.landmarks, self.valid, self.home, self.arena)
 
 
 def stack_envs(envs: list[Env]) -> Env:
-    """One batched `Env` (leading axis = environment) from envs of equal padded size and name."""
+    """One batched `Env` (leading axis = environment) from envs of equal padded size; it takes the
+    first one's name."""
     return jax.tree.map(lambda *leaves: jnp.stack(leaves), *envs)
 
 

@@ -60,5 +60,5 @@ def bearing_noise_gain(
 ) -> tuple[PerPoint, PerPointFlag]:
     """First-order std of the homing direction per unit std of independent bearing noise
     on the current view, (P,) deg per deg, and validity (P,)."""
-    jac, _, ok = bearing_jacobian(env.arrays(), points, headings, key, sensor, method)
+    jac, _, ok = bearing_jacobian(env, points, headings, key, sensor, method)
     return jnp.linalg.norm(jac, axis=-1), ok

@@ -240,12 +240,12 @@ def trajectories(
         count * (max_steps + 1), 100 * positive_int(max_points, "max_points"), "max_steps", max_steps, "path point"
     )
     if starts is None:
-        pts, heads, placed = release_points(env.arrays(), k_start, count, None, clearance, 2.0 * home_radius, sensor.d)
+        pts, heads, placed = release_points(env, k_start, count, None, clearance, 2.0 * home_radius, sensor.d)
         if not bool(np.all(np.asarray(placed))):
             raise InputError("n_starts", n_starts, "could not place release points clear of landmarks")
     else:
         pts = _check_starts(env, starts)
-        _, heads, _ = release_points(env.arrays(), k_start, pts.shape[0], None, clearance)
+        _, heads, _ = release_points(env, k_start, pts.shape[0], None, clearance)
     if heading is not None:
         heads = jnp.full(pts.shape[0], heading, jnp.float32)
     _announce(announce)

@@ -93,7 +93,7 @@ def _has_clear_point(env: Env, spacing: float, clearance: float) -> bool:
     if key not in _CLEAR:
         points = maps.grid_points(env.arena, spacing)
         _CLEAR[key] = points.shape[0] > 0 and bool(
-            np.asarray(maps.grid_included(env.arrays(), jax.device_put(points), clearance)).any()
+            np.asarray(maps.grid_included(env, jax.device_put(points), clearance)).any()
         )
         if len(_CLEAR) > 4096:
             _CLEAR.pop(next(iter(_CLEAR)))

@@ -57,7 +57,7 @@ def _setup(env, method, spacing, seed, clearance, heading_deg, max_points, optio
     else:
         check_grid(env, spacing, clearance, max_points)
     points = grid_points(env.arena, spacing)
-    included = grid_included(env.arrays(), points, clearance)
+    included = grid_included(env, points, clearance)
     headings = (
         random_headings(key, points.shape[0]) if heading is None else np.full(points.shape[0], heading, np.float32)
     )
@@ -124,9 +124,7 @@ def homing_quality(
         err = np.radians(np.asarray(vm.error_deg))[np.asarray(vm.included)]
         return jnp.asarray(np.mean(1.0 - np.cos(err)))
     check_differentiable(module)
-    return _quality(
-        env.arrays(), points, included, headings, key, sensor, module, jnp.float32(tau), jnp.float32(sharpness)
-    )
+    return _quality(env, points, included, headings, key, sensor, module, jnp.float32(tau), jnp.float32(sharpness))
 
 
 _quality = jax.jit(soft_quality)
@@ -168,7 +166,7 @@ def quality_problem(
     )
     check_differentiable(module)
     sensor, module = _floats(sensor), _floats(module)
-    arrays = env.arrays()
+    arrays = env
     params = {
         "landmarks": jnp.asarray(arrays.landmarks, jnp.float32),
         "home": jnp.asarray(arrays.home, jnp.float32),

@@ -67,12 +67,12 @@ def _traced(req: dict, mask_rows: int = 1) -> tuple:
     """The pytree a cell's program takes (stacked over the cells of a chunk); a rollout cell's masks
     padded to `mask_rows` rows (the most of any cell of the sweep: one program for every occlusion)."""
     if req.get("kind") is None:
-        return req["env"].arrays(), req["method"], req["sensor"], req["key"]
+        return req["env"], req["method"], req["sensor"], req["key"]
     masks = np.asarray(req["masks"], bool)
     padded = np.concatenate([masks, np.repeat(masks[:1], max(0, mask_rows - len(masks)), axis=0)])
     return (
         rollout_programs.RolloutCell(
-            env=req["env"].arrays(),
+            env=req["env"],
             method=req["method"],
             sensor=req["sensor"],
             key=req["key"],
@@ -130,7 +130,7 @@ def grid_inputs(setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
     """(shared, traced) of a vector-map chunk: the grid points shared, each cell's included points."""
     first = setups[0]
     points = grid_points(first["env"].arena, first["spacing"])
-    included = np.stack([np.asarray(grid_included(req["env"].arrays(), points, req["clearance"])) for req in setups])
+    included = np.stack([np.asarray(grid_included(req["env"], points, req["clearance"])) for req in setups])
     return (points,), traced + (included,)
 
 

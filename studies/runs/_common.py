@@ -84,7 +84,7 @@ def catchment(
     ctx, e: Env, method: str, rules: str = "default", home_radius: float = HOME_RADIUS, **options
 ) -> rollouts.Catchment:
     return delvjax.catchment(
-        e.arrays(),
+        e,
         method=method,
         spacing=ctx.settings.spacing,
         seed=ctx.settings.seed,
@@ -100,7 +100,7 @@ def success_table(ctx, e: Env, method: str, rules: str = "default", **options) -
     """Success rate per release distance 50..450 cm (`settings.trials` per bin, Figs 4.10b, 5.7b): the
     rows of `tables.success_rows` (the CLI's success-rate CSV)."""
     res = delvjax.success_rate(
-        e.arrays(),
+        e,
         method=method,
         trials=ctx.settings.trials,
         seed=ctx.settings.seed,
@@ -326,7 +326,7 @@ def trajectory_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str
     results, tables = {}, []
     for m in methods:
         tr = delvjax.trajectories(
-            e.arrays(),
+            e,
             method=m,
             n_starts=n_starts,
             seed=ctx.settings.seed,

@@ -38,7 +38,7 @@ def gap_aware_summary(e, masks, hidden, spacing: float, settings, method: str = 
     compass, or linear DELV with the agent-frame list) on the occlusion study's masks, grid, seed and
     default rules."""
     c = rollouts.catchment_area(
-        e.arrays(),
+        e,
         program(method, PROGRAM)[0],
         Sensor(),
         spacing=spacing,

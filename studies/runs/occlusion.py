@@ -125,7 +125,7 @@ def rule_catchments(e, m: str, sensor: Sensor, spacing: float, key, masks, hidde
     view_only = not bool(np.asarray(method.reads_start_view()))
     res = {
         rules: rollouts.catchment_area(
-            e.arrays(),
+            e,
             method,
             sensor,
             spacing=spacing,

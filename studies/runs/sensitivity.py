@@ -35,7 +35,7 @@ def gain_figure(e, spacing: float, seed: int):
     """Bearing-noise gain maps (deg of direction per deg of bearing noise) and their rows."""
     _, key = resolve_headings(None, seed)
     pts = maps.grid_points(e.arena, spacing)
-    inc = np.asarray(maps.grid_included(e.arrays(), pts, maps.CLEARANCE))
+    inc = np.asarray(maps.grid_included(e, pts, maps.CLEARANCE))
     headings = maps.random_headings(key, pts.shape[0])
     fig, axes = subplots(1, len(GAIN_METHODS), figsize=(4.4 * len(GAIN_METHODS), 4.6), squeeze=False)
     rows, n = [], int(round(np.sqrt(pts.shape[0])))

@@ -59,7 +59,7 @@ def run(ctx) -> None:
     ctx.step("true compass")
     errors, compass_rows, catch_rows = {}, [], []
     for bg in BACKGROUNDS:  # three settings of a traced leaf: one compiled program
-        err = np.degrees(np.asarray(visual_compass_errors(e.arrays(), points, headings, make_sensor(background=bg))))
+        err = np.degrees(np.asarray(visual_compass_errors(e, points, headings, make_sensor(background=bg))))
         errors[bg] = err[included]
         stats = heading_error_stats(errors[bg])
         compass_rows.append({"background": bg, **stats})

@@ -5,13 +5,14 @@ from __future__ import annotations
 import itertools
 import json
 
+import jax
 import numpy as np
 import pytest
 
 import delvjax
 from delvjax.core.errors import InputError
 from delvjax.core.maps import grid_included, grid_points
-from delvjax.core.scene import ASYMMETRY_CM, rotation_mismatch
+from delvjax.core.scene import ASYMMETRY_CM, rotation_mismatch, stack_envs
 from delvjax.envs._presets import PRESETS, env_to_dict
 
 GOOD = {
@@ -126,3 +127,21 @@ def test_env1_surrounds_home_with_unequal_gaps_and_distances():
     assert gaps.max() - gaps.min() > 40 and dist.max() - dist.min() > 100
     off_axis = np.minimum(np.abs((bearing + 180) % 360 - 180), np.abs(bearing % 360 - 180))
     assert off_axis.min() > 10
+
+
+def test_a_name_never_recompiles_and_stays_a_plain_string():
+    """`Env.name` is a label compiled programs ignore (core/scene.py `Name`): scenes that differ only in
+    name run one traced program, with no `.arrays()` before the call, and keep their own names."""
+    a = delvjax.load_env("env1")
+    b = delvjax.make_env(np.asarray(a.landmarks)[np.asarray(a.valid)], name="renamed")
+    traces = []
+
+    @jax.jit
+    def total(env):
+        traces.append(env.name)
+        return env.landmarks.sum()
+
+    assert float(total(a)) == float(total(b))
+    assert len(traces) == 1
+    assert (a.name, b.name) == ("env1", "renamed") and type(b.name) is str
+    assert stack_envs([b, a]).name == "renamed" and a.arrays().name == "env"

@@ -74,9 +74,7 @@ def visual_compass_errors(env: Env, points: Array, headings: Array, sensor: Sens
     The home image is taken at home with heading alpha_r, the current one at `points` with
     `headings`; error = wrap(estimate - (h - alpha_r)). Rendering is noise-free.
     """
-    return _visual_compass_errors(
-        env.arrays(), jnp.asarray(points, jnp.float32), jnp.asarray(headings, jnp.float32), sensor
-    )
+    return _visual_compass_errors(env, jnp.asarray(points, jnp.float32), jnp.asarray(headings, jnp.float32), sensor)
 
 
 @jax.jit

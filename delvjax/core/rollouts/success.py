@@ -124,7 +124,7 @@ def success_rate_trials(
     key = jax.random.PRNGKey(0) if key is None else key
     dist = np.asarray(distances, np.float32)
     n_bins = dist.shape[0]
-    starts, heads, placed = (np.asarray(a) for a in _release_bins(env.arrays(), key, dist, trials, clearance))
+    starts, heads, placed = (np.asarray(a) for a in _release_bins(env, key, dist, trials, clearance))
     if heading is not None:
         heads = np.full_like(heads, heading)
     visible = np.asarray(env.valid if visible is None else visible, bool)

@@ -129,7 +129,6 @@ def run_trials(
     `methods.Program`. `progress(done, T)` is called after each block.
     """
     check_rules(first_move, collisions)
-    env = env.arrays()  # compile once per shape, not per environment name
     n = int(starts.shape[0])
     if n == 0:
         raise InputError("starts", 0, "no trials to run")
