@@ -29,7 +29,10 @@ method, repeats = sys.argv[1], int(sys.argv[2])
 try:  # methods as modules
     from delvjax.core import maps
     from delvjax.core.sensor import Sensor
-    from delvjax.options._registry import METHODS
+    try:  # the edge as packages
+        from delvjax.options._registry import METHODS
+    except ImportError:  # flat edge modules
+        from delvjax.registry import METHODS
     args = (Sensor(), METHODS[method])
 except ImportError:  # before: one Config, the method name static under jit
     from delvjax import maps
