@@ -18,6 +18,7 @@ from ..core.methods import HomingMethod
 from ..core.rollouts import (
     ARENA,
     DEFAULT_FIRST_MOVE,
+    DEFAULT_LANES,
     LANDMARK,
     check_rules,
     hidden_masks,
@@ -46,23 +47,27 @@ class RolloutSetup(NamedTuple):
 
 
 def _rollout_options(
+    *,
     env,
     method,
     max_steps,
     home_radius,
-    lanes,
     clearance,
-    heading_deg,
     seed,
     options,
+    lanes=DEFAULT_LANES,
+    heading_deg=None,
     first_move=DEFAULT_FIRST_MOVE,
     collisions="ignore",
     program=None,
     grid: Grid | None = None,
     rules: Rules | None = None,
+    **_,
 ) -> RolloutSetup:
     """Validate the shared keywords before any work (`api.scene_request` plus the rollout limits and
-    rules), taking the grid's clearance and heading and the rules from `grid=` and `rules=` if given."""
+    rules), taking the grid's clearance and heading and the rules from `grid=` and `rules=` if given.
+    Each rollout function passes its own keywords, `_rollout_options(**locals())` on entry; the
+    keywords that are not shared (spacing, distances, starts, ...) are ignored here."""
     clearance, heading_deg, max_steps, home_radius, first_move, collisions, lanes = _configured(
         grid,
         rules,

@@ -74,25 +74,10 @@ def catchment(
     `progress(done, total)` is called after each block of trials.
     Returns a `Catchment` (see `catchment_summary`).
     """
-    (spacing,) = _configured(grid, None, spacing=spacing)
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance, first_move, collisions = (
-        _rollout_options(
-            env,
-            method,
-            max_steps,
-            home_radius,
-            lanes,
-            clearance,
-            heading_deg,
-            seed,
-            options,
-            first_move,
-            collisions,
-            program,
-            grid,
-            rules,
-        )
+        _rollout_options(**locals())
     )
+    (spacing,) = _configured(grid, None, spacing=spacing)
     spacing = positive(spacing, "spacing")
     masks, combos = _masks(env, occlude, hidden)
     check_grid(env, spacing, clearance, max_points, copies=len(masks), what="trial")
@@ -145,22 +130,7 @@ def success_rate(
     `options`, `first_move`, `collisions`, `program`, `announce` and `max_points` as in `catchment`.
     """
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance, first_move, collisions = (
-        _rollout_options(
-            env,
-            method,
-            max_steps,
-            home_radius,
-            lanes,
-            clearance,
-            heading_deg,
-            seed,
-            options,
-            first_move,
-            collisions,
-            program,
-            grid,
-            rules,
-        )
+        _rollout_options(**locals())
     )
     distances, trials = _distances(env, distances, trials, max_points)
     visible = visible_mask(env, hidden)
@@ -215,22 +185,7 @@ def trajectories(
     `catchment`. Every position is kept: more than 100 x `max_points` of them (trials x (max_steps + 1)) are refused.
     """
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance, first_move, collisions = (
-        _rollout_options(
-            env,
-            method,
-            max_steps,
-            home_radius,
-            lanes,
-            clearance,
-            heading_deg,
-            seed,
-            options,
-            first_move,
-            collisions,
-            program,
-            grid,
-            rules,
-        )
+        _rollout_options(**locals())
     )
     visible = visible_mask(env, hidden)
     _, _, k_start = rollout_keys(key)
@@ -286,9 +241,7 @@ def rollout_request(
     or `success_rate` (kind "success-rate", under every mask of `occlude`) validate theirs, before any
     work; release headings are random from `seed`. Returns the setup (env, method, sensor, key, masks,
     ...) that `core.rollouts.cells` evaluates."""
-    env, module, sensor, _, key, max_steps, home_radius, _, clearance, _, _ = _rollout_options(
-        env, method, max_steps, home_radius, DEFAULT_LANES, clearance, None, seed, options, first_move, collisions
-    )
+    env, module, sensor, _, key, max_steps, home_radius, _, clearance, _, _ = _rollout_options(**locals())
     masks, _ = _masks(env, occlude, None)
     if kind == "catchment":
         spacing = positive(spacing, "spacing")
