@@ -9,10 +9,11 @@ import re
 import sys
 from pathlib import Path
 
-from ..core.errors import InputError
+from ..core.errors import InputError, warn  # noqa: F401 - warn: the commands import it from here
 from ..core.maps import CLEARANCE, SPACING
 from ..core.rollouts import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
 from ..core.sensor import Noise, Sensor
+from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_distinct, check_output_path, output_set
 from ..options._limits import MAX_POINTS
 from ..options._schema import method_options, sensor_options
@@ -26,11 +27,6 @@ JSON = (".json",)
 def wrote(*paths) -> str:
     """The closing line of a command: the files it wrote."""
     return "wrote " + ", ".join(str(p) for p in paths if p)
-
-
-def warn(msg: str) -> None:
-    """One line on stderr for a result that is valid but probably not what was meant."""
-    print(f"delvjax: warning: {msg}", file=sys.stderr, flush=True)
 
 
 def progress(msg: str) -> None:
@@ -175,7 +171,13 @@ def check_outputs(args: argparse.Namespace) -> None:
     for name, flag, suffixes in OUTPUTS:
         if flag in named:
             check_output_path(named[flag], flag, suffixes)
-    check_distinct({**({"env": args.env} if args.env and Path(args.env).is_file() else {}), **named})
+    check_distinct(named)
+    check_no_clash(named, {"env": args.env if args.env and Path(args.env).is_file() else None, **image_input(args)})
+
+
+def image_input(args: argparse.Namespace) -> dict:
+    """The image database a command reads ({"--images": folder}), if any: an input no output may touch."""
+    return {"--images": args.images} if getattr(args, "images", None) else {}
 
 
 def write_outputs(args: argparse.Namespace, columns, summary: dict, figure, trials_columns=None) -> None:

@@ -21,4 +21,4 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     from ._main import main as run  # JAX and every command: loaded for a command, not for --help
 
-    return run(argv)
+    return run(argv, own_process=True)

@@ -10,6 +10,7 @@ from ..core.maps import SPACING
 from ._help import COMMAND_HELP
 from ..gradients._quality import TAU
 from ..gradients._sensitivity import SENSITIVITY_METHODS as METHODS
+from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_out_dir, output_set
 from ..gradients._sensitivity import check_sensitivity, sensitivity
 from ..options._settings import NOISE_OPTIONS
@@ -42,6 +43,17 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
     from ..plots._gradients import landmark_figure, parameter_figure  # matplotlib: loaded only when a figure is drawn
 
     out = check_out_dir(args.out)
+    paths = [
+        Path(out) / name
+        for name in (
+            "sensitivity_landmarks.png",
+            "sensitivity_parameters.png",
+            "landmarks.csv",
+            "parameters.csv",
+            "sensitivity.json",
+        )
+    ]
+    check_no_clash({"--out": paths}, {"env": args.env})
     env = check_sensitivity(args.env, args.methods, args.spacing, args.seed, args.tau)
     result = sensitivity(
         env,
@@ -61,16 +73,6 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
             for m, r in result["methods"].items()
         },
     }
-    paths = [
-        Path(out) / name
-        for name in (
-            "sensitivity_landmarks.png",
-            "sensitivity_parameters.png",
-            "landmarks.csv",
-            "parameters.csv",
-            "sensitivity.json",
-        )
-    ]
     with output_set() as files:
         files.figure(landmark_figure(result), paths[0], "--out")
         files.figure(parameter_figure(result), paths[1], "--out")
@@ -110,6 +112,8 @@ def cmd_traps(args: argparse.Namespace) -> int:
     from ..plots._gradients import trap_figure  # matplotlib: loaded only when a figure is drawn
 
     out = check_out_dir(args.out)
+    paths = [Path(out) / name for name in ("traps.png", "traps.csv", "traps.json")]
+    check_no_clash({"--out": paths}, {"env": args.env})
     options = setting_values(args)
     report = find_traps(
         args.env,
@@ -127,7 +131,6 @@ def cmd_traps(args: argparse.Namespace) -> int:
         f"{s['discontinuities']} discontinuity point(s); {s['timed_out_within_near_of_a_sink']} timed-out "
         f"rollouts end within {s['near_cm']:g} cm of a sink"
     )
-    paths = [Path(out) / name for name in ("traps.png", "traps.csv", "traps.json")]
     with output_set() as files:
         files.figure(trap_figure(report, args.spacing), paths[0], "--out")
         files.rows_csv(paths[1], report.points, "--out")
@@ -162,6 +165,8 @@ def cmd_optimise_layout(args: argparse.Namespace) -> int:
     from ..plots._gradients import layout_figure  # matplotlib: loaded only when a figure is drawn
 
     out = check_out_dir(args.out)
+    paths = [Path(out) / name for name in ("layout.png", "comparison.csv", "optimised_env.json", "layout.json")]
+    check_no_clash({"--out": paths}, {"env": args.env})
     env = start_layout(args.env, args.landmarks, args.seed)
     with ProgressBar("step", 0) as bar:
         result = optimise_layout(
@@ -182,7 +187,6 @@ def cmd_optimise_layout(args: argparse.Namespace) -> int:
         f"catchment {start['catchment_pct']:.1f} % -> {end['catchment_pct']:.1f} %, e>45° {start['gt45_pct']:.1f} % "
         f"-> {end['gt45_pct']:.1f} % ({len(result.objective) - 1} steps, {result.seconds:.1f} s)"
     )
-    paths = [Path(out) / name for name in ("layout.png", "comparison.csv", "optimised_env.json", "layout.json")]
     with output_set() as files:
         files.figure(layout_figure(result, args.spacing), paths[0], "--out")
         files.rows_csv(paths[1], result.rows, "--out")

@@ -15,6 +15,7 @@ from ..core.rollouts import check_rules
 from ..options._checks import non_negative, positive_int
 from ..core.errors import InputError
 from ..options._schema import method_options, sensor_options
+from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_out_dir
 from ..options._limits import MAX_POINTS
 from ..outputs._tables import vector_map_columns
@@ -285,6 +286,7 @@ def cmd_render_db(args: argparse.Namespace) -> int:
 
 def cmd_import(args: argparse.Namespace) -> int:
     check_out_dir(args.out)
+    check_no_clash({"--out": args.out}, {"src": args.src})
     t0 = time.perf_counter()
     db = import_database(args.src, args.out, home=args.home, arena=args.arena, spacing=args.spacing)
     blobs = np.asarray(db.rings.snapshots.valid).sum(-1)

@@ -12,6 +12,7 @@ import numpy as np
 
 from ..evaluate import _vector_map as api
 from ..outputs._cache import enable_compilation_cache
+from ..outputs._temporary import Terminated, terminate_as_interrupt
 from ._args import (
     ProgressBar,
     add_output_args,
@@ -158,8 +159,16 @@ COMMANDS: list[Callable] = [
 ]
 
 
+class Parser(argparse.ArgumentParser):
+    """argparse, but a bad flag is one line naming it (and where to read more), not the usage first."""
+
+    def error(self, message: str):
+        print(f"{self.prog}: error: {message} (see {self.prog} --help)", file=sys.stderr)
+        raise SystemExit(2)
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="delvjax", description=DESCRIPTION)
+    parser = Parser(prog="delvjax", description=DESCRIPTION)
     sub = parser.add_subparsers(dest="command", required=True)
     sub.add_parser("envs", help=COMMAND_HELP["envs"]).set_defaults(func=cmd_envs)
     for add in COMMANDS:
@@ -167,14 +176,23 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def main(argv: list[str] | None = None) -> int:
+def main(argv: list[str] | None = None, own_process: bool = False) -> int:
+    """Run one command: exit 0, 2 on bad input (one line), 130 on Ctrl-C and 143 on SIGTERM (every
+    temporary removed, finished work kept: docs/reliability.md). `own_process`: the `delvjax` command
+    owns the process, and SIGTERM unwinds like Ctrl-C (not so for a call from Python)."""
     args = build_parser().parse_args(argv)
     enable_compilation_cache()
+    if own_process:
+        terminate_as_interrupt()
     try:
         return args.func(args)
     except InputError as exc:
         print(f"delvjax: error: {exc}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt as exc:
+        term = isinstance(exc, Terminated)
+        print(f"delvjax: {'terminated' if term else 'interrupted'}: finished work is kept", file=sys.stderr)
+        return 143 if term else 130
 
 
 if __name__ == "__main__":

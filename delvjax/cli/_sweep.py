@@ -17,7 +17,8 @@ from ..sweeps._run import run_sweep, save_sweep
 from pathlib import Path
 from ._args import FIGURE
 from ..outputs._files import check_output_path, output_set
-from ..sweeps._run import load_sweep
+from ..sweeps._run import load_sweep, sweep_inputs
+from ..outputs._clashes import check_no_clash
 
 
 def add_sweep(sub) -> None:
@@ -147,6 +148,7 @@ def cmd_plot_sweep(args: argparse.Namespace) -> int:
     check_plot(ds, args.x, args.y, args.metric)
     fig_path = check_output_path(args.out or Path(args.dir) / f"{args.metric}.png", "--out", FIGURE)
     csv_path = fig_path.with_suffix(".csv")
+    check_no_clash({"--out": [fig_path, csv_path]}, {"dir": sweep_inputs(args.dir)})
     fig, rows = sweep_figure(ds, args.x, args.y, args.metric)
     with output_set() as files:
         files.figure(fig, fig_path, "--out")

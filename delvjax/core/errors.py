@@ -1,6 +1,8 @@
-"""The one error type for bad user input (files, flags, API arguments)."""
+"""The one error type for bad user input (files, flags, API arguments), and the one-line warning."""
 
 from __future__ import annotations
+
+import sys
 
 
 class InputError(ValueError):
@@ -9,3 +11,8 @@ class InputError(ValueError):
     def __init__(self, field: str, value: object, expected: str):
         self.field, self.value, self.expected = field, value, expected
         super().__init__(f"{field}: {expected}, got {value!r}")
+
+
+def warn(msg: str) -> None:
+    """One line on stderr for a result that is valid but probably not what was meant, or for work redone."""
+    print(f"delvjax: warning: {msg}", file=sys.stderr, flush=True)

@@ -15,7 +15,6 @@ import csv
 import math
 import os
 import shutil
-import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -24,6 +23,7 @@ from collections.abc import Iterable
 import numpy as np
 
 from ..core.errors import InputError
+from ..outputs._temporary import fsync_path, fsync_tree, new_temp_dir
 
 METADATA = "database_metadata.yaml"
 ENTRIES = "database_entries.csv"
@@ -176,7 +176,7 @@ class DatabaseWriter:
         if self.out.exists() and (not self.out.is_dir() or any(self.out.iterdir())):
             raise InputError("--out", str(out), "exists and is not an empty folder")
         self.out.parent.mkdir(parents=True, exist_ok=True)
-        self.tmp = Path(tempfile.mkdtemp(prefix=f".{self.out.name}.", dir=self.out.parent))
+        self.tmp = new_temp_dir(self.out.parent)
         self.rows: list[list] = []
         self.pool = ThreadPoolExecutor(THREADS)
 
@@ -237,9 +237,11 @@ class DatabaseWriter:
             w.writerows(self.rows)
         (self.tmp / METADATA).write_text("%YAML:1.0\n---\n" + yaml.safe_dump({"metadata": metadata}, sort_keys=False))
         self.pool.shutdown()
+        fsync_tree(self.tmp)
         if self.out.exists():
             self.out.rmdir()
         os.replace(self.tmp, self.out)
+        fsync_path(self.out.parent)
 
     def discard(self) -> None:
         self.pool.shutdown(wait=True)

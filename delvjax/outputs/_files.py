@@ -1,5 +1,6 @@
-"""Writing results: CSV, JSON and figures, each written atomically (no partial files); the outputs of
-one command are checked before any work and written as a unit (`output_set`)."""
+"""Writing results: CSV, JSON and figures, each written atomically (no partial files: a temporary beside
+the target, fsynced, renamed; `_temporary.py`); the outputs of one command are checked before any work
+and written as a unit (`output_set`)."""
 
 from __future__ import annotations
 
@@ -15,6 +16,7 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 import numpy as np
 
 from ..core.errors import InputError
+from ._temporary import fsync_path, new_temp_file, remove_stale
 
 
 def check_folder(folder: str | Path, field: str, value: object) -> Path:
@@ -42,6 +44,7 @@ def check_out_dir(out: str | Path) -> Path:
     if path.exists() and not path.is_dir():
         raise InputError("--out", str(out), "exists and is not a directory")
     check_folder(path, "--out", str(out))
+    remove_stale(path)  # temporaries of an earlier run of this folder that was killed
     return path
 
 
@@ -80,16 +83,17 @@ def check_distinct(named: Mapping[str, str | Path]) -> None:
 
 
 def _temp_beside(target: Path) -> Path:
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix, dir=target.parent)
-    os.close(fd)
-    return Path(tmp)
+    return new_temp_file(target.parent)
 
 
 def _publish(tmp: Path, target: Path) -> None:
+    """fsync the written temporary, give it ordinary permissions, rename it onto `target`, fsync the folder."""
+    fsync_path(tmp)
     umask = os.umask(0)
     os.umask(umask)
-    os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; results are ordinary files
+    os.chmod(tmp, 0o666 & ~umask)  # temporaries are made 0600; results are ordinary files
     os.replace(tmp, target)
+    fsync_path(target.parent)
 
 
 @contextmanager

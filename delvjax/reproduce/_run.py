@@ -26,7 +26,7 @@ from pathlib import Path
 from collections.abc import Iterator
 from typing import Any
 
-from ..core.errors import InputError
+from ..core.errors import InputError, warn
 from ..outputs._files import check_out_dir, write_json
 from ..outputs._cache import package_sources
 from ._study import STUDY_FILE, Settings, StudyContext, StudyRecord, compile_seconds, settings_record, versions
@@ -91,11 +91,15 @@ def study_hash(module, settings: Settings) -> str:
 
 
 def load_record(folder: Path) -> StudyRecord | None:
+    """The study's record, or None if there is none; a record that cannot be read (damaged, or not
+    one delvjax wrote) is None too, with a warning line: the study runs again."""
     path = folder / STUDY_FILE
+    if not path.is_file():
+        return None
     try:
-        data = json.loads(path.read_text())
-        return StudyRecord(**data)
-    except (OSError, ValueError, TypeError):
+        return StudyRecord(**json.loads(path.read_text()))
+    except (OSError, ValueError, TypeError) as exc:
+        warn(f"study record {path} cannot be read ({type(exc).__name__}): the study runs again")
         return None
 
 

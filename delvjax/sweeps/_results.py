@@ -14,6 +14,7 @@ from ..core.errors import InputError
 from ..core.metrics import t_quantile
 from ..core.rollouts.success import wilson_pct
 from ..outputs._files import output_set
+from ._store import STORE
 
 if TYPE_CHECKING:  # types only: the kinds are built from this module
     from ._spec import SweepSpec
@@ -111,16 +112,27 @@ def _version(package: str) -> str:
         return "unknown"
 
 
+RUN_ATTRS = ("programs_compiled", "cells_reused")  # about the run, not the results: kept out of sweep.nc
+
+
 def save_sweep(ds, out: str | Path) -> list[Path]:
-    """sweep.nc (netCDF, every attribute), sweep.csv (one row per cell) and sweep.toml, as a unit."""
+    """sweep.nc (netCDF, every attribute but `RUN_ATTRS`, so that a resumed sweep writes the bytes of an
+    uninterrupted one), sweep.csv (one row per cell) and sweep.toml, as a unit."""
     out = Path(out)
     paths = [out / f for f in FILES]
     table = ds.to_dataframe().reset_index()
+    kept = ds.copy()
+    kept.attrs = {k: v for k, v in ds.attrs.items() if k not in RUN_ATTRS}
     with output_set() as files:
-        files.file(paths[0], lambda tmp: ds.to_netcdf(tmp, engine="scipy"), "--out")
+        files.file(paths[0], lambda tmp: kept.to_netcdf(tmp, engine="scipy"), "--out")
         files.file(paths[1], lambda tmp: table.to_csv(tmp, index=False, float_format="%.6g"), "--out")
         files.file(paths[2], lambda tmp: Path(tmp).write_text(ds.attrs["sweep_toml"]), "--out")
     return paths
+
+
+def sweep_inputs(out: str | Path) -> list[Path]:
+    """The files and folders of a sweep folder that `load_sweep` and a resumed sweep read."""
+    return [Path(out) / f for f in FILES] + [Path(out) / STORE]
 
 
 def load_sweep(out: str | Path):

@@ -16,10 +16,10 @@ from ._store import cell_digest, code_digest, load_cells, save_cells
 from ..core.batching import global_mesh, local_mesh, n_devices, process_rows
 from ..envs._presets import load_env, random_env
 from ._kinds import cell_setup, evaluate, group_key, mask_rows, programs_compiled, sum_names
-from ._results import dataset, load_sweep, save_sweep
+from ._results import dataset, load_sweep, save_sweep, sweep_inputs
 from ._spec import SweepSpec
 
-__all__ = ["CELL_CHUNK", "load_sweep", "run_sweep", "save_sweep"]
+__all__ = ["CELL_CHUNK", "load_sweep", "run_sweep", "save_sweep", "sweep_inputs"]
 
 if TYPE_CHECKING:
     import xarray

@@ -10,9 +10,10 @@ from pathlib import Path
 import jax
 import numpy as np
 
-from ..core.errors import InputError
+from ..core.errors import InputError, warn
 from ..outputs._cache import package_sources
 from ..outputs._files import atomic_path
+from ..outputs._temporary import remove_stale
 
 STORE = ".cells"  # folder inside the sweep's --out
 
@@ -37,24 +38,32 @@ def cell_digest(req: dict, code: str) -> str:
     return h.hexdigest()[:32]
 
 
+def _read_chunk(path: Path) -> dict[str, dict[str, float]]:
+    with np.load(path, allow_pickle=False) as z:
+        names = [k for k in z.files if k != "digest"]
+        digests = z["digest"]
+        return {str(d): {k: z[k][i] for k in names} for i, d in enumerate(digests)}
+
+
 def load_cells(out: Path) -> dict[str, dict[str, float]]:
-    """Every finished cell in `out`: digest -> its sums."""
+    """Every finished cell in `out`: digest -> its sums. A chunk that cannot be read (damaged on disk,
+    or written by a tool other than delvjax's atomic writer) is removed with a warning line, and its
+    cells are computed again."""
     done: dict[str, dict[str, float]] = {}
+    remove_stale(Path(out) / STORE)  # chunks a killed run left half written
     for path in sorted((Path(out) / STORE).glob("*.npz")):
         try:
-            with np.load(path) as z:
-                names = [k for k in z.files if k != "digest"]
-                for i, d in enumerate(z["digest"]):
-                    done[str(d)] = {k: z[k][i] for k in names}
-        except (OSError, ValueError, KeyError):  # a damaged chunk is computed again
-            continue
+            done.update(_read_chunk(path))
+        except Exception as exc:  # noqa: BLE001 - any damage (EOFError, BadZipFile, ...) means "not finished"
+            warn(f"finished cells {path} cannot be read ({type(exc).__name__}): they are computed again")
+            path.unlink(missing_ok=True)
     return done
 
 
 def save_cells(out: Path, digests: list[str], sums: dict[str, np.ndarray]) -> None:
     """One finished chunk, written atomically (a killed run leaves whole chunks or none)."""
     try:
-        with atomic_path(Path(out) / STORE / f"{digests[0]}-{len(digests)}.npz") as tmp:
-            np.savez(tmp, digest=np.asarray(digests), **sums)
+        with atomic_path(Path(out) / STORE / f"{digests[0]}-{len(digests)}.npz") as tmp, open(tmp, "wb") as fh:
+            np.savez(fh, digest=np.asarray(digests), **sums)
     except OSError as exc:  # e.g. the disk filled up during the sweep: finished chunks stay
         raise InputError("--out", str(out), f"cannot be written ({exc.strerror or exc})") from None

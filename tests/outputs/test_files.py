@@ -113,7 +113,7 @@ def test_an_output_over_the_environment_file_is_refused(tmp_path, capsys):
     )
     text = env.read_text()
     assert main(["vector-map", str(env), "--summary", str(env)]) == 2
-    assert "--summary: names the same file as env" in error_line(capsys)
+    assert "--summary: is the input env" in error_line(capsys)
     assert env.read_text() == text and files_under(tmp_path) == ["env.json"]
 
 
