@@ -100,6 +100,14 @@ def load(args: argparse.Namespace):
     progress(f"reading {args.images} ...")
     spacing = None if args.spacing == args.parser_defaults.get("spacing") else args.spacing
     ex = {k: getattr(args, k) for k in EXTRACTOR_OPTIONS if getattr(args, k) is not None}
+
+    def check(n_images: int, n_pix: int) -> None:  # from the index and the first image, before the others
+        if n_images > args.max_points:
+            raise InputError(
+                "--images", args.images, f"has {n_images} images, more than --max-points {args.max_points}"
+            )
+        make_setup(args.method, n_pix=n_pix, **opts)  # e.g. n_psi must divide the ring's pixels
+
     with ProgressBar("img", args.chunk) as bar:
         db = load_database(
             args.images,
@@ -111,10 +119,7 @@ def load(args: argparse.Namespace):
             max_blobs=args.max_blobs,
             chunk=args.chunk,
             progress=bar,
-        )
-    if len(db.files) > args.max_points:
-        raise InputError(
-            "--images", args.images, f"has {len(db.files)} images, more than --max-points {args.max_points}"
+            check=check,
         )
     return db, opts
 

@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 import argparse
+import os
+import sys
+import threading
 import time
 
 from ._args import ProgressBar, progress
 from ..core.errors import InputError
+from ..options._checks import positive
 from ..options._limits import MAX_POINTS
 from ._help import COMMAND_HELP
 from ..sweeps._examples import EXAMPLES
@@ -19,6 +23,9 @@ from ._args import FIGURE
 from ..outputs._files import check_output_path, output_set
 from ..sweeps._run import load_sweep, sweep_inputs
 from ..outputs._clashes import check_no_clash
+
+
+CONNECT_TIMEOUT = 300.0  # s: jax.distributed's own default
 
 
 def add_sweep(sub) -> None:
@@ -51,6 +58,13 @@ def add_sweep(sub) -> None:
     g.add_argument("--num-processes", type=int, default=None, help="number of processes")
     g.add_argument("--process-id", type=int, default=None, help="this process, 0 .. num-processes - 1")
     g.add_argument(
+        "--connect-timeout",
+        type=float,
+        default=CONNECT_TIMEOUT,
+        metavar="S",
+        help=f"seconds to wait for every process to join, then fail with one line (default {CONNECT_TIMEOUT:g})",
+    )
+    g.add_argument(
         "--distributed",
         action="store_true",
         help="let jax.distributed.initialize() read the cluster (SLURM, Open MPI) from the environment",
@@ -74,13 +88,29 @@ def start_processes(args: argparse.Namespace) -> None:
         if not 0 <= args.process_id < args.num_processes:
             raise InputError("--process-id", args.process_id, f"must be in 0..{args.num_processes - 1}")
 
+    timeout = positive(args.connect_timeout, "--connect-timeout")
     jax.config.update("jax_cpu_collectives_implementation", "gloo")  # CPU processes exchange results
     kw = (
         {}
         if args.distributed
         else dict(coordinator_address=args.coordinator, num_processes=args.num_processes, process_id=args.process_id)
     )
-    jax.distributed.initialize(**kw)
+    joined = threading.Event()
+
+    def watchdog() -> None:  # JAX aborts (SIGABRT) when its own timeout passes: say why first, exit 2
+        if not joined.wait(timeout):
+            where = args.coordinator or "the coordinator jax.distributed found in the environment"
+            print(
+                f"delvjax: error: --coordinator: not every process joined {where} within {timeout:g} s "
+                "(--connect-timeout): is every process started, with the same --coordinator and --num-processes?",
+                file=sys.stderr,
+                flush=True,
+            )
+            os._exit(2)
+
+    threading.Thread(target=watchdog, daemon=True).start()
+    jax.distributed.initialize(**kw, initialization_timeout=int(timeout) + 60)
+    joined.set()
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:

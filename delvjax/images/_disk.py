@@ -23,6 +23,7 @@ from collections.abc import Iterable
 import numpy as np
 
 from ..core.errors import InputError
+from ._metadata import check_metadata
 from ..outputs._temporary import fsync_path, fsync_tree, new_temp_dir
 
 METADATA = "database_metadata.yaml"
@@ -30,6 +31,7 @@ ENTRIES = "database_entries.csv"
 POSITIONS = "positions.csv"
 BOB_COLUMNS = ("X [mm]", "Y [mm]", "Z [mm]", "Heading [degrees]", "Filename", "Grid X", "Grid Y", "Grid Z")
 THREADS = 8  # image decoding and encoding (Pillow releases the GIL)
+MAX_PIXELS = 4096 * 4096  # per image file, checked from its header before it is decoded
 
 
 def file_columns(images: np.ndarray, axis: int = -2) -> np.ndarray:
@@ -62,13 +64,26 @@ def _number(text: str, what: str, path: Path, row: int) -> float:
 
 
 def _rows(path: Path) -> list[dict[str, str]]:
+    """The rows of an index CSV (a UTF-8 byte-order mark is allowed); a row with more fields than the
+    header, or one that repeats an earlier row, is refused naming the row (row 1 is the header)."""
     try:
-        with open(path, newline="") as fh:
+        with open(path, newline="", encoding="utf-8-sig") as fh:
             reader = csv.DictReader(fh, skipinitialspace=True)
-            rows = [{(k or "").strip(): (v or "").strip() for k, v in r.items()} for r in reader]
+            raw = list(reader)
             fields = [f.strip() for f in reader.fieldnames or []]
     except (OSError, UnicodeDecodeError, csv.Error) as exc:
         raise InputError("images", str(path), f"cannot be read ({exc})") from None
+    seen: dict[tuple, int] = {}
+    for i, r in enumerate(raw):
+        if None in r:
+            raise InputError(
+                "images", str(path), f"row {i + 2} has {len(fields) + len(r[None])} fields, the header {len(fields)}"
+            )
+        key = tuple((v or "").strip() for v in r.values())
+        if key in seen:
+            raise InputError("images", str(path), f"row {i + 2} repeats row {seen[key]}")
+        seen[key] = i + 2
+    rows = [{(k or "").strip(): (v or "").strip() for k, v in r.items()} for r in raw]
     if not rows:
         raise InputError("images", str(path), "lists no images")
     return rows if fields else []
@@ -120,13 +135,17 @@ def read_index(src: str | Path) -> DatabaseIndex:
     )
     head = np.radians([_number(r.get(keys["heading"]) or "0", "images", path, i + 2) for i, r in enumerate(rows)])
     files = [folder / r[keys["file"]] for r in rows]
+    first: dict[Path, int] = {}
+    for i, f in enumerate(files):
+        if first.setdefault(f, i + 2) != i + 2:
+            raise InputError("images", str(path), f"row {i + 2} lists {f.name} again (row {first[f]})")
     meta = _read_yaml(folder / METADATA) if (folder / METADATA).is_file() else {}
     return DatabaseIndex(
         folder,
         files,
         pos.astype(np.float32),
         head.astype(np.float32),
-        meta=dict(meta.get("delvjax") or {}),
+        meta=dict(check_metadata(meta.get("delvjax"), folder / METADATA)),
         needs_unwrapping=bool(meta.get("needsUnwrapping", 0)),
     )
 
@@ -139,8 +158,14 @@ def read_image(path: Path) -> np.ndarray:
     if not path.is_file():
         raise InputError("image", str(path), "does not exist")
     try:
-        with Image.open(path) as im:
+        with Image.open(path) as im:  # reads the header only
+            w, h = im.size
+            if w * h > MAX_PIXELS:
+                raise Image.DecompressionBombError(f"{w} x {h} pixels")
             return np.asarray(im.convert("RGB"))
+    except Image.DecompressionBombError as exc:  # from its header, before the pixels are decoded
+        size = str(exc) if " x " in str(exc) else "its header's size"
+        raise InputError("image", str(path), f"is {size}, more than {MAX_PIXELS} pixels (a panorama is far smaller)")
     except (OSError, UnidentifiedImageError, ValueError) as exc:
         raise InputError("image", str(path), f"cannot be read ({type(exc).__name__}: {exc})") from None
 
@@ -172,7 +197,7 @@ class DatabaseWriter:
     failed or interrupted run leaves no partial database (`out` must not exist or be empty)."""
 
     def __init__(self, out: str | Path):
-        self.out = Path(out)
+        self.out = Path(os.path.realpath(out)) if Path(out).is_symlink() else Path(out)  # a link: its folder
         if self.out.exists() and (not self.out.is_dir() or any(self.out.iterdir())):
             raise InputError("--out", str(out), "exists and is not an empty folder")
         self.out.parent.mkdir(parents=True, exist_ok=True)
@@ -238,6 +263,9 @@ class DatabaseWriter:
         (self.tmp / METADATA).write_text("%YAML:1.0\n---\n" + yaml.safe_dump({"metadata": metadata}, sort_keys=False))
         self.pool.shutdown()
         fsync_tree(self.tmp)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(self.tmp, 0o777 & ~umask)  # temporaries are made 0700; a database is an ordinary folder
         if self.out.exists():
             self.out.rmdir()
         os.replace(self.tmp, self.out)

@@ -154,11 +154,13 @@ def load_database(
     chunk: int = DEFAULT_CHUNK,
     progress: Callable[[int, int], None] | None = None,
     sink: Callable[[np.ndarray, slice], None] | None = None,
+    check: Callable[[int, int], None] | None = None,
 ) -> LoadedDatabase:
     """Read a database (docs/images.md §4) into ring snapshots, `chunk` images at a time. home, arena,
     spacing: override the metadata (else: the metadata, else the point nearest the arena's centre,
     the positions' extent, the median neighbour distance); extractor: Extractor settings by name;
-    sink(images, rows): called with every chunk of images read (`import_database`)."""
+    sink(images, rows): called with every chunk of images read (`import_database`); check(images,
+    ring pixels): called before any image but the first is read (the caller's own checks)."""
     index = read_index(src)
     chunk = positive_int(chunk, "chunk")
     spacing = database_spacing(index, spacing)
@@ -178,6 +180,8 @@ def load_database(
     cam, mirror = _camera(index, shape)
     if not mirror and cam.cols % 4:
         raise InputError("image", str(index.files[0]), f"is {cam.cols} columns wide: it must be a multiple of 4")
+    if check is not None:
+        check(len(index.files), cam.cols)
     parts = []
     size = min(chunk, len(index.files))
     for lo, hi in chunks(len(index.files), size):

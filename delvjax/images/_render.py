@@ -26,12 +26,25 @@ from ..core.types import Real
 from ._disk import DatabaseWriter
 from ._worlds import ImageWorld, image_world
 from ..options._limits import MAX_POINTS, check_size, grid_count
-from ..options._checks import non_negative, positive, positive_int, seed_value
+from ..options._checks import angle_deg, non_negative, positive, positive_int, seed_value
 import shutil
 from ..outputs._files import check_folder
 
 DEFAULT_CHUNK = 256  # images per host-side chunk
 IMAGE_WIDTH = 16  # images rendered or reduced side by side (`fixed_width_map`): bounds a group's memory
+RENDER_BUDGET = 2**31  # bytes: a group of images being rendered, and a chunk of rendered images, stay under this
+RENDER_BYTES_PER_PIXEL = 24  # XLA's working memory per pixel of an image being rendered (measured: 20.5)
+
+
+def render_sizes(pixels: int, chunk: int) -> tuple[int, int]:
+    """(images rendered side by side, images per chunk) for images of `pixels` pixels: IMAGE_WIDTH and
+    `chunk`, fewer where a group's working memory or a chunk's uint8 RGB images would pass
+    RENDER_BUDGET (the largest image allowed renders one at a time). The numbers do not depend on
+    either: image i's noise comes from its index."""
+    width = max(1, min(IMAGE_WIDTH, RENDER_BUDGET // (pixels * RENDER_BYTES_PER_PIXEL)))
+    return width, max(1, min(chunk, RENDER_BUDGET // (pixels * 3)))
+
+
 PIXEL_NOISE = 0.02  # default camera noise of rendered databases, per pixel (docs/images.md §5.1)
 
 
@@ -81,6 +94,12 @@ def lit(world, light_azimuth_deg: float | None):
     )
 
 
+def light_angles(world) -> list[float]:
+    """[azimuth, elevation] in degrees of the world's light (recorded in a rendered database's metadata)."""
+    x, y, z = (float(v) for v in np.asarray(world.light))
+    return [round(math.degrees(math.atan2(y, x)), 6), round(math.degrees(math.atan2(z, math.hypot(x, y))), 6)]
+
+
 @eqx.filter_jit
 def render_images(
     world,
@@ -92,14 +111,16 @@ def render_images(
     key,
     pixel_noise,
     gain_noise,
+    width: int = IMAGE_WIDTH,
 ):
-    """uint8 images (k, H, W, 3) at poses, image i with camera noise from fold_in(key, index[i])."""
+    """uint8 images (k, H, W, 3) at poses, image i with camera noise from fold_in(key, index[i]);
+    `width` images at a time (`render_sizes`)."""
 
     def one(pos, heading, i):
         img = panorama(world, settings_camera, pos, heading) if mirror is None else donut(world, mirror, pos, heading)
         return to_uint8(camera_noise(jax.random.fold_in(key, i), img, pixel_noise, gain_noise))
 
-    return fixed_width_map(one, (positions, headings, index), width=IMAGE_WIDTH)
+    return fixed_width_map(one, (positions, headings, index), width=width)
 
 
 @eqx.filter_jit
@@ -134,6 +155,8 @@ def head(tree, n: int):
 def rendered_chunks(world, settings: "ImageSettings", positions, headings, key, chunk: int):
     """(lo, hi, uint8 images (size, H, W, 3)) of every chunk of poses (`render_images`); every chunk has
     the same size (`full`): rows from hi - lo on are padding."""
+    cam, mirror = settings.camera, settings.mirror
+    width, chunk = render_sizes(cam.rows * cam.cols if mirror is None else mirror.size**2, chunk)
     size = min(chunk, len(positions))
     for lo, hi in chunks(len(positions), size):
         imgs = render_images(
@@ -146,6 +169,7 @@ def rendered_chunks(world, settings: "ImageSettings", positions, headings, key, 
             key,
             settings.pixel_noise,
             settings.gain_noise,
+            width,
         )
         yield lo, hi, imgs
 
@@ -196,6 +220,8 @@ def check_render(
     non_negative(settings.gain_noise, "gain_noise")
     seed_value(seed)
     positive_int(chunk, "chunk")
+    if settings.light_azimuth_deg is not None:
+        angle_deg(settings.light_azimuth_deg, "light_deg")
     check_size(grid_count(np.asarray(iw.world.arena), spacing), max_points, "spacing", spacing)
     if not len(world_grid(iw, spacing)[0]):
         raise InputError("spacing", spacing, "leaves no grid point in the arena clear of the obstacles")
@@ -309,6 +335,7 @@ def render_database(
                 pixel_noise=settings.pixel_noise,
                 gain_noise=settings.gain_noise,
                 seed=seed,
+                light_deg=light_angles(world),
             )
         )
     except BaseException:

@@ -42,8 +42,19 @@ def finite(value: object, field: str) -> Real:
     return v
 
 
-def positive(value: object, field: str) -> Real:
+F32_MAX = 3.4028234663852886e38  # the largest float32: JAX computes in float32 (no x64)
+
+
+def in_float32(value: object, field: str) -> Real:
+    """A finite number that float32 can hold (not an angle: those are reduced first, `angle_deg`)."""
     v = finite(value, field)
+    if not is_traced(v) and abs(v) > F32_MAX:
+        raise InputError(field, value, f"is beyond float32's range ({F32_MAX:.3g}), the precision of the computation")
+    return v
+
+
+def positive(value: object, field: str) -> Real:
+    v = in_float32(value, field)
     if is_traced(v):
         return _traced_check(v, v <= 0, field, "must be > 0")
     if v <= 0:
@@ -52,7 +63,7 @@ def positive(value: object, field: str) -> Real:
 
 
 def non_negative(value: object, field: str) -> Real:
-    v = finite(value, field)
+    v = in_float32(value, field)
     if is_traced(v):
         return _traced_check(v, v < 0, field, "must be >= 0")
     if v < 0:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.patches import Circle, Rectangle
+from matplotlib.path import Path as Outline
 
 from ..core.metrics import error_class
 from ..core.scene import Env
@@ -17,6 +18,11 @@ def subplots(*grid: int, figsize: tuple[float, float], **kw):
     return fig, fig.subplots(*grid, **kw)
 
 
+ARROW = Outline(  # a legend marker for a homing direction, drawn from vertices: no mathtext, whose
+    # font state is shared between threads (reproduce draws figures side by side)
+    [(-1.0, 0.0), (1.0, 0.0), (0.45, 0.4), (1.0, 0.0), (0.45, -0.4)],
+    [Outline.MOVETO, Outline.LINETO, Outline.MOVETO, Outline.LINETO, Outline.LINETO],
+)
 CLASS_STYLE = (  # Fig 4.3: dot < 45, star 45-90, triangle > 90
     ("<45°", dict(marker=".", color="0.35", s=10)),
     ("45–90°", dict(marker="*", color="tab:orange", s=40)),

@@ -238,6 +238,9 @@ def reproduce(
     if workers < 1:
         raise InputError("workers", workers, "must be at least 1")
     out = check_out_dir(out)
+    for name in names:  # each study writes into out/<name>/ (and the report beside them)
+        if (out / name).exists() and not (out / name).is_dir():
+            raise InputError("--out", str(out), f"holds a file {name}, where the folder of study {name} goes")
     out.mkdir(parents=True, exist_ok=True)
     enable_compilation_cache()
     compile_seconds()

@@ -142,5 +142,12 @@ def load_sweep(out: str | Path):
     path = Path(out) / FILES[0]
     if not path.is_file():
         raise InputError("out", str(out), f"has no {FILES[0]} (not a finished sweep folder)")
-    with xr.open_dataset(path, engine="scipy") as ds:
-        return ds.load()
+    try:
+        with xr.open_dataset(path, engine="scipy") as ds:
+            return ds.load()
+    except Exception as exc:  # noqa: BLE001 - a damaged file raises whatever the reader meets first
+        raise InputError(
+            "out",
+            str(out),
+            f"has a {FILES[0]} that cannot be read ({type(exc).__name__}): rerun the sweep to rewrite it",
+        ) from None

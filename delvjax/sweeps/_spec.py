@@ -135,14 +135,15 @@ def _values(name: str, raw, field: str | None = None) -> list:
         values = [raw]
     if not values:
         raise InputError(field, raw, "is empty")
-    if len(set(map(repr, values))) != len(values):
-        raise InputError(field, raw, "repeats a value")
     kinds = {type(v) for v in values} - {bool}
     names = name_axes()
     if name in names and kinds != {str}:
         raise InputError(field, raw, "must be names (strings)")
-    if name not in names and not kinds <= {int, float}:
+    if name not in names and (not kinds <= {int, float} or any(isinstance(v, bool) for v in values)):
         raise InputError(field, raw, "must be numbers")
+    same = [v for i, v in enumerate(values) if v in values[:i]]  # 50 and 50.0 are one value
+    if same:
+        raise InputError(field, raw, f"repeats the value {same[0]!r}")
     return values
 
 
@@ -208,6 +209,8 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
     if not isinstance(metrics, list) or not metrics:
         raise InputError("sweep.metrics", metrics, "must be a non-empty list")
     for i, m in enumerate(metrics):
+        if not isinstance(m, str):
+            raise InputError(f"sweep.metrics[{i}]", m, f"must be a metric name (choose from {', '.join(known)})")
         if m not in known:
             other = [k for k, v in KINDS.items() if m in v.metrics]
             hint = f' (a metric of kind = "{other[0]}")' if other else ""

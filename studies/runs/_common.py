@@ -21,7 +21,7 @@ import delvjax
 from delvjax.core import rollouts
 from delvjax.core.maps import VectorMap
 from delvjax.core.metrics import error_curve, summarize_map
-from delvjax.plots._maps import draw_env, draw_vector_map
+from delvjax.plots._maps import ARROW, draw_env, draw_vector_map
 from delvjax.plots._rollouts import SQUARE, catchment_panel
 from delvjax.core.scene import Env
 from delvjax.envs._presets import load_env
@@ -210,7 +210,7 @@ def panel_figure(items, spacing: float, classes: bool = False, title: str = ""):
         draw_env(ax, e)
         ax.set_title(label, fontsize=9)
     handles = [
-        Line2D([], [], marker=r"$\rightarrow$", color="black", ls="", ms=10, label="homing direction"),
+        Line2D([], [], marker=ARROW, color="black", ls="", ms=10, label="homing direction"),
         Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
         Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
         Line2D([], [], marker="x", color="tab:red", ls="", ms=7, label="no direction (invalid)"),
@@ -244,7 +244,7 @@ def catchment_figure(items, spacing: float, title: str):
         catchment_panel(ax, e, c, 0, spacing, title=label)
     handles = [
         Patch(label="release point inside the catchment area", **SQUARE),
-        Line2D([], [], marker=r"$\rightarrow$", color="black", ls="", ms=10, label="first homing direction"),
+        Line2D([], [], marker=ARROW, color="black", ls="", ms=10, label="first homing direction"),
         Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
         Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
     ]

@@ -16,7 +16,7 @@ matching runs on the same masks (`gap_matching`: what it changes in Tables 5.1-5
 from __future__ import annotations
 
 import jax
-from delvjax.plots._maps import subplots
+from delvjax.plots._maps import ARROW, subplots
 import numpy as np
 
 from delvjax.core import rollouts
@@ -311,7 +311,7 @@ def figures(ctx, per_k: list[dict], fig5_10: dict) -> None:
         )
     handles = [
         Patch(label="release point inside the catchment area", **SQUARE),
-        Line2D([], [], marker=r"$\rightarrow$", color="black", ls="", ms=10, label="first homing direction"),
+        Line2D([], [], marker=ARROW, color="black", ls="", ms=10, label="first homing direction"),
         Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
         Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
         Line2D([], [], marker="o", mfc="white", mec="black", ls="", ms=9, label="hidden landmark"),

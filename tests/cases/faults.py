@@ -10,6 +10,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
+
 CHILD = r"""
 import os, signal, sys
 from delvjax.outputs import _files
@@ -72,3 +74,17 @@ def contents(folder: Path) -> dict[str, bytes]:
         for p in sorted(folder.rglob("*"))
         if p.is_file() and ".cells" not in p.parts
     }
+
+
+def fake_sweep(folder: Path) -> Path:
+    """A sweep folder as `delvjax sweep` leaves it, without running one (plot-sweep reads sweep.nc)."""
+    folder.mkdir()
+    import xarray as xr
+
+    ds = xr.Dataset(
+        {"mean_error_deg": (("d", "seed"), np.arange(4.0).reshape(2, 2))}, coords={"d": [30.0, 60.0], "seed": [0, 1]}
+    )
+    ds.to_netcdf(folder / "sweep.nc", engine="scipy")
+    (folder / "sweep.csv").write_text("d,seed,mean_error_deg\n30,0,0\n30,1,1\n60,0,2\n60,1,3\n")
+    (folder / "sweep.toml").write_text("[axes]\nd = [30, 60]\nseed = [0, 1]\n")
+    return folder

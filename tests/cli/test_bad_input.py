@@ -162,3 +162,37 @@ def test_a_channel_for_a_method_that_reads_no_image_is_refused(tmp_path, capsys)
         main(["vector-map", "env1", "--method", "warping", "--channel", "gray", "--spacing", "200", "--out", str(out)])
         == 0
     )
+
+
+@pytest.mark.parametrize(
+    "argv, field",
+    [
+        (["vector-map", "env1", "--d", "1e39", "--out", "r.csv"], "d"),  # float32 would overflow to inf
+        (["vector-map", "env1", "--bearing-noise-deg", "1e39", "--out", "r.csv"], "bearing_noise_deg"),
+        (["images", "render-db", "robot", "--light-deg", "inf", "--out", "db"], "light_deg"),
+        (["images", "render-db", "robot", "--light-deg", "nan", "--out", "db"], "light_deg"),
+        (["catchment", "env1", "--max-steps", "2147483648", "--out", "r.csv"], "max_steps"),
+    ],
+)
+def test_a_value_beyond_what_the_computation_holds_is_one_line(tmp_path, capsys, monkeypatch, argv, field):
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 2
+    assert error_line(capsys).startswith(f"delvjax: error: {field}:")
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("flag, value", [("--seed", "1.5"), ("--spacing", "wide"), ("--bogus", "1")])
+def test_a_malformed_flag_is_one_line_not_the_usage(tmp_path, capsys, flag, value):
+    with pytest.raises(SystemExit) as exc:
+        main(["vector-map", "env1", flag, value, "--out", str(tmp_path / "r.csv")])
+    assert exc.value.code == 2
+    line = error_line(capsys)
+    assert flag in line and line.endswith("--help)")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_file_where_a_study_folder_goes_is_one_line(tmp_path, capsys):
+    (tmp_path / "environments").write_text("not a folder")
+    assert main(["reproduce", "--only", "environments", "--out", str(tmp_path)]) == 2
+    assert "holds a file environments" in error_line(capsys)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["environments"]

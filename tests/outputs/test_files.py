@@ -215,3 +215,29 @@ def test_output_set_cleans_up_when_the_block_raises(tmp_path):
             files.csv(tmp_path / "new" / "r.csv", {"x": [1]}, "--out")
             raise KeyError("interrupted")
     assert files_under(tmp_path) == []
+
+
+def test_a_target_of_the_longest_legal_name_is_written(tmp_path):
+    """The temporary beside it has a short name of its own (a 249-character name failed before)."""
+    target = tmp_path / ("a" * 250 + ".json")
+    io.write_json(target, {"x": 1})
+    assert json.loads(target.read_text()) == {"x": 1} and files_under(tmp_path) == [target.name]
+
+
+def test_stale_temporaries_of_dead_processes_are_removed_and_live_ones_kept(tmp_path):
+    import subprocess
+    import sys
+
+    from delvjax.outputs import _temporary
+
+    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True)
+    pid = int(dead.stdout)
+    stale = tmp_path / f".delvjax-{pid}-0123456789ab.part"
+    stale.write_text("half a file")
+    (tmp_path / f".delvjax-{pid}-0123456789ac.part").mkdir()  # half a database
+    live = tmp_path / f".delvjax-{os.getpid()}-0123456789ab.part"
+    live.write_text("being written")
+    other = tmp_path / ".hidden"
+    other.write_text("not ours")
+    removed = _temporary.remove_stale(tmp_path)
+    assert len(removed) == 2 and sorted(files_under(tmp_path)) == sorted([live.name, other.name])

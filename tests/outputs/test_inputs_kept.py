@@ -8,12 +8,11 @@ import json
 import os
 from pathlib import Path
 
-import numpy as np
 import pytest
-import xarray as xr
 
 from delvjax.cli._main import main
 from delvjax.images._disk import ENTRIES
+from tests.cases.faults import fake_sweep
 from tests.outputs.test_files import error_line
 
 
@@ -51,18 +50,6 @@ def test_import_into_its_own_source_is_refused(small_db, capsys):
     assert main(["images", "import", str(small_db), "--out", str(small_db / "copy")]) == 2
     assert "--out: lies inside the input src" in error_line(capsys)
     assert snapshot(small_db) == before
-
-
-def fake_sweep(folder: Path) -> Path:
-    """A sweep folder as `delvjax sweep` leaves it, without running one (plot-sweep reads sweep.nc)."""
-    folder.mkdir()
-    ds = xr.Dataset(
-        {"mean_error_deg": (("d", "seed"), np.arange(4.0).reshape(2, 2))}, coords={"d": [30.0, 60.0], "seed": [0, 1]}
-    )
-    ds.to_netcdf(folder / "sweep.nc", engine="scipy")
-    (folder / "sweep.csv").write_text("d,seed,mean_error_deg\n30,0,0\n30,1,1\n60,0,2\n60,1,3\n")
-    (folder / "sweep.toml").write_text("[axes]\nd = [30, 60]\nseed = [0, 1]\n")
-    return folder
 
 
 @pytest.mark.parametrize("out", ["sweep.png", "sweep.svg"])

@@ -88,3 +88,23 @@ def test_importing_delvjax_leaves_the_jax_backend_alone():
         "import sys; sys.exit(1 if xb._backends else 0)"
     )
     assert subprocess.run([sys.executable, "-c", code], env=dict(os.environ, JAX_PLATFORMS="cpu")).returncode == 0
+
+
+@pytest.mark.parametrize("process_id", ["0", "1"])  # the coordinator waiting for a peer, a peer for it
+def test_a_process_whose_peers_never_join_fails_in_one_line(tmp_path, process_id):
+    path = tmp_path / "s.toml"
+    path.write_text(SWEEP)
+    port = free_port()
+    argv = ["sweep", str(path), "--out", str(tmp_path / "o"), "--coordinator", f"127.0.0.1:{port}"]
+    argv += ["--num-processes", "2", "--process-id", process_id, "--connect-timeout", "2"]
+    run = subprocess.run(
+        [sys.executable, "-m", "delvjax.cli", *argv],
+        env=dict(os.environ, JAX_PLATFORMS="cpu"),
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    err = run.stderr.strip().splitlines()
+    assert run.returncode == 2 and len(err) == 1, run.stderr[-2000:]  # not SIGABRT after 5 minutes
+    assert err[0].startswith("delvjax: error: --coordinator:") and f"127.0.0.1:{port}" in err[0]
+    assert not (tmp_path / "o").exists()

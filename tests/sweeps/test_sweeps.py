@@ -81,6 +81,10 @@ def test_the_numbers_do_not_depend_on_how_cells_are_chunked(small, monkeypatch):
         ("[axes]\nd = []", "axes.d"),
         ("[axes]\nd = {start = 5, stop = 1}", "axes.d"),
         ("[axes]\nd = [1, 1]", "axes.d"),
+        ("[axes]\nd = [50, 50.0]", "axes.d"),  # one value written twice
+        ("[axes]\nd = [true, 2]", "axes.d"),
+        ("[axes]\nd = {start = 10, stop = 100, step = 1e-300}", "axes.d"),  # too many values, not an OverflowError
+        ("[sweep]\nmetrics = [['gt45_pct']]", "sweep.metrics[0]"),  # a nested list
         ("[axes]\nlevls = [1]", "axes.levls"),
         ("[axes]\nmotion_step_noise = [0.1]", "axes.motion_step_noise"),  # a rollout axis in a vector-map sweep
         ("[sweep]\nkind = 'success-rate'\n[axes]\nspacing = [10]", "axes.spacing"),
@@ -231,3 +235,15 @@ def test_every_help_text_prints(command, capsys):
     with pytest.raises(SystemExit) as exc:
         main([command, "--help"] if command else ["--help"])
     assert exc.value.code == 0 and "usage: delvjax" in capsys.readouterr().out
+
+
+def test_a_damaged_sweep_file_is_one_line_not_a_plot(tmp_path, capsys):
+    from tests.cases.faults import fake_sweep
+
+    folder = fake_sweep(tmp_path / "s")
+    data = (folder / "sweep.nc").read_bytes()
+    (folder / "sweep.nc").write_bytes(data[: len(data) - 20])  # a copy cut short
+    assert main(["plot-sweep", str(folder), "--x", "d"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "sweep.nc that cannot be read" in err[0]
+    assert sorted(p.name for p in folder.iterdir()) == ["sweep.csv", "sweep.nc", "sweep.toml"]

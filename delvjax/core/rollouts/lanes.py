@@ -51,9 +51,13 @@ class Results(eqx.Module):
     path: Array
 
 
-@partial(jax.jit, static_argnames=("lanes",))
-def run_block(rollout: Rollout, starts: Array, headings: Array, n_valid: Array, lanes: int) -> Results:
-    """Run the first `n_valid` trials of a block (the padding is never run)."""
+@partial(jax.jit, static_argnames=("lanes", "record_paths"))
+def run_block(
+    rollout: Rollout, starts: Array, headings: Array, n_valid: Array, lanes: int, record_paths: bool = False
+) -> Results:
+    """Run the first `n_valid` trials of a block (the padding is never run). The paths (T, max_steps + 1,
+    2) are recorded only with `record_paths`; else `path` holds the starts (T, 1, 2), so memory does not
+    grow with max_steps."""
     n_trials = starts.shape[0]
     n_lanes = max(1, min(lanes, n_trials))
     n_slots = padded(n_lanes)  # slots past n_lanes stay idle (core/batching.py: fixed width)
@@ -79,7 +83,7 @@ def run_block(rollout: Rollout, starts: Array, headings: Array, n_valid: Array, 
         end=jnp.zeros((n_trials, 2), jnp.float32),
         first_dir=jnp.full(n_trials, jnp.nan, jnp.float32),
         first_valid=jnp.zeros(n_trials, bool),
-        path=jnp.full((n_trials, max_steps + 1, 2), jnp.nan, jnp.float32).at[:, 0].set(starts),
+        path=jnp.full((n_trials, max_steps + 1 if record_paths else 1, 2), jnp.nan, jnp.float32).at[:, 0].set(starts),
     )
 
     def cond(state):
@@ -110,7 +114,11 @@ def run_block(rollout: Rollout, starts: Array, headings: Array, n_valid: Array, 
             step=lane.step + moving.astype(jnp.int32),
             invalid=lane.invalid + (moving & ~valid & (status == RUNNING)).astype(jnp.int32),
         )
-        path = out.path.at[jnp.where(moving, lane.t, n_trials), lane.step].set(lane.pos, mode="drop")
+        path = (
+            out.path.at[jnp.where(moving, lane.t, n_trials), lane.step].set(lane.pos, mode="drop")
+            if record_paths
+            else out.path
+        )
         # 2. write the lanes whose trial has ended (after its first direction)
         done = active & ~lane.first & (lane.status != RUNNING)
         idx = jnp.where(done, lane.t, n_trials)

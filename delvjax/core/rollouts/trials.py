@@ -81,14 +81,14 @@ def device_split(n_valid: int, n_dev: int, per_device: int) -> tuple[np.ndarray,
 
 
 @functools.lru_cache(maxsize=None)
-def device_block(lanes: int):
+def device_block(lanes: int, record_paths: bool = False):
     """The per-device program of a block: one device's trials with `lanes` lanes (counts: (1,))."""
 
     def run(shared: Rollout, key_index, mask_index, starts, headings, counts):
         rollout = eqx.tree_at(
             lambda r: (r.key_index, r.mask_index), shared, (key_index, mask_index), is_leaf=lambda x: x is None
         )
-        return run_block(rollout, starts, headings, counts[0], lanes)
+        return run_block(rollout, starts, headings, counts[0], lanes, record_paths)
 
     return run
 
@@ -163,14 +163,14 @@ def run_trials(
         )
         n_valid = min(block, n - i)
         if mesh is None:
-            res = run_block(rollout, starts[rows], headings[rows], np.int32(n_valid), lanes)
+            res = run_block(rollout, starts[rows], headings[rows], np.int32(n_valid), lanes, record_paths)
         else:  # device d runs trials [d q, (d + 1) q) of the block, q = ceil(n_valid / D): whole trials, same program
             take, counts, keep = device_split(n_valid, mesh.size, per_device)
             shared = eqx.tree_at(
                 lambda r: (r.key_index, r.mask_index), rollout, (None, None), is_leaf=lambda x: x is None
             )
             res = over_devices(
-                device_block(-(-lanes // mesh.size)),
+                device_block(-(-lanes // mesh.size), record_paths),
                 mesh,
                 1,
                 shared,

@@ -1,0 +1,48 @@
+"""Rollout memory does not grow with max_steps unless the paths are kept (docs/reliability.md): a catchment
+or success-rate block records no path; trajectories record every position, and their size is refused
+before any work above its limit."""
+
+from __future__ import annotations
+
+from functools import partial
+
+import jax
+import pytest
+
+import delvjax
+from delvjax.core.errors import InputError
+from delvjax.core.rollouts import trials
+
+HUGE = 100_000  # max_steps: the paths of one block would be 16384 x 100001 x 2 float32 = 13 GB
+
+
+class Stop(Exception):
+    """Raised by the spy once it has seen the block's shapes: nothing is compiled or run."""
+
+
+@pytest.mark.parametrize("command", ["catchment", "success_rate", "trajectories"])
+def test_only_trajectories_record_paths(monkeypatch, command):
+    seen = []
+    real = trials.run_block
+
+    def spy(rollout, starts, headings, n_valid, lanes, record_paths=False):
+        shapes = jax.eval_shape(
+            partial(real, lanes=lanes, record_paths=record_paths), rollout, starts, headings, n_valid
+        )
+        seen.append((starts.shape[0], shapes.path.shape))
+        raise Stop
+
+    monkeypatch.setattr(trials, "run_block", spy)
+    kw = {"catchment": dict(spacing=200.0), "success_rate": dict(distances=[100.0], trials=4)}.get(
+        command, dict(starts=[(300.0, 300.0)])
+    )
+    with pytest.raises(Stop):
+        getattr(delvjax, command)("env1", max_steps=HUGE, **kw)
+    ((block, path),) = seen
+    assert path == ((block, HUGE + 1, 2) if command == "trajectories" else (block, 1, 2))
+
+
+def test_trajectories_that_would_not_fit_are_refused_with_the_estimate():
+    with pytest.raises(InputError) as exc:
+        delvjax.trajectories("env1", n_starts=24, max_steps=2_000_000_000)
+    assert exc.value.field == "max_steps" and "path point" in str(exc.value)
