@@ -135,9 +135,13 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
         raise InputError("--workers", args.workers, "must be at least 1")
     reproduce.check_out_dir(args.out)
     t0 = time.perf_counter()
-    result = reproduce.reproduce(
-        args.out, quick=args.quick, only=args.only, force=args.force, seed=args.seed, workers=args.workers
-    )
+    try:
+        result = reproduce.reproduce(
+            args.out, quick=args.quick, only=args.only, force=args.force, seed=args.seed, workers=args.workers
+        )
+    except OSError as exc:  # e.g. a full disk: every file is whole or absent, finished studies are kept
+        why = exc.strerror or str(exc)
+        raise InputError("--out", args.out, f"could not be written ({why}): finished studies are kept") from None
     skipped = [n for n in result["records"] if n not in result["ran"]]
     print(
         f"ran {len(result['ran'])} studies"

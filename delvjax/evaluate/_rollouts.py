@@ -32,7 +32,7 @@ from ..core.rollouts import (
     trajectory_trials,
 )
 from ..core.scene import Env
-from ..options._limits import MAX_POINTS, check_size
+from ..options._limits import MAX_POINTS, check_moves, check_size, grid_count
 from ..options._checks import positive, positive_int
 from ._rollout_setup import _rollout_options, _configured, _masks, _distances, _announce, _check_starts
 
@@ -81,6 +81,7 @@ def catchment(
     spacing = positive(spacing, "spacing")
     masks, combos = _masks(env, occlude, hidden)
     check_grid(env, spacing, clearance, max_points, copies=len(masks), what="trial")
+    check_moves(grid_count(env.arena, spacing) * len(masks), max_steps, max_points)
     _announce(announce)
     return catchment_area(
         env,
@@ -133,6 +134,7 @@ def success_rate(
         _rollout_options(**locals())
     )
     distances, trials = _distances(env, distances, trials, max_points)
+    check_moves(len(distances) * trials, max_steps, max_points)
     visible = visible_mask(env, hidden)
     _announce(announce)
     return success_rate_trials(
@@ -246,8 +248,10 @@ def rollout_request(
     if kind == "catchment":
         spacing = positive(spacing, "spacing")
         check_grid(env, spacing, clearance, max_points, copies=len(masks), what="trial")
+        check_moves(grid_count(env.arena, spacing) * len(masks), max_steps, max_points)
     else:
         distances, trials = _distances(env, distances, trials, max_points, copies=len(masks))
+        check_moves(len(distances) * trials * len(masks), max_steps, max_points)
     return dict(
         kind=kind,
         env=env,

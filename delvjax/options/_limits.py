@@ -14,7 +14,23 @@ from ._checks import positive_int
 MAX_POINTS = 1_000_000  # grid points (times masks) or trials in one run, by default
 # host memory per item of the results and their CSV rows, bytes; slowest method per item on 2 CPU cores, s
 BYTES = {"grid point": 120, "trial": 160, "path point": 40}
-SECONDS = {"grid point": 50e-6, "trial": 1.5e-3, "path point": 1e-4}
+SECONDS = {"grid point": 50e-6, "trial": 1.5e-3, "path point": 1e-4, "move": 1.5e-5}
+MOVES_PER_POINT = 100  # trials x (max_steps + 1) moves of a rollout run: at most this times max_points
+
+
+def check_moves(trials: int, max_steps: int, max_points) -> None:
+    """`InputError` naming max_steps when `trials` rollouts of up to `max_steps` moves could run longer
+    than MOVES_PER_POINT x max_points moves (the default: 1e8, about 25 minutes on 2 CPU cores)."""
+    limit = MOVES_PER_POINT * positive_int(max_points, "max_points")
+    moves = trials * (max_steps + 1)
+    if moves > limit:
+        hours = moves * SECONDS["move"] / 3600
+        raise InputError(
+            "max_steps",
+            max_steps,
+            f"allows {moves:.3g} moves ({trials} trials x {max_steps + 1}), more than {MOVES_PER_POINT} x "
+            f"max_points = {limit:.3g} (up to {hours:.3g} h on 2 CPU cores); lower --max-steps or raise --max-points",
+        )
 
 
 def grid_count(arena, spacing: float) -> int:

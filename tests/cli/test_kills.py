@@ -103,3 +103,23 @@ def test_a_killed_render_leaves_nothing_and_the_next_render_completes(tmp_path, 
         assert temporaries(out.parent), "the kill left no temporary folder: it came too late"
     assert main([*RENDER, "--out", str(out)]) == 0
     assert temporaries(out.parent) == [] and contents(out) == contents(tmp_path / "ref" / "db")
+
+
+def test_a_full_disk_during_reproduce_is_one_line_and_leaves_no_temporary(tmp_path, capsys, monkeypatch):
+    from delvjax.outputs import _files
+
+    real = _files._publish
+
+    def full(tmp, target):
+        if target.name == "study.json":
+            raise OSError(28, "No space left on device")
+        return real(tmp, target)
+
+    monkeypatch.setattr(_files, "_publish", full)
+    out = tmp_path / "out"
+    assert main(["reproduce", "--only", "environments", "--workers", "1", "--out", str(out)]) == 2
+    err = [ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("delvjax: error:")]
+    assert len(err) == 1 and "No space left on device" in err[0]
+    assert temporaries(out) == [] and not (out / "environments" / "study.json").exists()
+    monkeypatch.setattr(_files, "_publish", real)
+    assert main(["reproduce", "--only", "environments", "--workers", "1", "--out", str(out)]) == 0  # space again

@@ -46,3 +46,13 @@ def test_trajectories_that_would_not_fit_are_refused_with_the_estimate():
     with pytest.raises(InputError) as exc:
         delvjax.trajectories("env1", n_starts=24, max_steps=2_000_000_000)
     assert exc.value.field == "max_steps" and "path point" in str(exc.value)
+
+
+@pytest.mark.parametrize(
+    "command, kw",
+    [("catchment", dict(spacing=25.0)), ("success_rate", dict(distances=[100.0, 200.0], trials=500))],
+)
+def test_rollouts_that_could_run_for_hours_are_refused_with_the_estimate(command, kw):
+    with pytest.raises(InputError) as exc:
+        getattr(delvjax, command)("env1", max_steps=HUGE, **kw)
+    assert exc.value.field == "max_steps" and "moves" in str(exc.value) and " h on 2 CPU cores" in str(exc.value)
