@@ -123,6 +123,8 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         raise InputError("--out", None, "give an output folder")
     spec = read_sweep(args.file)
     out = check_out_dir(args.out)
+    envs = [e for e in spec.axes.get("env", []) if isinstance(e, str) and Path(e).is_file()]
+    check_no_clash({"--out": [out / "sweep.nc", out / "sweep.csv"]}, {"file": args.file, "axes.env": envs})
     start_processes(args)
 
     lead = jax.process_index() == 0  # process 0 reports and writes

@@ -141,9 +141,11 @@ def _values(name: str, raw, field: str | None = None) -> list:
         raise InputError(field, raw, "must be names (strings)")
     if name not in names and (not kinds <= {int, float} or any(isinstance(v, bool) for v in values)):
         raise InputError(field, raw, "must be numbers")
-    same = [v for i, v in enumerate(values) if v in values[:i]]  # 50 and 50.0 are one value
-    if same:
-        raise InputError(field, raw, f"repeats the value {same[0]!r}")
+    seen: set = set()
+    for v in values:  # 50 and 50.0 are one value (equal numbers hash alike)
+        if v in seen:
+            raise InputError(field, raw, f"repeats the value {v!r}")
+        seen.add(v)
     return values
 
 

@@ -130,3 +130,5 @@ def test_render_into_a_symlinked_empty_folder_writes_into_its_target(tmp_path):
     )
     assert (tmp_path / "link").is_symlink() and (tmp_path / "real" / ENTRIES).is_file()
     assert oct((tmp_path / "real").stat().st_mode & 0o777) != "0o700"
+    meta = yaml.safe_load((tmp_path / "real" / METADATA).read_text().split("---", 1)[1])
+    assert meta["metadata"]["delvjax"]["light_deg"] == [45.0, 50.0]  # the light is recorded

@@ -80,3 +80,11 @@ def test_a_folder_command_never_writes_over_its_environment_file(tmp_path, capsy
     line = error_line(capsys)
     assert line.startswith("delvjax: error: --out:") and "is the input env" in line
     assert env.read_text() == text
+
+
+def test_a_sweep_never_writes_its_table_over_its_own_file(tmp_path, capsys):
+    file = tmp_path / "sweep.csv"  # a sweep file given the name of the table the sweep writes
+    file.write_text("[axes]\nd = [50]\n")
+    assert main(["sweep", str(file), "--out", str(tmp_path)]) == 2
+    assert "the input file" in error_line(capsys)
+    assert file.read_text() == "[axes]\nd = [50]\n"
