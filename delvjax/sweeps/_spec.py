@@ -125,7 +125,8 @@ def _values(name: str, raw, field: str | None = None) -> list:
             step = raw.get("step", 1)
             if step <= 0 or stop < start:
                 raise InputError(field, raw, "is empty (need start <= stop and step > 0)")
-            count = math.floor((stop - start) / step + 1e-9) + 1
+            ratio = (stop - start) / step  # inf for a subnormal step
+            count = math.floor(ratio + 1e-9) + 1 if math.isfinite(ratio) else math.inf
             if count > MAX_VALUES:
                 raise InputError(field, raw, f"has {count:.3g} values, more than {MAX_VALUES}")
             values = [start + i * step for i in range(count)]

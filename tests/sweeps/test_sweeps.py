@@ -83,7 +83,8 @@ def test_the_numbers_do_not_depend_on_how_cells_are_chunked(small, monkeypatch):
         ("[axes]\nd = [1, 1]", "axes.d"),
         ("[axes]\nd = [50, 50.0]", "axes.d"),  # one value written twice
         ("[axes]\nd = [true, 2]", "axes.d"),
-        ("[axes]\nd = {start = 10, stop = 100, step = 1e-300}", "axes.d"),  # too many values, not an OverflowError
+        ("[axes]\nd = {start = 10, stop = 100, step = 1e-300}", "axes.d"),  # too many values
+        ("[axes]\nd = {start = 10, stop = 100, step = 1e-320}", "axes.d"),  # a subnormal step: not an OverflowError
         ("[sweep]\nmetrics = [['gt45_pct']]", "sweep.metrics[0]"),  # a nested list
         ("[axes]\nlevls = [1]", "axes.levls"),
         ("[axes]\nmotion_step_noise = [0.1]", "axes.motion_step_noise"),  # a rollout axis in a vector-map sweep
