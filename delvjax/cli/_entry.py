@@ -7,13 +7,17 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ._help import COMMAND_HELP, DESCRIPTION
+from ._help import COMMAND_HELP, DESCRIPTION, version
 
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
+    if argv in (["-V"], ["--version"]):
+        print(f"delvjax {version()}")
+        return 0
     if argv in (["-h"], ["--help"]):
         parser = argparse.ArgumentParser(prog="delvjax", description=DESCRIPTION)
+        parser.add_argument("-V", "--version", action="store_true", help="print the version and exit")
         sub = parser.add_subparsers(dest="command", required=True)
         for name, text in COMMAND_HELP.items():
             sub.add_parser(name, help=text)

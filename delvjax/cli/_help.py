@@ -1,4 +1,8 @@
-"""The one-line help of each command of `delvjax` (`delvjax --help` and the commands' parsers)."""
+"""The one-line help of each command of `delvjax` (`delvjax --help` and the commands' parsers), and the
+version (`delvjax --version`)."""
+
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as installed
 
 DESCRIPTION = "Visual homing methods (DELV, ALV, ACV, ...) as JAX batch evaluators."
 # command -> its one line in `delvjax --help` (the commands' parsers read it from here)
@@ -16,3 +20,11 @@ COMMAND_HELP = {
     "optimise-layout": "move the landmarks to maximise homing quality (optimistix BFGS), compare by catchment (docs/differentiable.md)",
     "images": "image databases: render one from a world, import one (docs/images.md)",
 }
+
+
+def version() -> str:
+    """The installed delvjax version (package metadata; no JAX loaded)."""
+    try:
+        return installed("delvjax")
+    except PackageNotFoundError:  # run from a source tree that is not installed
+        return "unknown (not installed)"

@@ -15,6 +15,7 @@ from ..core.rollouts import check_rules
 from ..options._checks import non_negative, positive_int
 from ..core.errors import InputError
 from ..options._schema import method_options, sensor_options
+from ..evaluate._vector_map import refuse_rollout_only
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_out_dir
 from ..options._limits import MAX_POINTS
@@ -140,6 +141,7 @@ def cmd_vector_map_images(args: argparse.Namespace) -> int:
     from ..plots._images import database_map_figure  # matplotlib: loaded only when a figure is drawn
 
     _refuse_unused(args)
+    refuse_rollout_only({n: getattr(args, n, None) for n in ("motion_heading_noise_deg", "motion_step_noise")})
     check_outputs(args)
     t0 = time.perf_counter()
     db, opts = load(args)

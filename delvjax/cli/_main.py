@@ -33,7 +33,7 @@ from ..options._limits import grid_count
 from ..envs._presets import PRESET_DESCRIPTIONS, PRESETS
 from ..options._registry import DESCRIPTIONS
 from ..outputs._tables import vector_map_columns
-from ._help import COMMAND_HELP, DESCRIPTION
+from ._help import COMMAND_HELP, DESCRIPTION, version
 from ..core.metrics import summarize_map
 from ..reproduce import _run as reproduce
 
@@ -173,6 +173,9 @@ class Parser(argparse.ArgumentParser):
 
 def build_parser() -> argparse.ArgumentParser:
     parser = Parser(prog="delvjax", description=DESCRIPTION)
+    parser.add_argument(
+        "-V", "--version", action="version", version=f"delvjax {version()}", help="print the version and exit"
+    )
     sub = parser.add_subparsers(dest="command", required=True)
     sub.add_parser("envs", help=COMMAND_HELP["envs"]).set_defaults(func=cmd_envs)
     for add in COMMANDS:

@@ -20,6 +20,7 @@ from ..core.errors import InputError
 from ..core.methods import HomingMethod
 from ..core.scene import Env
 from ..core.sensor import Sensor
+from ..options._schema import ROLLOUT_ONLY
 from ..options._settings import make_setup
 from ..options._checks import angle_deg, non_negative, positive, positive_int, seed_value
 from ..options._limits import MAX_POINTS, check_size
@@ -46,6 +47,16 @@ def visible_mask(env: Env, hidden: list[int] | tuple[int, ...] | None) -> np.nda
     mask = np.ones(env.landmarks.shape[0], bool)
     mask[list(hidden)] = False
     return mask
+
+
+def refuse_rollout_only(options: dict) -> None:
+    """`InputError` for a given setting that acts only in rollouts (the motion noise): a vector map would
+    silently ignore it."""
+    for name, value in options.items():
+        if value is not None and name.startswith(ROLLOUT_ONLY):
+            raise InputError(
+                name, value, "acts only in rollouts (catchment, success-rate, trajectories): a vector map ignores it"
+            )
 
 
 def scene_request(
@@ -117,6 +128,7 @@ def map_request(
     arguments of `core.maps.vector_map`. Raises `InputError` naming the field and value."""
     g = unpack(grid, Grid, dict(spacing=spacing, clearance=clearance, heading_deg=heading_deg), GRID_DEFAULTS)
     spacing, clearance, heading_deg = g["spacing"], g["clearance"], g["heading_deg"]
+    refuse_rollout_only(options)
     env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **options)
     spacing = positive(spacing, "spacing")
     check_grid(env, spacing, clearance, max_points)

@@ -19,6 +19,9 @@ from ..core.settings import Setting, declared
 from . import _checks as checks
 from ._registry import METHODS
 
+
+ROLLOUT_ONLY = ("motion_",)  # settings that act only in rollouts (the motion noise): a vector map refuses them
+
 SENSOR_TYPES = (Sensor, Noise)
 
 

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..core.errors import InputError
 from ..core.rollouts.rules import DEFAULT_DISTANCES, TRIALS_PER_DISTANCE
-from ..options._schema import all_options
+from ..options._schema import ROLLOUT_ONLY, all_options
 from ._kind import KINDS, SweepKind
 
 # axis -> what it sets (the public option of `delvjax.vector_map` / `catchment` / `success_rate` of the same name).
@@ -32,7 +32,6 @@ ROLLOUT_AXES = {
     "home_radius": "success radius, cm",
     "max_steps": "moves before a trial times out",
 }
-ROLLOUT_ONLY = ("motion_",)  # settings that act only in rollouts (the motion noise): not vector-map axes
 
 
 def setting_axes() -> dict[str, str]:

@@ -196,3 +196,14 @@ def test_a_file_where_a_study_folder_goes_is_one_line(tmp_path, capsys):
     assert main(["reproduce", "--only", "environments", "--out", str(tmp_path)]) == 2
     assert "holds a file environments" in error_line(capsys)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["environments"]
+
+
+@pytest.mark.parametrize("flag", ["--motion-heading-noise-deg", "--motion-step-noise"])
+def test_a_rollout_only_noise_on_a_vector_map_is_refused_not_ignored(tmp_path, capsys, flag):
+    out = tmp_path / "m.csv"
+    assert main(["vector-map", "env1", flag, "0.1", "--spacing", "200", "--out", str(out)]) == 2
+    line = error_line(capsys)
+    assert line.startswith(f"delvjax: error: {flag[2:].replace('-', '_')}:") and "acts only in rollouts" in line
+    assert not out.exists()
+    with pytest.raises(InputError, match="acts only in rollouts"):
+        delvjax.vector_map("env1", spacing=200.0, **{flag[2:].replace("-", "_"): 0.1})

@@ -44,3 +44,13 @@ def test_names_load_on_first_use():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.split() == ["False", "True", "25.0"]
+
+
+def test_version_prints_the_installed_version_without_loading_jax():
+    import subprocess
+    import sys
+    from importlib.metadata import version
+
+    code = "import sys; from delvjax.cli import main; main(['--version']); print('jax' in sys.modules)"
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert run.stdout.splitlines() == [f"delvjax {version('delvjax')}", "False"]
