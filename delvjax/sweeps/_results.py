@@ -89,6 +89,8 @@ def dataset(spec: SweepSpec, sums: dict, programs: int):
         dims, shape = dims + ["distance_cm"], shape + (len(spec.distances),)
         coords["distance_cm"] = np.asarray(spec.distances)
     ds = xr.Dataset({m: (dims, np.asarray(values[m]).reshape(shape)) for m in spec.metrics}, coords=coords)
+    for name, attrs in spec.describe().items():  # CF-style long_name and units on every variable and coordinate
+        ds[name].attrs.update(attrs)
     ds.attrs.update(
         sweep_toml=spec.text,
         kind=str(spec.kind),

@@ -49,6 +49,25 @@ def axes(kind: SweepKind) -> dict[str, str]:
     return {**scene, **settings, **ROLLOUT_AXES}
 
 
+UNITS = {"cm": "cm", "deg": "degree", "fraction of d": "1"}  # a setting's declared unit -> CF (UDUNITS)
+AXIS_UNITS = {"spacing": "cm", "home_radius": "cm", "seed": "1", "max_steps": "1", "occlude": "1"}
+
+
+def axis_units(name: str) -> dict[str, str]:
+    """{"units": ...} of an axis (from the setting's declaration or the scene axes); {} for a name axis."""
+    if name in AXIS_UNITS:
+        return {"units": AXIS_UNITS[name]}
+    option = all_options().get(name)
+    if option is None or option.type is str:
+        return {}
+    return {"units": UNITS.get(option.setting.unit, option.setting.unit or "1")}
+
+
+def metric_units(name: str) -> str:
+    """A metric's units from its name: percent, degree or a count."""
+    return "percent" if name.endswith("_pct") else "degree" if name.endswith("_deg") else "1"
+
+
 def name_axes() -> tuple[str, ...]:
     """The axes whose values are names (strings)."""
     return ("env", "method", "first_move", "collisions", *(n for n, o in all_options().items() if o.type is str))
@@ -90,6 +109,17 @@ class SweepSpec:
         """Cell `i` of `cells()`."""
         index = np.unravel_index(i, self.shape)
         return {name: values[int(j)] for (name, values), j in zip(self.axes.items(), index)}
+
+    def describe(self) -> dict[str, dict[str, str]]:
+        """CF-style `long_name` and `units` of every metric and axis of the results (`dataset`)."""
+        known, options = axes(self.kind), all_options()
+        out = {m: {"long_name": self.kind.metrics[m], "units": metric_units(m)} for m in self.metrics}
+        for name in self.axes:
+            text = options[name].setting.help if name in options else known.get(name, name)
+            out[name] = {"long_name": text, **axis_units(name)}
+        if self.kind.per_distance:
+            out["distance_cm"] = {"long_name": "release distance from home", "units": "cm"}
+        return out
 
     @property
     def n_cells(self) -> int:

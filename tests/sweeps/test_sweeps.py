@@ -125,6 +125,13 @@ def test_the_cli_writes_netcdf_csv_and_the_file_and_load_sweep_reads_them(tmp_pa
     ds = delvjax.load_sweep(out)
     assert dict(ds.sizes) == {"env": 1, "method": 1, "spacing": 1, "seed": 1, "d": 2} or ds.sizes["d"] == 2
     assert ds.attrs["sweep_toml"] == path.read_text() and "jax_version" in ds.attrs
+    for name in [*ds.data_vars, *ds.coords]:  # self-describing: CF long_name on all, units on every number
+        assert ds[name].attrs.get("long_name"), name
+        assert ds[name].dtype.kind in "OUS" or ds[name].attrs.get("units"), name
+    assert ds["gt45_pct"].attrs["units"] == "percent" and ds["d"].attrs == {
+        "long_name": "unit-movement step",
+        "units": "cm",
+    }
     rows = (out / "sweep.csv").read_text().splitlines()
     assert len(rows) == 3 and rows[0].startswith("d,seed,spacing,env,method,gt45_pct")
     with pytest.raises(InputError, match="sweep.nc"):
