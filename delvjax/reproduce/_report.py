@@ -38,20 +38,21 @@ h2{border-bottom:2px solid #ddd;padding-bottom:.2em;margin-top:2em}
 
 
 def fmt(v: Any) -> str:
-    """A table cell: numbers to 2 decimals, None/NaN as a dash, text with pipes escaped."""
+    """A table cell: numbers of magnitude >= 1 to 2 decimals (the thesis's style), smaller ones to 3
+    significant figures (0.0114, not 0.01), None/NaN as a dash, text with pipes escaped."""
     if v is None:
         return "–"
     if isinstance(v, bool):
         return "yes" if v else "no"
     if isinstance(v, float):
-        return "–" if math.isnan(v) else f"{v:.2f}"
+        return "–" if math.isnan(v) else f"{v:.2f}" if abs(v) >= 1 or v == 0 else f"{v:.3g}"
     if isinstance(v, (list, tuple)):
         return " / ".join(fmt(x) for x in v)
     return str(v).replace("|", "\\|").replace("\n", " ")
 
 
 def md_table(columns: list[str], rows: list[dict]) -> str:
-    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    lines = ["| " + " | ".join(fmt(c) for c in columns) + " |", "|" + "---|" * len(columns)]  # headers escaped too
     lines += ["| " + " | ".join(fmt(r.get(c)) for c in columns) + " |" for r in rows]
     return "\n".join(lines)
 
