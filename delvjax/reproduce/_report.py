@@ -17,12 +17,15 @@ from typing import Any
 from ..outputs._files import atomic_path
 from ..core.rollouts import DEFAULT_RULES, PHYSICAL_RULES
 
-VERDICT_MARK = {
-    "holds": "✅ holds",
-    "partly": "🟡 partly",
-    "fails": "❌ fails",
-    "cannot tell": "❔ cannot tell",
-    "n/a": "— not run",
+VERDICT_MARK = {  # words, coloured by the CSS below (no emoji: they need a font that may be missing)
+    v: f'<span class="verdict {c}">{w}</span>'
+    for v, c, w in [
+        ("holds", "holds", "holds"),
+        ("partly", "partly", "partly"),
+        ("fails", "fails", "fails"),
+        ("cannot tell", "cannot", "cannot tell"),
+        ("n/a", "na", "not run"),
+    ]
 }
 CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;max-width:1200px;margin:2em auto;
@@ -34,6 +37,10 @@ tr:nth-child(even) td{background:#fafafa}
 img{max-width:100%;border:1px solid #eee}
 code{background:#f4f4f4;padding:0 .2em}
 h2{border-bottom:2px solid #ddd;padding-bottom:.2em;margin-top:2em}
+.verdict{font-weight:600;padding:0 .35em;border-radius:.25em;white-space:nowrap}
+.verdict.holds{color:#fff;background:#2e7d32}.verdict.partly{color:#222;background:#f9c74f}
+.verdict.fails{color:#fff;background:#c62828}.verdict.cannot{color:#222;background:#d0d0d0}
+.verdict.na{color:#555;background:#f0f0f0}
 """
 
 

@@ -24,3 +24,12 @@ def test_numbers_keep_their_significant_figures():
         "1234.57",
         "–",
     ]
+
+
+def test_verdicts_are_words_coloured_by_css_not_emoji():
+    from delvjax.reproduce._report import CSS, VERDICT_MARK
+
+    for verdict, mark in VERDICT_MARK.items():
+        assert mark.isascii() and ("not run" if verdict == "n/a" else verdict) in mark
+        css_class = mark.split('class="verdict ')[1].split('"')[0]
+        assert f".verdict.{css_class}{{" in CSS
