@@ -168,6 +168,13 @@ def thesis_notes_section() -> str:
     return md_table(["where", "what"], rows)
 
 
+QUICK_BANNER = (
+    "> **A quick preview (`--quick`).** The maps and catchments come from a coarse 10 x 10 grid (spacing "
+    "100 cm) and fewer trials, so some error-curve bins hold one point and their intervals are wide; the "
+    "verdicts below are a preview, not the reproduction. Run `delvjax reproduce` without `--quick` for them."
+)
+
+
 def build_markdown(records: dict, settings, versions: dict, wall_seconds: float, ran: list[str]) -> str:
     from ..studies.claims import evaluate  # the studies: loaded only when a report is written (they import the API)
 
@@ -179,6 +186,7 @@ def build_markdown(records: dict, settings, versions: dict, wall_seconds: float,
         "(chapters 4-5). It gives no landmark coordinates, grid spacing or home radius, so the claims "
         "to check are the trends (who beats whom, how fast each degrades), not the digits. "
         "Our environments, frames and every decision where the thesis is ambiguous: `docs/model.md`.",
+        *([QUICK_BANNER] if getattr(settings, "quick", False) else []),
         "## Run settings",
         settings_section(settings, versions, records, wall_seconds, ran),
         "## Claims of the thesis",
@@ -213,7 +221,8 @@ def write_report(
     text = build_markdown(records, settings, versions, wall_seconds, ran or [])
     with atomic_path(out / "report.md") as tmp:
         tmp.write_text(text)
-    body = markdown.markdown(text, extensions=["tables"])
+    title, rest = text.split("\n", 1)  # the HTML page gets a table of contents with an anchor per section
+    body = markdown.markdown(title + "\n\n**Contents**\n\n[TOC]\n" + rest, extensions=["tables", "toc"])
     page = (
         f"<!doctype html><html><head><meta charset='utf-8'><title>delvjax reproduction report</title>"
         f"<style>{CSS}</style></head><body>{embed_images(body, out)}</body></html>\n"

@@ -44,6 +44,13 @@ def test_report_is_self_contained_with_claims_settings_versions(run):
     summary = f"{counts['holds']} hold, {counts['partly']} partly, {counts['fails']} fail"
     assert f"<strong>{summary}" in html and f"of {len(thesis.CLAIMS)} claims" in html
     assert "Claims of the thesis" in html and "Claims of the thesis" in md
+    # a table of contents whose every anchor resolves, and no table left as raw text
+    anchors = re.findall(r'<a href="#([^"]+)"', html)
+    ids = set(re.findall(r'id="([^"]+)"', html))
+    assert len(anchors) >= 10 and set(anchors) <= ids and "[TOC]" not in md
+    text = re.sub(r"<[^>]+>", "", html)
+    assert not re.search(r"^\s*\|.*\|\s*$", text, re.M), "a table rendered as raw pipes"
+    assert "A quick preview" not in md  # TINY is not --quick
     for claim in thesis.CLAIMS:
         assert claim["section"] in md
     # the settings and the versions
