@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# The headline benchmarks on whatever accelerator JAX finds (a GPU when the session has one; the CPU
+# otherwise), in under 8 minutes, then one table: each benchmark's wall seconds and its key lines.
+#
+#     bash benchmarks/gpu.sh            # needs the project installed: pip install -e '.[test]'
+#
+# Each part runs under its own time limit, so one slow part cannot eat the others' time; a part that
+# fails or times out is marked so in the table. Sizes: the vector map and catchment at the thesis grid
+# (spacing 25 cm, 40 x 40), a 1000-cell vector-map sweep and a 100-cell catchment sweep on one device,
+# and `reproduce --quick` from an empty compilation cache, then again with nothing changed.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+OUT="${OUT:-$(mktemp -d)}"
+mkdir -p "$OUT/logs"
+python -c "import jax; print('jax', jax.__version__, 'on', jax.devices()[0].platform, jax.devices()[0].device_kind)" \
+  | tee "$OUT/logs/device.txt"
+
+run() {  # name, time limit (s), command...
+  local name=$1 limit=$2
+  shift 2
+  local t0=$SECONDS
+  timeout "$limit" "$@" > "$OUT/logs/$name.txt" 2>&1
+  local rc=$?
+  echo "$name|$rc|$((SECONDS - t0))" >> "$OUT/parts.txt"
+}
+
+: > "$OUT/parts.txt"
+run vector_map 90 python benchmarks/bench_vector_map.py --methods delv delv-compass alv acv warping --ref-points 10
+run catchment 120 python benchmarks/bench_rollouts.py --ref-points 4
+run sweep 150 python benchmarks/bench_sweep.py --kinds vector-map catchment --devices 1 --processes \
+  --cells 1000 --catchment-cells 100
+run reproduce_quick 150 python benchmarks/bench_reproduce.py --quick --out "$OUT/reproduce"
+
+echo
+echo "| benchmark | exit | wall s | key lines |"
+echo "|---|---|---|---|"
+while IFS='|' read -r name rc secs; do
+  status=$rc
+  [ "$rc" = 124 ] && status="timeout"
+  key=$(grep -E "ratio|warm|cells/s|cold|second run|peak|x$|[0-9]x " "$OUT/logs/$name.txt" | tail -4 | tr '\n' ';' | tr -s ' ')
+  echo "| $name | $status | $secs | ${key:0:300} |"
+done < "$OUT/parts.txt"
+echo
+echo "logs: $OUT/logs ($(cat "$OUT/logs/device.txt"))"
