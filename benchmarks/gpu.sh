@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # The headline benchmarks on whatever accelerator JAX finds (a GPU when the session has one; the CPU
-# otherwise), in under 8 minutes, then one table: each benchmark's wall seconds and its key lines.
+# otherwise), in under 8 minutes (the parts' limits add up to 470 s), then one table: each benchmark's
+# wall seconds and its key lines.
 #
 #     bash benchmarks/gpu.sh            # needs the project installed: pip install -e '.[test]'
 #
 # Each part runs under its own time limit, so one slow part cannot eat the others' time; a part that
 # fails or times out is marked so in the table. Sizes: the vector map and catchment at the thesis grid
-# (spacing 25 cm, 40 x 40), a 1000-cell vector-map sweep and a 100-cell catchment sweep on one device,
-# and `reproduce --quick` from an empty compilation cache, then again with nothing changed.
+# (spacing 25 cm, 40 x 40), the image methods (warping, MFDID), a 1000-cell vector-map sweep and a 20-cell catchment
+# sweep (1559 rollouts a cell) on one device,
+# and `reproduce --quick` from an empty compilation cache, then again with nothing changed. MinWarping
+# joins when it exists (issue 26).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 OUT="${OUT:-$(mktemp -d)}"
@@ -25,11 +28,12 @@ run() {  # name, time limit (s), command...
 }
 
 : > "$OUT/parts.txt"
-run vector_map 90 python benchmarks/bench_vector_map.py --methods delv delv-compass alv acv warping --ref-points 10
-run catchment 120 python benchmarks/bench_rollouts.py --ref-points 4
+run vector_map 80 python benchmarks/bench_vector_map.py --methods delv delv-compass alv acv --ref-points 10
+run warping 60 python benchmarks/bench_warping.py
+run catchment 80 python benchmarks/bench_rollouts.py --ref-points 4
 run sweep 150 python benchmarks/bench_sweep.py --kinds vector-map catchment --devices 1 --processes \
-  --cells 1000 --catchment-cells 100
-run reproduce_quick 150 python benchmarks/bench_reproduce.py --quick --out "$OUT/reproduce"
+  --cells 1000 --catchment-cells 20
+run reproduce_quick 100 python benchmarks/bench_reproduce.py --quick --out "$OUT/reproduce"
 
 echo
 echo "| benchmark | exit | wall s | key lines |"
@@ -37,7 +41,8 @@ echo "|---|---|---|---|"
 while IFS='|' read -r name rc secs; do
   status=$rc
   [ "$rc" = 124 ] && status="timeout"
-  key=$(grep -E "ratio|warm|cells/s|cold|second run|peak|x$|[0-9]x " "$OUT/logs/$name.txt" | tail -4 | tr '\n' ';' | tr -s ' ')
+  key=$(grep -E "ratio|warm|cold|second run|peak|x$|[0-9]x |device\(s\)|process\(es\)" "$OUT/logs/$name.txt" \
+    | grep -v "^ *setting" | tail -4 | tr '\n' ';' | tr -s ' ')
   echo "| $name | $status | $secs | ${key:0:300} |"
 done < "$OUT/parts.txt"
 echo
