@@ -38,6 +38,7 @@ _LAZY = {
         )
     },
     "load_env": "envs",
+    "to_dataframe": "outputs",
     "make_env": "envs",
     "vector_map": "evaluate",
     "Grid": "evaluate",

@@ -44,7 +44,9 @@ class ProgressBar:
         if self.bar is None:
             from tqdm.auto import tqdm  # tqdm: loaded only when a progress bar is shown
 
-            self.bar = tqdm(total=total, unit=self.unit, unit_scale=True, file=sys.stderr, disable=total <= self.single)
+            self.bar = tqdm(  # integer counts ("3/18 cell"); k and M only for large totals
+                total=total, unit=self.unit, unit_scale=total >= 10_000, file=sys.stderr, disable=total <= self.single
+            )
         self.bar.update(done)
 
     def __enter__(self) -> "ProgressBar":

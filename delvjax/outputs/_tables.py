@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.errors import InputError
 from ..core.maps import VectorMap
 from ..core.metrics import error_class
 from ..core.rollouts import EXCLUDED, NEAR_WALL, OUTCOMES, RUNNING, Catchment, SuccessRate, Trajectories
@@ -119,3 +120,22 @@ def trajectory_columns(tr: Trajectories, method: str) -> dict[str, list]:
 def concat_columns(tables: list[dict]) -> dict[str, list]:
     """Columns of several tables of one schema, one after the other."""
     return {k: [v for c in tables for v in np.asarray(c[k], dtype=object).tolist()] for k in tables[0]}
+
+
+def to_dataframe(result, method: str = ""):
+    """A result as a pandas DataFrame with the columns of its CSV file (the schemas above): a `VectorMap`
+    per grid point, a `Catchment` per grid point and mask (with the hidden landmarks), a `SuccessRate`
+    per trial, `Trajectories` per visited position. `method` fills the method column where there is one."""
+    import pandas as pd  # pandas (installed with xarray): loaded only when a table is asked for
+
+    if isinstance(result, VectorMap):
+        columns = vector_map_columns(result)
+    elif isinstance(result, Catchment):
+        columns = catchment_columns(result, with_hidden=True)
+    elif isinstance(result, SuccessRate):
+        columns = success_trial_columns(result, method)
+    elif isinstance(result, Trajectories):
+        columns = trajectory_columns(result, method)
+    else:
+        raise InputError("result", type(result).__name__, "must be a VectorMap, Catchment, SuccessRate or Trajectories")
+    return pd.DataFrame({k: list(v) if not isinstance(v, np.ndarray) else v for k, v in columns.items()})

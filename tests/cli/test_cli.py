@@ -140,3 +140,12 @@ def test_unknown_preset_and_bad_output_path(tmp_path, capsys):
     assert main(["vector-map", "env1", "--out", str(tmp_path / "o.txt")]) == 2
     assert "--out" in capsys.readouterr().err
     assert not list(tmp_path.iterdir())
+
+
+def test_progress_counts_are_integers(capsys):
+    from delvjax.cli._args import ProgressBar
+
+    with ProgressBar("cell", 0) as bar:
+        bar(3, 18)
+    err = capsys.readouterr().err
+    assert "3/18" in err and "3.00" not in err and "18.0" not in err
