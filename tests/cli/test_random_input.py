@@ -34,7 +34,6 @@ SCENE = {  # option: (good values, bad values); the one good method, alv, reads 
     "--hide": ([], ["99", "-1", "abc", ["0", "99"]]),
     "--bearing-noise-deg": (["0", "2"], ["-1", "nan", "inf", "abc"]),
     "--step-noise": (["0.1"], ["-0.1", "nan"]),
-    "--motion-heading-noise-deg": (["5"], ["-5", "inf"]),
 }
 GRID = {"--spacing": (["500"], ["0", "-1", "nan", "inf", "abc", "1e30"])}
 ROLL = {
@@ -43,9 +42,10 @@ ROLL = {
     "--lanes": (["64"], INT_BAD),
     "--first-move": (["homing", "release"], ["", "jump"]),
     "--collisions": (["ignore", "fail"], ["bounce"]),
+    "--motion-heading-noise-deg": (["5"], ["-5", "inf"]),  # rollouts only: a vector map refuses it
 }
 COMMANDS = {
-    "vector-map": {**SCENE, **GRID},
+    "vector-map": {**SCENE, **GRID, "--motion-heading-noise-deg": ([], ["5", "0", "-5"])},
     "catchment": {**SCENE, **GRID, **ROLL, "--occlude": ([], ["5", "-1", "abc"])},
     "success-rate": {
         **SCENE,
