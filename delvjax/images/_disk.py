@@ -24,7 +24,7 @@ import numpy as np
 
 from ..core.errors import InputError
 from ._metadata import check_metadata
-from ..outputs._temporary import fsync_path, fsync_tree, new_temp_dir
+from ..outputs._temporary import fsync_path, fsync_tree, new_temp_dir, ordinary_permissions
 
 METADATA = "database_metadata.yaml"
 ENTRIES = "database_entries.csv"
@@ -263,9 +263,7 @@ class DatabaseWriter:
         (self.tmp / METADATA).write_text("%YAML:1.0\n---\n" + yaml.safe_dump({"metadata": metadata}, sort_keys=False))
         self.pool.shutdown()
         fsync_tree(self.tmp)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(self.tmp, 0o777 & ~umask)  # temporaries are made 0700; a database is an ordinary folder
+        ordinary_permissions(self.tmp)  # a database is an ordinary folder
         if self.out.exists():
             self.out.rmdir()
         os.replace(self.tmp, self.out)

@@ -16,7 +16,7 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 import numpy as np
 
 from ..core.errors import InputError
-from ._temporary import fsync_path, new_temp_file, remove_stale
+from ._temporary import fsync_path, new_temp_file, ordinary_permissions, remove_stale
 
 
 def check_folder(folder: str | Path, field: str, value: object) -> Path:
@@ -89,9 +89,7 @@ def _temp_beside(target: Path) -> Path:
 def _publish(tmp: Path, target: Path) -> None:
     """fsync the written temporary, give it ordinary permissions, rename it onto `target`, fsync the folder."""
     fsync_path(tmp)
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(tmp, 0o666 & ~umask)  # temporaries are made 0600; results are ordinary files
+    ordinary_permissions(tmp)
     os.replace(tmp, target)
     fsync_path(target.parent)
 

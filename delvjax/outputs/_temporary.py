@@ -21,6 +21,8 @@ from pathlib import Path
 PREFIX = ".delvjax-"
 SUFFIX = ".part"
 _OURS = re.compile(re.escape(PREFIX) + r"(\d+)-[0-9a-f]+" + re.escape(SUFFIX) + r"$")
+_UMASK = os.umask(0)  # read once, at import: os.umask sets while it reads, which races with writer threads
+os.umask(_UMASK)
 _swept: set[str] = set()  # folders whose stale temporaries this process removed already
 _lock = threading.Lock()
 
@@ -92,6 +94,11 @@ def new_temp_dir(folder: str | Path) -> Path:
     path = temp_name(folder)
     path.mkdir(mode=0o700)
     return path
+
+
+def ordinary_permissions(path: str | Path) -> None:
+    """Give a temporary (made 0600 / 0700) the permissions of an ordinary file or folder under the umask."""
+    os.chmod(path, (0o777 if Path(path).is_dir() else 0o666) & ~_UMASK)
 
 
 def fsync_path(path: str | Path) -> None:
