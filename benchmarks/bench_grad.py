@@ -1,9 +1,9 @@
-"""Benchmark: the gradient of the soft vector-map quality against the forward evaluation.
+"""Benchmark: the gradient of the soft vector-map loss against the forward evaluation.
 
     python benchmarks/bench_grad.py [--methods delv alv acv] [--env env1] [--spacing 25] [--repeats 10]
 
 For each method on a 40 x 40 grid (spacing 25): compile time and warm time (median) of the soft
-quality (forward), of the quality and its gradient with respect to every parameter (reverse
+loss (forward), of the loss and its gradient with respect to every parameter (reverse
 mode, one program: landmarks, home, d, scale, noise sigmas), their ratio (target < 5), the
 cost of the same gradient by central finite differences with the forward program (2 forward
 runs per parameter), and the ordinary (pixel, hard) vector map of the same grid for scale.
@@ -17,7 +17,7 @@ import time
 
 import jax
 
-from delvjax.gradients._quality import problem_loss, problem_value_and_grad, quality_problem
+from delvjax.gradients._loss import problem_loss, problem_value_and_grad, loss_problem
 from delvjax.core import maps
 
 forward = jax.jit(problem_loss)
@@ -49,7 +49,7 @@ def main() -> None:
         f"{'hard map ms':>11s} {'compile fwd/grad s':>18s}"
     )
     for m in a.methods:
-        p = quality_problem(a.env, m, spacing=a.spacing)
+        p = loss_problem(a.env, m, spacing=a.spacing)
         n_params = sum(x.size for x in jax.tree.leaves(p.params))
         c_f, fwd = timed(lambda: forward(p.params, p), a.repeats)
         c_g, grad = timed(lambda: problem_value_and_grad(p), a.repeats)

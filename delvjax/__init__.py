@@ -6,6 +6,8 @@ Vision-Based Homing Navigation", chapters 3-5; see docs/model.md).
 rollouts); this top level is the edge: names, options, files, figures, CLI and this API.
 """
 
+import warnings
+
 # Every public name is imported on first use (PEP 562): `import delvjax` loads neither JAX, matplotlib,
 # xarray nor PIL, and `delvjax --help` answers at once. name -> the module that defines it.
 _LAZY = {
@@ -38,7 +40,8 @@ _LAZY = {
         )
     },
     "load_env": "envs",
-    "to_dataframe": "outputs",
+    "to_dataframe": "core.tables",
+    "to_xarray": "core.tables",
     "make_env": "envs",
     "vector_map": "evaluate",
     "Grid": "evaluate",
@@ -46,8 +49,8 @@ _LAZY = {
     "catchment": "evaluate",
     "success_rate": "evaluate",
     "trajectories": "evaluate",
-    "homing_quality": "gradients",
-    "homing_quality_grad": "gradients",
+    "homing_loss": "gradients",
+    "homing_loss_grad": "gradients",
     "optimise_layout": "gradients",
     "sensitivity": "gradients",
     "find_traps": "gradients",
@@ -65,6 +68,11 @@ _LAZY = {
     "run_sweep": "sweeps",
 }
 
+
+_RENAMED = {  # old name -> new name: still answered, with a DeprecationWarning (CHANGELOG)
+    "homing_quality": "homing_loss",  # mean 1 - cos error is lower-is-better: a loss, not a quality
+    "homing_quality_grad": "homing_loss_grad",
+}
 
 _PACKAGES = (
     "core",
@@ -89,6 +97,11 @@ def __getattr__(name: str):
         value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
         globals()[name] = value  # later lookups are plain attribute reads
         return value
+    if name in _RENAMED:
+        warnings.warn(
+            f"delvjax.{name} is renamed delvjax.{_RENAMED[name]} (lower is better)", DeprecationWarning, stacklevel=2
+        )
+        return __getattr__(_RENAMED[name])
     if name in _PACKAGES:  # `delvjax.core.maps` after a bare `import delvjax`
         return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module 'delvjax' has no attribute {name!r}")
@@ -124,8 +137,8 @@ __all__ = [
     "Warping",
     "catchment",
     "error_curve",
-    "homing_quality",
-    "homing_quality_grad",
+    "homing_loss",
+    "homing_loss_grad",
     "find_traps",
     "optimise_layout",
     "sensitivity",
@@ -136,6 +149,8 @@ __all__ = [
     "summarize_map",
     "load_sweep",
     "run_sweep",
+    "to_dataframe",
+    "to_xarray",
     "trajectories",
     "vector_map",
     "ImageSettings",

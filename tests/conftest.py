@@ -18,6 +18,18 @@ from delvjax.outputs._cache import enable_compilation_cache
 enable_compilation_cache()
 
 
+@pytest.fixture(autouse=True)
+def figures_a_reviewer_accepts():
+    """Every figure delvjax writes during a test is checked as a reviewer would (`tests.cases.figures`:
+    no overlapping texts, no text reaching into another panel, labelled axes on every data panel)."""
+    from tests.cases.figures import recording_defects
+
+    with recording_defects() as found:
+        yield
+    if found:
+        pytest.fail(f"figures a reviewer would reject: {found}")
+
+
 @pytest.fixture
 def untyped():
     """A test that passes values of the wrong type on purpose: `tests.hints_unchecked` while it runs."""
@@ -69,13 +81,15 @@ def run(tmp_path_factory):
     import time
 
     from delvjax.reproduce import _run as reproduce
+    from tests.cases.figures import recording_defects
     from tests.cases.reproduce import TINY
 
     own = tmp_path_factory.mktemp("reproduce") / "results"
     if os.environ.get("PYTEST_XDIST_WORKER") is None:
         t0 = time.perf_counter()
-        result = reproduce.reproduce(own, settings=TINY, progress=False)
-        return own, result, time.perf_counter() - t0
+        with recording_defects() as found:
+            result = reproduce.reproduce(own, settings=TINY, progress=False)
+        return own, {**result, "figure_defects": found}, time.perf_counter() - t0
     shared = tmp_path_factory.getbasetemp().parent / "reproduce-shared"  # the same folder for every worker
     done, failed = shared.with_suffix(".pickle"), shared.with_suffix(".failed")
     if failed.is_file():  # the run failed before (in this worker or another): say why, every time
@@ -92,7 +106,8 @@ def run(tmp_path_factory):
     else:
         t0 = time.perf_counter()
         try:
-            result = reproduce.reproduce(shared, settings=TINY, progress=False)
+            with recording_defects() as found:
+                result = {**reproduce.reproduce(shared, settings=TINY, progress=False), "figure_defects": found}
         except BaseException:
             import traceback
 

@@ -175,7 +175,7 @@ def test_nothing_imports_studies_by_its_bare_name():
 def test_tests_mirror_the_tree():
     """Every test file sits in a folder named after what it tests (a package of delvjax or studies),
     and no test file is named after an issue."""
-    allowed = {"tests", "twins", "cases", *FEATURES, "methods", "rollouts", "studies"}
+    allowed = {"tests", "twins", "cases", *FEATURES, "methods", "rollouts", "studies", "examples"}
     for path in (ROOT / "tests").rglob("test_*.py"):
         folders = path.relative_to(ROOT).parts[:-1]
         assert set(folders) <= allowed, path

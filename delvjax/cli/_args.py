@@ -35,18 +35,42 @@ def progress(msg: str) -> None:
 
 class ProgressBar:
     """A `progress(done, total)` callback: a bar on stderr with rate and ETA once the work runs in
-    more than one chunk (`total` > `single`); nothing for a run of one chunk."""
+    more than one chunk (`total` > `single`); nothing for a run of one chunk. `start(total, phase)`
+    shows the bar at once (the whole run, compilation included) with what is happening now
+    ("compiling program 1 of 2"); `phase(text)` changes it; a run of one chunk prints the phases as lines."""
 
     def __init__(self, unit: str, single: int):
         self.unit, self.single, self.bar = unit, single, None
+        self._phase: str | None = None
+
+    def _open(self, total: int) -> None:
+        from tqdm.auto import tqdm  # tqdm: loaded only when a progress bar is shown
+
+        self.bar = tqdm(  # integer counts ("3/18 cell", "65536/250000 pt"), never "0.00/250k"
+            total=total, unit=self.unit, file=sys.stderr, disable=total <= self.single
+        )
+        if self._phase:
+            self.phase(self._phase)
+
+    def start(self, total: int, phase: str | None = None) -> None:
+        """Show the bar now, before the first chunk (whose call compiles the program)."""
+        self._phase = phase
+        if self.bar is None:
+            self._open(total)
+
+    def phase(self, text: str) -> None:
+        """What the run does now: the bar's description, or a line when there is no bar."""
+        self._phase = text
+        if self.bar is not None and not self.bar.disable:
+            self.bar.set_description_str(text, refresh=True)
+        elif text:
+            progress(f"{text} ...")
 
     def __call__(self, done: int, total: int) -> None:
         if self.bar is None:
-            from tqdm.auto import tqdm  # tqdm: loaded only when a progress bar is shown
-
-            self.bar = tqdm(  # integer counts ("3/18 cell"); k and M only for large totals
-                total=total, unit=self.unit, unit_scale=total >= 10_000, file=sys.stderr, disable=total <= self.single
-            )
+            self._open(total)
+        if self._phase and self._phase.startswith("compiling") and not self.bar.disable:
+            self.phase("running")  # the first chunk is back: its program is compiled
         self.bar.update(done)
 
     def __enter__(self) -> "ProgressBar":

@@ -8,7 +8,7 @@ from pathlib import Path
 from ._args import add_setting_args, progress, setting_values
 from ..core.maps import SPACING
 from ._help import COMMAND_HELP
-from ..gradients._quality import TAU
+from ..gradients._loss import TAU
 from ..gradients._sensitivity import SENSITIVITY_METHODS as METHODS
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_out_dir, output_set
@@ -25,9 +25,9 @@ def add_sensitivity(sub) -> None:
     p = sub.add_parser(
         "sensitivity",
         help=COMMAND_HELP["sensitivity"],
-        description="Gradients of the soft homing quality (mean 1 - cos angular error over the grid) "
+        description="Gradients of the soft homing loss (mean 1 - cos angular error over the grid) "
         "with respect to every landmark and to d, bearing, odometry and compass noise, for "
-        "DELV, ALV and ACV; central differences of the ordinary quality for warping. "
+        "DELV, ALV and ACV; central differences of the ordinary loss for warping. "
         "Writes two figures, two CSVs and sensitivity.json into --out.",
     )
     p.add_argument("env", help="preset name or environment JSON")
@@ -69,8 +69,7 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
         "seed": args.seed,
         "tau": args.tau,
         "methods": {
-            m: {"quality": r["quality"], "how": r["how"], "per_unit": r["per_unit"]}
-            for m, r in result["methods"].items()
+            m: {"loss": r["loss"], "how": r["how"], "per_unit": r["per_unit"]} for m, r in result["methods"].items()
         },
     }
     with output_set() as files:

@@ -15,9 +15,9 @@ COMMAND_HELP = {
     "trajectories": "homing paths from chosen release points (docs/model.md §5; Figs 4.11, 5.8)",
     "sweep": "every combination of the axes of a sweep file (TOML), one program per shape",
     "plot-sweep": "heat maps or line plots (95 %% intervals over seeds) of a finished sweep",
-    "sensitivity": "which landmark matters most, and the sensitivity of homing quality to d and the noise (gradients; docs/differentiable.md)",
+    "sensitivity": "which landmark matters most, and the sensitivity of homing loss to d and the noise (gradients; docs/differentiable.md)",
     "traps": "trap points (sinks, saddles, sources) of a homing field near its failed rollouts (optimistix; docs/differentiable.md)",
-    "optimise-layout": "move the landmarks to maximise homing quality (optimistix BFGS), compare by catchment (docs/differentiable.md)",
+    "optimise-layout": "move the landmarks to minimise the homing loss (optimistix BFGS), compare by catchment (docs/differentiable.md)",
     "images": "image databases: render one from a world, import one (docs/images.md)",
 }
 

@@ -19,7 +19,7 @@ from ..evaluate._vector_map import refuse_rollout_only
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_out_dir
 from ..options._limits import MAX_POINTS
-from ..outputs._tables import vector_map_columns
+from ..core.tables import vector_map_columns
 from ._help import COMMAND_HELP
 from ..images._load import load_database
 from ..options._settings import make_setup

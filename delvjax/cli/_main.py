@@ -32,10 +32,11 @@ from ..core.errors import InputError
 from ..options._limits import grid_count
 from ..envs._presets import PRESET_DESCRIPTIONS, PRESETS
 from ..options._registry import DESCRIPTIONS
-from ..outputs._tables import vector_map_columns
+from ..core.tables import vector_map_columns
 from ._help import COMMAND_HELP, DESCRIPTION, version
 from ..core.metrics import summarize_map
 from ..reproduce import _run as reproduce
+from ..reproduce._study import figure_formats
 
 # --- commands ---------------------------------------------------------------------------
 
@@ -71,6 +72,7 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     n_points = grid_count(env.arena, args.spacing)
     progress(f"vector map of {args.method} on {env.name} (spacing {args.spacing:g} cm, {n_points} cells) ...")
     with ProgressBar("pt", request["batch_size"]) as bar:  # a bar only when the grid runs in several chunks
+        bar.start(n_points, "compiling program 1 of 1 (cached for later runs)")
         vm = maps.vector_map(**request, progress=bar)
     vm.error_deg.block_until_ready()
     summary = {
@@ -115,6 +117,13 @@ def add_reproduce(sub) -> None:
     p.add_argument("--force", action="store_true", help="recompute even studies that are up to date")
     p.add_argument("--seed", type=int, default=0, help="seed of every random heading, release point and noise")
     p.add_argument(
+        "--format",
+        default="png",
+        metavar="png[,pdf,svg]",
+        help="figure files to write (default png; the PNG is always written, the report shows it): "
+        "e.g. png,pdf,svg for vector figures beside it",
+    )
+    p.add_argument(
         "--workers",
         type=int,
         default=None,
@@ -131,13 +140,20 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
             print(f"{name:16s} {module.TITLE}")
         return 0
     reproduce.select(args.only)  # validate before any work
+    figure_formats(args.format)
     if args.workers is not None and args.workers < 1:
         raise InputError("--workers", args.workers, "must be at least 1")
     reproduce.check_out_dir(args.out)
     t0 = time.perf_counter()
     try:
         result = reproduce.reproduce(
-            args.out, quick=args.quick, only=args.only, force=args.force, seed=args.seed, workers=args.workers
+            args.out,
+            quick=args.quick,
+            only=args.only,
+            force=args.force,
+            seed=args.seed,
+            workers=args.workers,
+            formats=args.format,
         )
     except OSError as exc:  # e.g. a full disk: every file is whole or absent, finished studies are kept
         why = exc.strerror or str(exc)

@@ -36,7 +36,7 @@ from ..core.rollouts import (
 from ..options._settings import make_setup, option_names
 from ..options._checks import occlusion_count
 from ..options._registry import get_method
-from ..outputs._tables import (
+from ..core.tables import (
     catchment_columns,
     concat_columns,
     outcome_names,

@@ -131,19 +131,22 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     n = spec.n_cells
     with ProgressBar("cell", 0 if lead else n) as bar:
+
+        def announce() -> None:  # every cell is checked: the bar covers the rest of the run
+            if lead:
+                progress(
+                    f"sweep of {n} cells ({' x '.join(map(str, spec.shape))}: {', '.join(spec.axes)}) on "
+                    f"{jax.process_count()} process(es), {jax.device_count()} device(s) ..."
+                )
+                bar.start(n)
+
         ds = run_sweep(
             spec,
             max_points=args.max_points,
             progress=bar,
             out=out,
-            announce=lambda: (
-                lead
-                and progress(
-                    f"sweep of {n} cells ({' x '.join(map(str, spec.shape))}: "
-                    f"{', '.join(spec.axes)}) on {jax.process_count()} "
-                    f"process(es), {jax.device_count()} device(s) ..."
-                )
-            ),
+            phase=bar.phase if lead else None,
+            announce=announce,
         )
     if not lead:
         return 0

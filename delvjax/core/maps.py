@@ -22,7 +22,8 @@ from .batching import fixed_width_map, local_mesh, n_devices, over_devices, padd
 from .geometry import TWO_PI
 from .kernel import direction_from, map_poses
 from .methods.base import HomingMethod
-from .metrics import angular_error_deg
+from .frames import frame
+from .metrics import angular_error_deg, error_class
 from .scene import Env, clear_of_landmarks
 from .sensing import record_home
 from .sensor import Sensor
@@ -49,6 +50,18 @@ class VectorMap(eqx.Module):
     direction: GridFloat
     valid: GridFlag
     error_deg: GridFloat
+
+    def columns(self, method: str = "") -> dict:
+        """The columns of the vector-map CSV (`vector_map_columns`); `method` is not a column of it."""
+        return vector_map_columns(self)
+
+    def to_dataframe(self, method: str = ""):
+        """One row per grid point with the columns of the vector-map CSV, as a pandas DataFrame."""
+        return frame(self.columns())
+
+    def to_xarray(self):
+        """The map as an `xarray.Dataset` over (y, x) in cm, CF units on every variable (`map_dataset`)."""
+        return map_dataset(self)
 
 
 def grid_points(arena, spacing: float) -> np.ndarray:
@@ -246,3 +259,52 @@ def sweep(
         return _vector_map(env, points, heading, key, s, m, clearance, visible)
 
     return jax.vmap(one)(jnp.asarray(values))
+
+
+def vector_map_columns(vm: VectorMap) -> dict[str, np.ndarray]:
+    """Per grid point (grid points only): x, y, heading_deg, direction_deg (NaN where invalid),
+    error_deg, valid, error_class."""
+    inc = np.asarray(vm.included)
+    pts = np.asarray(vm.points)[inc]
+    return {
+        "x": pts[:, 0],
+        "y": pts[:, 1],
+        "heading_deg": np.degrees(np.asarray(vm.heading)[inc]),
+        "direction_deg": np.degrees(np.asarray(vm.direction)[inc]),
+        "error_deg": np.asarray(vm.error_deg)[inc],
+        "valid": np.asarray(vm.valid)[inc],
+        "error_class": np.asarray(error_class(vm.error_deg))[inc],
+    }
+
+
+def map_dataset(vm: VectorMap):
+    """A `VectorMap` as an `xarray.Dataset`: on a regular grid (`delvjax.vector_map`) the variables
+    heading_deg, direction_deg, error_deg, valid, included over dimensions (y, x) in cm; on scattered
+    points (an image database) over `point`, with x and y as coordinates. CF `units` and `long_name`
+    on every variable; NaN direction where invalid."""
+    import xarray as xr  # xarray: loaded only when a labelled view is asked for
+
+    pts = np.asarray(vm.points, dtype=np.float64)
+    values = {
+        "heading_deg": (np.degrees(np.asarray(vm.heading)), "degree", "release heading of the unit move"),
+        "direction_deg": (np.degrees(np.asarray(vm.direction)), "degree", "homing direction, world frame"),
+        "error_deg": (np.asarray(vm.error_deg), "degree", "angular error to the true home direction"),
+        "valid": (np.asarray(vm.valid), "1", "a homing direction was found"),
+        "included": (np.asarray(vm.included), "1", "a grid point (not inside or next to a landmark)"),
+    }
+    xs, ys = np.unique(pts[:, 0]), np.unique(pts[:, 1])
+    gx, gy = np.meshgrid(xs, ys)
+    grid = xs.size * ys.size == len(pts) and np.array_equal(np.stack([gx.ravel(), gy.ravel()], -1), pts)
+    if grid:  # row-major from (xmin, ymin), as `maps.grid_points` lays it out
+        data = {
+            k: (("y", "x"), v.reshape(ys.size, xs.size), {"units": u, "long_name": t})
+            for k, (v, u, t) in values.items()
+        }
+        coords = {"x": ("x", xs, {"units": "cm", "long_name": "x"}), "y": ("y", ys, {"units": "cm", "long_name": "y"})}
+    else:
+        data = {k: (("point",), v, {"units": u, "long_name": t}) for k, (v, u, t) in values.items()}
+        coords = {
+            "x": ("point", pts[:, 0], {"units": "cm", "long_name": "x"}),
+            "y": ("point", pts[:, 1], {"units": "cm", "long_name": "y"}),
+        }
+    return xr.Dataset(data, coords=coords)

@@ -1,6 +1,6 @@
 """Landmark layouts designed for homing (docs/differentiable.md "Layout design").
 
-`optimise_layout` moves the landmarks (radii fixed) to minimise the soft homing quality of a
+`optimise_layout` moves the landmarks (radii fixed) to minimise the soft homing loss of a
 method, averaged over every choice of `occlude` hidden landmarks, with optimistix's BFGS:
 
   * positions are x = lo + (hi - lo) sigmoid(u): every landmark stays inside the arena, r + WALL_CM
@@ -27,12 +27,12 @@ import optimistix as optx
 
 from ..envs._presets import load_env
 from ..evaluate._rollouts import catchment
-from ._quality import TAU, QualityProblem, quality_problem
+from ._loss import TAU, LossProblem, loss_problem
 from ..core.errors import InputError
 from ..core.maps import SPACING
 from ..core.rollouts import Catchment, catchment_summary, occlusion_masks
 from ..core.scene import Env
-from ..core.soft.quality import soft_quality
+from ..core.soft.loss import soft_loss
 from ..options._checks import occlusion_count, positive_int
 from ..envs._presets import make_env, random_env
 
@@ -72,9 +72,9 @@ def _objective(u, args):
     pos = lo + (hi - lo) * jax.nn.sigmoid(u)
     landmarks = lm.at[:n, :2].set(pos)
     env = eqx.tree_at(lambda e: e.landmarks, problem.env, landmarks)
-    quality = jnp.mean(
+    loss = jnp.mean(
         jax.vmap(
-            lambda vis: soft_quality(
+            lambda vis: soft_loss(
                 env,
                 problem.points,
                 problem.included,
@@ -95,7 +95,7 @@ def _objective(u, args):
     penalty = jnp.sum(jax.nn.relu(r + HOME_GAP_CM - home) ** 2) + 0.5 * jnp.sum(
         jax.nn.relu(r[:, None] + r[None] + GAP_CM - gap) ** 2
     )
-    return quality + PENALTY * penalty
+    return loss + PENALTY * penalty
 
 
 SOLVER = optx.BFGS(rtol=1e-5, atol=1e-6)
@@ -160,7 +160,7 @@ def optimise_layout(
     the result by catchment and error rates on the `spacing` grid under every choice of `occlude`
     hidden landmarks."""
     env = load_env(env)
-    problem: QualityProblem = quality_problem(env, method, spacing=OPT_SPACING, seed=seed, tau=tau, **options)
+    problem: LossProblem = loss_problem(env, method, spacing=OPT_SPACING, seed=seed, tau=tau, **options)
     k = occlusion_count(occlude, env.n_landmarks) if occlude else 0
     steps = positive_int(steps, "steps")
     n = env.n_landmarks

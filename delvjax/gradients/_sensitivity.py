@@ -1,7 +1,7 @@
-"""Sensitivity of homing quality to the world, the agent and the noise (docs/differentiable.md
-"Sensitivity study"): which landmark matters most, and how quality responds to d, bearing,
-odometry and compass noise, across DELV, ALV, ACV (gradients of the soft quality, reverse mode)
-and warping (central differences of the ordinary quality, common random numbers: it has no
+"""Sensitivity of homing loss to the world, the agent and the noise (docs/differentiable.md
+"Sensitivity study"): which landmark matters most, and how loss responds to d, bearing,
+odometry and compass noise, across DELV, ALV, ACV (gradients of the soft loss, reverse mode)
+and warping (central differences of the ordinary loss, common random numbers: it has no
 soft version)."""
 
 from __future__ import annotations
@@ -12,11 +12,11 @@ from collections.abc import Callable
 import numpy as np
 
 from ..envs._presets import load_env
-from ._quality import TAU, homing_quality, homing_quality_grad
+from ._loss import TAU, homing_loss, homing_loss_grad
 from ..core.maps import SPACING
 from ..core.scene import Env
 from ..evaluate import _vector_map as api
-from ._quality import quality_problem
+from ._loss import loss_problem
 from ..core.errors import InputError
 
 SENSITIVITY_METHODS = ("delv", "alv", "acv", "warping")
@@ -46,7 +46,7 @@ def check_sensitivity(
         if m == "warping":
             api.map_request(env, m, spacing=spacing, seed=seed, **_options(m))
         else:
-            quality_problem(env, m, spacing=spacing, seed=seed, tau=tau, **_options(m))
+            loss_problem(env, m, spacing=spacing, seed=seed, tau=tau, **_options(m))
     return env
 
 
@@ -58,8 +58,8 @@ def sensitivity(
     tau: float = TAU,
     progress: Callable[[str], None] | None = None,
 ) -> dict:
-    """Per method: quality at the operating point, its gradient with respect to every landmark
-    [x, y, r] (soft methods), and d quality per unit of d and of each noise sigma. Returns
+    """Per method: loss at the operating point, its gradient with respect to every landmark
+    [x, y, r] (soft methods), and d loss per unit of d and of each noise sigma. Returns
     {"env", "methods": {name: {...}}, "landmark_rows", "parameter_rows"}."""
     env = load_env(env)
     out: dict = {"env": env, "methods": {}, "landmark_rows": [], "parameter_rows": []}
@@ -68,7 +68,7 @@ def sensitivity(
             progress(m)
         opts = _options(m)
         if m == "warping":
-            value = float(homing_quality(env, m, spacing=spacing, seed=seed, soft=False, **opts))
+            value = float(homing_loss(env, m, spacing=spacing, seed=seed, soft=False, **opts))
             per = {}
             for name in NOMINAL:
                 if name not in opts:
@@ -76,20 +76,20 @@ def sensitivity(
                     continue
                 h = FD_STEP[name]
                 hi = float(
-                    homing_quality(env, m, spacing=spacing, seed=seed, soft=False, **{**opts, name: opts[name] + h})
+                    homing_loss(env, m, spacing=spacing, seed=seed, soft=False, **{**opts, name: opts[name] + h})
                 )
                 lo = float(
-                    homing_quality(
+                    homing_loss(
                         env, m, spacing=spacing, seed=seed, soft=False, **{**opts, name: max(opts[name] - h, 0.0)}
                     )
                 )
                 per[name] = (hi - lo) / (opts[name] + h - max(opts[name] - h, 0.0))
-            grads, how = None, "central difference, hard quality"
+            grads, how = None, "central difference, hard loss"
         else:
-            value, g = homing_quality_grad(env, m, spacing=spacing, seed=seed, tau=tau, **opts)
+            value, g = homing_loss_grad(env, m, spacing=spacing, seed=seed, tau=tau, **opts)
             per = {name: float(g.get(name, 0.0)) if name in opts else 0.0 for name in NOMINAL}
-            grads, how = g["landmarks"], f"reverse mode, soft quality (tau {tau:g})"
-        out["methods"][m] = {"quality": value, "per_unit": per, "landmark_grad": grads, "how": how}
+            grads, how = g["landmarks"], f"reverse mode, soft loss (tau {tau:g})"
+        out["methods"][m] = {"loss": value, "per_unit": per, "landmark_grad": grads, "how": how}
         for name in NOMINAL:
             out["parameter_rows"].append(
                 {
@@ -97,8 +97,8 @@ def sensitivity(
                     "parameter": name,
                     "nominal": opts.get(name, 0.0),
                     "unit": UNITS[name],
-                    "d_quality_per_unit": per[name] * UNITS[name],
-                    "quality": value,
+                    "d_loss_per_unit": per[name] * UNITS[name],
+                    "loss": value,
                     "how": how,
                 }
             )

@@ -19,7 +19,7 @@ import numpy as np
 
 from ..envs._presets import load_env
 from ..evaluate._rollouts import catchment
-from ._quality import TAU, quality_problem
+from ._loss import TAU, loss_problem
 from ..core.errors import InputError
 from ..core.maps import SPACING
 from ..core.rollouts import TIMEOUT, Catchment
@@ -101,7 +101,7 @@ def find_traps(
     if not isinstance(method, str):
         raise InputError("method", method, "must be a registry name")
     env = load_env(env)
-    problem = quality_problem(env, method, spacing=spacing, seed=seed, tau=tau, **options)  # validates first
+    problem = loss_problem(env, method, spacing=spacing, seed=seed, tau=tau, **options)  # validates first
     max_starts = positive_int(max_starts, "max_starts")
     near = float(problem.sensor.d) if near is None else positive(near, "near")
     c = catchment(env, method, spacing=spacing, seed=seed, home_radius=home_radius, announce=announce, **options)

@@ -14,11 +14,12 @@ from ._rollouts import catchment_panel
 
 
 def landmark_figure(result: dict):
-    """Arrows on the landmarks: the direction that improves quality (minus the position gradient),
+    """Arrows on the landmarks: the direction that lowers the homing loss (minus the position gradient),
     scaled per method so that its longest arrow is 150 cm; the number is |grad| x 100 (per metre)."""
     env = result["env"]
     soft = [m for m, r in result["methods"].items() if r["landmark_grad"] is not None]
-    fig, axes = subplots(1, max(len(soft), 1), figsize=(4.4 * max(len(soft), 1), 4.6), squeeze=False)
+    n = max(len(soft), 1)
+    fig, axes = subplots(1, n, figsize=(4.6 * n, 5.0), squeeze=False, layout="constrained")
     lm = np.asarray(env.landmarks)[np.asarray(env.valid)]
     for ax, m in zip(axes[0], soft):
         g = np.asarray(result["methods"][m]["landmark_grad"])
@@ -48,16 +49,20 @@ def landmark_figure(result: dict):
                 color="tab:red",
                 zorder=6,
             )
-        ax.set_title(f"{m}: quality {result['methods'][m]['quality']:.3f}", fontsize=10)
-    fig.suptitle("Which landmark matters: arrows improve homing quality (|dQ/dx| per metre)")
+        ax.set_title(f"{m}: loss {result['methods'][m]['loss']:.3g} (lower is better)", fontsize=10)
+    fig.suptitle(
+        "Which landmark matters: arrows move a landmark the way that lowers the homing loss\n"
+        "(arrow lengths scaled per panel, the longest 150 cm; numbers |dL/dx| per metre)",
+        fontsize=10,
+    )
     return fig
 
 
 def parameter_figure(result: dict):
-    """Bars: change of homing quality per unit of d (10 cm) and of each noise sigma (1 degree)."""
+    """Bars: change of homing loss per unit of d (10 cm) and of each noise sigma (1 degree)."""
     methods = list(result["methods"])
     names = list(NOMINAL)
-    fig, axes = subplots(1, 1, figsize=(7.5, 4.0), squeeze=False)
+    fig, axes = subplots(1, 1, figsize=(7.5, 4.2), squeeze=False, layout="constrained")
     ax = axes[0, 0]
     width = 0.8 / len(methods)
     for k, m in enumerate(methods):
@@ -65,9 +70,10 @@ def parameter_figure(result: dict):
         ax.bar(np.arange(len(names)) + (k - (len(methods) - 1) / 2) * width, vals, width, label=m)
     ax.axhline(0, color="black", linewidth=0.8)
     ax.set_xticks(range(len(names)), ["d (per 10 cm)", "bearing σ (per °)", "odometry σ (per °)", "compass σ (per °)"])
-    ax.set_ylabel("change of homing quality (1 - cos error)")
+    ax.set_ylabel("change of homing loss\n(mean 1 - cos error; < 0 is better)")
+    ax.set_xlabel("parameter (change per unit)")
     ax.legend(fontsize=8)
-    ax.set_title("Sensitivity of homing quality at d = 50 cm, σ bearing 1°, odometry 1°, compass 2°", fontsize=9)
+    ax.set_title("Sensitivity of homing loss at d = 50 cm, σ bearing 1°, odometry 1°, compass 2°", fontsize=9)
     return fig
 
 
@@ -75,7 +81,7 @@ def trap_figure(report: TrapReport, spacing: float):
     """The catchment map (squares: rollouts that reach home) and vector map with the zeros drawn
     (the sink at home left out): sinks red discs, saddles orange crosses, sources blue triangles, discontinuities grey diamonds;
     the end points of the timed-out rollouts as small red dots."""
-    fig, axes = subplots(1, 1, figsize=(6.2, 6.2), squeeze=False)
+    fig, axes = subplots(1, 1, figsize=(6.2, 6.2), squeeze=False, layout="constrained")
     ax = axes[0, 0]
     s = report.summary
     catchment_panel(
@@ -118,7 +124,7 @@ def trap_figure(report: TrapReport, spacing: float):
 def layout_figure(result: LayoutResult, spacing: float):
     """Start and optimised layouts side by side: each one's vector map and catchment (the comparison's
     own runs; the worst mask under occlusion), and the soft objective per step."""
-    fig, axes = subplots(1, 3, figsize=(15.5, 5.2), squeeze=False)
+    fig, axes = subplots(1, 3, figsize=(16.5, 5.6), squeeze=False, layout="constrained")
     for ax, env, row, c in zip(axes[0][:2], (result.start, result.optimised), result.rows, result.catchments):
         worst = int(np.argmin(c.catchment_pct()))
         catchment_panel(
@@ -134,6 +140,7 @@ def layout_figure(result: LayoutResult, spacing: float):
     ax = axes[0][2]
     ax.plot(range(len(result.objective)), result.objective, marker="o", markersize=3)
     ax.set_xlabel("BFGS step")
-    ax.set_ylabel("soft objective (1 - cos error + penalty)")
+    ax.set_ylabel("soft objective (loss + penalty; lower is better)")
+    ax.ticklabel_format(axis="y", useOffset=True, style="sci", scilimits=(-2, 3))
     ax.set_title(f"{result.method}, occlude {result.occlude}: {result.seconds:.1f} s", fontsize=10)
     return fig

@@ -71,8 +71,9 @@ def pipeline_figure(donut_image, panorama_image, mask_image, ring_mask, title: s
         a.imshow(img, cmap="gray", aspect="auto", interpolation="nearest")
         a.set_title(label, fontsize=9)
         a.set_yticks([])
-    for a in fig.axes:
+    for a in fig.axes:  # pictures: no pixel ticks
         a.set_xticks([])
+        a.set_yticks([])
     fig.suptitle(title)
     fig.set_layout_engine("tight")
     return fig

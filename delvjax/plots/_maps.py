@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Rectangle
 from matplotlib.path import Path as Outline
 
@@ -11,10 +12,10 @@ from ..core.metrics import error_class
 from ..core.scene import Env
 
 
-def subplots(*grid: int, figsize: tuple[float, float], **kw):
+def subplots(*grid: int, figsize: tuple[float, float], layout: str | None = None, **kw):
     """(figure, axes) of a new figure that belongs to no pyplot state (no backend switch, no global
-    figure list; safe to draw on any thread): `Figure(figsize).subplots(*grid, **kw)`."""
-    fig = Figure(figsize=figsize)
+    figure list; safe to draw on any thread): `Figure(figsize, layout).subplots(*grid, **kw)`."""
+    fig = Figure(figsize=figsize, layout=layout)
     return fig, fig.subplots(*grid, **kw)
 
 
@@ -90,16 +91,40 @@ def draw_vector_map(ax, env: Env | None, points, direction, valid, included, spa
                 ax.scatter(pts[sel, 0], pts[sel, 1], zorder=4, label=label, **style)
 
 
+def vector_map_handles(classes: bool = False, first: bool = False) -> list:
+    """Legend entries of a vector map: every marker it can show (the arrows are unit directions)."""
+    what = "first homing direction" if first else "homing direction"
+    handles = [
+        Line2D([], [], marker=ARROW, color="black", ls="", ms=10, label=f"{what} (unit arrows)"),
+        Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
+        Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
+        Line2D([], [], marker="x", color="tab:red", ls="", ms=7, label="no direction (invalid)"),
+    ]
+    if classes:
+        handles += [
+            Line2D(
+                [],
+                [],
+                ls="",
+                label=f"error {lab}",
+                marker=style["marker"],
+                color=style.get("color", style.get("edgecolors")),
+                mfc="none" if "facecolors" in style else None,
+            )
+            for lab, style in CLASS_STYLE[1:]
+        ]
+    return handles
+
+
 def vector_map_figure(env: Env, vm, spacing: float, title: str = "", classes: bool = False):
     """Figure of one vector map (Fig 4.2; with `classes`, the error markers of Fig 4.3)."""
-    fig, ax = subplots(figsize=(6.4, 6.4))
+    fig, ax = subplots(figsize=(6.4, 7.0), layout="constrained")
     draw_vector_map(
         ax, env, vm.points, vm.direction, vm.valid, vm.included, spacing, error_deg=vm.error_deg if classes else None
     )
     draw_env(ax, env)
     ax.set_title(title)
-    if classes or not np.asarray(vm.valid)[np.asarray(vm.included)].all():
-        ax.legend(loc="upper right", fontsize=8, framealpha=0.9)
+    fig.legend(handles=vector_map_handles(classes), loc="outside lower center", ncol=3, fontsize=8, frameon=False)
     return fig
 
 
@@ -123,12 +148,22 @@ def error_curve_figure(curves: dict[str, list[dict]], title: str = ""):
 
 
 def environments_figure(envs: list[Env]):
-    """The built-in environments side by side (README)."""
-    fig, axes = subplots(1, len(envs), figsize=(3.2 * len(envs), 3.4))
-    for ax, env in zip(np.atleast_1d(axes), envs):
+    """The built-in environments side by side (README), in centimetres, with a legend of what is drawn."""
+    cols = min(len(envs), 4)
+    rows = -(-len(envs) // cols)
+    fig, axes = subplots(rows, cols, figsize=(3.3 * cols, 3.4 * rows + 0.4), squeeze=False, layout="constrained")
+    for ax in axes.ravel()[len(envs) :]:
+        ax.set_visible(False)
+    for i, (ax, env) in enumerate(zip(axes.ravel(), envs)):
         draw_env(ax, env)
         ax.set_title(env.name)
-        ax.set_xlabel("")
-        ax.set_ylabel("")
-    fig.set_layout_engine("tight")  # applied when drawn (in the figure thread)
+        ax.set_xlabel("x (cm)")
+        ax.set_ylabel("y (cm)")
+        ax.tick_params(labelsize=7)
+    marks = [
+        Line2D([], [], marker="o", ls="", color="0.15", markersize=9, label="landmark (cylinder, to scale)"),
+        Line2D([], [], marker="s", ls="", color="black", markersize=6, label="home"),
+        Line2D([], [], color="black", lw=1.0, label="arena wall"),
+    ]
+    fig.legend(handles=marks, loc="outside lower center", ncol=3, fontsize=8, frameon=False)
     return fig

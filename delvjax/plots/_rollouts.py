@@ -9,13 +9,14 @@ import matplotlib
 import numpy as np
 from matplotlib.collections import PatchCollection
 from matplotlib.lines import Line2D
-from matplotlib.patches import Circle, Rectangle
+from matplotlib.patches import Circle, Patch, Rectangle
 
 from ..core.rollouts import OUTCOMES, SUCCESS
 from ..core.scene import Env
-from ._maps import draw_env, draw_vector_map, subplots
+from ._maps import draw_env, draw_vector_map, subplots, vector_map_handles
 
 SQUARE = dict(facecolor=(0.55, 0.75, 0.95, 0.35), edgecolor=(0.1, 0.35, 0.75), linewidth=0.6)
+NOT_COUNTED = dict(facecolor="none", edgecolor="0.55", hatch="////", linewidth=0.0)
 FAIL_STYLE = {"timeout": ("o", "black"), "landmark": ("x", "black"), "arena": ("s", "black")}
 
 
@@ -27,9 +28,39 @@ def draw_catchment(ax, points, success, included, spacing: float) -> None:
     ax.add_collection(PatchCollection(squares, zorder=1, **SQUARE))
 
 
+def draw_not_counted(ax, points, included, counted, spacing: float) -> None:
+    """Hatched squares on the grid points that are released but not counted in the catchment (closer
+    than d to a wall under the default first move, docs/model.md section 5): not failures."""
+    sel = np.asarray(included) & ~np.asarray(counted)
+    side = 0.86 * spacing
+    squares = [Rectangle((x - side / 2, y - side / 2), side, side) for x, y in np.asarray(points)[sel]]
+    if squares:
+        ax.add_collection(PatchCollection(squares, zorder=1, match_original=False, **NOT_COUNTED))
+
+
+def not_counted(result) -> bool:
+    """Whether a `Catchment` has released grid points that are not counted."""
+    return bool((np.asarray(result.included) & ~np.asarray(result.counted)).any())
+
+
+def catchment_handles(uncounted: bool, hidden: bool = False) -> list:
+    """Legend entries of a catchment map: success squares, cells not counted (if any), blank failures,
+    the vector map's markers and hidden landmarks."""
+    handles = [Patch(label="release point that reaches home", **SQUARE)]
+    if uncounted:
+        handles.append(Patch(label="not counted (within d of a wall)", **NOT_COUNTED))
+    handles.append(Patch(facecolor="white", edgecolor="0.7", label="blank: release point that fails"))
+    handles += vector_map_handles(first=True)
+    if hidden:
+        handles.append(Patch(facecolor="white", edgecolor="black", linestyle="--", label="hidden landmark"))
+    return handles
+
+
 def catchment_panel(ax, env: Env, result, m: int, spacing: float, title: str = "") -> None:
-    """One mask of a `Catchment`: its vector map with the catchment squares underneath."""
+    """One mask of a `Catchment`: its vector map with the catchment squares underneath (and the cells
+    not counted hatched)."""
     draw_catchment(ax, result.points, np.asarray(result.success)[m], result.counted, spacing)
+    draw_not_counted(ax, result.points, result.included, result.counted, spacing)
     draw_vector_map(
         ax, env, result.points, np.asarray(result.direction)[m], np.asarray(result.valid)[m], result.included, spacing
     )
@@ -48,7 +79,13 @@ def catchment_figure(env: Env, result, spacing: float, title: str = ""):
     cols = 1 if n == 1 else 2 if n <= 4 else 3 if n <= 9 else 4
     rows = math.ceil(n / cols)
     size = 6.4 if n == 1 else 4.6 if n <= 4 else 3.6
-    fig, axes = subplots(rows, cols, figsize=(size * cols, size * rows + (0.4 if title else 0)), squeeze=False)
+    fig, axes = subplots(
+        rows,
+        cols,
+        figsize=(size * cols, size * rows + 0.9 + (0.4 if title else 0)),
+        squeeze=False,
+        layout="constrained",
+    )
     for m in range(n):
         ax = axes[m // cols][m % cols]
         hidden = result.hidden[m]
@@ -62,7 +99,8 @@ def catchment_figure(env: Env, result, spacing: float, title: str = ""):
         axes[m // cols][m % cols].axis("off")
     if n > 1 and title:
         fig.suptitle(f"{title}: mean {pct.mean():.2f}%, min {pct.min():.2f}%, max {pct.max():.2f}%")
-    fig.set_layout_engine("tight")  # applied when drawn (in the figure thread)
+    handles = catchment_handles(not_counted(result), hidden=any(len(h) for h in result.hidden))
+    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=8, frameon=False)
     return fig
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+from matplotlib.patches import Patch
 
 from ..core.errors import InputError
 from ..core.metrics import t_quantile
@@ -14,16 +15,22 @@ from ._maps import subplots
 MAX_PANELS = 24
 
 
+OVERLAID = "method"  # line plots draw this axis as one line each, on shared axes, not as panels
+MAX_ANNOTATED = 400  # heat-map cells that get their value written in them
+
+
 def check_plot(ds, x: str, y: str | None, metric: str) -> None:
     """`InputError` naming --x, --y or --metric when it is not an axis / a metric of the sweep."""
     for flag, name in (("--x", x), ("--y", y)):
         if name is not None and name not in ds.dims:
+            if name in ds.coords:  # an axis of one value is a scalar coordinate
+                raise InputError(flag, name, f"has one value ({ds[name].item()}): sweep more values to draw it")
             raise InputError(flag, name, f"is not an axis of the sweep (axes: {', '.join(ds.dims)})")
     if y == x:
         raise InputError("--y", y, "must differ from --x")
     if metric not in ds.data_vars:
         raise InputError("--metric", metric, f"is not a metric of the sweep (metrics: {', '.join(ds.data_vars)})")
-    facets = [d for d in ds.dims if d not in (x, y, "seed") and ds.sizes[d] > 1]
+    facets = _facets(ds, x, y)
     n = int(np.prod([ds.sizes[d] for d in facets])) if facets else 1
     if n > MAX_PANELS:
         raise InputError(
@@ -34,11 +41,34 @@ def check_plot(ds, x: str, y: str | None, metric: str) -> None:
         )
 
 
+def _facets(ds, x: str, y: str | None) -> list[str]:
+    """The axes that get one panel per value: every axis but x, y, the seeds and, in line plots, the methods."""
+    drop = {x, y, "seed"} | ({OVERLAID} if y is None else set())
+    return [d for d in ds.dims if d not in drop]
+
+
+def value_label(ds, axis: str, value) -> str:
+    """How a value of an axis reads in a title or legend (an environment by its own name)."""
+    if axis == "env" and "env_name" in ds.coords:
+        names = dict(zip(ds["env"].values.tolist(), np.atleast_1d(ds["env_name"].values).tolist()))
+        return str(names.get(value, value))
+    return f"{value:g}" if isinstance(value, float) else str(value)
+
+
+def axis_label(ds, name: str) -> str:
+    """An axis or metric label with its units from the data's CF attributes: "d (cm)"."""
+    units = ds[name].attrs.get("units", "") if name in ds.variables else ""
+    return f"{name} ({units})" if units and units != "1" else name
+
+
 def panels(ds, x: str, y: str | None) -> list[tuple[str, dict]]:
-    """(title, selection) of every panel: one per combination of the axes other than x, y and seed."""
-    facets = [d for d in ds.dims if d not in (x, y, "seed") and ds.sizes[d] > 1]
+    """(title, selection) of every panel: one per combination of the facet axes (`_facets`)."""
+    facets = _facets(ds, x, y)
     combos = itertools.product(*[ds[d].values.tolist() for d in facets])
-    return [(", ".join(f"{d}={v}" for d, v in zip(facets, c)) or "all", dict(zip(facets, c))) for c in combos]
+    return [
+        (", ".join(f"{d}={value_label(ds, d, v)}" for d, v in zip(facets, c)) or "all", dict(zip(facets, c)))
+        for c in combos
+    ]
 
 
 def summarize(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -51,8 +81,8 @@ def summarize(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _labels(ds, axis: str) -> list[str]:
-    """Tick labels of an axis's values (numbers in %g)."""
-    return [f"{v:g}" if isinstance(v, float) else str(v) for v in ds[axis].values.tolist()]
+    """Tick labels of an axis's values (numbers in %g, environments by name)."""
+    return [value_label(ds, axis, v) for v in ds[axis].values.tolist()]
 
 
 def _wilson(ds, sel: dict, x: str, metric: str) -> tuple[np.ndarray, np.ndarray] | None:
@@ -68,51 +98,93 @@ def _wilson(ds, sel: dict, x: str, metric: str) -> tuple[np.ndarray, np.ndarray]
     return bounds[0], bounds[1]
 
 
+def _seeded(da, keep: tuple[str, ...]):
+    """`da` over `keep` and the seeds (a seed axis of one value when the sweep has one seed)."""
+    rest = [d for d in da.dims if d not in (*keep, "seed")]
+    da = da.squeeze(rest, drop=True) if rest else da
+    if "seed" not in da.dims:
+        da = da.expand_dims(seed=[0])
+    return da.transpose(*keep, "seed")
+
+
+def _lines(ax, ds, sel: dict, x: str, metric: str, title: str) -> list[dict]:
+    """One line per method (shared axes) with its 95 % band; the rows drawn."""
+    methods = ds[OVERLAID].values.tolist() if OVERLAID in ds.dims and x != OVERLAID else [None]
+    one = OVERLAID in ds.coords and ds[OVERLAID].size == 1
+    colours = [f"C{i % 10}" for i in range(len(methods))]
+    rows = []
+    xs = ds[x].values
+    for method, colour in zip(methods, colours):
+        pick = {**sel, OVERLAID: method} if method is not None else sel
+        mean, half = summarize(_seeded(ds[metric].sel(pick), (x,)).values)
+        lo, hi, what = mean - half, mean + half, "95 % interval over seeds"
+        wilson = _wilson(ds, pick, x, metric)
+        if not np.isfinite(half).any() and wilson is not None:  # one seed: the trials' own interval
+            (lo, hi), what = wilson, "95 % Wilson interval"
+        if method is not None:
+            name = method
+        else:  # one line: the method of a sweep of one method, else the metric
+            name = value_label(ds, OVERLAID, ds[OVERLAID].item()) if one else metric
+        ax.plot(xs, mean, marker="o", color=colour, label=str(name))
+        if np.isfinite(lo).any():
+            ax.fill_between(xs, lo, hi, color=colour, alpha=0.2, linewidth=0)
+        rows += [
+            {"panel": title, OVERLAID: name, x: v, metric: m, "ci95_lo": a, "ci95_hi": b, "interval": what}
+            for v, m, a, b in zip(xs.tolist(), mean, lo, hi)
+        ]
+    handles, _ = ax.get_legend_handles_labels()
+    bands = sorted({r["interval"] for r in rows if np.isfinite(r["ci95_lo"])})
+    if bands:  # what the shading is
+        handles.append(Patch(color="0.5", alpha=0.3, label="shaded: " + "; ".join(bands)))
+    ax.legend(handles=handles, fontsize=7, loc="best")
+    if np.issubdtype(xs.dtype, np.number):
+        ax.set_xticks(xs)
+    return rows
+
+
+def _heat(fig, ax, ds, sel: dict, x: str, y: str, metric: str, title: str) -> list[dict]:
+    """A heat map of the mean over seeds with each cell's value written in it; the rows drawn."""
+    mean, _ = summarize(_seeded(ds[metric].sel(sel), (y, x)).values)
+    im = ax.imshow(mean, origin="lower", aspect="auto", cmap="viridis")
+    ax.set_xticks(range(ds.sizes[x]), _labels(ds, x))
+    ax.set_yticks(range(ds.sizes[y]), _labels(ds, y))
+    fig.colorbar(im, ax=ax, label=axis_label(ds, metric))
+    if mean.size <= MAX_ANNOTATED:
+        finite = mean[np.isfinite(mean)]
+        middle = (finite.min() + finite.max()) / 2 if finite.size else 0.0
+        size = 7 if mean.size <= 100 else 5
+        for (i, j), v in np.ndenumerate(mean):
+            text = "n/a" if not np.isfinite(v) else f"{v:.3g}"
+            colour = "black" if np.isfinite(v) and v > middle else "white"
+            ax.text(j, i, text, ha="center", va="center", fontsize=size, color=colour)
+    return [
+        {"panel": title, y: vy, x: vx, metric: float(mean[i, j])}
+        for i, vy in enumerate(ds[y].values.tolist())
+        for j, vx in enumerate(ds[x].values.tolist())
+    ]
+
+
 def sweep_figure(ds, x: str, y: str | None, metric: str):
-    """(figure, rows): heat maps of `metric` over (x, y), or lines over x with 95 % intervals over seeds."""
+    """(figure, rows): heat maps of `metric` over (x, y) with their values written in, or lines over x
+    with 95 % intervals over seeds, every method on one shared axes; one panel per combination of the
+    other axes. Axis labels carry the units of the data's attributes."""
     items = panels(ds, x, y)
     cols = min(len(items), 4)
     rows_n = -(-len(items) // cols)
-    fig, axes = subplots(rows_n, cols, figsize=(4.2 * cols, 3.4 * rows_n), squeeze=False)
+    fig, axes = subplots(
+        rows_n, cols, figsize=(4.6 * cols, 3.8 * rows_n), squeeze=False, sharey=y is None, layout="constrained"
+    )
     rows = []
     for ax, (title, sel) in zip(axes.ravel(), items):
-        da = ds[metric].sel(sel)
-        rest = [d for d in da.dims if d not in (x, y, "seed")]
-        da = da.squeeze(rest, drop=True) if rest else da
-        if "seed" not in da.dims:
-            da = da.expand_dims(seed=[0])
         if y is None:
-            mean, half = summarize(da.transpose(x, "seed").values)
-            xs = ds[x].values
-            lo, hi, what = mean - half, mean + half, "95 % interval over seeds"
-            wilson = _wilson(ds, sel, x, metric)
-            if not np.isfinite(half).any() and wilson is not None:  # one seed: the trials' own interval
-                (lo, hi), what = wilson, "95 % Wilson interval"
-            ax.plot(xs, mean, marker="o", color="tab:blue")
-            if np.isfinite(lo).any():
-                ax.fill_between(xs, lo, hi, color="tab:blue", alpha=0.25, label=what)
-            ax.set_xlabel(x)
-            ax.set_ylabel(metric)
-            rows += [
-                {"panel": title, x: v, metric: m, "ci95_lo": a, "ci95_hi": b, "interval": what}
-                for v, m, a, b in zip(xs.tolist(), mean, lo, hi)
-            ]
+            rows += _lines(ax, ds, sel, x, metric, title)
+            ax.set_ylabel(axis_label(ds, metric))
         else:
-            mean, _ = summarize(da.transpose(y, x, "seed").values)
-            im = ax.imshow(mean, origin="lower", aspect="auto", cmap="viridis")
-            ax.set_xticks(range(ds.sizes[x]), _labels(ds, x))
-            ax.set_yticks(range(ds.sizes[y]), _labels(ds, y))
-            ax.set_xlabel(x)
-            ax.set_ylabel(y)
-            fig.colorbar(im, ax=ax, label=metric)
-            rows += [
-                {"panel": title, y: vy, x: vx, metric: float(mean[i, j])}
-                for i, vy in enumerate(ds[y].values.tolist())
-                for j, vx in enumerate(ds[x].values.tolist())
-            ]
+            rows += _heat(fig, ax, ds, sel, x, y, metric, title)
+            ax.set_ylabel(axis_label(ds, y))
+        ax.set_xlabel(axis_label(ds, x))
         ax.set_title(title, fontsize=9)
     for ax in axes.ravel()[len(items) :]:
         ax.set_visible(False)
     fig.suptitle(f"{metric}" + (" (mean over seeds)" if "seed" in ds.dims and ds.sizes["seed"] > 1 else ""))
-    fig.tight_layout()
     return fig, rows

@@ -30,7 +30,7 @@ VERDICT_MARK = {  # words, coloured by the CSS below (no emoji: they need a font
 CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;max-width:1200px;margin:2em auto;
 padding:0 1em;color:#222;line-height:1.45}
-table{border-collapse:collapse;margin:.8em 0;font-size:.86em}
+table{border-collapse:collapse;margin:.8em 0;font-size:.86em;display:block;max-width:100%;overflow-x:auto}
 th,td{border:1px solid #ccc;padding:.25em .5em;vertical-align:top}
 th{background:#f3f3f3}
 tr:nth-child(even) td{background:#fafafa}
@@ -103,7 +103,13 @@ def study_section(rec) -> str:
             parts.append(f"*{t['note']}*")
         parts.append(f"Data: [`{rec.name}/{t['file']}`]({rec.name}/{t['file']})")
     for f in rec.figures:
-        parts.append(f"![{fmt(f['caption'])}]({rec.name}/{f['file']})\n\n*{f['caption']}*")
+        others = [n for n in rec.files if n != f["file"] and Path(n).with_suffix(".png") == Path(f["file"])]
+        also = (
+            " Also as " + ", ".join(f"[{Path(n).suffix[1:].upper()}]({rec.name}/{n})" for n in others) + "."
+            if others
+            else ""
+        )
+        parts.append(f"![{fmt(f['caption'])}]({rec.name}/{f['file']})\n\n*{f['caption']}*{also}")
     return "\n\n".join(parts)
 
 

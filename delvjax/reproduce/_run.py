@@ -23,7 +23,7 @@ from concurrent.futures import Future, ThreadPoolExecutor
 from contextlib import contextmanager
 from dataclasses import asdict
 from pathlib import Path
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from typing import Any
 
 from ..core.errors import InputError, warn
@@ -221,10 +221,12 @@ def reproduce(
     progress: bool = True,
     settings: Settings | None = None,
     workers: int | None = None,
+    formats: str | Sequence[str] = "png",
 ) -> dict:
     """Run the selected studies (skipping current ones), then write report.md / report.html.
 
     `settings` overrides quick/seed (e.g. a tiny grid for tests: Settings(spacing=200.0, trials=10)).
+    `formats`: figure files besides the PNG ("png,pdf,svg"; `Settings.formats`).
     `workers`: studies run side by side in threads (default `default_workers()`; 1: one at a time).
     Each study's numbers are the same either way: a study reads only its own inputs and keys, and
     the programs are the same (docs/reproduce.md "Speed"; tested).
@@ -232,7 +234,7 @@ def reproduce(
     """
 
     seed = seed_value(seed)
-    settings = settings or Settings.make(quick=quick, seed=seed)
+    settings = settings or Settings.make(quick=quick, seed=seed, formats=formats)
     names = select(only, settings.quick)
     workers = default_workers() if workers is None else int(workers)
     if workers < 1:

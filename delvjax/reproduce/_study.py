@@ -9,11 +9,12 @@ import threading
 from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import jax
 
+from ..core.errors import InputError
 from ..core.maps import SPACING
 from ..core.rollouts import DEFAULT_LANES, TRIALS_PER_DISTANCE
 from ..outputs._files import jsonable, write_csv, write_figure, write_json, write_rows_csv
@@ -37,7 +38,8 @@ class Settings:
     per success-rate distance bin (thesis: 100; they fill one trial block, so --quick keeps
     them); seed: every random heading, release point and noise draw; lanes: trials advanced side by
     side in the rollout program (`rollouts.run_trials`; no number depends on it): 256 fill the
-    program best on the large calls of a full run, 128 waste less on the 99-trial calls of --quick.
+    program best on the large calls of a full run, 128 waste less on the 99-trial calls of --quick;
+    formats: the figure files written, PNG first (the report shows the PNG), then any of pdf, svg.
     """
 
     quick: bool = False
@@ -45,16 +47,31 @@ class Settings:
     spacing: float = SPACING
     trials: int = TRIALS_PER_DISTANCE
     lanes: int = DEFAULT_LANES
+    formats: tuple[str, ...] = ("png",)
 
     @classmethod
-    def make(cls, quick: bool = False, seed: int = 0) -> "Settings":
+    def make(cls, quick: bool = False, seed: int = 0, formats: str | Sequence[str] = "png") -> "Settings":
         return cls(
             quick=quick,
             seed=seed,
             spacing=100.0 if quick else SPACING,
             trials=TRIALS_PER_DISTANCE,
             lanes=128 if quick else DEFAULT_LANES,
+            formats=figure_formats(formats),
         )
+
+
+FORMATS = ("png", "pdf", "svg")
+
+
+def figure_formats(value: str | Sequence[str]) -> tuple[str, ...]:
+    """`--format png,pdf,svg` as a tuple, PNG first and always (the report shows it); `InputError`
+    naming --format for anything else."""
+    items = [v.strip().lower() for v in (value.split(",") if isinstance(value, str) else value)]
+    unknown = [v for v in items if v not in FORMATS]
+    if unknown or not items:
+        raise InputError("--format", value, f"must be a comma-separated list of {', '.join(FORMATS)}")
+    return tuple(dict.fromkeys(["png", *items]))
 
 
 def settings_record(settings: Settings) -> dict:
@@ -130,13 +147,18 @@ class StudyContext:
         return self.out / name
 
     def figure(self, name: str, fig, caption: str) -> None:
-        """Save a figure (`plots.subplots`: outside pyplot's state) as `name` (.png) with the caption the
-        report prints under it."""
-        path = self._file(name)
+        """Save a figure (`plots.subplots`: outside pyplot's state) as `name` (.png) and in every other
+        format of the settings (same name, .pdf / .svg), with the caption the report prints under it."""
+        paths = [self._file(str(Path(name).with_suffix(f".{f}"))) for f in self.settings.formats]
+
+        def write() -> None:
+            for path in paths:
+                write_figure(fig, path)
+
         if self._painter is None:
-            write_figure(fig, path)
+            write()
         else:  # rendered while this thread waits on the device: figures overlap the computation
-            self._pending.append(self._painter.submit(write_figure, fig, path))
+            self._pending.append(self._painter.submit(write))
         self.record.figures.append({"file": name, "caption": caption})
 
     def finish(self, last: Callable[[], None]) -> Future | None:

@@ -78,8 +78,10 @@ def success_metrics(sums: dict) -> dict:
     }
 
 
-def dataset(spec: SweepSpec, sums: dict, programs: int):
-    """Per-cell sums -> the requested metrics, labelled by the axes (and `distance_cm`)."""
+def dataset(spec: SweepSpec, sums: dict, programs: int, env_names: dict[str, str] | None = None):
+    """Per-cell sums -> the requested metrics, labelled by the axes (and `distance_cm`). An axis with one
+    value is a scalar coordinate, not a dimension; `env_names` (label -> the environment's own `name`)
+    become the coordinate `env_name` beside `env`."""
     import xarray as xr  # xarray: loaded only when results are labelled
 
     values = spec.kind.metrics_of(sums)
@@ -91,6 +93,11 @@ def dataset(spec: SweepSpec, sums: dict, programs: int):
     ds = xr.Dataset({m: (dims, np.asarray(values[m]).reshape(shape)) for m in spec.metrics}, coords=coords)
     for name, attrs in spec.describe().items():  # CF-style long_name and units on every variable and coordinate
         ds[name].attrs.update(attrs)
+    if env_names is not None and "env" in ds.coords:
+        names = [env_names.get(e, e) for e in spec.axes["env"]]
+        ds = ds.assign_coords(env_name=("env", np.asarray(names)))
+        ds["env_name"].attrs["long_name"] = "the environment's name (its JSON `name`, a preset's name)"
+    ds = ds.squeeze([d for d in ds.dims if ds.sizes[d] == 1])  # kept as scalar coordinates
     ds.attrs.update(
         sweep_toml=spec.text,
         kind=str(spec.kind),
@@ -122,7 +129,7 @@ def save_sweep(ds, out: str | Path) -> list[Path]:
     uninterrupted one), sweep.csv (one row per cell) and sweep.toml, as a unit."""
     out = Path(out)
     paths = [out / f for f in FILES]
-    table = ds.to_dataframe().reset_index()
+    table = table_of(ds)
     kept = ds.copy()
     kept.attrs = {k: v for k, v in ds.attrs.items() if k not in RUN_ATTRS}
     with output_set() as files:
@@ -130,6 +137,21 @@ def save_sweep(ds, out: str | Path) -> list[Path]:
         files.file(paths[1], lambda tmp: table.to_csv(tmp, index=False, float_format="%.6g"), "--out")
         files.file(paths[2], lambda tmp: Path(tmp).write_text(ds.attrs["sweep_toml"]), "--out")
     return paths
+
+
+def table_of(ds):
+    """The tidy table of a sweep: one row per cell (and distance), the axes first in the file's order
+    (scalar coordinates too; `env_name` after `env`), then the metrics."""
+    import pandas as pd  # pandas: an xarray dependency, loaded with the table
+
+    if ds.dims:
+        table = ds.to_dataframe().reset_index()
+    else:  # every axis has one value: one row
+        table = pd.DataFrame([{k: v.item() for k, v in {**ds.coords, **ds.data_vars}.items()}])
+    first = [c for c in ds.coords if c in table.columns and c != "env_name"]
+    if "env_name" in table.columns:
+        first.insert(first.index("env") + 1, "env_name")
+    return table[first + [c for c in table.columns if c not in first]]
 
 
 def sweep_inputs(out: str | Path) -> list[Path]:

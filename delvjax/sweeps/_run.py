@@ -65,11 +65,15 @@ def run_sweep(
     progress: Callable[[int, int], None] | None = None,
     announce: Callable[[], None] | None = None,
     out: str | Path | None = None,
+    phase: Callable[[str], None] | None = None,
 ) -> xarray.Dataset:
-    """Every cell of `spec`: metrics as an `xarray.Dataset` (one dimension per axis). Every cell is
-    validated before any work; `announce()` is called then; `progress(done, total)` after each chunk.
+    """Every cell of `spec`: metrics as an `xarray.Dataset` (one dimension per axis of more than one
+    value). Every cell is validated before any work; `announce()` is called then; `progress(done,
+    total)` after each chunk; `phase(text)` says what runs now ("compiling program 2 of 3").
     With `out`, finished chunks are kept in out/.cells and cells found there are not computed again
     (`cell_store`: a killed or changed sweep resumes)."""
+    say = phase or (lambda text: None)
+    say(f"checking {spec.n_cells} cells")
     envs = _envs(spec)
     groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None)
     n = spec.n_cells
@@ -97,12 +101,18 @@ def run_sweep(
     mesh = local_mesh() if processes == 1 else global_mesh()  # one mesh over every device of every process
     per_call = n_devices(mesh)
     width = -(-CELL_CHUNK // per_call) * per_call  # cells per call, a multiple of the devices
-    jobs = []  # (cells, padded size): a group of more than one chunk pads every chunk to `width`
-    for cells in ([i for i in g if todo[i]] for g in groups):
+    live = [cells for cells in ([i for i in g if todo[i]] for g in groups) if cells]  # one program each
+    jobs = []  # (cells, padded size, program): a group of more than one chunk pads every chunk to `width`
+    for program, cells in enumerate(live, 1):
         size = width if len(cells) > width else -(-len(cells) // per_call) * per_call
-        jobs += [(cells[start : start + width], size) for start in range(0, len(cells), width)]
+        jobs += [(cells[start : start + width], size, program) for start in range(0, len(cells), width)]
+    programs = len(live)
+    seen: set[int] = set()
     mine: list[int] = []  # the cells this process computed
-    for chunk, size in jobs:
+    for chunk, size, program in jobs:
+        if program not in seen:  # its first call compiles it (or loads it from the persistent cache)
+            seen.add(program)
+            say(f"compiling program {program} of {programs}")
         padded = chunk + [chunk[0]] * (size - len(chunk))
         start, stop = (0, size) if processes == 1 else process_rows(mesh, size)  # this process's rows
         setups = [cell_setup(spec, envs, spec.cell(i), max_points) for i in padded[start:stop]]
@@ -117,7 +127,7 @@ def run_sweep(
             progress(len(chunk), n)
     if processes > 1:
         sums = _merge(sums, mine)
-    ds = dataset(spec, sums, programs_compiled() - compiled)
+    ds = dataset(spec, sums, programs_compiled() - compiled, {k: e.name for k, e in envs.items()})
     ds.attrs["cells_reused"] = int((~todo).sum())
     return ds
 

@@ -13,19 +13,17 @@ from __future__ import annotations
 import jax
 import numpy as np
 from delvjax.plots._maps import subplots
-from matplotlib.lines import Line2D
-from matplotlib.patches import Patch
 from scipy.spatial import Delaunay
 
 import delvjax
 from delvjax.core import rollouts
 from delvjax.core.maps import VectorMap
 from delvjax.core.metrics import error_curve, summarize_map
-from delvjax.plots._maps import ARROW, draw_env, draw_vector_map
-from delvjax.plots._rollouts import SQUARE, catchment_panel
+from delvjax.plots._maps import draw_env, draw_vector_map, vector_map_handles
+from delvjax.plots._rollouts import catchment_handles, catchment_panel, not_counted
 from delvjax.core.scene import Env
 from delvjax.envs._presets import load_env
-from delvjax.outputs._tables import concat_columns, success_rows, trajectory_columns
+from delvjax.core.tables import concat_columns, success_rows, trajectory_columns
 
 PAD = 6
 # the default rules (thesis Algorithm 2), the earlier default ("homing": every first move follows the
@@ -209,27 +207,7 @@ def panel_figure(items, spacing: float, classes: bool = False, title: str = ""):
         )
         draw_env(ax, e)
         ax.set_title(label, fontsize=9)
-    handles = [
-        Line2D([], [], marker=ARROW, color="black", ls="", ms=10, label="homing direction"),
-        Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
-        Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
-        Line2D([], [], marker="x", color="tab:red", ls="", ms=7, label="no direction (invalid)"),
-    ]
-    if classes:
-        from delvjax.plots._maps import CLASS_STYLE  # matplotlib: loaded only when a figure is drawn
-
-        handles += [
-            Line2D(
-                [],
-                [],
-                ls="",
-                label=f"error {lab}",
-                marker=style["marker"],
-                color=style.get("color", style.get("edgecolors")),
-                mfc="none" if "facecolors" in style else None,
-            )
-            for lab, style in CLASS_STYLE[1:]
-        ]
+    handles = vector_map_handles(classes)
     fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8, frameon=False)
     if title:
         fig.suptitle(title)
@@ -242,12 +220,7 @@ def catchment_figure(items, spacing: float, title: str):
     fig, axes = subplots(1, len(items), figsize=(4.8 * len(items), 5.4), squeeze=False)
     for ax, (label, e, c) in zip(axes[0], items):
         catchment_panel(ax, e, c, 0, spacing, title=label)
-    handles = [
-        Patch(label="release point inside the catchment area", **SQUARE),
-        Line2D([], [], marker=ARROW, color="black", ls="", ms=10, label="first homing direction"),
-        Line2D([], [], marker="s", color="black", ls="", ms=7, label="home"),
-        Line2D([], [], marker="o", color="0.15", ls="", ms=9, label="landmark (to scale)"),
-    ]
+    handles = catchment_handles(any(not_counted(c) for _, _, c in items))
     fig.legend(handles=handles, loc="lower center", ncol=4, fontsize=8, frameon=False)
     fig.suptitle(title)
     fig.set_layout_engine("tight", rect=(0, 0.05, 1, 1))  # applied when drawn (in the figure thread)

@@ -1,6 +1,6 @@
 """Landmark layouts designed for homing (beyond the thesis; docs/differentiable.md "Layout design").
 
-The landmarks of the thesis's environments are moved by optimistix BFGS on the soft homing quality
+The landmarks of the thesis's environments are moved by optimistix BFGS on the soft homing loss
 of DELV (without and, in the full run, with one landmark hidden), then the optimised layouts are
 compared with the originals by the ordinary evaluation: catchment and error point rates.
 """
@@ -75,7 +75,7 @@ def run(ctx) -> None:
         rows,
         source="beyond the thesis",
         note="Landmarks move, radii stay; each stays r + 40 cm from home and pairs r_i + r_j + 20 cm apart. "
-        "The objective is the soft quality on a 50 cm grid; the table is the ordinary evaluation.",
+        "The objective is the soft loss on a 50 cm grid; the table is the ordinary evaluation.",
         columns=["env", "occlude", "layout", "catchment_pct", "catchment_min_pct", "gt45_pct", "gt90_pct", "steps"],
     )
     ctx.json("layouts.json", layouts)

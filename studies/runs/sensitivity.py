@@ -1,8 +1,8 @@
-"""Sensitivity of homing quality by automatic differentiation (beyond the thesis; docs/differentiable.md).
+"""Sensitivity of homing loss by automatic differentiation (beyond the thesis; docs/differentiable.md).
 
 Which landmark's position matters most (arrows on the landmarks scaled by the gradient of the
-soft homing quality), and how homing quality responds to d, bearing, odometry and compass noise,
-for DELV, ALV, ACV (reverse mode) and warping (central differences of the ordinary quality).
+soft homing loss), and how homing loss responds to d, bearing, odometry and compass noise,
+for DELV, ALV, ACV (reverse mode) and warping (central differences of the ordinary loss).
 Also (in a full run, not under --quick) the bearing-noise gain maps: ||d direction / d current bearings|| at every
 grid point.
 Run alone: python -m delvjax.studies.runs.sensitivity --out results/sensitivity [--env env1]
@@ -26,7 +26,7 @@ from delvjax.plots._gradients import landmark_figure, parameter_figure
 from ._common import env
 from delvjax.cli._main import main as cli
 
-TITLE = "Sensitivity of homing quality: landmarks, d and noise (gradients; beyond the thesis)"
+TITLE = "Sensitivity of homing loss: landmarks, d and noise (gradients; beyond the thesis)"
 STEPS = 5
 GAIN_METHODS = ("delv", "delv-compass", "alv", "acv")
 
@@ -64,34 +64,34 @@ def run(ctx) -> None:
     e = env("env1")
     result = sensitivity(e, spacing=ctx.settings.spacing, seed=ctx.settings.seed, progress=ctx.step)
     for m, r in result["methods"].items():
-        ctx.number(f"sensitivity:env1:{m}:quality", r["quality"])
+        ctx.number(f"sensitivity:env1:{m}:loss", r["loss"])
         for name, v in r["per_unit"].items():
             ctx.number(f"sensitivity:env1:{m}:{name}", v)
     ctx.table(
         "sensitivity_parameters",
-        "Change of homing quality (mean 1 - cos error) per 10 cm of d and per degree of each noise sigma, env1",
+        "Change of homing loss (mean 1 - cos error) per 10 cm of d and per degree of each noise sigma, env1",
         result["parameter_rows"],
         source="beyond the thesis",
-        note="DELV, ALV, ACV: gradient of the soft quality (reverse mode). Warping: central differences of the "
-        "ordinary quality; it reads only the current ring image, so d, blob-bearing and odometry noise do "
+        note="DELV, ALV, ACV: gradient of the soft loss (reverse mode). Warping: central differences of the "
+        "ordinary loss; it reads only the current ring image, so d, blob-bearing and odometry noise do "
         "not enter it (exactly 0). Methods without a compass have no compass sensitivity.",
-        columns=["method", "parameter", "nominal", "d_quality_per_unit", "quality"],
+        columns=["method", "parameter", "nominal", "d_loss_per_unit", "loss"],
     )
     ctx.table(
         "sensitivity_landmarks",
-        "Gradient of the soft homing quality with respect to each landmark of env1",
+        "Gradient of the soft homing loss with respect to each landmark of env1",
         result["landmark_rows"],
         source="beyond the thesis",
     )
     ctx.figure(
         "sensitivity_landmarks.png",
         landmark_figure(result),
-        "Arrows on the landmarks: moving a landmark that way improves homing quality; numbers: |dQ/dx| per metre.",
+        "Arrows on the landmarks: moving a landmark that way lowers the homing loss; numbers: |dL/dx| per metre.",
     )
     ctx.figure(
         "sensitivity_parameters.png",
         parameter_figure(result),
-        "Change of homing quality per 10 cm of d and per degree of each noise sigma.",
+        "Change of homing loss per 10 cm of d and per degree of each noise sigma.",
     )
     if ctx.settings.quick or ctx.settings.spacing >= 100:  # four more compiled programs: only in a full run
         return

@@ -147,6 +147,7 @@ def run(ctx) -> None:
         )
     ax.plot(np.arange(3), [74.85, 47.04, 40.68], "k*", ms=12, label="thesis, visual compass (Fig 5.11)")
     ax.set_xticks(np.arange(3), [LABEL[m] for m in TRUE])
+    ax.set_xlabel("method (env1)")
     ax.set_ylabel("catchment area (%)")
     ax.set_ylim(0, 105)
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3, frameon=False)

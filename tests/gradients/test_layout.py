@@ -1,5 +1,5 @@
 """Landmark layout design (docs/differentiable.md "Layout design"): optimistix BFGS on the soft
-quality; the result is a valid environment that beats its start on the ordinary evaluation."""
+loss; the result is a valid environment that beats its start on the ordinary evaluation."""
 
 from __future__ import annotations
 

@@ -7,7 +7,7 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from delvjax.gradients._quality import quality_problem
+from delvjax.gradients._loss import loss_problem
 from delvjax.cli._main import main
 from delvjax.core.soft.traps import KINDS, classify, field_zeros
 from delvjax.gradients._traps import find_traps
@@ -28,7 +28,7 @@ def test_a_zero_is_classified_from_its_jacobian(jac, kind):
 
 def test_the_alv_field_flows_to_home_only():
     """§3.3.2: the ALV field is minus the gradient of a convex potential, so home is its one zero, a sink."""
-    p = quality_problem("env1", "alv", spacing=100)
+    p = loss_problem("env1", "alv", spacing=100)
     starts = jnp.asarray([[450.0, 450.0], [560.0, 530.0], [520.0, 440.0], [470.0, 560.0]])
     z, _, kind, _, residual = (
         np.asarray(a) for a in field_zeros(p.env, starts, p.sensor, p.method, p.key, p.tau, p.sharpness)

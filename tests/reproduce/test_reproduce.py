@@ -36,6 +36,12 @@ def test_every_study_ran(run):
     assert sorted(p.name for p in out.iterdir() if p.is_dir()) == sorted(studies.STUDIES)
 
 
+def test_every_figure_of_the_run_passes_a_reviewers_checks(run):
+    """No overlapping texts, no label inside another panel, labelled axes (`tests.cases.figures`), on
+    every figure every study writes (recorded while the run drew them)."""
+    assert run[1]["figure_defects"] == {}
+
+
 @pytest.mark.parametrize("name", studies.STUDIES)
 def test_study_record_and_files(run, name):
     out, _, _ = run

@@ -53,7 +53,9 @@ def test_the_example_file_is_valid_and_printed(capsys):
 
 
 def test_every_cell_equals_the_vector_map_of_its_settings(small):
-    assert dict(small.sizes) == {"method": 2, "d": 2, "bearing_noise_deg": 2, "seed": 2, "env": 1, "spacing": 1}
+    assert dict(small.sizes) == {"method": 2, "d": 2, "bearing_noise_deg": 2, "seed": 2}
+    # axes with one value are scalar coordinates, labelled with the environment's own name
+    assert small["env"].item() == "env1" and small["env_name"].item() == "env1" and float(small["spacing"]) == 90.0
     assert 0 <= small.attrs["programs_compiled"] <= 2  # one per method (fewer if compiled by an earlier test)
     for method in ("delv", "alv"):
         for seed in (0, 1):
@@ -133,7 +135,7 @@ def test_the_cli_writes_netcdf_csv_and_the_file_and_load_sweep_reads_them(tmp_pa
         "units": "cm",
     }
     rows = (out / "sweep.csv").read_text().splitlines()
-    assert len(rows) == 3 and rows[0].startswith("d,seed,spacing,env,method,gt45_pct")
+    assert len(rows) == 3 and rows[0].startswith("d,seed,spacing,env,env_name,method,gt45_pct")
     with pytest.raises(InputError, match="sweep.nc"):
         delvjax.load_sweep(tmp_path)
 

@@ -31,6 +31,8 @@ from .rules import (
     SUCCESS,
     Outcomes,
     catchment_counted,
+    outcome_names,
+    rule_columns,
 )
 from .trials import run_trials
 from ..types import Real
@@ -81,6 +83,10 @@ class Catchment(Outcomes):
     hidden: tuple = eqx.field(static=True, default=((),))
     first_move: str = eqx.field(static=True, default=DEFAULT_FIRST_MOVE)
     collisions: str = eqx.field(static=True, default="ignore")
+
+    def columns(self, method: str = "") -> dict:
+        """Per grid point and mask, the catchment CSV's columns with the hidden landmarks (`catchment_columns`)."""
+        return catchment_columns(self, with_hidden=True)
 
     def catchment_pct(self) -> np.ndarray:
         """% of grid points whose rollout succeeds, per mask (M,)."""
@@ -230,3 +236,31 @@ def catchment_summary(result: Catchment) -> dict:
         "gt90_pct": spread("gt90_pct"),
         "per_mask": per_mask,
     }
+
+
+def catchment_columns(res: Catchment, with_hidden: bool = False) -> dict[str, object]:
+    """Per grid point and mask: x, y, heading_deg, success, steps, outcome, end_x, end_y,
+    invalid_steps, direction_deg, error_deg, valid, the rules, and (`with_hidden`) the hidden
+    landmarks of the mask ("0 2")."""
+    inc = np.asarray(res.included)
+    n_masks = np.asarray(res.outcome).shape[0]
+    pts = np.tile(np.asarray(res.points)[inc], (n_masks, 1))
+    per = lambda a: np.asarray(a)[:, inc].reshape(-1)  # noqa: E731
+    columns: dict[str, object] = {
+        "x": pts[:, 0],
+        "y": pts[:, 1],
+        "heading_deg": np.tile(np.degrees(np.asarray(res.heading)[inc]), n_masks),
+        "success": per(res.success),
+        "steps": per(res.steps),
+        "outcome": outcome_names(per(res.outcome)),
+        "end_x": per(np.asarray(res.end)[..., 0]),
+        "end_y": per(np.asarray(res.end)[..., 1]),
+        "invalid_steps": per(res.invalid_steps),
+        "direction_deg": np.degrees(per(res.direction)),
+        "error_deg": per(res.error_deg),
+        "valid": per(res.valid),
+        **rule_columns(res.rules, pts.shape[0]),
+    }
+    if with_hidden:
+        columns["hidden"] = [" ".join(map(str, h)) for h in res.hidden for _ in range(int(inc.sum()))]
+    return columns

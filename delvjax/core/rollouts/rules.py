@@ -28,6 +28,7 @@ import numpy as np
 from jax import Array
 
 from ..errors import InputError
+from ..frames import frame
 from ..maps import stream_keys
 from ..scene import Env
 
@@ -115,3 +116,26 @@ class Outcomes(eqx.Module):
     def rules(self) -> dict[str, str]:
         """The rollout rules used (module docstring): {"first_move": ..., "collisions": ...}."""
         return {"first_move": self.first_move, "collisions": self.collisions}  # type: ignore[attr-defined]
+
+    def columns(self, method: str = "") -> dict:
+        """The columns of the result's CSV file (docs/model.md §7); `method` fills the method column."""
+        raise NotImplementedError
+
+    def to_dataframe(self, method: str = ""):
+        """The result as a pandas DataFrame with the columns of its CSV file (`columns`); `method`
+        fills the method column where there is one."""
+        return frame(self.columns(method))
+
+
+OUTCOME_NAMES = {**dict(enumerate(OUTCOMES)), EXCLUDED: "not_placed", RUNNING: "running", NEAR_WALL: "near_wall"}
+
+
+def outcome_names(codes) -> list[str]:
+    """Outcome codes as names: success, timeout, landmark, arena; not_placed (a release point that
+    could not be placed); running (never in a finished result)."""
+    return [OUTCOME_NAMES[int(c)] for c in np.asarray(codes).reshape(-1).tolist()]
+
+
+def rule_columns(rules: dict[str, str], n: int) -> dict[str, list[str]]:
+    """The rollout rules as constant columns."""
+    return {name: [value] * n for name, value in rules.items()}

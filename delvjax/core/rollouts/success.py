@@ -30,7 +30,9 @@ from .rules import (
     SUCCESS,
     TRIALS_PER_DISTANCE,
     Outcomes,
+    outcome_names,
     rollout_keys,
+    rule_columns,
 )
 from .trials import run_trials
 from ..types import Real
@@ -52,6 +54,10 @@ class SuccessRate(Outcomes):
     steps: BinTrialInt
     first_move: str = eqx.field(static=True, default=DEFAULT_FIRST_MOVE)
     collisions: str = eqx.field(static=True, default="ignore")
+
+    def columns(self, method: str = "") -> dict:
+        """Per trial, the success-rate trial CSV's columns (`success_trial_columns`)."""
+        return success_trial_columns(self, method)
 
     def table(self) -> list[dict]:
         """Per-bin rows: distance_cm, trials, placed, successes, success_pct (of placed) with its 95% Wilson
@@ -167,3 +173,28 @@ def _release_bins(env: Env, key: Array, distances: Array, trials: int, clearance
     return jax.vmap(lambda b, r: release_points(env, jax.random.fold_in(k_start, b), trials, r, clearance))(
         jnp.arange(distances.shape[0]), distances
     )
+
+
+def success_rows(res: SuccessRate, method: str) -> list[dict]:
+    """Per release distance: method, the bin statistics of `SuccessRate.table` and the rules."""
+    return [{"method": method, **row, **res.rules} for row in res.table()]
+
+
+def success_trial_columns(res: SuccessRate, method: str) -> dict[str, object]:
+    """Per trial: method, distance_cm, trial, x, y, heading_deg, placed, success, steps, outcome, the rules."""
+    placed = np.asarray(res.placed).reshape(-1)
+    start = np.asarray(res.start).reshape(-1, 2)
+    n_bins, n_tr = np.asarray(res.placed).shape
+    return {
+        "method": [method] * placed.size,
+        "distance_cm": np.repeat(np.asarray(res.distances), n_tr),
+        "trial": np.tile(np.arange(n_tr), n_bins),
+        "x": start[:, 0],
+        "y": start[:, 1],
+        "heading_deg": np.degrees(np.asarray(res.heading).reshape(-1)),
+        "placed": placed,
+        "success": np.asarray(res.success).reshape(-1),
+        "steps": np.asarray(res.steps).reshape(-1),
+        "outcome": outcome_names(res.outcome),
+        **rule_columns(res.rules, placed.size),
+    }

@@ -11,7 +11,7 @@ from ..methods.base import HomingMethod
 from ..scene import Env
 from ..sensor import Sensor
 from ..types import Paths, PerTrial, PerTrialInt, TrialPoints
-from .rules import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes
+from .rules import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes, outcome_names, rule_columns
 from .trials import run_trials
 from ..types import Real
 
@@ -31,6 +31,10 @@ class Trajectories(Outcomes):
     invalid_steps: PerTrialInt
     first_move: str = eqx.field(static=True, default=DEFAULT_FIRST_MOVE)
     collisions: str = eqx.field(static=True, default="ignore")
+
+    def columns(self, method: str = "") -> dict:
+        """Per visited position, the trajectory CSV's columns (`trajectory_columns`)."""
+        return trajectory_columns(self, method)
 
 
 def trajectory_trials(
@@ -80,3 +84,23 @@ def trajectory_trials(
         first_move=first_move,
         collisions=collisions,
     )
+
+
+def trajectory_columns(tr: Trajectories, method: str) -> dict[str, list]:
+    """Per visited position: method, trial, step, x, y, release_heading_deg, success, steps, outcome, the rules."""
+    path, steps = np.asarray(tr.path), np.asarray(tr.steps)
+    heading, success, outcome = np.degrees(np.asarray(tr.heading)), np.asarray(tr.success), outcome_names(tr.outcome)
+    t = np.repeat(np.arange(path.shape[0]), steps + 1)
+    s = np.concatenate([np.arange(n + 1) for n in steps]) if steps.size else np.zeros(0, int)
+    return {
+        "method": [method] * t.size,
+        "trial": t.tolist(),
+        "step": s.tolist(),
+        "x": path[t, s, 0].tolist(),
+        "y": path[t, s, 1].tolist(),
+        "release_heading_deg": heading[t].tolist(),
+        "success": success[t].tolist(),
+        "steps": steps[t].tolist(),
+        "outcome": [outcome[i] for i in t],
+        **rule_columns(tr.rules, t.size),
+    }

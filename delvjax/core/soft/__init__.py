@@ -1,3 +1,3 @@
 """The differentiable evaluation path (docs/differentiable.md): analytic views with a soft
 visibility (`sensing`), softmin versions of DELV, ALV and ACV (`methods`), and the homing field
-and its quality as smooth functions of the scene, the agent and the noise (`quality`)."""
+and its loss as smooth functions of the scene, the agent and the noise (`loss`)."""

@@ -13,7 +13,7 @@ shift. Here each choice is a softmin with temperature `tau`:
   * ACV's shift: softmax(-cost(k) / tau) with cost in rad^2.
 
 As tau -> 0 each softmin becomes the hard argmin, so the soft direction tends to the hard one
-wherever the minimum is unique (`tests/gradients/test_quality.py` measures it). Blob weights (the soft
+wherever the minimum is unique (`tests/gradients/test_loss.py` measures it). Blob weights (the soft
 visibility of `soft.sensing`) weight every pair. Quantization (Eq 3.17) stays a staircase: its
 gradient with respect to a distance is 0, with respect to the scale a it is ceil(R Q / a) / Q.
 """

@@ -13,7 +13,7 @@ and a landmark whose view overlaps that of a nearer one fades out with the overl
 
 with `s` the visibility width (rad). Where no two landmarks touch in view (the pixel path's
 blobs are then single landmarks) the bearings agree with the pixel path to half a pixel, and
-every weight is 1 up to sigmoid tails; `tests/gradients/test_quality.py` checks both on random scenes. A blob
+every weight is 1 up to sigmoid tails; `tests/gradients/test_loss.py` checks both on random scenes. A blob
 counts as seen (valid) where its weight exceeds 1/2. Bearing noise is added as in
 `sensing.snapshot`: one draw per sorted slot from the same key, so a noise sigma is
 differentiable pathwise (fixed standard normal draws times sigma).

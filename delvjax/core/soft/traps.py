@@ -1,6 +1,6 @@
 """Trap points of a homing field (docs/differentiable.md "Trap points").
 
-The soft homing vector H(x) (`soft.quality`) is continuous in the position x. Where the hard
+The soft homing vector H(x) (`soft.loss`) is continuous in the position x. Where the hard
 method switches between two hypotheses whose vectors oppose, the softmin averages them and H
 passes through zero: the hard field's sinks (false homes), saddles and sources are zeros of H.
 They are found with optimistix's Newton root finder, vmapped over starts, and classified by the

@@ -1,6 +1,6 @@
-"""The soft homing field and homing quality (docs/differentiable.md "Homing quality").
+"""The soft homing field and homing loss (docs/differentiable.md "Homing loss").
 
-    quality = mean over the grid points x of 1 - cos(angle between H(x) and home - x),
+    loss = mean over the grid points x of 1 - cos(angle between H(x) and home - x),
 
 H the soft homing vector (world frame) at x from the vector map's unit move (same keys, poses
 and noise draws as `maps.vector_map`); a point where the method gives no direction counts 2
@@ -58,7 +58,7 @@ def alignment_loss(vectors: Array, valid: Array, points: Array, home: Array) -> 
     return jnp.where(valid, 1.0 - cos, 2.0)
 
 
-def soft_quality(
+def soft_loss(
     env: Env,
     points: Array,
     included: Array,

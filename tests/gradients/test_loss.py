@@ -106,7 +106,7 @@ def test_soft_alv_and_acv_equal_the_hard_ones_at_small_tau_and_sharp_visibility(
     assert _soft_and_hard(name, 1e-5, bearing_noise_deg=1.0)(1e-3).max() < 1e-3
 
 
-def _quality_at(name: str, landmarks=None, home=None, **options) -> float:
+def _loss_at(name: str, landmarks=None, home=None, **options) -> float:
     base = load_env("env1")
     env = Env(
         jnp.asarray(base.landmarks if landmarks is None else landmarks, jnp.float32),
@@ -115,7 +115,7 @@ def _quality_at(name: str, landmarks=None, home=None, **options) -> float:
         base.arena,
         name="fd",
     )
-    return float(delvjax.homing_quality(env, name, spacing=100, tau=0.05, **options))
+    return float(delvjax.homing_loss(env, name, spacing=100, tau=0.05, **options))
 
 
 @pytest.mark.parametrize(
@@ -129,8 +129,8 @@ def _quality_at(name: str, landmarks=None, home=None, **options) -> float:
     ],
 )
 def test_gradients_match_central_finite_differences(name, options, scalars):
-    value, grads = delvjax.homing_quality_grad("env1", name, spacing=100, tau=0.05, **options)
-    assert value == pytest.approx(_quality_at(name, **options), rel=1e-5)
+    value, grads = delvjax.homing_loss_grad("env1", name, spacing=100, tau=0.05, **options)
+    assert value == pytest.approx(_loss_at(name, **options), rel=1e-5)
     lm = np.asarray(load_env("env1").landmarks, np.float64)
     h = 0.05
     checks = []
@@ -140,7 +140,7 @@ def test_gradients_match_central_finite_differences(name, options, scalars):
         b[i, j] -= h
         checks.append(
             (
-                (_quality_at(name, a, **options) - _quality_at(name, b, **options)) / (2 * h),
+                (_loss_at(name, a, **options) - _loss_at(name, b, **options)) / (2 * h),
                 grads["landmarks"][i, j],
                 f"landmarks[{i}, {j}]",
             )
@@ -148,15 +148,14 @@ def test_gradients_match_central_finite_differences(name, options, scalars):
     home = np.asarray(load_env("env1").home, np.float64)
     checks.append(
         (
-            (_quality_at(name, home=home + [0, h], **options) - _quality_at(name, home=home - [0, h], **options))
-            / (2 * h),
+            (_loss_at(name, home=home + [0, h], **options) - _loss_at(name, home=home - [0, h], **options)) / (2 * h),
             grads["home"][1],
             "home[1]",
         )
     )
     for key, x0 in scalars.items():
-        step = {"scale": 1e-3 * x0, "d": 0.05}.get(key, 0.005)  # sigmas: the quality has kinks (guards) 0.05 deg away
-        fd = (_quality_at(name, **{**options, key: x0 + step}) - _quality_at(name, **{**options, key: x0 - step})) / (
+        step = {"scale": 1e-3 * x0, "d": 0.05}.get(key, 0.005)  # sigmas: the loss has kinks (guards) 0.05 deg away
+        fd = (_loss_at(name, **{**options, key: x0 + step}) - _loss_at(name, **{**options, key: x0 - step})) / (
             2 * step
         )
         checks.append((fd, grads[key], key))
@@ -173,23 +172,30 @@ def test_gradients_match_central_finite_differences(name, options, scalars):
 @pytest.mark.parametrize("method", ["warping", "mfdid", "cc", "delv-gap", "delv-visual", "alv-visual"])
 def test_methods_without_a_soft_version_say_so(method):
     with pytest.raises(InputError) as exc:
-        delvjax.homing_quality_grad("env1", method, spacing=200)
+        delvjax.homing_loss_grad("env1", method, spacing=200)
     assert exc.value.field == "method" and "soft" in exc.value.expected
 
 
 @pytest.mark.parametrize("tau", [0, -1, float("nan"), float("inf")])
 def test_a_non_positive_tau_is_refused(tau):
     with pytest.raises(InputError) as exc:
-        delvjax.homing_quality("env1", tau=tau)
+        delvjax.homing_loss("env1", tau=tau)
     assert exc.value.field == "tau"
 
 
-def test_the_hard_quality_is_the_vector_map_error():
+def test_the_hard_loss_is_the_vector_map_error():
     vm = delvjax.vector_map("env1", "alv", spacing=100)
     err = np.radians(np.asarray(vm.error_deg))[np.asarray(vm.included)]
-    assert delvjax.homing_quality("env1", "alv", spacing=100, soft=False) == pytest.approx(np.mean(1 - np.cos(err)))
-    # the soft quality of a smooth method is close to the hard one (the views differ by half a pixel)
-    assert delvjax.homing_quality("env1", "alv", spacing=100) == pytest.approx(np.mean(1 - np.cos(err)), abs=0.01)
+    assert delvjax.homing_loss("env1", "alv", spacing=100, soft=False) == pytest.approx(np.mean(1 - np.cos(err)))
+    # the soft loss of a smooth method is close to the hard one (the views differ by half a pixel)
+    assert delvjax.homing_loss("env1", "alv", spacing=100) == pytest.approx(np.mean(1 - np.cos(err)), abs=0.01)
+
+
+def test_the_old_quality_names_still_answer_with_a_deprecation_warning():
+    with pytest.warns(DeprecationWarning, match="renamed delvjax.homing_loss_grad"):
+        assert delvjax.homing_quality_grad is delvjax.homing_loss_grad
+    with pytest.warns(DeprecationWarning, match="renamed delvjax.homing_loss "):
+        assert delvjax.homing_quality is delvjax.homing_loss
 
 
 def test_delvjax_sensitivity_writes_figures_and_numbers(tmp_path, capsys):
@@ -209,12 +215,12 @@ def test_delvjax_sensitivity_writes_figures_and_numbers(tmp_path, capsys):
         "sensitivity_parameters.png",
     ]
     rows = list(csv.DictReader((out / "landmarks.csv").open()))
-    value, grads = delvjax.homing_quality_grad(
+    value, grads = delvjax.homing_loss_grad(
         "env1", "alv", spacing=200, bearing_noise_deg=1.0, odometry_turn_noise_deg=1.0, compass_noise_deg=2.0
     )
     assert [float(r["dq_dx_per_cm"]) for r in rows] == pytest.approx(grads["landmarks"][:, 0].tolist(), rel=1e-4)
     summary = json.loads((out / "sensitivity.json").read_text())
-    assert summary["methods"]["alv"]["quality"] == pytest.approx(value, rel=1e-5)
+    assert summary["methods"]["alv"]["loss"] == pytest.approx(value, rel=1e-5)
     assert summary["methods"]["warping"]["per_unit"]["d"] == 0.0  # warping reads no unit movement
 
 

@@ -1,10 +1,10 @@
-"""Python API of the differentiable path (docs/differentiable.md): homing quality and its gradient
+"""Python API of the differentiable path (docs/differentiable.md): homing loss and its gradient
 with respect to the world (landmarks, home), the agent (d, the quantization scale) and the noise.
 
-    delvjax.homing_quality("env1", "delv", tau=0.01)            -> a JAX scalar (lower is better)
-    value, grads = delvjax.homing_quality_grad("env1", "delv")   -> grads["landmarks"] (N, 3), ...
+    delvjax.homing_loss("env1", "delv", tau=0.01)            -> a JAX scalar (lower is better)
+    value, grads = delvjax.homing_loss_grad("env1", "delv")   -> grads["landmarks"] (N, 3), ...
 
-`homing_quality` is a JAX function: `jax.grad`, `jax.jit` and `jax.vmap` of it work with respect to
+`homing_loss` is a JAX function: `jax.grad`, `jax.jit` and `jax.vmap` of it work with respect to
 an Env's landmarks and home, d, scale and the noise options (docs/differentiable.md).
 """
 
@@ -24,7 +24,7 @@ from ..core.maps import CLEARANCE, SPACING, grid_included, grid_points, random_h
 from ..core.methods import HomingMethod
 from ..core.scene import Env
 from ..core.soft.methods import check_differentiable
-from ..core.soft.quality import soft_quality
+from ..core.soft.loss import soft_loss
 from ..core.soft.sensing import VISIBILITY_WIDTH
 from ..options._limits import MAX_POINTS
 from ..core.errors import InputError
@@ -77,7 +77,7 @@ def _check_soft(tau, sharpness) -> tuple[float, float]:
     return tau, sharpness
 
 
-def homing_quality(
+def homing_loss(
     env: str | Path | Env,
     method: str | HomingMethod = "delv",
     spacing: float = SPACING,
@@ -124,14 +124,14 @@ def homing_quality(
         err = np.radians(np.asarray(vm.error_deg))[np.asarray(vm.included)]
         return jnp.asarray(np.mean(1.0 - np.cos(err)))
     check_differentiable(module)
-    return _quality(env, points, included, headings, key, sensor, module, jnp.float32(tau), jnp.float32(sharpness))
+    return _loss(env, points, included, headings, key, sensor, module, jnp.float32(tau), jnp.float32(sharpness))
 
 
-_quality = jax.jit(soft_quality)
+_loss = jax.jit(soft_loss)
 
 
-class QualityProblem(NamedTuple):
-    """A soft homing-quality evaluation ready to run: the differentiable parameters (`params`:
+class LossProblem(NamedTuple):
+    """A soft homing-loss evaluation ready to run: the differentiable parameters (`params`:
     landmarks (L, 3), home (2,), d, noise (a `Noise`), scale for DELV) and everything held fixed."""
 
     params: dict
@@ -147,7 +147,7 @@ class QualityProblem(NamedTuple):
     n_landmarks: int
 
 
-def quality_problem(
+def loss_problem(
     env: str | Path | Env,
     method: str | HomingMethod = "delv",
     spacing: float = SPACING,
@@ -158,8 +158,8 @@ def quality_problem(
     clearance: Real = CLEARANCE,
     max_points: int = MAX_POINTS,
     **options,
-) -> QualityProblem:
-    """Validate the options of `homing_quality_grad` (before any work) and set the problem up."""
+) -> LossProblem:
+    """Validate the options of `homing_loss_grad` (before any work) and set the problem up."""
     tau, sharpness = _check_soft(tau, sharpness)
     env, module, sensor, key, points, included, headings = _setup(
         env, method, spacing, seed, clearance, heading_deg, max_points, options
@@ -175,7 +175,7 @@ def quality_problem(
     }
     if hasattr(module, "scale"):
         params["scale"] = module.scale
-    return QualityProblem(
+    return LossProblem(
         params,
         arrays,
         points,
@@ -190,23 +190,23 @@ def quality_problem(
     )
 
 
-def problem_loss(params: dict, problem: QualityProblem) -> jax.Array:
-    """The soft quality of `problem` with `params` in place of its own (a pure, differentiable function)."""
+def problem_loss(params: dict, problem: LossProblem) -> jax.Array:
+    """The soft loss of `problem` with `params` in place of its own (a pure, differentiable function)."""
     e = eqx.tree_at(lambda x: (x.landmarks, x.home), problem.env, (params["landmarks"], params["home"]))
     s = eqx.tree_at(lambda x: (x.d, x.noise), problem.sensor, (params["d"], params["noise"]))
     m = eqx.tree_at(lambda x: x.scale, problem.method, params["scale"]) if "scale" in params else problem.method
-    return soft_quality(
+    return soft_loss(
         e, problem.points, problem.included, problem.headings, problem.key, s, m, problem.tau, problem.sharpness
     )
 
 
 @jax.jit
-def problem_value_and_grad(problem: QualityProblem) -> tuple[jax.Array, dict]:
+def problem_value_and_grad(problem: LossProblem) -> tuple[jax.Array, dict]:
     """Quality and its gradient with respect to every parameter, reverse mode, one program."""
     return jax.value_and_grad(problem_loss)(problem.params, problem)
 
 
-def homing_quality_grad(
+def homing_loss_grad(
     env: str | Path | Env,
     method: str | HomingMethod = "delv",
     spacing: float = SPACING,
@@ -218,11 +218,11 @@ def homing_quality_grad(
     max_points: int = MAX_POINTS,
     **options,
 ) -> tuple[float, dict]:
-    """`homing_quality` (soft) and its gradient by reverse mode in one program: a dict with
+    """`homing_loss` (soft) and its gradient by reverse mode in one program: a dict with
     landmarks (N, 3) per [x, y, r] cm, home (2,) per cm, d per cm, scale per cm (DELV only) and
     each noise sigma under its option name (per degree for *_deg, per unit for the step factors).
     The grid points and their headings are held fixed; noise is differentiated pathwise."""
-    problem = quality_problem(env, method, spacing, seed, tau, sharpness, heading_deg, clearance, max_points, **options)
+    problem = loss_problem(env, method, spacing, seed, tau, sharpness, heading_deg, clearance, max_points, **options)
     value, grads = problem_value_and_grad(problem)
     return float(value), readable_grads(grads, problem.n_landmarks)
 
