@@ -59,9 +59,12 @@ class ProgressBar:
             self._open(total)
 
     def phase(self, text: str) -> None:
-        """What the run does now: the bar's description, or a line when there is no bar."""
+        """What the run does now: the bar's description, or a line when the run has no bar; nothing
+        before `start` (input checks print nothing: bad input is one line)."""
         self._phase = text
-        if self.bar is not None and not self.bar.disable:
+        if self.bar is None:
+            return
+        if not self.bar.disable:
             self.bar.set_description_str(text, refresh=True)
         elif text:
             progress(f"{text} ...")

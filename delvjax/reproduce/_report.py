@@ -74,7 +74,9 @@ def claims_section(claims: list[dict]) -> str:
         "Each verdict is computed from this run's numbers (`studies/claims/__init__.py`); the thesis's "
         "words are quoted with their section. *Cannot tell*: the numbers compared are at the ceiling "
         "(all >= 99 %) or no method loses anything, so they cannot show the claim either way; each "
-        "*why* ends with the check's rule and its tolerance."
+        "*why* ends with the check's rule and its tolerance; *smallest sample* is the fewest observations "
+        "behind any number the check read (an error-curve bin's points, the trials per release distance "
+        "or the grid's cells): a verdict on a handful of points is a preview."
     )
     rows = [
         {
@@ -83,11 +85,13 @@ def claims_section(claims: list[dict]) -> str:
             "what must hold": c["statement"],
             "ours": c["ours"],
             "verdict": VERDICT_MARK[c["verdict"]],
+            "smallest sample": c.get("sample", ""),
             "why": c["why"],
         }
         for i, c in enumerate(claims)
     ]
-    return head + "\n\n" + md_table(["#", "claim (thesis)", "what must hold", "ours", "verdict", "why"], rows)
+    columns = ["#", "claim (thesis)", "what must hold", "ours", "verdict", "smallest sample", "why"]
+    return head + "\n\n" + md_table(columns, rows)
 
 
 def study_section(rec) -> str:
@@ -184,7 +188,7 @@ QUICK_BANNER = (
 def build_markdown(records: dict, settings, versions: dict, wall_seconds: float, ran: list[str]) -> str:
     from ..studies.claims import evaluate  # the studies: loaded only when a report is written (they import the API)
 
-    claims = evaluate({n: r.numbers for n, r in records.items()})
+    claims = evaluate({n: r.numbers for n, r in records.items()}, asdict(settings))
     flat = {k: v for r in records.values() for k, v in r.numbers.items()}
     parts = [
         "# delvjax: reproduction of the thesis's simulation experiments",

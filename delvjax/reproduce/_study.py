@@ -76,7 +76,8 @@ def figure_formats(value: str | Sequence[str]) -> tuple[str, ...]:
 
 def settings_record(settings: Settings) -> dict:
     """The settings as recorded in every study.json and the report, with the rollout rules."""
-    return {**asdict(settings), "rules": {"default": DEFAULT_RULES, "physical": PHYSICAL_RULES}}
+    record = {**asdict(settings), "formats": list(settings.formats)}  # as JSON reads it back
+    return {**record, "rules": {"default": DEFAULT_RULES, "physical": PHYSICAL_RULES}}
 
 
 def versions() -> dict[str, str]:

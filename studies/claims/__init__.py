@@ -34,12 +34,38 @@ _CHECK_MODULES = (
 )  # importing them fills CHECKS, chapter 4 first
 
 
-def evaluate(numbers_by_study: dict[str, dict]) -> list[dict]:
+GRID_KEYS = ("map:", "catchment", "occlusion:", "gap:", "visual:", "compass_noise:", "error_curve:", "sensitivity:")
+TRIAL_KEYS = ("success", "trajectories:")
+
+
+def smallest_sample(keys: list[str], flat: dict, settings: dict | None) -> tuple[float, str]:
+    """The smallest sample behind numbers `keys`: the fewest points of an error-curve bin (`n:KEY`), the
+    trials per release distance of a success rate, or the cells of the grid (docs/reproduce.md
+    "Claims"); (inf, "") when none is known."""
+    found: list[tuple[float, str]] = []
+    settings = settings or {}
+    for key in keys:
+        counts = [c for c in flat.get(f"n:{key}") or [] if c]
+        if counts:
+            found.append((min(counts), f"{min(counts)} points in an error-curve bin"))
+        elif key.startswith(TRIAL_KEYS) and settings.get("trials"):
+            found.append((settings["trials"], f"{settings['trials']} trials per release distance"))
+        elif key.startswith(GRID_KEYS) and settings.get("spacing"):
+            side = round(1000.0 / settings["spacing"])
+            found.append((side * side, f"a {side} × {side} grid"))
+    return min(found, default=(float("inf"), ""))
+
+
+def evaluate(numbers_by_study: dict[str, dict], settings: dict | None = None) -> list[dict]:
+    """One row per claim (module docstring); `settings` (the run's spacing and trials) gives each row the
+    smallest sample behind its verdict (`sample`)."""
     flat = {}
     for numbers in numbers_by_study.values():
         flat.update(numbers)
+    read: list[str] = []
 
     def get(key):
+        read.append(key)
         if key not in flat or flat[key] is None:
             raise Missing(key)
         return flat[key]
@@ -48,6 +74,7 @@ def evaluate(numbers_by_study: dict[str, dict]) -> list[dict]:
     for claim in thesis.CLAIMS:
         fn = CHECKS.get(claim["id"])
         row = {k: claim[k] for k in ("id", "section", "quote", "statement")}
+        read.clear()
         if fn is None:
             row.update(ours="", verdict="n/a", why="no check written for this claim")
         else:
@@ -58,5 +85,6 @@ def evaluate(numbers_by_study: dict[str, dict]) -> list[dict]:
             except (TypeError, ValueError, IndexError, ZeroDivisionError) as exc:  # a number of the wrong shape
                 ours, verdict, why = "", "n/a", f"numbers unusable ({type(exc).__name__}: {exc})"
             row.update(ours=ours, verdict=verdict, why=why)
+        row["sample"] = smallest_sample(read, flat, settings)[1] if row["verdict"] != "n/a" else ""
         rows.append(row)
     return rows

@@ -137,6 +137,13 @@ def curve_means(rows: list[dict]) -> list[float]:
     return [r["mean_deg"] for r in rows]
 
 
+def curve_number(ctx, key: str, rows: list[dict]) -> None:
+    """An error curve as headline numbers: its bin means under `key` and the points behind each bin
+    under `n:key` (the claims table reports the smallest sample behind a verdict)."""
+    ctx.number(key, curve_means(rows))
+    ctx.number(f"n:{key}", [int(r["n"]) for r in rows])
+
+
 def curves_rows(curves: dict[str, list[dict]]) -> list[dict]:
     return [{"label": label, **row} for label, rows in curves.items() for row in rows]
 

@@ -12,7 +12,7 @@ from delvjax.plots._maps import error_curve_figure
 from ._common import (
     LABEL,
     curve,
-    curve_means,
+    curve_number,
     curves_rows,
     env,
     map_numbers,
@@ -38,7 +38,7 @@ def run(ctx) -> None:
             vm = vector_map(ctx, e, m)
             s = map_numbers(e, vm)
             curves[LABEL[m]] = curve(e, vm)
-            ctx.number(f"error_curve:{name}:{m}", curve_means(curves[LABEL[m]]))
+            curve_number(ctx, f"error_curve:{name}:{m}", curves[LABEL[m]])
             ctx.number(f"map:{name}:{m}:mean_error_deg", s["mean_error_deg"])
             ctx.number(f"map:{name}:{m}:gt45_pct", s["gt45_pct"])
             rows.append(

@@ -18,7 +18,7 @@ from ._common import (
     as_vector_map,
     catchment,
     curve,
-    curve_means,
+    curve_number,
     curves_rows,
     env,
     inside_hull,
@@ -57,7 +57,7 @@ def run(ctx) -> None:
                 vm = as_vector_map(c)
                 s = map_numbers(e, vm)
                 curves[LABEL[m]] = curve(e, vm)
-                ctx.number(f"error_curve:env1:{m}", curve_means(curves[LABEL[m]]))
+                curve_number(ctx, f"error_curve:env1:{m}", curves[LABEL[m]])
                 ctx.number(f"map:env1:{m}:mean_error_deg", s["mean_error_deg"])
                 items.append((f"{LABEL[m]}: mean error {s['mean_error_deg']:.1f}°, catchment {pct:.1f} %", e, vm))
             counts = outcome_counts(c)

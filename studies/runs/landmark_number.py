@@ -10,7 +10,7 @@ from __future__ import annotations
 from delvjax.plots._maps import error_curve_figure
 from delvjax.envs._presets import random_env
 
-from ._common import PAD, curve, curve_means, curves_rows, map_numbers, panel_figure, vector_map
+from ._common import PAD, curve, curve_means, curve_number, curves_rows, map_numbers, panel_figure, vector_map
 
 TITLE = "Number of landmarks, arbitrary layouts (Fig 4.8)"
 STEPS = 3
@@ -25,10 +25,10 @@ def run(ctx) -> None:
         s = map_numbers(e, vm)
         label = f"{n} landmarks"
         curves[label] = curve(e, vm)
-        ctx.number(f"error_curve:random{n}:delv", curve_means(curves[label]))
+        curve_number(ctx, f"error_curve:random{n}:delv", curves[label])
         w = vector_map(ctx, e, "warping")
         sw = map_numbers(e, w)
-        ctx.number(f"error_curve:random{n}:warping", curve_means(curve(e, w)))
+        curve_number(ctx, f"error_curve:random{n}:warping", curve(e, w))
         rows.append(
             {
                 "landmarks": n,

@@ -18,7 +18,7 @@ from ._common import (
     catchment_columns,
     catchment_figure,
     curve,
-    curve_means,
+    curve_number,
     curves_rows,
     env,
     map_numbers,
@@ -42,7 +42,7 @@ def run(ctx) -> None:
         curves[name] = curve(e, vm)
         for key in ("mean_error_deg", "gt45_pct", "gt90_pct", "gt45_inside_hull_pct", "gt45_outside_hull_pct"):
             ctx.number(f"map:{name}:delv:{key}", s[key])
-        ctx.number(f"error_curve:{name}:delv", curve_means(curves[name]))
+        curve_number(ctx, f"error_curve:{name}:delv", curves[name])
         thesis_pct = thesis.CATCHMENT["fig4_5"][name]["delv"][0]
         row = {"env": name, "thesis %": thesis_pct}
         catchment_columns(ctx, f"catchment:{name}:delv", res, row)

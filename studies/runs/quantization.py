@@ -18,7 +18,7 @@ from ._common import (
     catchment,
     catchment_columns,
     curve,
-    curve_means,
+    curve_number,
     curves_rows,
     env,
     map_numbers,
@@ -48,7 +48,7 @@ def run(ctx) -> None:
         s = map_numbers(e, vm)
         curves[label] = curve(e, vm)
         tag = "continuous" if q is None else f"Q{q}"
-        ctx.number(f"error_curve:env1:delv:{tag}", curve_means(curves[label]))
+        curve_number(ctx, f"error_curve:env1:delv:{tag}", curves[label])
         ctx.number(f"map:env1:delv:{tag}:mean_error_deg", s["mean_error_deg"])
         row = {"levels": label, "mean error °": s["mean_error_deg"], "e>45 %": s["gt45_pct"], "e>90 %": s["gt90_pct"]}
         catchment_columns(ctx, f"catchment:env1:delv:{tag}", cat, row)

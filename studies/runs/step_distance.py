@@ -16,7 +16,7 @@ from ._common import (
     as_vector_map,
     catchment,
     curve,
-    curve_means,
+    curve_number,
     curves_rows,
     env,
     failures_text,
@@ -42,7 +42,7 @@ def run(ctx) -> None:
         pct = float(c.catchment_pct()[0])
         ctx.number(f"catchment:env1:delv:d={d:g}", pct)
         curves[f"d = {d:g} cm"] = curve(e, vm)
-        ctx.number(f"error_curve:env1:delv:d={d:g}", curve_means(curves[f"d = {d:g} cm"]))
+        curve_number(ctx, f"error_curve:env1:delv:d={d:g}", curves[f"d = {d:g} cm"])
         ctx.number(f"map:env1:delv:d={d:g}:mean_error_deg", s["mean_error_deg"])
         fails = {k: v for k, v in outcome_counts(c).items() if k in FAILURES}
         record_failures(ctx, f"catchment_failures:env1:delv:d={d:g}", fails)

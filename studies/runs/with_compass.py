@@ -21,7 +21,7 @@ from ._common import (
     catchment_columns,
     catchment_figure,
     curve,
-    curve_means,
+    curve_number,
     curves_rows,
     env,
     map_numbers,
@@ -65,7 +65,7 @@ def run(ctx) -> None:
         ctx.number(f"map:{name}:delv:mean_error_without_slips_deg", slips["mean_without_deg"])
         curves[f"{name} with compass"] = curve(e, vm)
         ctx.number(f"map:{name}:delv-compass:mean_error_deg", s["mean_error_deg"])
-        ctx.number(f"error_curve:{name}:delv-compass", curve_means(curves[f"{name} with compass"]))
+        curve_number(ctx, f"error_curve:{name}:delv-compass", curves[f"{name} with compass"])
         thesis_pct = thesis.CATCHMENT["fig5_5"][name]["delv-compass"][0]
         row = {
             "env": name,

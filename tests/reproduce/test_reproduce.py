@@ -42,6 +42,12 @@ def test_every_figure_of_the_run_passes_a_reviewers_checks(run):
     assert run[1]["figure_defects"] == {}
 
 
+def test_every_verdict_states_its_smallest_sample(run):
+    report = (run[0] / "report.md").read_text()
+    assert "| smallest sample |" in report
+    assert "points in an error-curve bin" in report and "trials per release distance" in report
+
+
 @pytest.mark.parametrize("name", studies.STUDIES)
 def test_study_record_and_files(run, name):
     out, _, _ = run

@@ -274,3 +274,16 @@ def test_numbers_of_the_wrong_shape_are_not_applicable_not_a_crash():
     numbers["occlusion:env1:delv-compass:gt45"] = [1.0]  # one k instead of three
     row = verdict("occlusion_increases_errors", numbers)
     assert row["verdict"] == "n/a" and "unusable" in row["why"]
+
+
+def test_the_smallest_sample_behind_a_verdict_is_the_fewest_observations_read():
+    from delvjax.studies.claims import smallest_sample
+
+    flat = {"error_curve:env1:delv": [10.0, 20.0], "n:error_curve:env1:delv": [7, 0, 30]}
+    settings = {"spacing": 100.0, "trials": 100}
+    assert smallest_sample(["error_curve:env1:delv"], flat, settings) == (7, "7 points in an error-curve bin")
+    both = ["success:env1:delv", "map:env1:delv:gt45_pct"]  # 100 trials per distance, 100 cells: a tie
+    assert smallest_sample(both, flat, settings)[0] == 100
+    assert smallest_sample(both, flat, {"spacing": 200.0, "trials": 100}) == (25, "a 5 × 5 grid")
+    assert smallest_sample(["catchment:env1:delv"], flat, {"spacing": 25.0, "trials": 100}) == (1600, "a 40 × 40 grid")
+    assert smallest_sample(["fit:objective"], flat, settings) == (float("inf"), "")
