@@ -8,6 +8,9 @@ from pathlib import Path
 import jax
 
 
+CACHE_BYTES = 2 << 30  # the compilation cache's bound (2 GiB; a full run writes about 0.1 GiB)
+
+
 def enable_compilation_cache() -> None:
     """Cache compiled programs under $DELVJAX_CACHE_DIR (default ~/.cache/delvjax/xla):
     a second run of the same command skips the seconds of compilation. Set it to "" to disable."""
@@ -20,6 +23,11 @@ def enable_compilation_cache() -> None:
         return
     jax.config.update("jax_compilation_cache_dir", path)
     jax.config.update("jax_persistent_cache_min_compile_time_secs", 0.5)
+    # A bound on its size, and with it JAX's file lock (the `filelock` package) around every read and write
+    # of an entry: without one JAX writes entries in place, and a process that shares the folder (the
+    # pytest workers, command-line subprocesses, the processes of a sweep) could read one half written
+    # and crash in XLA's deserializer (a segfault, seen in the test suite). Least recently used entries go.
+    jax.config.update("jax_compilation_cache_max_size", CACHE_BYTES)
 
 
 def package_sources() -> list[Path]:

@@ -206,19 +206,24 @@ def success_summary(rows: list[dict]) -> dict:
 
 
 def panel_figure(items, spacing: float, classes: bool = False, title: str = ""):
-    """1 x n vector-map panels: items = [(panel title, env, VectorMap)]; every marker in a legend."""
-    fig, axes = subplots(1, len(items), figsize=(4.6 * len(items), 5.0), squeeze=False)
-    for ax, (label, e, vm) in zip(axes[0], items):
+    """Vector-map panels, at most 3 a row (readable fonts at page width): items = [(panel title, env,
+    VectorMap)]; every marker in a legend."""
+    cols = min(len(items), 3)
+    rows = -(-len(items) // cols)
+    fig, axes = subplots(rows, cols, figsize=(4.6 * cols, 4.6 * rows + 0.5), squeeze=False)
+    for ax in axes.ravel()[len(items) :]:
+        ax.set_visible(False)
+    for ax, (label, e, vm) in zip(axes.ravel(), items):
         draw_vector_map(
             ax, e, vm.points, vm.direction, vm.valid, vm.included, spacing, error_deg=vm.error_deg if classes else None
         )
         draw_env(ax, e)
         ax.set_title(label, fontsize=9)
     handles = vector_map_handles(classes)
-    fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8, frameon=False)
+    fig.legend(handles=handles, loc="lower center", ncol=min(len(handles), 4), fontsize=8, frameon=False)
     if title:
         fig.suptitle(title)
-    fig.set_layout_engine("tight", rect=(0, 0.05, 1, 1))  # applied when drawn (in the figure thread)
+    fig.set_layout_engine("tight", rect=(0, 0.1 / rows, 1, 1))  # applied when drawn (in the figure thread)
     return fig
 
 

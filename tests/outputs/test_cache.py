@@ -1,0 +1,27 @@
+"""The persistent compilation cache is shared by processes (pytest workers, command-line subprocesses,
+the processes of a sweep), so every read and write of an entry holds JAX's file lock: a bounded cache.
+Without it JAX writes entries in place and a reader can meet one half written (a segfault in XLA's
+deserializer, seen once in the suite)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+
+def test_the_cache_is_bounded_and_locked(tmp_path):
+    code = (
+        "import jax, jax.numpy as jnp\n"
+        "from delvjax.outputs._cache import CACHE_BYTES, enable_compilation_cache\n"
+        "enable_compilation_cache()\n"
+        "assert jax.config.jax_compilation_cache_max_size == CACHE_BYTES > 0\n"
+        "jax.jit(lambda x: jnp.sort(x) @ x)(jnp.arange(300.0))\n"
+        "from jax._src import compilation_cache as cc\n"
+        "assert cc._cache is not None and cc._cache.eviction_enabled\n"  # the LRU cache: lock around get/put
+        "print('locked')\n"
+    )
+    env = {"DELVJAX_CACHE_DIR": str(tmp_path / "xla"), "PATH": "/usr/bin:/bin", "JAX_PLATFORMS": "cpu"}
+    env["JAX_PERSISTENT_CACHE_MIN_COMPILE_TIME_SECS"] = "0"
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=300)
+    assert run.returncode == 0 and run.stdout.strip() == "locked", run.stderr[-2000:]
+    assert (tmp_path / "xla" / ".lockfile").exists() or any((tmp_path / "xla").iterdir())
