@@ -149,3 +149,27 @@ def test_progress_counts_are_integers(capsys):
         bar(3, 18)
     err = capsys.readouterr().err
     assert "3/18" in err and "3.00" not in err and "18.0" not in err
+
+
+def test_the_bar_covers_the_whole_run_and_says_what_runs(capsys):
+    from delvjax.cli._args import ProgressBar
+
+    with ProgressBar("pt", 0) as bar:
+        bar.phase("checking 250000 cells")  # before start: nothing (bad input must stay one line)
+        assert capsys.readouterr().err == ""
+        bar.start(250_000, "compiling program 1 of 2")  # shown before the first chunk returns
+        bar(65_536, 250_000)
+        bar.phase("compiling program 2 of 2")
+        bar(184_464, 250_000)
+    err = capsys.readouterr().err
+    assert "compiling program 1 of 2" in err and "running" in err and "compiling program 2 of 2" in err
+    assert "65536/250000" in err and "250000/250000" in err and "250k" not in err
+
+
+def test_a_run_of_one_chunk_prints_its_phases_as_lines(capsys):
+    from delvjax.cli._args import ProgressBar
+
+    with ProgressBar("pt", 1000) as bar:
+        bar.start(400, "compiling program 1 of 1 (cached for later runs)")
+        bar(400, 400)
+    assert capsys.readouterr().err == "[delvjax] compiling program 1 of 1 (cached for later runs) ...\n"
