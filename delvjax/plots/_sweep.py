@@ -17,6 +17,7 @@ MAX_PANELS = 24
 
 OVERLAID = "method"  # line plots draw this axis as one line each, on shared axes, not as panels
 MAX_ANNOTATED = 400  # heat-map cells that get their value written in them
+MAX_TICKS = 10  # tick labels per axis (more are thinned: they would overlap)
 
 
 def check_plot(ds, x: str, y: str | None, metric: str) -> None:
@@ -137,7 +138,7 @@ def _lines(ax, ds, sel: dict, x: str, metric: str, title: str) -> list[dict]:
     if bands:  # what the shading is
         handles.append(Patch(color="0.5", alpha=0.3, label="shaded: " + "; ".join(bands)))
     ax.legend(handles=handles, fontsize=7, loc="best")
-    if np.issubdtype(xs.dtype, np.number):
+    if np.issubdtype(xs.dtype, np.number) and len(xs) <= MAX_TICKS:  # every value a tick, when they fit
         ax.set_xticks(xs)
     return rows
 
@@ -146,10 +147,11 @@ def _heat(fig, ax, ds, sel: dict, x: str, y: str, metric: str, title: str) -> li
     """A heat map of the mean over seeds with each cell's value written in it; the rows drawn."""
     mean, _ = summarize(_seeded(ds[metric].sel(sel), (y, x)).values)
     im = ax.imshow(mean, origin="lower", aspect="auto", cmap="viridis")
-    ax.set_xticks(range(ds.sizes[x]), _labels(ds, x))
-    ax.set_yticks(range(ds.sizes[y]), _labels(ds, y))
+    for axis, name in ((ax.xaxis, x), (ax.yaxis, y)):  # at most MAX_TICKS labels, evenly thinned
+        step = -(-ds.sizes[name] // MAX_TICKS)
+        axis.set_ticks(range(0, ds.sizes[name], step), _labels(ds, name)[::step])
     fig.colorbar(im, ax=ax, label=axis_label(ds, metric))
-    if mean.size <= MAX_ANNOTATED:
+    if mean.size <= MAX_ANNOTATED and max(mean.shape) <= 2 * MAX_TICKS:  # values that fit in their cells
         finite = mean[np.isfinite(mean)]
         middle = (finite.min() + finite.max()) / 2 if finite.size else 0.0
         size = 7 if mean.size <= 100 else 5

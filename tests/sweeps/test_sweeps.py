@@ -257,3 +257,23 @@ def test_a_damaged_sweep_file_is_one_line_not_a_plot(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "sweep.nc that cannot be read" in err[0]
     assert sorted(p.name for p in folder.iterdir()) == ["sweep.csv", "sweep.nc", "sweep.toml"]
+
+
+@pytest.mark.parametrize("y", [None, "bearing_noise_deg"])
+def test_sweep_figures_of_many_values_stay_readable(y):
+    """40 values of d and 30 of the noise: tick labels thinned, no text over another (`figure_defects`)."""
+    import xarray as xr
+
+    from delvjax.plots._sweep import sweep_figure
+    from tests.cases.figures import figure_defects
+
+    d, noise = np.linspace(10.0, 400.0, 40), np.linspace(0.0, 14.5, 30)
+    values = np.random.default_rng(0).uniform(0, 90, (2, 40, 30, 2))
+    ds = xr.Dataset(
+        {"mean_error_deg": (("method", "d", "bearing_noise_deg", "seed"), values, {"units": "degree"})},
+        coords={"method": ["delv", "alv"], "d": ("d", d, {"units": "cm"}), "bearing_noise_deg": noise, "seed": [0, 1]},
+    )
+    if y is None:
+        ds = ds.isel(bearing_noise_deg=0)
+    fig, rows = sweep_figure(ds, "d", y, "mean_error_deg")
+    assert figure_defects(fig) == [] and len(rows) == (2 * 40 if y is None else 2 * 40 * 30)
