@@ -91,9 +91,9 @@ def catchment_figure(env: Env, result, spacing: float, title: str = ""):
         hidden = result.hidden[m]
         label = f"catchment {pct[m]:.2f}%" + (f" (hidden {', '.join(map(str, hidden))})" if hidden else "")
         catchment_panel(ax, env, result, m, spacing, title=label if n > 1 else f"{title}: {label}" if title else label)
-        if n > 1:
-            ax.set_xlabel("")
-            ax.set_ylabel("")
+        if n > 1:  # small panels: small labels, still labelled
+            ax.xaxis.label.set_fontsize(8)
+            ax.yaxis.label.set_fontsize(8)
             ax.tick_params(labelsize=7)
     for m in range(n, rows * cols):
         axes[m // cols][m % cols].axis("off")

@@ -48,3 +48,27 @@ def test_a_clean_figure_passes():
     ax.set_ylabel("error (degree)")
     ax.legend()
     assert figure_defects(fig) == []
+
+
+def test_a_catchment_map_under_occlusion_has_labelled_panels_and_says_what_its_cells_mean():
+    import delvjax
+    from delvjax.plots import catchment_figure
+
+    c = delvjax.catchment("env1", spacing=200.0, occlude=1)  # one panel per hidden landmark
+    fig = catchment_figure(delvjax.load_env("env1"), c, 200.0, "DELV, one landmark hidden")
+    assert figure_defects(fig) == []
+    labels = [t.get_text() for legend in fig.legends for t in legend.get_texts()]
+    assert "hidden landmark" in labels and "blank: release point that fails" in labels
+    assert "not counted (within d of a wall)" not in labels  # every grid point counts at this spacing
+
+
+def test_cells_not_counted_are_hatched_and_named_not_drawn_as_failures():
+    import delvjax
+    from delvjax.plots import catchment_figure
+
+    c = delvjax.catchment("env1", spacing=200.0, d=150.0)  # grid points 100 cm from a wall: not counted
+    fig = catchment_figure(delvjax.load_env("env1"), c, 200.0, "DELV, d = 150 cm")
+    labels = [t.get_text() for legend in fig.legends for t in legend.get_texts()]
+    assert "not counted (within d of a wall)" in labels
+    hatched = [p for p in fig.axes[0].collections if p.get_hatch() == "////"]
+    assert len(hatched) == 1 and len(hatched[0].get_paths()) == 16  # the 16 grid points of the outer ring
