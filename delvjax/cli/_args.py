@@ -33,6 +33,11 @@ def progress(msg: str) -> None:
     print(f"[delvjax] {msg}", file=sys.stderr, flush=True)
 
 
+def compiling(k: int, m: int) -> str:
+    """The phase of a run whose next call compiles program k of m (or loads it from the cache)."""
+    return f"compiling program {k} of {m} (cached for later runs)"
+
+
 class ProgressBar:
     """A `progress(done, total)` callback: a bar on stderr with rate and ETA once the work runs in
     more than one chunk (`total` > `single`); nothing for a run of one chunk. `start(total, phase)`

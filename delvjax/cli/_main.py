@@ -15,6 +15,7 @@ from ..outputs._cache import enable_compilation_cache
 from ..outputs._temporary import Terminated, terminate_as_interrupt
 from ._args import (
     ProgressBar,
+    compiling,
     add_output_args,
     add_scene_args,
     check_outputs,
@@ -72,7 +73,7 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     n_points = grid_count(env.arena, args.spacing)
     progress(f"vector map of {args.method} on {env.name} (spacing {args.spacing:g} cm, {n_points} cells) ...")
     with ProgressBar("pt", request["batch_size"]) as bar:  # a bar only when the grid runs in several chunks
-        bar.start(n_points, "compiling program 1 of 1 (cached for later runs)")
+        bar.start(n_points, compiling(1, 1))
         vm = maps.vector_map(**request, progress=bar)
     vm.error_deg.block_until_ready()
     summary = {

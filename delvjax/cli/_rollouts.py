@@ -15,6 +15,7 @@ from ._images import add_image_args, cmd_catchment_images
 from ._help import COMMAND_HELP
 from ._args import (
     ProgressBar,
+    compiling,
     add_output_args,
     add_rollout_args,
     add_scene_args,
@@ -111,7 +112,7 @@ def cmd_catchment(args: argparse.Namespace) -> int:
             announce=lambda: progress(
                 f"catchment of {args.method} on {env.name} (spacing {args.spacing:g} cm"
                 + (f", {args.occlude} of {env.n_landmarks} landmarks hidden" if args.occlude else "")
-                + ") ..."
+                + f") ...\n[delvjax] {compiling(1, 1)} ..."
             ),
         )
     res.outcome.block_until_ready()
@@ -189,7 +190,8 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
             method=m,
             **kw,
             announce=lambda: progress(
-                f"success rate of {m} on {env.name}: {args.trials} trials x {len(args.distances)} distances ..."
+                f"success rate of {m} on {env.name}: {args.trials} trials x {len(args.distances)} distances ...\n"
+                f"[delvjax] {compiling(methods.index(m) + 1, len(methods))} ..."
             ),
         )
         res.outcome.block_until_ready()
@@ -260,7 +262,12 @@ def cmd_trajectories(args: argparse.Namespace) -> int:
     _check_methods(methods, kw)
     for m in methods:  # one program per method
         tr = api_rollouts.trajectories(
-            env, method=m, **kw, announce=lambda: progress(f"trajectories of {m} on {env.name} ...")
+            env,
+            method=m,
+            **kw,
+            announce=lambda: progress(
+                f"trajectories of {m} on {env.name} ...\n[delvjax] {compiling(methods.index(m) + 1, len(methods))} ..."
+            ),
         )
         results[m] = tr
         path, steps = np.asarray(tr.path), np.asarray(tr.steps)

@@ -8,6 +8,7 @@ from pathlib import Path
 import jax
 
 
+CACHE_SUFFIX, ATIME_SUFFIX = "-cache", "-atime"  # the names of an entry and its access time (jax._src.lru_cache)
 CACHE_BYTES = 2 << 30  # the compilation cache's bound (2 GiB; a full run writes about 0.1 GiB)
 
 
@@ -28,6 +29,20 @@ def enable_compilation_cache() -> None:
     # pytest workers, command-line subprocesses, the processes of a sweep) could read one half written
     # and crash in XLA's deserializer (a segfault, seen in the test suite). Least recently used entries go.
     jax.config.update("jax_compilation_cache_max_size", CACHE_BYTES)
+    stamp_old_entries(Path(path))
+
+
+def stamp_old_entries(folder: Path) -> None:
+    """Give every cache entry written without a bound (earlier delvjax versions: no `-atime` file beside
+    its `-cache` file) the access time JAX's bounded cache reads when it evicts; without one JAX fails
+    every later write to the folder with a warning. The entry's modification time stands in for it."""
+    for entry in folder.glob(f"*{CACHE_SUFFIX}"):
+        stamp = folder / (entry.name.removesuffix(CACHE_SUFFIX) + ATIME_SUFFIX)
+        if not stamp.exists():
+            try:
+                stamp.write_bytes(entry.stat().st_mtime_ns.to_bytes(8, "little"))
+            except OSError:  # removed meanwhile by another process's eviction, or a read-only folder
+                pass
 
 
 def package_sources() -> list[Path]:

@@ -25,3 +25,23 @@ def test_the_cache_is_bounded_and_locked(tmp_path):
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=300)
     assert run.returncode == 0 and run.stdout.strip() == "locked", run.stderr[-2000:]
     assert (tmp_path / "xla" / ".lockfile").exists() or any((tmp_path / "xla").iterdir())
+
+
+def test_entries_of_an_unbounded_cache_get_the_access_time_the_bounded_one_needs(tmp_path):
+    """A cache folder written by an earlier version (no `-atime` files) must not break later writes."""
+    folder = tmp_path / "xla"
+    folder.mkdir()
+    (folder / "jit_old-0123-cache").write_bytes(b"old entry")
+    code = (
+        "import warnings, jax, jax.numpy as jnp\n"
+        "warnings.simplefilter('error')\n"  # JAX warns when it cannot write an entry
+        "from delvjax.outputs._cache import enable_compilation_cache\n"
+        "enable_compilation_cache()\n"
+        "jax.config.update('jax_persistent_cache_min_compile_time_secs', 0)\n"
+        "jax.jit(lambda x: jnp.sort(x) @ x)(jnp.arange(300.0)).block_until_ready()\n"
+    )
+    env = {"DELVJAX_CACHE_DIR": str(folder), "PATH": "/usr/bin:/bin", "JAX_PLATFORMS": "cpu"}
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=300)
+    assert run.returncode == 0 and "Error writing" not in run.stderr, run.stderr[-2000:]
+    assert (folder / "jit_old-0123-atime").is_file()
+    assert (folder / "jit_old-0123-cache").is_file() and len(list(folder.glob("*-cache"))) >= 2  # old and new
