@@ -10,7 +10,7 @@ import numpy as np
 from .errors import InputError
 from .maps import VectorMap, vector_map_columns
 from .rollouts.catchment import Catchment, catchment_columns
-from .rollouts.rules import OUTCOME_NAMES, Outcomes, outcome_names, rule_columns
+from .rollouts.rules import OUTCOME_NAMES, outcome_names, rule_columns
 from .rollouts.success import SuccessRate, success_rows, success_trial_columns
 from .rollouts.trajectories import Trajectories, trajectory_columns
 
@@ -27,7 +27,7 @@ __all__ = [
     "trajectory_columns",
     "vector_map_columns",
 ]
-RESULTS = (VectorMap, Catchment, SuccessRate, Trajectories)
+RESULTS = (VectorMap, Catchment, SuccessRate, Trajectories)  # the result types with a table
 
 
 def concat_columns(tables: list[dict]) -> dict[str, list]:
@@ -40,8 +40,8 @@ def to_dataframe(result, method: str = ""):
     `Catchment` per grid point and mask (with the hidden landmarks), a `SuccessRate` per trial,
     `Trajectories` per visited position (`result.to_dataframe(method)`). `method` fills the method
     column where there is one."""
-    if not isinstance(result, (VectorMap, Outcomes)):
-        raise InputError("result", type(result).__name__, "must be a VectorMap, Catchment, SuccessRate or Trajectories")
+    if not isinstance(result, RESULTS):
+        raise InputError("result", type(result).__name__, f"must be a {' or '.join(t.__name__ for t in RESULTS)}")
     return result.to_dataframe(method)
 
 
