@@ -72,8 +72,6 @@ def run_sweep(
     total)` after each chunk; `phase(text)` says what runs now ("compiling program 2 of 3").
     With `out`, finished chunks are kept in out/.cells and cells found there are not computed again
     (`cell_store`: a killed or changed sweep resumes)."""
-    say = phase or (lambda text: None)
-    say(f"checking {spec.n_cells} cells")
     envs = _envs(spec)
     groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None)
     n = spec.n_cells
@@ -102,17 +100,14 @@ def run_sweep(
     per_call = n_devices(mesh)
     width = -(-CELL_CHUNK // per_call) * per_call  # cells per call, a multiple of the devices
     live = [cells for cells in ([i for i in g if todo[i]] for g in groups) if cells]  # one program each
-    jobs = []  # (cells, padded size, program): a group of more than one chunk pads every chunk to `width`
+    jobs = []  # (cells, padded size, the program's number on its first chunk else False); chunks padded to `width`
     for program, cells in enumerate(live, 1):
         size = width if len(cells) > width else -(-len(cells) // per_call) * per_call
-        jobs += [(cells[start : start + width], size, program) for start in range(0, len(cells), width)]
-    programs = len(live)
-    seen: set[int] = set()
+        jobs += [(cells[start : start + width], size, start == 0 and program) for start in range(0, len(cells), width)]
     mine: list[int] = []  # the cells this process computed
-    for chunk, size, program in jobs:
-        if program not in seen:  # its first call compiles it (or loads it from the persistent cache)
-            seen.add(program)
-            say(f"compiling program {program} of {programs}")
+    for chunk, size, first in jobs:
+        if first and phase is not None:  # the program's first call compiles it (or loads it from the cache)
+            phase(f"compiling program {first} of {len(live)}")
         padded = chunk + [chunk[0]] * (size - len(chunk))
         start, stop = (0, size) if processes == 1 else process_rows(mesh, size)  # this process's rows
         setups = [cell_setup(spec, envs, spec.cell(i), max_points) for i in padded[start:stop]]
