@@ -30,6 +30,7 @@ from ..core.images.rollouts import OUTCOMES
 from ..images._render import ImageSettings, camera, check_render, render_database
 from ..core.images import Catadioptric
 from ..images._evaluate import import_database
+from ..images._conventions import CHOICES
 
 # scene options that mean nothing for a database (its images fix the scene, the poses and the unit move)
 # the scene's options that a database replaces: the sensor's settings but the channel (the motion noise of a
@@ -42,6 +43,15 @@ UNUSED_WITH_IMAGES = (
     "occlude",
 )
 EXTRACTOR_OPTIONS = ("hue_deg", "hue_width_deg", "sat_min", "val_min", "band_deg", "band_height_deg", "fill")
+EXTRACTOR_HELP = {
+    "hue_deg": "landmark hue, deg (red 0)",
+    "hue_width_deg": "width of the hue window, deg",
+    "sat_min": "least saturation of a landmark pixel, 0-1",
+    "val_min": "least value (brightness) of a landmark pixel, 0-1",
+    "band_deg": "centre elevation of the band of rows averaged into the ring, deg",
+    "band_height_deg": "height of that band, deg",
+    "fill": "share of the band a ring pixel needs to count as landmark, 0-1",
+}
 
 
 def add_image_args(p: argparse.ArgumentParser) -> None:
@@ -71,10 +81,43 @@ def add_image_args(p: argparse.ArgumentParser) -> None:
         help="arena in cm (default: the metadata, else the extent of the positions)",
     )
     g.add_argument("--max-blobs", type=int, default=None, help="landmark blob slots (default: the metadata, else 8)")
-    for name in EXTRACTOR_OPTIONS:
-        g.add_argument("--" + name.replace("_", "-"), type=float, default=None, help=argparse.SUPPRESS)
+    add_extractor_args(g)
+    add_reading_args(g)
     g.add_argument("--chunk", type=int, default=256, help="images read and reduced at a time (memory bound)")
     p.set_defaults(parser_defaults={a.dest: a.default for a in p._actions})
+
+
+def add_extractor_args(g) -> None:
+    """The extractor's settings (docs/images.md §5.3-5.4; defaults: the metadata's, else `Extractor`'s)."""
+    for name in EXTRACTOR_OPTIONS:
+        g.add_argument("--" + name.replace("_", "-"), type=float, default=None, metavar="X", help=EXTRACTOR_HELP[name])
+
+
+def add_reading_args(g) -> None:
+    """How a database's headings, columns and camera are read where its metadata does not say (§4.1-4.2)."""
+    for name, (key, allowed, flag) in CHOICES.items():
+        g.add_argument(
+            flag,
+            dest=name if name != "columns" else "column_order",
+            choices=allowed,
+            default=None,
+            help=f"where the metadata does not declare {key}: {' or '.join(allowed)} (docs/images.md §4.1)",
+        )
+    g.add_argument(
+        "--elevation",
+        type=float,
+        nargs=2,
+        default=None,
+        metavar=("TOP", "BOTTOM"),
+        help="elevation of the top and bottom image edges, deg (default: the metadata's; BoB's opengl: 60 -15)",
+    )
+    g.add_argument("--camera-height", type=float, default=None, help="camera height, cm (default: metadata, else Z)")
+
+
+def reading_options(args: argparse.Namespace) -> dict:
+    """load_database's conventions, elevation and camera_height from the flags of `add_reading_args`."""
+    conv = {"heading": args.heading, "heading_column": args.heading_column, "columns": args.column_order}
+    return {"conventions": conv, "elevation": args.elevation, "camera_height": args.camera_height}
 
 
 def _refuse_unused(args: argparse.Namespace, extra=()) -> None:
@@ -121,6 +164,8 @@ def load(args: argparse.Namespace):
             chunk=args.chunk,
             progress=bar,
             check=check,
+            warn=warn,
+            **reading_options(args),
         )
     return db, opts
 
@@ -153,7 +198,7 @@ def cmd_vector_map_images(args: argparse.Namespace) -> int:
     summary = {
         "images": args.images,
         "method": args.method,
-        "home": db.home.tolist(),
+        "home": db.absolute(db.home).tolist(),
         "spacing_cm": db.spacing,
         **summarize_map(vm.error_deg, vm.valid, vm.included),
         "seconds": time.perf_counter() - t0,
@@ -163,9 +208,12 @@ def cmd_vector_map_images(args: argparse.Namespace) -> int:
         f"{summary['invalid']} invalid"
     )
     warn_empty(vm)
+    columns = vector_map_columns(vm)
+    if db.origin.any():  # the database's own coordinates (docs/images.md §4)
+        columns["x"], columns["y"] = (np.asarray(columns[k], np.float64) + db.origin[i] for i, k in enumerate("xy"))
     write_outputs(
         args,
-        vector_map_columns(vm),
+        columns,
         summary,
         lambda: database_map_figure(
             db, vm, f"{args.method} on {db.name}: mean error {summary['mean_error_deg']:.1f}°", classes=args.classes
@@ -223,8 +271,8 @@ def cmd_catchment_images(args: argparse.Namespace) -> int:
     )
     code = np.asarray(paths.outcome)
     columns = {
-        "x": starts[:, 0],
-        "y": starts[:, 1],
+        "x": starts[:, 0] + db.origin[0] if db.origin.any() else starts[:, 0],  # the database's own coordinates
+        "y": starts[:, 1] + db.origin[1] if db.origin.any() else starts[:, 1],
         "outcome": [OUTCOMES[c] for c in code],
         "steps": np.asarray(paths.steps),
     }
@@ -269,6 +317,7 @@ def add_images(sub) -> None:
         "--arena", type=float, nargs=4, default=None, metavar=("XMIN", "YMIN", "XMAX", "YMAX"), help="arena, cm"
     )
     i.add_argument("--spacing", type=float, default=None, help="grid spacing = unit move, cm")
+    add_reading_args(i)
     i.set_defaults(func=cmd_import)
 
 
@@ -295,12 +344,22 @@ def cmd_import(args: argparse.Namespace) -> int:
     check_out_dir(args.out)
     check_no_clash({"--out": args.out}, {"src": args.src})
     t0 = time.perf_counter()
-    db = import_database(args.src, args.out, home=args.home, arena=args.arena, spacing=args.spacing)
-    blobs = np.asarray(db.rings.snapshots.valid).sum(-1)
-    progress(
-        f"{len(db.files)} images in {time.perf_counter() - t0:.2f} s; landmark blobs per image: min {blobs.min()}, "
-        f"mean {blobs.mean():.2f}, max {blobs.max()}; home {db.home.tolist()}, spacing {db.spacing:g} cm"
+    db = import_database(
+        args.src, args.out, home=args.home, arena=args.arena, spacing=args.spacing, warn=warn, **reading_options(args)
     )
+    blobs = np.asarray(db.rings.snapshots.valid).sum(-1)
+    home = db.absolute(db.home)
+    progress(
+        f"{len(db.files)} {db.kind} images in {time.perf_counter() - t0:.2f} s; landmark blobs per image: min "
+        f"{blobs.min()}, mean {blobs.mean():.2f}, max {blobs.max()}; home ({home[0]:g}, {home[1]:g}), "
+        f"spacing {db.spacing:g} cm"
+    )
+    if (blobs == 0).any():
+        empty = [db.files[i].name for i in np.flatnonzero(blobs == 0)]
+        warn(
+            f"{len(empty)} of {len(blobs)} images show no landmark blob ({', '.join(empty[:3])}"
+            f"{', ...' if len(empty) > 3 else ''}): check the hue window (--hue-deg, --hue-width-deg) and the band"
+        )
     print(wrote(args.out))
     return 0
 

@@ -1,12 +1,14 @@
 """Image databases on disk (docs/images.md §4): the BoB robotics layout and plain folders.
 
-BoB layout: a folder with `database_entries.csv` (columns `X [mm], Y [mm], Z [mm], Heading [degrees],
-Filename, Grid X, Grid Y, Grid Z`), `database_metadata.yaml` (OpenCV-style YAML; delvjax adds a
-`delvjax:` block with the arena, home, spacing, camera and obstacles) and one PNG per entry. A
-plain folder: images plus `positions.csv` with columns `filename, x, y` and optionally
-`heading_deg` (cm, deg). Panorama files store the unmirrored view: file column c looks along
-heading - 360 c / W (clockwise to the right); in memory column j looks along heading + 360 j / W.
-Every reading error names the file (`InputError`, exit 2 in the CLI).
+BoB layout (read and written as BoB's `ImageDatabase` does): `database_entries.csv` (BoB's columns
+`X [mm], Y [mm], Z [mm], Heading [degrees], Pitch [degrees], Roll [degrees], Filename` and, for a
+grid, `Grid X, Grid Y, Grid Z`; numbers as `%.17e`, NaN as `nan`), `database_metadata.yaml` (OpenCV
+FileStorage YAML: `type: grid|route`, a `grid` block, BoB's `camera` block, the declared conventions
+of `_conventions.py`, and a `delvjax:` block with the arena, home, spacing, camera and obstacles) and
+one PNG per entry (`image_%+07d_%+07d_%+07d.png` in mm for a grid, `image%05d.png` for a route).
+A plain folder: images plus `positions.csv` with columns `filename, x, y` and optionally
+`heading_deg` (cm, deg). Positions and headings stay float64 on the host (UTM millimetres keep
+their digits). Every reading error names the file (`InputError`, exit 2 in the CLI).
 """
 
 from __future__ import annotations
@@ -23,43 +25,64 @@ from collections.abc import Iterable
 import numpy as np
 
 from ..core.errors import InputError
+from ..core.images.database import route_checks
+from ._conventions import BOB, DELVJAX_BEFORE, PLAIN, Conventions, declared, file_columns, resolve
 from ._metadata import check_metadata
 from ..outputs._temporary import fsync_path, fsync_tree, new_temp_dir, ordinary_permissions
+
+__all__ = ["file_columns", "read_index", "read_images", "DatabaseWriter"]
 
 METADATA = "database_metadata.yaml"
 ENTRIES = "database_entries.csv"
 POSITIONS = "positions.csv"
-BOB_COLUMNS = ("X [mm]", "Y [mm]", "Z [mm]", "Heading [degrees]", "Filename", "Grid X", "Grid Y", "Grid Z")
+BOB_COLUMNS = ("X [mm]", "Y [mm]", "Z [mm]", "Heading [degrees]", "Pitch [degrees]", "Roll [degrees]", "Filename")
+BOB_GRID_COLUMNS = ("Grid X", "Grid Y", "Grid Z")
 THREADS = 8  # image decoding and encoding (Pillow releases the GIL)
 MAX_PIXELS = 4096 * 4096  # per image file, checked from its header before it is decoded
 
 
-def file_columns(images: np.ndarray, axis: int = -2) -> np.ndarray:
-    """Memory <-> file column order of panoramas (..., H, W, 3), or of any array whose columns are
-    `axis` (a mask (H, W), a ring (W,): axis=-1). Self-inverse: column j <-> -j mod W."""
-    return np.roll(np.flip(images, axis=axis), 1, axis=axis)
-
-
 @dataclass
 class DatabaseIndex:
-    """What a database folder lists: files, positions (N, 2) cm, headings (N,) rad and its metadata
-    (`meta`: the `delvjax` block, empty for other databases; `camera`: the BoB camera block)."""
+    """What a database folder lists: files, positions and heights as stored (N, 3) float64 mm (NaN where
+    a height is not stored); stored headings (N,) deg as written (NaN where missing) and how to read them
+    (`conventions`); `kind` grid or route; `meta`: the `delvjax` block (empty for other databases),
+    `bob`: BoB's own metadata fields."""
 
     folder: Path
     files: list[Path]
-    positions: np.ndarray
-    headings: np.ndarray
+    xyz_mm: np.ndarray
+    heading_deg: np.ndarray
+    conventions: Conventions = DELVJAX_BEFORE
+    kind: str = "grid"
     meta: dict = field(default_factory=dict)
+    bob: dict = field(default_factory=dict)
     needs_unwrapping: bool = False
 
+    @property
+    def positions(self) -> np.ndarray:
+        """(N, 2) float64 cm."""
+        return self.xyz_mm[:, :2] / 10.0
 
-def _number(text: str, what: str, path: Path, row: int) -> float:
+    @property
+    def z(self) -> np.ndarray:
+        """(N,) float64 cm, NaN where not stored."""
+        return self.xyz_mm[:, 2] / 10.0
+
+    def headings(self, width: int) -> np.ndarray:
+        """(N,) float64 rad: the world heading of memory column 0 of every image (NaN kept)."""
+        return np.radians(self.conventions.column0_deg(self.heading_deg, width))
+
+
+def _number(text: str, what: str, path: Path, row: int, finite: bool = True) -> float:
+    """A CSV number; an empty field is NaN (as BoB and pandas read it); NaN only where not `finite`."""
     try:
-        v = float(text)
+        v = float(text) if text != "" or finite else math.nan
     except (TypeError, ValueError):
         raise InputError(what, str(path), f"row {row}: {text!r} is not a number") from None
-    if not math.isfinite(v):
+    if finite and not math.isfinite(v):
         raise InputError(what, str(path), f"row {row}: {text!r} is not finite")
+    if not finite and math.isinf(v):
+        raise InputError(what, str(path), f"row {row}: {text!r} is infinite")
     return v
 
 
@@ -69,7 +92,7 @@ def _rows(path: Path) -> list[dict[str, str]]:
     try:
         with open(path, newline="", encoding="utf-8-sig") as fh:
             reader = csv.DictReader(fh, skipinitialspace=True)
-            raw = list(reader)
+            raw = [r for r in reader if any((v or "").strip() for v in r.values() if isinstance(v, str))]
             fields = [f.strip() for f in reader.fieldnames or []]
     except (OSError, UnicodeDecodeError, csv.Error) as exc:
         raise InputError("images", str(path), f"cannot be read ({exc})") from None
@@ -101,52 +124,78 @@ def _read_yaml(path: Path) -> dict:
         data = yaml.safe_load("\n".join(lines)) or {}
     except yaml.YAMLError as exc:
         raise InputError("images", str(path), f"is not valid YAML ({str(exc).splitlines()[0]})") from None
-    return data.get("metadata", data) if isinstance(data, dict) else {}
+    data = data.get("metadata", data) if isinstance(data, dict) else {}
+    return data if isinstance(data, dict) else {}
 
 
-def read_index(src: str | Path) -> DatabaseIndex:
-    """The entries of a BoB database or a plain folder with positions.csv (module docstring)."""
+def _conventions(folder: Path, bob: dict, layout: str, given: dict) -> Conventions:
+    """docs/images.md §4.1: declared in the metadata, else BoB's for a BoB database with BoB's metadata,
+    delvjax's former ones for a database delvjax wrote before it declared them, the documented ones of
+    positions.csv; a BoB entries file without metadata cannot tell."""
+    own = declared(bob, folder / METADATA)
+    if layout == "plain":
+        default = PLAIN
+    elif "delvjax" in bob and not own:
+        default = DELVJAX_BEFORE
+    elif bob:
+        default = BOB
+    else:
+        default = None
+    return resolve(own, default, given, str(folder / METADATA) if bob else str(folder))
+
+
+def read_index(src: str | Path, conventions: dict | None = None) -> DatabaseIndex:
+    """The entries of a BoB database or a plain folder with positions.csv (module docstring);
+    `conventions`: heading, heading_column, columns chosen by the caller (docs/images.md §4.1)."""
     folder = Path(src)
     if not folder.is_dir():
         raise InputError("images", str(src), "is not a folder")
     if (folder / ENTRIES).is_file():
         rows = _rows(folder / ENTRIES)
         need = ("X [mm]", "Y [mm]", "Filename")
-        keys = {"x": "X [mm]", "y": "Y [mm]", "heading": "Heading [degrees]", "file": "Filename"}
-        scale, path = 0.1, folder / ENTRIES
+        keys = {"x": "X [mm]", "y": "Y [mm]", "z": "Z [mm]", "heading": "Heading [degrees]", "file": "Filename"}
+        scale, path, layout = 1.0, folder / ENTRIES, "bob"
     elif (folder / POSITIONS).is_file():
         rows = _rows(folder / POSITIONS)
         need = ("filename", "x", "y")
-        keys = {"x": "x", "y": "y", "heading": "heading_deg", "file": "filename"}
-        scale, path = 1.0, folder / POSITIONS
+        keys = {"x": "x", "y": "y", "z": "z", "heading": "heading_deg", "file": "filename"}
+        scale, path, layout = 10.0, folder / POSITIONS, "plain"
     else:
         raise InputError("images", str(src), f"has neither {ENTRIES} (BoB layout) nor {POSITIONS}")
     missing = [c for c in need if not rows or c not in rows[0]]
     if missing:
         raise InputError("images", str(path), f"lacks the column(s) {', '.join(missing)}")
-    pos = (
-        np.array(
-            [
-                [_number(r[keys["x"]], "images", path, i + 2), _number(r[keys["y"]], "images", path, i + 2)]
-                for i, r in enumerate(rows)
-            ]
-        )
-        * scale
+    num = lambda r, k, i, finite=True: _number(r.get(keys[k], ""), "images", path, i + 2, finite)  # noqa: E731
+    xyz = np.array(
+        [[num(r, "x", i), num(r, "y", i), num(r, "z", i, False)] for i, r in enumerate(rows)], np.float64
     )
-    head = np.radians([_number(r.get(keys["heading"]) or "0", "images", path, i + 2) for i, r in enumerate(rows)])
+    xyz = xyz if scale == 1.0 else xyz * scale
+    head = np.array(
+        [num(r, "heading", i, False) if keys["heading"] in r else 0.0 for i, r in enumerate(rows)], np.float64
+    )
     files = [folder / r[keys["file"]] for r in rows]
     first: dict[Path, int] = {}
     for i, f in enumerate(files):
         if first.setdefault(f, i + 2) != i + 2:
             raise InputError("images", str(path), f"row {i + 2} lists {f.name} again (row {first[f]})")
-    meta = _read_yaml(folder / METADATA) if (folder / METADATA).is_file() else {}
+    bob = _read_yaml(folder / METADATA) if (folder / METADATA).is_file() else {}
+    kind = bob.get("type")
+    if kind is not None and kind not in ("grid", "route"):
+        raise InputError("images", str(folder / METADATA), f"type must be grid or route, got {kind!r}")
+    if kind is None:  # as BoB decides without metadata: a grid if the entries have grid columns
+        kind = "grid" if layout == "plain" or "Grid X" in rows[0] or "delvjax" in bob else "route"
+    if kind == "route":
+        route_checks(xyz[:, :2], [f.name for f in files], str(path))
     return DatabaseIndex(
         folder,
         files,
-        pos.astype(np.float32),
-        head.astype(np.float32),
-        meta=dict(check_metadata(meta.get("delvjax"), folder / METADATA)),
-        needs_unwrapping=bool(meta.get("needsUnwrapping", 0)),
+        xyz,
+        head,
+        conventions=_conventions(folder, bob, layout, conventions or {}),
+        kind=kind,
+        meta=dict(check_metadata(bob.get("delvjax"), folder / METADATA)),
+        bob={k: v for k, v in bob.items() if k != "delvjax"},
+        needs_unwrapping=bool(bob.get("needsUnwrapping", 0)),
     )
 
 
@@ -185,46 +234,94 @@ def read_images(index: DatabaseIndex, rows: Iterable[int], shape: tuple[int, ...
                 f"is {im.shape[1]} x {im.shape[0]} pixels, the database's images {shape[1]} x {shape[0]}",
             )
     stack = np.stack(images)
-    return stack if index.needs_unwrapping else file_columns(stack)
+    return stack if index.needs_unwrapping else index.conventions.to_memory(stack)
 
 
-def bob_filename(gx: int, gy: int) -> str:
-    return f"image_{gx:+05d}_{gy:+05d}_+0000.png"
+def bob_grid_filename(x_mm: float, y_mm: float, z_mm: float) -> str:
+    """BoB's grid image name: the position in whole millimetres, `image_%+07d_%+07d_%+07d.png`."""
+    return "image_" + "_".join(f"{int(round(v)):+07d}" for v in (x_mm, y_mm, z_mm)) + ".png"
+
+
+def bob_route_filename(i: int) -> str:
+    """BoB's route image name (`RouteRecorder`): `image%05d.png`, counted from 1."""
+    return f"image{i + 1:05d}.png"
+
+
+def precise(value: float) -> str:
+    """A number as BoB writes it (`writePreciseString`: scientific, 17 digits; NaN as `nan`)."""
+    return "nan" if math.isnan(value) else f"{value:.17e}"
+
+
+class _OpenCVDumper:
+    """PyYAML's emitter made to write what OpenCV's FileStorage parser reads: block sequences indented
+    under their key (OpenCV rejects `- x` at the key's indentation), leaf lists in flow style."""
+
+    @staticmethod
+    def dump(data: dict) -> str:
+        import yaml  # PyYAML: loaded only for a database's metadata
+
+        class Dumper(yaml.SafeDumper):
+            def increase_indent(self, flow=False, indentless=False):
+                return super().increase_indent(flow, False)
+
+        return "%YAML:1.0\n---\n" + yaml.dump(
+            data, Dumper=Dumper, sort_keys=False, default_flow_style=None, indent=3, width=1 << 16
+        )
+
+
+@dataclass
+class Entry:
+    """One database entry to write: memory-order image data goes to the pool, the row to the CSV."""
+
+    x_mm: float
+    y_mm: float
+    z_mm: float
+    heading_deg: float
+    name: str
+    grid: tuple[int, int, int] | None
 
 
 class DatabaseWriter:
-    """Writes a BoB database into a temporary folder beside `out`; `commit` renames it into place, so a
-    failed or interrupted run leaves no partial database (`out` must not exist or be empty)."""
+    """Writes a BoB database (module docstring) into a temporary folder beside `out`; `commit` renames
+    it into place, so a failed or interrupted run leaves no partial database (`out` must not exist or
+    be empty). Images arrive in memory order with their world heading of column 0; they are stored in
+    `conventions` (BoB's by default) and the metadata declares them."""
 
-    def __init__(self, out: str | Path):
+    def __init__(self, out: str | Path, conventions: Conventions = BOB):
         self.out = Path(os.path.realpath(out)) if Path(out).is_symlink() else Path(out)  # a link: its folder
         if self.out.exists() and (not self.out.is_dir() or any(self.out.iterdir())):
             raise InputError("--out", str(out), "exists and is not an empty folder")
         self.out.parent.mkdir(parents=True, exist_ok=True)
         self.tmp = new_temp_dir(self.out.parent)
-        self.rows: list[list] = []
+        self.conventions = conventions
+        self.entries: list[Entry] = []
         self.pool = ThreadPoolExecutor(THREADS)
 
     def add(
         self,
         images: np.ndarray,
-        positions: np.ndarray,
-        headings: np.ndarray,
-        grid: np.ndarray,
+        xyz_mm: np.ndarray,
+        column0_deg: np.ndarray,
+        grid: np.ndarray | None,
         donut: bool = False,
-        first: int | None = None,
+        stored: np.ndarray | None = None,
     ) -> None:
-        """Images (k, H, W, 3) uint8 in memory order, positions (k, 2) cm, headings (k,) rad, grid (k, 2) int.
-        Files are named by grid cell; with `first` (entries not on distinct grid cells, e.g. a route) by
-        entry number, `image_{first + i:05d}.png`, as BoB names route images."""
+        """Images (k, H, W, 3) uint8 in memory order, positions and heights (k, 3) mm (a NaN height: not
+        known), world headings of column 0 (k,) deg, grid cells (k, 2) int, or None for a route (files
+        named by entry number, as BoB's route recorder names them); `stored`: the headings to write
+        as they are (a database copied in its own conventions keeps its numbers exactly)."""
         from PIL import Image  # Pillow: loaded only when image files are read or written
 
-        names = (
-            [bob_filename(int(gx), int(gy)) for gx, gy in grid]
-            if first is None
-            else [f"image_{first + i:05d}.png" for i in range(len(grid))]
-        )
-        files = images if donut else file_columns(images)
+        width = images.shape[2]
+        mm, z_mm = np.asarray(xyz_mm, np.float64)[:, :2], np.asarray(xyz_mm, np.float64)[:, 2]
+        n0 = len(self.entries)
+        names = [
+            bob_grid_filename(x, y, 0.0 if math.isnan(zz) else zz) if grid is not None else bob_route_filename(n0 + i)
+            for i, ((x, y), zz) in enumerate(zip(mm, z_mm))
+        ]
+        if stored is None:
+            stored = column0_deg if donut else self.conventions.stored_deg(column0_deg, width)
+        files = images if donut else self.conventions.to_file(images)
         try:
             list(
                 self.pool.map(
@@ -233,19 +330,9 @@ class DatabaseWriter:
             )
         except OSError as exc:
             raise InputError("--out", str(self.out), f"could not be written ({exc.strerror or exc})") from None
-        for (x, y), h, (gx, gy), name in zip(positions, headings, grid, names):
-            self.rows.append(
-                [
-                    round(float(x) * 10, 3),
-                    round(float(y) * 10, 3),
-                    0,
-                    round(math.degrees(float(h)), 6),
-                    name,
-                    int(gx),
-                    int(gy),
-                    0,
-                ]
-            )
+        for i, ((x, y), zz, h, name) in enumerate(zip(mm, z_mm, np.asarray(stored, np.float64), names)):
+            cell = None if grid is None else (int(grid[i][0]), int(grid[i][1]), 0)
+            self.entries.append(Entry(float(x), float(y), float(zz), float(h), name, cell))
 
     def commit(self, metadata: dict) -> None:
         try:
@@ -254,13 +341,23 @@ class DatabaseWriter:
             raise InputError("--out", str(self.out), f"could not be written ({exc.strerror or exc})") from None
 
     def _commit(self, metadata: dict) -> None:
-        import yaml  # PyYAML: loaded only for a database's metadata
-
-        with open(self.tmp / ENTRIES, "w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(BOB_COLUMNS)
-            w.writerows(self.rows)
-        (self.tmp / METADATA).write_text("%YAML:1.0\n---\n" + yaml.safe_dump({"metadata": metadata}, sort_keys=False))
+        is_grid = all(e.grid is not None for e in self.entries)
+        names = [e.name for e in self.entries]
+        if len(set(names)) != len(names):  # two grid entries within a millimetre
+            raise InputError("--out", str(self.out), "two entries would share the image name " + names[0])
+        with open(self.tmp / ENTRIES, "w", newline="") as fh:  # BoB's addNewEntries: ", " between fields
+            fh.write(", ".join(BOB_COLUMNS + (BOB_GRID_COLUMNS if is_grid else ())) + "\n")
+            for e in self.entries:
+                row = [precise(e.x_mm), precise(e.y_mm), precise(e.z_mm), precise(e.heading_deg), "nan", "nan", e.name]
+                fh.write(", ".join(row + ([str(v) for v in e.grid] if is_grid else [])) + "\n")
+        bob = {
+            "type": "grid" if is_grid else "route"
+        }  # no `time`: BoB reads it only if present; files stay reproducible
+        if is_grid and self.entries:
+            bob["grid"] = grid_block(self.entries)
+        bob.update(metadata)
+        bob.update(self.conventions.metadata())
+        (self.tmp / METADATA).write_text(_OpenCVDumper.dump({"metadata": bob}))
         self.pool.shutdown()
         fsync_tree(self.tmp)
         ordinary_permissions(self.tmp)  # a database is an ordinary folder
@@ -272,3 +369,15 @@ class DatabaseWriter:
     def discard(self) -> None:
         self.pool.shutdown(wait=True)
         shutil.rmtree(self.tmp, ignore_errors=True)
+
+
+def grid_block(entries: list[Entry]) -> dict:
+    """BoB's `grid` metadata block: beginAtMM (the first cell's position), separationMM, size."""
+    g = np.array([e.grid for e in entries])
+    xyz = np.array([[e.x_mm, e.y_mm, 0.0 if math.isnan(e.z_mm) else e.z_mm] for e in entries])
+    lo = g.min(0)
+    first = xyz[np.argmin(np.abs(g - lo).sum(1))]
+    span = g.max(0) - lo
+    sep = [float((xyz[:, k].max() - xyz[:, k].min()) / span[k]) if span[k] else 0.0 for k in range(3)]
+    begin = [float(first[k] - sep[k] * (g[np.argmin(np.abs(g - lo).sum(1)), k] - lo[k])) for k in range(3)]
+    return {"beginAtMM": begin, "separationMM": sep, "size": [int(v) for v in span + 1]}

@@ -13,11 +13,20 @@ import numpy as np
 
 from ._render import DEFAULT_CHUNK
 from ..core.images import Extractor
-from ..core.images.database import RingDatabase, database_directions, home_plan, move_plan, perceived_landmarks
+from ..core.images.database import (
+    RingDatabase,
+    database_directions,
+    home_plan,
+    move_plan,
+    perceived_landmarks,
+    route_home_plan,
+    route_plan,
+)
 from ..core.images.rollouts import OUTCOMES, Field, Paths, nearest_snapshot_rollouts
 from ..core.maps import VectorMap
 from ..core.rollouts import MAX_STEPS
 from ._disk import read_index
+from ._conventions import BOB, resolve
 from ..options._settings import make_setup
 from ..options._checks import non_negative, positive, positive_int, seed_value
 from ._render import database_metadata
@@ -30,9 +39,13 @@ from ._load import LoadedDatabase, database_arena, database_spacing, check_home_
 def plans(db: LoadedDatabase):
     """(the unit move ending at every point, the home record's move) of a database (docs/images.md §6)."""
     pos, head = np.asarray(db.rings.positions), np.asarray(db.rings.headings)
-    plan = jax.tree.map(jnp.asarray, move_plan(pos, head, db.spacing, db.camera.cols))
-    home = jax.tree.map(jnp.asarray, home_plan(pos, head, db.home_index, db.spacing, db.camera.cols))
-    return plan, home
+    if db.kind == "route":
+        plan = route_plan(pos, head, db.camera.cols)
+        home = route_home_plan(pos, head, db.home_index, db.camera.cols)
+    else:
+        plan = move_plan(pos, head, db.spacing, db.camera.cols)
+        home = home_plan(pos, head, db.home_index, db.spacing, db.camera.cols)
+    return jax.tree.map(jnp.asarray, plan), jax.tree.map(jnp.asarray, home)
 
 
 def perceived(db: LoadedDatabase, delv) -> np.ndarray:
@@ -138,33 +151,49 @@ def catchment_numbers(paths: Paths) -> dict:
     return out
 
 
-def import_database(src: str | Path, out: str | Path, **options) -> LoadedDatabase:
-    """Read a database (BoB or a plain folder; `load_database` options), check every image, and write
-    it as a BoB database at `out` with delvjax metadata (docs/images.md §4); nothing is left at `out`
-    if any image fails."""
-
-    index = read_index(src)
+def import_database(
+    src: str | Path, out: str | Path, conventions: dict | None = None, write_as: dict | None = None, **options
+) -> LoadedDatabase:
+    """Read a database (BoB or a plain folder; `load_database` options; `conventions` where it does not
+    declare its own, docs/images.md §4.1), check every image, and write it as a BoB database at `out`
+    with delvjax metadata, in BoB's conventions or `write_as` (heading, heading_column, columns).
+    Positions (float64 mm), Z and, where the conventions stay, the headings are copied exactly; nothing
+    is left at `out` if any image fails."""
+    index = read_index(src, conventions)
     spacing = database_spacing(index, options.get("spacing"))
     arena = database_arena(index, options.get("arena"), spacing)
-    writer = DatabaseWriter(out)
-
-    grid = np.round((index.positions - arena[:2] - spacing / 2) / spacing).astype(int)
-    on_cells = len(np.unique(grid, axis=0)) == len(grid)  # else (a route, a jittered grid) files by entry number
+    target = resolve({}, BOB, write_as or {}, str(out))
+    writer = DatabaseWriter(out, target)
+    grid = None
+    if index.kind == "grid":
+        grid = np.round((index.positions - arena[:2] - spacing / 2) / spacing).astype(int)
+        grid -= grid.min(0)  # BoB's grid cells are unsigned
 
     def sink(images: np.ndarray, rows: slice) -> None:
+        width = images.shape[2]
+        same = index.conventions == target or index.needs_unwrapping
         writer.add(
             images,
-            index.positions[rows],
-            index.headings[rows],
-            grid[rows],
+            index.xyz_mm[rows],
+            np.degrees(index.headings(width)[rows]),
+            None if grid is None else grid[rows],
             donut=index.needs_unwrapping,
-            first=None if on_cells else rows.start,
+            stored=index.heading_deg[rows] if same else None,
         )
 
     try:
-        db = load_database(src, sink=sink, **options)
+        db = load_database(src, sink=sink, conventions=conventions, **options)
         writer.commit(
-            database_metadata(db.name, db.arena, db.home, db.spacing, db.camera, db.mirror, db.extractor, db.obstacles)
+            database_metadata(
+                db.name,
+                db.absolute(db.arena.reshape(2, 2)).ravel(),
+                db.absolute(db.home),
+                db.spacing,
+                db.camera,
+                db.mirror,
+                db.extractor,
+                index.meta.get("obstacles") or {"cylinders": [], "boxes": []},  # as stored: absolute
+            )
         )
     except BaseException:
         writer.discard()

@@ -8,6 +8,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from collections.abc import Callable
 
+import warnings
+
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -48,6 +50,26 @@ class LoadedDatabase:
     extractor: Extractor
     obstacles: dict = field(default_factory=lambda: {"cylinders": [], "boxes": []})
     mirror: Catadioptric | None = None
+    kind: str = "grid"
+    origin: np.ndarray = field(default_factory=lambda: np.zeros(2))
+
+    def absolute(self, xy) -> np.ndarray:
+        """Positions of this database's frame (relative to `origin`, float64) in the database's own cm."""
+        return np.asarray(xy, np.float64) + self.origin
+
+
+FAR = 1e5  # cm: beyond 1 km from (0, 0), positions are taken relative to an origin (float32 keeps 8 mm there)
+CAMERAS = {  # BoB camera name -> (elevation top, bottom) deg, where the camera's metadata does not say
+    "opengl": (60.0, -15.0),  # BoB's ant-world renderer: 75 deg from -15 to +60 (docs/images.md §4.2)
+}
+
+
+class DatabaseWarning(UserWarning):
+    """A choice made for a database that its files did not state (the nearest image as home, an assumed camera)."""
+
+
+def _warn(message: str) -> None:
+    warnings.warn(message, DatabaseWarning, stacklevel=3)
 
 
 def _pair(value, name: str, n: int) -> np.ndarray:
@@ -109,9 +131,42 @@ def _extractor(index: DatabaseIndex, overrides: dict | None, channel: str | None
     return Extractor(**out)
 
 
-def _camera(index: DatabaseIndex, shape: tuple[int, ...]) -> tuple[Camera, Catadioptric | None]:
-    top, bottom = index.meta.get("elevation_deg", (30.0, -30.0))
-    height = float(index.meta.get("camera_height_cm", 25.0))
+def camera_geometry(index: DatabaseIndex, elevation, camera_height, warn) -> tuple[float, float, float]:
+    """(top, bottom elevation deg, camera height cm) of a database (docs/images.md §4.2): the caller's
+    values, else the metadata's (delvjax block; BoB camera names of known geometry; the entries' Z as
+    the camera height), else +30/-30 deg and 25 cm with a warning naming the assumption."""
+    name = (index.bob.get("camera") or {}).get("name") if isinstance(index.bob.get("camera"), dict) else None
+    if elevation is not None:
+        top, bottom = _pair(elevation, "elevation", 2)
+    elif "elevation_deg" in index.meta:
+        top, bottom = index.meta["elevation_deg"]
+    elif name in CAMERAS:
+        top, bottom = CAMERAS[name]
+    else:
+        top, bottom = 30.0, -30.0
+        warn(
+            f"{index.folder}: the metadata gives no vertical field of view: rows are taken to span +30 to -30 deg "
+            "(give --elevation TOP BOTTOM)"
+        )
+    if not -90 <= bottom < top <= 90:
+        raise InputError("elevation", [top, bottom], "must be TOP BOTTOM with -90 <= bottom < top <= 90 degrees")
+    z = index.z
+    if camera_height is not None:
+        height = positive(camera_height, "camera_height")
+    elif "camera_height_cm" in index.meta:
+        height = float(index.meta["camera_height_cm"])
+    elif np.isfinite(z).all() and (z > 0).all():
+        height = float(np.median(z))  # BoB's Z: the camera's height above the floor
+    else:
+        height = 25.0
+        warn(f"{index.folder}: no camera height stored (Z): 25 cm taken (give --camera-height)")
+    return float(top), float(bottom), height
+
+
+def _camera(
+    index: DatabaseIndex, shape: tuple[int, ...], elevation=None, camera_height=None, warn=_warn
+) -> tuple[Camera, Catadioptric | None]:
+    top, bottom, height = camera_geometry(index, elevation, camera_height, warn)
     if not index.needs_unwrapping:
         return Camera(
             height=height, elev_top_deg=float(top), elev_bottom_deg=float(bottom), rows=shape[0], cols=shape[1]
@@ -129,6 +184,41 @@ def _camera(index: DatabaseIndex, shape: tuple[int, ...]) -> tuple[Camera, Catad
     return Camera(
         height=height, elev_top_deg=float(top), elev_bottom_deg=float(bottom), rows=int(rows), cols=int(cols)
     ), mirror
+
+
+def database_origin(positions: np.ndarray) -> np.ndarray:
+    """(0, 0), or for positions beyond FAR: the lowest corner rounded down to whole metres (docs/images.md §4)."""
+    if not len(positions) or np.abs(positions).max() <= FAR:
+        return np.zeros(2)
+    return np.floor(positions.min(0) / 100.0) * 100.0
+
+
+def choose_home(index: DatabaseIndex, home, arena: np.ndarray, spacing: float, warn) -> int:
+    """The home image (docs/images.md §6): the one at `home` (the caller's, else the metadata's home_cm),
+    else the route's last image, else the image nearest the arena's centre. A stated home without an
+    image there takes the nearest image, with a warning naming the distance; more than one spacing away
+    is refused."""
+    if home is not None:
+        target, field_name = _pair(home, "home", 2), "home"
+    elif "home_cm" in index.meta:
+        target, field_name = np.asarray(index.meta["home_cm"], np.float64), "home_cm"
+    elif index.kind == "route":
+        return len(index.positions) - 1
+    else:
+        return int(np.argmin(np.linalg.norm(index.positions - (arena[:2] + arena[2:]) / 2, axis=-1)))
+    dist = np.linalg.norm(index.positions - target, axis=-1)
+    i = int(np.argmin(dist))
+    where = f"({target[0]:g}, {target[1]:g})"
+    if dist[i] > spacing:
+        raise InputError(
+            field_name, where, f"has no image within one spacing ({spacing:g} cm): the nearest is {dist[i]:g} cm away"
+        )
+    if dist[i] > 1e-6 * spacing:
+        p = index.positions[i]
+        warn(
+            f"home {where} has no image: the nearest, {index.files[i].name} at ({p[0]:g}, {p[1]:g}), {dist[i]:.3g} cm away, is home"
+        )
+    return i
 
 
 def check_home_move(positions: np.ndarray, home_index: int, spacing: float, field: str, value) -> None:
@@ -155,31 +245,39 @@ def load_database(
     progress: Callable[[int, int], None] | None = None,
     sink: Callable[[np.ndarray, slice], None] | None = None,
     check: Callable[[int, int], None] | None = None,
+    conventions: dict | None = None,
+    elevation=None,
+    camera_height: float | None = None,
+    warn: Callable[[str], None] = _warn,
 ) -> LoadedDatabase:
     """Read a database (docs/images.md §4) into ring snapshots, `chunk` images at a time. home, arena,
-    spacing: override the metadata (else: the metadata, else the point nearest the arena's centre,
-    the positions' extent, the median neighbour distance); extractor: Extractor settings by name;
-    sink(images, rows): called with every chunk of images read (`import_database`); check(images,
-    ring pixels): called before any image but the first is read (the caller's own checks)."""
-    index = read_index(src)
+    spacing: override the metadata (else: the metadata, else `choose_home`, the positions' extent, the
+    median neighbour distance); extractor: Extractor settings by name; conventions: heading,
+    heading_column, columns (docs/images.md §4.1) where the database does not declare them;
+    elevation [top, bottom] deg and camera_height cm: override the metadata; warn(message): every
+    choice the files did not state (default: a `DatabaseWarning`); sink(images, rows): called with every
+    chunk of images read (`import_database`); check(images, ring pixels): called before any image but
+    the first is read (the caller's own checks)."""
+    index = read_index(src, conventions)
     chunk = positive_int(chunk, "chunk")
     spacing = database_spacing(index, spacing)
     a = database_arena(index, arena, spacing)
     ex = _extractor(index, extractor, channel, max_blobs)
-    target = (
-        _pair(home, "home", 2)
-        if home is not None
-        else (np.asarray(index.meta["home_cm"], float) if "home_cm" in index.meta else (a[:2] + a[2:]) / 2)
-    )
-    dist = np.linalg.norm(index.positions - target, axis=-1)
-    home_index = int(np.argmin(dist))
-    if home is not None and dist[home_index] > spacing / 2:
-        raise InputError("home", list(target), f"has no image within spacing / 2 = {spacing / 2:g} cm")
-    check_home_move(index.positions, home_index, spacing, "home", index.files[home_index])
+    home_index = choose_home(index, home, a, spacing, warn)
+    if index.kind == "grid":
+        check_home_move(index.positions, home_index, spacing, "home", index.files[home_index])
     shape = read_image(index.files[0]).shape
-    cam, mirror = _camera(index, shape)
+    cam, mirror = _camera(index, shape, elevation, camera_height, warn)
     if not mirror and cam.cols % 4:
         raise InputError("image", str(index.files[0]), f"is {cam.cols} columns wide: it must be a multiple of 4")
+    headings = index.headings(shape[1]) if not index.needs_unwrapping else np.radians(index.heading_deg)
+    if np.isnan(headings).any():
+        i = int(np.argmax(np.isnan(headings)))
+        raise InputError(
+            "image",
+            str(index.files[i]),
+            "has no heading (nan): every method turns the views into the unit move's frame by it (docs/images.md §6)",
+        )
     if check is not None:
         check(len(index.files), cam.cols)
     parts = []
@@ -192,20 +290,27 @@ def load_database(
         if progress:
             progress(hi - lo, len(index.files))
     snaps = jax.tree.map(lambda *x: jnp.concatenate(x), *parts)
-    rings = RingDatabase(snaps, jnp.asarray(index.positions), jnp.asarray(index.headings))
+    origin = database_origin(index.positions)
+    rel = index.positions - origin
+    rings = RingDatabase(snaps, jnp.asarray(rel, jnp.float32), jnp.asarray(headings, jnp.float32))
     obstacles = index.meta.get("obstacles") or {"cylinders": [], "boxes": []}
+    if origin.any():
+        shift = {"cylinders": np.r_[origin, 0.0], "boxes": np.r_[origin, origin]}
+        obstacles = {k: [list(np.asarray(r, np.float64) - shift[k]) for r in v] for k, v in obstacles.items()}
     return LoadedDatabase(
         index.meta.get("world", index.folder.name),
         rings,
         index.files,
-        index.positions[home_index].astype(np.float64),
+        rel[home_index],
         home_index,
-        a,
+        a - np.r_[origin, origin],
         spacing,
         cam,
         ex,
         obstacles,
         mirror,
+        index.kind,
+        origin,
     )
 
 

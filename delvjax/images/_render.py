@@ -318,7 +318,11 @@ def render_database(
     try:
         for lo, hi, imgs in rendered_chunks(world, settings, pts, headings, key, chunk):
             writer.add(
-                np.asarray(imgs[: hi - lo]), pts[lo:hi], headings[lo:hi], grid[lo:hi], donut=settings.mirror is not None
+                np.asarray(imgs[: hi - lo]),
+                np.c_[pts[lo:hi], np.full(hi - lo, settings.camera.height)] * 10.0,  # mm; Z: the camera's height
+                np.degrees(headings[lo:hi]),
+                grid[lo:hi],
+                donut=settings.mirror is not None,
             )
             if progress:
                 progress(hi - lo, len(pts))

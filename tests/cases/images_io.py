@@ -16,7 +16,7 @@ from delvjax.images._disk import ENTRIES, POSITIONS
 
 SMALL = ["--cols", "72", "--rows", "12"]
 SEED = 7
-HEADER = "X [mm],Y [mm],Z [mm],Heading [degrees],Filename,Grid X,Grid Y,Grid Z"
+HEADER = "X [mm], Y [mm], Z [mm], Heading [degrees], Pitch [degrees], Roll [degrees], Filename, Grid X, Grid Y, Grid Z"
 CYLINDERS = [(45.0, 135.0, 8.0), (130.0, 150.0, 8.0), (145.0, 55.0, 8.0), (55.0, 42.0, 8.0)]  # docs/images.md §8
 
 
@@ -47,8 +47,20 @@ def no_leftovers(out: Path) -> None:
 
 
 def entries(folder: Path) -> list[dict[str, str]]:
+    """The rows of a BoB entries file (BoB writes ", " between fields)."""
     with open(folder / ENTRIES, newline="") as fh:
-        return list(csv.DictReader(fh))
+        return list(csv.DictReader(fh, skipinitialspace=True))
+
+
+def at(rows: list[dict[str, str]], x_mm: float, y_mm: float) -> dict[str, str]:
+    """The entry at (x_mm, y_mm)."""
+    return next(r for r in rows if float(r["X [mm]"]) == x_mm and float(r["Y [mm]"]) == y_mm)
+
+
+def column0_deg(row: dict[str, str]) -> float:
+    """The world heading (math, deg) of file column 0 of a BoB entry in BoB's conventions (compass
+    bearing of the centre column; columns clockwise; an even width): 270 - heading."""
+    return (270.0 - float(row["Heading [degrees]"])) % 360.0
 
 
 def leaves_equal(a, b) -> None:
@@ -86,6 +98,6 @@ def write_plain(folder: Path, src: Path, rows: list[dict[str, str]], rename=lamb
             name = rename(i, r["Filename"])
             shutil.copyfile(src / r["Filename"], folder / name)
             w.writerow(
-                [name, float(r["X [mm]"]) / 10, float(r["Y [mm]"]) / 10] + ([r["Heading [degrees]"]] if heading else [])
+                [name, float(r["X [mm]"]) / 10, float(r["Y [mm]"]) / 10] + ([column0_deg(r)] if heading else [])
             )
     return folder

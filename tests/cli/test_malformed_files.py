@@ -29,7 +29,7 @@ VALUES = st.one_of(
     st.dictionaries(TEXTS, JUNK, max_size=2),
     st.lists(st.lists(st.one_of(st.integers(), TEXTS), max_size=2), max_size=2),  # nested lists
 )
-HEADER = "X [mm],Y [mm],Z [mm],Heading [degrees],Filename,Grid X,Grid Y,Grid Z"
+HEADER = "X [mm],Y [mm],Z [mm],Heading [degrees],Filename,Grid X,Grid Y,Grid Z"  # a compact BoB header (no Pitch, Roll)
 ROW = "{x},{y},0,0,image_{i}.png,{i},0,0"
 METADATA_BLOCK = {
     "arena_cm": [0, 0, 180, 180],

@@ -11,7 +11,7 @@ import pytest
 
 from delvjax.cli._main import main
 
-from tests.cases.images_io import error_line, no_leftovers, entries, read_csv, summary_numbers, write_plain
+from tests.cases.images_io import at, error_line, no_leftovers, entries, read_csv, summary_numbers, write_plain
 
 
 # --- vector-map / catchment --images options ---------------------------------------------------------
@@ -154,7 +154,7 @@ def test_noisy_rollouts_repeat_with_the_same_seed(small_db, tmp_path, capsys):
 
 
 def test_a_database_of_one_image(small_db, tmp_path, capsys):
-    home = next(r for r in entries(small_db) if r["X [mm]"] == "900.0" and r["Y [mm]"] == "900.0")
+    home = at(entries(small_db), 900, 900)
     one = write_plain(tmp_path / "one", small_db, [home], heading=False)
     out = tmp_path / "imported"
     assert main(["images", "import", str(one), "--out", str(out)]) == 2

@@ -16,10 +16,11 @@ from delvjax.images._evaluate import load_database
 from delvjax.images._render import ImageSettings, camera, lit, render_images, render_rings, world_grid
 from delvjax.cli._main import main
 from delvjax.core.images import Catadioptric
-from delvjax.images._disk import BOB_COLUMNS, ENTRIES, METADATA, POSITIONS, file_columns, read_index
+from delvjax.images._disk import BOB_COLUMNS, BOB_GRID_COLUMNS, ENTRIES, METADATA, POSITIONS, file_columns, read_index
 from delvjax.images._worlds import image_world
 
 from tests.cases.images_io import (
+    at,
     render_db,
     entries,
     write_plain,
@@ -41,22 +42,31 @@ def test_render_db_writes_the_bob_layout(default_db):
     iw = image_world("robot")
     pts, grid = world_grid(iw, iw.spacing)
     assert (default_db / ENTRIES).read_text().splitlines()[0] == HEADER
-    assert ",".join(BOB_COLUMNS) == HEADER
+    assert ", ".join(BOB_COLUMNS + BOB_GRID_COLUMNS) == HEADER
     rows = entries(default_db)
     assert len(rows) == len(pts) == 71  # 9 x 9 less the points within r + 10 cm of a cylinder
     for r, p, (gx, gy) in zip(rows, pts, grid):
         x_mm, y_mm = float(r["X [mm]"]), float(r["Y [mm]"])
         assert (x_mm, y_mm) == pytest.approx((10 * p[0], 10 * p[1]), abs=1e-6)  # millimetres
         assert (x_mm, y_mm) == pytest.approx((200 * gx + 100, 200 * gy + 100))  # cell centres every 20 cm
-        assert float(r["Z [mm]"]) == 0 and float(r["Heading [degrees]"]) == 0 and r["Grid Z"] == "0"
+        # Z: the camera's height (250 mm); the heading in BoB's conventions: the centre column looks west,
+        # a compass bearing of 270 (docs/images.md §4.1); BoB's numbers (%.17e) and file names (mm)
+        assert float(r["Z [mm]"]) == 250 and float(r["Heading [degrees]"]) == 270 and r["Grid Z"] == "0"
+        assert r["X [mm]"] == f"{x_mm:.17e}" and r["Pitch [degrees]"] == "nan"
         assert (int(r["Grid X"]), int(r["Grid Y"])) == (gx, gy)
-        assert r["Filename"] == f"image_{gx:+05d}_{gy:+05d}_+0000.png"
+        assert r["Filename"] == f"image_{round(x_mm):+07d}_{round(y_mm):+07d}_+000250.png"
         for cx, cy, cr in CYLINDERS:
             assert math.hypot(x_mm / 10 - cx, y_mm / 10 - cy) > cr + 10
     text = (default_db / METADATA).read_text()
     assert text.splitlines()[0] == "%YAML:1.0"
     meta = yaml.safe_load(text.split("\n", 1)[1])["metadata"]
     assert meta["camera"]["resolution"] == [360, 60] and meta["needsUnwrapping"] == 0 and meta["isGreyscale"] == 0
+    assert meta["type"] == "grid" and meta["grid"] == {
+        "beginAtMM": [100.0, 100.0, 250.0],
+        "separationMM": [200.0, 200.0, 0.0],
+        "size": [9, 9, 1],
+    }
+    assert (meta["headingConvention"], meta["headingColumn"], meta["columnOrder"]) == ("compass", "centre", "clockwise")
     d = meta["delvjax"]
     assert d["world"] == "robot" and d["arena_cm"] == [0, 0, 180, 180] and d["home_cm"] == [90, 90]
     assert d["spacing_cm"] == 20 and d["camera_height_cm"] == 25 and d["elevation_deg"] == [30, -30]
@@ -141,7 +151,7 @@ def test_a_file_is_the_unmirrored_view(small_db):
         assert np.array_equal(f, file_columns(mem[i])), r["Filename"]
         assert np.array_equal(file_columns(f), mem[i])
     # home (90, 90), heading 0: where the red cylinders appear in the file
-    home = next(r for r in rows if r["X [mm]"] == "900.0" and r["Y [mm]"] == "900.0")
+    home = at(rows, 900, 900)
     with Image.open(small_db / home["Filename"]) as im:
         f = np.asarray(im.convert("RGB")).astype(int)
     band = f[5:7]  # the two rows about the horizon (centres at +2.5 and -2.5 deg)
@@ -181,10 +191,10 @@ def test_import_of_a_bob_database_round_trips(small_db, donut_db, tmp_path, caps
         with Image.open(src / ra["Filename"]) as ia, Image.open(out / rb["Filename"]) as ib:
             assert np.array_equal(np.asarray(ia.convert("RGB")), np.asarray(ib.convert("RGB"))), ra["Filename"]
     assert not list(tmp_path.glob(".imported.*"))
-    # BoB itself writes "X [mm], Y [mm], ..." with a space after every comma: read alike
-    spaced = (out / ENTRIES).read_text().replace(",", ", ")
-    assert spaced.startswith("X [mm], Y [mm], Z [mm], Heading [degrees], Filename, Grid X")
-    (out / ENTRIES).write_text(spaced)
+    # BoB writes ", " between fields, as delvjax does; without the spaces it reads alike
+    compact = (out / ENTRIES).read_text().replace(", ", ",")
+    assert compact.startswith("X [mm],Y [mm],Z [mm],Heading [degrees],Pitch [degrees]")
+    (out / ENTRIES).write_text(compact)
     leaves_equal(a.rings, load_database(out).rings)
 
 
@@ -241,9 +251,9 @@ def _close(a, b) -> bool:
     return x == y or (x == x and y == y and abs(x - y) <= 1e-4 + 1e-5 * abs(y))
 
 
-def test_a_route_of_images_keeps_every_image(small_db, tmp_path):
-    """Images closer than the spacing (a route) share grid cells: import names them by entry number
-    (BoB's route names) instead of overwriting one with another."""
+def test_images_closer_than_the_spacing_keep_every_image(small_db, tmp_path):
+    """Images closer than the spacing share grid cells: import names them by their millimetres (BoB's
+    grid names) instead of overwriting one with another."""
     rows = [dict(r) for r in entries(small_db)[:6]]
     for i, r in enumerate(rows):  # 5 cm apart along y = 90, spacing 20
         r["X [mm]"], r["Y [mm]"] = str(1000 + 50 * i), "900"
@@ -251,7 +261,7 @@ def test_a_route_of_images_keeps_every_image(small_db, tmp_path):
     out = tmp_path / "db"
     assert main(["images", "import", str(plain), "--out", str(out), "--spacing", "20", "--home", "100", "90"]) == 0
     names = [r["Filename"] for r in entries(out)]
-    assert names == [f"image_{i:05d}.png" for i in range(6)]
+    assert names == [f"image_{1000 + 50 * i:+07d}_+000900_+000000.png" for i in range(6)]
     assert all((out / n).is_file() for n in names)
     a, b = load_database(plain, spacing=20, home=(100, 90)), load_database(out)
     assert np.array_equal(np.asarray(a.rings.snapshots.mask), np.asarray(b.rings.snapshots.mask))

@@ -33,7 +33,7 @@ def test_a_byte_order_mark_is_read_as_utf8(bob):
 @pytest.mark.parametrize(
     "edit, says",
     [
-        (lambda lines: lines[:2] + [lines[2] + ",extra"] + lines[3:], "row 3 has 9 fields, the header 8"),
+        (lambda lines: lines[:2] + [lines[2] + ",extra"] + lines[3:], "row 3 has 11 fields, the header 10"),
         (lambda lines: lines[:3] + [lines[2]] + lines[3:], "row 4 repeats row 3"),
         (
             lambda lines: lines[:3] + [lines[2].replace(lines[2].split(",")[0], "12345", 1)] + lines[3:],

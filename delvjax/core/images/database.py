@@ -107,6 +107,38 @@ def home_plan(positions: np.ndarray, headings: np.ndarray, home_index: int, spac
     return _plan(positions, headings, home, end, ok, n_pix)
 
 
+def route_checks(positions: np.ndarray, names: list[str], where: str) -> None:
+    """A route (docs/images.md §6.1) needs two images or more and a move between every two consecutive
+    ones: `InputError` naming the rows otherwise."""
+    from ..errors import InputError
+
+    if len(positions) < 2:
+        raise InputError("images", where, "is a route of one image: it has no unit move (two images or more)")
+    step = np.linalg.norm(np.diff(np.asarray(positions, np.float64), axis=0), axis=-1)
+    if (step == 0).any():
+        i = int(np.argmax(step == 0))
+        raise InputError(
+            "images", where, f"route images {names[i]} and {names[i + 1]} share one position: no unit move between them"
+        )
+
+
+def route_plan(positions: np.ndarray, headings: np.ndarray, n_pix: int) -> MovePlan:
+    """The unit move ending at every route image (docs/images.md §6.1): from the image before it along
+    the route; the first image's move comes from the second (the route walked back one step)."""
+    n = len(positions)
+    ends = np.arange(n)
+    start = np.where(ends > 0, ends - 1, 1)
+    return _plan(np.asarray(positions, np.float64), headings, start, ends, np.ones(n, bool), n_pix)
+
+
+def route_home_plan(positions: np.ndarray, headings: np.ndarray, home_index: int, n_pix: int) -> MovePlan:
+    """The home record's unit move on a route: from home to the next image along it, or to the one
+    before it where home is the last."""
+    home = np.array([home_index])
+    end = np.array([home_index + 1 if home_index + 1 < len(positions) else home_index - 1])
+    return _plan(np.asarray(positions, np.float64), headings, home, end, np.ones(1, bool), n_pix)
+
+
 def rolled(snap: Snapshot, shift: Array) -> Snapshot:
     """The snapshot seen with column `shift` as column 0 (rings rolled, bearings turned, re-sorted)."""
     n = snap.mask.shape[-1]
