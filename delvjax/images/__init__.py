@@ -12,5 +12,5 @@ from ._evaluate import rendered_database as rendered_database
 from ._render import ImageSettings as ImageSettings
 from ._render import render_database as render_database
 from ._worlds import image_world as image_world
-from .navipy_frames import from_navipy as from_navipy
-from .navipy_frames import to_navipy as to_navipy
+from ._navipy import from_navipy as from_navipy
+from ._navipy import to_navipy as to_navipy

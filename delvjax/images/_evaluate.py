@@ -30,7 +30,7 @@ from ._conventions import BOB, resolve
 from ..options._settings import make_setup
 from ..options._checks import non_negative, positive, positive_int, seed_value
 from ._render import database_metadata
-from ._disk import DatabaseWriter
+from ._writer import DatabaseWriter
 from ._render import ImageSettings, check_render, render_rings, world_grid
 from ..options._limits import MAX_POINTS
 from ._load import LoadedDatabase, database_arena, database_spacing, check_home_move, load_database, with_channel

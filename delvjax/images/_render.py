@@ -23,7 +23,7 @@ from ..core.images import Camera, Catadioptric, Extractor, camera_noise, donut, 
 from ..core.images.database import RingDatabase
 from ..core.maps import grid_points
 from ..core.types import Real
-from ._disk import DatabaseWriter
+from ._writer import DatabaseWriter
 from ._worlds import ImageWorld, image_world
 from ..options._limits import MAX_POINTS, check_size, grid_count
 from ..options._checks import angle_deg, non_negative, positive, positive_int, seed_value

@@ -15,7 +15,7 @@ import numpy as np
 CHILD = r"""
 import os, signal, sys
 from delvjax.outputs import _files
-from delvjax.images import _disk
+from delvjax.images import _writer
 import delvjax.sweeps._run as sweep_run
 
 how, sig, n, argv = sys.argv[1], getattr(signal, sys.argv[2]), int(sys.argv[3]), sys.argv[4:]
@@ -38,12 +38,12 @@ def _publish(tmp, target):
     return publish(tmp, target)
 _files._publish = _publish
 
-add = _disk.DatabaseWriter.add
+add = _writer.DatabaseWriter.add
 def _add(self, *args, **kwargs):
     add(self, *args, **kwargs)
     if how == "chunk":
         fault()
-_disk.DatabaseWriter.add = _add
+_writer.DatabaseWriter.add = _add
 
 from delvjax.cli._main import main
 sys.exit(main(argv, own_process=True))

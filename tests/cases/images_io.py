@@ -97,7 +97,5 @@ def write_plain(folder: Path, src: Path, rows: list[dict[str, str]], rename=lamb
         for i, r in enumerate(rows):
             name = rename(i, r["Filename"])
             shutil.copyfile(src / r["Filename"], folder / name)
-            w.writerow(
-                [name, float(r["X [mm]"]) / 10, float(r["Y [mm]"]) / 10] + ([column0_deg(r)] if heading else [])
-            )
+            w.writerow([name, float(r["X [mm]"]) / 10, float(r["Y [mm]"]) / 10] + ([column0_deg(r)] if heading else []))
     return folder

@@ -16,7 +16,8 @@ from delvjax.images._evaluate import load_database
 from delvjax.images._render import ImageSettings, camera, lit, render_images, render_rings, world_grid
 from delvjax.cli._main import main
 from delvjax.core.images import Catadioptric
-from delvjax.images._disk import BOB_COLUMNS, BOB_GRID_COLUMNS, ENTRIES, METADATA, POSITIONS, file_columns, read_index
+from delvjax.images._disk import ENTRIES, METADATA, POSITIONS, file_columns, read_index
+from delvjax.images._writer import BOB_COLUMNS, BOB_GRID_COLUMNS
 from delvjax.images._worlds import image_world
 
 from tests.cases.images_io import (

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 from PIL import Image
 
-from delvjax.images import _disk as image_db
+from delvjax.images import _writer as image_db
 from delvjax.cli._main import main
 from delvjax.images._disk import ENTRIES, POSITIONS
 

@@ -20,6 +20,7 @@ from jax import Array
 from jax.typing import ArrayLike
 
 from ..batching import fixed_width_map
+from ..errors import InputError
 from ..geometry import wrap
 from ..kernel import world_direction
 from ..methods.base import HomingMethod
@@ -110,8 +111,6 @@ def home_plan(positions: np.ndarray, headings: np.ndarray, home_index: int, spac
 def route_checks(positions: np.ndarray, names: list[str], where: str) -> None:
     """A route (docs/images.md §6.1) needs two images or more and a move between every two consecutive
     ones: `InputError` naming the rows otherwise."""
-    from ..errors import InputError
-
     if len(positions) < 2:
         raise InputError("images", where, "is a route of one image: it has no unit move (two images or more)")
     step = np.linalg.norm(np.diff(np.asarray(positions, np.float64), axis=0), axis=-1)
