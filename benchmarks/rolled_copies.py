@@ -8,7 +8,8 @@ copy, and the directions compared point by point (home excluded).
 Cases (env1 rendered at spacing 100 cm, 98 points, W = 360):
 
   a  one roll k = 37 for every image (no move turns: k_C - k_P = 0)
-  b  a random roll per image (every move turns by (k_C - k_P) pixels)
+  b  a random roll per image (the stored headings differ from image to image; each view is rolled by
+     its own pixels into the move's frame, so no move turns)
   b5 a random roll per image, a multiple of W / n_psi = 5 pixels (turns on warping's psi grid)
   c  re-rendered (no camera noise) at random whole-degree headings, against heading 0
   d  re-rendered (no camera noise) at random headings off the pixel lattice, against heading 0:
@@ -58,9 +59,9 @@ BOUNDS = {
     "delv-refined": "float",
     "delv": "float; 2-landmark tie",
     "delv-gap": "float; 2-landmark tie",
-    "delv-agent": "none if the move turns",
-    "delv-compass-agent": "none if the move turns",
-    "warping": "float if turn % psi step = 0",
+    "delv-agent": "float; 2-landmark tie; a blob on the wrap",
+    "delv-compass-agent": "float",
+    "warping": "float",
 }
 
 

@@ -43,18 +43,20 @@ def test_move_plan_matches_reference():
         head = rng.integers(0, n_pix, len(pos)) * 2 * np.pi / n_pix
         plan = move_plan(pos, head, spacing, n_pix)
         for c in range(len(pos)):
-            start, end, k, d, ok = ref_db.move_for_point(pos, head, c, spacing, n_pix)
+            start, end, k, d, ok, k_end = ref_db.move_for_point(pos, head, c, spacing, n_pix)
             got = (int(plan.start[c]), int(plan.end[c]), bool(plan.ok[c]))
             assert got == (start, end, ok), (c, got, (start, end, ok))
             if ok:  # (the shift and distance of a point without a neighbour are never read)
                 assert int(plan.shift[c]) == k and abs(float(plan.d_hat[c]) - d) < 1e-4, c
+                assert int(plan.shift_end[c]) == k_end, c
         assert not plan.ok[-1]
         for home in range(len(pos)):
             hp = home_plan(pos, head, home, spacing, n_pix)
-            start, end, k, d, ok = ref_db.move_for_point(pos, head, home, spacing, n_pix, home=True)
+            start, end, k, d, ok, k_end = ref_db.move_for_point(pos, head, home, spacing, n_pix, home=True)
             assert (int(hp.start[0]), int(hp.end[0]), bool(hp.ok[0])) == (start, end, ok), home
             if ok:
                 assert int(hp.shift[0]) == k and abs(float(hp.d_hat[0]) - d) < 1e-4, home
+                assert int(hp.shift_end[0]) == k_end, home
 
 
 DB_CAMERA = Camera(elev_top_deg=6.0, elev_bottom_deg=-6.0, rows=12, cols=360)  # 1 deg rows: the default band
@@ -116,15 +118,16 @@ def _snapshot(snaps, i, k):
     )
 
 
-def _move(db, start, end, k, d, alpha_r):
-    """(UnitMove from start to end rolled by k, world heading of its end view's column 0)."""
+def _move(db, start, end, k, d, alpha_r, k_end):
+    """(UnitMove from start to end, the views rolled by k and k_end, world heading of its end view's column 0)."""
     s, h = db.rings.snapshots, np.asarray(db.rings.headings, float)
-    heading_end = h[end] + k * 2 * np.pi / db.camera.cols
+    pixel = 2 * np.pi / db.camera.cols
+    heading_end = h[end] + k_end * pixel
     view = UnitMove(
         start=_snapshot(s, start, k),
-        end=_snapshot(s, end, k),
+        end=_snapshot(s, end, k_end),
         d_hat=jnp.float32(d),
-        psi_hat=jnp.float32(wrap(h[end] - h[start])),
+        psi_hat=jnp.float32(wrap(heading_end - (h[start] + k * pixel))),
         compass=jnp.float32(wrap(heading_end - alpha_r)),
     )
     return view, heading_end
@@ -139,16 +142,16 @@ def test_database_directions_match_a_per_point_loop(robot_db, robot_db_turned, n
     vm = database_vector_map(db, name)
     head = np.asarray(db.rings.headings, float)
     n_pix = db.camera.cols
-    hs, he, hk, hd, _ = ref_db.move_for_point(pts, head, db.home_index, db.spacing, n_pix, home=True)
+    hs, he, hk, hd, _, hk_end = ref_db.move_for_point(pts, head, db.home_index, db.spacing, n_pix, home=True)
     alpha_r = head[hs] + hk * 2 * np.pi / n_pix
-    record, _ = _move(db, hs, he, hk, hd, alpha_r)
+    record, _ = _move(db, hs, he, hk, hd, alpha_r, hk_end)
     got = np.asarray(vm.direction)
     n_valid = 0
     for c in range(len(pts)):
         if c == db.home_index:
             continue  # excluded from the map: there the homing vector is ~0 and its angle float32 rounding noise
-        start, end, k, d, ok = ref_db.move_for_point(pts, head, c, db.spacing, n_pix)
-        view, heading_end = _move(db, start, end, k, d, alpha_r)
+        start, end, k, d, ok, k_end = ref_db.move_for_point(pts, head, c, db.spacing, n_pix)
+        view, heading_end = _move(db, start, end, k, d, alpha_r, k_end)
         angle, valid = call_method(method, record, view)
         valid = bool(valid) and ok
         assert bool(vm.valid[c]) == valid, c

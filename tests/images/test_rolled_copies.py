@@ -1,17 +1,13 @@
 """Rolled copies of an image database give the same answers (issue 25; docs/images.md §6).
 
 A rolled copy rolls every image i by k_i whole pixels and rewrites its heading to h_i + k_i 2 pi / W: the
-same world from the same poses, another column 0. Each move's views are rolled into the move's frame by
-the start image's roll, so a copy with k_C != k_P turns the agent by (k_C - k_P) pixels between P and C
-(odometry psi_hat = h_C - h_P). Stated bounds (benchmarks/rolled_copies.py measures them):
-
-* float32 rounding only (< FLOAT_DEG): every method that reads a compass, the visual compass or the
-  odometry's exact turn; DELV without a compass too (its 1 deg hypotheses hold every whole-pixel turn of
-  a 360-pixel ring), except the true tie of two pairs (docs/model.md §3.3), settled by rounding;
-* warping: the same where the turn is a multiple of its psi step 360 / n_psi; other turns it holds only
-  to half a step, and its answer then moves by much more (measured: median 2 deg, up to 173 deg);
-* DELV with the agent-frame list (`order="agent"`): its wrap point is the agent's heading at C
-  (docs/model.md §3.3), so only copies without turns (one k for all) agree.
+same world from the same poses, another column 0. Each move's views are rolled by their own whole pixels
+into the move's frame (the agent moves straight), so the copy changes no view, no turn and no compass
+reading: every method agrees with the original up to float32 rounding (< FLOAT_DEG), warping and the
+agent-frame DELV list included. The one exception is a true tie: a view with two landmarks, whose two
+pairings fit equally (docs/model.md §3.3), settled by rounding. benchmarks/rolled_copies.py measures it.
+(With both views rolled by the start image's roll, as before, warping moved by up to 173 deg at points
+whose turn left its 5 deg psi grid, and the agent-frame DELV by up to 47 deg.)
 """
 
 from __future__ import annotations
@@ -27,7 +23,6 @@ from delvjax.core.images.database import RingDatabase, move_plan, rolled
 from delvjax.images._evaluate import database_vector_map, render_in_memory
 
 FLOAT_DEG = 0.01  # float32 rounding of the headings and twice-turned bearings (measured at most 0.0062 deg)
-PSI_STEP = 5  # pixels: warping's default n_psi = 72 on the 360-pixel ring
 
 
 def rolled_copy(db, k):
@@ -100,19 +95,22 @@ def test_the_copy_shows_the_same_world(db, rolls):
         ("delv-compass", {}),
         ("delv-gap-compass", {}),
         ("delv-refined", {}),
+        ("delv-compass-agent", {}),
+        ("warping", {}),
+        ("warping", {"channel": "gray"}),
     ],
 )
-def test_exact_methods_agree_on_a_rolled_copy(db, rolls, name, options):
-    """Compass, visual compass, odometry: only float32 rounding separates the answers, at every point."""
+def test_every_method_agrees_on_a_rolled_copy(db, rolls, name, options):
+    """Only float32 rounding separates the answers, at every point."""
     d = difference_deg(db, rolled_copy(db, rolls), name, **options)
     assert np.nanmax(d) < FLOAT_DEG, (name, np.nanargmax(d), np.nanmax(d))
 
 
 @pytest.mark.parametrize("name", ["delv", "delv-gap"])
 def test_delv_without_compass_agrees_but_for_two_landmark_ties(db, rolls, name):
-    """No compass: 360 heading hypotheses hold every whole-pixel turn. A view with two landmarks has a true
-    tie (docs/model.md §3.3: pairing (a, b) at alpha, (b, a) at alpha + pi), settled by float rounding and
-    the hypotheses' order, so those points are left out (measured: delv-gap moved 1.8 deg at one)."""
+    """No compass: the heading hypotheses see the same views. A view with two landmarks has a true tie
+    (docs/model.md §3.3: pairing (a, b) at alpha, (b, a) at alpha + pi), settled by float rounding and
+    the hypotheses' order, so those points are left out."""
     d = difference_deg(db, rolled_copy(db, rolls), name)
     plan = move_plan(np.asarray(db.rings.positions), np.asarray(db.rings.headings), db.spacing, db.camera.cols)
     two = np.asarray(db.rings.snapshots.valid).sum(-1)[np.asarray(plan.end)] <= 2
@@ -120,21 +118,9 @@ def test_delv_without_compass_agrees_but_for_two_landmark_ties(db, rolls, name):
     assert np.nanmax(d[~two]) < FLOAT_DEG, (name, np.nanargmax(np.where(two, np.nan, d)), np.nanmax(d[~two]))
 
 
-@pytest.mark.parametrize("name", ["delv-agent", "delv-compass-agent"])
-def test_agent_frame_delv_agrees_when_no_move_turns(db, name):
-    """One roll for every image: no move turns, the agent-frame list starts where it did."""
-    d = difference_deg(db, rolled_copy(db, np.full(len(db.rings.positions), 37)), name)
-    assert np.nanmax(d) < FLOAT_DEG, (name, np.nanargmax(d), np.nanmax(d))
-
-
-@pytest.mark.parametrize("channel", ["mask", "gray"])
-def test_warping_agrees_where_the_turn_is_on_its_psi_grid(db, rolls, turns, channel):
-    """Rolls that are multiples of the psi step: every point agrees. Any rolls: the points whose move turns
-    by a multiple of the psi step agree; the others are held only to half a step (not asserted)."""
-    d = difference_deg(db, rolled_copy(db, PSI_STEP * (rolls // PSI_STEP)), "warping", channel=channel)
-    assert np.nanmax(d) < FLOAT_DEG, (channel, np.nanargmax(d), np.nanmax(d))
-    d = difference_deg(db, rolled_copy(db, rolls), "warping", channel=channel)
-    on_grid = turns % PSI_STEP == 0
-    assert np.sum(on_grid & ~np.isnan(d)) >= 10
-    assert np.nanmax(d[on_grid]) < FLOAT_DEG, (channel, np.nanmax(d[on_grid]))
-    assert np.nanmax(d[~on_grid]) > 1.0  # off the grid the turn is not held exactly (measured: median 2 deg)
+def test_agent_frame_delv_agrees_but_where_a_blob_sits_on_the_wrap(db, rolls):
+    """The agent-frame list (docs/model.md §3.3) wraps at the agent's heading: a blob centred on it sorts
+    first or last by float32 rounding of its twice-turned bearing (measured: 1 point of 98, 0.15 deg), as
+    well as the two-landmark ties; every other point agrees to rounding."""
+    d = difference_deg(db, rolled_copy(db, rolls), "delv-agent")
+    assert np.sum(d > FLOAT_DEG) <= 2 and np.sum(d <= FLOAT_DEG) >= 95, np.flatnonzero(d > FLOAT_DEG)

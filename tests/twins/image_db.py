@@ -20,9 +20,10 @@ def find_image(positions, target, spacing):
 
 
 def move_for_point(positions, headings, c, spacing, n_pix, home=False):
-    """The unit move of database point c: (start, end, shift k, d_hat, ok). A point's move starts at
-    its first neighbour west, south, east, north; the home record's move goes from home to its first
-    neighbour east, north, west, south. k = round((m - h_P) / (2 pi / n_pix)) mod n_pix."""
+    """The unit move of database point c: (start, end, shift k, d_hat, ok, shift k_end). A point's move
+    starts at its first neighbour west, south, east, north; the home record's move goes from home to
+    its first neighbour east, north, west, south. k = round((m - h_P) / (2 pi / n_pix)) mod n_pix rolls
+    the start view to the move direction m, k_end (with h_C) the end view: the agent moves straight."""
     positions = np.asarray(positions, dtype=float)
     order = WEST_SOUTH_EAST_NORTH[2:] + WEST_SOUTH_EAST_NORTH[:2] if home else WEST_SOUTH_EAST_NORTH
     for dx, dy in order:
@@ -32,8 +33,9 @@ def move_for_point(positions, headings, c, spacing, n_pix, home=False):
             delta = positions[end] - positions[start]
             m = math.atan2(delta[1], delta[0])
             k = int(round((m - float(headings[start])) / (TWO_PI / n_pix))) % n_pix
-            return start, end, k, float(np.hypot(*delta)), True
-    return c, c, 0, 0.0, False
+            k_end = int(round((m - float(headings[end])) / (TWO_PI / n_pix))) % n_pix
+            return start, end, k, float(np.hypot(*delta)), True, k_end
+    return c, c, 0, 0.0, False, 0
 
 
 def rolled_snapshot(mask, gray, bearings, widths, k):

@@ -4,10 +4,11 @@ unit moves between grid neighbours, and the vector map of any method over the da
 As in the thesis's robot experiments (§4.4.1: snapshots every 20 cm, unit move 20 cm), the unit
 movement that ends at a database point C starts at a neighbour P one spacing away: the first of
 the four axis neighbours (west, south, east, north of C; the agent moved east, north, west or
-south) that is in the database. Both snapshots are turned into the agent frame of that move by
-one whole-pixel roll (exact for axis moves and headings that are multiples of the pixel size);
-the odometry reports the true distance |C - P| and the turn h_C - h_P between the snapshots'
-headings, and the compass reads the heading exactly.
+south) that is in the database. The agent moves straight: each snapshot is rolled by its own whole
+pixels so that its column 0 looks along the move (exact for axis moves and headings that are
+multiples of the pixel size); the odometry reports the true distance |C - P| and the turn left
+between the two rolled views (zero on the pixel lattice, else under a pixel), and the compass reads
+the heading exactly. So the answer does not depend on where each camera's column 0 looked.
 """
 
 from __future__ import annotations
@@ -45,12 +46,13 @@ class RingDatabase(eqx.Module):
 
 class MovePlan(eqx.Module):
     """The unit move that ends at every database point (host arrays of length N, `move_plan`):
-    start, end: indices; shift: whole-pixel roll into the move's frame; d_hat: |C - P| cm;
-    ok: the point has a neighbour (else its direction is invalid)."""
+    start, end: indices; shift, shift_end: whole-pixel rolls of the start and end views into the
+    move's frame; d_hat: |C - P| cm; ok: the point has a neighbour (else its direction is invalid)."""
 
     start: ArrayLike
     end: ArrayLike
     shift: ArrayLike
+    shift_end: ArrayLike
     d_hat: ArrayLike
     ok: ArrayLike
 
@@ -67,14 +69,19 @@ def neighbour(positions: np.ndarray, targets: np.ndarray, spacing: float) -> np.
 def _plan(
     positions: np.ndarray, headings: np.ndarray, start: np.ndarray, end: np.ndarray, ok: np.ndarray, n_pix: int
 ) -> MovePlan:
-    """The `MovePlan` of moves start -> end: the roll turns column 0 of the start view to the move."""
+    """The `MovePlan` of moves start -> end: the rolls turn column 0 of both views to the move."""
     delta = positions[end] - positions[start]
     move_dir = np.arctan2(delta[:, 1], delta[:, 0])
-    shift = np.round((move_dir - np.asarray(headings)[start]) / (2 * np.pi / n_pix)).astype(np.int64) % n_pix
+    pixel, heading = 2 * np.pi / n_pix, np.asarray(headings, np.float64)
+
+    def roll(i: np.ndarray) -> np.ndarray:
+        return np.round((move_dir - heading[i]) / pixel).astype(np.int64) % n_pix
+
     return MovePlan(
         start=start.astype(np.int32),
         end=end.astype(np.int32),
-        shift=shift.astype(np.int32),
+        shift=roll(start).astype(np.int32),
+        shift_end=roll(end).astype(np.int32),
         d_hat=np.linalg.norm(delta, axis=-1).astype(np.float32),
         ok=ok,
     )
@@ -154,18 +161,19 @@ def rolled(snap: Snapshot, shift: Array) -> Snapshot:
 
 
 def view_of(
-    db: RingDatabase, start: Array, end: Array, shift: Array, d_hat: Array, alpha_r: Array
+    db: RingDatabase, start: Array, end: Array, shift: Array, shift_end: Array, d_hat: Array, alpha_r: Array
 ) -> tuple[UnitMove, Array]:
-    """The unit move from database point `start` to `end` in the frame rolled by `shift`, and the
-    world heading of its end view's column 0."""
-    pick = lambda i: rolled(jax.tree.map(lambda a: a[i], db.snapshots), shift)  # noqa: E731
-    turn = shift.astype(jnp.float32) * jnp.float32(2 * np.pi / db.snapshots.mask.shape[-1])
-    heading_end = db.headings[end] + turn
+    """The unit move from database point `start` to `end`, its views rolled by `shift` and `shift_end`
+    into the move's frame (module docstring), and the world heading of its end view's column 0."""
+    pixel = jnp.float32(2 * np.pi / db.snapshots.mask.shape[-1])
+    pick = lambda i, k: rolled(jax.tree.map(lambda a: a[i], db.snapshots), k)  # noqa: E731
+    heading_start = db.headings[start] + shift.astype(jnp.float32) * pixel
+    heading_end = db.headings[end] + shift_end.astype(jnp.float32) * pixel
     view = UnitMove(
-        start=pick(start),
-        end=pick(end),
+        start=pick(start, shift),
+        end=pick(end, shift_end),
         d_hat=d_hat,
-        psi_hat=wrap(db.headings[end] - db.headings[start]),
+        psi_hat=wrap(heading_end - heading_start),
         compass=wrap(heading_end - alpha_r),
     )
     return view, heading_end
@@ -175,7 +183,7 @@ def home_view(db: RingDatabase, plan: MovePlan) -> tuple[UnitMove, Array]:
     """(home record, alpha_r): the home move of `home_plan`; alpha_r is its start view's heading."""
     n = db.snapshots.mask.shape[-1]
     alpha_r = db.headings[plan.start[0]] + plan.shift[0] * jnp.float32(2 * np.pi / n)
-    view, _ = view_of(db, plan.start[0], plan.end[0], plan.shift[0], plan.d_hat[0], alpha_r)
+    view, _ = view_of(db, plan.start[0], plan.end[0], plan.shift[0], plan.shift_end[0], plan.d_hat[0], alpha_r)
     return view, alpha_r
 
 
@@ -188,13 +196,13 @@ def database_directions(
     record is the move `home` in `home_db` (the same database, or another rendering of it)."""
     record, alpha_r = home_view(home_db, home)
 
-    def one(start, end, shift, d_hat, ok):
-        view, heading_end = view_of(db, start, end, shift, d_hat, alpha_r)
+    def one(start, end, shift, shift_end, d_hat, ok):
+        view, heading_end = view_of(db, start, end, shift, shift_end, d_hat, alpha_r)
         direction, valid = world_direction(method, record, view, heading_end)
         valid = valid & ok
         return jnp.where(valid, direction, jnp.nan), valid
 
-    direction, valid = fixed_width_map(one, (plan.start, plan.end, plan.shift, plan.d_hat, plan.ok))
+    direction, valid = fixed_width_map(one, (plan.start, plan.end, plan.shift, plan.shift_end, plan.d_hat, plan.ok))
     return direction, valid, angular_error_deg(direction, valid, db.positions[plan.end], home_point)
 
 
