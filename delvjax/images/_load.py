@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from collections.abc import Callable
 
+import math
 import warnings
 
 import jax
@@ -84,6 +85,11 @@ def database_spacing(index: DatabaseIndex, spacing) -> float:
         return positive(spacing, "spacing")
     if "spacing_cm" in index.meta:
         return positive(index.meta["spacing_cm"], "spacing_cm")
+    sep = (index.bob.get("grid") or {}).get("separationMM") if isinstance(index.bob.get("grid"), dict) else None
+    if isinstance(sep, list) and len(sep) >= 2 and all(isinstance(v, (int, float)) for v in sep[:2]):
+        nonzero = [float(v) for v in sep[:2] if v and math.isfinite(v) and v > 0]
+        if nonzero and len(set(nonzero)) == 1:  # BoB's grid block: one separation along x and y
+            return nonzero[0] / 10.0
     if len(index.positions) < 2:
         raise InputError("images", str(index.folder), "has one image: give the spacing (unit move) explicitly")
     from scipy.spatial import cKDTree  # scipy: loaded only where this is used, so that `import delvjax` stays light

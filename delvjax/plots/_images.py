@@ -22,6 +22,10 @@ def database_map_figure(db, vm, title: str = "", classes: bool = False, ax=None,
         error_deg=vm.error_deg if classes else None,
     )
     draw_world(ax, db.arena, db.home, db.obstacles, perceived)
+    if getattr(db, "kind", "grid") == "route":  # docs/images.md §6.1: the route the images were taken along
+        route = np.asarray(db.rings.positions)
+        ax.plot(route[:, 0], route[:, 1], "-", color="0.6", lw=1.0, zorder=0, label="route")
+        ax.legend(loc="upper right", fontsize=8)
     ax.set_title(title, fontsize=10)
     return fig
 
