@@ -14,7 +14,7 @@ from ._args import ProgressBar, check_outputs, progress, warn, wrote, write_outp
 from ..core.rollouts import check_rules
 from ..options._checks import non_negative, positive_int
 from ..core.errors import InputError
-from ..options._schema import method_options, sensor_options
+from ..options._schema import extractor_options, method_options, sensor_options
 from ..evaluate._vector_map import refuse_rollout_only
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_out_dir
@@ -42,16 +42,6 @@ UNUSED_WITH_IMAGES = (
     "hide",
     "occlude",
 )
-EXTRACTOR_OPTIONS = ("hue_deg", "hue_width_deg", "sat_min", "val_min", "band_deg", "band_height_deg", "fill")
-EXTRACTOR_HELP = {
-    "hue_deg": "landmark hue, deg (red 0)",
-    "hue_width_deg": "width of the hue window, deg",
-    "sat_min": "least saturation of a landmark pixel, 0-1",
-    "val_min": "least value (brightness) of a landmark pixel, 0-1",
-    "band_deg": "centre elevation of the band of rows averaged into the ring, deg",
-    "band_height_deg": "height of that band, deg",
-    "fill": "share of the band a ring pixel needs to count as landmark, 0-1",
-}
 
 
 def add_image_args(p: argparse.ArgumentParser) -> None:
@@ -80,7 +70,6 @@ def add_image_args(p: argparse.ArgumentParser) -> None:
         metavar=("XMIN", "YMIN", "XMAX", "YMAX"),
         help="arena in cm (default: the metadata, else the extent of the positions)",
     )
-    g.add_argument("--max-blobs", type=int, default=None, help="landmark blob slots (default: the metadata, else 8)")
     add_extractor_args(g)
     add_reading_args(g)
     g.add_argument("--chunk", type=int, default=256, help="images read and reduced at a time (memory bound)")
@@ -88,9 +77,16 @@ def add_image_args(p: argparse.ArgumentParser) -> None:
 
 
 def add_extractor_args(g) -> None:
-    """The extractor's settings (docs/images.md §5.3-5.4; defaults: the metadata's, else `Extractor`'s)."""
-    for name in EXTRACTOR_OPTIONS:
-        g.add_argument("--" + name.replace("_", "-"), type=float, default=None, metavar="X", help=EXTRACTOR_HELP[name])
+    """The extractor's settings, from their declaration on `Extractor` (docs/images.md §5; the default
+    is the metadata's, else the declared one)."""
+    for opt in extractor_options().values():
+        g.add_argument(
+            opt.flag,
+            type=opt.type,
+            default=None,
+            metavar="N" if opt.type is int else "X",
+            help=opt.help.replace("(default", "(default: the metadata's, else"),
+        )
 
 
 def add_reading_args(g) -> None:
@@ -143,7 +139,7 @@ def load(args: argparse.Namespace):
         positive_int(args.max_blobs, "--max-blobs")
     progress(f"reading {args.images} ...")
     spacing = None if args.spacing == args.parser_defaults.get("spacing") else args.spacing
-    ex = {k: getattr(args, k) for k in EXTRACTOR_OPTIONS if getattr(args, k) is not None}
+    ex = {k: getattr(args, k) for k in extractor_options() if k != "max_blobs" and getattr(args, k) is not None}
 
     def check(n_images: int, n_pix: int) -> None:  # from the index and the first image, before the others
         if n_images > args.max_points:

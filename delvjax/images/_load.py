@@ -22,18 +22,7 @@ from ..core.images.database import RingDatabase, home_plan
 from ..core.sensing import Snapshot
 from ._disk import DatabaseIndex, read_image, read_images, read_index
 from ..options._checks import finite, positive, positive_int
-
-
-EXTRACTOR_FIELDS = (
-    "hue_deg",
-    "hue_width_deg",
-    "sat_min",
-    "val_min",
-    "band_deg",
-    "band_height_deg",
-    "fill",
-    "max_blobs",
-)
+from ..options._schema import extractor_options
 
 
 @dataclass
@@ -118,16 +107,13 @@ def database_arena(index: DatabaseIndex, arena, spacing: float) -> np.ndarray:
 
 
 def _extractor(index: DatabaseIndex, overrides: dict | None, channel: str | None, n_blobs: int | None) -> Extractor:
+    known = extractor_options()
     settings = dict(index.meta.get("extractor") or {})
     for k, v in (overrides or {}).items():
-        if k not in EXTRACTOR_FIELDS:
-            raise InputError(k, v, f"unknown extractor setting (choose from {', '.join(EXTRACTOR_FIELDS)})")
+        if k not in known:
+            raise InputError(k, v, f"unknown extractor setting (choose from {', '.join(known)})")
         settings[k] = v
-    out = {
-        k: (positive_int(v, k) if k == "max_blobs" else finite(v, k))
-        for k, v in settings.items()
-        if k in EXTRACTOR_FIELDS
-    }
+    out = {known[k].field: known[k].validate(v) for k, v in settings.items() if k in known}
     if n_blobs is not None:
         out["max_blobs"] = positive_int(n_blobs, "max_blobs")
     if channel is not None:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..core.sensor import Noise, Sensor
-from ._schema import all_options
+from ._schema import all_options, extractor_options
 
 HEADER = """# Options
 
@@ -19,7 +19,7 @@ line (`--levels 3`) and an axis of a sweep file (`levels = [2, 3, 4]`).
 
 def options_markdown() -> str:
     rows = []
-    for opt in all_options().values():
+    for opt in {**all_options(), **extractor_options()}.values():  # extractor: options of --images
         s = opt.setting
         check = s.check + (f" <= {s.limit}" if s.limit else "") + (f": {', '.join(s.choices)}" if s.choices else "")
         owner = "Sensor" if opt.owners[0] in (Sensor, Noise) else ", ".join(t.__name__ for t in opt.owners)

@@ -13,6 +13,7 @@ from collections.abc import Iterable
 from typing import Any
 
 from ..core.errors import InputError
+from ..core.images.pipeline import Extractor
 from ..core.methods import HomingMethod, Program
 from ..core.sensor import Noise, Sensor
 from ..core.settings import Setting, declared
@@ -111,6 +112,11 @@ def method_options(extra: Iterable[HomingMethod] = ()) -> dict[str, Option]:
 def sensor_options() -> dict[str, Option]:
     """The settings of the `Sensor` and its `Noise`."""
     return _options(SENSOR_TYPES)
+
+
+def extractor_options() -> dict[str, Option]:
+    """The settings of the image pipeline's `Extractor` (docs/images.md §5): options of `--images` only."""
+    return _options((Extractor,))
 
 
 def all_options(extra: Iterable[HomingMethod] = ()) -> dict[str, Option]:

@@ -16,6 +16,7 @@ from jax import Array
 from jax.scipy.ndimage import map_coordinates
 
 from ..sensing import Snapshot, blob_runs
+from ..settings import setting
 from ..types import Real
 from .world import Camera, Catadioptric
 
@@ -94,14 +95,14 @@ class Extractor(eqx.Module):
     share of its band is; max_blobs: blob slots; channel: the ring the image methods read.
     """
 
-    hue_deg: Real = 0.0
-    hue_width_deg: Real = 40.0
-    sat_min: Real = 0.5
-    val_min: Real = 0.15
-    band_deg: Real = 0.0
-    band_height_deg: Real = 10.0
-    fill: Real = 0.5
-    max_blobs: int = eqx.field(static=True, default=8)
+    hue_deg: Real = setting(0.0, help="landmark hue (red 0)", unit="deg")
+    hue_width_deg: Real = setting(40.0, help="width of the landmark hue window", unit="deg")
+    sat_min: Real = setting(0.5, help="least saturation of a landmark pixel, 0-1")
+    val_min: Real = setting(0.15, help="least value (brightness) of a landmark pixel, 0-1")
+    band_deg: Real = setting(0.0, help="centre elevation of the band of rows averaged into the ring", unit="deg")
+    band_height_deg: Real = setting(10.0, help="height of the band of rows averaged into the ring", unit="deg")
+    fill: Real = setting(0.5, help="share of its band a ring pixel needs to count as landmark, 0-1")
+    max_blobs: int = setting(8, static=True, help="landmark blob slots of a snapshot", check="positive_int", limit=64)
     channel: str = eqx.field(static=True, default="mask")
 
     def band_weights(self, camera: Camera) -> Array:
