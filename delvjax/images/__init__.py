@@ -1,6 +1,7 @@
 """Image databases (docs/images.md): render a colour world into a database, read and write the
 BoB layout on disk, evaluate homing methods on a database."""
 
+from ._load import DatabaseWarning as DatabaseWarning
 from ._load import LoadedDatabase as LoadedDatabase
 from ._evaluate import database_catchment as database_catchment
 from ._evaluate import database_rollouts as database_rollouts

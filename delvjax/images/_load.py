@@ -5,11 +5,10 @@ naming the field, or the file, and the value)."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from pathlib import Path
-from collections.abc import Callable
-
 import math
 import warnings
+from pathlib import Path
+from collections.abc import Callable
 
 import jax
 import jax.numpy as jnp
@@ -129,7 +128,7 @@ def camera_geometry(index: DatabaseIndex, elevation, camera_height, warn) -> tup
     the camera height), else +30/-30 deg and 25 cm with a warning naming the assumption."""
     name = (index.bob.get("camera") or {}).get("name") if isinstance(index.bob.get("camera"), dict) else None
     if elevation is not None:
-        top, bottom = _pair(elevation, "elevation", 2)
+        top, bottom = (float(v) for v in _pair(elevation, "elevation", 2))
     elif "elevation_deg" in index.meta:
         top, bottom = index.meta["elevation_deg"]
     elif name in CAMERAS:
@@ -141,7 +140,9 @@ def camera_geometry(index: DatabaseIndex, elevation, camera_height, warn) -> tup
             "(give --elevation TOP BOTTOM)"
         )
     if not -90 <= bottom < top <= 90:
-        raise InputError("elevation", [top, bottom], "must be TOP BOTTOM with -90 <= bottom < top <= 90 degrees")
+        raise InputError(
+            "elevation", f"{top:g} {bottom:g}", "must be TOP BOTTOM with -90 <= bottom < top <= 90 degrees"
+        )
     z = index.z
     if camera_height is not None:
         height = positive(camera_height, "camera_height")
