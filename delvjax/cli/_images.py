@@ -60,7 +60,7 @@ def add_image_args(p: argparse.ArgumentParser) -> None:
         nargs=2,
         default=None,
         metavar=("X", "Y"),
-        help="home in cm (default: the database's metadata, else the image nearest the arena centre)",
+        help="home in cm (default: the metadata's, else a route's last image or the image nearest the arena centre)",
     )
     g.add_argument(
         "--arena",

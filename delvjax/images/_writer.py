@@ -160,9 +160,9 @@ def grid_block(entries: list[Entry]) -> dict:
     """BoB's `grid` metadata block: beginAtMM (the first cell's position), separationMM, size."""
     g = np.array([e.grid for e in entries])
     xyz = np.array([[e.x_mm, e.y_mm, 0.0 if math.isnan(e.z_mm) else e.z_mm] for e in entries])
-    lo = g.min(0)
-    first = xyz[np.argmin(np.abs(g - lo).sum(1))]
-    span = g.max(0) - lo
-    sep = [float((xyz[:, k].max() - xyz[:, k].min()) / span[k]) if span[k] else 0.0 for k in range(3)]
-    begin = [float(first[k] - sep[k] * (g[np.argmin(np.abs(g - lo).sum(1)), k] - lo[k])) for k in range(3)]
+    lo, span = g.min(0), g.max(0) - g.min(0)
+    sep = np.array([(xyz[:, k].max() - xyz[:, k].min()) / span[k] if span[k] else 0.0 for k in range(3)])
+    i = int(np.argmin(np.abs(g - lo).sum(1)))  # the entry nearest the first cell
+    begin = [float(v) for v in xyz[i] - sep * (g[i] - lo)]
+    sep = [float(v) for v in sep]
     return {"beginAtMM": begin, "separationMM": sep, "size": [int(v) for v in span + 1]}
