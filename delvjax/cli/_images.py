@@ -133,7 +133,7 @@ def _method_options(args: argparse.Namespace) -> dict:
 def load(args: argparse.Namespace):
     """The database of --images with the reading options, after every option is checked."""
     opts = _method_options(args)
-    make_setup(args.method, **opts)  # method and settings checked before any image is read
+    module, _ = make_setup(args.method, **opts)  # method and settings checked before any image is read
     positive_int(args.chunk, "--chunk")
     if args.max_blobs is not None:
         positive_int(args.max_blobs, "--max-blobs")
@@ -161,6 +161,7 @@ def load(args: argparse.Namespace):
             progress=bar,
             check=check,
             warn=warn,
+            panoramas=module.reads_panorama(),
             **reading_options(args),
         )
     return db, opts

@@ -23,7 +23,9 @@ class Snapshot(eqx.Module):
 
     mask, gray: (n_pix,) ring images; bearing, width, valid: (B,) blobs sorted by bearing in
     [0, 2pi), padding last (width: apparent angular size, rad); channel: the sensor's image
-    channel, read by the image methods as `image`.
+    channel, read by the image methods as `image`; panorama, elevations: the whole gray
+    panorama (rows, n_pix) and its row-centre elevations (rows,) rad, where a method reads them
+    (MinWarping, docs/model.md §4.6), else None.
     """
 
     mask: SnapMask  # a database holds a batch of snapshots
@@ -32,6 +34,8 @@ class Snapshot(eqx.Module):
     width: SnapBlobs
     valid: SnapFlags
     channel: str = eqx.field(static=True, default="mask")
+    panorama: Array | None = None
+    elevations: Array | None = None
 
     @property
     def image(self) -> Array:

@@ -4,6 +4,8 @@ Validation first (`InputError` naming the field, or the file, and the value)."""
 
 from __future__ import annotations
 
+import dataclasses
+
 import math
 from pathlib import Path
 
@@ -27,6 +29,7 @@ from ..core.maps import VectorMap
 from ..core.rollouts import MAX_STEPS
 from ._disk import read_index
 from ._conventions import BOB, resolve
+from ..core.errors import InputError
 from ..options._settings import make_setup
 from ..options._checks import non_negative, positive, positive_int, seed_value
 from ._render import database_metadata
@@ -62,6 +65,8 @@ def database_vector_map(
     rendering of the same positions (e.g. other lighting); `program`: registry names compiled into one
     program with `method` (`registry.program`). The home point itself is not included."""
     module, sensor = make_setup(method, program, n_pix=db.camera.cols, **options)
+    if module.reads_panorama() and db.rings.snapshots.panorama is None:
+        raise InputError("method", method, "reads panoramas: load or render the database with panoramas=True")
     rings = with_channel(db.rings, sensor.channel)
     home_db = rings if home_rings is None else with_channel(home_rings, sensor.channel)
     plan, home = plans(db)
@@ -208,14 +213,18 @@ def render_in_memory(
     seed: int = 0,
     extractor: Extractor | None = None,
     chunk: int = DEFAULT_CHUNK,
+    panoramas: bool = False,
 ) -> LoadedDatabase:
     """The database `render_database` would write, rendered and reduced to rings in memory (no files;
-    ring for ring what `load_database` reads back from them, docs/images.md §5)."""
+    ring for ring what `load_database` reads back from them, docs/images.md §5); panoramas: keep
+    every gray panorama too (MinWarping, docs/model.md §4.6)."""
 
     settings = settings or ImageSettings()
     iw, spacing = check_render(env, spacing, settings, seed, MAX_POINTS, chunk)
     pts, _ = world_grid(iw, spacing)
     ex = extractor or iw.extractor
+    if panoramas:
+        ex = dataclasses.replace(ex, panorama=True)
     rings = render_rings(iw, settings, pts, np.zeros(len(pts), np.float32), jax.random.PRNGKey(seed), ex, chunk)
     home_index = int(np.argmin(np.linalg.norm(pts - np.asarray(iw.home), axis=-1)))
     check_home_move(pts, home_index, spacing, "env", env)

@@ -4,6 +4,8 @@ naming the field, or the file, and the value)."""
 
 from __future__ import annotations
 
+import dataclasses
+
 from dataclasses import dataclass, field
 import math
 import warnings
@@ -18,7 +20,6 @@ from ._render import DEFAULT_CHUNK, chunks, extract_rings, full, head
 from ..core.errors import InputError
 from ..core.images import Camera, Catadioptric, Extractor
 from ..core.images.database import RingDatabase, home_plan
-from ..core.sensing import Snapshot
 from ._disk import DatabaseIndex, read_image, read_images, read_index
 from ..options._checks import finite, positive, positive_int
 from ..options._schema import extractor_options
@@ -242,6 +243,7 @@ def load_database(
     elevation=None,
     camera_height: float | None = None,
     warn: Callable[[str], None] = _warn,
+    panoramas: bool = False,
 ) -> LoadedDatabase:
     """Read a database (docs/images.md §4) into ring snapshots, `chunk` images at a time. home, arena,
     spacing: override the metadata (else: the metadata, else `choose_home`, the positions' extent, the
@@ -250,12 +252,15 @@ def load_database(
     elevation [top, bottom] deg and camera_height cm: override the metadata; warn(message): every
     choice the files did not state (default: a `DatabaseWarning`); sink(images, rows): called with every
     chunk of images read (`import_database`); check(images, ring pixels): called before any image but
-    the first is read (the caller's own checks)."""
+    the first is read (the caller's own checks); panoramas: keep every gray panorama too (the methods that
+    read them, MinWarping; docs/model.md §4.6)."""
     index = read_index(src, conventions)
     chunk = positive_int(chunk, "chunk")
     spacing = database_spacing(index, spacing)
     a = database_arena(index, arena, spacing)
     ex = _extractor(index, extractor, channel, max_blobs)
+    if panoramas:
+        ex = dataclasses.replace(ex, panorama=True)
     home_index = choose_home(index, home, a, spacing, warn)
     if index.kind == "grid":
         check_home_move(index.positions, home_index, spacing, "home", index.files[home_index])
@@ -310,5 +315,4 @@ def load_database(
 def with_channel(db: RingDatabase, channel: str) -> RingDatabase:
     """The database with the image methods reading `channel` (mask or gray) of every snapshot."""
     s = db.snapshots
-    snap = Snapshot(mask=s.mask, gray=s.gray, bearing=s.bearing, width=s.width, valid=s.valid, channel=channel)
-    return RingDatabase(snap, db.positions, db.headings)
+    return RingDatabase(dataclasses.replace(s, channel=channel), db.positions, db.headings)

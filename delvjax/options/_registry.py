@@ -20,8 +20,10 @@ from ..core.methods.delv_gap import DELVGap
 from ..core.methods.delv_refined import DELVRefined
 from ..core.methods.heading import Compass, VisualCompass
 from ..core.methods.mfdid import MFDID
+from ..core.methods.minwarping import MinWarping
 from ..core.methods.program import Program
 from ..core.methods.warping import Warping
+from ..core.methods.warping2d import Warping2D
 
 # name: (module instance, one-line description). A new method is one line here.
 REGISTRY: dict[str, tuple[HomingMethod, str]] = {
@@ -34,6 +36,11 @@ REGISTRY: dict[str, tuple[HomingMethod, str]] = {
     "acv-visual": (ACV(heading=VisualCompass()), "ACV with the visual compass (thesis 5.3.2)"),
     "warping": (Warping(), "predictive image matching over alpha x rho x psi, no compass (Franz 1998; thesis 4.2)"),
     "mfdid": (MFDID(), "matched-filter descent in image distances with a compass (Moller & Vardy 2006)"),
+    "minwarping": (
+        MinWarping(),
+        "MinWarping on gray panoramas: alpha x psi, each column's best distance (Moller 2009)",
+    ),
+    "warping2d": (Warping2D(), "2D-Warping on gray panoramas: alpha x psi x rho, one distance for all (Moller 2009)"),
     "cc": (CartwrightCollett(), "snapshot model of Cartwright & Collett 1983 (landmarks only) with a compass"),
     "delv-agent": (
         DELV(order="agent"),

@@ -134,4 +134,6 @@ def make_setup(
     for name, value in settings.items():
         if not owns(module, name):
             raise InputError(name, value, f"is not a setting of the method {label}")
-    return configure(module, **settings), sensor
+    configured = configure(module, **settings)
+    configured.check_input(sensor.n_pix)
+    return configured, sensor

@@ -6,6 +6,8 @@ Written for ONE image; callers `vmap` it.
 
 from __future__ import annotations
 
+import dataclasses
+
 import math
 
 import equinox as eqx
@@ -104,6 +106,7 @@ class Extractor(eqx.Module):
     fill: Real = setting(0.5, help="share of its band a ring pixel needs to count as landmark, 0-1")
     max_blobs: int = setting(8, static=True, help="landmark blob slots of a snapshot", check="positive_int", limit=64)
     channel: str = eqx.field(static=True, default="mask")
+    panorama: bool = eqx.field(static=True, default=False)  # keep the gray panorama (MinWarping)
 
     def band_weights(self, camera: Camera) -> Array:
         """(rows,) 1 for the rows whose centre lies in the band, else 0 (at least the nearest row)."""
@@ -121,7 +124,11 @@ class Extractor(eqx.Module):
         return jnp.sum(w * mask, 0) / total, jnp.sum(w * hsv[..., 2], 0) / total
 
     def __call__(self, image: Array, camera: Camera) -> Snapshot:
-        return ring_snapshot(*self.rings(image, camera), self)
+        snap = ring_snapshot(*self.rings(image, camera), self)
+        if not self.panorama:
+            return snap
+        value = image.astype(jnp.float32) @ jnp.array([0.299, 0.587, 0.114])  # luminance (Rec. 601)
+        return dataclasses.replace(snap, panorama=value, elevations=camera.elevations())
 
 
 def ring_snapshot(share: Array, gray: Array, extractor: Extractor) -> Snapshot:

@@ -47,6 +47,15 @@ class HomingMethod(eqx.Module):
         blob-reading methods do not, so their rollouts skip rendering it (`sensing.snapshot`)."""
         return False
 
+    def reads_panorama(self) -> bool:
+        """Whether the method reads the whole gray panorama of a view (`Snapshot.panorama`: MinWarping,
+        2D-Warping); such a method runs on image databases and rendered worlds only."""
+        return False
+
+    def check_input(self, n_pix: int) -> None:
+        """Raise `InputError` where the settings cannot serve views of `n_pix` columns (the edge calls
+        it before any work)."""
+
     def reads_gray(self, channel: str) -> bool | Array:
         """Whether the method reads the gray channel of the current view (docs/model.md §2.2)
         when the sensor's image channel is `channel`."""

@@ -48,3 +48,10 @@ class Program(HomingMethod):
 
     def reads_gray(self, channel: str) -> bool | Array:
         return self._flag([bool(m.reads_gray(channel)) for m in self.methods])
+
+    def reads_panorama(self) -> bool:
+        return any(m.reads_panorama() for m in self.methods)
+
+    def check_input(self, n_pix: int) -> None:
+        for m in self.methods:
+            m.check_input(n_pix)

@@ -1,0 +1,181 @@
+"""The search of 2D-warping over movement direction alpha and rotation psi (Möller 2009 §3-4;
+Möller, Krzykawski & Gerstmayr 2010 §3-4; docs/model.md §4.6).
+
+Frames: columns count counter-clockwise, column j of a panorama at azimuth 2 pi j / w in its own
+frame. Hypothesis (alpha, psi): the agent moved from home along alpha (snapshot frame) and turned
+by psi (current heading minus snapshot heading). A point at snapshot azimuth theta = alpha + x
+(x relative to the movement) seen from the current place at snapshot-frame azimuth alpha + x + y
+lies in current column theta + y - psi. Triangle home, current place, point (law of sines):
+
+    sigma = r' / r = sin x / sin(x + y),   rho = d / r = sin y / sin(x + y),
+
+so y runs from 0 towards pi - x (x in (0, pi); towards -x on the other side). A template lists,
+for every x, its entries (y, plane of sigma); MinWarping takes per snapshot column the minimum over
+its entries (any distance, Möller 2009 Eq 11), 2D-Warping one entry per rho (every point at one
+distance). The match of (alpha, psi) is the sum over the snapshot's columns (x = 0 and x = pi
+carry no information and are left out, as the authors do).
+
+How it is fast: in the arranged stack (`scale_planes.arranged`) one template entry reads one
+contiguous (n_psi, n_alpha) block, so the search is a scan over template entries, U at a time,
+each a vectorised min over whole blocks; no gather in the inner loop.
+"""
+
+from __future__ import annotations
+
+import functools
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+from jax import Array, lax
+
+from .scale_planes import plane_of
+
+UNROLL = 8  # template entries per scan step (padding repeats an entry: min is idempotent)
+
+
+@functools.lru_cache(maxsize=32)
+def min_template(w: int, scales: tuple[float, ...], threshold: float, rho_min: float, rho_max: float) -> np.ndarray:
+    """(T, 3) int32 rows (x, y mod w, plane) of the MinWarping template, sorted by x: every
+    displacement y of column x with rho in [rho_min, rho_max] and sigma <= threshold."""
+    rows = []
+    half = w // 2
+    for ix in range(1, w):
+        if 2 * ix == w:
+            continue
+        side = 1 if 2 * ix < w else -1
+        n = half - ix if side > 0 else ix - (w + 1) // 2
+        iy = side * np.arange(max(n, 0))
+        x, y = 2 * np.pi * ix / w, 2 * np.pi * iy / w
+        sigma, rho = np.sin(x) / np.sin(x + y), np.sin(y) / np.sin(x + y)
+        plane = plane_of(sigma, np.asarray(scales), threshold)
+        keep = (rho >= rho_min) & (rho <= rho_max) & (plane >= 0)
+        rows += [(ix, iy[k] % w, plane[k]) for k in np.flatnonzero(keep)]
+    return np.asarray(rows, np.int32).reshape(-1, 3)
+
+
+@functools.lru_cache(maxsize=32)
+def rho_template(w: int, scales: tuple[float, ...], rhos: tuple[float, ...]) -> np.ndarray:
+    """(n_rho, w, 3) int32 rows (x, y mod w, plane) of 2D-Warping: every column at distance r = d / rho
+    from home, y = atan2(rho sin x, 1 - rho cos x) to the nearest column, sigma = sqrt(1 + rho^2 -
+    2 rho cos x) to the nearest plane (beyond the largest factor: the last plane)."""
+    x = 2 * np.pi * np.arange(w) / w
+    rho = np.asarray(rhos)[:, None]
+    y = np.arctan2(rho * np.sin(x), 1.0 - rho * np.cos(x))
+    y = np.where((rho == 1.0) & (x == 0.0), np.pi / 2, y)  # the point itself: the authors' limit
+    iy = np.rint(y * w / (2 * np.pi)).astype(np.int64) % w
+    sigma = np.sqrt(1.0 + rho**2 - 2.0 * rho * np.cos(x))
+    plane = plane_of(sigma, np.asarray(scales), np.inf)
+    ix = np.broadcast_to(np.arange(w), iy.shape)
+    return np.stack([ix, iy, plane], -1).astype(np.int32)
+
+
+def group_steps(entries: np.ndarray, w: int, n_alpha: int, n_psi: int) -> dict[str, np.ndarray]:
+    """The template grouped by x into scan steps of UNROLL entries (padding repeats the group's
+    last): per step the block starts (plane, ry, t0, rx, qx), (steps, UNROLL), and whether the step
+    is the first and the last of its x."""
+    sa, sp = w // n_alpha, w // n_psi
+    steps = []
+    for ix in np.unique(entries[:, 0]):
+        group = entries[entries[:, 0] == ix]
+        pad = (-len(group)) % UNROLL
+        group = np.concatenate([group, np.repeat(group[-1:], pad, 0)])
+        parts = group.reshape(-1, UNROLL, 3)
+        for k, part in enumerate(parts):
+            steps.append((part, k == 0, k == len(parts) - 1))
+    part = np.stack([s[0] for s in steps])
+    x, y, plane = part[..., 0], part[..., 1], part[..., 2]
+    return {
+        "plane": plane,
+        "ry": y % sp,
+        "t0": (-(y // sp)) % n_psi,
+        "rx": x % sa,
+        "qx": x // sa,
+        "first": np.array([s[1] for s in steps]),
+        "last": np.array([s[2] for s in steps]),
+    }
+
+
+def _block(arr: Array, s: dict, u: int, n_alpha: int, n_psi: int, q0: Array | int = 0) -> Array:
+    """Entry u of scan step s: its (n_psi, n_alpha) block of the arranged stack from column q0 of
+    the q axis (0: the q frame; qx on an alpha-doubled stack: the alpha frame)."""
+    start = (s["plane"][u], s["ry"][u], s["t0"][u], s["rx"][u], q0)
+    return lax.dynamic_slice(arr, start, (1, 1, n_psi, 1, n_alpha)).reshape(n_psi, n_alpha)
+
+
+def _to_alpha(block: Array, qx: Array) -> Array:
+    """A block in the q frame (q = qx + a) -> the alpha frame: column a is q = (qx + a) mod n_alpha."""
+    n_psi, n_alpha = block.shape
+    return lax.dynamic_slice(jnp.concatenate([block, block], 1), (0, qx), (n_psi, n_alpha))
+
+
+def min_match(arr: Array, steps: dict[str, np.ndarray], n_alpha: int, n_psi: int) -> Array:
+    """(n_psi, n_alpha) MinWarping match: sum over snapshot columns of the minimum over the column's
+    template entries; `arr` the arranged stack."""
+
+    def step(carry, s):
+        run, acc = carry
+        m = functools.reduce(jnp.minimum, [_block(arr, s, u, n_alpha, n_psi) for u in range(UNROLL)])
+        run = jnp.where(s["first"], m, jnp.minimum(run, m))
+        add = _to_alpha(run, s["qx"][0]).astype(acc.dtype)
+        return (run, acc + jnp.where(s["last"], add, jnp.zeros_like(add))), None
+
+    acc_type = jnp.float32 if jnp.issubdtype(arr.dtype, jnp.floating) else jnp.int32
+    init = (jnp.zeros((n_psi, n_alpha), arr.dtype), jnp.zeros((n_psi, n_alpha), acc_type))
+    xs = {k: jnp.asarray(v) for k, v in steps.items()}
+    (_, acc), _ = lax.scan(step, init, xs)
+    return acc
+
+
+def sum_match(arr2: Array, steps: dict[str, np.ndarray], n_alpha: int, n_psi: int) -> Array:
+    """(n_psi, n_alpha) match of a one-entry-per-column template (2D-Warping at one rho): the sum
+    of the blocks of all entries (padding entries weigh 0); `arr2` the arranged stack with its q
+    axis doubled (`scale_planes.arranged(..., doubled=True)`), so every block is read in the alpha
+    frame directly."""
+    acc_type = jnp.float32 if jnp.issubdtype(arr2.dtype, jnp.floating) else jnp.int32
+
+    def step(acc, s):
+        for u in range(UNROLL):
+            acc = acc + _block(arr2, s, u, n_alpha, n_psi, s["qx"][u]).astype(acc_type) * s["weight"][u]
+        return acc, None
+
+    xs = {k: jnp.asarray(v) for k, v in steps.items()}
+    acc, _ = lax.scan(step, jnp.zeros((n_psi, n_alpha), acc_type), xs)
+    return acc
+
+
+def rho_steps(rows: np.ndarray, w: int, n_alpha: int, n_psi: int) -> dict[str, np.ndarray]:
+    """One rho's template rows (x, y, plane) as scan steps of UNROLL entries, padding weighted 0."""
+    pad = (-len(rows)) % UNROLL
+    rows = np.concatenate([rows, np.repeat(rows[:1], pad, 0)]).reshape(-1, UNROLL, 3)
+    weight = np.ones(rows.shape[:2], np.int32)
+    weight.reshape(-1)[len(weight.reshape(-1)) - pad :] = 0
+    sa, sp = w // n_alpha, w // n_psi
+    x, y, plane = rows[..., 0], rows[..., 1], rows[..., 2]
+    return {"plane": plane, "ry": y % sp, "t0": (-(y // sp)) % n_psi, "rx": x % sa, "qx": x // sa, "weight": weight}
+
+
+def inverse_index(n_alpha: int, n_psi: int) -> tuple[np.ndarray, np.ndarray]:
+    """Where hypothesis (psi_m, alpha_a) of the swapped search lies: psi' = -psi, alpha' = alpha + pi
+    - psi (the way back, in the current frame); (n_psi, n_alpha) index arrays (m', a')."""
+    m = np.arange(n_psi)[:, None]
+    a = np.arange(n_alpha)[None, :]
+    return np.broadcast_to((-m) % n_psi, (n_psi, n_alpha)), (a + n_alpha // 2 - m * n_alpha // n_psi) % n_alpha
+
+
+def entry_values(stk: Array, entries: np.ndarray, alpha: Array, psi: Array) -> Array:
+    """(T,) stack values of every template entry at one off-grid hypothesis (alpha, psi in pixels)."""
+    w = stk.shape[-1]
+    x, y, plane = (jnp.asarray(entries[:, k]) for k in range(3))
+    theta = (x + alpha) % w
+    return stk[plane, theta, (theta + y - psi) % w]
+
+
+def min_match_at(stk: Array, entries: np.ndarray, alpha: Array, psi: Array) -> Array:
+    """MinWarping match of one hypothesis in whole pixels (the fine search), by per-column minima."""
+    w = stk.shape[-1]
+    col = jax.ops.segment_min(entry_values(stk, entries, alpha, psi), jnp.asarray(entries[:, 0]), num_segments=w)
+    present = np.zeros(w, bool)
+    present[entries[:, 0]] = True  # columns without entries (x = 0, pi) add nothing
+    acc_type = jnp.float32 if jnp.issubdtype(stk.dtype, jnp.floating) else jnp.int32
+    return jnp.sum(jnp.where(jnp.asarray(present), col.astype(acc_type), 0))
