@@ -133,7 +133,7 @@ def _method_options(args: argparse.Namespace) -> dict:
 def load(args: argparse.Namespace):
     """The database of --images with the reading options, after every option is checked."""
     opts = _method_options(args)
-    module, _ = make_setup(args.method, **opts)  # method and settings checked before any image is read
+    module, _ = make_setup(args.method, panorama_cols=0, **opts)  # checked before any image is read
     positive_int(args.chunk, "--chunk")
     if args.max_blobs is not None:
         positive_int(args.max_blobs, "--max-blobs")
@@ -146,7 +146,7 @@ def load(args: argparse.Namespace):
             raise InputError(
                 "--images", args.images, f"has {n_images} images, more than --max-points {args.max_points}"
             )
-        make_setup(args.method, n_pix=n_pix, **opts)  # e.g. n_psi must divide the ring's pixels
+        make_setup(args.method, n_pix=n_pix, panorama_cols=n_pix, **opts)  # e.g. n_psi must divide the width
 
     with ProgressBar("img", args.chunk) as bar:
         db = load_database(

@@ -64,9 +64,9 @@ def database_vector_map(
     settings and `channel` as in `api.vector_map`; `home_rings`: take the home record from another
     rendering of the same positions (e.g. other lighting); `program`: registry names compiled into one
     program with `method` (`registry.program`). The home point itself is not included."""
-    module, sensor = make_setup(method, program, n_pix=db.camera.cols, **options)
-    if module.reads_panorama() and db.rings.snapshots.panorama is None:
-        raise InputError("method", method, "reads panoramas: load or render the database with panoramas=True")
+    module, sensor = make_setup(method, program, n_pix=db.camera.cols, panorama_cols=db.camera.cols, **options)
+    if module.reads_panorama():
+        check_panorama_field(db, method)
     rings = with_channel(db.rings, sensor.channel)
     home_db = rings if home_rings is None else with_channel(home_rings, sensor.channel)
     plan, home = plans(db)
@@ -83,6 +83,21 @@ def database_vector_map(
         valid=valid,
         error_deg=error,
     )
+
+
+def check_panorama_field(db: LoadedDatabase, method) -> None:
+    """`InputError` unless the database holds panoramas a panorama method can read (docs/model.md §4.6):
+    kept at loading (`panoramas=True`), with a vertical field that contains the horizon (the scale
+    planes magnify about it) and stays within +-90 deg."""
+    if db.rings.snapshots.panorama is None:
+        raise InputError("method", method, "reads panoramas: load or render the database with panoramas=True")
+    top, bottom = float(db.camera.elev_top_deg), float(db.camera.elev_bottom_deg)
+    if not 90.0 > top > 0.0 > bottom > -90.0:
+        raise InputError(
+            "elevation",
+            [top, bottom],
+            "must contain the horizon, within (-90, 90) deg: the scale planes magnify the panorama about it",
+        )
 
 
 def database_rollouts(

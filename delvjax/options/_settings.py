@@ -90,12 +90,19 @@ def reads_channel(method: HomingMethod) -> bool:
 
 
 def make_setup(
-    method: str | HomingMethod, program=None, sensor: Sensor | None = None, noise: Noise | None = None, **options
+    method: str | HomingMethod,
+    program=None,
+    sensor: Sensor | None = None,
+    noise: Noise | None = None,
+    panorama_cols: int | None = None,
+    **options,
 ) -> tuple[HomingMethod, Sensor]:
     """(method module, sensor), validated before any work. `method`: a registry name or a method
     module (`DELV(levels=3, heading=Compass())`); `program`: registry names compiled into one
     program with `method` (`registry.program`); `sensor`: a `Sensor` instead of sensor options;
-    `noise`: a `Noise` instead of the noise options.
+    `noise`: a `Noise` instead of the noise options; `panorama_cols`: the width of the panoramas of an
+    image database (0: a database not read yet; None: a scene of rings, where a method that reads
+    panoramas is refused).
     A method setting that the method does not have is an error naming it."""
     extra = (method,) if isinstance(method, HomingMethod) else ()
     method_names, sensor_names = option_names(extra)
@@ -135,5 +142,11 @@ def make_setup(
         if not owns(module, name):
             raise InputError(name, value, f"is not a setting of the method {label}")
     configured = configure(module, **settings)
-    configured.check_input(sensor.n_pix)
+    if configured.reads_panorama():
+        if panorama_cols is None:
+            raise InputError(
+                "method", label, "reads panoramas: run it on an image database or a rendered world (--images)"
+            )
+        if panorama_cols:
+            configured.check_input(panorama_cols)
     return configured, sensor

@@ -275,10 +275,11 @@ def test_every_registered_method_runs_on_image_rings():
     from delvjax.options._registry import METHODS
 
     cam = camera(rows=12, cols=72, elev_top_deg=6.0, elev_bottom_deg=-6.0)  # the default 10° band: 10 rows
-    db = render_in_memory("robot", settings=ImageSettings(camera=cam))
+    db = render_in_memory("robot", settings=ImageSettings(camera=cam), panoramas=True)  # MinWarping reads them
     names = tuple(METHODS)
+    grids = {f"{p}_{k}": 36 for p in ("mw", "w2d") for k in ("n_alpha", "n_psi")}  # 96 does not divide 72
     for name in names:  # a traced index picks the method: one compiled program
-        vm = database_vector_map(db, name, program=names, channel="gray")
+        vm = database_vector_map(db, name, program=names, channel="gray", **grids)
         inc = np.asarray(vm.included)
         assert np.asarray(vm.valid)[inc].all(), name
         assert np.isfinite(np.asarray(vm.direction)[inc]).all(), name

@@ -173,6 +173,44 @@ def search(
     return alpha, psi, value
 
 
+def rho_search(
+    ss,
+    cv,
+    elevations,
+    n_alpha=96,
+    n_psi=96,
+    rhos=None,
+    n_planes=9,
+    max_scale=2.0,
+    measure="nsad",
+    use_edges=True,
+    stk=None,
+):
+    """2D-Warping: every column at one distance from home, rho = d / r; (alpha, psi, rho index, match)
+    of the first minimum in (rho, psi, alpha) order."""
+    w = ss.shape[1]
+    scales = scale_factors(n_planes, max_scale)
+    rhos = np.linspace(0.0, 1.0, 20) if rhos is None else rhos
+    if stk is None:
+        stk = quantise(stack(ss, cv, elevations, scales, measure, use_edges), measure)
+    sa, sp = w // n_alpha, w // n_psi
+    best = None
+    for r, rho in enumerate(rhos):
+        cols = []
+        for ix in range(w):
+            x = 2 * math.pi * ix / w
+            y = math.pi / 2 if (rho == 1.0 and ix == 0) else math.atan2(rho * math.sin(x), 1 - rho * math.cos(x))
+            sigma = math.sqrt(1 + rho * rho - 2 * rho * math.cos(x))
+            cols.append((ix, int(np.rint(y * w / (2 * math.pi))) % w, nearest_plane(sigma, scales, math.inf)))
+        for m in range(n_psi):
+            for a in range(n_alpha):
+                alpha, psi = a * sa, m * sp
+                v = sum(stk[s, (ix + alpha) % w, (ix + alpha + iy - psi) % w] for ix, iy, s in cols)
+                if best is None or v < best[3]:
+                    best = (alpha, psi, r, v)
+    return best
+
+
 def home_direction(alpha, psi, w):
     """The home direction in the current agent frame (rad, wrapped to [-pi, pi))."""
     ang = 2 * math.pi * alpha / w + math.pi - 2 * math.pi * psi / w

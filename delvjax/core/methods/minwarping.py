@@ -30,6 +30,8 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
+from ..types import Arrays
+
 from ..errors import InputError
 from ..geometry import TWO_PI, wrap
 from ..search import first_argmin
@@ -66,7 +68,7 @@ def check_grid(cfg, rows: int | None, cols: int) -> None:
         raise InputError("panorama rows", rows, "must be >= 3")
 
 
-def quantised(stk: Array, measure: str, stack_type: str) -> Array:
+def quantised(stk: Arrays, measure: str, stack_type: str) -> Array:
     """The stack the search reads: uint8 round(LEVELS d / d_max) (d_max the measure's largest
     value, or the stack's for `sad`/`ssd`), or float32 as it is."""
     if stack_type == "float32":
@@ -76,22 +78,13 @@ def quantised(stk: Array, measure: str, stack_type: str) -> Array:
     return jnp.round(jnp.clip(stk / top, 0.0, 1.0) * LEVELS).astype(jnp.uint8)
 
 
-def vertical_geometry(panorama: Array, elevations: Array, vfov_deg) -> Array:
-    """Row-centre elevations (rad): the snapshot's own, or a centred field of `vfov_deg` where set."""
-    if not vfov_deg:
-        return elevations
-    rows = panorama.shape[-2]
-    step = vfov_deg / rows
-    return jnp.radians(vfov_deg / 2 - step * (jnp.arange(rows) + 0.5))
-
-
 @functools.lru_cache(maxsize=16)
 def _steps(w: int, n_alpha: int, n_psi: int, scales: tuple, threshold: float):
     entries = ws.min_template(w, scales, threshold, 0.0, math.inf)
     return entries, ws.group_steps(entries, w, n_alpha, n_psi)
 
 
-def search(ss: Array, cv: Array, elevations: Array, cfg: "MinWarping") -> tuple[Array, Array, Array]:
+def search(ss: Arrays, cv: Arrays, elevations: Arrays, cfg: "MinWarping") -> tuple[Array, Array, Array]:
     """docs/model.md §4.6: (alpha, psi) in whole pixels and the match at the best hypothesis.
 
     ss, cv: (rows, cols) gray panoramas, snapshot and current view; elevations: (rows,) rad."""
@@ -193,20 +186,11 @@ class MinWarping(HomingMethod):
         help="quantised byte stack or float32",
         option="mw_stack",
     )
-    vfov_deg: float = setting(
-        0.0,
-        static=True,
-        check="non_negative",
-        unit="deg",
-        help="vertical field of view (0: the camera's)",
-        option="mw_vfov_deg",
-    )
 
     def estimate(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array, Array]:
         """(home direction in the agent frame, psi = current heading minus home heading, valid)."""
         ss, cv = _panorama(home.start), _panorama(view.end)
-        elevations = vertical_geometry(ss, home.start.elevations, self.vfov_deg)
-        alpha, psi, _ = search(ss, cv, elevations, self)
+        alpha, psi, _ = search(ss, cv, home.start.elevations, self)
         w = ss.shape[-1]
         a, p = TWO_PI * alpha / w, TWO_PI * psi / w
         valid = jnp.any(ss != ss.reshape(-1)[0])

@@ -28,6 +28,8 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
+from ..types import Arrays
+
 MEASURES = ("nsad", "nssd", "sad", "ssd")
 EPS = 1e-6
 
@@ -47,7 +49,7 @@ def plane_of(sigma: np.ndarray, scales: np.ndarray, threshold: float) -> np.ndar
     return np.where(sigma <= threshold, plane, -1)
 
 
-def magnify(image: Array, elevations: Array, m: Array) -> Array:
+def magnify(image: Arrays, elevations: Arrays, m: Array) -> Array:
     """image (rows, cols) seen m >= 1 times closer: out(e) = image(atan(tan(e) / m)), the nearest row
     (`elevations` (rows,) rad, equally spaced, row 0 at the top). Nearest, as the authors read it: a
     linear read would blur the magnified edges and bias the search against the magnified planes
@@ -58,13 +60,13 @@ def magnify(image: Array, elevations: Array, m: Array) -> Array:
     return image[row]
 
 
-def prepare(image: Array, edges: bool) -> Array:
+def prepare(image: Arrays, edges: bool) -> Array:
     """The image the columns are compared on: the vertical edge image (row r + 1 minus row r) or
     the image itself."""
     return image[..., 1:, :] - image[..., :-1, :] if edges else image
 
 
-def column_distances(a: Array, b: Array, measure: str) -> Array:
+def column_distances(a: Arrays, b: Arrays, measure: str) -> Array:
     """(..., cols_a, cols_b) distance of every column of a (..., rows, cols) with every column of b.
 
     The sums over rows are written row by row (one fused loop over the (cols, cols) outputs, ~10x
@@ -85,12 +87,12 @@ def column_distances(a: Array, b: Array, measure: str) -> Array:
     return functools.reduce(jnp.add, term) * scale
 
 
-def stack(ss: Array, cv: Array, elevations: Array, scales: np.ndarray, measure: str, edges: bool) -> Array:
+def stack(ss: Arrays, cv: Arrays, elevations: Arrays, scales: np.ndarray, measure: str, edges: bool) -> Array:
     """(planes, cols, cols) float32: `stack[s, i, j]`, snapshot column i against current column j
     under r' / r = scales[s] (module docstring). The edge images are taken first and magnified
     after (as the authors do), so that magnification stretches an edge without weakening it."""
-    ss, cv = prepare(ss.astype(jnp.float32), edges), prepare(cv.astype(jnp.float32), edges)
-    elevations = elevations.astype(jnp.float32)
+    ss, cv = prepare(jnp.asarray(ss, jnp.float32), edges), prepare(jnp.asarray(cv, jnp.float32), edges)
+    elevations = jnp.asarray(elevations, jnp.float32)
     if edges:  # an edge row lies between its two rows
         elevations = 0.5 * (elevations[1:] + elevations[:-1])
     a = [magnify(ss, elevations, jnp.float32(1.0 / s)) if s < 1.0 else ss for s in scales]
@@ -98,13 +100,13 @@ def stack(ss: Array, cv: Array, elevations: Array, scales: np.ndarray, measure: 
     return column_distances(jnp.stack(a), jnp.stack(b), measure)
 
 
-def inverted(stk: Array) -> Array:
+def inverted(stk: Arrays) -> Array:
     """The stack with the two images' roles swapped (the current view as snapshot): plane s of
     the inverse compares at 1 / sigma_s, which is plane S - 1 - s of symmetric scale factors."""
     return jnp.swapaxes(stk[::-1], 1, 2)
 
 
-def skewed(plane: Array) -> Array:
+def skewed(plane: Arrays) -> Array:
     """(w, w) -> (w, w): out[i, delta] = plane[i, (i + delta) mod w], by reshapes only (each row of
     the doubled plane read from one place further on)."""
     w = plane.shape[-1]
@@ -112,7 +114,7 @@ def skewed(plane: Array) -> Array:
     return jnp.pad(flat, (0, w)).reshape(w, 2 * w + 1)[:, :w]
 
 
-def arranged(stk: Array, n_alpha: int, n_psi: int, doubled: bool = False) -> Array:
+def arranged(stk: Arrays, n_alpha: int, n_psi: int, doubled: bool = False) -> Array:
     """The stack in the search's layout (docs/model.md §4.6 "How it is fast"):
     (planes, step_psi, 2 n_psi, step_alpha, n_alpha), entry [s, ry, t, rx, q] the distance of snapshot
     column theta = q step_alpha + rx and current column theta + delta, delta = ((-t) mod n_psi)

@@ -21,6 +21,8 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
+from ..types import Arrays
+
 from ..errors import InputError
 from ..geometry import TWO_PI, wrap
 from ..search import first_argmin
@@ -29,7 +31,7 @@ from ..settings import setting
 from . import scale_planes as sp
 from . import warping_search as ws
 from .base import HomingMethod
-from .minwarping import STACK_TYPES, _panorama, check_grid, quantised, vertical_geometry
+from .minwarping import STACK_TYPES, _panorama, check_grid, quantised
 
 
 @functools.lru_cache(maxsize=16)
@@ -46,7 +48,7 @@ def rho_values(cfg: "Warping2D") -> tuple[float, ...]:
     return tuple(float(v) for v in np.linspace(cfg.rho_min, cfg.rho_max, cfg.n_rho))
 
 
-def search(ss: Array, cv: Array, elevations: Array, cfg: "Warping2D") -> tuple[Array, Array, Array, Array]:
+def search(ss: Arrays, cv: Arrays, elevations: Arrays, cfg: "Warping2D") -> tuple[Array, Array, Array, Array]:
     """(alpha, psi) in whole pixels, the rho index and the match at the best hypothesis."""
     rows, w = ss.shape
     check_grid(cfg, rows, w)
@@ -118,19 +120,10 @@ class Warping2D(HomingMethod):
         help="quantised byte stack or float32",
         option="w2d_stack",
     )
-    vfov_deg: float = setting(
-        0.0,
-        static=True,
-        check="non_negative",
-        unit="deg",
-        help="vertical field of view (0: the camera's)",
-        option="w2d_vfov_deg",
-    )
 
     def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
         ss, cv = _panorama(home.start), _panorama(view.end)
-        elevations = vertical_geometry(ss, home.start.elevations, self.vfov_deg)
-        alpha, psi, _, _ = search(ss, cv, elevations, self)
+        alpha, psi, _, _ = search(ss, cv, home.start.elevations, self)
         w = ss.shape[-1]
         valid = jnp.any(ss != ss.reshape(-1)[0])
         angle = wrap(TWO_PI * alpha / w + math.pi - TWO_PI * psi / w)

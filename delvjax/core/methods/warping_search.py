@@ -29,6 +29,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array, lax
 
+from ..types import Arrays
 from .scale_planes import plane_of
 
 UNROLL = 8  # template entries per scan step (padding repeats an entry: min is idempotent)
@@ -96,7 +97,7 @@ def group_steps(entries: np.ndarray, w: int, n_alpha: int, n_psi: int) -> dict[s
     }
 
 
-def _block(arr: Array, s: dict, u: int, n_alpha: int, n_psi: int, q0: Array | int = 0) -> Array:
+def _block(arr: Arrays, s: dict, u: int, n_alpha: int, n_psi: int, q0: Array | int = 0) -> Array:
     """Entry u of scan step s: its (n_psi, n_alpha) block of the arranged stack from column q0 of
     the q axis (0: the q frame; qx on an alpha-doubled stack: the alpha frame)."""
     start = (s["plane"][u], s["ry"][u], s["t0"][u], s["rx"][u], q0)
@@ -109,7 +110,7 @@ def _to_alpha(block: Array, qx: Array) -> Array:
     return lax.dynamic_slice(jnp.concatenate([block, block], 1), (0, qx), (n_psi, n_alpha))
 
 
-def min_match(arr: Array, steps: dict[str, np.ndarray], n_alpha: int, n_psi: int) -> Array:
+def min_match(arr: Arrays, steps: dict, n_alpha: int, n_psi: int) -> Array:
     """(n_psi, n_alpha) MinWarping match: sum over snapshot columns of the minimum over the column's
     template entries; `arr` the arranged stack."""
 
@@ -127,7 +128,7 @@ def min_match(arr: Array, steps: dict[str, np.ndarray], n_alpha: int, n_psi: int
     return acc
 
 
-def sum_match(arr2: Array, steps: dict[str, np.ndarray], n_alpha: int, n_psi: int) -> Array:
+def sum_match(arr2: Arrays, steps: dict, n_alpha: int, n_psi: int) -> Array:
     """(n_psi, n_alpha) match of a one-entry-per-column template (2D-Warping at one rho): the sum
     of the blocks of all entries (padding entries weigh 0); `arr2` the arranged stack with its q
     axis doubled (`scale_planes.arranged(..., doubled=True)`), so every block is read in the alpha
@@ -163,7 +164,7 @@ def inverse_index(n_alpha: int, n_psi: int) -> tuple[np.ndarray, np.ndarray]:
     return np.broadcast_to((-m) % n_psi, (n_psi, n_alpha)), (a + n_alpha // 2 - m * n_alpha // n_psi) % n_alpha
 
 
-def entry_values(stk: Array, entries: np.ndarray, alpha: Array, psi: Array) -> Array:
+def entry_values(stk: Arrays, entries: np.ndarray, alpha: Arrays | int, psi: Arrays | int) -> Array:
     """(T,) stack values of every template entry at one off-grid hypothesis (alpha, psi in pixels)."""
     w = stk.shape[-1]
     x, y, plane = (jnp.asarray(entries[:, k]) for k in range(3))
@@ -171,7 +172,7 @@ def entry_values(stk: Array, entries: np.ndarray, alpha: Array, psi: Array) -> A
     return stk[plane, theta, (theta + y - psi) % w]
 
 
-def min_match_at(stk: Array, entries: np.ndarray, alpha: Array, psi: Array) -> Array:
+def min_match_at(stk: Arrays, entries: np.ndarray, alpha: Arrays | int, psi: Arrays | int) -> Array:
     """MinWarping match of one hypothesis in whole pixels (the fine search), by per-column minima."""
     w = stk.shape[-1]
     col = jax.ops.segment_min(entry_values(stk, entries, alpha, psi), jnp.asarray(entries[:, 0]), num_segments=w)

@@ -1,0 +1,241 @@
+"""MinWarping and 2D-Warping (docs/model.md §4.6) against the plain NumPy twin (tests/twins/minwarping.py),
+the analytic cases (a pure rotation gives psi exactly, a pure translation alpha exactly), the promises
+of the refinements, and bad input."""
+
+from __future__ import annotations
+
+import math
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+import pytest
+
+from delvjax.core.errors import InputError
+from delvjax.core.methods import minwarping as mw
+from delvjax.core.methods import scale_planes as sp
+from delvjax.core.methods import warping2d as w2d
+from delvjax.core.methods import warping_search as ws
+from delvjax.core.methods.minwarping import MinWarping, MinWarpingCompass
+from delvjax.core.methods.warping2d import Warping2D
+from delvjax.core.sensing import Snapshot, UnitMove
+from tests.twins import minwarping as tw
+
+W, H, N = 96, 12, 32  # a small panorama and hypothesis grid: the twin loops over every entry
+ELEV = np.radians(30.0 - 60.0 / H * (np.arange(H) + 0.5))
+SCALES = tuple(float(s) for s in sp.scale_factors(9, 2.0))
+
+
+def pair(seed: int, w: int = W, h: int = H) -> tuple[np.ndarray, np.ndarray]:
+    """Two smooth random panoramas (sums of a few cosines in azimuth and elevation)."""
+    rng = np.random.default_rng(seed)
+    az = 2 * np.pi * np.arange(w) / w
+    rows = np.arange(h)[:, None]
+
+    def image():
+        out = np.zeros((h, w))
+        for k in range(1, 7):
+            out += rng.normal() * np.cos(k * az[None, :] + rng.uniform(0, 6.3)) * np.cos(rows * rng.uniform(0.2, 1.2))
+        return ((out - out.min()) / (np.ptp(out) + 1e-9)).astype(np.float32)
+
+    return image(), image()
+
+
+def jsearch(ss, cv, **settings):
+    cfg = MinWarping(n_alpha=N, n_psi=N, **settings)
+    a, p, v = jax.jit(lambda s, c: mw.search(s, c, jnp.asarray(ELEV, jnp.float32), cfg))(ss, cv)
+    return int(a), int(p), int(v)
+
+
+def test_the_template_is_the_twins():
+    twin = sorted((x, y, s) for x, entries in tw.min_template(W, np.array(SCALES), 2.5).items() for y, s in entries)
+    assert sorted(map(tuple, ws.min_template(W, SCALES, 2.5, 0.0, math.inf).tolist())) == twin
+    assert len(twin) > 10 * W  # many displacements per column, not one
+
+
+def test_the_stack_and_its_swap_agree_with_the_twin():
+    ss, cv = pair(0)
+    fwd = np.asarray(sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), "nsad", True))
+    np.testing.assert_allclose(fwd, tw.stack(ss, cv, ELEV, np.array(SCALES)), atol=2e-6)
+    # the swapped search reads the stack of the swapped images: plane S-1-s transposed
+    back = tw.stack(cv, ss, ELEV, np.array(SCALES))
+    np.testing.assert_allclose(np.asarray(sp.inverted(jnp.asarray(fwd))), back, atol=2e-6)
+    for measure in ("nssd", "sad", "ssd"):
+        got = np.asarray(sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), measure, False))
+        np.testing.assert_allclose(got, tw.stack(ss, cv, ELEV, np.array(SCALES), measure, False), rtol=2e-5, atol=2e-6)
+
+
+@pytest.mark.parametrize("stack_type", ["uint8", "float32"])
+def test_the_match_table_is_the_twins(stack_type):
+    ss, cv = pair(1)
+    stk = mw.quantised(sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), "nsad", True), "nsad", stack_type)
+    entries = ws.min_template(W, SCALES, 2.5, 0.0, math.inf)
+    table = ws.min_match(sp.arranged(stk, N, N), ws.group_steps(entries, W, N, N), N, N)
+    twin = tw.min_match(np.asarray(stk).astype(np.float64), tw.min_template(W, np.array(SCALES), 2.5), N, N)
+    if stack_type == "uint8":
+        assert np.array_equal(np.asarray(table), twin)  # sums of bytes: exact
+    else:
+        np.testing.assert_allclose(np.asarray(table), twin, rtol=1e-5)
+
+
+@pytest.mark.parametrize("refine", mw.REFINEMENTS)
+def test_every_refinement_finds_the_twins_hypothesis(refine):
+    for seed in (2, 3):
+        ss, cv = pair(seed)
+        stk = mw.quantised(sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), "nsad", True), "nsad", "uint8")
+        stacks = (np.asarray(stk).astype(np.int64), np.asarray(sp.inverted(stk)).astype(np.int64))
+        twin = tw.search(ss, cv, ELEV, N, N, double="double" in refine, fine="fine" in refine, stacks=stacks)
+        assert jsearch(ss, cv, refine=refine) == tuple(int(t) for t in twin), (seed, refine)
+
+
+def test_end_to_end_agreement_with_the_twins_own_stack():
+    for seed in (4, 5):
+        ss, cv = pair(seed)
+        twin = tw.search(ss, cv, ELEV, N, N)  # its own float64 stacks, quantised, both directions
+        assert jsearch(ss, cv) == tuple(int(t) for t in twin), seed
+
+
+@pytest.mark.parametrize("k", [0, 6, 7, 50])
+def test_a_pure_rotation_gives_psi_exactly(k):
+    ss, _ = pair(6)
+    cv = np.roll(ss, -k, axis=1)  # current column j shows snapshot column j + k: turned by k pixels
+    a, p, v = jsearch(ss, cv)
+    assert (p, v) == (k, 0)
+    if k % (W // N) == 0:  # on the coarse grid the full search alone finds it
+        assert jsearch(ss, cv, refine="none")[1:] == (k, 0)
+
+
+def translated(ss: np.ndarray, alpha_px: int, rho: float, psi_px: int) -> np.ndarray:
+    """The current view after a move along alpha with every point at one distance from home (rho = d / r)
+    and a turn by psi: each snapshot column carried to where the equal-distance warp puts it
+    (y = atan2(rho sin x, 1 - rho cos x), the nearest column). Columns are constant over rows, so the
+    vertical scale does not matter, and come in blocks of 4 equal ones, so that columns the move
+    squeezes together carry one value."""
+    w = ss.shape[-1]
+    cv = np.zeros_like(ss)
+    for theta in range(w):
+        x = 2 * np.pi * (theta - alpha_px) / w
+        iy = int(np.rint(math.atan2(rho * math.sin(x), 1 - rho * math.cos(x)) * w / (2 * np.pi)))
+        cv[:, (theta + iy - psi_px) % w] = ss[:, theta]
+    return cv
+
+
+def blocks(seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    return np.repeat(np.repeat(rng.random((1, W // 4)).astype(np.float32), 4, 1), H, 0)
+
+
+CASES = [(0, 0), (24, 0), (57, 33), (90, 3), (12, 60), (45, 45)]
+
+
+@pytest.mark.parametrize("alpha_px,psi_px", CASES)
+def test_a_pure_translation_with_equal_distances_gives_alpha_exactly(alpha_px, psi_px):
+    """2D-Warping's one-distance template makes the true (alpha, psi, rho) the only perfect match."""
+    ss = blocks(alpha_px)
+    cfg = Warping2D(n_alpha=N, n_psi=N, n_rho=11, preprocess="none")  # rho = 0, 0.1, ..., 1
+    for k, rho in ((1, 0.1), (3, 0.3), (5, 0.5)):
+        cv = translated(ss, alpha_px, rho, psi_px)
+        a, p, r, v = w2d.search(jnp.asarray(ss), jnp.asarray(cv), jnp.asarray(ELEV, jnp.float32), cfg)
+        assert (int(a), int(p), int(r)) == (alpha_px, psi_px, k), rho
+
+
+@pytest.mark.parametrize("alpha_px,psi_px", CASES)
+def test_minwarping_scores_a_pure_translation_perfectly(alpha_px, psi_px):
+    """MinWarping lets every column take any distance, so the truth matches (nearly) perfectly: every
+    column but one or two that the move's squeeze overwrote finds its own; without vertical structure
+    nothing tells the truth from hypotheses a few pixels off (ties at 0), so the found alpha is only
+    near (docs/model.md §4.6)."""
+    ss = blocks(alpha_px)
+    entries = ws.min_template(W, SCALES, 2.5, 0.0, math.inf)
+    for rho in (0.1, 0.3, 0.5):
+        cv = translated(ss, alpha_px, rho, psi_px)
+        stk = sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), "nsad", False)
+        truth = int(ws.min_match_at(mw.quantised(stk, "nsad", "uint8"), entries, alpha_px, psi_px))
+        assert truth <= 2 * mw.LEVELS  # at most two columns without their own
+        a, p, v = jsearch(ss, cv, preprocess="none", refine="none")
+        assert v <= truth and abs((a - alpha_px + W // 2) % W - W // 2) <= 6, (rho, a)
+
+
+def test_the_refinements_never_make_the_minimum_larger():
+    for seed in range(7, 10):
+        ss, cv = pair(seed)
+        assert jsearch(ss, cv, refine="fine")[2] <= jsearch(ss, cv, refine="none")[2]
+        assert jsearch(ss, cv, refine="double+fine")[2] <= jsearch(ss, cv, refine="double")[2]
+
+
+def test_the_double_search_is_symmetric_in_its_two_images():
+    """Swapping snapshot and current view gives the way back: alpha' = alpha + pi - psi, psi' = -psi."""
+    ss, cv = pair(11)
+    a, p, v = jsearch(ss, cv, refine="double")
+    a2, p2, v2 = jsearch(cv, ss, refine="double")
+    assert v2 == v and p2 == (-p) % W and a2 == (a + W // 2 - p) % W
+
+
+def move(panorama):
+    snap = Snapshot(
+        mask=jnp.zeros(W, bool),
+        gray=jnp.zeros(W),
+        bearing=jnp.zeros(4),
+        width=jnp.zeros(4),
+        valid=jnp.zeros(4, bool),
+        panorama=jnp.asarray(panorama),
+        elevations=jnp.asarray(ELEV, jnp.float32),
+    )
+    return UnitMove(start=snap, end=snap, d_hat=jnp.float32(20.0), psi_hat=jnp.float32(0.0), compass=jnp.float32(0.0))
+
+
+def test_the_method_turns_the_search_into_a_home_direction_and_a_compass():
+    ss, cv = pair(12)
+    method = MinWarping(n_alpha=N, n_psi=N)
+    a, p, _ = jsearch(ss, cv)
+    angle, valid = method(move(ss), move(cv))
+    assert bool(valid) and abs(float(angle) - tw.home_direction(a, p, W)) < 1e-5
+    psi = MinWarpingCompass(warping=method)(move(ss), move(cv))
+    assert abs(float(psi) - (2 * np.pi * p / W + np.pi) % (2 * np.pi) + np.pi) < 1e-5
+    blank = np.zeros((H, W), np.float32)
+    angle, valid = method(move(blank), move(cv))
+    assert not bool(valid) and np.isnan(float(angle))
+
+
+def test_2d_warping_agrees_with_the_twin():
+    rhos = (0.1, 0.3, 0.5, 0.7, 0.9)  # rho = 1 puts columns at exact half pixels, which float rounding splits
+    cfg = Warping2D(n_alpha=N, n_psi=N, n_rho=5, rho_min=0.1, rho_max=0.9)
+    for seed in (13, 14):
+        ss, cv = pair(seed)
+        got = jax.jit(lambda s, c: w2d.search(s, c, jnp.asarray(ELEV, jnp.float32), cfg))(ss, cv)
+        stk = np.asarray(
+            mw.quantised(sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), "nsad", True), "nsad", "uint8")
+        )
+        twin = tw.rho_search(ss, cv, ELEV, N, N, rhos=np.array(rhos), stk=stk.astype(np.int64))
+        assert tuple(int(g) for g in got) == tuple(int(t) for t in twin), seed
+
+
+@pytest.mark.parametrize(
+    "settings,field",
+    [
+        ({"n_alpha": 7}, "mw_n_alpha"),  # 7 does not divide 96 columns
+        ({"n_psi": 40}, "mw_n_psi"),
+        ({"n_planes": 1}, "mw_n_planes"),  # zero or one scale plane
+        ({"n_planes": 8}, "mw_n_planes"),  # even: no plane at 1
+        ({"threshold": 1.0}, "mw_threshold"),
+        ({"max_scale": 1.0}, "mw_max_scale"),
+        ({"n_alpha": 48, "n_psi": 32}, "mw_n_psi"),  # the double search maps psi onto alpha
+    ],
+)
+def test_bad_settings_are_refused_naming_the_setting(settings, field):
+    cfg = MinWarping(**{"n_alpha": N, "n_psi": N, **settings})
+    with pytest.raises(InputError) as exc:
+        cfg.check_input(W)
+    assert exc.value.field == field
+    ss, cv = pair(0)
+    with pytest.raises(InputError):
+        mw.search(jnp.asarray(ss), jnp.asarray(cv), jnp.asarray(ELEV), cfg)
+
+
+def test_a_ring_scene_is_refused_naming_the_method():
+    import delvjax
+
+    env = delvjax.load_env("env1")
+    with pytest.raises(InputError) as exc:
+        delvjax.vector_map(env, method="minwarping", spacing=200.0)
+    assert exc.value.field == "method" and "panoramas" in str(exc.value)
