@@ -9,8 +9,8 @@
 # fails or times out is marked so in the table. Sizes: the vector map and catchment at the thesis grid
 # (spacing 25 cm, 40 x 40), the image methods (warping, MFDID), a 1000-cell vector-map sweep and a 20-cell catchment
 # sweep (1559 rollouts a cell) on one device,
-# and `reproduce --quick` from an empty compilation cache, then again with nothing changed. MinWarping
-# joins when it exists (issue 26).
+# and `reproduce --quick` from an empty compilation cache, then again with nothing changed, and the
+# MinWarping and 2D-Warping 40 x 40 maps (288 x 48 panoramas, 96 x 96 hypotheses).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 OUT="${OUT:-$(mktemp -d)}"
@@ -28,12 +28,13 @@ run() {  # name, time limit (s), command...
 }
 
 : > "$OUT/parts.txt"
-run vector_map 80 python benchmarks/bench_vector_map.py --methods delv delv-compass alv acv --ref-points 10
-run warping 60 python benchmarks/bench_warping.py
-run catchment 80 python benchmarks/bench_rollouts.py --ref-points 4
-run sweep 150 python benchmarks/bench_sweep.py --kinds vector-map catchment --devices 1 --processes \
+run vector_map 70 python benchmarks/bench_vector_map.py --methods delv delv-compass alv acv --ref-points 10
+run warping 50 python benchmarks/bench_warping.py
+run catchment 70 python benchmarks/bench_rollouts.py --ref-points 4
+run sweep 120 python benchmarks/bench_sweep.py --kinds vector-map catchment --devices 1 --processes \
   --cells 1000 --catchment-cells 20
 run reproduce_quick 100 python benchmarks/bench_reproduce.py --quick --out "$OUT/reproduce"
+run minwarping 60 python benchmarks/bench_minwarping.py --no-twin
 
 echo
 echo "| benchmark | exit | wall s | key lines |"
@@ -41,7 +42,7 @@ echo "|---|---|---|---|"
 while IFS='|' read -r name rc secs; do
   status=$rc
   [ "$rc" = 124 ] && status="timeout"
-  key=$(grep -E "ratio|warm|cold|second run|peak|x$|[0-9]x |device\(s\)|process\(es\)" "$OUT/logs/$name.txt" \
+  key=$(grep -E "ratio|warm|cold|second run|peak|x$|[0-9]x |device\(s\)|process\(es\)|^\| (minwarping|warping2d) " "$OUT/logs/$name.txt" \
     | grep -v "^ *setting" | tail -4 | tr '\n' ';' | tr -s ' ')
   echo "| $name | $status | $secs | ${key:0:300} |"
 done < "$OUT/parts.txt"

@@ -21,13 +21,14 @@ STUDIES = [
     "robot_images",
     "natural_images",
     "image_effects",
+    "hybrid",
 ]
 
 # Studies beyond the thesis's simulations (the fit, gradients, layout design, image effects) and the
 # two on rendered images: a full run has them, `--quick` (a preview of the thesis's simulation
 # experiments) leaves them out unless `--only` names them. Together they were 177 of the 331 s of a
 # cold `--quick` on 2 CPU cores, 150 s of it compilation (docs/reproduce.md "Speed").
-FULL_RUN_ONLY = ("fit", "sensitivity", "layouts", "robot_images", "natural_images", "image_effects")
+FULL_RUN_ONLY = ("fit", "sensitivity", "layouts", "robot_images", "natural_images", "image_effects", "hybrid")
 
 # The study that compiles the rollout program every other simulation study shares (`common.PROGRAM`):
 # it runs before the others start side by side, so that two of them do not compile it at once.
@@ -50,6 +51,7 @@ FULL_RUN_SECONDS = {
     "with_compass": 35,
     "natural_images": 30,
     "image_effects": 30,
+    "hybrid": 90,
     "step_distance": 25,
     "no_compass": 25,
     "environments": 1,

@@ -24,8 +24,9 @@ class Snapshot(eqx.Module):
     mask, gray: (n_pix,) ring images; bearing, width, valid: (B,) blobs sorted by bearing in
     [0, 2pi), padding last (width: apparent angular size, rad); channel: the sensor's image
     channel, read by the image methods as `image`; panorama, elevations: the whole gray
-    panorama (rows, n_pix) and its row-centre elevations (rows,) rad, where a method reads them
-    (MinWarping, docs/model.md §4.6), else None.
+    panorama (rows, n_pix; uint8 luminance from the image pipeline) and its row-centre elevations
+    (rows,) rad, where a method reads them
+    (MinWarping, docs/model.md §4.7), else None.
     """
 
     mask: SnapMask  # a database holds a batch of snapshots

@@ -86,7 +86,7 @@ def database_vector_map(
 
 
 def check_panorama_field(db: LoadedDatabase, method) -> None:
-    """`InputError` unless the database holds panoramas a panorama method can read (docs/model.md §4.6):
+    """`InputError` unless the database holds panoramas a panorama method can read (docs/model.md §4.7):
     kept at loading (`panoramas=True`), with a vertical field that contains the horizon (the scale
     planes magnify about it) and stays within +-90 deg."""
     if db.rings.snapshots.panorama is None:
@@ -232,7 +232,7 @@ def render_in_memory(
 ) -> LoadedDatabase:
     """The database `render_database` would write, rendered and reduced to rings in memory (no files;
     ring for ring what `load_database` reads back from them, docs/images.md §5); panoramas: keep
-    every gray panorama too (MinWarping, docs/model.md §4.6)."""
+    every gray panorama too (MinWarping, docs/model.md §4.7)."""
 
     settings = settings or ImageSettings()
     iw, spacing = check_render(env, spacing, settings, seed, MAX_POINTS, chunk)

@@ -253,7 +253,7 @@ def load_database(
     choice the files did not state (default: a `DatabaseWarning`); sink(images, rows): called with every
     chunk of images read (`import_database`); check(images, ring pixels): called before any image but
     the first is read (the caller's own checks); panoramas: keep every gray panorama too (the methods that
-    read them, MinWarping; docs/model.md §4.6)."""
+    read them, MinWarping; docs/model.md §4.7)."""
     index = read_index(src, conventions)
     chunk = positive_int(chunk, "chunk")
     spacing = database_spacing(index, spacing)

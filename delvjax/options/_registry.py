@@ -19,6 +19,7 @@ from ..core.methods.delv import DELV
 from ..core.methods.delv_gap import DELVGap
 from ..core.methods.delv_refined import DELVRefined
 from ..core.methods.heading import Compass, VisualCompass
+from ..core.methods.hybrid import Hybrid
 from ..core.methods.mfdid import MFDID
 from ..core.methods.minwarping import MinWarping
 from ..core.methods.program import Program
@@ -40,6 +41,7 @@ REGISTRY: dict[str, tuple[HomingMethod, str]] = {
         MinWarping(),
         "MinWarping on gray panoramas: alpha x psi, each column's best distance (Moller 2009)",
     ),
+    "hybrid": (Hybrid(), "DELV where its matching converges, else MinWarping (thesis 6.3.3's future work)"),
     "warping2d": (Warping2D(), "2D-Warping on gray panoramas: alpha x psi x rho, one distance for all (Moller 2009)"),
     "cc": (CartwrightCollett(), "snapshot model of Cartwright & Collett 1983 (landmarks only) with a compass"),
     "delv-agent": (
@@ -92,6 +94,10 @@ def configure(method: HomingMethod, **settings) -> HomingMethod:
         return dataclasses.replace(method, methods=tuple(configure(m, **settings) for m in method.methods))
     own = declared(type(method))
     changes = {own[k][0]: v for k, v in settings.items() if v is not None and k in own}
+    for name, part in method.parts().items():  # a method made of methods (the hybrid): each its own
+        new = configure(part, **settings)
+        if new is not part:
+            changes[name] = new
     return dataclasses.replace(method, **changes) if changes else method
 
 
@@ -99,7 +105,7 @@ def owns(method: HomingMethod, option: str) -> bool:
     """Whether `method` (or, for a `Program`, one of its methods) declares the setting `option`."""
     if isinstance(method, Program):
         return any(owns(m, option) for m in method.methods)
-    return option in declared(type(method))
+    return option in declared(type(method)) or any(owns(p, option) for p in method.parts().values())
 
 
 def program(method: str, names) -> tuple[Program, tuple[str, ...]]:

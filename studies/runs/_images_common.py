@@ -15,7 +15,9 @@ from delvjax.envs._presets import make_env
 
 # the methods of the image studies, one compiled program (`registry.program`)
 METHODS = ("delv", "alv", "acv", "warping")
-LABEL = {"delv": "DELV", "alv": "ALV", "acv": "ACV", "warping": "image matching"}
+LABEL = {"delv": "DELV", "alv": "ALV", "acv": "ACV", "warping": "image matching", "minwarping": "MinWarping"}
+# MinWarping (docs/model.md §4.7) reads whole panoramas: its own program, its grid on 360 columns
+MINWARPING = {"mw_n_alpha": 90, "mw_n_psi": 90}
 # Image matching reads the gray ring (the band's mean value): on a camera image that is what it has.
 # On the mask ring it sees four narrow blobs and errs by about 60° (images and ideal rings alike).
 # The landmark methods read blobs, so the channel does not change them.
@@ -36,7 +38,9 @@ def database(name: str, settings: ImageSettings = CAMERA_NOISE, seed: int = 0, *
 
 def image_map(db: LoadedDatabase, method: str, **options) -> VectorMap:
     """The vector map of `method` on `db`, through the shared program of METHODS (gray channel unless
-    `channel` is given)."""
+    `channel` is given); MinWarping on its own, on the panoramas (`database(..., panoramas=True)`)."""
+    if method == "minwarping":
+        return database_vector_map(db, method, **{**MINWARPING, **options})
     return database_vector_map(db, method, program=METHODS, **{"channel": CHANNEL, **options})
 
 

@@ -22,9 +22,9 @@ STARTS = ((380.0, 860.0), (620.0, 860.0), (900.0, 460.0), (460.0, 140.0))  # two
 
 
 def run(ctx) -> None:
-    db = database("natural", seed=ctx.settings.seed)
+    db = database("natural", seed=ctx.settings.seed, panoramas=not preview(ctx))  # panoramas: MinWarping
     rows = []
-    for m in ("delv",) if preview(ctx) else ("delv", "alv", "warping"):
+    for m in ("delv",) if preview(ctx) else ("delv", "alv", "warping", "minwarping"):
         vm = image_map(db, m)
         s = numbers(vm)
         _, paths = database_catchment(db, vm, seed=ctx.settings.seed, collisions=True)

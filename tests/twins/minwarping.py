@@ -1,4 +1,4 @@
-"""Plain NumPy twin of MinWarping and 2D-Warping (docs/model.md §4.6), written from the papers'
+"""Plain NumPy twin of MinWarping and 2D-Warping (docs/model.md §4.7), written from the papers'
 equations (Möller 2009; Möller, Krzykawski & Gerstmayr 2010), one image pair at a time, float64,
 explicit loops over template entries and hypotheses; no layout tricks.
 

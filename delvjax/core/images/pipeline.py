@@ -127,8 +127,10 @@ class Extractor(eqx.Module):
         snap = ring_snapshot(*self.rings(image, camera), self)
         if not self.panorama:
             return snap
-        value = image.astype(jnp.float32) @ jnp.array([0.299, 0.587, 0.114])  # luminance (Rec. 601)
-        return dataclasses.replace(snap, panorama=value, elevations=camera.elevations())
+        # luminance (Rec. 601) in bytes, as the authors' gray images: a database keeps N of them
+        lum = image.astype(jnp.float32) @ jnp.array([0.299, 0.587, 0.114])
+        gray = jnp.round(jnp.clip(lum, 0.0, 1.0) * 255.0).astype(jnp.uint8)
+        return dataclasses.replace(snap, panorama=gray, elevations=camera.elevations())
 
 
 def ring_snapshot(share: Array, gray: Array, extractor: Extractor) -> Snapshot:

@@ -52,6 +52,11 @@ class HomingMethod(eqx.Module):
         2D-Warping); such a method runs on image databases and rendered worlds only."""
         return False
 
+    def parts(self) -> dict[str, "HomingMethod"]:
+        """The methods this one is made of, by field name (the hybrid's two); their settings are set
+        through it (`options.configure`)."""
+        return {}
+
     def check_input(self, n_pix: int) -> None:
         """Raise `InputError` where the settings cannot serve views of `n_pix` columns (the edge calls
         it before any work)."""

@@ -203,13 +203,30 @@ def delv_direction(
     current list by home-frame bearing under each hypothesis (SPEC, docs/model.md §3.3), "agent"
     keeps the agent-frame order (the earlier rule, an option).
     """
+    angle, valid, _ = delv_fit(home, view, settings, alphas, min_pairs, match, order)
+    return angle, valid
+
+
+def delv_fit(
+    home: UnitMove,
+    view: UnitMove,
+    settings: DistanceSettings,
+    alphas: Hypotheses,
+    min_pairs: int,
+    match: Callable = match_arrangement,
+    order: str = "home",
+) -> tuple[Array, Array, dict]:
+    """`delv_direction` and how well the arrangement matched: (angle, valid, fit) with fit the
+    residual sum of squares of the best pairing (Eq 3.5, cm^2) `var`, its pairs `n` and the
+    landmark counts `n_home`, `n_current` (the hybrid of docs/model.md §4.8 reads them)."""
     ref_v, ref_valid = reference_vectors(home, settings)
     cur_v, cur_valid = current_vectors(view, settings)
     offsets = list_offsets(view.end.bearing, cur_valid, alphas) if order == "home" else None
-    p, alpha, _, n = match(ref_v, ref_valid, cur_v, cur_valid, alphas, offsets)
+    p, alpha, var, n = match(ref_v, ref_valid, cur_v, cur_valid, alphas, offsets)
     valid = (n >= min_pairs) & (n >= 1) & (safe_norm(p) > 0)
     angle = wrap(angle_of(-p) - alpha)
-    return jnp.where(valid, angle, jnp.nan), valid
+    fit = {"var": var, "n": n, "n_home": jnp.sum(ref_valid), "n_current": jnp.sum(cur_valid)}
+    return jnp.where(valid, angle, jnp.nan), valid, fit
 
 
 class DELV(HomingMethod):
@@ -266,15 +283,13 @@ class DELV(HomingMethod):
         return match_arrangement(ref_v, ref_valid, cur_v, cur_valid, alphas, offsets)
 
     def __call__(self, home: UnitMove, view: UnitMove) -> Direction:
-        return delv_direction(
-            home,
-            view,
-            self,
-            self.alphas(home, view),
-            min_pairs=1 if self.heading is not None else 2,
-            match=self.match,
-            order=self.order,
-        )
+        angle, valid, _ = self.fit(home, view)
+        return angle, valid
+
+    def fit(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array, dict]:
+        """(angle, valid, how well it matched): `delv_fit` with this module's settings."""
+        min_pairs = 1 if self.heading is not None else 2
+        return delv_fit(home, view, self, self.alphas(home, view), min_pairs, self.match, self.order)
 
     def reads_start_view(self) -> bool:
         return True

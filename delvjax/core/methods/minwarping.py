@@ -1,6 +1,6 @@
 """MinWarping: local visual homing by warping of two-dimensional panoramas (Möller 2009, Robotics
 and Autonomous Systems 57; Möller, Krzykawski & Gerstmayr 2010, Autonomous Robots 29;
-docs/model.md §4.6).
+docs/model.md §4.7).
 
 The home panorama (the snapshot) and the current one are compared column by column at every
 vertical scale factor (the scale-plane stack, `scale_planes`); for every movement direction alpha
@@ -85,7 +85,7 @@ def _steps(w: int, n_alpha: int, n_psi: int, scales: tuple, threshold: float):
 
 
 def search(ss: Arrays, cv: Arrays, elevations: Arrays, cfg: "MinWarping") -> tuple[Array, Array, Array]:
-    """docs/model.md §4.6: (alpha, psi) in whole pixels and the match at the best hypothesis.
+    """docs/model.md §4.7: (alpha, psi) in whole pixels and the match at the best hypothesis.
 
     ss, cv: (rows, cols) gray panoramas, snapshot and current view; elevations: (rows,) rad."""
     rows, w = ss.shape
@@ -135,7 +135,7 @@ def _fine(stk, inv, entries, alpha, psi, value, step_alpha: int, step_psi: int):
 
 
 class MinWarping(HomingMethod):
-    """MinWarping on the gray panoramas of the two views (docs/model.md §4.6); no compass: psi is
+    """MinWarping on the gray panoramas of the two views (docs/model.md §4.7); no compass: psi is
     searched. Home direction alpha + pi - psi in the agent frame; invalid (NaN) where the home
     panorama is uniform."""
 
@@ -208,15 +208,17 @@ class MinWarping(HomingMethod):
 
 
 def _panorama(snap) -> Array:
+    """The gray panorama of a snapshot as float32 (bytes, as the image pipeline keeps them, to [0, 1])."""
     if getattr(snap, "panorama", None) is None:
         raise InputError(
             "method", "minwarping", "reads panoramas: run it on an image database or a rendered world (--images)"
         )
-    return snap.panorama
+    p = snap.panorama
+    return p.astype(jnp.float32) / 255.0 if p.dtype == jnp.uint8 else p.astype(jnp.float32)
 
 
 class MinWarpingCompass(eqx.Module):
-    """MinWarping's psi as a heading source (docs/model.md §4.4, §4.6): the estimate of h - alpha_r
+    """MinWarping's psi as a heading source (docs/model.md §4.4, §4.7): the estimate of h - alpha_r
     (NaN where the home panorama is uniform)."""
 
     reads_gray: ClassVar[bool] = False

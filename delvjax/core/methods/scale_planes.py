@@ -1,5 +1,5 @@
 """The scale-plane stack of 2D-warping (Möller 2009 §3; Möller, Krzykawski & Gerstmayr 2010 §3;
-docs/model.md §4.6): the distance between every column of the home panorama and every column of the
+docs/model.md §4.7): the distance between every column of the home panorama and every column of the
 current one, at every vertical scale factor.
 
 A landmark point at height z seen from distance r appears at elevation atan(z / r). Seen from
@@ -16,7 +16,7 @@ the vertical edge images (the difference of neighbouring rows, the authors' prep
 removes one row and makes the distance blind to a brightness offset).
 
 Layout: `stack[s, i, j]` is the distance of snapshot column i and current column j at plane s.
-`arranged` re-orders it for the search (docs/model.md §4.6 "How it is fast").
+`arranged` re-orders it for the search (docs/model.md §4.7 "How it is fast").
 """
 
 from __future__ import annotations
@@ -115,7 +115,7 @@ def skewed(plane: Arrays) -> Array:
 
 
 def arranged(stk: Arrays, n_alpha: int, n_psi: int, doubled: bool = False) -> Array:
-    """The stack in the search's layout (docs/model.md §4.6 "How it is fast"):
+    """The stack in the search's layout (docs/model.md §4.7 "How it is fast"):
     (planes, step_psi, 2 n_psi, step_alpha, n_alpha), entry [s, ry, t, rx, q] the distance of snapshot
     column theta = q step_alpha + rx and current column theta + delta, delta = ((-t) mod n_psi)
     step_psi + ry. A template entry (x, y) reads, for all n_psi x n_alpha hypotheses at once, the

@@ -1,5 +1,5 @@
 """2D-Warping: the full search over movement direction alpha, rotation psi and relative distance rho
-on gray panoramas (Möller 2009 §3; Möller, Krzykawski & Gerstmayr 2010 §3.4; docs/model.md §4.6).
+on gray panoramas (Möller 2009 §3; Möller, Krzykawski & Gerstmayr 2010 §3.4; docs/model.md §4.7).
 
 Every point is assumed at one distance r from home (the equal-distance assumption of 1-D warping,
 docs/model.md §4.3), rho = d / r. A snapshot column at x from the movement direction then appears
@@ -66,7 +66,7 @@ def search(ss: Arrays, cv: Arrays, elevations: Arrays, cfg: "Warping2D") -> tupl
 
 
 class Warping2D(HomingMethod):
-    """2D-Warping on the gray panoramas of the two views (docs/model.md §4.6); no compass. Home
+    """2D-Warping on the gray panoramas of the two views (docs/model.md §4.7); no compass. Home
     direction alpha + pi - psi in the agent frame; invalid (NaN) where the home panorama is uniform."""
 
     n_alpha: int = setting(

@@ -1,5 +1,5 @@
 """The search of 2D-warping over movement direction alpha and rotation psi (Möller 2009 §3-4;
-Möller, Krzykawski & Gerstmayr 2010 §3-4; docs/model.md §4.6).
+Möller, Krzykawski & Gerstmayr 2010 §3-4; docs/model.md §4.7).
 
 Frames: columns count counter-clockwise, column j of a panorama at azimuth 2 pi j / w in its own
 frame. Hypothesis (alpha, psi): the agent moved from home along alpha (snapshot frame) and turned

@@ -1,4 +1,4 @@
-"""MinWarping and 2D-Warping (docs/model.md §4.6) against the plain NumPy twin (tests/twins/minwarping.py),
+"""MinWarping and 2D-Warping (docs/model.md §4.7) against the plain NumPy twin (tests/twins/minwarping.py),
 the analytic cases (a pure rotation gives psi exactly, a pure translation alpha exactly), the promises
 of the refinements, and bad input."""
 
@@ -144,7 +144,7 @@ def test_minwarping_scores_a_pure_translation_perfectly(alpha_px, psi_px):
     """MinWarping lets every column take any distance, so the truth matches (nearly) perfectly: every
     column but one or two that the move's squeeze overwrote finds its own; without vertical structure
     nothing tells the truth from hypotheses a few pixels off (ties at 0), so the found alpha is only
-    near (docs/model.md §4.6)."""
+    near (docs/model.md §4.7)."""
     ss = blocks(alpha_px)
     entries = ws.min_template(W, SCALES, 2.5, 0.0, math.inf)
     for rho in (0.1, 0.3, 0.5):

@@ -1,0 +1,136 @@
+"""DELV, MinWarping and their hybrid (thesis §6.3.3's future work; docs/model.md §4.7-4.8), on rendered
+images of the robot and natural worlds.
+
+The thesis closes (§6.3.3) with "combining two methods in a complementary manner" as future work: DELV
+where its landmark matching converges, an image method where it does not. Here the image method is
+MinWarping (Möller 2009), the holistic method the field measures itself against. The three are
+compared by mean angular error, error classes (e > 45°, e > 90°) and catchment (nearest-snapshot
+rollouts from every image, docs/images.md §7), on the robot world (four red cylinders) with every
+choice of k = 0, 1, 2 of them hidden in the current views (the home record sees all, as in thesis
+Table 5.3) and on the natural world. Camera noise as in the other image studies; no compass.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from itertools import combinations
+
+import equinox as eqx
+import jax
+import numpy as np
+
+from delvjax.images._evaluate import catchment_numbers, database_catchment, database_vector_map
+from delvjax.images._render import render_rings
+from delvjax.images._worlds import image_world
+
+from ._images_common import CAMERA_NOISE, ROBOT_SCALE, database, numbers, preview
+
+TITLE = "DELV, MinWarping and the hybrid of thesis §6.3.3, on rendered images"
+STEPS = 3
+METHODS = ("delv", "minwarping", "hybrid")
+LABEL = {"delv": "DELV", "minwarping": "MinWarping", "hybrid": "hybrid"}
+GRID = {"mw_n_alpha": 90, "mw_n_psi": 90}  # 360-column panoramas: 96 does not divide 360, 90 does
+
+
+def options(method: str, world: str) -> dict:
+    """The settings of each method: MinWarping's grid on 360 columns, DELV's scale in the small arena."""
+    out = dict(GRID) if method != "delv" else {}
+    if world == "robot" and method != "minwarping":
+        out["scale"] = ROBOT_SCALE
+    return out
+
+
+def occluded(full, world: str, hidden: tuple[int, ...], seed: int):
+    """The database `full` rendered again with the cylinders `hidden` removed (height 0: never hit)."""
+    iw = image_world(world)
+    cyl = np.asarray(iw.world.cylinders).copy()
+    cyl[list(hidden), 3] = 0.0
+    iw = dataclasses.replace(iw, world=eqx.tree_at(lambda w: w.cylinders, iw.world, jax.numpy.asarray(cyl)))
+    ex = dataclasses.replace(full.extractor, panorama=True)
+    pos = np.asarray(full.rings.positions)
+    rings = render_rings(iw, CAMERA_NOISE, pos, np.zeros(len(pos), np.float32), jax.random.PRNGKey(seed), ex)
+    return dataclasses.replace(full, rings=rings)
+
+
+def evaluate(db, full, method: str, world: str, seed: int) -> dict:
+    vm = database_vector_map(db, method, home_rings=full.rings, **options(method, world))
+    s = numbers(vm)
+    _, paths = database_catchment(db, vm, seed=seed)
+    return {**s, **catchment_numbers(paths)}
+
+
+def run(ctx) -> None:
+    seed = ctx.settings.seed
+    ks = (0, 1) if preview(ctx) else (0, 1, 2)
+    rows, summary = [], {}
+    full = database("robot", seed=seed, panoramas=True)
+    for k in ks:
+        subsets = list(combinations(range(4), k))[: 1 if preview(ctx) else None]
+        results = {m: [] for m in METHODS}
+        for hidden in subsets:
+            db = occluded(full, "robot", hidden, seed) if hidden else full
+            for m in METHODS:
+                results[m].append(evaluate(db, full, m, "robot", seed))
+        for m in METHODS:
+            r = results[m]
+            summary[("robot", k, m)] = row = {
+                "world": "robot",
+                "hidden k": k,
+                "choices": len(r),
+                "method": LABEL[m],
+                "mean error °": float(np.mean([x["mean_error_deg"] for x in r])),
+                "e>45 %": float(np.mean([x["gt45_pct"] for x in r])),
+                "e>90 %": float(np.mean([x["gt90_pct"] for x in r])),
+                "catchment %": float(np.mean([x["catchment_pct"] for x in r])),
+                "catchment range %": f"{min(x['catchment_pct'] for x in r):.1f}-{max(x['catchment_pct'] for x in r):.1f}",
+            }
+            rows.append(row)
+            ctx.number(f"hybrid:robot:k{k}:{m}:mean_error_deg", row["mean error °"])
+            ctx.number(f"hybrid:robot:k{k}:{m}:catchment_pct", row["catchment %"])
+        ctx.step(f"robot, {k} hidden")
+    if not preview(ctx):
+        nat = database("natural", seed=seed, panoramas=True)
+        for m in METHODS:
+            x = evaluate(nat, nat, m, "natural", seed)
+            summary[("natural", 0, m)] = row = {
+                "world": "natural",
+                "hidden k": 0,
+                "choices": 1,
+                "method": LABEL[m],
+                "mean error °": x["mean_error_deg"],
+                "e>45 %": x["gt45_pct"],
+                "e>90 %": x["gt90_pct"],
+                "catchment %": x["catchment_pct"],
+                "catchment range %": "",
+            }
+            rows.append(row)
+            ctx.number(f"hybrid:natural:{m}:mean_error_deg", x["mean_error_deg"])
+            ctx.number(f"hybrid:natural:{m}:catchment_pct", x["catchment_pct"])
+    ctx.step("natural")
+    ctx.table(
+        "hybrid_delv_minwarping",
+        "DELV, MinWarping and the hybrid (DELV where its matching converges), no compass",
+        rows,
+        source="thesis §6.3.3 (future work)",
+        note=verdict(summary) + " Hidden: cylinders removed from the current views (the home record sees all), "
+        "every choice of k averaged. Catchment: nearest-snapshot rollouts from every image.",
+    )
+    ctx.step("table")
+
+
+def verdict(summary: dict) -> str:
+    """Where the hybrid beats both (lower mean error and a catchment at least as large), in words."""
+    wins, losses = [], []
+    for world, k in sorted({(w, k) for w, k, _ in summary}):
+        h, d, m = (summary[(world, k, x)] for x in ("hybrid", "delv", "minwarping"))
+        where = f"{world} k={k}"
+        if h["mean error °"] < min(d["mean error °"], m["mean error °"]) and h["catchment %"] >= max(
+            d["catchment %"], m["catchment %"]
+        ):
+            wins.append(where)
+        else:
+            losses.append(where)
+    return (
+        f"The hybrid beats both (lower mean error, catchment at least as large) on: {', '.join(wins) or 'none'}; "
+        f"not on: {', '.join(losses) or 'none'}."
+    )
