@@ -112,3 +112,20 @@ def test_rendered_world_maps_match_the_reference_numbers():
     mean, median, wild = errors["minwarping"]
     assert abs(mean - 5.6) < 1.5 and median < 3.5 and wild <= 1, errors
     assert errors["warping2d"][0] < 8, errors
+
+
+def test_minwarpings_compass_serves_delv_and_alv(small_db):
+    """MinWarping's psi as the heading source of landmark methods (docs/model.md §4.4, §4.7)."""
+    from delvjax.core.methods import ALV, DELV
+    from delvjax.core.methods.minwarping import MinWarping, MinWarpingCompass
+
+    db = load_database(small_db, panoramas=True)
+    compass = MinWarpingCompass(warping=MinWarping(n_alpha=36, n_psi=36))
+    for module in (DELV(heading=compass), ALV(heading=compass)):
+        assert module.reads_panorama()
+        vm = database_vector_map(db, module)
+        inc = np.asarray(vm.included)
+        assert np.asarray(vm.valid)[inc].mean() > 0.9
+        assert np.asarray(vm.error_deg)[inc].mean() < 45
+    with pytest.raises(InputError, match="mw_n_alpha"):
+        database_vector_map(db, DELV(heading=MinWarpingCompass()))  # 96 does not divide 72

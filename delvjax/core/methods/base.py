@@ -49,8 +49,9 @@ class HomingMethod(eqx.Module):
 
     def reads_panorama(self) -> bool:
         """Whether the method reads the whole gray panorama of a view (`Snapshot.panorama`: MinWarping,
-        2D-Warping); such a method runs on image databases and rendered worlds only."""
-        return False
+        2D-Warping, or a method whose heading source is MinWarping's compass); such a method runs on
+        image databases and rendered worlds only."""
+        return bool(getattr(getattr(self, "heading", None), "reads_panorama", False))
 
     def parts(self) -> dict[str, "HomingMethod"]:
         """The methods this one is made of, by field name (the hybrid's two); their settings are set
@@ -59,7 +60,10 @@ class HomingMethod(eqx.Module):
 
     def check_input(self, n_pix: int) -> None:
         """Raise `InputError` where the settings cannot serve views of `n_pix` columns (the edge calls
-        it before any work)."""
+        it before any work): by default, those of its heading source."""
+        heading = getattr(self, "heading", None)
+        if heading is not None and hasattr(heading, "check_input"):
+            heading.check_input(n_pix)
 
     def reads_gray(self, channel: str) -> bool | Array:
         """Whether the method reads the gray channel of the current view (docs/model.md §2.2)

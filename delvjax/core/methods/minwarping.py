@@ -227,3 +227,6 @@ class MinWarpingCompass(eqx.Module):
 
     def __call__(self, home: UnitMove, view: UnitMove) -> Array:
         return self.warping.estimate(home, view)[1]
+
+    def check_input(self, n_pix: int) -> None:
+        self.warping.check_input(n_pix)
