@@ -22,6 +22,8 @@ import numpy as np
 from delvjax.images._evaluate import catchment_numbers, database_catchment, database_vector_map
 from delvjax.images._render import render_rings
 from delvjax.images._worlds import image_world
+from delvjax.plots._images import database_map_figure
+from delvjax.plots._maps import subplots
 
 from ._images_common import CAMERA_NOISE, ROBOT_SCALE, database, numbers, preview
 
@@ -56,7 +58,32 @@ def evaluate(db, full, method: str, world: str, seed: int) -> dict:
     vm = database_vector_map(db, method, home_rings=full.rings, **options(method, world))
     s = numbers(vm)
     _, paths = database_catchment(db, vm, seed=seed)
-    return {**s, **catchment_numbers(paths)}
+    return {**s, **catchment_numbers(paths), "map": vm}
+
+
+def maps_figure(db, results: dict, title: str):
+    """The three vector maps side by side (Fig 4.18 style)."""
+    fig, axes = subplots(1, len(METHODS), figsize=(5.2 * len(METHODS), 5.4))
+    for ax, m, tag in zip(axes, METHODS, "abc"):
+        r = results[m]
+        database_map_figure(db, r["map"], f"({tag}) {LABEL[m]}: mean error {r['mean_error_deg']:.1f}°", ax=ax)
+    fig.suptitle(title)
+    fig.set_layout_engine("tight")
+    return fig
+
+
+def occlusion_figure(summary: dict, ks):
+    """Mean error and catchment against the number of hidden cylinders (robot world), one line a method."""
+    fig, (a, b) = subplots(1, 2, figsize=(10.0, 4.0))
+    for m, style in zip(METHODS, ("o-", "s--", "^:")):  # dashes: the hybrid often lies on MinWarping
+        a.plot(ks, [summary[("robot", k, m)]["mean error °"] for k in ks], style, label=LABEL[m])
+        b.plot(ks, [summary[("robot", k, m)]["catchment %"] for k in ks], style, label=LABEL[m])
+    a.set(xlabel="cylinders hidden from the current views", ylabel="mean angular error (°)", xticks=list(ks))
+    b.set(xlabel="cylinders hidden from the current views", ylabel="catchment (%)", xticks=list(ks), ylim=(0, 100))
+    a.legend()
+    fig.suptitle("Robot world, every choice of hidden cylinders averaged")
+    fig.set_layout_engine("tight")
+    return fig
 
 
 def run(ctx) -> None:
@@ -71,6 +98,12 @@ def run(ctx) -> None:
             db = occluded(full, "robot", hidden, seed) if hidden else full
             for m in METHODS:
                 results[m].append(evaluate(db, full, m, "robot", seed))
+        if k == 0:
+            ctx.figure(
+                "hybrid_robot_maps.png",
+                maps_figure(full, {m: r[0] for m, r in results.items()}, "Robot world, no cylinder hidden"),
+                "DELV, MinWarping and the hybrid on the rendered robot world (no compass; red x: invalid).",
+            )
         for m in METHODS:
             r = results[m]
             summary[("robot", k, m)] = row = {
@@ -88,10 +121,17 @@ def run(ctx) -> None:
             ctx.number(f"hybrid:robot:k{k}:{m}:mean_error_deg", row["mean error °"])
             ctx.number(f"hybrid:robot:k{k}:{m}:catchment_pct", row["catchment %"])
         ctx.step(f"robot, {k} hidden")
+    ctx.figure(
+        "hybrid_occlusion.png",
+        occlusion_figure(summary, ks),
+        "Mean angular error and catchment of DELV, MinWarping and the hybrid against the number of cylinders "
+        "hidden from the current views (robot world; each point the mean over every choice).",
+    )
     if not preview(ctx):
         nat = database("natural", seed=seed, panoramas=True)
+        nat_results = {}
         for m in METHODS:
-            x = evaluate(nat, nat, m, "natural", seed)
+            x = nat_results[m] = evaluate(nat, nat, m, "natural", seed)
             summary[("natural", 0, m)] = row = {
                 "world": "natural",
                 "hidden k": 0,
@@ -106,6 +146,11 @@ def run(ctx) -> None:
             rows.append(row)
             ctx.number(f"hybrid:natural:{m}:mean_error_deg", x["mean_error_deg"])
             ctx.number(f"hybrid:natural:{m}:catchment_pct", x["catchment_pct"])
+        ctx.figure(
+            "hybrid_natural_maps.png",
+            maps_figure(nat, nat_results, "Natural world"),
+            "DELV, MinWarping and the hybrid on the rendered natural world (no compass).",
+        )
     ctx.step("natural")
     ctx.table(
         "hybrid_delv_minwarping",
