@@ -47,6 +47,32 @@ LEVELS = 200  # quantisation levels of the byte stack (the authors' post-scale)
 MEASURE_MAX = {"nsad": 1.0, "nssd": 2.0}  # the largest value of a normalised distance
 
 
+# the settings MinWarping and 2D-Warping share: default and declaration, one place for both
+PANORAMA_SETTINGS = {
+    "n_alpha": (
+        96,
+        {"check": "positive_int", "limit": 3_600, "help": "movement directions alpha (divides the panorama width)"},
+    ),
+    "n_psi": (96, {"check": "positive_int", "limit": 3_600, "help": "rotations psi (divides the panorama width)"}),
+    "n_planes": (9, {"check": "positive_int", "limit": 63, "help": "scale planes, odd (1 in the middle)"}),
+    "max_scale": (2.0, {"check": "positive", "help": "largest scale factor of the planes"}),
+    "measure": ("nsad", {"check": "choice", "choices": sp.MEASURES, "help": "column distance"}),
+    "preprocess": (
+        "edges",
+        {"check": "choice", "choices": ("edges", "none"), "help": "compare vertical edge images or the images"},
+    ),
+    "stack_type": ("uint8", {"check": "choice", "choices": STACK_TYPES, "help": "quantised byte stack or float32"}),
+}
+
+
+def panorama_setting(field: str, prefix: str):
+    """The declaration of a setting both panorama methods have, as option `{prefix}_{field}` (`stack`
+    for `stack_type`): `mw_n_alpha`, `w2d_n_alpha`, ..."""
+    default, meta = PANORAMA_SETTINGS[field]
+    name = "stack" if field == "stack_type" else field
+    return setting(default, static=True, option=f"{prefix}_{name}", **meta)
+
+
 def check_grid(cfg, rows: int | None, cols: int) -> None:
     """`InputError` unless the hypothesis grid and scale planes suit (rows, cols) panoramas (trace
     time, and from the edge before any work; rows None: not known yet)."""
@@ -139,53 +165,19 @@ class MinWarping(HomingMethod):
     searched. Home direction alpha + pi - psi in the agent frame; invalid (NaN) where the home
     panorama is uniform."""
 
-    n_alpha: int = setting(
-        96,
-        static=True,
-        check="positive_int",
-        limit=3_600,
-        help="movement directions alpha (divides the panorama width)",
-        option="mw_n_alpha",
-    )
-    n_psi: int = setting(
-        96,
-        static=True,
-        check="positive_int",
-        limit=3_600,
-        help="rotations psi (divides the panorama width)",
-        option="mw_n_psi",
-    )
-    n_planes: int = setting(
-        9, static=True, check="positive_int", limit=63, help="scale planes, odd (1 in the middle)", option="mw_n_planes"
-    )
-    max_scale: float = setting(
-        2.0, static=True, check="positive", help="largest scale factor of the planes", option="mw_max_scale"
-    )
+    n_alpha: int = panorama_setting("n_alpha", "mw")
+    n_psi: int = panorama_setting("n_psi", "mw")
+    n_planes: int = panorama_setting("n_planes", "mw")
+    max_scale: float = panorama_setting("max_scale", "mw")
     threshold: float = setting(
         2.5, static=True, check="positive", help="largest scale factor a column may take", option="mw_threshold"
     )
-    measure: str = setting(
-        "nsad", static=True, check="choice", choices=sp.MEASURES, help="column distance", option="mw_measure"
-    )
-    preprocess: str = setting(
-        "edges",
-        static=True,
-        check="choice",
-        choices=("edges", "none"),
-        help="compare vertical edge images or the images",
-        option="mw_preprocess",
-    )
+    measure: str = panorama_setting("measure", "mw")
+    preprocess: str = panorama_setting("preprocess", "mw")
     refine: str = setting(
         "double+fine", static=True, check="choice", choices=REFINEMENTS, help="search refinements", option="mw_refine"
     )
-    stack_type: str = setting(
-        "uint8",
-        static=True,
-        check="choice",
-        choices=STACK_TYPES,
-        help="quantised byte stack or float32",
-        option="mw_stack",
-    )
+    stack_type: str = panorama_setting("stack_type", "mw")
 
     def estimate(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array, Array]:
         """(home direction in the agent frame, psi = current heading minus home heading, valid)."""

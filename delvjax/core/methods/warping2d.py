@@ -31,7 +31,7 @@ from ..settings import setting
 from . import scale_planes as sp
 from . import warping_search as ws
 from .base import HomingMethod
-from .minwarping import STACK_TYPES, _panorama, check_grid, quantised
+from .minwarping import _panorama, check_grid, panorama_setting, quantised
 
 
 @functools.lru_cache(maxsize=16)
@@ -69,57 +69,18 @@ class Warping2D(HomingMethod):
     """2D-Warping on the gray panoramas of the two views (docs/model.md §4.7); no compass. Home
     direction alpha + pi - psi in the agent frame; invalid (NaN) where the home panorama is uniform."""
 
-    n_alpha: int = setting(
-        96,
-        static=True,
-        check="positive_int",
-        limit=3_600,
-        help="movement directions alpha (divides the panorama width)",
-        option="w2d_n_alpha",
-    )
-    n_psi: int = setting(
-        96,
-        static=True,
-        check="positive_int",
-        limit=3_600,
-        help="rotations psi (divides the panorama width)",
-        option="w2d_n_psi",
-    )
+    n_alpha: int = panorama_setting("n_alpha", "w2d")
+    n_psi: int = panorama_setting("n_psi", "w2d")
     n_rho: int = setting(
         20, static=True, check="positive_int", limit=1_000, help="values of rho = d / r", option="w2d_n_rho"
     )
     rho_min: float = setting(0.0, static=True, check="non_negative", help="smallest rho", option="w2d_rho_min")
     rho_max: float = setting(1.0, static=True, check="non_negative", help="largest rho (<= 1)", option="w2d_rho_max")
-    n_planes: int = setting(
-        9,
-        static=True,
-        check="positive_int",
-        limit=63,
-        help="scale planes, odd (1 in the middle)",
-        option="w2d_n_planes",
-    )
-    max_scale: float = setting(
-        2.0, static=True, check="positive", help="largest scale factor of the planes", option="w2d_max_scale"
-    )
-    measure: str = setting(
-        "nsad", static=True, check="choice", choices=sp.MEASURES, help="column distance", option="w2d_measure"
-    )
-    preprocess: str = setting(
-        "edges",
-        static=True,
-        check="choice",
-        choices=("edges", "none"),
-        help="compare vertical edge images or the images",
-        option="w2d_preprocess",
-    )
-    stack_type: str = setting(
-        "uint8",
-        static=True,
-        check="choice",
-        choices=STACK_TYPES,
-        help="quantised byte stack or float32",
-        option="w2d_stack",
-    )
+    n_planes: int = panorama_setting("n_planes", "w2d")
+    max_scale: float = panorama_setting("max_scale", "w2d")
+    measure: str = panorama_setting("measure", "w2d")
+    preprocess: str = panorama_setting("preprocess", "w2d")
+    stack_type: str = panorama_setting("stack_type", "w2d")
 
     def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
         ss, cv = _panorama(home.start), _panorama(view.end)
