@@ -186,15 +186,7 @@ def best_pairing(
     return p, alpha, var[h_best, a_best]
 
 
-def delv_direction(
-    home: UnitMove,
-    view: UnitMove,
-    settings: DistanceSettings,
-    alphas: Hypotheses,
-    min_pairs: int,
-    match: Callable = match_arrangement,
-    order: str = "home",
-) -> Direction:
+def delv_direction(*args, **kwargs) -> Direction:
     """Homing direction from the best (k, alpha) of `match`; invalid (NaN) when n < `min_pairs` or |p| = 0.
 
     `min_pairs` is static: 2 without a compass (one pair fits every heading), 1 with a
@@ -203,7 +195,7 @@ def delv_direction(
     current list by home-frame bearing under each hypothesis (SPEC, docs/model.md §3.3), "agent"
     keeps the agent-frame order (the earlier rule, an option).
     """
-    angle, valid, _ = delv_fit(home, view, settings, alphas, min_pairs, match, order)
+    angle, valid, _ = delv_fit(*args, **kwargs)
     return angle, valid
 
 
@@ -216,7 +208,8 @@ def delv_fit(
     match: Callable = match_arrangement,
     order: str = "home",
 ) -> tuple[Array, Array, dict]:
-    """`delv_direction` and how well the arrangement matched: (angle, valid, fit) with fit the
+    """Homing direction from the best (k, alpha) of `match` (`delv_direction`, its arguments) and how
+    well the arrangement matched: (angle, valid, fit) with fit the
     residual sum of squares of the best pairing (Eq 3.5, cm^2) `var`, its pairs `n` and the
     landmark counts `n_home`, `n_current` (the hybrid of docs/model.md §4.8 reads them)."""
     ref_v, ref_valid = reference_vectors(home, settings)

@@ -181,7 +181,7 @@ class MinWarping(HomingMethod):
 
     def estimate(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array, Array]:
         """(home direction in the agent frame, psi = current heading minus home heading, valid)."""
-        ss, cv = _panorama(home.start), _panorama(view.end)
+        ss, cv = panorama_of(home.start), panorama_of(view.end)
         alpha, psi, _ = search(ss, cv, home.start.elevations, self)
         w = ss.shape[-1]
         a, p = TWO_PI * alpha / w, TWO_PI * psi / w
@@ -199,7 +199,7 @@ class MinWarping(HomingMethod):
         check_grid(self, None, n_pix)
 
 
-def _panorama(snap) -> Array:
+def panorama_of(snap) -> Array:
     """The gray panorama of a snapshot as float32 (bytes, as the image pipeline keeps them, to [0, 1])."""
     if getattr(snap, "panorama", None) is None:
         raise InputError(

@@ -31,7 +31,7 @@ from ..settings import setting
 from . import scale_planes as sp
 from . import warping_search as ws
 from .base import HomingMethod
-from .minwarping import _panorama, check_grid, panorama_setting, quantised
+from .minwarping import panorama_of, check_grid, panorama_setting, quantised
 
 
 @functools.lru_cache(maxsize=16)
@@ -83,7 +83,7 @@ class Warping2D(HomingMethod):
     stack_type: str = panorama_setting("stack_type", "w2d")
 
     def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
-        ss, cv = _panorama(home.start), _panorama(view.end)
+        ss, cv = panorama_of(home.start), panorama_of(view.end)
         alpha, psi, _, _ = search(ss, cv, home.start.elevations, self)
         w = ss.shape[-1]
         valid = jnp.any(ss != ss.reshape(-1)[0])
