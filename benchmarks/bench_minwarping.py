@@ -14,6 +14,7 @@ extrapolated to the full size from its stack (timed whole) and one psi row of it
 
     python benchmarks/bench_minwarping.py              # headline map + twin ratios
     python benchmarks/bench_minwarping.py --big        # also a 100 x 100 grid: time and peak memory
+    python benchmarks/bench_minwarping.py --errors     # the error table of issue 26 (env1 at 100 cm)
 """
 
 from __future__ import annotations
@@ -107,11 +108,35 @@ def full_twin_estimate_s() -> float:
     return 2 * stack_s + 2 * 96 * row_s
 
 
+def error_table() -> None:
+    """Mean and median error, error classes and catchment of the panorama, landmark and 1-D image methods
+    on env1 rendered at 100 cm (98 views against home, 288 x 48, no camera noise)."""
+    from delvjax.images._evaluate import catchment_numbers, database_catchment
+
+    db = render_in_memory("env1", spacing=100.0, settings=ImageSettings(camera=CAMERA), panoramas=True)
+    print("| method | mean err deg | median | e>45 (of 98) | e>90 | catchment % |")
+    print("|---|---|---|---|---|---|")
+    runs = [("minwarping", {}), ("warping2d", {}), ("hybrid", {}), ("delv", {})]
+    runs += [("warping", {"channel": c, "n_psi": 72}) for c in ("gray", "mask")]
+    for method, opts in runs:
+        vm = database_vector_map(db, method, **opts)
+        e = np.asarray(vm.error_deg)[np.asarray(vm.included)]
+        c = catchment_numbers(database_catchment(db, vm)[1])
+        name = f"{method} {opts.get('channel', '')}".strip()
+        print(
+            f"| {name} | {e.mean():.1f} | {np.median(e):.1f} | {(e > 45).sum()} | {(e > 90).sum()} | {c['catchment_pct']:.1f} |"
+        )
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--big", action="store_true", help="also a 100 x 100 grid (spacing 10 cm): time and peak memory")
     p.add_argument("--no-twin", action="store_true", help="skip the twin (minutes)")
+    p.add_argument("--errors", action="store_true", help="only the error table at 100 cm")
     args = p.parse_args()
+    if args.errors:
+        error_table()
+        return
     print(f"jax {jax.__version__} on {jax.devices()[0].platform}, {jax.device_count()} device(s)")
     rows = []
     for method in ("minwarping", "warping2d"):
