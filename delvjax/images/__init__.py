@@ -5,6 +5,7 @@ from ._load import DatabaseWarning as DatabaseWarning
 from ._load import LoadedDatabase as LoadedDatabase
 from ._evaluate import database_catchment as database_catchment
 from ._evaluate import database_rollouts as database_rollouts
+from ._evaluate import database_success_rate as database_success_rate
 from ._evaluate import database_vector_map as database_vector_map
 from ._evaluate import import_database as import_database
 from ._load import load_database as load_database

@@ -19,7 +19,12 @@ import equinox as eqx
 import jax
 import numpy as np
 
-from delvjax.images._evaluate import catchment_numbers, database_catchment, database_vector_map
+from delvjax.images._evaluate import (
+    catchment_numbers,
+    database_catchment,
+    database_success_rate,
+    database_vector_map,
+)
 from delvjax.images._render import render_rings
 from delvjax.images._worlds import image_world
 from delvjax.plots._images import database_map_figure
@@ -32,6 +37,7 @@ STEPS = 3
 METHODS = ("delv", "minwarping", "hybrid")
 LABEL = {"delv": "DELV", "minwarping": "MinWarping", "hybrid": "hybrid"}
 GRID = {"mw_n_alpha": 90, "mw_n_psi": 90}  # 360-column panoramas: 96 does not divide 360, 90 does
+DISTANCES = (30.0, 50.0, 70.0)  # cm from home, release distances in the 1.8 m arena
 
 
 def options(method: str, world: str) -> dict:
@@ -99,6 +105,7 @@ def run(ctx) -> None:
             for m in METHODS:
                 results[m].append(evaluate(db, full, m, "robot", seed))
         if k == 0:
+            success_table(ctx, full, {m: r[0]["map"] for m, r in results.items()}, seed)
             ctx.figure(
                 "hybrid_robot_maps.png",
                 maps_figure(full, {m: r[0] for m, r in results.items()}, "Robot world, no cylinder hidden"),
@@ -161,6 +168,33 @@ def run(ctx) -> None:
         "every choice of k averaged. Catchment: nearest-snapshot rollouts from every image.",
     )
     ctx.step("table")
+
+
+def success_table(ctx, db, maps: dict, seed: int) -> None:
+    """Success rate against release distance on the robot world, no cylinder hidden (95 % Wilson)."""
+    trials = 20 if preview(ctx) else 100
+    rows = []
+    for m, vm in maps.items():
+        for r in database_success_rate(db, vm, DISTANCES, trials=trials, seed=seed):
+            rows.append(
+                {
+                    "method": LABEL[m],
+                    "distance cm": r["distance_cm"],
+                    "placed": r["placed"],
+                    "successes": r["successes"],
+                    "success %": r["success_pct"],
+                    "95 % interval": f"{r['ci_lo_pct']:.1f}-{r['ci_hi_pct']:.1f}",
+                }
+            )
+            ctx.number(f"hybrid:robot:success:{m}:{r['distance_cm']:g}", r["success_pct"])
+    ctx.table(
+        "hybrid_success_rate",
+        "Success rate against release distance, robot world, no cylinder hidden",
+        rows,
+        source="thesis §6.3.3 (future work); Fig 4.10b style",
+        note=f"{trials} releases per distance in seeded directions (those inside the arena and clear of the "
+        "cylinders are placed); nearest-snapshot rollouts; 95 % Wilson intervals.",
+    )
 
 
 def verdict(summary: dict) -> str:

@@ -129,3 +129,20 @@ def test_minwarpings_compass_serves_delv_and_alv(small_db):
         assert np.asarray(vm.error_deg)[inc].mean() < 45
     with pytest.raises(InputError, match="mw_n_alpha"):
         database_vector_map(db, DELV(heading=MinWarpingCompass()))  # 96 does not divide 72
+
+
+def test_success_rate_on_a_database(small_db):
+    """Success rate against release distance on a database (docs/images.md §7), seeded per distance."""
+    from delvjax.images import database_success_rate
+
+    db = load_database(small_db)
+    vm = database_vector_map(db, "delv")
+    rows = database_success_rate(db, vm, [40, 80, 500], trials=30, seed=3)
+    assert [r["distance_cm"] for r in rows] == [40, 80, 500]
+    for r in rows[:2]:
+        assert 0 < r["placed"] <= 30 and 0 <= r["successes"] <= r["placed"]
+        assert r["ci_lo_pct"] <= r["success_pct"] <= r["ci_hi_pct"]
+    assert rows[2]["placed"] == 0 and np.isnan(rows[2]["success_pct"])  # 5 m from home: outside the arena
+    assert database_success_rate(db, vm, [80], trials=30, seed=3) == rows[1:2]  # its own directions
+    with pytest.raises(InputError, match="distances"):
+        database_success_rate(db, vm, [0.0])
