@@ -175,8 +175,11 @@ def entry_values(stk: Arrays, entries: np.ndarray, alpha: Arrays | int, psi: Arr
 def min_match_at(stk: Arrays, entries: np.ndarray, alpha: Arrays | int, psi: Arrays | int) -> Array:
     """MinWarping match of one hypothesis in whole pixels (the fine search), by per-column minima."""
     w = stk.shape[-1]
-    col = jax.ops.segment_min(entry_values(stk, entries, alpha, psi), jnp.asarray(entries[:, 0]), num_segments=w)
+    acc_type = jnp.float32 if jnp.issubdtype(stk.dtype, jnp.floating) else jnp.int32
+    # the minimum per column in 32 bits: a scatter-min on bytes is a rare path of XLA's CPU backend,
+    # suspected (not proven) behind two CI aborts in unrelated compiles later; 32 bits cost nothing here
+    values = entry_values(stk, entries, alpha, psi).astype(acc_type)
+    col = jax.ops.segment_min(values, jnp.asarray(entries[:, 0]), num_segments=w)
     present = np.zeros(w, bool)
     present[entries[:, 0]] = True  # columns without entries (x = 0, pi) add nothing
-    acc_type = jnp.float32 if jnp.issubdtype(stk.dtype, jnp.floating) else jnp.int32
-    return jnp.sum(jnp.where(jnp.asarray(present), col.astype(acc_type), 0))
+    return jnp.sum(jnp.where(jnp.asarray(present), col, 0))
