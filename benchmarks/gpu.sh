@@ -4,6 +4,7 @@
 # wall seconds and its key lines.
 #
 #     bash benchmarks/gpu.sh            # needs the project installed: pip install -e '.[test]'
+#     GPU_PARTS="vector_map minwarping" bash benchmarks/gpu.sh   # only the parts named (a rerun)
 #
 # Each part runs under its own time limit, so one slow part cannot eat the others' time; a part that
 # fails or times out is marked so in the table. Sizes: the vector map and catchment at the thesis grid
@@ -18,9 +19,10 @@ mkdir -p "$OUT/logs"
 python -c "import jax; print('jax', jax.__version__, 'on', jax.devices()[0].platform, jax.devices()[0].device_kind)" \
   | tee "$OUT/logs/device.txt"
 
-run() {  # name, time limit (s), command...
+run() {  # name, time limit (s), command...; GPU_PARTS="a b" runs only the parts named
   local name=$1 limit=$2
   shift 2
+  case " ${GPU_PARTS:-$name} " in *" $name "*) ;; *) return ;; esac
   local t0=$SECONDS
   timeout "$limit" "$@" > "$OUT/logs/$name.txt" 2>&1
   local rc=$?

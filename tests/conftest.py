@@ -18,6 +18,17 @@ from delvjax.outputs._cache import enable_compilation_cache
 enable_compilation_cache()
 
 
+@pytest.fixture(autouse=True, scope="module")
+def programs_released_between_files():
+    """A pytest worker compiles some 19,000 programs over the suite, about 3.4 memory mappings each while
+    JAX caches them: past Linux's vm.max_map_count (65530) LLVM aborted the worker (two CI runs). After
+    each file, past half the cap, JAX's in-memory caches are dropped (`release_programs_near_map_limit`)."""
+    yield
+    from delvjax.outputs._cache import release_programs_near_map_limit
+
+    release_programs_near_map_limit()
+
+
 @pytest.fixture(autouse=True)
 def figures_a_reviewer_accepts():
     """Every figure delvjax writes during a test is checked as a reviewer would (`tests.cases.figures`:

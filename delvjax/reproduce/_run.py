@@ -30,7 +30,7 @@ from ..core.errors import InputError, warn
 from ..outputs._files import check_out_dir, write_json
 from ..outputs._cache import package_sources
 from ._study import STUDY_FILE, Settings, StudyContext, StudyRecord, compile_seconds, settings_record, versions
-from ..outputs._cache import enable_compilation_cache
+from ..outputs._cache import enable_compilation_cache, release_programs_near_map_limit
 from ..options._checks import seed_value
 from ._report import write_report
 
@@ -261,6 +261,7 @@ def reproduce(
         completions.append(done)
         if did:
             ran.append(name)
+        release_programs_near_map_limit()  # a full run in one process stays clear of Linux's mapping cap
         bar.update(1)
 
     with _bars(len(names), progress) as bar, ThreadPoolExecutor(1, thread_name_prefix="figures") as painter:

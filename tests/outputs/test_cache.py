@@ -45,3 +45,28 @@ def test_entries_of_an_unbounded_cache_get_the_access_time_the_bounded_one_needs
     assert run.returncode == 0 and "Error writing" not in run.stderr, run.stderr[-2000:]
     assert (folder / "jit_old-0123-atime").is_file()
     assert (folder / "jit_old-0123-cache").is_file() and len(list(folder.glob("*-cache"))) >= 2  # old and new
+
+
+def test_compiled_programs_are_released_before_the_process_runs_out_of_memory_mappings(tmp_path):
+    """Each cached CPU program holds memory mappings; near vm.max_map_count LLVM aborts the process
+    (a pytest worker, twice in CI). Past the threshold `release_programs_near_map_limit` drops JAX's
+    caches and the mappings with them; below it, nothing is dropped."""
+    code = (
+        "import jax, jax.numpy as jnp\n"
+        "from delvjax.outputs import _cache\n"
+        "before = _cache.mapped_regions()\n"
+        "for i in range(150):\n"
+        "    jax.jit(lambda x, i=i: jnp.cumsum(x) * i)(jnp.ones(i + 3)).block_until_ready()\n"
+        "grown = _cache.mapped_regions()\n"
+        "assert grown - before > 300, (before, grown)\n"  # about 3.4 a program
+        "assert not _cache.release_programs_near_map_limit(1.0)\n"  # far below the cap: kept
+        "assert _cache.mapped_regions() >= grown - 5\n"
+        "_cache.map_limit = lambda: grown\n"  # as if the cap were where this process stands now
+        "assert _cache.release_programs_near_map_limit(0.5)\n"
+        "after = _cache.mapped_regions()\n"
+        "assert grown - after > 300, (grown, after)\n"
+        "print('released', grown - after)\n"
+    )
+    env = {"DELVJAX_CACHE_DIR": "", "PATH": "/usr/bin:/bin", "JAX_PLATFORMS": "cpu"}
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=300)
+    assert run.returncode == 0 and run.stdout.startswith("released"), run.stderr[-2000:]
