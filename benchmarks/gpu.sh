@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The headline benchmarks on whatever accelerator JAX finds (a GPU when the session has one; the CPU
-# otherwise), in under 8 minutes (the parts' limits add up to 470 s), then one table: each benchmark's
+# otherwise), in under 8 minutes (the parts' limits add up to 460 s), then one table: each benchmark's
 # wall seconds and its key lines.
 #
 #     bash benchmarks/gpu.sh            # needs the project installed: pip install -e '.[test]'
@@ -30,13 +30,13 @@ run() {  # name, time limit (s), command...; GPU_PARTS="a b" runs only the parts
 }
 
 : > "$OUT/parts.txt"
-run vector_map 70 python benchmarks/bench_vector_map.py --methods delv delv-compass alv acv --ref-points 10
-run warping 50 python benchmarks/bench_warping.py
-run catchment 70 python benchmarks/bench_rollouts.py --ref-points 4
-run sweep 120 python benchmarks/bench_sweep.py --kinds vector-map catchment --devices 1 --processes \
+run vector_map 60 python benchmarks/bench_vector_map.py --methods delv delv-compass alv acv --ref-points 10
+run warping 40 python benchmarks/bench_warping.py
+run catchment 50 python benchmarks/bench_rollouts.py --ref-points 4
+run sweep 100 python benchmarks/bench_sweep.py --kinds vector-map catchment --devices 1 --processes \
   --cells 1000 --catchment-cells 20
-run reproduce_quick 100 python benchmarks/bench_reproduce.py --quick --out "$OUT/reproduce"
-run minwarping 60 python benchmarks/bench_minwarping.py --no-twin
+run reproduce_quick 90 python benchmarks/bench_reproduce.py --quick --out "$OUT/reproduce"
+run minwarping 120 python benchmarks/bench_minwarping.py --no-twin
 
 echo
 echo "| benchmark | exit | wall s | key lines |"

@@ -5,6 +5,8 @@ Everything here is written for ONE viewpoint; maps and rollouts `vmap` it.
 
 from __future__ import annotations
 
+import dataclasses
+
 import equinox as eqx
 import jax
 import jax.numpy as jnp
@@ -220,14 +222,19 @@ def snapshot(
     """Render, extract blobs and add bearing noise (docs/model.md §2.5) for one viewpoint.
 
     The blobs come from the cylinders (`cylinder_blobs`: those of the rendered ring); the ring itself
-    is rendered only for a method that reads it (`with_mask` or `with_gray`; otherwise zero).
+    is rendered only for a method that reads it (`with_mask` or `with_gray`; otherwise zero). A sensor
+    with a `panorama` renderer adds the gray panorama of the pose (MinWarping; docs/images.md §10).
     """
     plain = isinstance(with_mask, bool) and isinstance(with_gray, bool)
     needed = (with_mask or with_gray) if plain else jnp.logical_or(with_mask, with_gray)
     mask, gray = computed_if(needed, lambda: render(env, visible, pos, heading, sensor, with_gray))
     bearing, width, valid = blobs_of_cylinders(env.landmarks, visible & env.valid, pos, heading, sensor.n_pix)
     bearing, valid, width = sort_blobs(bearing + sensor.noise.bearing_errors(key, bearing.shape), valid, width)
-    return Snapshot(mask=mask, gray=gray, bearing=bearing, width=width, valid=valid, channel=sensor.channel)
+    snap = Snapshot(mask=mask, gray=gray, bearing=bearing, width=width, valid=valid, channel=sensor.channel)
+    if sensor.panorama is None:
+        return snap
+    gray_panorama, elevations = sensor.panorama(env, visible, pos, heading)  # docs/images.md §10
+    return dataclasses.replace(snap, panorama=gray_panorama, elevations=elevations)
 
 
 def observe_move(

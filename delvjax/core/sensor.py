@@ -128,6 +128,9 @@ class Sensor(eqx.Module):
                 is converted): a traced leaf, so every setting shares one program.
     n_pix:      ring image width in pixels (§2.2).
     channel:    image channel read by the image methods (warping, MFDID; §2.2): mask or gray.
+    panorama:   None, or a renderer of the scene's panoramas (`core.images.ScenePanorama`, called as
+                `panorama(env, visible, pos, heading)`) for the methods that read them (MinWarping;
+                docs/images.md §10); the edge sets it (`options.make_setup`).
     """
 
     d: Real = setting(50.0, check="positive", unit="cm", help="unit-movement step")
@@ -151,3 +154,4 @@ class Sensor(eqx.Module):
         choices=CHANNELS,
         help="image channel of the image methods (warping, mfdid)",
     )
+    panorama: eqx.Module | None = None

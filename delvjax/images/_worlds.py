@@ -15,10 +15,9 @@ import numpy as np
 
 from ..core.errors import InputError
 from ..core.images import Extractor
-from ..core.images.world import World, make_world
+from ..core.images.scene_panorama import scene_panorama
+from ..core.images.world import RED, World, make_world
 from ..envs._presets import PRESETS, load_env
-
-RED = (0.80, 0.10, 0.10)
 
 
 @dataclass(frozen=True)
@@ -82,18 +81,12 @@ DESCRIPTIONS = {
 def env_world(
     name_or_path: str, height: float = 100.0, wall_height: float = 150.0, spacing: float = 25.0
 ) -> ImageWorld:
-    """A docs/model.md environment (preset or JSON file) as red cylinders of `height` cm."""
+    """A docs/model.md environment (preset or JSON file) as red cylinders of `height` cm: the world a ring
+    scene's panoramas show (`scene_panorama`)."""
     env = load_env(name_or_path)
-    lm = np.asarray(env.landmarks)[np.asarray(env.valid)]
-    world = make_world(
-        cylinders=[(x, y, r, height) for x, y, r in lm],
-        cylinder_rgb=[RED] * len(lm),
-        arena=tuple(float(v) for v in np.asarray(env.arena)),
-        wall_height=wall_height,
-    )
-    return ImageWorld(
-        env.name, world, tuple(float(v) for v in np.asarray(env.home)), spacing, Extractor(max_blobs=max(len(lm), 1))
-    )
+    world = scene_panorama(1, height=height, wall_height=wall_height).world_of(env, env.valid)
+    n = max(env.n_landmarks, 1)
+    return ImageWorld(env.name, world, tuple(float(v) for v in np.asarray(env.home)), spacing, Extractor(max_blobs=n))
 
 
 def image_world(name: str) -> ImageWorld:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import dataclasses
 
 from ..core.errors import InputError
+from ..core.images.scene_panorama import scene_panorama
 from ..core.methods import HomingMethod, Program, Warping
 from ..core.sensor import Noise, Sensor
 from ..core.settings import declared
@@ -101,8 +102,8 @@ def make_setup(
     module (`DELV(levels=3, heading=Compass())`); `program`: registry names compiled into one
     program with `method` (`registry.program`); `sensor`: a `Sensor` instead of sensor options;
     `noise`: a `Noise` instead of the noise options; `panorama_cols`: the width of the panoramas of an
-    image database (0: a database not read yet; None: a scene of rings, where a method that reads
-    panoramas is refused).
+    image database (0: a database not read yet; None: a scene of rings, whose sensor then renders the
+    panoramas of its cylinders for a method that reads them, `core.images.scene_panorama`).
     A method setting that the method does not have is an error naming it."""
     extra = (method,) if isinstance(method, HomingMethod) else ()
     method_names, sensor_names = option_names(extra)
@@ -143,10 +144,10 @@ def make_setup(
             raise InputError(name, value, f"is not a setting of the method {label}")
     configured = configure(module, **settings)
     if configured.reads_panorama():
-        if panorama_cols is None:
-            raise InputError(
-                "method", label, "reads panoramas: run it on an image database or a rendered world (--images)"
-            )
-        if panorama_cols:
+        if panorama_cols is None:  # a scene of rings: its cylinders rendered as panoramas (docs/images.md §10)
+            configured.check_input(sensor.n_pix)
+            if sensor.panorama is None:
+                sensor = dataclasses.replace(sensor, panorama=scene_panorama(sensor.n_pix))
+        elif panorama_cols:
             configured.check_input(panorama_cols)
     return configured, sensor

@@ -55,8 +55,9 @@ def test_compiled_programs_are_released_before_the_process_runs_out_of_memory_ma
         "import jax, jax.numpy as jnp\n"
         "from delvjax.outputs import _cache\n"
         "before = _cache.mapped_regions()\n"
-        "for i in range(150):\n"
-        "    jax.jit(lambda x, i=i: jnp.cumsum(x) * i)(jnp.ones(i + 3)).block_until_ready()\n"
+        "kept = [jax.jit(lambda x, i=i: jnp.cumsum(x) * i) for i in range(150)]\n"  # alive: only clearing frees
+        "for i, f in enumerate(kept):\n"
+        "    f(jnp.ones(i + 3)).block_until_ready()\n"
         "grown = _cache.mapped_regions()\n"
         "assert grown - before > 300, (before, grown)\n"  # about 3.4 a program
         "assert not _cache.release_programs_near_map_limit(1.0)\n"  # far below the cap: kept

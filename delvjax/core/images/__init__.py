@@ -3,7 +3,8 @@
 
 from .world import Camera, Catadioptric, World
 from .render import donut, panorama, panoramas
-from .pipeline import Extractor, camera_noise, rgb_to_hsv, ring_snapshot, segment, to_uint8, unwrap
+from .pipeline import Extractor, camera_noise, gray_bytes, rgb_to_hsv, ring_snapshot, segment, to_uint8, unwrap
+from .scene_panorama import ScenePanorama
 
 __all__ = [
     "Camera",
@@ -14,6 +15,8 @@ __all__ = [
     "panoramas",
     "Extractor",
     "camera_noise",
+    "gray_bytes",
+    "ScenePanorama",
     "rgb_to_hsv",
     "ring_snapshot",
     "segment",

@@ -127,10 +127,14 @@ class Extractor(eqx.Module):
         snap = ring_snapshot(*self.rings(image, camera), self)
         if not self.panorama:
             return snap
-        # luminance (Rec. 601) in bytes, as the authors' gray images: a database keeps N of them
-        lum = image.astype(jnp.float32) @ jnp.array([0.299, 0.587, 0.114])
-        gray = jnp.round(jnp.clip(lum, 0.0, 1.0) * 255.0).astype(jnp.uint8)
-        return dataclasses.replace(snap, panorama=gray, elevations=camera.elevations())
+        return dataclasses.replace(snap, panorama=gray_bytes(image), elevations=camera.elevations())
+
+
+def gray_bytes(image: Array) -> Array:
+    """Luminance (Rec. 601) of a colour image in [0, 1] as bytes, as the authors' gray images (a database
+    keeps N of them): (rows, cols, 3) -> (rows, cols) uint8."""
+    lum = image.astype(jnp.float32) @ jnp.array([0.299, 0.587, 0.114])
+    return jnp.round(jnp.clip(lum, 0.0, 1.0) * 255.0).astype(jnp.uint8)
 
 
 def ring_snapshot(share: Array, gray: Array, extractor: Extractor) -> Snapshot:

@@ -14,6 +14,9 @@ import numpy as np
 from jax import Array
 
 
+RED = (0.80, 0.10, 0.10)  # the landmarks of the robot world and of every docs/model.md environment
+
+
 class World(eqx.Module):
     """cylinders: (C, 4) [x, y, r, height]; cylinder_rgb: (C, 3); boxes: (K, 5) [xmin, ymin, xmax,
     ymax, height]; box_rgb: (K, 3); arena: (4,) [xmin, ymin, xmax, ymax]; wall_height: cm;
