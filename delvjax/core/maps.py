@@ -18,7 +18,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
-from .batching import fixed_width_map, local_mesh, n_devices, over_devices, padded
+from .batching import fixed_width_map, item_width, local_mesh, n_devices, over_devices, padded
 from .geometry import TWO_PI
 from .kernel import direction_from, map_poses
 from .methods.base import HomingMethod
@@ -107,7 +107,7 @@ def homing_directions(
 
     The home record sees every landmark; the current views see only `visible` ones
     (occlusion, docs/model.md §5). Point i uses the view stream of index `start + i`.
-    One program, `batching.WIDTH` points at a time.
+    One program, `batching.item_width` points at a time.
     """
     k_home, k_views, _ = stream_keys(key)
     home = record_home(env, k_home, sensor)
@@ -118,7 +118,7 @@ def homing_directions(
         return direction_from(env, seen, map_poses(point, heading, k_views, index, sensor), home, method, sensor)
 
     index = start + jnp.arange(points.shape[0])
-    return fixed_width_map(lambda *a: one(a), (points, headings, index))
+    return fixed_width_map(lambda *a: one(a), (points, headings, index), width=item_width(method.reads_panorama()))
 
 
 def vector_map(

@@ -20,7 +20,7 @@ import numpy as np
 from jax import Array
 from jax.typing import ArrayLike
 
-from ..batching import WIDTH, fixed_width_map, local_mesh, over_devices
+from ..batching import fixed_width_map, item_width, local_mesh, over_devices
 from ..errors import InputError
 from ..geometry import wrap
 from ..kernel import world_direction
@@ -209,18 +209,11 @@ def database_directions(
     return jax.tree.map(lambda a: a[:n], out)
 
 
-PANORAMA_WIDTH = 32  # panorama pairs per vectorised step on an accelerator (`_directions`)
-
-
 @jax.jit
 def _directions(
     db: RingDatabase, home_db: RingDatabase, home: MovePlan, method: HomingMethod, home_point: Array, plan: MovePlan
 ) -> tuple[Array, Array, Array]:
-    """`database_directions` on one device: `batching.WIDTH` points at a time. A method that reads whole
-    panoramas runs one point at a time on a CPU (its per-point working set is megabytes: batching them
-    only evicts the cache, MinWarping runs 1.6x slower at 16) and `PANORAMA_WIDTH` at a time on an
-    accelerator (one at a time leaves a GPU idle between small kernels). Points are independent, so
-    the width changes no number."""
+    """`database_directions` on one device, `batching.item_width` points at a time."""
     record, alpha_r = home_view(home_db, home)
 
     def one(start, end, shift, shift_end, d_hat, ok):
@@ -229,9 +222,8 @@ def _directions(
         valid = valid & ok
         return jnp.where(valid, direction, jnp.nan), valid
 
-    width = (1 if jax.default_backend() == "cpu" else PANORAMA_WIDTH) if method.reads_panorama() else WIDTH
     xs = (plan.start, plan.end, plan.shift, plan.shift_end, plan.d_hat, plan.ok)
-    direction, valid = fixed_width_map(one, xs, width=width)
+    direction, valid = fixed_width_map(one, xs, width=item_width(method.reads_panorama()))
     return direction, valid, angular_error_deg(direction, valid, db.positions[plan.end], home_point)
 
 

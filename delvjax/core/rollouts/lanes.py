@@ -17,7 +17,7 @@ import jax.numpy as jnp
 from jax import Array
 
 from .rules import RUNNING, position_status
-from ..batching import fixed_width_map, padded
+from ..batching import fixed_width_map, item_width, padded
 from .step import Rollout
 
 
@@ -60,7 +60,8 @@ def run_block(
     grow with max_steps."""
     n_trials = starts.shape[0]
     n_lanes = max(1, min(lanes, n_trials))
-    n_slots = padded(n_lanes)  # slots past n_lanes stay idle (core/batching.py: fixed width)
+    width = item_width(rollout.method.reads_panorama())  # lanes per vectorised step (core/batching.py)
+    n_slots = padded(n_lanes, width)  # slots past n_lanes stay idle (core/batching.py: fixed width)
     max_steps = rollout.max_steps
 
     def fresh(t):
@@ -97,7 +98,7 @@ def run_block(
         moving = active & ~lane.first & (lane.status == RUNNING)
         ts = jnp.minimum(lane.t, n_trials - 1)
         end, new_heading, status, valid, direction = fixed_width_map(
-            rollout.advance, (ts, lane.pos, lane.heading, lane.step, lane.first), active
+            rollout.advance, (ts, lane.pos, lane.heading, lane.step, lane.first), active, width
         )
         idx0 = jnp.where(first, lane.t, n_trials)
         out = eqx.tree_at(
