@@ -46,6 +46,7 @@ LABEL = {
     "acv-visual": "ACV (visual compass)",
     "alv-visual": "ALV (visual compass)",
     "warping": "image matching",
+    "minwarping": "MinWarping",
 }
 HOME_RADIUS = rollouts.HOME_RADIUS
 # Every method of the reproduction is compiled into one rollout program (`registry.program`: a
@@ -303,9 +304,12 @@ def success_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, s
     return tables
 
 
-def trajectory_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, n_starts: int = 8) -> None:
+def trajectory_set(
+    ctx, e: Env, methods, fig_file: str, title: str, caption: str, n_starts: int = 8, own: dict | None = None
+) -> None:
     """Homing paths of `methods` from the same `n_starts` seeded release points (Figs 4.11, 5.8):
-    numbers `trajectories:env1:<method>:reach_home`, the figure and the CSV of every position."""
+    numbers `trajectories:env1:<method>:reach_home`, the figure and the CSV of every position. A method
+    in `own` runs in a program of its own with those options (one outside the shared PROGRAM)."""
     from delvjax.plots._rollouts import trajectories_figure  # matplotlib: loaded only when a figure is drawn
 
     results, tables = {}, []
@@ -316,8 +320,9 @@ def trajectory_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str
             n_starts=n_starts,
             seed=ctx.settings.seed,
             home_radius=HOME_RADIUS,
-            program=PROGRAM,
+            program=None if m in (own or {}) else PROGRAM,
             lanes=ctx.settings.lanes,
+            **(own or {}).get(m, {}),
         )
         results[LABEL[m]] = tr
         tables.append(trajectory_columns(tr, m))

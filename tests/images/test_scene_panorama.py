@@ -67,14 +67,6 @@ def test_the_hybrid_takes_delv_where_it_converges_on_a_ring_scene():
     assert 0.05 < from_delv.mean() < 0.95 and (from_delv | from_mw).all()
 
 
-def test_the_default_hypotheses_are_refused_on_a_360_pixel_ring_naming_the_setting(tmp_path):
-    out = tmp_path / "map.csv"
-    cmd = [sys.executable, "-m", "delvjax.cli", "vector-map", "env1", "--method", "minwarping", "--out", str(out)]
-    run = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
-    assert run.returncode == 2 and not out.exists(), run.stderr
-    assert run.stderr.strip().count("\n") == 0 and "mw_n_alpha" in run.stderr and "90" in run.stderr
-
-
 @pytest.mark.parametrize("kind", ["vector-map"])
 def test_a_sweep_runs_minwarping_on_ring_scenes(tmp_path, kind):
     spec = tmp_path / "mw.toml"
