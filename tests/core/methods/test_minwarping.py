@@ -230,12 +230,3 @@ def test_bad_settings_are_refused_naming_the_setting(settings, field):
     ss, cv = pair(0)
     with pytest.raises(InputError):
         mw.search(jnp.asarray(ss), jnp.asarray(cv), jnp.asarray(ELEV), cfg)
-
-
-def test_a_ring_scene_is_refused_naming_the_method():
-    import delvjax
-
-    env = delvjax.load_env("env1")
-    with pytest.raises(InputError) as exc:
-        delvjax.vector_map(env, method="minwarping", spacing=200.0)
-    assert exc.value.field == "method" and "panoramas" in str(exc.value)
