@@ -25,38 +25,16 @@ GRID36 = ["--mw-n-alpha", "36", "--mw-n-psi", "36"]  # small_db is 72 columns wi
     "method, grid", [("minwarping", GRID36), ("warping2d", ["--w2d-n-alpha", "36", "--w2d-n-psi", "36"])]
 )
 def test_vector_map_and_catchment_on_a_database(small_db, tmp_path, capsys, method, grid):
-    out, summary = tmp_path / "m.csv", tmp_path / "m.json"
-    argv = [
-        "vector-map",
-        "--images",
-        str(small_db),
-        "--method",
-        method,
-        *grid,
-        "--out",
-        str(out),
-        "--summary",
-        str(summary),
-    ]
-    assert main(argv) == 0
-    rows, s = read_csv(out), json.loads(summary.read_text())
-    assert len(rows) == 70 and s["method"] == method  # 71 images but home
+    def run(command: str) -> dict:
+        out, summary = tmp_path / f"{command}.csv", tmp_path / f"{command}.json"
+        argv = [command, "--images", str(small_db), "--method", method, *grid, "--out", str(out)]
+        assert main([*argv, "--summary", str(summary)]) == 0
+        return {"rows": read_csv(out), **json.loads(summary.read_text())}
+
+    s = run("vector-map")
+    assert len(s["rows"]) == 70 and s["method"] == method  # 71 images but home
     assert s["mean_error_deg"] < 60  # far better than chance (90)
-    out2, summary2 = tmp_path / "c.csv", tmp_path / "c.json"
-    argv = [
-        "catchment",
-        "--images",
-        str(small_db),
-        "--method",
-        method,
-        *grid,
-        "--out",
-        str(out2),
-        "--summary",
-        str(summary2),
-    ]
-    assert main(argv) == 0
-    assert 0 <= json.loads(summary2.read_text())["catchment_pct"] <= 100
+    assert 0 <= run("catchment")["catchment_pct"] <= 100
     capsys.readouterr()
 
 
