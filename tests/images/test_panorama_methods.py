@@ -127,3 +127,13 @@ def test_success_rate_on_a_database(small_db):
     assert database_success_rate(db, vm, [80], trials=30, seed=3) == rows[1:2]  # its own directions
     with pytest.raises(InputError, match="distances"):
         database_success_rate(db, vm, [0.0])
+
+
+def test_panoramas_too_wide_for_the_search_are_refused_before_any_work(tmp_path, capsys):
+    """7200-pixel rings asked XLA for 1.1 TB (the search grows as width^3): one line naming the width."""
+    out = tmp_path / "m.csv"
+    argv = ["vector-map", "env1", "--method", "minwarping", "--n-pix", "7200", "--mw-n-alpha", "90"]
+    assert main([*argv, "--mw-n-psi", "90", "--out", str(out)]) == 2
+    line = error_line(capsys)
+    assert line.startswith("delvjax: error: panorama width:") and "7200" in line, line
+    assert not out.exists()

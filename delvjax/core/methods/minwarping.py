@@ -73,6 +73,9 @@ def panorama_setting(field: str, prefix: str):
     return setting(default, static=True, option=f"{prefix}_{name}", **meta)
 
 
+MAX_WIDTH = 768  # the widest panorama MinWarping takes (`check_grid`: about 3 width^3 bytes a pair, 1.4 GB)
+
+
 def check_grid(cfg, rows: int | None, cols: int) -> None:
     """`InputError` unless the hypothesis grid and scale planes suit (rows, cols) panoramas (trace
     time, and from the edge before any work; rows None: not known yet)."""
@@ -92,6 +95,13 @@ def check_grid(cfg, rows: int | None, cols: int) -> None:
         raise InputError(name["n_psi"], cfg.n_psi, f"must divide n_alpha = {cfg.n_alpha} (even) for the double search")
     if rows is not None and rows < 3:
         raise InputError("panorama rows", rows, "must be >= 3")
+    if cols > MAX_WIDTH:
+        raise InputError(
+            "panorama width",
+            cols,
+            f"is more than {MAX_WIDTH} columns: the search's memory grows as width^3 (about 3 width^3 bytes a "
+            "pair; 7200 columns asked for 1.1 TB): use narrower panoramas (n_pix on a ring scene)",
+        )
 
 
 def quantised(stk: Arrays, measure: str, stack_type: str) -> Array:
