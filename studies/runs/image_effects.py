@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import equinox as eqx
 
+from delvjax.core.methods.minwarping import hypothesis_counts
 from delvjax.images._render import ImageSettings, camera
 from delvjax.images._worlds import image_world
 from delvjax.plots._maps import subplots
@@ -63,9 +64,8 @@ def _database(factor: str, value, seed: int, panoramas: bool = False):
 
 
 def mw_grid(cols: int) -> dict:
-    """MinWarping's hypotheses on `cols`-column panoramas: the largest of 96, 90, 72, 48, 36 that divides
-    them (the authors' 96 where it can)."""
-    n = next(k for k in (96, 90, 72, 48, 36, 24, 12) if cols % k == 0)
+    """MinWarping's hypotheses on `cols`-column panoramas: the most, up to the authors' 96, that divide them."""
+    n = max(k for k in hypothesis_counts(cols) if k <= 96)
     return {"mw_n_alpha": n, "mw_n_psi": n}
 
 

@@ -14,6 +14,7 @@ import numpy as np
 import delvjax
 from delvjax.plots._maps import error_curve_figure
 
+from ._images_common import MINWARPING, preview
 from ._common import (
     LABEL,
     RULES,
@@ -36,10 +37,9 @@ TITLE = "DELV vs predictive image matching, no compass (Figs 4.9-4.11)"
 STEPS = 8
 METHODS = ("delv", "warping")
 N_STARTS = 8
-# MinWarping on env1's rendered panoramas (docs/images.md §10), the authors' settings but 90 x 90
-# hypotheses (96 does not divide the 360-pixel rings); full run only: its vector map is about 40 s on
-# 2 cores, a catchment of the full grid about 8 minutes (26 ms a move), so no rollouts but trajectories
-MINWARPING = {"mw_n_alpha": 90, "mw_n_psi": 90}
+# MinWarping on env1's rendered panoramas (docs/images.md §10) with the image studies' MINWARPING (90 x 90:
+# 96 does not divide the 360-pixel rings); full run only: its vector map is about 40 s on 2 cores, a
+# catchment of the full grid about 8 minutes (26 ms a move), so no rollouts but trajectories
 
 
 def run(ctx) -> None:
@@ -80,7 +80,7 @@ def run(ctx) -> None:
             )
             ctx.step(f"catchment {m} {rules}")
     own = {}
-    if not (ctx.settings.quick or spacing >= 100):
+    if not preview(ctx):
         own["minwarping"] = MINWARPING
         vm = delvjax.vector_map(e, method="minwarping", spacing=spacing, seed=ctx.settings.seed, **MINWARPING)
         s = map_numbers(e, vm)

@@ -76,6 +76,11 @@ def panorama_setting(field: str, prefix: str):
 MAX_WIDTH = 768  # the widest panorama MinWarping takes (`check_grid`: about 3 width^3 bytes a pair, 1.4 GB)
 
 
+def hypothesis_counts(cols: int) -> list[int]:
+    """The usual hypothesis counts (n_alpha, n_psi) that divide a panorama of `cols` columns, ascending."""
+    return [k for k in (32, 36, 45, 48, 60, 64, 72, 90, 96, 120, 144) if cols % k == 0]
+
+
 def check_grid(cfg, rows: int | None, cols: int) -> None:
     """`InputError` unless the hypothesis grid and scale planes suit (rows, cols) panoramas (trace
     time, and from the edge before any work; rows None: not known yet)."""
@@ -83,8 +88,7 @@ def check_grid(cfg, rows: int | None, cols: int) -> None:
     for field in ("n_alpha", "n_psi"):
         n = getattr(cfg, field)
         if isinstance(n, bool) or not isinstance(n, int) or n < 1 or cols % n:
-            divisors = [k for k in (32, 36, 45, 48, 60, 64, 72, 90, 96, 120, 144) if cols % k == 0]
-            raise InputError(name[field], n, f"must divide the panorama width {cols} (e.g. {divisors})")
+            raise InputError(name[field], n, f"must divide the panorama width {cols} (e.g. {hypothesis_counts(cols)})")
     if cfg.n_planes < 3 or cfg.n_planes % 2 == 0:
         raise InputError(name["n_planes"], cfg.n_planes, "must be odd and >= 3 (symmetric scale factors around 1)")
     if not cfg.max_scale > 1.0:
