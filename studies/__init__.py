@@ -34,25 +34,25 @@ FULL_RUN_ONLY = ("fit", "sensitivity", "layouts", "robot_images", "natural_image
 # it runs before the others start side by side, so that two of them do not compile it at once.
 FIRST = ("no_compass",)
 
-# Rough seconds of each study in a full run on 2 CPU cores, one at a time (occlusion, fit and layouts
-# measured; the others scaled from --quick): only the order in which studies side by side are started,
+# Rough seconds of each study in a full run on 2 CPU cores, two side by side (measured 2026-12-04,
+# `benchmarks/bench_reproduce.py`): only the order in which studies side by side are started,
 # the longest first, so that a long one does not start last. A study missing here starts last.
 FULL_RUN_SECONDS = {
-    "occlusion": 620,
-    "fit": 240,
-    "layouts": 145,
-    "quantization": 120,
-    "visual_compass": 100,
-    "image_matching": 80,
+    "occlusion": 145,
+    "hybrid": 130,
+    "image_effects": 95,
+    "image_matching": 90,
+    "fit": 90,
+    "layouts": 85,
     "sensitivity": 60,
-    "landmark_number": 50,
+    "visual_compass": 50,
     "robot_images": 45,
-    "comparators": 40,
-    "with_compass": 35,
-    "natural_images": 30,
-    "image_effects": 30,
-    "hybrid": 90,
-    "step_distance": 25,
+    "natural_images": 45,
+    "quantization": 35,
     "no_compass": 25,
+    "landmark_number": 16,
+    "comparators": 6,
+    "with_compass": 5,
+    "step_distance": 4,
     "environments": 1,
 }

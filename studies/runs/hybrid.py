@@ -17,8 +17,11 @@ from itertools import combinations
 
 import equinox as eqx
 import jax
+import jax.numpy as jnp
 import numpy as np
 
+from delvjax.core.maps import VectorMap
+from delvjax.core.methods.hybrid import HybridGate, combine
 from delvjax.images._evaluate import (
     catchment_numbers,
     database_catchment,
@@ -60,11 +63,28 @@ def occluded(full, world: str, hidden: tuple[int, ...], seed: int):
     return dataclasses.replace(full, rings=rings)
 
 
-def evaluate(db, full, method: str, world: str, seed: int) -> dict:
-    vm = database_vector_map(db, method, home_rings=full.rings, **options(method, world))
-    s = numbers(vm)
+def maps(db, full, world: str) -> dict:
+    """The vector maps of METHODS on `db`. The hybrid's is put together from DELV's, MinWarping's and
+    where DELV converged (`hybrid_map`): MinWarping's search, nearly all of the time, runs once."""
+    out = {m: database_vector_map(db, m, home_rings=full.rings, **options(m, world)) for m in ("delv", "minwarping")}
+    gate = database_vector_map(db, HybridGate(), home_rings=full.rings, **options("hybrid", world))
+    out["hybrid"] = hybrid_map(out["delv"], gate, out["minwarping"])
+    return out
+
+
+def hybrid_map(delv: VectorMap, gate: VectorMap, image: VectorMap) -> VectorMap:
+    """The hybrid's map (docs/model.md §4.8) from DELV's, the `HybridGate`'s (valid where DELV
+    converged) and the image method's, point by point as `Hybrid` chooses (`hybrid.combine`)."""
+    conv, v_delv, v_img = (np.asarray(m.valid) for m in (gate, delv, image))
+    direction, valid, _ = combine(np.asarray(delv.direction), v_delv, conv, np.asarray(image.direction), v_img)
+    error, _, _ = combine(np.asarray(delv.error_deg), v_delv, conv, np.asarray(image.error_deg), v_img)
+    return dataclasses.replace(delv, direction=jnp.asarray(direction), valid=jnp.asarray(valid), error_deg=jnp.asarray(error))
+
+
+def evaluate(db, vm, seed: int) -> dict:
+    """A map's numbers and its catchment (nearest-snapshot rollouts from every image)."""
     _, paths = database_catchment(db, vm, seed=seed)
-    return {**s, **catchment_numbers(paths), "map": vm}
+    return {**numbers(vm), **catchment_numbers(paths), "map": vm}
 
 
 def maps_figure(db, results: dict, title: str):
@@ -102,8 +122,8 @@ def run(ctx) -> None:
         results = {m: [] for m in METHODS}
         for hidden in subsets:
             db = occluded(full, "robot", hidden, seed) if hidden else full
-            for m in METHODS:
-                results[m].append(evaluate(db, full, m, "robot", seed))
+            for m, vm in maps(db, full, "robot").items():
+                results[m].append(evaluate(db, vm, seed))
         if k == 0:
             success_table(ctx, full, {m: r[0]["map"] for m, r in results.items()}, seed)
             ctx.figure(
@@ -137,8 +157,8 @@ def run(ctx) -> None:
     if not preview(ctx):
         nat = database("natural", seed=seed, panoramas=True)
         nat_results = {}
-        for m in METHODS:
-            x = nat_results[m] = evaluate(nat, nat, m, "natural", seed)
+        for m, vm in maps(nat, nat, "natural").items():
+            x = nat_results[m] = evaluate(nat, vm, seed)
             summary[("natural", 0, m)] = row = {
                 "world": "natural",
                 "hidden k": 0,

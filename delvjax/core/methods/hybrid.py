@@ -12,7 +12,9 @@ would compute both anyway).
 
 from __future__ import annotations
 
+import jax
 import jax.numpy as jnp
+import numpy as np
 from jax import Array
 
 from ..sensing import UnitMove
@@ -40,14 +42,19 @@ class Hybrid(HomingMethod):
         help="DELV's largest RMS residual (Eq 3.5) taken as converged",
     )
 
+    def landmark_answer(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array, Array]:
+        """(DELV's angle, its validity, whether its matching converged: valid, as many blobs as the
+        home record, RMS residual of Eq 3.5 at most `rms_max`)."""
+        a_delv, v_delv, fit = self.landmarks.fit(home, view)
+        # var is a difference of sums: rounding can leave it a hair below 0 where the fit is exact
+        rms = jnp.sqrt(jnp.maximum(fit["var"], 0.0) / jnp.maximum(fit["n"], 1))
+        return a_delv, v_delv, v_delv & (fit["n_home"] == fit["n_current"]) & (rms <= self.rms_max)
+
     def choice(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array, Array]:
         """(angle, valid, whether DELV's answer was taken)."""
-        a_delv, v_delv, fit = self.landmarks.fit(home, view)
-        rms = jnp.sqrt(fit["var"] / jnp.maximum(fit["n"], 1))
-        converged = v_delv & (fit["n_home"] == fit["n_current"]) & (rms <= self.rms_max)
+        a_delv, v_delv, converged = self.landmark_answer(home, view)
         a_img, v_img = self.image(home, view)
-        use_delv = converged | ~v_img
-        return jnp.where(use_delv, a_delv, a_img), jnp.where(use_delv, v_delv, v_img), use_delv
+        return combine(a_delv, v_delv, converged, a_img, v_img)
 
     def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
         angle, valid, _ = self.choice(home, view)
@@ -70,3 +77,30 @@ class Hybrid(HomingMethod):
 
     def parts(self) -> dict[str, HomingMethod]:
         return {"landmarks": self.landmarks, "image": self.image}
+
+
+def combine(a_delv, v_delv, converged, a_img, v_img) -> tuple:
+    """The hybrid's (answer, valid, DELV taken) from its parts' answers, elementwise (NumPy or JAX
+    arrays alike): DELV's where it converged or the image method's is invalid, else the image method's.
+    `answer` may be any per-point quantity of the two (an angle, a world direction, an error)."""
+    xp = jnp if any(isinstance(x, jax.Array) for x in (a_delv, v_delv, converged, a_img, v_img)) else np
+    use_delv = converged | ~v_img
+    return xp.where(use_delv, a_delv, a_img), xp.where(use_delv, v_delv, v_img), use_delv
+
+
+class HybridGate(HomingMethod):
+    """DELV's answer where the hybrid takes it because DELV converged, invalid elsewhere
+    (docs/model.md §4.8). With the image method's own map, `combine` gives the hybrid's map without
+    searching the image method's hypotheses a second time (the `hybrid` study)."""
+
+    hybrid: Hybrid = Hybrid()
+
+    def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
+        a_delv, _, converged = self.hybrid.landmark_answer(home, view)
+        return a_delv, converged
+
+    def reads_start_view(self) -> bool:
+        return True
+
+    def parts(self) -> dict[str, HomingMethod]:
+        return {"hybrid": self.hybrid}
