@@ -78,7 +78,9 @@ def hybrid_map(delv: VectorMap, gate: VectorMap, image: VectorMap) -> VectorMap:
     conv, v_delv, v_img = (np.asarray(m.valid) for m in (gate, delv, image))
     direction, valid, _ = combine(np.asarray(delv.direction), v_delv, conv, np.asarray(image.direction), v_img)
     error, _, _ = combine(np.asarray(delv.error_deg), v_delv, conv, np.asarray(image.error_deg), v_img)
-    return dataclasses.replace(delv, direction=jnp.asarray(direction), valid=jnp.asarray(valid), error_deg=jnp.asarray(error))
+    return dataclasses.replace(
+        delv, direction=jnp.asarray(direction), valid=jnp.asarray(valid), error_deg=jnp.asarray(error)
+    )
 
 
 def evaluate(db, vm, seed: int) -> dict:
