@@ -17,7 +17,6 @@ from itertools import combinations
 
 import equinox as eqx
 import jax
-import jax.numpy as jnp
 import numpy as np
 
 from delvjax.core.maps import VectorMap
@@ -75,12 +74,9 @@ def maps(db, full, world: str) -> dict:
 def hybrid_map(delv: VectorMap, gate: VectorMap, image: VectorMap) -> VectorMap:
     """The hybrid's map (docs/model.md §4.8) from DELV's, the `HybridGate`'s (valid where DELV
     converged) and the image method's, point by point as `Hybrid` chooses (`hybrid.combine`)."""
-    conv, v_delv, v_img = (np.asarray(m.valid) for m in (gate, delv, image))
-    direction, valid, _ = combine(np.asarray(delv.direction), v_delv, conv, np.asarray(image.direction), v_img)
-    error, _, _ = combine(np.asarray(delv.error_deg), v_delv, conv, np.asarray(image.error_deg), v_img)
-    return dataclasses.replace(
-        delv, direction=jnp.asarray(direction), valid=jnp.asarray(valid), error_deg=jnp.asarray(error)
-    )
+    direction, valid, _ = combine(delv.direction, delv.valid, gate.valid, image.direction, image.valid)
+    error, _, _ = combine(delv.error_deg, delv.valid, gate.valid, image.error_deg, image.valid)
+    return dataclasses.replace(delv, direction=direction, valid=valid, error_deg=error)
 
 
 def evaluate(db, vm, seed: int) -> dict:

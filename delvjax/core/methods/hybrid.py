@@ -12,9 +12,7 @@ would compute both anyway).
 
 from __future__ import annotations
 
-import jax
 import jax.numpy as jnp
-import numpy as np
 from jax import Array
 
 from ..sensing import UnitMove
@@ -80,12 +78,11 @@ class Hybrid(HomingMethod):
 
 
 def combine(a_delv, v_delv, converged, a_img, v_img) -> tuple:
-    """The hybrid's (answer, valid, DELV taken) from its parts' answers, elementwise (NumPy or JAX
-    arrays alike): DELV's where it converged or the image method's is invalid, else the image method's.
-    `answer` may be any per-point quantity of the two (an angle, a world direction, an error)."""
-    xp = jnp if any(isinstance(x, jax.Array) for x in (a_delv, v_delv, converged, a_img, v_img)) else np
+    """The hybrid's (answer, valid, DELV taken) from its parts' answers, elementwise: DELV's where it
+    converged or the image method's is invalid, else the image method's. `answer` may be any per-point
+    quantity of the two (an angle, a world direction, an error)."""
     use_delv = converged | ~v_img
-    return xp.where(use_delv, a_delv, a_img), xp.where(use_delv, v_delv, v_img), use_delv
+    return jnp.where(use_delv, a_delv, a_img), jnp.where(use_delv, v_delv, v_img), use_delv
 
 
 class HybridGate(HomingMethod):
