@@ -13,9 +13,15 @@ from delvjax.options._registry import METHODS
 from delvjax.core.methods import DELV
 from delvjax.core.methods.delv import delv_direction, match_arrangement
 from delvjax.core.sensing import Snapshot, UnitMove
+from tests.cases.compiled import call, compiled
 from tests.conftest import random_landmarks
 
 jax.config.update("jax_enable_x64", False)
+
+current_vectors, end_distances, reference_vectors, start_distances = map(
+    compiled, (current_vectors, end_distances, reference_vectors, start_distances)
+)
+delv_direction, match_arrangement = compiled(delv_direction), compiled(match_arrangement)
 
 
 def exact_snapshot(points: np.ndarray, pos: np.ndarray, heading: float) -> Snapshot:
@@ -113,7 +119,7 @@ def test_exact_bearings_give_exact_position_and_heading(seed):
         np.testing.assert_allclose(np.asarray(p), x - home, atol=0.5)
         assert abs(np.angle(np.exp(1j * (float(alpha) - h)))) < 1e-5
         assert float(var) < 1.0 and int(n) == len(lms)
-        angle, valid = METHODS["delv"](exact_move(lms, home, 0.0, 50.0), view)
+        angle, valid = call(METHODS["delv"], exact_move(lms, home, 0.0, 50.0), view)
         to_home = np.arctan2(*(home - x)[::-1])
         assert bool(valid) and abs(np.angle(np.exp(1j * (h + float(angle) - to_home)))) < 1e-3
 
@@ -239,10 +245,10 @@ def test_delv_with_compass_homes_on_one_landmark():
         done += 1
         view = exact_move(lm, start, h, 50.0, compass=h)
         to_home = np.arctan2(*(home - x)[::-1])
-        angle, valid = METHODS["delv-compass"](record, view)
+        angle, valid = call(METHODS["delv-compass"], record, view)
         assert bool(valid) and abs(np.angle(np.exp(1j * (h + float(angle) - to_home)))) < 2e-3
         # the heading estimate the visual compass passes in takes the same path
         angle_v, valid_v = delv_direction(record, view, DELV(), jnp.reshape(jnp.float32(h), (1,)), min_pairs=1)
         assert bool(valid_v) and float(angle_v) == pytest.approx(float(angle), abs=1e-6)
-        angle, valid = METHODS["delv"](record, view)
+        angle, valid = call(METHODS["delv"], record, view)
         assert not bool(valid) and np.isnan(float(angle))
