@@ -11,6 +11,22 @@ from tests.twins import methods as ref
 from delvjax.core.sensor import Sensor
 from delvjax.core.methods.heading import visual_compass
 from delvjax.core.sensing import extract_blobs, render
+from tests.cases.compiled import compiled
+
+
+@compiled
+def render_poses(env, pos, heading, cfg):
+    """`render` from every pose (pos (P, 2), heading (P,)), every valid landmark."""
+    return jax.vmap(lambda p, h: render(env, env.valid, p, h, cfg))(pos, heading)
+
+
+@compiled
+def blobs_of_masks(masks, max_blobs):
+    """`extract_blobs` of every mask (M, n_pix)."""
+    return jax.vmap(lambda m: extract_blobs(m, max_blobs))(masks)
+
+
+render_one, extract_blobs_one, visual_compass_one = map(compiled, (render, extract_blobs, visual_compass))
 
 
 def _poses(seed, n=12):
@@ -24,9 +40,7 @@ def test_render_matches_reference(random_envs, background):
     agree, total = 0, 0
     for i, (lm, env) in enumerate(random_envs[:8]):
         pos, hd = _poses(i)
-        masks, grays = jax.vmap(lambda p, h: render(env, env.valid, p, h, cfg))(
-            jnp.asarray(pos, jnp.float32), jnp.asarray(hd, jnp.float32)
-        )
+        masks, grays = render_poses(env, jnp.asarray(pos, jnp.float32), jnp.asarray(hd, jnp.float32), cfg)
         for p, h, m, g in zip(pos, hd, np.asarray(masks), np.asarray(grays)):
             rm, rg = ref.render(lm, p, h, [0, 0, 1000, 1000], background)
             agree += int(np.sum(rm == m))
@@ -42,11 +56,11 @@ def test_occlusion_is_real():
     import delvjax
 
     env = delvjax.make_env(lms)
-    mask, gray = render(env, env.valid, jnp.array([500.0, 500.0]), jnp.array(0.0), Sensor())
-    mask_big_only, _ = render(env, jnp.array([True, False]), jnp.array([500.0, 500.0]), jnp.array(0.0), Sensor())
+    mask, gray = render_one(env, env.valid, jnp.array([500.0, 500.0]), jnp.array(0.0), Sensor())
+    mask_big_only, _ = render_one(env, jnp.array([True, False]), jnp.array([500.0, 500.0]), jnp.array(0.0), Sensor())
     np.testing.assert_array_equal(np.asarray(mask), np.asarray(mask_big_only))
     assert np.asarray(mask)[0] and np.asarray(gray)[0] == 1.0
-    b, v = extract_blobs(mask, 2)
+    b, v = extract_blobs_one(mask, 2)
     assert int(v.sum()) == 1 and float(b[0]) == 0.0  # centred on pixel 0 (wraps through it)
 
 
@@ -66,7 +80,7 @@ def _random_mask(rng, n=360):
 def test_blobs_match_reference():
     rng = np.random.default_rng(0)
     masks = np.stack([_random_mask(rng) for _ in range(300)])
-    bearing, valid = jax.vmap(lambda m: extract_blobs(m, 4))(jnp.asarray(masks))
+    bearing, valid = blobs_of_masks(jnp.asarray(masks), 4)
     for m, b, v in zip(masks, np.asarray(bearing), np.asarray(valid)):
         expect = ref.extract_blobs(m)
         assert v.sum() == len(expect)
@@ -77,11 +91,11 @@ def test_blobs_match_reference():
 def test_visual_compass_matches_reference_and_recovers_rotation(random_envs):
     lm, env = random_envs[3]
     cfg = Sensor()
-    _, home_gray = render(env, env.valid, env.home, jnp.array(0.0), cfg)
+    _, home_gray = render_one(env, env.valid, env.home, jnp.array(0.0), cfg)
     for h_deg in (0.0, 37.0, 200.0, 359.0):
         h = np.radians(h_deg)
-        _, gray = render(env, env.valid, env.home, jnp.array(h, jnp.float32), cfg)
-        est = float(visual_compass(home_gray, gray))
+        _, gray = render_one(env, env.valid, env.home, jnp.array(h, jnp.float32), cfg)
+        est = float(visual_compass_one(home_gray, gray))
         assert abs(ref.wrap(est - h)) < np.radians(1.01)
         _, rg = ref.render(lm, env.home, h, [0, 0, 1000, 1000])
         _, rhome = ref.render(lm, env.home, 0.0, [0, 0, 1000, 1000])

@@ -20,8 +20,21 @@ from delvjax.core.sensing import blob_runs, render
 from delvjax.core.soft.methods import soft_direction
 from delvjax.core.soft.sensing import analytic_blobs, as_unit_move, soft_home, soft_observe
 from delvjax.envs._presets import load_env, random_env
+from tests.cases.compiled import call, compiled
 
 PIXEL = 2 * np.pi / 360
+
+
+@compiled
+def _pixel_and_analytic_views(env, visible, pts, heads, sensor):
+    """The pixel path's blobs and the analytic ones at every pose (one compiled program)."""
+
+    @jax.vmap
+    def both(p, h):
+        mask, _ = render(env, visible, p, h, sensor, with_gray=False)
+        return blob_runs(mask, env.landmarks.shape[0]), analytic_blobs(env, visible, p, h)
+
+    return both(pts, heads)
 
 
 def test_analytic_views_agree_with_the_pixel_path_to_a_pixel_on_random_scenes():
@@ -33,13 +46,8 @@ def test_analytic_views_agree_with_the_pixel_path_to_a_pixel_on_random_scenes():
         heads = rng.uniform(0, 2 * np.pi, 200).astype(np.float32)
         visible = jnp.ones(env.landmarks.shape[0], bool)
         sensor = delvjax.Sensor()
-
-        @jax.vmap
-        def both(p, h):
-            mask, _ = render(env, visible, p, h, sensor, with_gray=False)
-            return blob_runs(mask, env.landmarks.shape[0]), analytic_blobs(env, visible, p, h)
-
-        (pb, pw, pv), (ab, aw, weight) = (tuple(np.asarray(x) for x in t) for t in both(pts, heads))
+        views = _pixel_and_analytic_views(env, visible, pts, heads, sensor)
+        (pb, pw, pv), (ab, aw, weight) = (tuple(np.asarray(x) for x in t) for t in views)
         for i in range(len(pts)):
             seen = weight[i] > 0.5
             lo, hi = ab[i][seen] - aw[i][seen] / 2, ab[i][seen] + aw[i][seen] / 2
@@ -252,8 +260,9 @@ def test_least_squares_refinement_removes_the_heading_grid():
 
     env, module, sensor, _, _, _ = scene_request("env1", "delv", 10.0, None, 0, n_heading=36)
     env = env.arrays()
-    home = record_home(env, jax.random.PRNGKey(0), sensor)
-    view, _ = unit_move(
+    home = call(record_home, env, jax.random.PRNGKey(0), sensor)
+    view, _ = call(
+        unit_move,
         env,
         jnp.array([450.0, 700.0]),
         jnp.float32(1.0),
@@ -261,12 +270,17 @@ def test_least_squares_refinement_removes_the_heading_grid():
         sensor,
         end_at=jnp.array([450.0, 700.0]),
     )
-    args = (*reference_vectors(home, module), *current_vectors(view, module), module.alphas(home, view))
-    _, coarse, var0, _ = match_arrangement(*args)
-    _, fine, var1, _ = refined_match(*args)
+    args = call(
+        lambda home, view, m: (*reference_vectors(home, m), *current_vectors(view, m), m.alphas(home, view)),
+        home,
+        view,
+        module,
+    )
+    _, coarse, var0, _ = call(match_arrangement, *args)
+    jitted = jax.jit(refined_match)
+    _, fine, var1, _ = jitted(*args)
     assert abs(float(coarse) - 1.0) > 0.04 and abs(float(fine) - 1.0) < 0.01 and float(var1) < float(var0)
     # two shapes in one process (an optimistix solver shared by both traces once ran the other's program)
-    jitted = jax.jit(refined_match)
     for n in (36, 18):
         alphas = 2 * np.pi * jnp.arange(n, dtype=jnp.float32) / n
         _, alpha, _, _ = jitted(*args[:4], alphas)

@@ -13,6 +13,25 @@ from delvjax.core.maps import stream_keys
 from delvjax.options._registry import METHODS
 from delvjax.core.sensing import record_home, unit_move
 from delvjax.core.sensitivity import _perturbed, bearing_jacobian, bearing_noise_gain
+from tests.cases.compiled import call, compiled
+
+
+@compiled
+def _move(env, p, h, k, cfg):
+    """The unit move ending at p (one compiled program per shape, shared by every method)."""
+    return unit_move(env, p, h, k, cfg, end_at=p)
+
+
+@compiled
+def _around(method, home, view, e):
+    """The method's direction at the current bearings + e, at them and - e."""
+    return method(home, _perturbed(view, e))[0], method(home, view)[0], method(home, _perturbed(view, -e))[0]
+
+
+@compiled
+def _noisy_angles(method, home, view, noise):
+    """The method's direction with every row of `noise` added to the current view's valid bearings."""
+    return jax.vmap(lambda n: method(home, _perturbed(view, n * view.end.valid))[0])(noise)
 
 
 @pytest.mark.parametrize("method", ["delv", "alv", "acv"])
@@ -23,19 +42,15 @@ def test_bearing_jacobian_matches_finite_differences(method):
     pts = jnp.array([[300.0, 450.0], [600.0, 560.0], [150.0, 850.0], [820.0, 200.0]])
     hd = jnp.array([0.3, 2.0, -1.0, 4.0])
     jac, blob_ok, ok = bearing_jacobian(env, pts, hd, key, cfg, METHODS[method])
-    k_home, k_views, _ = stream_keys(key)
-    home = record_home(env, k_home, cfg)
-    fn = jax.jit(METHODS[method])
-    move = jax.jit(lambda p, h, k: unit_move(env, p, h, k, cfg, end_at=p))
+    k_home, k_views, _ = call(stream_keys, key)
+    home = call(record_home, env, k_home, cfg)
     eps = 2e-4  # small enough that no discrete choice (heading grid, shift) flips
     checked = 0
     for i in range(4):
-        view, _ = move(pts[i], hd[i], jax.random.fold_in(k_views, i))
+        view, _ = _move(env, pts[i], hd[i], jax.random.fold_in(k_views, i), cfg)
         for j in np.nonzero(np.asarray(blob_ok[i]))[0]:
             e = jnp.zeros_like(view.end.bearing).at[j].set(eps)
-            plus, _ = fn(home, _perturbed(view, e))
-            centre, _ = fn(home, view)
-            minus, _ = fn(home, _perturbed(view, -e))
+            plus, centre, minus = _around(METHODS[method], home, view, e)
             fwd = float(jnp.angle(jnp.exp(1j * (plus - centre)))) / eps
             bwd = float(jnp.angle(jnp.exp(1j * (centre - minus)))) / eps
             if abs(fwd - bwd) > 0.05 * max(1.0, abs(fwd)):
@@ -50,11 +65,11 @@ def test_gain_predicts_small_noise_spread():
     env = delvjax.load_env("ring5").arrays()
     pts = jnp.array([[420.0, 430.0]])
     hd = jnp.array([0.7])
-    gain, ok = bearing_noise_gain(env, pts, hd, jax.random.PRNGKey(0), Sensor(), METHODS["alv"])
+    gain, ok = call(bearing_noise_gain, env, pts, hd, jax.random.PRNGKey(0), Sensor(), METHODS["alv"])
     sigma = np.radians(0.3)
-    view, _ = unit_move(env, pts[0], hd[0], jax.random.PRNGKey(1), Sensor(), end_at=pts[0])
-    home = record_home(env, jax.random.PRNGKey(2), Sensor())
+    view, _ = _move(env, pts[0], hd[0], jax.random.PRNGKey(1), Sensor())
+    home = call(record_home, env, jax.random.PRNGKey(2), Sensor())
     noise = sigma * jax.random.normal(jax.random.PRNGKey(3), (4000, view.end.bearing.shape[0]))
-    angles = jax.vmap(lambda n: METHODS["alv"](home, _perturbed(view, n * view.end.valid))[0])(noise)
+    angles = _noisy_angles(METHODS["alv"], home, view, noise)
     spread = float(jnp.std(jnp.angle(jnp.exp(1j * (angles - jnp.mean(angles))))))
     assert bool(ok[0]) and abs(spread / (float(gain[0]) * sigma) - 1.0) < 0.1

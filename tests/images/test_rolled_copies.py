@@ -21,17 +21,23 @@ import pytest
 
 from delvjax.core.images.database import RingDatabase, move_plan, rolled
 from delvjax.images._evaluate import database_vector_map, render_in_memory
+from tests.cases.compiled import compiled
 
 FLOAT_DEG = 0.01  # float32 rounding of the headings and twice-turned bearings (measured at most 0.0062 deg)
 
 
-def rolled_copy(db, k):
-    """Every image i rolled by k[i] whole pixels, its heading rewritten to h_i + k_i 2 pi / W."""
-    rings = db.rings
+@compiled
+def rolled_rings(rings, k, cols):
+    """`rings` with image i rolled by k[i] whole pixels, its heading rewritten to h_i + k_i 2 pi / cols."""
     k = jnp.asarray(k, jnp.int32)
     snaps = jax.vmap(rolled)(rings.snapshots, k)
-    headings = rings.headings + k.astype(jnp.float32) * jnp.float32(2 * np.pi / db.camera.cols)
-    return dataclasses.replace(db, rings=RingDatabase(snaps, rings.positions, headings))
+    headings = rings.headings + k.astype(jnp.float32) * jnp.float32(2 * np.pi / cols)
+    return RingDatabase(snaps, rings.positions, headings)
+
+
+def rolled_copy(db, k):
+    """Every image i rolled by k[i] whole pixels, its heading rewritten to h_i + k_i 2 pi / W."""
+    return dataclasses.replace(db, rings=rolled_rings(db.rings, k, db.camera.cols))
 
 
 @pytest.fixture(scope="module")

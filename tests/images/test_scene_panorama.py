@@ -16,6 +16,7 @@ from delvjax.core.images import Camera
 from delvjax.core.images.scene_panorama import scene_panorama
 from delvjax.images import render_in_memory
 from delvjax.images._render import ImageSettings
+from tests.cases.compiled import call
 
 SMALL = {"n_pix": 96, "mw_n_alpha": 32, "mw_n_psi": 32}  # a small hypothesis grid: seconds, not minutes
 
@@ -28,7 +29,7 @@ def test_a_scene_panorama_is_the_database_panorama_of_the_same_pose():
     render = scene_panorama(96)
     rings = db.rings
     for i in (0, 7, rings.positions.shape[0] - 1):
-        mine, elevations = render(env, env.valid, rings.positions[i], rings.headings[i])
+        mine, elevations = call(render, env, env.valid, rings.positions[i], rings.headings[i])
         assert mine.dtype == np.uint8 and mine.shape == (48, 96)
         np.testing.assert_array_equal(np.asarray(mine), np.asarray(rings.snapshots.panorama[i]))
         np.testing.assert_allclose(np.asarray(elevations), np.asarray(rings.snapshots.elevations[i]))
@@ -38,11 +39,11 @@ def test_a_hidden_landmark_is_missing_from_the_panorama_as_from_the_ring():
     env = delvjax.load_env("env1")
     render = scene_panorama(96)
     pos, heading = jnp.array([500.0, 300.0]), jnp.float32(0.3)
-    full, _ = render(env, env.valid, pos, heading)
+    full, _ = call(render, env, env.valid, pos, heading)
     hidden = jnp.array([True, False, True, True])
-    occluded, _ = render(env, hidden, pos, heading)
+    occluded, _ = call(render, env, hidden, pos, heading)
     without = delvjax.make_env(np.asarray(env.landmarks)[hidden], home=(500.0, 500.0), arena=(0, 0, 1000, 1000))
-    alone, _ = render(without, without.valid, pos, heading)
+    alone, _ = call(render, without, without.valid, pos, heading)
     assert not np.array_equal(np.asarray(full), np.asarray(occluded))
     np.testing.assert_array_equal(np.asarray(occluded), np.asarray(alone))
 

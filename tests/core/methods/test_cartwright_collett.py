@@ -14,9 +14,11 @@ import pytest
 from tests.twins.cc import cc_home_vector_ref, wrap
 
 from delvjax.core.methods.cartwright_collett import cc_home_vector
+from tests.cases.compiled import compiled
 
 TWO_PI = 2.0 * math.pi
 B = 6
+cc_compiled, cc_vmapped = compiled(cc_home_vector), jax.jit(jax.vmap(cc_home_vector))
 
 
 # home at the origin; cylinders (x, y, r) in cm, all on one side as in a bee's landmark array
@@ -37,7 +39,7 @@ def view(landmarks: np.ndarray, p) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def run_both(ref, cur, **kw):
-    h, ok = cc_home_vector(*map(jnp.asarray, ref), *map(jnp.asarray, cur), **kw)
+    h, ok = cc_compiled(*map(jnp.asarray, ref), *map(jnp.asarray, cur), **kw)
     h_ref, ok_ref = cc_home_vector_ref(*ref, *cur, **kw)
     return np.asarray(h), bool(ok), h_ref, ok_ref
 
@@ -90,7 +92,7 @@ def assert_same(h, ok, h_ref, ok_ref):
 # ----------------------------------------------------------------------------- (a) random vs twin
 def test_random_sets_vmapped_match_twin():
     arrs = random_sets()
-    h, ok = jax.vmap(cc_home_vector)(*map(jnp.asarray, arrs))
+    h, ok = cc_vmapped(*map(jnp.asarray, arrs))
     assert_same(np.asarray(h), np.asarray(ok), *twin_batch(arrs))
 
 
@@ -143,16 +145,14 @@ def test_rotated_view_is_tangential_and_reduces_bearing_error(eps):
     np.testing.assert_allclose(h, tangential.sum(axis=0), atol=1e-5)
     np.testing.assert_allclose(h_ref, tangential.sum(axis=0), atol=1e-12)
     np.testing.assert_allclose(
-        np.asarray(cc_home_vector(*map(jnp.asarray, snap), *map(jnp.asarray, cur), radial_weight=7.0)[0]), h, atol=1e-6
+        np.asarray(cc_compiled(*map(jnp.asarray, snap), *map(jnp.asarray, cur), radial_weight=7.0)[0]), h, atol=1e-6
     )
     # each landmark alone: a small step along its own vector shrinks its own bearing error
     # (this checks the tangential sign geometrically, on the JAX function itself)
     step = 2.0  # cm; landmarks are ~250 cm away
     for k in range(len(SCENE)):
         only = np.arange(B) == k
-        h_k, ok_k = cc_home_vector(
-            *map(jnp.asarray, (snap[0], snap[1], only)), *map(jnp.asarray, (cur[0], cur[1], only))
-        )
+        h_k, ok_k = cc_compiled(*map(jnp.asarray, (snap[0], snap[1], only)), *map(jnp.asarray, (cur[0], cur[1], only)))
         assert bool(ok_k)
         p = step * np.asarray(h_k) / np.linalg.norm(h_k)
         before, after = _bearing_errors(rotated, (0.0, 0.0), snap)[k], _bearing_errors(rotated, p, snap)[k]
@@ -196,5 +196,5 @@ def test_gradient_is_finite():
         h, _ = cc_home_vector(*args[:3], cur_bearing, *args[4:])
         return jnp.arctan2(h[1], h[0])
 
-    g = jax.grad(angle)(args[3])
+    g = jax.jit(jax.grad(angle))(args[3])
     assert np.all(np.isfinite(np.asarray(g))) and np.any(np.asarray(g) != 0)

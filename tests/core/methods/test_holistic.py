@@ -27,6 +27,7 @@ from delvjax.core.methods import mfdid, warping
 from delvjax.core.sensing import render
 from tests.twins.methods import render as ref_render
 from tests.twins.methods import wrap
+from tests.cases.compiled import call, compiled
 
 KEY = jax.random.PRNGKey(0)
 
@@ -42,15 +43,25 @@ def random_points(env_lm: np.ndarray, n: int, seed: int) -> tuple[np.ndarray, np
     return np.array(pts, np.float32), rng.uniform(0, 2 * math.pi, n).astype(np.float32)
 
 
-def views(env, points, headings, cfg: Sensor) -> tuple[np.ndarray, np.ndarray]:
-    """The library's ring images: home (n_pix,) and current (P, n_pix) in `cfg.channel`."""
+@compiled
+def _views(env, points, headings, cfg: Sensor):
     channel = 0 if cfg.channel == "mask" else 1
     everything = jnp.ones(env.landmarks.shape[0], bool)
     home = render(env, everything, env.home, jnp.float32(cfg.alpha_r), cfg)[channel]
-    here = jax.vmap(lambda p, h: render(env, everything, p, h, cfg)[channel])(
-        jnp.asarray(points), jnp.asarray(headings)
-    )
+    here = jax.vmap(lambda p, h: render(env, everything, p, h, cfg)[channel])(points, headings)
+    return home, here
+
+
+def views(env, points, headings, cfg: Sensor) -> tuple[np.ndarray, np.ndarray]:
+    """The library's ring images: home (n_pix,) and current (P, n_pix) in `cfg.channel`."""
+    home, here = _views(env, jnp.asarray(points), jnp.asarray(headings), cfg)
     return np.asarray(home), np.asarray(here)
+
+
+@compiled
+def search_all(S, C, method):
+    """`warping.search(S, c, method)` for every row c of C."""
+    return jax.vmap(lambda c: warping.search(S, c, method))(C)
 
 
 # --- the warp table and its rounding rule ------------------------------------------------
@@ -80,10 +91,10 @@ def test_rotated_words_are_the_packed_rotations():
     rng = np.random.default_rng(3)
     mask = rng.random(360) < 0.3
     shifts = jnp.arange(72) * 5
-    words = np.asarray(warping.rotated_words(jnp.asarray(mask), shifts))
+    words = np.asarray(call(warping.rotated_words, jnp.asarray(mask), shifts))
     for m in (0, 1, 37, 71):
         rolled = np.roll(mask, 5 * m)  # C(g - s)
-        assert np.array_equal(words[m], np.asarray(warping.pack_bits(jnp.asarray(rolled))))
+        assert np.array_equal(words[m], np.asarray(call(warping.pack_bits, jnp.asarray(rolled))))
 
 
 # --- analytic: the warp equation where it is exact ---------------------------------------
@@ -145,7 +156,7 @@ def test_mfdid_home_vector_is_minus_the_gradient_of_the_image_distance():
     S = image(np.zeros(2))
     x = np.array([20.0, -15.0])
     C = image(x)
-    h = np.asarray(mfdid.home_vector(jnp.asarray(S, jnp.float32), jnp.asarray(C, jnp.float32), jnp.float32(0.0)))
+    h = np.asarray(call(mfdid.home_vector, jnp.asarray(S, jnp.float32), jnp.asarray(C, jnp.float32), jnp.float32(0.0)))
     eps = 0.5
     grad = np.array(
         [
@@ -177,7 +188,7 @@ def test_warping_mask_search_equals_the_twin_exactly(hyp, cases):
         S, C = views(env, pts, heads, cfg)
         s_ref, _ = ref_render(lm, np.asarray(env.home, float), 0.0, np.asarray(env.arena))
         assert np.array_equal(s_ref, S)  # the twin would render the same home image
-        dist = jax.vmap(lambda c: warping.search(jnp.asarray(S), c, method))(jnp.asarray(C))[0]
+        dist = search_all(jnp.asarray(S), jnp.asarray(C), method)[0]
         lib_dir, lib_valid = maps.homing_directions(env, jnp.asarray(pts), jnp.asarray(heads), KEY, cfg, method)
         assert np.all(np.asarray(lib_valid))
         for i in range(n):
@@ -195,7 +206,7 @@ def test_warping_gray_search_matches_the_twin():
     env = delvjax.make_env(lm)
     pts, heads = random_points(lm, 3, 5)
     S, C = views(env, pts, heads, cfg)
-    dist, a, r, m = jax.vmap(lambda c: warping.search(jnp.asarray(S), c, Warping()))(jnp.asarray(C))
+    dist, a, r, m = search_all(jnp.asarray(S), jnp.asarray(C), Warping())
     agree = 0
     for i in range(len(pts)):
         ref_dist, ra, rr, rm = rh.warping_search(S.astype(float), C[i].astype(float))
@@ -279,8 +290,8 @@ def test_mfdid_low_pass_is_identity_at_zero_and_helps_far_from_home():
     from delvjax.core.methods.mfdid import low_pass
 
     img = (jnp.arange(360) % 50 < 9).astype(jnp.float32)
-    np.testing.assert_allclose(np.asarray(low_pass(img, 0.0)), np.asarray(img), atol=1e-5)
-    assert abs(float(low_pass(img, 20.0).sum()) - float(img.sum())) < 1e-3  # mass preserved
+    np.testing.assert_allclose(np.asarray(call(low_pass, img, jnp.float32(0.0))), np.asarray(img), atol=1e-5)
+    assert abs(float(call(low_pass, img, jnp.float32(20.0)).sum()) - float(img.sum())) < 1e-3  # mass preserved
     raw = delvjax.vector_map("env1", method="mfdid", spacing=100.0)
     blurred = delvjax.vector_map("env1", method="mfdid", spacing=100.0, mfdid_blur_deg=40.0)
     inc = np.asarray(raw.included)

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import math
 
-import jax
 import jax.numpy as jnp
 import numpy as np
 import pytest
@@ -20,6 +19,7 @@ from delvjax.core.methods.minwarping import MinWarping, MinWarpingCompass
 from delvjax.core.methods.warping2d import Warping2D
 from delvjax.core.sensing import Snapshot, UnitMove
 from tests.twins import minwarping as tw
+from tests.cases.compiled import call, compiled
 
 W, H, N = 96, 12, 32  # a small panorama and hypothesis grid: the twin loops over every entry
 ELEV = np.radians(30.0 - 60.0 / H * (np.arange(H) + 0.5))
@@ -41,9 +41,45 @@ def pair(seed: int, w: int = W, h: int = H) -> tuple[np.ndarray, np.ndarray]:
     return image(), image()
 
 
+@compiled
+def stack(ss, cv, measure: str = "nsad", edges: bool = True):
+    """`sp.stack` of the two panoramas at ELEV and SCALES."""
+    return sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), measure, edges)
+
+
+@compiled
+def quantised_stack(ss, cv, stack_type: str = "uint8", edges: bool = True):
+    """The stack the search reads (`mw.quantised` of the nsad stack)."""
+    return mw.quantised(sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), "nsad", edges), "nsad", stack_type)
+
+
+inverted = compiled(sp.inverted)
+
+
+@compiled
+def match_table(stk):
+    entries = ws.min_template(W, SCALES, 2.5, 0.0, math.inf)
+    return ws.min_match(sp.arranged(stk, N, N), ws.group_steps(entries, W, N, N), N, N)
+
+
+@compiled
+def match_at(stk, alpha, psi):
+    return ws.min_match_at(stk, ws.min_template(W, SCALES, 2.5, 0.0, math.inf), alpha, psi)
+
+
+@compiled
+def mw_search(s, c, cfg):
+    return mw.search(s, c, jnp.asarray(ELEV, jnp.float32), cfg)
+
+
+@compiled
+def w2d_search(s, c, cfg):
+    return w2d.search(s, c, jnp.asarray(ELEV, jnp.float32), cfg)
+
+
 def jsearch(ss, cv, **settings):
     cfg = MinWarping(n_alpha=N, n_psi=N, **settings)
-    a, p, v = jax.jit(lambda s, c: mw.search(s, c, jnp.asarray(ELEV, jnp.float32), cfg))(ss, cv)
+    a, p, v = mw_search(ss, cv, cfg)
     return int(a), int(p), int(v)
 
 
@@ -55,22 +91,21 @@ def test_the_template_is_the_twins():
 
 def test_the_stack_and_its_swap_agree_with_the_twin():
     ss, cv = pair(0)
-    fwd = np.asarray(sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), "nsad", True))
+    fwd = np.asarray(stack(ss, cv, "nsad", True))
     np.testing.assert_allclose(fwd, tw.stack(ss, cv, ELEV, np.array(SCALES)), atol=2e-6)
     # the swapped search reads the stack of the swapped images: plane S-1-s transposed
     back = tw.stack(cv, ss, ELEV, np.array(SCALES))
-    np.testing.assert_allclose(np.asarray(sp.inverted(jnp.asarray(fwd))), back, atol=2e-6)
+    np.testing.assert_allclose(np.asarray(inverted(jnp.asarray(fwd))), back, atol=2e-6)
     for measure in ("nssd", "sad", "ssd"):
-        got = np.asarray(sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), measure, False))
+        got = np.asarray(stack(ss, cv, measure, False))
         np.testing.assert_allclose(got, tw.stack(ss, cv, ELEV, np.array(SCALES), measure, False), rtol=2e-5, atol=2e-6)
 
 
 @pytest.mark.parametrize("stack_type", ["uint8", "float32"])
 def test_the_match_table_is_the_twins(stack_type):
     ss, cv = pair(1)
-    stk = mw.quantised(sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), "nsad", True), "nsad", stack_type)
-    entries = ws.min_template(W, SCALES, 2.5, 0.0, math.inf)
-    table = ws.min_match(sp.arranged(stk, N, N), ws.group_steps(entries, W, N, N), N, N)
+    stk = quantised_stack(ss, cv, stack_type)
+    table = match_table(stk)
     twin = tw.min_match(np.asarray(stk).astype(np.float64), tw.min_template(W, np.array(SCALES), 2.5), N, N)
     if stack_type == "uint8":
         assert np.array_equal(np.asarray(table), twin)  # sums of bytes: exact
@@ -82,8 +117,8 @@ def test_the_match_table_is_the_twins(stack_type):
 def test_every_refinement_finds_the_twins_hypothesis(refine):
     for seed in (2, 3):
         ss, cv = pair(seed)
-        stk = mw.quantised(sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), "nsad", True), "nsad", "uint8")
-        stacks = (np.asarray(stk).astype(np.int64), np.asarray(sp.inverted(stk)).astype(np.int64))
+        stk = quantised_stack(ss, cv)
+        stacks = (np.asarray(stk).astype(np.int64), np.asarray(inverted(stk)).astype(np.int64))
         twin = tw.search(ss, cv, ELEV, N, N, double="double" in refine, fine="fine" in refine, stacks=stacks)
         assert jsearch(ss, cv, refine=refine) == tuple(int(t) for t in twin), (seed, refine)
 
@@ -135,7 +170,7 @@ def test_a_pure_translation_with_equal_distances_gives_alpha_exactly(alpha_px, p
     cfg = Warping2D(n_alpha=N, n_psi=N, n_rho=11, preprocess="none")  # rho = 0, 0.1, ..., 1
     for k, rho in ((1, 0.1), (3, 0.3), (5, 0.5)):
         cv = translated(ss, alpha_px, rho, psi_px)
-        a, p, r, v = w2d.search(jnp.asarray(ss), jnp.asarray(cv), jnp.asarray(ELEV, jnp.float32), cfg)
+        a, p, r, v = w2d_search(jnp.asarray(ss), jnp.asarray(cv), cfg)
         assert (int(a), int(p), int(r)) == (alpha_px, psi_px, k), rho
 
 
@@ -146,11 +181,10 @@ def test_minwarping_scores_a_pure_translation_perfectly(alpha_px, psi_px):
     nothing tells the truth from hypotheses a few pixels off (ties at 0), so the found alpha is only
     near (docs/model.md §4.7)."""
     ss = blocks(alpha_px)
-    entries = ws.min_template(W, SCALES, 2.5, 0.0, math.inf)
     for rho in (0.1, 0.3, 0.5):
         cv = translated(ss, alpha_px, rho, psi_px)
-        stk = sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), "nsad", False)
-        truth = int(ws.min_match_at(mw.quantised(stk, "nsad", "uint8"), entries, alpha_px, psi_px))
+        stk = quantised_stack(ss, cv, "uint8", False)
+        truth = int(match_at(stk, jnp.int32(alpha_px), jnp.int32(psi_px)))
         assert truth <= 2 * mw.LEVELS  # at most two columns without their own
         a, p, v = jsearch(ss, cv, preprocess="none", refine="none")
         assert v <= truth and abs((a - alpha_px + W // 2) % W - W // 2) <= 6, (rho, a)
@@ -188,12 +222,12 @@ def test_the_method_turns_the_search_into_a_home_direction_and_a_compass():
     ss, cv = pair(12)
     method = MinWarping(n_alpha=N, n_psi=N)
     a, p, _ = jsearch(ss, cv)
-    angle, valid = method(move(ss), move(cv))
+    angle, valid = call(method, move(ss), move(cv))
     assert bool(valid) and abs(float(angle) - tw.home_direction(a, p, W)) < 1e-5
-    psi = MinWarpingCompass(warping=method)(move(ss), move(cv))
+    psi = call(MinWarpingCompass(warping=method), move(ss), move(cv))
     assert abs(float(psi) - (2 * np.pi * p / W + np.pi) % (2 * np.pi) + np.pi) < 1e-5
     blank = np.zeros((H, W), np.float32)
-    angle, valid = method(move(blank), move(cv))
+    angle, valid = call(method, move(blank), move(cv))
     assert not bool(valid) and np.isnan(float(angle))
 
 
@@ -202,10 +236,8 @@ def test_2d_warping_agrees_with_the_twin():
     cfg = Warping2D(n_alpha=N, n_psi=N, n_rho=5, rho_min=0.1, rho_max=0.9)
     for seed in (13, 14):
         ss, cv = pair(seed)
-        got = jax.jit(lambda s, c: w2d.search(s, c, jnp.asarray(ELEV, jnp.float32), cfg))(ss, cv)
-        stk = np.asarray(
-            mw.quantised(sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), "nsad", True), "nsad", "uint8")
-        )
+        got = w2d_search(ss, cv, cfg)
+        stk = np.asarray(quantised_stack(ss, cv))
         twin = tw.rho_search(ss, cv, ELEV, N, N, rhos=np.array(rhos), stk=stk.astype(np.int64))
         assert tuple(int(g) for g in got) == tuple(int(t) for t in twin), seed
 

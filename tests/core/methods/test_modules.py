@@ -21,6 +21,37 @@ from delvjax.core.errors import InputError
 from delvjax.core.sensing import blob_runs, record_home, render, unit_move
 from delvjax.options._settings import make_setup
 from delvjax.options._registry import METHODS, configure, program
+from delvjax.core.kernel import direction_from, map_poses
+from tests.cases.compiled import call, compiled
+
+record_home, unit_move = compiled(record_home), compiled(unit_move)
+
+
+@compiled
+def blob_widths(env, pos, heading, sensor, max_blobs):
+    """The blobs of the mask rendered from `pos` with every valid landmark."""
+    mask, _ = render(env, env.valid, pos, heading, sensor)
+    return blob_runs(mask, max_blobs)
+
+
+@compiled
+def blob_counts(env, points):
+    """The number of blobs (at most 4) seen at each point, heading 0."""
+    return jax.vmap(lambda p: jnp.sum(blob_runs(render(env, env.valid, p, jnp.float32(0.0), Sensor())[0], 4)[2]))(
+        points
+    )
+
+
+def alv_direction(sigma, point, env):
+    """ALV's direction at `point` (heading 0.4, fixed keys) as a function of the bearing-noise sigma."""
+    visible = jnp.ones(env.landmarks.shape[0], bool)
+    sensor = eqx.tree_at(lambda s: s.noise.bearing, Sensor(), sigma)
+    home = record_home(env, jax.random.PRNGKey(0), sensor)
+    poses = map_poses(point, jnp.float32(0.4), jax.random.PRNGKey(1), 3, sensor)
+    return direction_from(env, visible, poses, home, METHODS["alv"], sensor)[0]
+
+
+alv_direction_grad, alv_direction = compiled(jax.grad(alv_direction)), compiled(alv_direction)
 
 
 def test_a_module_with_settings_gives_the_public_api_numbers_and_a_traced_setting_reuses_the_program():
@@ -87,8 +118,7 @@ def test_blob_widths_are_the_apparent_sizes_of_the_cylinders():
     sensor = Sensor()
     for x, r in ((200.0, 30.0), (350.0, 60.0), (800.0, 20.0)):
         env = delvjax.make_env([[x, 300.0, r]])
-        mask, _ = render(env.arrays(), env.valid, jnp.array([100.0, 300.0]), jnp.float32(0.3), sensor)
-        _, width, valid = blob_runs(mask, 1)
+        _, width, valid = blob_widths(env.arrays(), jnp.array([100.0, 300.0]), jnp.float32(0.3), sensor, 1)
         true = 2.0 * math.asin(r / (x - 100.0))
         assert bool(valid[0]) and abs(float(width[0]) - true) <= 2 * 2 * math.pi / sensor.n_pix
 
@@ -107,7 +137,7 @@ def test_cartwright_collett_on_rendered_views_equals_its_twin():
             sensor,
             end_at=jnp.asarray(point, jnp.float32),
         )
-        angle, valid = METHODS["cc"](home, view)
+        angle, valid = call(METHODS["cc"], home, view)
         c = float(view.compass)
         h, ok = cc_home_vector_ref(
             np.asarray(home.start.bearing),
@@ -129,9 +159,7 @@ def test_gap_aware_delv_equals_delv_where_the_counts_agree_and_helps_with_a_land
     env = delvjax.load_env("env1")
     kw = dict(spacing=100.0, seed=4)
     ref = delvjax.vector_map(env, method="delv-compass", **kw)
-    blobs = jax.vmap(
-        lambda p: jnp.sum(blob_runs(render(env.arrays(), env.valid, p, jnp.float32(0.0), Sensor())[0], 4)[2])
-    )(ref.points)
+    blobs = blob_counts(env.arrays(), ref.points)
     same = np.asarray(blobs) == env.n_landmarks
     assert same.sum() > 50
     for linear, gapped in (("delv-compass", "delv-gap-compass"), ("delv", "delv-gap")):
@@ -155,23 +183,13 @@ def test_a_sensor_field_is_differentiable_through_the_kernel():
     """`eqx.tree_at` on a sensor leaf and `jax.grad` through the per-point kernel: the derivative of
     ALV's direction with respect to the bearing-noise sigma (pathwise, fixed keys) matches central
     finite differences."""
-    from delvjax.core.kernel import direction_from, map_poses
-
     env = delvjax.load_env("env1").arrays()
-    visible = jnp.ones(env.landmarks.shape[0], bool)
-    method = METHODS["alv"]
-
-    def direction(sigma, point):
-        sensor = eqx.tree_at(lambda s: s.noise.bearing, Sensor(), sigma)
-        home = record_home(env, jax.random.PRNGKey(0), sensor)
-        poses = map_poses(point, jnp.float32(0.4), jax.random.PRNGKey(1), 3, sensor)
-        return direction_from(env, visible, poses, home, method, sensor)[0]
 
     checked = 0
     for point in (jnp.array([250.0, 700.0]), jnp.array([800.0, 300.0]), jnp.array([600.0, 850.0])):
         sigma, h = jnp.float32(0.02), 1e-3
-        grad = float(jax.grad(direction)(sigma, point))
-        fd = (float(direction(sigma + h, point)) - float(direction(sigma - h, point))) / (2 * h)
+        grad = float(alv_direction_grad(sigma, point, env))
+        fd = (float(alv_direction(sigma + h, point, env)) - float(alv_direction(sigma - h, point, env))) / (2 * h)
         assert math.isfinite(grad)
         assert abs(grad - fd) <= 0.05 * abs(fd) + 1e-3, (point, grad, fd)
         checked += abs(fd) > 1e-2
