@@ -50,7 +50,7 @@ def stack(ss, cv, measure: str = "nsad", edges: bool = True):
 @compiled
 def quantised_stack(ss, cv, stack_type: str = "uint8", edges: bool = True):
     """The stack the search reads (`mw.quantised` of the nsad stack)."""
-    return mw.quantised(sp.stack(ss, cv, jnp.asarray(ELEV), np.array(SCALES), "nsad", edges), "nsad", stack_type)
+    return mw.quantised(stack(ss, cv, "nsad", edges), "nsad", stack_type)
 
 
 inverted = compiled(sp.inverted)
