@@ -30,10 +30,6 @@ STUDIES = [
 # cold `--quick` on 2 CPU cores, 150 s of it compilation (docs/reproduce.md "Speed").
 FULL_RUN_ONLY = ("fit", "sensitivity", "layouts", "robot_images", "natural_images", "image_effects", "hybrid")
 
-# The study that compiles the rollout program every other simulation study shares (`common.PROGRAM`):
-# it runs before the others start side by side, so that two of them do not compile it at once.
-FIRST = ("no_compass",)
-
 # Rough seconds of each study in a full run on 2 CPU cores, two side by side (measured 2026-12-04,
 # `benchmarks/bench_reproduce.py`): only the order in which studies side by side are started,
 # the longest first, so that a long one does not start last. A study missing here starts last.

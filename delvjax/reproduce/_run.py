@@ -142,14 +142,11 @@ def default_workers() -> int:
 MAX_WORKERS = 4
 
 
-def schedule(names: list[str]) -> tuple[list[str], list[str]]:
-    """(studies run first, one at a time; the rest, longest first): `studies.FIRST` compiles the programs
-    the others share, then `studies.FULL_RUN_SECONDS` orders the others (docs/reproduce.md "Speed")."""
+def schedule(names: list[str]) -> list[str]:
+    """The studies longest first (`studies.FULL_RUN_SECONDS`), all of them side by side: two studies that
+    need the same new program wait for one compilation of it (docs/reproduce.md "Speed")."""
     package = importlib.import_module(STUDIES)
-    first = [n for n in names if n in package.FIRST]
-    rest = [n for n in names if n not in first]
-    rest.sort(key=lambda n: -package.FULL_RUN_SECONDS.get(n, 0))  # stable: registry order among equals
-    return first, rest
+    return sorted(names, key=lambda n: -package.FULL_RUN_SECONDS.get(n, 0))  # stable: registry order among equals
 
 
 @contextmanager
@@ -251,7 +248,7 @@ def reproduce(
     records, ran = {}, []
     t0 = time.perf_counter()
     completions = []
-    first, rest = schedule(names)
+    order = schedule(names)
 
     def one(name: str) -> None:
         rec, did, done = run_study(
@@ -265,11 +262,8 @@ def reproduce(
         bar.update(1)
 
     with _bars(len(names), progress) as bar, ThreadPoolExecutor(1, thread_name_prefix="figures") as painter:
-        for name in first:  # compiles the shared programs alone
-            bar.set_postfix_str(name)
-            one(name)
-        bar.set_postfix_str(f"{min(workers, len(rest))} side by side" if rest else "")
-        _side_by_side(one, rest, workers)
+        bar.set_postfix_str(f"{min(workers, len(order))} side by side")
+        _side_by_side(one, order, workers)
         for done in completions:  # figures and study.json files written; a failure is raised here
             if done is not None:
                 done.result()

@@ -35,6 +35,15 @@ MASK_ROWS = 64  # visibility masks are padded to this many rows (all k of 6 land
 
 
 PATH_BUDGET = 1 << 24  # positions kept per block when paths are recorded (128 MB)
+# Up to this many positions a trial (max_steps + 1; the default max_steps 50 gives 51), every block keeps
+# the paths (at most 16384 x 64 x 2 float32 = 8 MB), so catchments, success rates and trajectories are
+# one compiled program; a longer rollout keeps them only for trajectories (docs/reproduce.md).
+SHARED_PATH_STEPS = 64
+
+
+def keeps_paths(max_steps: int, record_paths: bool = False) -> bool:
+    """Whether the blocks of a rollout keep their paths: asked for, or cheap enough to share one program."""
+    return record_paths or max_steps + 1 <= SHARED_PATH_STEPS
 
 
 def trial_block(n: int, max_steps: int = MAX_STEPS, record_paths: bool = False) -> int:
@@ -129,11 +138,12 @@ def run_trials(
     `methods.Program`. `progress(done, T)` is called after each block.
     """
     check_rules(first_move, collisions)
+    keep = keeps_paths(max_steps, record_paths)
     n = int(starts.shape[0])
     if n == 0:
         raise InputError("starts", 0, "no trials to run")
     mesh = local_mesh()
-    block = -(-trial_block(n, max_steps, record_paths) // n_devices(mesh)) * n_devices(mesh)
+    block = -(-trial_block(n, max_steps, keep) // n_devices(mesh)) * n_devices(mesh)
     padded = -(-n // block) * block
     # host-side padding and slicing (NumPy): no eager device op, so no compilation per shape
     pad = lambda a, m, dtype: np.concatenate([np.asarray(a, dtype), np.repeat(np.asarray(a, dtype)[:1], m, axis=0)])  # noqa: E731
@@ -163,14 +173,14 @@ def run_trials(
         )
         n_valid = min(block, n - i)
         if mesh is None:
-            res = run_block(rollout, starts[rows], headings[rows], np.int32(n_valid), lanes, record_paths)
+            res = run_block(rollout, starts[rows], headings[rows], np.int32(n_valid), lanes, keep)
         else:  # device d runs trials [d q, (d + 1) q) of the block, q = ceil(n_valid / D): whole trials, same program
             take, counts, keep = device_split(n_valid, mesh.size, per_device)
             shared = eqx.tree_at(
                 lambda r: (r.key_index, r.mask_index), rollout, (None, None), is_leaf=lambda x: x is None
             )
             res = over_devices(
-                device_block(-(-lanes // mesh.size), record_paths),
+                device_block(-(-lanes // mesh.size), keep),
                 mesh,
                 1,
                 shared,

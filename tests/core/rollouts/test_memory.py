@@ -56,3 +56,26 @@ def test_rollouts_that_could_run_for_hours_are_refused_with_the_estimate(command
     with pytest.raises(InputError) as exc:
         getattr(delvjax, command)("env1", max_steps=HUGE, **kw)
     assert exc.value.field == "max_steps" and "moves" in str(exc.value) and " h on 2 CPU cores" in str(exc.value)
+
+
+def test_catchments_success_rates_and_trajectories_share_one_program(monkeypatch):
+    """With the default max_steps every block keeps its paths (trials.SHARED_PATH_STEPS), so the three
+    commands call run_block with the same static arguments and shapes: one compilation serves them."""
+    seen = {}
+    real = trials.run_block
+
+    def spy(rollout, starts, headings, n_valid, lanes, record_paths=False):
+        shapes = jax.eval_shape(
+            partial(real, lanes=lanes, record_paths=record_paths), rollout, starts, headings, n_valid
+        )
+        seen[command] = (starts.shape, lanes, record_paths, shapes.path.shape)
+        raise Stop
+
+    monkeypatch.setattr(trials, "run_block", spy)
+    kw = {"catchment": dict(spacing=200.0), "success_rate": dict(distances=[100.0], trials=4)}
+    for command in ("catchment", "success_rate", "trajectories"):
+        with pytest.raises(Stop):
+            getattr(delvjax, command)("env1", method="alv", **kw.get(command, dict(starts=[(300.0, 300.0)])))
+    assert len(set(seen.values())) == 1, seen
+    ((starts, _, kept, path),) = set(seen.values())
+    assert kept and path == (starts[0], trials.MAX_STEPS + 1, 2)
