@@ -19,7 +19,7 @@ from delvjax.core import maps
 from delvjax.core.sensitivity import bearing_noise_gain
 from delvjax.core.sensor import Sensor
 from delvjax.plots._maps import draw_env, subplots
-from delvjax.options._registry import METHODS as REGISTRY
+from delvjax.options._registry import METHODS as REGISTRY, program
 from delvjax.gradients._sensitivity import sensitivity
 from delvjax.plots._gradients import landmark_figure, parameter_figure
 
@@ -29,6 +29,15 @@ from delvjax.cli._main import main as cli
 TITLE = "Sensitivity of homing loss: landmarks, d and noise (gradients; beyond the thesis)"
 STEPS = 5
 GAIN_METHODS = ("delv", "delv-compass", "alv", "acv")
+# One compiled Jacobian program for these (a `Program`: 18.0 -> 7.1 s for the four maps, cold, 2 cores;
+# docs/reproduce.md "One compiled rollout program"). ACV keeps its own: in the shared program its gains differ in the last bit
+# (4.8e-7 deg/deg), and no number moves for speed.
+GAIN_PROGRAM = ("delv", "delv-compass", "alv")
+
+
+def gain_method(name: str):
+    """The method whose gain map is drawn: in the shared program of GAIN_PROGRAM, or on its own."""
+    return program(name, GAIN_PROGRAM)[0] if name in GAIN_PROGRAM else REGISTRY[name]
 
 
 def gain_figure(e, spacing: float, seed: int):
@@ -41,7 +50,7 @@ def gain_figure(e, spacing: float, seed: int):
     rows, n = [], int(round(np.sqrt(pts.shape[0])))
     xmin, ymin, xmax, ymax = np.asarray(e.arena)
     for ax, m in zip(axes[0], GAIN_METHODS):
-        gain, ok = (np.asarray(a) for a in bearing_noise_gain(e, pts, headings, key, Sensor(), REGISTRY[m]))
+        gain, ok = (np.asarray(a) for a in bearing_noise_gain(e, pts, headings, key, Sensor(), gain_method(m)))
         ok = ok & inc
         rows.append(
             {"method": m, "median_gain": float(np.median(gain[ok])), "p90_gain": float(np.percentile(gain[ok], 90))}

@@ -13,6 +13,7 @@ from delvjax.core.maps import stream_keys
 from delvjax.options._registry import METHODS
 from delvjax.core.sensing import record_home, unit_move
 from delvjax.core.sensitivity import _perturbed, bearing_jacobian, bearing_noise_gain
+from delvjax.studies.runs.sensitivity import GAIN_PROGRAM, gain_method
 from tests.cases.compiled import call, compiled
 
 
@@ -41,7 +42,7 @@ def test_bearing_jacobian_matches_finite_differences(method):
     key = jax.random.PRNGKey(5)
     pts = jnp.array([[300.0, 450.0], [600.0, 560.0], [150.0, 850.0], [820.0, 200.0]])
     hd = jnp.array([0.3, 2.0, -1.0, 4.0])
-    jac, blob_ok, ok = bearing_jacobian(env, pts, hd, key, cfg, METHODS[method])
+    jac, blob_ok, ok = bearing_jacobian(env, pts, hd, key, cfg, gain_method(method))  # as the study draws it
     k_home, k_views, _ = call(stream_keys, key)
     home = call(record_home, env, k_home, cfg)
     eps = 2e-4  # small enough that no discrete choice (heading grid, shift) flips
@@ -58,6 +59,19 @@ def test_bearing_jacobian_matches_finite_differences(method):
             assert abs(0.5 * (fwd + bwd) - float(jac[i, j])) < 0.05 * max(1.0, abs(fwd)), (i, j, fwd, float(jac[i, j]))
             checked += 1
     assert bool(ok.all()) and checked >= 8
+
+
+def test_gain_maps_in_the_shared_program_equal_each_method_on_its_own():
+    """The study's gain maps run DELV (with and without compass) and ALV in one compiled program; their
+    Jacobians equal those of each method's own program bit for bit."""
+    env = delvjax.load_env("env1").arrays()
+    pts = jnp.array([[300.0, 450.0], [600.0, 560.0], [150.0, 850.0], [820.0, 200.0]])
+    hd = jnp.array([0.3, 2.0, -1.0, 4.0])
+    assert "alv" in GAIN_PROGRAM and type(gain_method("alv")).__name__ == "Program"
+    shared = bearing_jacobian(env, pts, hd, jax.random.PRNGKey(5), Sensor(), gain_method("alv"))
+    own = bearing_jacobian(env, pts, hd, jax.random.PRNGKey(5), Sensor(), METHODS["alv"])
+    for a, b in zip(shared, own):
+        np.testing.assert_array_equal(np.asarray(a), np.asarray(b))
 
 
 def test_gain_predicts_small_noise_spread():
