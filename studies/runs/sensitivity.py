@@ -30,8 +30,8 @@ TITLE = "Sensitivity of homing loss: landmarks, d and noise (gradients; beyond t
 STEPS = 5
 GAIN_METHODS = ("delv", "delv-compass", "alv", "acv")
 # One compiled Jacobian program for these (a `Program`: 18.0 -> 7.1 s for the four maps, cold, 2 cores;
-# docs/reproduce.md "One compiled rollout program"). ACV keeps its own: in the shared program its gains differ in the last bit
-# (4.8e-7 deg/deg), and no number moves for speed.
+# docs/reproduce.md "One compiled rollout program"). ACV keeps its own: in the shared program its gains
+# differ in the last bit (4.8e-7 deg/deg), and no number moves for speed.
 GAIN_PROGRAM = ("delv", "delv-compass", "alv")
 
 
