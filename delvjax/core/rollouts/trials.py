@@ -43,7 +43,7 @@ SHARED_PATH_STEPS = 64
 
 def keeps_paths(max_steps: int, record_paths: bool = False) -> bool:
     """Whether the blocks of a rollout keep their paths: asked for, or cheap enough to share one program."""
-    return record_paths or max_steps + 1 <= SHARED_PATH_STEPS
+    return bool(record_paths) or max_steps + 1 <= SHARED_PATH_STEPS
 
 
 def trial_block(n: int, max_steps: int = MAX_STEPS, record_paths: bool = False) -> int:
@@ -138,12 +138,12 @@ def run_trials(
     `methods.Program`. `progress(done, T)` is called after each block.
     """
     check_rules(first_move, collisions)
-    keep = keeps_paths(max_steps, record_paths)
+    paths = keeps_paths(max_steps, record_paths)  # the blocks' static flag (device_split's `keep` is another)
     n = int(starts.shape[0])
     if n == 0:
         raise InputError("starts", 0, "no trials to run")
     mesh = local_mesh()
-    block = -(-trial_block(n, max_steps, keep) // n_devices(mesh)) * n_devices(mesh)
+    block = -(-trial_block(n, max_steps, paths) // n_devices(mesh)) * n_devices(mesh)
     padded = -(-n // block) * block
     # host-side padding and slicing (NumPy): no eager device op, so no compilation per shape
     pad = lambda a, m, dtype: np.concatenate([np.asarray(a, dtype), np.repeat(np.asarray(a, dtype)[:1], m, axis=0)])  # noqa: E731
@@ -173,14 +173,14 @@ def run_trials(
         )
         n_valid = min(block, n - i)
         if mesh is None:
-            res = run_block(rollout, starts[rows], headings[rows], np.int32(n_valid), lanes, keep)
+            res = run_block(rollout, starts[rows], headings[rows], np.int32(n_valid), lanes, paths)
         else:  # device d runs trials [d q, (d + 1) q) of the block, q = ceil(n_valid / D): whole trials, same program
             take, counts, keep = device_split(n_valid, mesh.size, per_device)
             shared = eqx.tree_at(
                 lambda r: (r.key_index, r.mask_index), rollout, (None, None), is_leaf=lambda x: x is None
             )
             res = over_devices(
-                device_block(-(-lanes // mesh.size), keep),
+                device_block(-(-lanes // mesh.size), paths),
                 mesh,
                 1,
                 shared,
