@@ -1,6 +1,7 @@
-"""Rollout memory does not grow with max_steps unless the paths are kept (docs/reliability.md): a catchment
-or success-rate block records no path; trajectories record every position, and their size is refused
-before any work above its limit."""
+"""Rollout memory does not grow with max_steps unless the paths are kept (docs/reliability.md): past
+`trials.SHARED_PATH_STEPS` positions a catchment or success-rate block records no path (below it every block
+keeps them, at most 8 MB, and the three commands share one program); trajectories record every position,
+and their size is refused before any work above its limit."""
 
 from __future__ import annotations
 
