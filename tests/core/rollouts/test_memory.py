@@ -21,25 +21,32 @@ class Stop(Exception):
     """Raised by the spy once it has seen the block's shapes: nothing is compiled or run."""
 
 
-@pytest.mark.parametrize("command", ["catchment", "success_rate", "trajectories"])
-def test_only_trajectories_record_paths(monkeypatch, command):
+KW = {"catchment": dict(spacing=200.0), "success_rate": dict(distances=[100.0], trials=4)}  # trajectories: STARTS
+STARTS = dict(starts=[(300.0, 300.0)])
+RUN_BLOCK = trials.run_block  # the real one (a spy replaces it during a test)
+
+
+def block_of(monkeypatch, command: str, **options) -> tuple:
+    """The first block `delvjax.<command>("env1", ...)` would run, from a spy on `run_block` that stops before
+    any compilation: (starts shape, lanes, record_paths, the path's shape)."""
     seen = []
-    real = trials.run_block
 
     def spy(rollout, starts, headings, n_valid, lanes, record_paths=False):
         shapes = jax.eval_shape(
-            partial(real, lanes=lanes, record_paths=record_paths), rollout, starts, headings, n_valid
+            partial(RUN_BLOCK, lanes=lanes, record_paths=record_paths), rollout, starts, headings, n_valid
         )
-        seen.append((starts.shape[0], shapes.path.shape))
+        seen.append((starts.shape, lanes, record_paths, shapes.path.shape))
         raise Stop
 
     monkeypatch.setattr(trials, "run_block", spy)
-    kw = {"catchment": dict(spacing=200.0), "success_rate": dict(distances=[100.0], trials=4)}.get(
-        command, dict(starts=[(300.0, 300.0)])
-    )
     with pytest.raises(Stop):
-        getattr(delvjax, command)("env1", max_steps=HUGE, **kw)
-    ((block, path),) = seen
+        getattr(delvjax, command)("env1", **KW.get(command, STARTS), **options)
+    return seen[0]
+
+
+@pytest.mark.parametrize("command", ["catchment", "success_rate", "trajectories"])
+def test_only_trajectories_record_paths(monkeypatch, command):
+    (block, *_), _, _, path = block_of(monkeypatch, command, max_steps=HUGE)
     assert path == ((block, HUGE + 1, 2) if command == "trajectories" else (block, 1, 2))
 
 
@@ -62,21 +69,7 @@ def test_rollouts_that_could_run_for_hours_are_refused_with_the_estimate(command
 def test_catchments_success_rates_and_trajectories_share_one_program(monkeypatch):
     """With the default max_steps every block keeps its paths (trials.SHARED_PATH_STEPS), so the three
     commands call run_block with the same static arguments and shapes: one compilation serves them."""
-    seen = {}
-    real = trials.run_block
-
-    def spy(rollout, starts, headings, n_valid, lanes, record_paths=False):
-        shapes = jax.eval_shape(
-            partial(real, lanes=lanes, record_paths=record_paths), rollout, starts, headings, n_valid
-        )
-        seen[command] = (starts.shape, lanes, record_paths, shapes.path.shape)
-        raise Stop
-
-    monkeypatch.setattr(trials, "run_block", spy)
-    kw = {"catchment": dict(spacing=200.0), "success_rate": dict(distances=[100.0], trials=4)}
-    for command in ("catchment", "success_rate", "trajectories"):
-        with pytest.raises(Stop):
-            getattr(delvjax, command)("env1", method="alv", **kw.get(command, dict(starts=[(300.0, 300.0)])))
+    seen = {c: block_of(monkeypatch, c, method="alv") for c in ("catchment", "success_rate", "trajectories")}
     assert len(set(seen.values())) == 1, seen
     ((starts, _, kept, path),) = set(seen.values())
     assert kept and path == (starts[0], trials.MAX_STEPS + 1, 2)
