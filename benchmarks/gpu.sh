@@ -16,7 +16,9 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 OUT="${OUT:-$(mktemp -d)}"
 mkdir -p "$OUT/logs"
-python -c "import jax; print('jax', jax.__version__, 'on', jax.devices()[0].platform, jax.devices()[0].device_kind)" \
+# every step under `timeout -k`: a process stuck in a driver call ignores SIGTERM, and plain `timeout` then
+# waits for it forever (2026-12-04, an H200: the whole script ran into the device call's limit with no line out)
+timeout -k 5 60 python -c "import jax; print('jax', jax.__version__, 'on', jax.devices()[0].platform, jax.devices()[0].device_kind)" \
   | tee "$OUT/logs/device.txt"
 
 run() {  # name, time limit (s), command...; GPU_PARTS="a b" runs only the parts named
@@ -24,9 +26,10 @@ run() {  # name, time limit (s), command...; GPU_PARTS="a b" runs only the parts
   shift 2
   case " ${GPU_PARTS:-$name} " in *" $name "*) ;; *) return ;; esac
   local t0=$SECONDS
-  timeout "$limit" "$@" > "$OUT/logs/$name.txt" 2>&1
+  timeout -k 10 "$limit" "$@" > "$OUT/logs/$name.txt" 2>&1
   local rc=$?
   echo "$name|$rc|$((SECONDS - t0))" >> "$OUT/parts.txt"
+  echo "done: $name, exit $rc, $((SECONDS - t0)) s; last line: $(tail -1 "$OUT/logs/$name.txt")"  # progress as it comes
 }
 
 : > "$OUT/parts.txt"
