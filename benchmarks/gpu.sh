@@ -14,10 +14,23 @@
 # MinWarping and 2D-Warping 40 x 40 maps (288 x 48 panoramas, 96 x 96 hypotheses).
 set -uo pipefail
 cd "$(dirname "$0")/.."
-OUT="${OUT:-$(mktemp -d)}"
+# GPU_OUT, not OUT: the device tool sets OUT to the folder it sends back (at most 8 files), and
+# `reproduce --quick` alone writes hundreds
+OUT="${GPU_OUT:-$(mktemp -d)}"
 mkdir -p "$OUT/logs"
+# a bare accelerator machine: no `python` on PATH (only python3, a virtual environment's), no network, and
+# JAX taking 75 % of the GPU's memory in each process (the sweep's two processes would not both fit)
+if ! command -v python > /dev/null; then
+  mkdir -p "$OUT/bin" && printf '#!/bin/sh\nexec %s "$@"\n' "$(command -v python3)" > "$OUT/bin/python"
+  chmod +x "$OUT/bin/python" && export PATH="$OUT/bin:$PATH"
+fi
+timeout -k 5 120 python -c "import delvjax.studies" 2> /dev/null \
+  || timeout -k 5 120 python -m pip install -q --no-index --no-deps --no-build-isolation -e . > "$OUT/logs/install.txt" 2>&1 \
+  || echo "delvjax is not installed and pip could not install it (see $OUT/logs/install.txt)"
+export XLA_PYTHON_CLIENT_PREALLOCATE="${XLA_PYTHON_CLIENT_PREALLOCATE:-false}" PYTHONUNBUFFERED=1
 # every step under `timeout -k`: a process stuck in a driver call ignores SIGTERM, and plain `timeout` then
-# waits for it forever (2026-12-04, an H200: the whole script ran into the device call's limit with no line out)
+# waits for it forever (suspected on 2026-12-04 on an H200: the script ran into the device call's limit
+# with no line out; nothing came back to tell)
 timeout -k 5 60 python -c "import jax; print('jax', jax.__version__, 'on', jax.devices()[0].platform, jax.devices()[0].device_kind)" \
   | tee "$OUT/logs/device.txt"
 
