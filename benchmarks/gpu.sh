@@ -24,9 +24,13 @@ if ! command -v python > /dev/null; then
   mkdir -p "$OUT/bin" && printf '#!/bin/sh\nexec %s "$@"\n' "$(command -v python3)" > "$OUT/bin/python"
   chmod +x "$OUT/bin/python" && export PATH="$OUT/bin:$PATH"
 fi
-timeout -k 5 120 python -c "import delvjax.studies" 2> /dev/null \
-  || timeout -k 5 120 python -m pip install -q --no-index --no-deps --no-build-isolation -e . > "$OUT/logs/install.txt" 2>&1 \
-  || echo "delvjax is not installed and pip could not install it (see $OUT/logs/install.txt)"
+if ! timeout -k 5 120 python -c "import delvjax.studies" 2> /dev/null \
+  && ! timeout -k 5 120 python -m pip install -q --no-index --no-deps --no-build-isolation -e . > "$OUT/logs/install.txt" 2>&1; then
+  # no install (an old setuptools without `wheel`): the source tree on the path, the studies where they install
+  echo "pip could not install delvjax (see $OUT/logs/install.txt): running it from the source tree"
+  [ -e delvjax/studies ] || ln -s ../studies delvjax/studies
+  export PYTHONPATH="$PWD${PYTHONPATH:+:$PYTHONPATH}"
+fi
 export XLA_PYTHON_CLIENT_PREALLOCATE="${XLA_PYTHON_CLIENT_PREALLOCATE:-false}" PYTHONUNBUFFERED=1
 # every step under `timeout -k`: a process stuck in a driver call ignores SIGTERM, and plain `timeout` then
 # waits for it forever (suspected on 2026-12-04 on an H200: the script ran into the device call's limit
