@@ -74,40 +74,48 @@ def pytest_sessionfinish(session) -> None:
 # --- the command ------------------------------------------------------------------------------------
 def tables(rows: list, top: int) -> str:
     """The report of `rows` ([file, function, count, seconds] over every worker) as Markdown tables."""
-    by_fun = collections.defaultdict(lambda: [0, 0.0, set()])
-    by_file = collections.defaultdict(lambda: [0, 0.0])
-    by_pair = collections.defaultdict(lambda: [0, 0.0])
+    pairs = collections.defaultdict(lambda: [0, 0.0])  # (function, file) -> [count, seconds]
     for f, name, n, s in rows:
-        by_pair[name, f][0] += n
-        by_pair[name, f][1] += s
-        by_fun[name][0] += n
-        by_fun[name][1] += s
-        by_fun[name][2].add(f)
-        by_file[f][0] += n
-        by_file[f][1] += s
+        pairs[name, f][0] += n
+        pairs[name, f][1] += s
+
+    def total(key: int) -> dict:  # function (key 0) or file (key 1) -> [count, seconds, files]
+        out = collections.defaultdict(lambda: [0, 0.0, 0])
+        for pair, (n, s) in pairs.items():
+            out[pair[key]][0] += n
+            out[pair[key]][1] += s
+            out[pair[key]][2] += 1
+        return dict(sorted(out.items(), key=lambda kv: -kv[1][1])[:top])
+
+    funs = total(0)
     lines = ["| function | compilations | seconds | files |", "|---|---|---|---|"]
-    funs = sorted(by_fun.items(), key=lambda kv: -kv[1][1])[:top]
-    lines += [f"| {name} | {n} | {s:.1f} | {len(fs)} |" for name, (n, s, fs) in funs]
+    lines += [f"| {name} | {n} | {s:.1f} | {k} |" for name, (n, s, k) in funs.items()]
     lines += ["", "| function | file | compilations | seconds |", "|---|---|---|---|"]
-    for name, _ in funs[: max(1, top // 3)]:
-        per = sorted(([f, n, s] for (fn, f), (n, s) in by_pair.items() if fn == name), key=lambda r: -r[2])[:5]
+    for name in list(funs)[: max(1, top // 3)]:
+        per = sorted(((f, n, s) for (fn, f), (n, s) in pairs.items() if fn == name), key=lambda r: -r[2])[:5]
         lines += [f"| {name} | {f} | {n} | {s:.1f} |" for f, n, s in per]
     lines += ["", "| file | compilations | seconds |", "|---|---|---|"]
-    files = sorted(by_file.items(), key=lambda kv: -kv[1][1])[:top]
-    lines += [f"| {f} | {n} | {s:.1f} |" for f, (n, s) in files]
+    lines += [f"| {f} | {n} | {s:.1f} |" for f, (n, s, _) in total(1).items()]
     return "\n".join(lines)
+
+
+def positive_int(text: str) -> int:
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be a positive integer, not {text}")
+    return value
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--top", type=int, default=20, help="rows per table (default 20)")
+    parser.add_argument("--top", type=positive_int, default=20, help="rows per table (default 20)")
     parser.add_argument("--json", type=Path, help="also write every [file, function, count, seconds] row here")
     args, pytest_args = parser.parse_known_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
         env = dict(
             os.environ,
             DELVJAX_CACHE_DIR=str(Path(tmp) / "cache"),  # empty: every program compiles, as in CI
-            PYTHONPATH=os.pathsep.join([str(ROOT / "benchmarks"), os.environ.get("PYTHONPATH", "")]),
+            PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT / "benchmarks"), os.environ.get("PYTHONPATH")])),
             **{_OUT: tmp},
         )
         t0 = time.perf_counter()
