@@ -237,6 +237,7 @@ def rollout_request(
     distances: Sequence[float] = DEFAULT_DISTANCES,
     trials: int = TRIALS_PER_DISTANCE,
     max_points: int = MAX_POINTS,
+    program: Sequence[str] | None = None,
     **options,
 ) -> dict:
     """Validate one rollout configuration of a sweep (docs/sweeps.md) as `catchment` (kind "catchment")

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import jax
@@ -19,6 +20,7 @@ from ..core.errors import InputError
 from ..core.maps import grid_included, grid_points
 from ..core.rollouts import DEFAULT_LANES, catchment_counted
 from ..core.rollouts import cells as rollout_programs
+from ..options._registry import get_method
 
 if TYPE_CHECKING:  # types only: the kinds and the spec are built from this module
     from ._kind import SweepKind
@@ -44,17 +46,53 @@ def _options(cell: dict) -> dict:
     return {k: v for k, v in cell.items() if k not in ("env", "method", "seed")}
 
 
+def _landmarks_only(name: str) -> bool:
+    """Whether a registered method reads landmark bearings alone: no ring image, no panorama."""
+    m = get_method(name)
+    return not m.reads_image() and not m.reads_panorama()
+
+
+@functools.lru_cache(maxsize=256)
+def _companions(names: tuple, method: str) -> tuple[str, ...] | None:
+    if not _landmarks_only(method):
+        return None
+    mine = tuple(n for n in names if _landmarks_only(n))
+    return mine if len(mine) > 1 else None
+
+
+def shared_program(spec: SweepSpec, method) -> tuple[str, ...] | None:
+    """The sweep's methods compiled into one `Program` with `method` (docs/sweeps.md, "One program
+    for the landmark methods"): every landmark method of the sweep's method axis, the same numbers
+    bit for bit in less compile time; None for a method alone or one that reads images (an image
+    method compiled in a `Program` sums its errors in another order: last-bit changes)."""
+    names = spec.axes.get("method", ())
+    if not isinstance(method, str) or not all(isinstance(n, str) for n in names):
+        return None
+    return _companions(tuple(names), method)
+
+
+def _with_program(request: Callable[..., dict], cell: dict, spec: SweepSpec, **kwargs) -> dict:
+    """`request(method=..., **kwargs)` validated for the cell's method alone (a setting of another
+    method stays an error), then, where the sweep has companions, set up as one of their `Program`."""
+    req = request(method=cell["method"], **kwargs)
+    names = shared_program(spec, cell["method"])
+    return req if names is None else request(method=cell["method"], program=names, **kwargs)
+
+
 def map_request(env, cell: dict, spec: SweepSpec, max_points: int) -> dict:
     """A vector-map cell, validated as `delvjax.vector_map` validates its keywords."""
-    return api.map_request(env, method=cell["method"], seed=cell["seed"], max_points=max_points, **_options(cell))
+    return _with_program(
+        functools.partial(api.map_request, env), cell, spec, seed=cell["seed"], max_points=max_points, **_options(cell)
+    )
 
 
 def rollout_request(env, cell: dict, spec: SweepSpec, max_points: int) -> dict:
     """A catchment or success-rate cell, validated as `delvjax.catchment` / `success_rate` validate theirs."""
-    return api_rollouts.rollout_request(
-        env,
+    return _with_program(
+        functools.partial(api_rollouts.rollout_request, env),
+        cell,
+        spec,
         kind=str(spec.kind),
-        method=cell["method"],
         seed=cell["seed"],
         distances=spec.distances,
         trials=spec.trials,

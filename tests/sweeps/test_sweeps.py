@@ -11,6 +11,7 @@ from delvjax.sweeps import _run as sweeps
 from delvjax.cli._main import main
 from delvjax.core.errors import InputError
 from delvjax.sweeps._examples import EXAMPLE
+from delvjax.sweeps._kinds import shared_program
 from delvjax.sweeps._spec import parse_sweep
 
 SMALL = """
@@ -56,7 +57,8 @@ def test_every_cell_equals_the_vector_map_of_its_settings(small):
     assert dict(small.sizes) == {"method": 2, "d": 2, "bearing_noise_deg": 2, "seed": 2}
     # axes with one value are scalar coordinates, labelled with the environment's own name
     assert small["env"].item() == "env1" and small["env_name"].item() == "env1" and float(small["spacing"]) == 90.0
-    assert 0 <= small.attrs["programs_compiled"] <= 2  # one per method (fewer if compiled by an earlier test)
+    # one program for both landmark methods (none if an earlier test compiled it)
+    assert 0 <= small.attrs["programs_compiled"] <= 1
     for method in ("delv", "alv"):
         for seed in (0, 1):
             vm = delvjax.vector_map("env1", method=method, d=60, bearing_noise_deg=3.0, seed=seed, spacing=90.0)
@@ -75,6 +77,16 @@ def test_the_numbers_do_not_depend_on_how_cells_are_chunked(small, monkeypatch):
     chunked = sweeps.run_sweep(parse_sweep(SMALL))
     for name in small.data_vars:
         assert np.array_equal(small[name].values, chunked[name].values, equal_nan=True), name
+
+
+def test_landmark_methods_share_one_program_and_keep_their_numbers_bit_for_bit(small):
+    assert shared_program(parse_sweep(SMALL), "alv") == ("delv", "alv")
+    mixed = parse_sweep("[axes]\nmethod = ['delv', 'warping', 'alv', 'minwarping', 'cc']")
+    assert [shared_program(mixed, m) for m in ("cc", "warping", "minwarping")] == [("delv", "alv", "cc"), None, None]
+    assert shared_program(parse_sweep("[axes]\nmethod = ['alv']"), "alv") is None
+    alone = sweeps.run_sweep(parse_sweep(SMALL.replace('["delv", "alv"]', '["alv"]')))  # ALV's own program
+    for name in small.data_vars:
+        assert np.array_equal(small[name].sel({"method": "alv"}).values, alone[name].values, equal_nan=True), name
 
 
 @pytest.mark.parametrize(
