@@ -52,23 +52,17 @@ def _landmarks_only(name: str) -> bool:
     return not m.reads_image() and not m.reads_panorama()
 
 
-@functools.lru_cache(maxsize=256)
-def _companions(names: tuple, method: str) -> tuple[str, ...] | None:
-    if not _landmarks_only(method):
-        return None
-    mine = tuple(n for n in names if _landmarks_only(n))
-    return mine if len(mine) > 1 else None
-
-
 def shared_program(spec: SweepSpec, method) -> tuple[str, ...] | None:
     """The sweep's methods compiled into one `Program` with `method` (docs/sweeps.md, "One program
     for the landmark methods"): every landmark method of the sweep's method axis, the same numbers
     bit for bit in less compile time; None for a method alone or one that reads images (an image
-    method compiled in a `Program` sums its errors in another order: last-bit changes)."""
+    method compiled in a `Program` sums its errors in another order: last-bit changes). Looked up in
+    the registry each time: a method registered at run time may change it."""
     names = spec.axes.get("method", ())
-    if not isinstance(method, str) or not all(isinstance(n, str) for n in names):
+    if not isinstance(method, str) or not all(isinstance(n, str) for n in names) or not _landmarks_only(method):
         return None
-    return _companions(tuple(names), method)
+    mine = tuple(n for n in names if _landmarks_only(n))
+    return mine if len(mine) > 1 else None
 
 
 def _with_program(request: Callable[..., dict], cell: dict, spec: SweepSpec, **kwargs) -> dict:
