@@ -1,10 +1,14 @@
 """Every method against the per-point NumPy twin on 20 random environments (>= 98% within 2 deg).
 
-All 20 environments run as ONE batched program: `homing_directions` vmapped over a stacked Env.
+All 20 environments run as ONE batched program: `homing_directions` vmapped over a stacked Env, and
+every method of this file runs in it as one `Program` (its traced index picks the method, and only
+that branch runs: tests/core/methods/test_modules.py compares a `Program` with the methods' own
+programs), so the file compiles one program, not ten.
 """
 
 from __future__ import annotations
 
+import equinox as eqx
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -14,6 +18,7 @@ from tests.twins import methods as ref
 from delvjax.core.sensor import Sensor
 from delvjax.core.maps import grid_included, grid_points, homing_directions, random_headings
 from delvjax.core.scene import stack_envs
+from delvjax.core.methods.program import Program
 from delvjax.options._registry import METHODS, configure
 
 # points checked per environment against the (slow, readable) twin
@@ -30,15 +35,32 @@ def batch(random_envs):
     return envs, points, headings, key, np.asarray(included)
 
 
+NAMES = tuple(SUBSET)
+
+
+@pytest.fixture(scope="module")
+def directions(batch):
+    """`directions(method, levels, visible)`: (direction, valid) of every environment and point, from
+    the one compiled program of this file (a `Program` of NAMES; every landmark visible by default)."""
+    envs, points, headings, key, _ = batch
+    program = Program(methods=tuple(METHODS[m] for m in NAMES))
+    run = jax.jit(jax.vmap(homing_directions, in_axes=(0, None, None, None, None, None, None)))
+
+    def directions(method, levels=None, visible=None):
+        i = NAMES.index(method)
+        module = eqx.tree_at(lambda p: (p.index, p.methods[i]), program, (i, configure(METHODS[method], levels=levels)))
+        seen = jnp.ones(envs.landmarks.shape[1], bool) if visible is None else visible
+        direction, valid = run(envs, points, headings, key, Sensor(), module, seen)
+        return np.asarray(direction), np.asarray(valid)
+
+    return directions
+
+
 @pytest.mark.parametrize("method", list(SUBSET))
-def test_method_agrees_with_reference(random_envs, batch, method):
+def test_method_agrees_with_reference(random_envs, batch, directions, method):
     envs, points, headings, key, included = batch
     levels = 3 if method == "delv-compass" else None
-    sensor, module = Sensor(), configure(METHODS[method], levels=levels)
-    direction, valid = jax.vmap(homing_directions, in_axes=(0, None, None, None, None, None))(
-        envs, points, headings, key, sensor, module
-    )
-    direction, valid = np.asarray(direction), np.asarray(valid)
+    direction, valid = directions(method, levels)
     rng = np.random.default_rng(0)
     agree, total = 0, 0
     for e, (lms, _) in enumerate(random_envs):  # the twin is per point by design
@@ -61,16 +83,13 @@ def test_method_agrees_with_reference(random_envs, batch, method):
 
 
 @pytest.mark.parametrize("method, points_per_env", [("delv-compass", 5), ("delv-visual", 2), ("delv", 3)])
-def test_one_visible_landmark_agrees_with_reference(random_envs, batch, method, points_per_env):
+def test_one_visible_landmark_agrees_with_reference(random_envs, batch, directions, method, points_per_env):
     """docs/model.md §3.4: all landmarks but the first hidden during homing (the home record sees all).
     With a compass (true or visual) one pair suffices: the direction is defined at every grid
     point and agrees with the twin (pairing the first shift, k = 0); without one it is undefined."""
     envs, points, headings, key, included = batch
     visible = jnp.arange(envs.landmarks.shape[1]) == 0
-    direction, valid = jax.vmap(homing_directions, in_axes=(0, None, None, None, None, None, None))(
-        envs, points, headings, key, Sensor(), METHODS[method], visible
-    )
-    direction, valid = np.asarray(direction), np.asarray(valid)
+    direction, valid = directions(method, visible=visible)
     if method == "delv":
         assert not valid.any() and np.isnan(direction).all()
     else:
