@@ -78,8 +78,10 @@ def test_a_sweep_over_a_sensor_leaf_equals_the_single_maps():
 
 
 def test_a_program_switches_method_by_its_traced_index():
+    """Every landmark method of the twin tests (test_vs_twins.py runs them as one `Program`) gives its
+    own program's numbers bit for bit from a `Program`."""
     env = delvjax.load_env("env1").arrays()
-    prog, names = program("alv", ["delv-compass", "alv", "acv"])
+    prog, names = program("alv", ["delv", "delv-compass", "alv", "acv", "delv-visual", "alv-visual", "acv-visual"])
     for i, name in enumerate(names):
         chosen = eqx.tree_at(lambda p: p.index, prog, jnp.int32(i))
         a = maps.vector_map(env, chosen, Sensor(), spacing=100.0)
