@@ -2,8 +2,8 @@
 
 All 20 environments run as ONE batched program: `homing_directions` vmapped over a stacked Env, and
 every method of this file runs in it as one `Program` (its traced index picks the method, and only
-that branch runs: tests/core/methods/test_modules.py compares a `Program` with the methods' own
-programs), so the file compiles one program, not ten.
+that branch runs: tests/core/methods/test_modules.py checks that each of these seven gives its own
+program's numbers bit for bit there), so the file compiles one program, not ten.
 """
 
 from __future__ import annotations
@@ -18,8 +18,7 @@ from tests.twins import methods as ref
 from delvjax.core.sensor import Sensor
 from delvjax.core.maps import grid_included, grid_points, homing_directions, random_headings
 from delvjax.core.scene import stack_envs
-from delvjax.core.methods.program import Program
-from delvjax.options._registry import METHODS, configure
+from delvjax.options._registry import METHODS, configure, program
 
 # points checked per environment against the (slow, readable) twin
 SUBSET = {"delv": 12, "delv-compass": 8, "alv": 8, "acv": 8, "delv-visual": 4, "alv-visual": 3, "acv-visual": 3}
@@ -43,12 +42,12 @@ def directions(batch):
     """`directions(method, levels, visible)`: (direction, valid) of every environment and point, from
     the one compiled program of this file (a `Program` of NAMES; every landmark visible by default)."""
     envs, points, headings, key, _ = batch
-    program = Program(methods=tuple(METHODS[m] for m in NAMES))
+    shared, _ = program(NAMES[0], NAMES)
     run = jax.jit(jax.vmap(homing_directions, in_axes=(0, None, None, None, None, None, None)))
 
     def directions(method, levels=None, visible=None):
         i = NAMES.index(method)
-        module = eqx.tree_at(lambda p: (p.index, p.methods[i]), program, (i, configure(METHODS[method], levels=levels)))
+        module = eqx.tree_at(lambda p: (p.index, p.methods[i]), shared, (i, configure(METHODS[method], levels=levels)))
         seen = jnp.ones(envs.landmarks.shape[1], bool) if visible is None else visible
         direction, valid = run(envs, points, headings, key, Sensor(), module, seen)
         return np.asarray(direction), np.asarray(valid)
