@@ -22,7 +22,9 @@ from delvjax.core.metrics import error_curve, summarize_map
 from delvjax.plots._maps import draw_env, draw_vector_map, vector_map_handles
 from delvjax.plots._rollouts import catchment_handles, catchment_panel, not_counted
 from delvjax.core.scene import Env
+from delvjax.core.sensor import Sensor
 from delvjax.envs._presets import load_env
+from delvjax.options._registry import get_method
 from delvjax.core.tables import concat_columns, success_rows, trajectory_columns
 
 PAD = 6
@@ -95,10 +97,40 @@ def catchment(
     )
 
 
+def every_rule(run, method: str, arena, d=None) -> dict:
+    """{rules: result} of `run(rules)` for every rule set of RULES, from as few rollouts as give the
+    same trials (docs/model.md §5): a method that reads only the current view makes the same trials
+    under "homing" and "default" (`rollouts.under_release`), and the trials under the physical rules
+    are the default ones ended at their first landmark contact (`rollouts.under_collisions`). Each
+    restated result equals its own run bit for bit (tests/core/rollouts/test_restated_rules.py).
+    `d`: the step distance if not the sensor's default."""
+    d = Sensor().d if d is None else d
+    view_only = not bool(np.asarray(get_method(method).reads_start_view()))
+    homing = run("homing")
+    default = rollouts.under_release(homing, arena, d) if view_only else run("default")
+    return {"default": default, "homing": homing, "physical": rollouts.under_collisions(default)}
+
+
+def catchments(ctx, e: Env, method: str, **options) -> dict[str, rollouts.Catchment]:
+    """`catchment` of `method` under every rule set of RULES (`every_rule`)."""
+    return every_rule(lambda rules: catchment(ctx, e, method, rules, **options), method, e.arena, options.get("d"))
+
+
+def success_tables(ctx, e: Env, method: str, **options) -> dict[str, list[dict]]:
+    """`success_table` of `method` under every rule set of RULES (`every_rule`)."""
+    runs = every_rule(lambda rules: success_rate(ctx, e, method, rules, **options), method, e.arena, options.get("d"))
+    return {rules: success_rows(res, method) for rules, res in runs.items()}
+
+
 def success_table(ctx, e: Env, method: str, rules: str = "default", **options) -> list[dict]:
     """Success rate per release distance 50..450 cm (`settings.trials` per bin, Figs 4.10b, 5.7b): the
     rows of `tables.success_rows` (the CLI's success-rate CSV)."""
-    res = delvjax.success_rate(
+    return success_rows(success_rate(ctx, e, method, rules, **options), method)
+
+
+def success_rate(ctx, e: Env, method: str, rules: str = "default", **options) -> rollouts.SuccessRate:
+    """The success-rate trials of `success_table`."""
+    return delvjax.success_rate(
         e,
         method=method,
         trials=ctx.settings.trials,
@@ -109,7 +141,6 @@ def success_table(ctx, e: Env, method: str, rules: str = "default", **options) -
         **RULES[rules],
         **options,
     )
-    return success_rows(res, method)
 
 
 def inside_hull(e: Env, points: np.ndarray) -> np.ndarray:
@@ -272,9 +303,9 @@ def success_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, s
     from delvjax.plots._rollouts import success_rate_figure  # matplotlib: loaded only when a figure is drawn
 
     tables = {}
-    for m in methods:  # a few methods x two rule sets; one compiled program
-        for rules in RULES:
-            tables[f"{LABEL[m]} ({rules})"] = t = success_table(ctx, e, m, rules)
+    for m in methods:  # a few methods x three rule sets; one compiled program
+        for rules, t in success_tables(ctx, e, m).items():
+            tables[f"{LABEL[m]} ({rules})"] = t
             summ = success_summary(t)
             ctx.number(f"success:env1:{m}{rule_suffix(rules)}", summ["by_distance"])
             ctx.number(f"success_overall:env1:{m}{rule_suffix(rules)}", summ["overall"])

@@ -16,10 +16,8 @@ from delvjax.plots._maps import error_curve_figure
 
 from ._images_common import preview
 from ._common import (
-    LABEL,
-    RULES,
     as_vector_map,
-    catchment,
+    catchments,
     curve,
     curve_number,
     curves_rows,
@@ -31,6 +29,7 @@ from ._common import (
     rule_suffix,
     success_set,
     trajectory_set,
+    LABEL,
 )
 
 TITLE = "DELV vs predictive image matching, no compass (Figs 4.9-4.11)"
@@ -49,8 +48,7 @@ def run(ctx) -> None:
     spacing = ctx.settings.spacing
     items, curves, rows = [], {}, []
     for m in METHODS:  # two methods: two programs
-        for rules in RULES:
-            c = catchment(ctx, e, m, rules)
+        for rules, c in catchments(ctx, e, m).items():
             inc = np.asarray(c.included)
             hull = inside_hull(e, np.asarray(c.points))
             ok = np.asarray(c.success)[0]

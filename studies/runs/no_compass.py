@@ -11,18 +11,17 @@ from delvjax.plots._maps import error_curve_figure
 from .. import thesis
 
 from ._common import (
-    RULES,
-    RULES_NOTE,
     as_vector_map,
-    catchment,
     catchment_columns,
     catchment_figure,
+    catchments,
     curve,
     curve_number,
     curves_rows,
     env,
     map_numbers,
     panel_figure,
+    RULES_NOTE,
 )
 
 TITLE = "DELV without a compass, environments 1-3 (Figs 4.2-4.5)"
@@ -35,7 +34,7 @@ def run(ctx) -> None:
     items, curves, catch_items, rows = [], {}, [], []
     for name in ENVS:  # three layouts; every call reuses one compiled program
         e = env(name)
-        res = {rules: catchment(ctx, e, "delv", rules) for rules in RULES}
+        res = catchments(ctx, e, "delv")
         ctx.step(f"catchment {name}")
         vm = as_vector_map(res["default"])
         s = map_numbers(e, vm)

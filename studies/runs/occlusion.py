@@ -28,7 +28,7 @@ from matplotlib.patches import Circle, Patch
 from .. import thesis
 
 from . import _gap_matching as gap_matching
-from ._common import HOME_RADIUS, LABEL, PROGRAM, RULES, as_vector_map, env, panel_figure
+from ._common import HOME_RADIUS, LABEL, PROGRAM, RULES, as_vector_map, env, every_rule, panel_figure
 from ._occlusion_layouts import ENVS, RING_SPACING, fmt_spread, spread, stacked_masks
 
 TITLE = "Occlusion: k landmarks hidden (Figs 5.9-5.10, Tables 5.1-5.4; and gap-aware DELV matching)"
@@ -118,13 +118,12 @@ def run(ctx) -> None:
 
 
 def rule_catchments(e, m: str, sensor: Sensor, spacing: float, key, masks, hidden, lanes: int) -> dict:
-    """The catchments of `m` under every rule set of `RULES`. A method that reads only the current
-    view (ACV, ALV) makes the same trials under the default and the "homing" rules (docs/model.md
-    §5): its default catchment is its "homing" run restated (`rollouts.under_release`), one run fewer."""
+    """The catchments of `m` under every rule set of `RULES`, from as few runs as give the same trials
+    (`every_rule`: ACV and ALV run once, DELV twice)."""
     method = program(m, PROGRAM)[0]
-    view_only = not bool(np.asarray(method.reads_start_view()))
-    res = {
-        rules: rollouts.catchment_area(
+
+    def run(rules: str):
+        return rollouts.catchment_area(
             e,
             method,
             sensor,
@@ -136,12 +135,8 @@ def rule_catchments(e, m: str, sensor: Sensor, spacing: float, key, masks, hidde
             lanes=lanes,
             **RULES[rules],
         )
-        for rules in RULES
-        if not (view_only and rules == "default")
-    }
-    if view_only:
-        res["default"] = rollouts.under_release(res["homing"], e.arena, sensor.d)
-    return {rules: res[rules] for rules in RULES}
+
+    return every_rule(run, m, e.arena, sensor.d)
 
 
 def layout_rows(per_k: list[dict], envs) -> list[tuple[str, str, dict]]:

@@ -13,10 +13,9 @@ from delvjax.plots._maps import error_curve_figure
 from delvjax.plots._rollouts import success_rate_figure
 
 from ._common import (
-    RULES,
     as_vector_map,
-    catchment,
     catchment_columns,
+    catchments,
     curve,
     curve_number,
     curves_rows,
@@ -25,7 +24,7 @@ from ._common import (
     panel_figure,
     rule_suffix,
     success_summary,
-    success_table,
+    success_tables,
     vector_map,
 )
 
@@ -42,7 +41,7 @@ def run(ctx) -> None:
     items, curves, rows = [], {}, []
     for q in (*LEVELS, None):  # six settings of a traced leaf: one compiled rollout program
         opts = {} if q is None else {"levels": q}
-        cat = {rules: catchment(ctx, e, "delv", rules, **opts) for rules in RULES}
+        cat = catchments(ctx, e, "delv", **opts)
         vm = as_vector_map(cat["default"])
         label = "continuous" if q is None else f"{q} level{'s' * (q > 1)}"
         s = map_numbers(e, vm)
@@ -53,8 +52,7 @@ def run(ctx) -> None:
         row = {"levels": label, "mean error °": s["mean_error_deg"], "e>45 %": s["gt45_pct"], "e>90 %": s["gt90_pct"]}
         catchment_columns(ctx, f"catchment:env1:delv:{tag}", cat, row)
         if q is None or q in SUCCESS_LEVELS:
-            for rules in RULES:
-                table = success_table(ctx, e, "delv", rules, **opts)
+            for rules, table in success_tables(ctx, e, "delv", **opts).items():
                 summ = success_summary(table)
                 row[f"success overall {rules} %"] = summ["overall"]
                 ctx.number(f"success:env1:delv:{tag}{rule_suffix(rules)}", summ["by_distance"])

@@ -20,7 +20,7 @@ from delvjax.core.methods.heading import visual_compass_errors
 from delvjax.options._settings import make_sensor
 from .. import thesis
 
-from ._common import LABEL, RULES, as_vector_map, catchment, env, map_numbers, outcome_counts, rule_suffix
+from ._common import as_vector_map, catchment, catchments, env, map_numbers, outcome_counts, rule_suffix, LABEL
 
 TITLE = "The visual compass and compass noise (Figs 5.11-5.12)"
 BACKGROUNDS = ("distant", "walls", "none")
@@ -49,8 +49,7 @@ def run(ctx) -> None:
     headings = random_headings(jax.random.PRNGKey(ctx.settings.seed), points.shape[0])  # the vector map's headings
     true = {}
     for m in TRUE:
-        for rules in RULES:
-            c = catchment(ctx, e, m, rules)
+        for rules, c in catchments(ctx, e, m).items():
             true[m, rules] = float(c.catchment_pct()[0])
             if rules == "default":
                 true[m, "mean_error"] = map_numbers(e, as_vector_map(c))["mean_error_deg"]
@@ -68,8 +67,7 @@ def run(ctx) -> None:
         ctx.step(f"heading errors {bg}")
         for tm, vm_name in zip(TRUE, VISUAL):
             row = {"background": bg, "method": LABEL[tm]}
-            for rules in RULES:
-                c = catchment(ctx, e, vm_name, rules, background=bg)
+            for rules, c in catchments(ctx, e, vm_name, background=bg).items():
                 pct = float(c.catchment_pct()[0])
                 counts = outcome_counts(c)
                 row[f"visual {rules} %"] = pct

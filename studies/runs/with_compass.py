@@ -14,12 +14,10 @@ from delvjax.plots._maps import error_curve_figure
 from .. import thesis
 
 from ._common import (
-    RULES,
-    RULES_NOTE,
     as_vector_map,
-    catchment,
     catchment_columns,
     catchment_figure,
+    catchments,
     curve,
     curve_number,
     curves_rows,
@@ -27,6 +25,7 @@ from ._common import (
     map_numbers,
     panel_figure,
     vector_map,
+    RULES_NOTE,
 )
 
 TITLE = "DELV with a compass, environments 1-3 (Figs 5.2-5.5)"
@@ -55,7 +54,7 @@ def run(ctx) -> None:
     items, curves, catch_items, rows = [], {}, [], []
     for name in ENVS:  # three layouts, one compiled program
         e = env(name)
-        res = {rules: catchment(ctx, e, "delv-compass", rules) for rules in RULES}
+        res = catchments(ctx, e, "delv-compass")
         vm = as_vector_map(res["default"])
         s = map_numbers(e, vm)
         vm_free = vector_map(ctx, e, "delv")

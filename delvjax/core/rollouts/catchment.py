@@ -25,6 +25,7 @@ from .rules import (
     DEFAULT_LANES,
     EXCLUDED,
     NEAR_WALL,
+    NO_CONTACT,
     HOME_RADIUS,
     MAX_STEPS,
     OUTCOMES,
@@ -65,7 +66,9 @@ class Catchment(Outcomes):
     visible: (M, L) landmarks seen while homing; outcome, steps, invalid_steps: (M, P)
     (outcome EXCLUDED for cells that are not grid points, NEAR_WALL for grid points not counted); end: (M, P, 2); the vector map
     under each mask with the same headings and home record: direction (M, P) world rad
-    (NaN where invalid), valid (M, P), error_deg (M, P).
+    (NaN where invalid), valid (M, P), error_deg (M, P); the first landmark contact of each rollout
+    (`rules.under_collisions`): contact (M, P) its step (NO_CONTACT: none), contact_end (M, P, 2),
+    contact_invalid (M, P).
     """
 
     points: GridPoints
@@ -80,6 +83,9 @@ class Catchment(Outcomes):
     direction: MaskGridFloat
     valid: MaskGridFlag
     error_deg: MaskGridFloat
+    contact: MaskGridInt
+    contact_end: MaskGridPoints
+    contact_invalid: MaskGridInt
     hidden: tuple = eqx.field(static=True, default=((),))
     first_move: str = eqx.field(static=True, default=DEFAULT_FIRST_MOVE)
     collisions: str = eqx.field(static=True, default="ignore")
@@ -181,19 +187,25 @@ def catchment_area(
         direction=direction,
         valid=valid,
         error_deg=error,
+        contact=per_cell(trials.contact, NO_CONTACT),
+        contact_end=per_cell(trials.contact_end, jnp.nan),
+        contact_invalid=per_cell(trials.contact_invalid, 0),
         hidden=tuple(tuple(int(i) for i in h) for h in hidden),
         first_move=first_move,
         collisions=collisions,
     )
 
 
-def under_release(result: Catchment, arena, d) -> Catchment:
-    """A catchment run under first_move "homing" restated under "release" (the default), for a method
+def under_release(result: Outcomes, arena, d) -> Outcomes:
+    """A rollout result under first_move "homing" restated under "release" (the default), for a method
     that reads only the current view: such a method turns at once under either rule (docs/model.md
-    §5), so the trials are the same and only the cells that count change (`catchment_counted`; the
-    others become NEAR_WALL). The caller vouches for the method; `d` is the step distance."""
-    if result.first_move != "homing":
-        raise InputError("first_move", result.first_move, 'must be "homing" (the run to restate)')
+    §5), so the trials are the same. In a catchment only the cells that count change
+    (`catchment_counted`; the others become NEAR_WALL); in a success rate every trial counts under
+    either rule. The caller vouches for the method; `d` is the step distance."""
+    if result.first_move != "homing":  # type: ignore[attr-defined]
+        raise InputError("first_move", result.first_move, 'must be "homing" (the run to restate)')  # type: ignore[attr-defined]
+    if not isinstance(result, Catchment):
+        return dataclasses.replace(result, first_move="release")
     included = np.asarray(result.included)
     counted = catchment_counted(arena, np.asarray(result.points), included, "release", d)
     outcome = jnp.where(jnp.asarray(counted | ~included)[None, :], result.outcome, NEAR_WALL)

@@ -5,6 +5,11 @@ refilled with the next pending trial (one `tree.map` over the `Lanes` state), so
 about sum(steps + 1) / lanes iterations instead of max_steps per chunk. A lane first spends one
 iteration at its release point computing the vector map's direction there, then one move per
 iteration, so the method appears once in the program.
+
+Every lane also records its trial's first landmark contact (the first position, release point or
+move end, inside a landmark while the trial runs): its step, position and invalid-move count. Up to
+that contact a trial is the same under either `collisions` rule, so a run under "ignore" also gives
+the run under "fail" (`rules.under_collisions`; docs/model.md §5).
 """
 
 from __future__ import annotations
@@ -16,14 +21,15 @@ import jax
 import jax.numpy as jnp
 from jax import Array
 
-from .rules import RUNNING, position_status
+from .rules import LANDMARK, NO_CONTACT, RUNNING, position_status
 from ..batching import fixed_width_map, item_width, padded
 from .step import Rollout
 
 
 class Lanes(eqx.Module):
     """State of the lanes: trial index t (n_trials when idle), position, heading, status, whether
-    the next iteration is the trial's first (at its release point), moves made, invalid moves."""
+    the next iteration is the trial's first (at its release point), moves made, invalid moves, and
+    the first landmark contact: its step (NO_CONTACT: none yet), position and invalid moves before it."""
 
     t: Array
     pos: Array
@@ -32,6 +38,9 @@ class Lanes(eqx.Module):
     first: Array
     step: Array
     invalid: Array
+    contact: Array
+    contact_end: Array
+    contact_invalid: Array
 
 
 def _where(cond: Array, new, old):
@@ -40,7 +49,8 @@ def _where(cond: Array, new, old):
 
 
 class Results(eqx.Module):
-    """Per-trial results of one block: outcome, steps, invalid moves, end point, first direction, its validity, path."""
+    """Per-trial results of one block: outcome, steps, invalid moves, end point, first direction, its validity,
+    path, and the first landmark contact (step, NO_CONTACT if none; position; invalid moves before it)."""
 
     outcome: Array
     steps: Array
@@ -49,6 +59,9 @@ class Results(eqx.Module):
     first_dir: Array
     first_valid: Array
     path: Array
+    contact: Array
+    contact_end: Array
+    contact_invalid: Array
 
 
 @partial(jax.jit, static_argnames=("lanes", "record_paths"))
@@ -69,9 +82,19 @@ def run_block(
         ok = t < n_valid
         ts = jnp.minimum(t, n_trials - 1)
         status = jnp.where(ok, position_status(rollout.env, starts[ts], rollout.radius, rollout.collide), RUNNING)
+        touching = ok & (position_status(rollout.env, starts[ts], rollout.radius, True) == LANDMARK)
         zero = jnp.zeros((), jnp.int32)
         return Lanes(
-            t=t, pos=starts[ts], heading=headings[ts], status=status, first=jnp.ones((), bool), step=zero, invalid=zero
+            t=t,
+            pos=starts[ts],
+            heading=headings[ts],
+            status=status,
+            first=jnp.ones((), bool),
+            step=zero,
+            invalid=zero,
+            contact=jnp.where(touching, zero, NO_CONTACT),
+            contact_end=starts[ts],
+            contact_invalid=zero,
         )
 
     lane_t = jnp.arange(n_slots, dtype=jnp.int32)
@@ -85,6 +108,9 @@ def run_block(
         first_dir=jnp.full(n_trials, jnp.nan, jnp.float32),
         first_valid=jnp.zeros(n_trials, bool),
         path=jnp.full((n_trials, max_steps + 1 if record_paths else 1, 2), jnp.nan, jnp.float32).at[:, 0].set(starts),
+        contact=jnp.full(n_trials, NO_CONTACT, jnp.int32),
+        contact_end=jnp.zeros((n_trials, 2), jnp.float32),
+        contact_invalid=zeros_t,
     )
 
     def cond(state):
@@ -106,6 +132,9 @@ def run_block(
             out,
             (out.first_dir.at[idx0].set(direction, mode="drop"), out.first_valid.at[idx0].set(valid, mode="drop")),
         )
+        # the first move of a running trial that ends inside a landmark (under "fail" its last move)
+        touching = moving & (lane.contact == NO_CONTACT)
+        touching = touching & (jax.vmap(position_status, (None, 0, None))(rollout.env, end, rollout.radius) == LANDMARK)
         lane = Lanes(
             t=lane.t,
             pos=jnp.where(moving[:, None], end, lane.pos),
@@ -114,6 +143,9 @@ def run_block(
             first=lane.first & ~active,
             step=lane.step + moving.astype(jnp.int32),
             invalid=lane.invalid + (moving & ~valid & (status == RUNNING)).astype(jnp.int32),
+            contact=jnp.where(touching, lane.step + 1, lane.contact),
+            contact_end=jnp.where(touching[:, None], end, lane.contact_end),
+            contact_invalid=jnp.where(touching, lane.invalid, lane.contact_invalid),
         )
         path = (
             out.path.at[jnp.where(moving, lane.t, n_trials), lane.step].set(lane.pos, mode="drop")
@@ -131,6 +163,9 @@ def run_block(
             first_dir=out.first_dir,
             first_valid=out.first_valid,
             path=path,
+            contact=out.contact.at[idx].set(lane.contact, mode="drop"),
+            contact_end=out.contact_end.at[idx].set(lane.contact_end, mode="drop"),
+            contact_invalid=out.contact_invalid.at[idx].set(lane.contact_invalid, mode="drop"),
         )
         # 3. refill them from the queue
         new_t = next_t + jnp.cumsum(done) - 1

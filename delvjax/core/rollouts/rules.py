@@ -14,12 +14,16 @@ Two rules, both recorded in every summary and table:
     the vector map (a unit move ending there).
   * collisions = "ignore" (default): landmarks are no obstacles; "fail": a move ending
     inside a landmark (distance to its centre < r) ends the trial as a failure.
-Under "release" the blind first move from a grid point closer than d to a wall can leave the
+A run under "ignore" records each trial's first landmark contact; up to it the trial is the same
+under "fail", which ends it there, so `under_collisions` restates such a run under "fail" without
+running it again. Under "release" the blind first move from a grid point closer than d to a wall can leave the
 arena whatever the method, so the catchment counts only grid points at least d from every wall
 (`catchment_counted`; docs/model.md §5); the vector map keeps the whole grid.
 """
 
 from __future__ import annotations
+
+import dataclasses
 
 import equinox as eqx
 import jax
@@ -36,6 +40,7 @@ from ..scene import Env
 OUTCOMES = ("success", "timeout", "landmark", "arena")
 SUCCESS, TIMEOUT, LANDMARK, ARENA = range(4)
 RUNNING, EXCLUDED = -1, -2
+NO_CONTACT = -1  # a trial's first landmark contact: none (`under_collisions`)
 NEAR_WALL = -3  # a catchment trial that ran but does not count: its grid point is closer than d to a wall
 FIRST_MOVES = ("release", "homing")
 COLLISIONS = ("ignore", "fail")
@@ -139,3 +144,29 @@ def outcome_names(codes) -> list[str]:
 def rule_columns(rules: dict[str, str], n: int) -> dict[str, list[str]]:
     """The rollout rules as constant columns."""
     return {name: [value] * n for name, value in rules.items()}
+
+
+def under_collisions(result: Outcomes) -> Outcomes:
+    """A rollout result under collisions "ignore" restated under "fail" (docs/model.md §5): a trial is
+    the same under both rules up to its first landmark contact (recorded in `contact`, the step;
+    `contact_end`, `contact_invalid` where the result has `end`, `invalid_steps`), where "fail" ends
+    it as LANDMARK; trials without contact keep their outcome. A cell that does not count
+    (NEAR_WALL) or was not released (EXCLUDED) keeps that code; its steps, end and invalid moves
+    are restated like the others. Equal, bit for bit, to running the rule "fail" (tested)."""
+    if result.collisions != "ignore":  # type: ignore[attr-defined]
+        raise InputError("collisions", result.collisions, 'must be "ignore" (the run to restate)')  # type: ignore[attr-defined]
+    contact = np.asarray(result.contact)  # type: ignore[attr-defined]
+    touched = contact != NO_CONTACT
+    outcome = np.asarray(result.outcome)  # type: ignore[attr-defined]
+    ran = (outcome != NEAR_WALL) & (outcome != EXCLUDED)
+    changes = {
+        "outcome": np.where(touched & ran, LANDMARK, outcome).astype(outcome.dtype),
+        "steps": np.where(touched, contact, np.asarray(result.steps)).astype(np.asarray(result.steps).dtype),  # type: ignore[attr-defined]
+    }
+    if hasattr(result, "end"):
+        end = np.asarray(result.end)
+        changes["end"] = np.where(touched[..., None], np.asarray(result.contact_end), end).astype(end.dtype)  # type: ignore[attr-defined]
+    if hasattr(result, "invalid_steps"):
+        inv = np.asarray(result.invalid_steps)
+        changes["invalid_steps"] = np.where(touched, np.asarray(result.contact_invalid), inv).astype(inv.dtype)  # type: ignore[attr-defined]
+    return dataclasses.replace(result, **{k: jax.device_put(v) for k, v in changes.items()}, collisions="fail")

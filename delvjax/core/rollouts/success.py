@@ -26,6 +26,7 @@ from .rules import (
     EXCLUDED,
     HOME_RADIUS,
     MAX_STEPS,
+    NO_CONTACT,
     OUTCOMES,
     SUCCESS,
     TRIALS_PER_DISTANCE,
@@ -43,7 +44,8 @@ class SuccessRate(Outcomes):
 
     distances: (D,) cm; start: (D, n, 2); heading: (D, n) rad; placed: (D, n) a release
     point was found (docs/model.md §5: a start inside a landmark or outside the arena is redrawn);
-    outcome, steps: (D, n) (outcome EXCLUDED where not placed).
+    outcome, steps: (D, n) (outcome EXCLUDED where not placed); contact: (D, n) the step of the
+    trial's first landmark contact, NO_CONTACT if none (`rules.under_collisions`).
     """
 
     distances: Bins
@@ -52,6 +54,7 @@ class SuccessRate(Outcomes):
     placed: BinTrialFlag
     outcome: BinTrialInt
     steps: BinTrialInt
+    contact: BinTrialInt
     first_move: str = eqx.field(static=True, default=DEFAULT_FIRST_MOVE)
     collisions: str = eqx.field(static=True, default="ignore")
 
@@ -154,11 +157,18 @@ def success_rate_trials(
     placed_flat = placed.reshape(total)
     outcome = np.where(placed_flat, np.asarray(res.outcome), EXCLUDED).reshape(n_bins, trials)
     steps = np.where(placed_flat, np.asarray(res.steps), 0).reshape(n_bins, trials)
+    contact = np.where(placed_flat, np.asarray(res.contact), NO_CONTACT).reshape(n_bins, trials)
     return SuccessRate(
         **{
             k: jax.device_put(v)
             for k, v in dict(
-                distances=dist, start=starts, heading=heads, placed=placed, outcome=outcome, steps=steps
+                distances=dist,
+                start=starts,
+                heading=heads,
+                placed=placed,
+                outcome=outcome,
+                steps=steps,
+                contact=contact,
             ).items()
         },
         first_move=first_move,

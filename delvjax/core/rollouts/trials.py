@@ -64,7 +64,9 @@ class Trials(Outcomes):
     position cm; invalid_steps: (T,) moves after which the method gave no direction;
     path: (T, max_steps + 1, 2) positions after 0, 1, ... moves, NaN after the end (or None);
     first_direction: (T,) world homing direction at the release point, rad, NaN where invalid
-    (the vector map's direction there, under either first_move rule); first_valid: (T,).
+    (the vector map's direction there, under either first_move rule); first_valid: (T,);
+    contact: (T,) the step of the trial's first landmark contact (NO_CONTACT: none), contact_end
+    (T, 2) its position and contact_invalid (T,) the invalid moves before it (`rules.under_collisions`).
     """
 
     outcome: PerTrialInt
@@ -73,6 +75,9 @@ class Trials(Outcomes):
     invalid_steps: PerTrialInt
     first_direction: PerTrial
     first_valid: PerTrialFlag
+    contact: PerTrialInt
+    contact_end: TrialPoints
+    contact_invalid: PerTrialInt
     path: Array | None = None
     first_move: str = eqx.field(static=True, default=DEFAULT_FIRST_MOVE)
     collisions: str = eqx.field(static=True, default="ignore")
@@ -203,6 +208,9 @@ def run_trials(
         invalid_steps=res.invalid,
         first_direction=res.first_dir,
         first_valid=res.first_valid,
+        contact=res.contact,
+        contact_end=res.contact_end,
+        contact_invalid=res.contact_invalid,
         path=res.path if record_paths else None,
         first_move=first_move,
         collisions=collisions,
