@@ -150,7 +150,7 @@ def under_collisions(result: Outcomes) -> Outcomes:
     """A rollout result under collisions "ignore" restated under "fail" (docs/model.md §5): a trial is
     the same under both rules up to its first landmark contact (recorded in `contact`, the step;
     `contact_end`, `contact_invalid` where the result has `end`, `invalid_steps`), where "fail" ends
-    it as LANDMARK; trials without contact keep their outcome. A cell that does not count
+    it as LANDMARK, its path (if kept) NaN after it; trials without contact keep their outcome. A cell that does not count
     (NEAR_WALL) or was not released (EXCLUDED) keeps that code; its steps, end and invalid moves
     are restated like the others. Equal, bit for bit, to running the rule "fail" (tested)."""
     if result.collisions != "ignore":  # type: ignore[attr-defined]
@@ -169,4 +169,9 @@ def under_collisions(result: Outcomes) -> Outcomes:
     if hasattr(result, "invalid_steps"):
         inv = np.asarray(result.invalid_steps)
         changes["invalid_steps"] = np.where(touched, np.asarray(result.contact_invalid), inv).astype(inv.dtype)  # type: ignore[attr-defined]
+    path = getattr(result, "path", None)
+    if path is not None:  # positions after the contact: none under "fail" (NaN, as after any end)
+        path = np.asarray(path)
+        after = touched[..., None] & (np.arange(path.shape[-2]) > contact[..., None])
+        changes["path"] = np.where(after[..., None], np.nan, path).astype(path.dtype)
     return dataclasses.replace(result, **{k: jax.device_put(v) for k, v in changes.items()}, collisions="fail")

@@ -20,7 +20,8 @@ class Trajectories(Outcomes):
     """Homing paths from chosen release points (Figs 4.11, 5.8).
 
     start: (T, 2); heading: (T,) rad; path: (T, max_steps + 1, 2), NaN after the end;
-    outcome, steps, invalid_steps: (T,).
+    outcome, steps, invalid_steps: (T,); contact, contact_invalid: (T,) the step of the first landmark
+    contact (NO_CONTACT: none) and the invalid moves before it (`rules.under_collisions`).
     """
 
     start: TrialPoints
@@ -29,6 +30,8 @@ class Trajectories(Outcomes):
     outcome: PerTrialInt
     steps: PerTrialInt
     invalid_steps: PerTrialInt
+    contact: PerTrialInt
+    contact_invalid: PerTrialInt
     first_move: str = eqx.field(static=True, default=DEFAULT_FIRST_MOVE)
     collisions: str = eqx.field(static=True, default="ignore")
 
@@ -81,6 +84,8 @@ def trajectory_trials(
         outcome=res.outcome,
         steps=res.steps,
         invalid_steps=res.invalid_steps,
+        contact=res.contact,
+        contact_invalid=res.contact_invalid,
         first_move=first_move,
         collisions=collisions,
     )

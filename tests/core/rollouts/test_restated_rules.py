@@ -61,6 +61,20 @@ def test_a_success_rate_restated_under_each_rule_is_its_own_run():
     assert_same(rollouts.under_collisions(default), runs["release", "fail"])
 
 
+def test_trajectories_restated_end_their_paths_at_the_contact():
+    """Paths too: under "fail" a trial's positions stop at its first landmark contact (NaN after it)."""
+    env = delvjax.load_env("env1")
+    lm = np.asarray(env.landmarks)[np.asarray(env.valid)]
+    # release points just beside each landmark, heading into it: the blind first move (d) ends inside
+    starts = lm[:, :2] - np.array([lm[:, 2] + 5.0, np.zeros(len(lm))]).T
+    runs = {
+        rule: delvjax.trajectories(env, "delv-compass", starts=starts.tolist(), heading_deg=0.0, collisions=rule)
+        for rule in rollouts.COLLISIONS
+    }
+    assert (np.asarray(runs["fail"].outcome) == rollouts.LANDMARK).sum() >= 2
+    assert_same(rollouts.under_collisions(runs["ignore"]), runs["fail"])
+
+
 def test_only_an_ignore_run_is_restated():
     fail = delvjax.success_rate("env1", "alv", trials=4, distances=[250], collisions="fail")
     with pytest.raises(delvjax.InputError) as exc:
