@@ -3,7 +3,7 @@ their config objects (`Grid`, `Rules`), the visibility masks, release distances 
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from typing import NamedTuple
 
 import jax
@@ -11,7 +11,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
-from ._vector_map import scene_request, visible_mask
+from ._vector_map import Indices, Values, scene_request, visible_mask
 from ..core.errors import InputError
 from ._config import GRID_DEFAULTS, RULES_DEFAULTS, Grid, Rules, unpack
 from ..core.methods import HomingMethod
@@ -101,19 +101,17 @@ def _configured(grid: Grid | None, rules: Rules | None, **given) -> tuple:
     return tuple(values[k] for k in given)
 
 
-def _masks(env: Env, occlude: int | None, hidden: list[int] | None) -> tuple[np.ndarray, list[tuple[int, ...]]]:
+def _masks(env: Env, occlude: int | None, hidden: Indices | None) -> tuple[np.ndarray, list[tuple[int, ...]]]:
     """The visibility masks (M, L) of `occlude=k` (every choice of k hidden landmarks) or of `hidden`."""
-    if occlude is not None and hidden:
+    if occlude is not None and hidden is not None and len(hidden) > 0:
         raise InputError("occlude", occlude, "cannot be combined with hidden")
     if occlude is not None:
         return occlusion_masks(env, occlusion_count(occlude, env.n_landmarks))
     visible_mask(env, hidden)  # validates the indices
-    return hidden_masks(env, hidden)
+    return hidden_masks(env, None if hidden is None else [int(i) for i in hidden])
 
 
-def _distances(
-    env: Env, distances: Sequence[float], trials: int, max_points: int, copies: int = 1
-) -> tuple[list[float], int]:
+def _distances(env: Env, distances: Values, trials: int, max_points: int, copies: int = 1) -> tuple[list[float], int]:
     """Validated release distances (each < the farthest arena corner from home) and trials per distance."""
     trials = positive_int(trials, "trials")
     if isinstance(distances, (str, bytes)) or not hasattr(distances, "__len__") or len(distances) == 0:

@@ -9,7 +9,7 @@ from collections.abc import Callable, Sequence
 import jax.numpy as jnp
 import numpy as np
 
-from ._vector_map import check_grid, visible_mask
+from ._vector_map import Indices, PointList, Values, check_grid, visible_mask
 from ..core.errors import InputError
 from ._config import Grid, Rules
 from ..core.maps import CLEARANCE, SPACING
@@ -44,7 +44,7 @@ def catchment(
     heading_deg: float | None = None,
     seed: int = 0,
     occlude: int | None = None,
-    hidden: list[int] | None = None,
+    hidden: Indices | None = None,
     max_steps: int = MAX_STEPS,
     home_radius: float = HOME_RADIUS,
     clearance: float = CLEARANCE,
@@ -105,11 +105,11 @@ def catchment(
 def success_rate(
     env: str | Path | Env,
     method: str | HomingMethod = "delv",
-    distances: Sequence[float] = DEFAULT_DISTANCES,
+    distances: Values = DEFAULT_DISTANCES,
     trials: int = TRIALS_PER_DISTANCE,
     heading_deg: float | None = None,
     seed: int = 0,
-    hidden: list[int] | None = None,
+    hidden: Indices | None = None,
     max_steps: int = MAX_STEPS,
     home_radius: float = HOME_RADIUS,
     clearance: float = CLEARANCE,
@@ -158,11 +158,11 @@ def success_rate(
 def trajectories(
     env: str | Path | Env,
     method: str | HomingMethod = "delv",
-    starts: Sequence[Sequence[float]] | None = None,
+    starts: PointList | None = None,
     n_starts: int = N_STARTS,
     heading_deg: float | None = None,
     seed: int = 0,
-    hidden: list[int] | None = None,
+    hidden: Indices | None = None,
     max_steps: int = MAX_STEPS,
     home_radius: float = HOME_RADIUS,
     clearance: float = CLEARANCE,
@@ -234,7 +234,7 @@ def rollout_request(
     clearance: float = CLEARANCE,
     first_move: str = DEFAULT_FIRST_MOVE,
     collisions: str | None = "ignore",
-    distances: Sequence[float] = DEFAULT_DISTANCES,
+    distances: Values = DEFAULT_DISTANCES,
     trials: int = TRIALS_PER_DISTANCE,
     max_points: int = MAX_POINTS,
     program: Sequence[str] | None = None,

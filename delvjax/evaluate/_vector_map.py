@@ -8,6 +8,8 @@ means the module's default) and calls the core.
 from __future__ import annotations
 
 import math
+import numbers
+from collections.abc import Sequence
 from pathlib import Path
 
 import jax
@@ -36,16 +38,24 @@ def resolve_headings(heading_deg: float | None, seed: int) -> tuple[float | None
     return math.radians(angle_deg(heading_deg, "heading_deg")), key
 
 
-def visible_mask(env: Env, hidden: list[int] | tuple[int, ...] | None) -> np.ndarray | None:
-    """Boolean (L,) mask of the landmarks seen during homing, `hidden` ones occluded (docs/model.md §5)."""
-    if not hidden:
+# what a caller may pass for a list of landmark indices, release distances or release points: a list,
+# tuple or NumPy array alike
+Indices = Sequence[int] | np.ndarray
+Values = Sequence[float] | np.ndarray
+PointList = Sequence[Sequence[float]] | np.ndarray
+
+
+def visible_mask(env: Env, hidden: Indices | None) -> np.ndarray | None:
+    """Boolean (L,) mask of the landmarks seen during homing, `hidden` ones occluded (docs/model.md §5).
+    Indices may be Python or NumPy integers (a list, tuple or array)."""
+    if hidden is None or len(hidden) == 0:
         return None
     n = env.n_landmarks
     for i in hidden:
-        if isinstance(i, bool) or not isinstance(i, int) or not 0 <= i < n:
+        if isinstance(i, (bool, np.bool_)) or not isinstance(i, numbers.Integral) or not 0 <= i < n:
             raise InputError("hide", i, f"must be a landmark index in 0..{n - 1}")
     mask = np.ones(env.landmarks.shape[0], bool)
-    mask[list(hidden)] = False
+    mask[[int(i) for i in hidden]] = False
     return mask
 
 
@@ -118,7 +128,7 @@ def map_request(
     heading_deg: float | None = None,
     seed: int = 0,
     clearance: float = CLEARANCE,
-    hidden: list[int] | None = None,
+    hidden: Indices | None = None,
     batch_size: int = maps.DEFAULT_BATCH,
     max_points: int = MAX_POINTS,
     grid: Grid | None = None,
@@ -154,7 +164,7 @@ def vector_map(
     heading_deg: float | None = None,
     seed: int = 0,
     clearance: float = CLEARANCE,
-    hidden: list[int] | None = None,
+    hidden: Indices | None = None,
     batch_size: int = maps.DEFAULT_BATCH,
     max_points: int = MAX_POINTS,
     grid: Grid | None = None,

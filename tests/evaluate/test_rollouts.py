@@ -212,3 +212,27 @@ def test_run_trials_checks_the_rules():
         run(env, starts, np.zeros(1, np.float32), "alv", first_move="straight")
     with pytest.raises(InputError, match="collisions"):
         run(env, starts, np.zeros(1, np.float32), "alv", collisions="bounce")
+
+
+def test_numpy_arrays_are_taken_wherever_lists_are():
+    """Hidden landmarks, release distances and release points as NumPy arrays (NumPy integers too) give
+    the lists' numbers; a bad NumPy index is refused naming it (it once read "0..3, got np.int64(1)")."""
+    kw = {"hidden": [0, 2], "distances": [100.0, 300.0]}
+    lists = delvjax.success_rate("env1", "alv", trials=4, **kw)
+    arrays = delvjax.success_rate("env1", "alv", trials=4, **{k: np.asarray(v) for k, v in kw.items()})
+    same(lists, arrays, "outcome")
+    same(lists, arrays, "start")
+    c = delvjax.catchment("env1", "alv", spacing=200, hidden=np.array([1], np.int32))
+    same(c, delvjax.catchment("env1", "alv", spacing=200, hidden=[1]), "outcome")
+    assert c.hidden == ((1,),)
+    v = delvjax.vector_map("env1", "alv", spacing=200, hidden=np.array([1, 3]))
+    same(v, delvjax.vector_map("env1", "alv", spacing=200, hidden=[1, 3]), "direction")
+    t = delvjax.trajectories("env1", "alv", starts=np.array([[300.0, 300.0], [700.0, 250.0]]))
+    same(t, delvjax.trajectories("env1", "alv", starts=[[300.0, 300.0], [700.0, 250.0]]), "path")
+    with pytest.raises(InputError, match="0..3, got np.int64.4."):
+        delvjax.catchment("env1", "alv", spacing=200, hidden=np.array([4]))
+
+
+def same(a, b, field: str) -> None:
+    """Field `field` of two results equal bit for bit."""
+    np.testing.assert_array_equal(np.asarray(getattr(a, field)), np.asarray(getattr(b, field)))
