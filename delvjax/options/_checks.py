@@ -6,10 +6,12 @@ the same message)."""
 from __future__ import annotations
 
 import math
+import numbers
 
 import equinox as eqx
 import jax
 import jax.numpy as jnp
+import numpy as np
 
 from ..core.errors import InputError
 from ..core.types import Real
@@ -75,10 +77,10 @@ INT_LIMIT = 2**31 - 1  # JAX computes in int32 (no x64): a larger integer overfl
 
 
 def is_integer(value: object) -> bool:
-    """An int, or a float with an integer value (not inf or NaN); not a bool."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    """An integer, Python's or NumPy's, or a float with an integer value (not inf or NaN); not a bool."""
+    if isinstance(value, (bool, np.bool_)):
         return False
-    return isinstance(value, int) or value.is_integer()
+    return isinstance(value, numbers.Integral) or (isinstance(value, numbers.Real) and float(value).is_integer())
 
 
 def positive_int(value: object, field: str) -> int:
@@ -111,9 +113,10 @@ SEED_LIMIT = 2**32  # PRNGKey keeps 32 bits of a seed (without x64): larger seed
 
 def seed_value(value: object) -> int:
     """A seed in 0..2**32 - 1 (`InputError` otherwise, also for a seed too large for the key)."""
-    if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < SEED_LIMIT:
+    integral = isinstance(value, numbers.Integral) and not isinstance(value, (bool, np.bool_))
+    if not integral or not 0 <= value < SEED_LIMIT:  # type: ignore[operator]
         raise InputError("seed", value, f"must be an integer in 0..{SEED_LIMIT - 1}")
-    return value
+    return int(value)  # type: ignore[arg-type]
 
 
 def angle_deg(value: object, field: str) -> float:

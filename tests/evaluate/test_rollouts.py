@@ -236,3 +236,19 @@ def test_numpy_arrays_are_taken_wherever_lists_are():
 def same(a, b, field: str) -> None:
     """Field `field` of two results equal bit for bit."""
     np.testing.assert_array_equal(np.asarray(getattr(a, field)), np.asarray(getattr(b, field)))
+
+
+def test_numpy_integers_are_integers(untyped):
+    """A loop over np.arange hands NumPy integers to trials, seed, occlude, max_steps and n_starts: they are
+    integers (they were refused as "must be an integer, got np.int64(3)"); NumPy's True is no seed."""
+    a = delvjax.success_rate("env1", "alv", trials=np.int64(3), distances=[100.0], seed=np.int32(2))
+    b = delvjax.success_rate("env1", "alv", trials=3, distances=[100.0], seed=2)
+    same(a, b, "outcome")
+    same(a, b, "start")
+    c = delvjax.catchment("env1", "alv", spacing=200, occlude=np.int64(1), max_steps=np.int16(20))
+    same(c, delvjax.catchment("env1", "alv", spacing=200, occlude=1, max_steps=20), "outcome")
+    assert np.asarray(delvjax.trajectories("env1", "alv", n_starts=np.uint8(2)).steps).shape == (2,)
+    for bad in (np.bool_(True), np.int64(-1)):
+        with pytest.raises(InputError) as exc:
+            delvjax.vector_map("env1", "alv", spacing=200, seed=bad)
+        assert exc.value.field == "seed"
