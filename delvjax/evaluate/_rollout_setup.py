@@ -108,7 +108,7 @@ def _masks(env: Env, occlude: int | None, hidden: Indices | None) -> tuple[np.nd
     if occlude is not None:
         return occlusion_masks(env, occlusion_count(occlude, env.n_landmarks))
     visible_mask(env, hidden)  # validates the indices
-    return hidden_masks(env, None if hidden is None else [int(i) for i in hidden])
+    return hidden_masks(env, hidden)
 
 
 def _distances(env: Env, distances: Values, trials: int, max_points: int, copies: int = 1) -> tuple[list[float], int]:

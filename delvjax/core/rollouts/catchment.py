@@ -49,10 +49,10 @@ def occlusion_masks(env: Env, k: int) -> tuple[np.ndarray, list[tuple[int, ...]]
     return masks, combos
 
 
-def hidden_masks(env: Env, hidden: Sequence[int] | None) -> tuple[np.ndarray, list[tuple[int, ...]]]:
-    """The single mask (1, L) hiding `hidden` (or none)."""
+def hidden_masks(env: Env, hidden: Sequence[int] | np.ndarray | None) -> tuple[np.ndarray, list[tuple[int, ...]]]:
+    """The single mask (1, L) hiding `hidden` (or none; a list or array of indices)."""
     masks = np.asarray(env.valid, bool)[None, :].copy()
-    hidden = tuple(int(i) for i in (hidden or ()))
+    hidden = tuple(int(i) for i in (() if hidden is None else hidden))
     masks[0, list(hidden)] = False
     return masks, [hidden]
 
