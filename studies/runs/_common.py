@@ -117,19 +117,15 @@ def catchments(ctx, e: Env, method: str, **options) -> dict[str, rollouts.Catchm
 
 
 def success_tables(ctx, e: Env, method: str, **options) -> dict[str, list[dict]]:
-    """`success_table` of `method` under every rule set of RULES (`every_rule`)."""
+    """Success rate per release distance 50..450 cm (`settings.trials` per bin, Figs 4.10b, 5.7b) of
+    `method` under every rule set of RULES (`every_rule`): {rules: the rows of `tables.success_rows`
+    (the CLI's success-rate CSV)}."""
     runs = every_rule(lambda rules: success_rate(ctx, e, method, rules, **options), method, e.arena, options.get("d"))
     return {rules: success_rows(res, method) for rules, res in runs.items()}
 
 
-def success_table(ctx, e: Env, method: str, rules: str = "default", **options) -> list[dict]:
-    """Success rate per release distance 50..450 cm (`settings.trials` per bin, Figs 4.10b, 5.7b): the
-    rows of `tables.success_rows` (the CLI's success-rate CSV)."""
-    return success_rows(success_rate(ctx, e, method, rules, **options), method)
-
-
 def success_rate(ctx, e: Env, method: str, rules: str = "default", **options) -> rollouts.SuccessRate:
-    """The success-rate trials of `success_table`."""
+    """The success-rate trials of `method` under one rule set (`success_tables`)."""
     return delvjax.success_rate(
         e,
         method=method,
@@ -208,7 +204,7 @@ FAR_BINS = 3  # the far third of the nine release distances (50..450 cm): the cl
 
 
 def failure_counts(rows: list[dict], last: int | None = None) -> dict[str, int]:
-    """Failed trials of a success table (`success_table` rows) by outcome: timeout, landmark (a move
+    """Failed trials of a success table (`success_tables` rows) by outcome: timeout, landmark (a move
     ending inside a landmark), arena; over the `last` release distances only when given."""
     rows = rows if last is None else rows[-last:]
     return {o: int(sum(r[f"{o}_count"] for r in rows)) for o in FAILURES}

@@ -16,9 +16,9 @@ Two rules, both recorded in every summary and table:
     inside a landmark (distance to its centre < r) ends the trial as a failure.
 A run under "ignore" records each trial's first landmark contact; up to it the trial is the same
 under "fail", which ends it there, so `under_collisions` restates such a run under "fail" without
-running it again. Under "release" the blind first move from a grid point closer than d to a wall can leave the
-arena whatever the method, so the catchment counts only grid points at least d from every wall
-(`catchment_counted`; docs/model.md §5); the vector map keeps the whole grid.
+running it again. Under "release" the blind first move from a grid point closer than d to a wall
+can leave the arena whatever the method, so the catchment counts only grid points at least d from
+every wall (`catchment_counted`; docs/model.md §5); the vector map keeps the whole grid.
 """
 
 from __future__ import annotations
@@ -150,9 +150,10 @@ def under_collisions(result: Outcomes) -> Outcomes:
     """A rollout result under collisions "ignore" restated under "fail" (docs/model.md §5): a trial is
     the same under both rules up to its first landmark contact (recorded in `contact`, the step;
     `contact_end`, `contact_invalid` where the result has `end`, `invalid_steps`), where "fail" ends
-    it as LANDMARK, its path (if kept) NaN after it; trials without contact keep their outcome. A cell that does not count
-    (NEAR_WALL) or was not released (EXCLUDED) keeps that code; its steps, end and invalid moves
-    are restated like the others. Equal, bit for bit, to running the rule "fail" (tested)."""
+    it as LANDMARK, its path (if kept) NaN after it; trials without contact keep their outcome. A
+    cell that does not count (NEAR_WALL) or was not released (EXCLUDED) keeps that code; its steps,
+    end and invalid moves are restated like the others. Equal, bit for bit, to running the rule
+    "fail" (tests/core/rollouts/test_restated_rules.py)."""
     if result.collisions != "ignore":  # type: ignore[attr-defined]
         raise InputError("collisions", result.collisions, 'must be "ignore" (the run to restate)')  # type: ignore[attr-defined]
     contact = np.asarray(result.contact)  # type: ignore[attr-defined]
