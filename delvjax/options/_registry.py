@@ -8,6 +8,7 @@ beside the others).
 from __future__ import annotations
 
 import dataclasses
+import difflib
 
 from ..core.errors import InputError
 from ..core.settings import declared
@@ -82,8 +83,18 @@ def unregister(name: str) -> None:
 def get_method(name: str) -> HomingMethod:
     """The module registered under `name`; `InputError` naming the field otherwise."""
     if not isinstance(name, str) or name not in METHODS:
-        raise InputError("method", name, f"unknown method (choose from {', '.join(METHODS)})")
+        raise InputError("method", name, f"unknown method{_did_you_mean(name)} (choose from {', '.join(METHODS)})")
     return METHODS[name]
+
+
+def _did_you_mean(name) -> str:
+    """' (did you mean 'alv'?)' where a registered name is close to `name` ("ALV", "delv_compass",
+    "delvcompass"), else ''."""
+    if not isinstance(name, str):
+        return ""
+    typed = name.strip().lower().replace("_", "-").replace(" ", "-")
+    close = [typed] if typed in METHODS else difflib.get_close_matches(typed, list(METHODS), n=1, cutoff=0.75)
+    return f" (did you mean {close[0]!r}?)" if close else ""
 
 
 def configure(method: HomingMethod, **settings) -> HomingMethod:
@@ -119,7 +130,11 @@ def program(method: str, names) -> tuple[Program, tuple[str, ...]]:
     names = tuple(names)
     unknown = [m for m in names if m not in METHODS]
     if unknown:
-        raise InputError("program", list(names), f"unknown method {unknown[0]!r} (choose from {', '.join(METHODS)})")
+        raise InputError(
+            "program",
+            list(names),
+            f"unknown method {unknown[0]!r}{_did_you_mean(unknown[0])} (choose from {', '.join(METHODS)})",
+        )
     if method not in names:
         raise InputError("program", list(names), f"must contain the method {method!r}")
     return Program(methods=tuple(METHODS[m] for m in names), index=names.index(method)), names

@@ -207,3 +207,25 @@ def test_a_rollout_only_noise_on_a_vector_map_is_refused_not_ignored(tmp_path, c
     assert not out.exists()
     with pytest.raises(InputError, match="acts only in rollouts"):
         delvjax.vector_map("env1", spacing=200.0, **{flag[2:].replace("-", "_"): 0.1})
+
+
+@pytest.mark.parametrize(
+    "typed, meant",
+    [("ALV", "alv"), ("delv_compass", "delv-compass"), ("Delv Compass", "delv-compass"), ("minwarp", "minwarping")],
+)
+def test_a_method_name_typed_otherwise_is_refused_with_the_name_meant(tmp_path, capsys, typed, meant):
+    """Names are exact (they are CSV columns and sweep coordinates), but the error says which was meant."""
+    out = tmp_path / "m.csv"
+    assert main(["vector-map", "env1", "--method", typed, "--spacing", "200", "--out", str(out)]) == 2
+    line = error_line(capsys)
+    assert line.startswith("delvjax: error: method: unknown method") and f"(did you mean {meant!r}?)" in line
+    assert not out.exists()
+    assert main(["success-rate", "env1", "--method", f"delv,{typed}", "--trials", "1", "--out", str(out)]) == 2
+    assert f"(did you mean {meant!r}?)" in error_line(capsys)
+    with pytest.raises(InputError, match="did you mean"):
+        delvjax.vector_map("env1", typed, spacing=200.0)
+
+
+def test_a_name_like_no_method_gets_no_guess(tmp_path, capsys):
+    assert main(["vector-map", "env1", "--method", "xyz", "--spacing", "200", "--out", str(tmp_path / "m.csv")]) == 2
+    assert "did you mean" not in error_line(capsys)
