@@ -22,6 +22,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from delvjax.studies import FULL_RUN_ONLY, STUDIES
+
 
 def run(out: Path, quick: bool, cache: str, workers: int | None = None, only: list[str] | None = None) -> float:
     cmd = [sys.executable, "-m", "delvjax.cli", "reproduce", "--out", str(out)] + (["--quick"] if quick else [])
@@ -42,8 +44,6 @@ def main() -> None:
     a = p.parse_args()
     only = None
     if a.without:
-        from delvjax.studies import FULL_RUN_ONLY, STUDIES
-
         left_out = set(a.without.split(","))
         unknown = sorted(left_out - set(STUDIES))
         if unknown:

@@ -93,7 +93,7 @@ def _did_you_mean(name) -> str:
     if not isinstance(name, str):
         return ""
     typed = name.strip().lower().replace("_", "-").replace(" ", "-")
-    close = [typed] if typed in METHODS else difflib.get_close_matches(typed, list(METHODS), n=1, cutoff=0.75)
+    close = difflib.get_close_matches(typed, list(METHODS), n=1, cutoff=0.75)  # an exact match scores highest
     return f" (did you mean {close[0]!r}?)" if close else ""
 
 
