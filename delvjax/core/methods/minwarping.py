@@ -124,6 +124,12 @@ def _steps(w: int, n_alpha: int, n_psi: int, scales: tuple, threshold: float):
     return entries, ws.group_steps(entries, w, n_alpha, n_psi)
 
 
+@functools.lru_cache(maxsize=16)
+def _groups(w: int, scales: tuple, threshold: float) -> dict:
+    """The template grouped by column for the fine search (`ws.column_groups`)."""
+    return ws.column_groups(ws.min_template(w, scales, threshold, 0.0, math.inf))
+
+
 def search(ss: Arrays, cv: Arrays, elevations: Arrays, cfg: "MinWarping") -> tuple[Array, Array, Array]:
     """docs/model.md §4.7: (alpha, psi) in whole pixels and the match at the best hypothesis.
 
@@ -149,13 +155,16 @@ def search(ss: Arrays, cv: Arrays, elevations: Arrays, cfg: "MinWarping") -> tup
     value = match.reshape(-1)[best]
     alpha, psi = a * (w // cfg.n_alpha), m * (w // cfg.n_psi)
     if "fine" in cfg.refine:
-        alpha, psi, value = _fine(stk, inv, entries, alpha, psi, value, w // cfg.n_alpha, w // cfg.n_psi)
+        groups = _groups(w, scales, float(cfg.threshold)) if jnp.issubdtype(stk.dtype, jnp.integer) else None
+        alpha, psi, value = _fine(stk, inv, entries, groups, alpha, psi, value, w // cfg.n_alpha, w // cfg.n_psi)
     return alpha, psi, value
 
 
-def _fine(stk, inv, entries, alpha, psi, value, step_alpha: int, step_psi: int):
+def _fine(stk, inv, entries, groups, alpha, psi, value, step_alpha: int, step_psi: int):
     """Every whole-pixel (alpha, psi) within one grid step of the best; a candidate replaces it only
-    where its match is strictly smaller (so the minimum never grows)."""
+    where its match is strictly smaller (so the minimum never grows). On the byte stack all candidates
+    at once from windows of the stack (`fine_windows`, the same integers); on float32 one candidate
+    at a time (the order of its float sums kept)."""
     w = stk.shape[-1]
     da = np.arange(-(step_alpha - 1), step_alpha)
     dp = np.arange(-(step_psi - 1), step_psi)
@@ -168,10 +177,33 @@ def _fine(stk, inv, entries, alpha, psi, value, step_alpha: int, step_psi: int):
             v = v + ws.min_match_at(inv, entries, (a + w // 2 - p) % w, (-p) % w)
         return v
 
-    values = jax.vmap(score)(cand_a, cand_p)
+    if groups is None:
+        values = jax.vmap(score)(cand_a, cand_p)
+    else:
+        values = fine_windows(stk, groups, alpha, psi, step_alpha, step_psi, inv is not None).reshape(-1)
     k = first_argmin(values)
     better = values[k] < value
     return jnp.where(better, cand_a[k], alpha), jnp.where(better, cand_p[k], psi), jnp.minimum(values[k], value)
+
+
+def fine_windows(stk, groups: dict, alpha, psi, step_alpha: int, step_psi: int, double: bool) -> Array:
+    """(2 step_psi - 1, 2 step_alpha - 1) int32 matches of every (alpha + da, psi + dp), [dp, da], as
+    `ws.min_match_at` gives them one at a time (plus the way back with `double`).
+
+    With g = `ws.window_stack(stk)`, g[s, t, u] = stk[s, t, t - u]: entry (x, y, plane) reads at
+    hypothesis (a, p) stk[plane, x + a, x + a + y - p] = g[plane, x + a, p - y], and on the way back
+    (a' = a + w/2 - p, p' = -p, the swapped stack plane S - 1 - s transposed, `sp.inverted`)
+    stk[S - 1 - plane, x + y + a + w/2, x + a + w/2 - p] = g[S - 1 - plane, x + y + a + w/2, y + p]. Over
+    da and dp both are one window of g per entry."""
+    w, n_planes = stk.shape[-1], stk.shape[0]
+    rows, cols = 2 * step_alpha - 1, 2 * step_psi - 1
+    g = ws.window_stack(stk, rows, cols)
+    x, y, plane = (jnp.asarray(groups[k]) for k in ("x", "y", "plane"))
+    a0, p0 = alpha - (step_alpha - 1), psi - (step_psi - 1)
+    out = ws.window_match(g, groups, plane, x + a0, p0 - y, rows, cols)
+    if double:
+        out = out + ws.window_match(g, groups, n_planes - 1 - plane, x + y + a0 + w // 2, y + p0, rows, cols)
+    return out.T
 
 
 class MinWarping(HomingMethod):

@@ -30,7 +30,7 @@ import numpy as np
 from jax import Array, lax
 
 from ..types import Arrays
-from .scale_planes import plane_of
+from .scale_planes import plane_of, skewed
 
 UNROLL = 8  # template entries per scan step (padding repeats an entry: min is idempotent)
 
@@ -162,6 +162,47 @@ def inverse_index(n_alpha: int, n_psi: int) -> tuple[np.ndarray, np.ndarray]:
     m = np.arange(n_psi)[:, None]
     a = np.arange(n_alpha)[None, :]
     return np.broadcast_to((-m) % n_psi, (n_psi, n_alpha)), (a + n_alpha // 2 - m * n_alpha // n_psi) % n_alpha
+
+
+def column_groups(entries: np.ndarray) -> dict[str, np.ndarray]:
+    """The template's entries grouped by column x for the fine search (`window_match`): each column's
+    entries padded to a multiple of UNROLL by repeating its last one (min is idempotent); x, y, plane
+    (G, UNROLL) and `column` (G,), the index of the group's column among the template's columns."""
+    groups, column = [], []
+    for k, ix in enumerate(np.unique(entries[:, 0])):
+        group = entries[entries[:, 0] == ix]
+        group = np.concatenate([group, np.repeat(group[-1:], (-len(group)) % UNROLL, 0)]).reshape(-1, UNROLL, 3)
+        groups.append(group)
+        column += [k] * len(group)
+    part = np.concatenate(groups)
+    return {"x": part[..., 0], "y": part[..., 1], "plane": part[..., 2], "column": np.asarray(column, np.int32)}
+
+
+def window_stack(stk: Arrays, rows: int, cols: int) -> Array:
+    """(planes, w + rows - 1, w + cols - 1): out[s, t, u] = stk[s, t mod w, (t - u) mod w], wrapped
+    around so that every (rows, cols) window starting in [0, w)^2 lies inside (`window_match`)."""
+    w = stk.shape[-1]
+    g = jnp.roll(jax.vmap(skewed)(stk)[:, :, ::-1], 1, axis=2)  # [s, t, u] = skewed[s, t, -u] = stk[s, t, t - u]
+    return g[:, np.arange(w + rows - 1) % w][:, :, np.arange(w + cols - 1) % w]
+
+
+def window_match(g: Arrays, groups: dict, plane: Array, row: Array, col: Array, rows: int, cols: int) -> Array:
+    """(rows, cols) int32: for every offset (i, j) of a window, the sum over template columns of the
+    minimum over the column's entries of g[plane, row + i, col + j] (`window_stack`; plane, row, col
+    per entry, (G, UNROLL)). The fine search of all its hypotheses at once: each entry reads one
+    contiguous window (one gather of windows, not one gather per hypothesis), and sums of integers are
+    exact whatever their order."""
+    w = g.shape[1] - rows + 1
+    read = jax.vmap(lambda s, r, c: lax.dynamic_slice(g, (s, r % w, c % w), (1, rows, cols)).reshape(rows, cols))
+    n_groups = plane.shape[0]
+    least = read(plane.reshape(-1), row.reshape(-1), col.reshape(-1)).reshape(n_groups, UNROLL, rows, cols).min(1)
+    per_column = jax.ops.segment_min(
+        least.astype(jnp.int32),
+        jnp.asarray(groups["column"]),
+        num_segments=int(groups["column"][-1]) + 1,
+        indices_are_sorted=True,
+    )
+    return jnp.sum(per_column, axis=0)
 
 
 def entry_values(stk: Arrays, entries: np.ndarray, alpha: Arrays | int, psi: Arrays | int) -> Array:

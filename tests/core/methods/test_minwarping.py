@@ -113,6 +113,32 @@ def test_the_match_table_is_the_twins(stack_type):
         np.testing.assert_allclose(np.asarray(table), twin, rtol=1e-5)
 
 
+@compiled
+def fine_table(stk, alpha, psi, steps: tuple[int, int], double: bool):
+    groups = ws.column_groups(ws.min_template(W, SCALES, 2.5, 0.0, math.inf))
+    return mw.fine_windows(stk, groups, alpha, psi, *steps, double)
+
+
+@pytest.mark.parametrize("steps", [(3, 3), (2, 6)])
+def test_the_fine_search_reads_every_candidates_match_from_windows(steps):
+    """On the byte stack the fine search scores all (alpha + da, psi + dp) at once from windows of the
+    stack; each equals the candidate's match taken one at a time, both ways, ties included."""
+    rng = np.random.default_rng(sum(steps))
+    for stk in (rng.integers(0, 201, (9, W, W)), rng.integers(0, 3, (9, W, W))):
+        stk = jnp.asarray(stk, jnp.uint8)
+        back = inverted(stk)
+        alpha, psi = (int(v) for v in rng.integers(0, W, 2))
+        one_way, both = (np.asarray(fine_table(stk, alpha, psi, steps, d)) for d in (False, True))
+        (sa, sp_), (rows, cols) = steps, one_way.shape
+        assert (rows, cols) == (2 * sp_ - 1, 2 * sa - 1)
+        for i, dp in enumerate(range(-(sp_ - 1), sp_)):
+            for j, da in enumerate(range(-(sa - 1), sa)):
+                a, p = (alpha + da) % W, (psi + dp) % W
+                there = int(match_at(stk, a, p))
+                assert one_way[i, j] == there
+                assert both[i, j] == there + int(match_at(back, (a + W // 2 - p) % W, (-p) % W))
+
+
 @pytest.mark.parametrize("refine", mw.REFINEMENTS)
 def test_every_refinement_finds_the_twins_hypothesis(refine):
     for seed in (2, 3):
