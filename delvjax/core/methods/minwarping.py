@@ -121,7 +121,7 @@ def quantised(stk: Arrays, measure: str, stack_type: str) -> Array:
 @functools.lru_cache(maxsize=16)
 def _steps(w: int, n_alpha: int, n_psi: int, scales: tuple, threshold: float):
     entries = ws.min_template(w, scales, threshold, 0.0, math.inf)
-    return entries, ws.group_steps(entries, w, n_alpha, n_psi)
+    return entries, ws.group_steps(ws.run_template(entries, w, len(scales)), w, n_alpha, n_psi)
 
 
 @functools.lru_cache(maxsize=16)
@@ -145,9 +145,9 @@ def search(ss: Arrays, cv: Arrays, elevations: Arrays, cfg: "MinWarping") -> tup
     )
     double = "double" in cfg.refine
     inv = sp.inverted(stk) if double else None
-    match = ws.min_match(sp.arranged(stk, cfg.n_alpha, cfg.n_psi), steps, cfg.n_alpha, cfg.n_psi)
+    match = ws.min_match(ws.run_windows(sp.arranged(stk, cfg.n_alpha, cfg.n_psi)), steps, cfg.n_alpha, cfg.n_psi)
     if double:
-        back = ws.min_match(sp.arranged(inv, cfg.n_alpha, cfg.n_psi), steps, cfg.n_alpha, cfg.n_psi)
+        back = ws.min_match(ws.run_windows(sp.arranged(inv, cfg.n_alpha, cfg.n_psi)), steps, cfg.n_alpha, cfg.n_psi)
         im, ia = ws.inverse_index(cfg.n_alpha, cfg.n_psi)
         match = match + back[im, ia]
     best = first_argmin(match.reshape(-1))  # psi-major, alpha-minor: the first minimum wins

@@ -97,6 +97,51 @@ def group_steps(entries: np.ndarray, w: int, n_alpha: int, n_psi: int) -> dict[s
     }
 
 
+RUN_LEVELS = 3  # a read covers up to 2^RUN_LEVELS consecutive displacements (`run_template`, `run_windows`)
+
+
+def run_template(entries: np.ndarray, w: int, n_planes: int, levels: int = RUN_LEVELS) -> np.ndarray:
+    """The MinWarping template as reads of windows (`run_windows`): (R, 3) rows (x, y, k n_planes + plane),
+    each the minimum over displacements y .. y + 2^k - 1 (mod w) of one plane. Every run of consecutive
+    displacements of one column and plane (the entries of `min_template` come in such runs, 11 long on
+    average at 360 columns) is covered by windows of 2^k, k = min(floor(log2 run), levels), the last one
+    overlapping; so each column's minimum over its reads is the minimum over its entries, exactly."""
+    rows = []
+    for ix in np.unique(entries[:, 0]):
+        group = entries[entries[:, 0] == ix]
+        start = 0
+        for i in range(1, len(group) + 1):
+            ends = i == len(group) or group[i, 2] != group[i - 1, 2]
+            ends = ends or (group[i, 1] - group[i - 1, 1]) % w not in (1, w - 1)
+            if not ends:
+                continue
+            run = group[start:i]
+            n, plane = len(run), int(run[0, 2])
+            low = int(run[0, 1]) if n == 1 or (run[1, 1] - run[0, 1]) % w == 1 else int(run[-1, 1])
+            k = min(n.bit_length() - 1, levels)
+            starts = sorted({*range(0, n - (1 << k) + 1, 1 << k), n - (1 << k)})
+            rows += [(int(ix), (low + o) % w, k * n_planes + plane) for o in starts]
+            start = i
+    return np.asarray(rows, np.int32).reshape(-1, 3)
+
+
+def run_windows(arr: Arrays, levels: int = RUN_LEVELS) -> Array:
+    """The arranged stack (`scale_planes.arranged`, [s, ry, t, rx, q]) with its window minima stacked
+    on the plane axis: level k, plane s holds at the block of displacement y the minimum over y .. y +
+    2^k - 1 (`run_template`). Displacement y + c is (ry + c) mod step_psi, t - (ry + c) // step_psi (t
+    of period n_psi, the doubled axis rolled whole), so each level is the last and its shift by 2^k."""
+    step_psi = arr.shape[1]
+    out = [arr]
+    for k in range(levels):
+        c = 1 << k
+        prev = out[-1]
+        shifted = jnp.stack(
+            [jnp.roll(prev[:, (ry + c) % step_psi], (ry + c) // step_psi, axis=1) for ry in range(step_psi)], 1
+        )
+        out.append(jnp.minimum(prev, shifted))
+    return jnp.concatenate(out, 0)
+
+
 def _block(arr: Arrays, s: dict, u: int, n_alpha: int, n_psi: int, q0: Array | int = 0) -> Array:
     """Entry u of scan step s: its (n_psi, n_alpha) block of the arranged stack from column q0 of
     the q axis (0: the q frame; qx on an alpha-doubled stack: the alpha frame)."""

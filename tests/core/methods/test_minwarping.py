@@ -114,6 +114,42 @@ def test_the_match_table_is_the_twins(stack_type):
 
 
 @compiled
+def window_table(stk, n_alpha: int, n_psi: int):
+    reads = ws.run_template(ws.min_template(W, SCALES, 2.5, 0.0, math.inf), W, len(SCALES))
+    arr = ws.run_windows(sp.arranged(stk, n_alpha, n_psi))
+    return ws.min_match(arr, ws.group_steps(reads, W, n_alpha, n_psi), n_alpha, n_psi)
+
+
+@compiled
+def entry_table(stk, n_alpha: int, n_psi: int):
+    entries = ws.min_template(W, SCALES, 2.5, 0.0, math.inf)
+    return ws.min_match(sp.arranged(stk, n_alpha, n_psi), ws.group_steps(entries, W, n_alpha, n_psi), n_alpha, n_psi)
+
+
+def test_window_reads_cover_each_columns_entries_exactly():
+    """The search reads runs of consecutive displacements as windows of 2^k (`run_template`): per
+    column and plane the windows cover exactly the template's displacements, in fewer reads."""
+    entries = ws.min_template(W, SCALES, 2.5, 0.0, math.inf)
+    reads = ws.run_template(entries, W, len(SCALES))
+    assert len(reads) < len(entries) / 2
+    covered = {(x, (y + o) % W, k % len(SCALES)) for x, y, k in reads.tolist() for o in range(2 ** (k // len(SCALES)))}
+    assert covered == set(map(tuple, entries.tolist()))
+
+
+@pytest.mark.parametrize("grid", [(32, 32), (32, 16), (48, 32)])
+def test_the_match_table_from_window_minima_is_the_entry_by_entry_table(grid):
+    """The search's match table (window minima of the arranged stack, `run_windows`) equals the table
+    taken entry by entry, bit for bit, on bytes, on ties and on floats (a minimum is exact)."""
+    rng = np.random.default_rng(sum(grid))
+    for stk in (
+        jnp.asarray(rng.integers(0, 201, (9, W, W)), jnp.uint8),
+        jnp.asarray(rng.integers(0, 3, (9, W, W)), jnp.uint8),
+        jnp.asarray(rng.random((9, W, W)), jnp.float32),
+    ):
+        assert np.array_equal(np.asarray(window_table(stk, *grid)), np.asarray(entry_table(stk, *grid)))
+
+
+@compiled
 def fine_table(stk, alpha, psi, steps: tuple[int, int], double: bool):
     groups = ws.column_groups(ws.min_template(W, SCALES, 2.5, 0.0, math.inf))
     return mw.fine_windows(stk, groups, alpha, psi, *steps, double)
