@@ -71,11 +71,9 @@ def rho_template(w: int, scales: tuple[float, ...], rhos: tuple[float, ...]) -> 
     return np.stack([ix, iy, plane], -1).astype(np.int32)
 
 
-def group_steps(entries: np.ndarray, w: int, n_alpha: int, n_psi: int) -> dict[str, np.ndarray]:
-    """The template grouped by x into scan steps of UNROLL entries (padding repeats the group's
-    last): per step the block starts (plane, ry, t0, rx, qx), (steps, UNROLL), and whether the step
-    is the first and the last of its x."""
-    sa, sp = w // n_alpha, w // n_psi
+def _padded_groups(entries: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The entries grouped by x in parts of UNROLL (a group padded by repeating its last entry: min is
+    idempotent): (parts (S, UNROLL, 3), whether each part is the first and the last of its x)."""
     steps = []
     for ix in np.unique(entries[:, 0]):
         group = entries[entries[:, 0] == ix]
@@ -84,7 +82,15 @@ def group_steps(entries: np.ndarray, w: int, n_alpha: int, n_psi: int) -> dict[s
         parts = group.reshape(-1, UNROLL, 3)
         for k, part in enumerate(parts):
             steps.append((part, k == 0, k == len(parts) - 1))
-    part = np.stack([s[0] for s in steps])
+    return np.stack([s[0] for s in steps]), np.array([s[1] for s in steps]), np.array([s[2] for s in steps])
+
+
+def group_steps(entries: np.ndarray, w: int, n_alpha: int, n_psi: int) -> dict[str, np.ndarray]:
+    """The template grouped by x into scan steps of UNROLL entries (`_padded_groups`): per step the
+    block starts (plane, ry, t0, rx, qx), (steps, UNROLL), and whether the step is the first and the
+    last of its x."""
+    sa, sp = w // n_alpha, w // n_psi
+    part, first, last = _padded_groups(entries)
     x, y, plane = part[..., 0], part[..., 1], part[..., 2]
     return {
         "plane": plane,
@@ -92,8 +98,8 @@ def group_steps(entries: np.ndarray, w: int, n_alpha: int, n_psi: int) -> dict[s
         "t0": (-(y // sp)) % n_psi,
         "rx": x % sa,
         "qx": x // sa,
-        "first": np.array([s[1] for s in steps]),
-        "last": np.array([s[2] for s in steps]),
+        "first": first,
+        "last": last,
     }
 
 
@@ -210,17 +216,11 @@ def inverse_index(n_alpha: int, n_psi: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 def column_groups(entries: np.ndarray) -> dict[str, np.ndarray]:
-    """The template's entries grouped by column x for the fine search (`window_match`): each column's
-    entries padded to a multiple of UNROLL by repeating its last one (min is idempotent); x, y, plane
-    (G, UNROLL) and `column` (G,), the index of the group's column among the template's columns."""
-    groups, column = [], []
-    for k, ix in enumerate(np.unique(entries[:, 0])):
-        group = entries[entries[:, 0] == ix]
-        group = np.concatenate([group, np.repeat(group[-1:], (-len(group)) % UNROLL, 0)]).reshape(-1, UNROLL, 3)
-        groups.append(group)
-        column += [k] * len(group)
-    part = np.concatenate(groups)
-    return {"x": part[..., 0], "y": part[..., 1], "plane": part[..., 2], "column": np.asarray(column, np.int32)}
+    """The template's entries grouped by column x for the fine search (`window_match`, `_padded_groups`):
+    x, y, plane (G, UNROLL) and `column` (G,), the index of the group's column among the template's
+    columns."""
+    part, first, _ = _padded_groups(entries)
+    return {"x": part[..., 0], "y": part[..., 1], "plane": part[..., 2], "column": np.cumsum(first, dtype=np.int32) - 1}
 
 
 def window_stack(stk: Arrays, rows: int, cols: int) -> Array:
