@@ -103,7 +103,9 @@ def group_steps(entries: np.ndarray, w: int, n_alpha: int, n_psi: int) -> dict[s
     }
 
 
-RUN_LEVELS = 3  # a read covers up to 2^RUN_LEVELS consecutive displacements (`run_template`, `run_windows`)
+# a read covers up to 2^RUN_LEVELS consecutive displacements (`run_template`, `run_windows`); 2 measured
+# best (docs/model.md §4.7): 3 is 5 % slower at the authors' 288 columns, where 4 levels leave the cache
+RUN_LEVELS = 2
 
 
 def run_template(entries: np.ndarray, w: int, n_planes: int, levels: int = RUN_LEVELS) -> np.ndarray:
