@@ -55,11 +55,11 @@ def test_compiled_programs_are_released_before_the_process_runs_out_of_memory_ma
         "import jax, jax.numpy as jnp\n"
         "from delvjax.outputs import _cache\n"
         "before = _cache.mapped_regions()\n"
-        "kept = [jax.jit(lambda x, i=i: jnp.cumsum(x) * i) for i in range(100)]\n"  # alive: only clearing frees
+        "kept = [jax.jit(lambda x, i=i: jnp.cumsum(x) * i) for i in range(40)]\n"  # alive: only clearing frees
         "for i, f in enumerate(kept):\n"
         "    f(jnp.ones(i + 3)).block_until_ready()\n"
         "grown = _cache.mapped_regions()\n"
-        "assert grown - before > 200, (before, grown)\n"  # about 3.4 a program
+        "assert grown - before > 200, (before, grown)\n"  # about 16 a program (659 for 40, 585 freed; jax 0.11, CPU)
         "assert not _cache.release_programs_near_map_limit(1.0)\n"  # far below the cap: kept
         "assert _cache.mapped_regions() >= grown - 5\n"
         "_cache.map_limit = lambda: grown\n"  # as if the cap were where this process stands now

@@ -164,15 +164,16 @@ def test_the_fine_search_reads_every_candidates_match_from_windows(steps):
         stk = jnp.asarray(stk, jnp.uint8)
         back = inverted(stk)
         alpha, psi = (int(v) for v in rng.integers(0, W, 2))
-        one_way, both = (np.asarray(fine_table(stk, alpha, psi, steps, d)) for d in (False, True))
+        # hypotheses as traced integers: one compiled program for every candidate and both stacks
+        one_way, both = (np.asarray(fine_table(stk, jnp.int32(alpha), jnp.int32(psi), steps, d)) for d in (False, True))
         (sa, sp_), (rows, cols) = steps, one_way.shape
         assert (rows, cols) == (2 * sp_ - 1, 2 * sa - 1)
         for i, dp in enumerate(range(-(sp_ - 1), sp_)):
             for j, da in enumerate(range(-(sa - 1), sa)):
                 a, p = (alpha + da) % W, (psi + dp) % W
-                there = int(match_at(stk, a, p))
+                there = int(match_at(stk, jnp.int32(a), jnp.int32(p)))
                 assert one_way[i, j] == there
-                assert both[i, j] == there + int(match_at(back, (a + W // 2 - p) % W, (-p) % W))
+                assert both[i, j] == there + int(match_at(back, jnp.int32((a + W // 2 - p) % W), jnp.int32((-p) % W)))
 
 
 @pytest.mark.parametrize("refine", mw.REFINEMENTS)
