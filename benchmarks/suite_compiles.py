@@ -10,7 +10,10 @@ function's name), and prints
   * the suite's wall seconds, the number of compilations and their seconds (summed over workers);
   * the functions that cost most compile seconds: count, seconds, in how many files;
   * for the top functions, the files that compile them;
-  * the files that cost most compile seconds.
+  * the files that cost most compile seconds;
+  * the tests that compile one function again and again (3 times or more): the sign of a Python number
+    passed where a traced one would do (each value its own program), the waste this table found first
+    (tests/core/methods/test_minwarping.py's fine-search test: 35 s -> under 1 s, 2026-12-05).
 
     python benchmarks/suite_compiles.py                       # the whole suite (about 20 minutes on 2 cores)
     python benchmarks/suite_compiles.py tests/core -n 0       # a part, one process
@@ -40,14 +43,14 @@ _OUT = "SUITE_COMPILES_OUT"  # the folder each worker writes its counts into (se
 
 
 # --- the pytest plugin (loaded in each worker with `-p suite_compiles`) ------------------------------
-_current = {"file": "(collection)"}
+_current = {"test": "(collection)"}
 _counts: dict[tuple[str, str], list] = {}
 
 
 def _listen() -> None:
     def on_duration(event: str, duration: float, **kwargs) -> None:
         if event == EVENT:
-            entry = _counts.setdefault((_current["file"], kwargs.get("fun_name", "?")), [0, 0.0])
+            entry = _counts.setdefault((_current["test"], kwargs.get("fun_name", "?")), [0, 0.0])
             entry[0] += 1
             entry[1] += duration
 
@@ -60,7 +63,7 @@ def pytest_configure(config) -> None:
 
 
 def pytest_runtest_setup(item) -> None:
-    _current["file"] = item.nodeid.split("::")[0]
+    _current["test"] = item.nodeid
 
 
 def pytest_sessionfinish(session) -> None:
@@ -72,12 +75,14 @@ def pytest_sessionfinish(session) -> None:
 
 
 # --- the command ------------------------------------------------------------------------------------
-def tables(rows: list, top: int) -> str:
-    """The report of `rows` ([file, function, count, seconds] over every worker) as Markdown tables."""
+def tables(rows: list, top: int, repeats: int = 3) -> str:
+    """The report of `rows` ([test id, function, count, seconds] over every worker) as Markdown tables."""
     pairs = collections.defaultdict(lambda: [0, 0.0])  # (function, file) -> [count, seconds]
-    for f, name, n, s in rows:
-        pairs[name, f][0] += n
-        pairs[name, f][1] += s
+    per_test = collections.defaultdict(lambda: [0, 0.0])  # (test, function) -> [count, seconds]
+    for test, name, n, s in rows:
+        for table, key in ((pairs, (name, test.split("::")[0])), (per_test, (test, name))):
+            table[key][0] += n
+            table[key][1] += s
 
     def total(key: int) -> dict:  # function (key 0) or file (key 1) -> [count, seconds, files]
         out = collections.defaultdict(lambda: [0, 0.0, 0])
@@ -96,6 +101,9 @@ def tables(rows: list, top: int) -> str:
         lines += [f"| {name} | {f} | {n} | {s:.1f} |" for f, n, s in per]
     lines += ["", "| file | compilations | seconds |", "|---|---|---|"]
     lines += [f"| {f} | {n} | {s:.1f} |" for f, (n, s, _) in total(1).items()]
+    again = sorted(((t, fn, n, s) for (t, fn), (n, s) in per_test.items() if n >= repeats), key=lambda r: -r[3])
+    lines += ["", f"| test compiling one function {repeats}+ times | function | compilations | seconds |"]
+    lines += ["|---|---|---|---|"] + [f"| {t} | {fn} | {n} | {s:.1f} |" for t, fn, n, s in again[:top]]
     return "\n".join(lines)
 
 
@@ -109,7 +117,7 @@ def positive_int(text: str) -> int:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--top", type=positive_int, default=20, help="rows per table (default 20)")
-    parser.add_argument("--json", type=Path, help="also write every [file, function, count, seconds] row here")
+    parser.add_argument("--json", type=Path, help="also write every [test id, function, count, seconds] row here")
     args, pytest_args = parser.parse_known_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
         env = dict(

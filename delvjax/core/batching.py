@@ -36,6 +36,13 @@ def item_width(reads_panorama: bool) -> int:
     return 1 if jax.default_backend() == "cpu" else PANORAMA_WIDTH
 
 
+def traced_floats(tree):
+    """Every Python float leaf of `tree` as a float32 array. `equinox.filter_jit` holds Python numbers
+    static, so each value of a setting (a noise sigma, an extractor threshold) would compile a program of
+    its own; as arrays every value runs the one program (a gradient reaches them too)."""
+    return jax.tree.map(lambda x: jnp.asarray(x, jnp.float32) if isinstance(x, float) else x, tree)
+
+
 def padded(n: int, width: int = WIDTH) -> int:
     """`n` rounded up to a whole number of groups."""
     return -(-n // width) * width

@@ -20,6 +20,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from ..evaluate._vector_map import check_grid, scene_request
+from ..core.batching import traced_floats
 from ..core.maps import CLEARANCE, SPACING, grid_included, grid_points, random_headings
 from ..core.methods import HomingMethod
 from ..core.scene import Env
@@ -64,11 +65,6 @@ def _setup(env, method, spacing, seed, clearance, heading_deg, max_points, optio
     # host arrays where they are known now; inside jax.jit even the key is traced
     included, headings = (x if is_traced(x) else np.asarray(x) for x in (included, headings))
     return env, module, sensor, key, points, included, headings
-
-
-def _floats(tree):
-    """Every float leaf as a float32 array (python floats are not differentiable leaves)."""
-    return jax.tree.map(lambda x: jnp.asarray(x, jnp.float32) if isinstance(x, float) else x, tree)
 
 
 def _check_soft(tau, sharpness) -> tuple[float, float]:
@@ -165,7 +161,7 @@ def loss_problem(
         env, method, spacing, seed, clearance, heading_deg, max_points, options
     )
     check_differentiable(module)
-    sensor, module = _floats(sensor), _floats(module)
+    sensor, module = traced_floats(sensor), traced_floats(module)  # python floats are not differentiable leaves
     arrays = env
     params = {
         "landmarks": jnp.asarray(arrays.landmarks, jnp.float32),

@@ -17,7 +17,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from ..core.batching import fixed_width_map
+from ..core.batching import fixed_width_map, traced_floats
 from ..core.errors import InputError
 from ..core.images import Camera, Catadioptric, Extractor, camera_noise, donut, panorama, to_uint8, unwrap
 from ..core.images.database import RingDatabase
@@ -100,7 +100,6 @@ def light_angles(world) -> list[float]:
     return [round(math.degrees(math.atan2(y, x)), 6), round(math.degrees(math.atan2(z, math.hypot(x, y))), 6)]
 
 
-@eqx.filter_jit
 def render_images(
     world,
     settings_camera: Camera,
@@ -114,8 +113,13 @@ def render_images(
     width: int = IMAGE_WIDTH,
 ):
     """uint8 images (k, H, W, 3) at poses, image i with camera noise from fold_in(key, index[i]);
-    `width` images at a time (`render_sizes`)."""
+    `width` images at a time (`render_sizes`). The noise sigmas are traced: one program for every level."""
+    noise = traced_floats((pixel_noise, gain_noise))
+    return _render_images(world, settings_camera, mirror, positions, headings, index, key, *noise, width)
 
+
+@eqx.filter_jit
+def _render_images(world, settings_camera, mirror, positions, headings, index, key, pixel_noise, gain_noise, width):
     def one(pos, heading, i):
         img = panorama(world, settings_camera, pos, heading) if mirror is None else donut(world, mirror, pos, heading)
         return to_uint8(camera_noise(jax.random.fold_in(key, i), img, pixel_noise, gain_noise))
@@ -123,10 +127,14 @@ def render_images(
     return fixed_width_map(one, (positions, headings, index), width=width)
 
 
-@eqx.filter_jit
 def extract_rings(images, cam: Camera, mirror: Catadioptric | None, extractor: Extractor):
-    """Ring `Snapshot`s (k leading) of uint8 images (panoramas, or donuts unwrapped with `mirror`)."""
+    """Ring `Snapshot`s (k leading) of uint8 images (panoramas, or donuts unwrapped with `mirror`). The
+    extractor's numbers are traced: one program for every threshold and band."""
+    return _extract_rings(images, cam, mirror, traced_floats(extractor))
 
+
+@eqx.filter_jit
+def _extract_rings(images, cam, mirror, extractor):
     def one(image):
         img = image.astype(jnp.float32) / 255.0
         return extractor(img if mirror is None else unwrap(img, mirror, cam), cam)

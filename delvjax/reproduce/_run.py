@@ -118,14 +118,18 @@ def registry(names: list[str] | None = None) -> dict[str, Any]:
     return {name: importlib.import_module(f"{STUDIES}.runs.{name}") for name in names}
 
 
-def select(only: str | None, quick: bool = False) -> list[str]:
-    """Validated study names (`--only a,b`), in registry order. Without `--only`, a quick run leaves
-    out the studies of `studies.FULL_RUN_ONLY`; `--only` runs what it names, also under `--quick`."""
+def select(only: str | Sequence[str] | None, quick: bool = False) -> list[str]:
+    """Validated study names (`--only a,b`, or a list of names), in registry order. Without `--only`, a
+    quick run leaves out the studies of `studies.FULL_RUN_ONLY`; `--only` runs what it names, also under
+    `--quick`."""
     package = importlib.import_module(STUDIES)
     names = list(package.STUDIES)
     if only is None:
         return [n for n in names if not (quick and n in package.FULL_RUN_ONLY)]
-    wanted = [s.strip() for s in only.split(",") if s.strip()]
+    parts = only.split(",") if isinstance(only, str) else only
+    if not all(isinstance(s, str) for s in parts):
+        raise InputError("--only", only, "must be study names (a comma-separated string or a list of strings)")
+    wanted = [s.strip() for s in parts if s.strip()]
     if not wanted:
         raise InputError("--only", only, "must name at least one study")
     for s in wanted:
@@ -212,7 +216,7 @@ def run_study(
 def reproduce(
     out: str | Path = "results",
     quick: bool = False,
-    only: str | None = None,
+    only: str | Sequence[str] | None = None,
     force: bool = False,
     seed: int = 0,
     progress: bool = True,

@@ -261,3 +261,30 @@ def test_robot_blobs_from_home_are_the_true_bearings():
     np.testing.assert_allclose(
         np.sort(np.mod(np.asarray(turned.bearing) + np.radians(30.0), 2 * np.pi)), np.asarray(snap.bearing), atol=1e-4
     )
+
+
+def test_noise_levels_and_extractor_settings_share_one_program_and_keep_their_bits():
+    """docs/images.md §5: `render_images` and `extract_rings` trace the camera-noise sigmas and the
+    extractor's numbers (Python floats would be static under `equinox.filter_jit`, one program per value),
+    and the traced program gives the static one's images and rings bit for bit."""
+    import jax
+
+    from delvjax.images import _render as rendering
+
+    iw = image_world("robot")
+    cam = rendering.camera(12, 72)
+    poses = (np.array([[60.0, 80.0], [140.0, 120.0]], np.float32), np.array([0.3, 2.0], np.float32), np.arange(2))
+    key = jax.random.PRNGKey(3)
+    programs = rendering._render_images._cached._cache_size()
+    quiet, noisy = (rendering.render_images(iw.world, cam, None, *poses, key, s, 0.03) for s in (0.0, 0.05))
+    assert rendering._render_images._cached._cache_size() <= programs + 1  # both levels: one program
+    assert not np.array_equal(np.asarray(quiet), np.asarray(noisy))  # the level is used
+    static = rendering._render_images(iw.world, cam, None, *poses, key, 0.05, 0.03, rendering.IMAGE_WIDTH)
+    assert np.array_equal(np.asarray(static), np.asarray(noisy))
+    programs = rendering._extract_rings._cached._cache_size()
+    thin, wide = (rendering.extract_rings(noisy, cam, None, pipeline.Extractor(band_height_deg=h)) for h in (2.0, 40.0))
+    assert rendering._extract_rings._cached._cache_size() <= programs + 1
+    assert not np.array_equal(np.asarray(thin.gray), np.asarray(wide.gray))
+    static = rendering._extract_rings(noisy, cam, None, pipeline.Extractor(band_height_deg=40.0))
+    for a, b in zip(jax.tree.leaves(static), jax.tree.leaves(wide)):
+        assert np.array_equal(np.asarray(a), np.asarray(b))
