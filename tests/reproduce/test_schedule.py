@@ -53,7 +53,12 @@ def test_only_takes_a_list_of_names_as_the_python_api_is_called(untyped):
     """`reproduce(only=[...])` as a Python user writes it, in registry order; a list of something else,
     an empty one or an unknown name is refused naming --only (it used to fail on `list.split`)."""
     assert reproduce.select(["robot_images", " fit"]) == ["fit", "robot_images"]
-    for bad, why in ([["fit", 3]], "study names"), ([[]], "at least one"), ([("fit", "nope")], "unknown study"):
+    for bad, why in (
+        ([["fit", 3]], "study names"),
+        ([5], "study names"),
+        ([[]], "at least one"),
+        ([("fit", "x")], "unknown"),
+    ):
         with pytest.raises(InputError, match=why) as err:
             reproduce.select(*bad)
         assert err.value.field == "--only"
