@@ -126,8 +126,11 @@ def select(only: str | Sequence[str] | None, quick: bool = False) -> list[str]:
     names = list(package.STUDIES)
     if only is None:
         return [n for n in names if not (quick and n in package.FULL_RUN_ONLY)]
-    parts = only.split(",") if isinstance(only, str) else list(only) if isinstance(only, (list, tuple)) else [only]
-    if not all(isinstance(s, str) for s in parts):
+    if isinstance(only, str):
+        parts = only.split(",")
+    elif isinstance(only, (list, tuple)) and all(isinstance(s, str) for s in only):
+        parts = list(only)
+    else:
         raise InputError("--only", only, "must be study names (a comma-separated string or a list of strings)")
     wanted = [s.strip() for s in parts if s.strip()]
     if not wanted:
