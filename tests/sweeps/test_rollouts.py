@@ -79,6 +79,16 @@ def test_a_catchment_cell_equals_the_catchment_run_with_its_options(catchments):
     assert not np.array_equal(homing, release)
 
 
+def test_cells_of_every_max_steps_share_one_program():
+    """max_steps is traced (`Rollout.max_steps`): three values run one compiled program, and more moves
+    only add successes (a trial home by move 10 is home by move 40)."""
+    text = "[sweep]\nkind = 'catchment'\n[axes]\nmax_steps = [10, 20, 40]\nmethod = ['alv']\nspacing = [150]\n"
+    ds = run_sweep(parse_sweep(text))
+    assert ds.attrs["programs_compiled"] == 1
+    pct = [float(ds.catchment_pct.sel(max_steps=m).squeeze()) for m in (10, 20, 40)]
+    assert pct[0] <= pct[1] <= pct[2] and pct[0] < pct[2], pct
+
+
 def test_a_success_rate_cell_equals_the_runs_under_each_hidden_landmark():
     from delvjax.plots._sweep import sweep_figure
 

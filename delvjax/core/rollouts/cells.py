@@ -76,7 +76,7 @@ class SuccessSums(eqx.Module):
     successes: Array
 
 
-def _trials(cell: RolloutCell, starts, headings, key_index, mask_index, n_valid, max_steps: int, lanes: int):
+def _trials(cell: RolloutCell, starts, headings, key_index, mask_index, n_valid, max_steps: ArrayLike, lanes: int):
     """`run_trials`' block program for one cell's trials (the first `n_valid` are run)."""
     k_home, k_roll, _ = rollout_keys(cell.key)
     _, k_views, _ = stream_keys(cell.key)
@@ -98,9 +98,9 @@ def _trials(cell: RolloutCell, starts, headings, key_index, mask_index, n_valid,
     return run_block(rollout, starts, headings, n_valid, lanes)
 
 
-@partial(jax.jit, static_argnames=("max_steps", "lanes"))
+@partial(jax.jit, static_argnames=("lanes",))
 def catchment_cells(
-    cells: RolloutCell, points: Array, included: Array, counted: Array, max_steps: int, lanes: int
+    cells: RolloutCell, points: Array, included: Array, counted: Array, max_steps: ArrayLike, lanes: int
 ) -> CatchmentSums:
     """Catchment sums of C stacked cells (`catchment_area`'s trials: every included grid point of
     `points` (P, 2) under every mask, random release headings per point from each cell's key).
@@ -149,9 +149,9 @@ def catchment_cells(
     return jax.lax.map(one, (cells, included, counted))
 
 
-@partial(jax.jit, static_argnames=("trials", "max_steps", "lanes"))
+@partial(jax.jit, static_argnames=("trials", "lanes"))
 def success_cells(
-    cells: RolloutCell, distances: Array, clearance: Array, trials: int, max_steps: int, lanes: int
+    cells: RolloutCell, distances: Array, clearance: Array, trials: int, max_steps: ArrayLike, lanes: int
 ) -> SuccessSums:
     """Success-rate sums of C stacked cells: `success_rate_trials`' `trials` release points per
     distance (D,), each run under every mask of the cell (common random numbers across masks)."""

@@ -53,7 +53,7 @@ class Rollout(eqx.Module):
     k_roll: ArrayLike
     k_views: ArrayLike
     radius: ArrayLike
-    max_steps: int = eqx.field(static=True)
+    max_steps: ArrayLike  # traced: every max_steps shares one program (the path buffer's length is run_block's)
     homing_first: ArrayLike
     collide: ArrayLike
 

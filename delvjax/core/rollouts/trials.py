@@ -36,14 +36,23 @@ MASK_ROWS = 64  # visibility masks are padded to this many rows (all k of 6 land
 
 PATH_BUDGET = 1 << 24  # positions kept per block when paths are recorded (128 MB)
 # Up to this many positions a trial (max_steps + 1; the default max_steps 50 gives 51), every block keeps
-# the paths (at most 16384 x 64 x 2 float32 = 8 MB), so catchments, success rates and trajectories are
-# one compiled program; a longer rollout keeps them only for trajectories (docs/reproduce.md).
+# the paths in a buffer of this length (16384 x 64 x 2 float32 = 8 MB; `path_length`), so catchments, success
+# rates and trajectories of every such max_steps are one compiled program; a longer rollout keeps them only
+# for trajectories (docs/reproduce.md).
 SHARED_PATH_STEPS = 64
 
 
 def keeps_paths(max_steps: int, record_paths: bool = False) -> bool:
     """Whether the blocks of a rollout keep their paths: asked for, or cheap enough to share one program."""
     return bool(record_paths) or max_steps + 1 <= SHARED_PATH_STEPS
+
+
+def path_length(max_steps: int, record_paths: bool) -> int:
+    """Length of the blocks' path buffer: SHARED_PATH_STEPS for every max_steps that fits it (one program
+    for them all, `Rollout.max_steps` being traced), else max_steps + 1; 1 where no path is kept."""
+    if not keeps_paths(max_steps, record_paths):
+        return 1
+    return max(SHARED_PATH_STEPS, max_steps + 1)
 
 
 def trial_block(n: int, max_steps: int = MAX_STEPS, record_paths: bool = False) -> int:
@@ -95,14 +104,14 @@ def device_split(n_valid: int, n_dev: int, per_device: int) -> tuple[np.ndarray,
 
 
 @functools.lru_cache(maxsize=None)
-def device_block(lanes: int, record_paths: bool = False):
+def device_block(lanes: int, record_paths: bool = False, length: int = 1):
     """The per-device program of a block: one device's trials with `lanes` lanes (counts: (1,))."""
 
     def run(shared: Rollout, key_index, mask_index, starts, headings, counts):
         rollout = eqx.tree_at(
             lambda r: (r.key_index, r.mask_index), shared, (key_index, mask_index), is_leaf=lambda x: x is None
         )
-        return run_block(rollout, starts, headings, counts[0], lanes, record_paths)
+        return run_block(rollout, starts, headings, counts[0], lanes, record_paths, length)
 
     return run
 
@@ -144,6 +153,7 @@ def run_trials(
     """
     check_rules(first_move, collisions)
     paths = keeps_paths(max_steps, record_paths)  # the blocks' static flag (device_split's `keep` is another)
+    length = path_length(max_steps, record_paths)
     n = int(starts.shape[0])
     if n == 0:
         raise InputError("starts", 0, "no trials to run")
@@ -172,20 +182,20 @@ def run_trials(
             k_roll=k_roll,
             k_views=k_views,
             radius=np.float32(home_radius),
-            max_steps=max_steps,
+            max_steps=np.int32(max_steps),
             homing_first=np.bool_(first_move == "homing"),
             collide=np.bool_(collisions == "fail"),
         )
         n_valid = min(block, n - i)
         if mesh is None:
-            res = run_block(rollout, starts[rows], headings[rows], np.int32(n_valid), lanes, paths)
+            res = run_block(rollout, starts[rows], headings[rows], np.int32(n_valid), lanes, paths, length)
         else:  # device d runs trials [d q, (d + 1) q) of the block, q = ceil(n_valid / D): whole trials, same program
             take, counts, keep = device_split(n_valid, mesh.size, per_device)
             shared = eqx.tree_at(
                 lambda r: (r.key_index, r.mask_index), rollout, (None, None), is_leaf=lambda x: x is None
             )
             res = over_devices(
-                device_block(-(-lanes // mesh.size), paths),
+                device_block(-(-lanes // mesh.size), paths, length),
                 mesh,
                 1,
                 shared,
@@ -211,7 +221,7 @@ def run_trials(
         contact=res.contact,
         contact_end=res.contact_end,
         contact_invalid=res.contact_invalid,
-        path=res.path if record_paths else None,
+        path=res.path[:, : max_steps + 1] if record_paths else None,  # the buffer may be longer (path_length)
         first_move=first_move,
         collisions=collisions,
     )

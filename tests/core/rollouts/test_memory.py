@@ -13,6 +13,7 @@ import pytest
 import delvjax
 from delvjax.core.errors import InputError
 from delvjax.core.rollouts import trials
+from delvjax.core.rollouts.rules import TIMEOUT
 
 HUGE = 100_000  # max_steps: the paths of one block would be 16384 x 100001 x 2 float32 = 13 GB
 
@@ -31,9 +32,13 @@ def block_of(monkeypatch, command: str, **options) -> tuple:
     any compilation: (starts shape, lanes, record_paths, the path's shape)."""
     seen = []
 
-    def spy(rollout, starts, headings, n_valid, lanes, record_paths=False):
+    def spy(rollout, starts, headings, n_valid, lanes, record_paths=False, path_length=1):
         shapes = jax.eval_shape(
-            partial(RUN_BLOCK, lanes=lanes, record_paths=record_paths), rollout, starts, headings, n_valid
+            partial(RUN_BLOCK, lanes=lanes, record_paths=record_paths, path_length=path_length),
+            rollout,
+            starts,
+            headings,
+            n_valid,
         )
         seen.append((starts.shape, lanes, record_paths, shapes.path.shape))
         raise Stop
@@ -72,4 +77,24 @@ def test_catchments_success_rates_and_trajectories_share_one_program(monkeypatch
     seen = {c: block_of(monkeypatch, c, method="alv") for c in ("catchment", "success_rate", "trajectories")}
     assert len(set(seen.values())) == 1, seen
     ((starts, _, kept, path),) = set(seen.values())
-    assert kept and path == (starts[0], trials.MAX_STEPS + 1, 2)
+    assert kept and path == (starts[0], trials.SHARED_PATH_STEPS, 2)  # the buffer; users get MAX_STEPS + 1
+
+
+def test_rollouts_of_every_short_max_steps_share_one_program_and_stop_where_the_longer_run_was():
+    """max_steps is traced (`Rollout.max_steps`; the path buffer is `trials.path_length` long): 20 and 40
+    moves run one compiled block program, and the 20-move run is the 40-move run cut at move 20: the same
+    path up to there, the same outcome where the trial ended by then, a time-out where it did not."""
+    import numpy as np
+
+    starts = [(250.0, 250.0), (750.0, 300.0), (500.0, 850.0), (150.0, 600.0), (820.0, 780.0)]
+    kw = dict(method="delv-compass", starts=starts, bearing_noise_deg=4.0, step_noise=0.1)
+    before = trials.run_block._cache_size()
+    long, short = (delvjax.trajectories("env1", max_steps=m, **kw) for m in (40, 20))
+    assert trials.run_block._cache_size() - before <= 1  # one program (none where another test compiled it)
+    assert long.path.shape == (5, 41, 2) and short.path.shape == (5, 21, 2)
+    steps, outcome = np.asarray(long.steps), np.asarray(long.outcome)
+    ended = steps <= 20  # home, a landmark or the arena by move 20
+    assert ended.any() and (~ended).any()  # both kinds of trial, so the comparison can fail
+    assert np.array_equal(np.asarray(short.path), np.asarray(long.path)[:, :21], equal_nan=True)
+    assert np.array_equal(np.asarray(short.outcome)[ended], outcome[ended])
+    assert np.all(np.asarray(short.outcome)[~ended] == TIMEOUT) and np.all(np.asarray(short.steps)[~ended] == 20)
