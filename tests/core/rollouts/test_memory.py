@@ -8,6 +8,7 @@ from __future__ import annotations
 from functools import partial
 
 import jax
+import numpy as np
 import pytest
 
 import delvjax
@@ -84,8 +85,6 @@ def test_rollouts_of_every_short_max_steps_share_one_program_and_stop_where_the_
     """max_steps is traced (`Rollout.max_steps`; the path buffer is `trials.path_length` long): 20 and 40
     moves run one compiled block program, and the 20-move run is the 40-move run cut at move 20: the same
     path up to there, the same outcome where the trial ended by then, a time-out where it did not."""
-    import numpy as np
-
     starts = [(250.0, 250.0), (750.0, 300.0), (500.0, 850.0), (150.0, 600.0), (820.0, 780.0)]
     kw = dict(method="delv-compass", starts=starts, bearing_noise_deg=4.0, step_noise=0.1)
     before = trials.run_block._cache_size()
