@@ -77,7 +77,7 @@ def test_undefined_directions_are_invalid_not_nan_errors():
     """DELV without a compass needs >= 2 landmark pairs: a one-landmark world gives only invalid
     points (error 180). With a compass (true or visual) one pair suffices (docs/model.md §3.4): every
     point is valid and, the one pairing being right, the errors are small."""
-    env = delvjax.make_env([[700.0, 600.0, 30.0]])
+    env = delvjax.make_env([[700.0, 600.0, 30.0]], pad_to=4)  # env1's four slots: its programs serve both
     vm = delvjax.vector_map(env, method="delv", spacing=100.0)
     assert not np.asarray(vm.valid).any()
     assert np.isnan(np.asarray(vm.direction)).all()
