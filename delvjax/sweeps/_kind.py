@@ -32,7 +32,7 @@ class SweepKind(str):
     sums: type
     request: Callable  # (env, cell, spec, max_points) -> the validated setup of a cell
     inputs: Callable  # (setups, traced) -> (shared, traced) arguments of the program
-    program: Callable  # (max_steps, lanes, trials) -> the per-chunk program
+    program: Callable  # (lanes, trials) -> the per-chunk program (max_steps comes traced, in `inputs`)
     metrics_of: Callable[[dict], dict]
 
     def __new__(cls, name: str, **known):

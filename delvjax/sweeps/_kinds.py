@@ -148,7 +148,7 @@ def evaluate(
     stack = lambda *xs: np.stack([np.asarray(x) for x in xs])  # noqa: E731
     traced = jax.tree.map(stack, *[_traced(req, rows) for req in setups])
     shared, traced = kind.inputs(setups, traced)
-    program = _program(kind, first.get("max_steps"), DEFAULT_LANES, first.get("trials"))
+    program = _program(kind, DEFAULT_LANES, first.get("trials"))
     if total is not None:
         res = over_processes(program, mesh, len(shared), total, *shared, *traced)
     elif mesh is None:
@@ -167,7 +167,8 @@ def grid_inputs(setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
 
 
 def catchment_inputs(setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
-    """(shared, traced) of a catchment chunk: the grid's, and the points each cell counts."""
+    """(shared, traced) of a catchment chunk: the grid's and max_steps (a traced number: one program for
+    every value), and the points each cell counts."""
     shared, traced = grid_inputs(setups, traced)
     points, included = shared[0], traced[-1]
     counted = np.stack(
@@ -176,38 +177,39 @@ def catchment_inputs(setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
             for req, inc in zip(setups, included)
         ]
     )
-    return shared, traced + (counted,)
+    return (points, np.int32(setups[0]["max_steps"])), traced + (counted,)
 
 
 def distance_inputs(setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
-    """(shared, traced) of a success-rate chunk: the release distances and clearance shared."""
+    """(shared, traced) of a success-rate chunk: the release distances, clearance and max_steps shared."""
     first = setups[0]
-    return (np.asarray(first["distances"], np.float32), np.float32(first["clearance"])), traced
+    shared = (np.asarray(first["distances"], np.float32), np.float32(first["clearance"]), np.int32(first["max_steps"]))
+    return shared, traced
 
 
-def map_program(max_steps: int | None, lanes: int, trials: int | None):
+def map_program(lanes: int, trials: int | None):
     return lambda points, envs, methods, sensors, keys, included: map_cells.map_cells(
         envs, points, included, methods, sensors, keys
     )
 
 
-def catchment_program(max_steps: int | None, lanes: int, trials: int | None):
-    return lambda points, cells, included, counted: rollout_programs.catchment_cells(
-        cells, points, included, counted, max_steps=max_steps, lanes=lanes
+def catchment_program(lanes: int, trials: int | None):
+    return lambda points, max_steps, cells, included, counted: rollout_programs.catchment_cells(
+        cells, points, included, counted, max_steps, lanes=lanes
     )
 
 
-def success_program(max_steps: int | None, lanes: int, trials: int | None):
-    return lambda distances, clearance, cells: rollout_programs.success_cells(
+def success_program(lanes: int, trials: int | None):
+    return lambda distances, clearance, max_steps, cells: rollout_programs.success_cells(
         cells, distances, clearance, trials=trials, max_steps=max_steps, lanes=lanes
     )
 
 
 @functools.lru_cache(maxsize=None)
-def _program(kind: SweepKind, max_steps: int | None, lanes: int, trials: int | None):
+def _program(kind: SweepKind, lanes: int, trials: int | None):
     """The per-chunk program of a kind (`kind.program`), shared arguments first (`over_devices`
     replicates them); one per kind and setting."""
-    return kind.program(max_steps, lanes, trials)
+    return kind.program(lanes, trials)
 
 
 def programs_compiled() -> int:

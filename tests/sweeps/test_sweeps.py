@@ -161,18 +161,19 @@ results = {}
 for i, text in enumerate(sys.argv[2:]):
     ds = run_sweep(parse_sweep(text))
     results.update({f"{i}/{k}": ds[k].values for k in ds.data_vars})
+    results[f"{i}/programs"] = ds.attrs["programs_compiled"]
 np.savez(sys.argv[1], **results)
 """
 TINY = "[axes]\nd = [30, 60]\nseed = [0, 1, 2]\nbearing_noise_deg = [2.0]\nspacing = [150]\n"
 TINY_CATCHMENT = (
-    "[sweep]\nkind = 'catchment'\n[axes]\nocclude = [0, 1]\nseed = [0, 1, 2]\n"
+    "[sweep]\nkind = 'catchment'\n[axes]\nocclude = [0, 1]\nseed = [0, 1, 2]\nmax_steps = [10, 50]\n"
     "bearing_noise_deg = [4.0]\nmethod = ['alv']\nspacing = [150]\n"
 )
 
 
 def test_cells_split_over_four_devices_give_the_one_device_numbers(tmp_path):
     """6 cells over 4 forced host devices (padded to 8, two a device): every metric bitwise equal,
-    for a vector-map and a catchment sweep."""
+    for a vector-map and a catchment sweep (two values of max_steps, a traced number: one program)."""
     import os
     import subprocess
     import sys
@@ -189,6 +190,7 @@ def test_cells_split_over_four_devices_give_the_one_device_numbers(tmp_path):
         for name in one.data_vars:
             assert np.array_equal(one[name].values, four[f"{i}/{name}"], equal_nan=True), name
         assert i == 0 or 0 < float(one.catchment_pct.min()) < 100  # a catchment that can differ
+    assert int(four["1/programs"]) == 1  # max_steps 10 and 50: one program split over the devices
 
 
 def test_a_killed_sweep_resumes_and_a_changed_file_computes_only_its_new_cells(tmp_path, monkeypatch):
