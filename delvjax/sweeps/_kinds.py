@@ -124,7 +124,8 @@ def mask_rows(req: dict) -> int:
 
 def group_key(req: dict) -> tuple:
     """Cells with equal keys stack into one program: pytree structure, leaf shapes (the number of
-    masks aside), and the static settings (grid, clearance, max_steps)."""
+    masks aside), and the settings one call shares (grid, clearance, max_steps: a traced number, so its
+    values share the program but not a call)."""
     leaves, treedef = jax.tree.flatten(_traced(dict(req, masks=req["masks"][:1]) if "masks" in req else req))
     shapes = tuple((np.shape(x), np.asarray(x).dtype.str) for x in leaves)
     return (
