@@ -64,19 +64,18 @@ class Results(eqx.Module):
     contact_invalid: Array
 
 
-@partial(jax.jit, static_argnames=("lanes", "record_paths", "path_length"))
+@partial(jax.jit, static_argnames=("lanes", "path_length"))
 def run_block(
     rollout: Rollout,
     starts: Array,
     headings: Array,
     n_valid: Array,
     lanes: int,
-    record_paths: bool = False,
     path_length: int = 1,
 ) -> Results:
-    """Run the first `n_valid` trials of a block (the padding is never run). With `record_paths` the
+    """Run the first `n_valid` trials of a block (the padding is never run). With `path_length` > 1 the
     paths are recorded into (T, path_length, 2) (path_length >= rollout.max_steps + 1; positions past a
-    trial's end stay NaN); else `path` holds the starts (T, 1, 2), so memory does not grow with max_steps.
+    trial's end stay NaN); with 1 `path` holds the starts (T, 1, 2), so memory does not grow with max_steps.
     `rollout.max_steps` is traced: rollouts of every max_steps share the program of their path length."""
     n_trials = starts.shape[0]
     n_lanes = max(1, min(lanes, n_trials))
@@ -113,7 +112,7 @@ def run_block(
         end=jnp.zeros((n_trials, 2), jnp.float32),
         first_dir=jnp.full(n_trials, jnp.nan, jnp.float32),
         first_valid=jnp.zeros(n_trials, bool),
-        path=jnp.full((n_trials, path_length if record_paths else 1, 2), jnp.nan, jnp.float32).at[:, 0].set(starts),
+        path=jnp.full((n_trials, path_length, 2), jnp.nan, jnp.float32).at[:, 0].set(starts),
         contact=jnp.full(n_trials, NO_CONTACT, jnp.int32),
         contact_end=jnp.zeros((n_trials, 2), jnp.float32),
         contact_invalid=zeros_t,
@@ -155,7 +154,7 @@ def run_block(
         )
         path = (
             out.path.at[jnp.where(moving, lane.t, n_trials), lane.step].set(lane.pos, mode="drop")
-            if record_paths
+            if path_length > 1
             else out.path
         )
         # 2. write the lanes whose trial has ended (after its first direction)

@@ -104,14 +104,14 @@ def device_split(n_valid: int, n_dev: int, per_device: int) -> tuple[np.ndarray,
 
 
 @functools.lru_cache(maxsize=None)
-def device_block(lanes: int, record_paths: bool = False, length: int = 1):
+def device_block(lanes: int, length: int = 1):
     """The per-device program of a block: one device's trials with `lanes` lanes (counts: (1,))."""
 
     def run(shared: Rollout, key_index, mask_index, starts, headings, counts):
         rollout = eqx.tree_at(
             lambda r: (r.key_index, r.mask_index), shared, (key_index, mask_index), is_leaf=lambda x: x is None
         )
-        return run_block(rollout, starts, headings, counts[0], lanes, record_paths, length)
+        return run_block(rollout, starts, headings, counts[0], lanes, length)
 
     return run
 
@@ -152,8 +152,8 @@ def run_trials(
     `methods.Program`. `progress(done, T)` is called after each block.
     """
     check_rules(first_move, collisions)
-    paths = keeps_paths(max_steps, record_paths)  # the blocks' static flag (device_split's `keep` is another)
-    length = path_length(max_steps, record_paths)
+    paths = keeps_paths(max_steps, record_paths)  # whether the blocks keep paths (trial_block sizes them)
+    length = path_length(max_steps, record_paths)  # the blocks' static path buffer (1: none)
     n = int(starts.shape[0])
     if n == 0:
         raise InputError("starts", 0, "no trials to run")
@@ -188,14 +188,14 @@ def run_trials(
         )
         n_valid = min(block, n - i)
         if mesh is None:
-            res = run_block(rollout, starts[rows], headings[rows], np.int32(n_valid), lanes, paths, length)
+            res = run_block(rollout, starts[rows], headings[rows], np.int32(n_valid), lanes, length)
         else:  # device d runs trials [d q, (d + 1) q) of the block, q = ceil(n_valid / D): whole trials, same program
             take, counts, keep = device_split(n_valid, mesh.size, per_device)
             shared = eqx.tree_at(
                 lambda r: (r.key_index, r.mask_index), rollout, (None, None), is_leaf=lambda x: x is None
             )
             res = over_devices(
-                device_block(-(-lanes // mesh.size), paths, length),
+                device_block(-(-lanes // mesh.size), length),
                 mesh,
                 1,
                 shared,

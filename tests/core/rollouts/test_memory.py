@@ -33,15 +33,15 @@ def block_of(monkeypatch, command: str, **options) -> tuple:
     any compilation: (starts shape, lanes, record_paths, the path's shape)."""
     seen = []
 
-    def spy(rollout, starts, headings, n_valid, lanes, record_paths=False, path_length=1):
+    def spy(rollout, starts, headings, n_valid, lanes, path_length=1):
         shapes = jax.eval_shape(
-            partial(RUN_BLOCK, lanes=lanes, record_paths=record_paths, path_length=path_length),
+            partial(RUN_BLOCK, lanes=lanes, path_length=path_length),
             rollout,
             starts,
             headings,
             n_valid,
         )
-        seen.append((starts.shape, lanes, record_paths, shapes.path.shape))
+        seen.append((starts.shape, lanes, path_length > 1, shapes.path.shape))  # whether it records paths
         raise Stop
 
     monkeypatch.setattr(trials, "run_block", spy)
