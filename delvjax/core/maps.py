@@ -73,10 +73,17 @@ def grid_points(arena, spacing: float) -> np.ndarray:
     return np.stack([gx.ravel(), gy.ravel()], axis=-1).astype(np.float32)
 
 
+# A grid point within this distance of home is home itself: no homing direction is defined there
+# (docs/model.md §5 "Grid"), so it is left out, as the image databases leave out their home image.
+AT_HOME_CM = 1e-3
+
+
 @jax.jit
 def grid_included(env: Env, points: Points, clearance: Real) -> PerPointFlag:
-    """True where a grid point is farther than r + clearance from every landmark centre."""
-    return clear_of_landmarks(env, points, clearance)
+    """True where a grid point is farther than r + clearance from every landmark centre and is not
+    home itself (docs/model.md §5 "Grid")."""
+    away = jnp.sum((points - env.home) ** 2, axis=-1) > AT_HOME_CM**2
+    return clear_of_landmarks(env, points, clearance) & away
 
 
 def stream_keys(key: Array) -> tuple[Array, Array, Array]:

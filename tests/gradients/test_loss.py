@@ -14,13 +14,15 @@ import delvjax
 from delvjax.evaluate._vector_map import scene_request
 from delvjax.core.errors import InputError
 from delvjax.core.kernel import map_poses
-from delvjax.core.maps import stream_keys
+from delvjax.core.maps import grid_included, grid_points, stream_keys
 from delvjax.core.scene import Env
 from delvjax.core.sensing import blob_runs, render
 from delvjax.core.soft.methods import soft_direction
 from delvjax.core.soft.sensing import analytic_blobs, as_unit_move, soft_home, soft_observe
 from delvjax.envs._presets import load_env, random_env
+from delvjax.studies.runs._common import PAD
 from tests.cases.compiled import call, compiled
+from tests.cases.reproduce import TINY
 
 PIXEL = 2 * np.pi / 360
 
@@ -114,16 +116,28 @@ def test_soft_alv_and_acv_equal_the_hard_ones_at_small_tau_and_sharp_visibility(
     assert _soft_and_hard(name, 1e-5, bearing_noise_deg=1.0)(1e-3).max() < 1e-3
 
 
+# env1 in the studies' six landmark slots on their tiny run's grid (`tests.cases.reproduce.TINY`): the
+# gradient programs below are those of the sensitivity study in that run, compiled once for the suite
+# (the persistent compilation cache; the suite is compile-bound, docs/reproduce.md). Home is moved off
+# that grid's point at (500, 500): a point at home is left out of the grid (docs/model.md §5), and a
+# home moved by the finite-difference step would bring it back in (a jump, not a derivative).
+_ENV1 = load_env("env1", pad_to=PAD)
+FD_ENV = Env(_ENV1.landmarks, _ENV1.valid, jnp.asarray([500.0, 520.0], jnp.float32), _ENV1.arena, name="env1")
+FD_SPACING = TINY.spacing
+
+
 def _loss_at(name: str, landmarks=None, home=None, **options) -> float:
-    base = load_env("env1")
+    lm = np.array(FD_ENV.landmarks, np.float32)
+    if landmarks is not None:
+        lm[: len(landmarks)] = landmarks  # the padded slots stay as they are (invisible)
     env = Env(
-        jnp.asarray(base.landmarks if landmarks is None else landmarks, jnp.float32),
-        base.valid,
-        jnp.asarray(base.home if home is None else home, jnp.float32),
-        base.arena,
+        jnp.asarray(lm),
+        FD_ENV.valid,
+        jnp.asarray(FD_ENV.home if home is None else home, jnp.float32),
+        FD_ENV.arena,
         name="fd",
     )
-    return float(delvjax.homing_loss(env, name, spacing=100, tau=0.05, **options))
+    return float(delvjax.homing_loss(env, name, spacing=FD_SPACING, tau=0.05, **options))
 
 
 @pytest.mark.parametrize(
@@ -137,7 +151,7 @@ def _loss_at(name: str, landmarks=None, home=None, **options) -> float:
     ],
 )
 def test_gradients_match_central_finite_differences(name, options, scalars):
-    value, grads = delvjax.homing_loss_grad("env1", name, spacing=100, tau=0.05, **options)
+    value, grads = delvjax.homing_loss_grad(FD_ENV, name, spacing=FD_SPACING, tau=0.05, **options)
     assert value == pytest.approx(_loss_at(name, **options), rel=1e-5)
     lm = np.asarray(load_env("env1").landmarks, np.float64)
     h = 0.05
@@ -153,7 +167,7 @@ def test_gradients_match_central_finite_differences(name, options, scalars):
                 f"landmarks[{i}, {j}]",
             )
         )
-    home = np.asarray(load_env("env1").home, np.float64)
+    home = np.asarray(FD_ENV.home, np.float64)
     checks.append(
         (
             (_loss_at(name, home=home + [0, h], **options) - _loss_at(name, home=home - [0, h], **options)) / (2 * h),
@@ -175,6 +189,20 @@ def test_gradients_match_central_finite_differences(name, options, scalars):
         rel = 0.2 if what.endswith("noise_deg") else 0.1  # a noise sigma moves every bearing: nearer a kink
         assert abs(fd - g) <= rel * max(abs(fd), abs(g)) + slack, (what, fd, g, slack)
     assert all(np.isfinite(np.asarray(grads["landmarks"])).ravel())
+
+
+def test_a_grid_point_at_home_is_left_out_so_the_home_gradient_is_that_of_the_other_points():
+    """env1's 200 cm grid has a point at home (500, 500), where no home direction is defined (docs/model.md
+    §5): the grid leaves it out, and the gradient with respect to home stays of the order of the loss's
+    (with the point in it was -1.0e8 for ALV, 7.3e11 for quantized DELV: 1 / the 1e-12 guard of a zero
+    distance)."""
+    points = jnp.asarray(grid_points(_ENV1.arena, FD_SPACING))
+    at_home = np.flatnonzero(np.all(np.asarray(points) == np.asarray(_ENV1.home), axis=1))
+    assert len(at_home) == 1
+    included = np.asarray(grid_included(_ENV1, points, 10.0))
+    assert not included[at_home[0]] and included.sum() > 10
+    value, grads = delvjax.homing_loss_grad(_ENV1, "alv", spacing=FD_SPACING, tau=0.05)  # FD_ENV's program
+    assert 0 < value < 2 and np.all(np.abs(grads["home"]) < 1.0), grads["home"]
 
 
 @pytest.mark.parametrize("method", ["warping", "mfdid", "cc", "delv-gap", "delv-visual", "alv-visual"])
