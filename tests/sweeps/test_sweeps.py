@@ -31,6 +31,11 @@ def small():
     return sweeps.run_sweep(parse_sweep(SMALL))
 
 
+# DELV on env1 at 200 cm, two cells: the command-line, plotting and resuming tests run this shape (or
+# chunks of it), so they share one compiled program (the suite is compile-bound: docs/reproduce.md)
+TWO_CELLS = "[axes]\nd = [40, 80]\nseed = [3]\nspacing = [200]\n"
+
+
 def cli_sweep(tmp_path, text: str) -> tuple[int, object, object]:
     """Write `text` as a sweep file and run `delvjax sweep` into tmp_path/out: (exit, file, out)."""
     path, out = tmp_path / "s.toml", tmp_path / "out"
@@ -133,7 +138,7 @@ def test_an_incompatible_cell_is_refused_before_any_work(tmp_path, capsys):
 
 
 def test_the_cli_writes_netcdf_csv_and_the_file_and_load_sweep_reads_them(tmp_path, capsys):
-    code, path, out = cli_sweep(tmp_path, "[axes]\nd = [40, 80]\nseed = [3]\nspacing = [200]\n")
+    code, path, out = cli_sweep(tmp_path, TWO_CELLS)
     assert code == 0
     assert sorted(p.name for p in out.iterdir()) == [".cells", "sweep.csv", "sweep.nc", "sweep.toml"]
     ds = delvjax.load_sweep(out)
@@ -164,16 +169,18 @@ for i, text in enumerate(sys.argv[2:]):
     results[f"{i}/programs"] = ds.attrs["programs_compiled"]
 np.savez(sys.argv[1], **results)
 """
-TINY = "[axes]\nd = [30, 60]\nseed = [0, 1, 2]\nbearing_noise_deg = [2.0]\nspacing = [150]\n"
+TINY = "[axes]\nd = [40, 80]\nseed = [0, 1, 2]\nbearing_noise_deg = [2.0]\nspacing = [200]\n"  # TWO_CELLS' shape
 TINY_CATCHMENT = (
     "[sweep]\nkind = 'catchment'\n[axes]\nocclude = [0, 1]\nseed = [0, 1, 2]\nmax_steps = [10, 50]\n"
     "bearing_noise_deg = [4.0]\nmethod = ['alv']\nspacing = [150]\n"
 )
 
 
-def test_cells_split_over_four_devices_give_the_one_device_numbers(tmp_path):
+def test_cells_split_over_four_devices_give_the_one_device_numbers(tmp_path, monkeypatch):
     """6 cells over 4 forced host devices (padded to 8, two a device): every metric bitwise equal,
-    for a vector-map and a catchment sweep (two values of max_steps, a traced number: one program)."""
+    for a vector-map and a catchment sweep (two values of max_steps, a traced number: one program).
+    On one device the vector-map cells run in chunks of 2 (TWO_CELLS' program, compiled once for the file;
+    the numbers do not depend on the chunks: `test_the_numbers_do_not_depend_on_how_cells_are_chunked`)."""
     import os
     import subprocess
     import sys
@@ -185,7 +192,9 @@ def test_cells_split_over_four_devices_give_the_one_device_numbers(tmp_path):
     )
     assert run.returncode == 0, run.stderr[-2000:]
     four = np.load(out)
+    default = sweeps.CELL_CHUNK
     for i, text in enumerate((TINY, TINY_CATCHMENT)):
+        monkeypatch.setattr(sweeps, "CELL_CHUNK", 2 if i == 0 else default)
         one = sweeps.run_sweep(parse_sweep(text))
         for name in one.data_vars:
             assert np.array_equal(one[name].values, four[f"{i}/{name}"], equal_nan=True), name
@@ -194,7 +203,7 @@ def test_cells_split_over_four_devices_give_the_one_device_numbers(tmp_path):
 
 
 def test_a_killed_sweep_resumes_and_a_changed_file_computes_only_its_new_cells(tmp_path, monkeypatch):
-    text = "[axes]\nd = [30, 60]\nseed = [0, 1]\nspacing = [150]\n"
+    text = TWO_CELLS.replace("[3]", "[0, 1]")  # 4 cells in chunks of 2: the program of TWO_CELLS
     monkeypatch.setattr(sweeps, "CELL_CHUNK", 2)
     real, calls = sweeps.evaluate, []
 
@@ -216,8 +225,8 @@ def test_a_killed_sweep_resumes_and_a_changed_file_computes_only_its_new_cells(t
     for name in fresh.data_vars:
         assert np.array_equal(fresh[name].values, resumed[name].values, equal_nan=True), name
     calls[:] = []
-    changed = sweeps.run_sweep(parse_sweep(text.replace("[30, 60]", "[30, 60, 90]")), out=out)
-    assert calls == [2] and changed.attrs["cells_reused"] == 4  # only d = 90 (two seeds) is new
+    changed = sweeps.run_sweep(parse_sweep(text.replace("[40, 80]", "[40, 80, 120]")), out=out)
+    assert calls == [2] and changed.attrs["cells_reused"] == 4  # only d = 120 (two seeds) is new
 
 
 def test_sweep_figures_heat_maps_and_lines_with_intervals_over_seeds(small, tmp_path):
@@ -242,7 +251,7 @@ def test_sweep_figures_heat_maps_and_lines_with_intervals_over_seeds(small, tmp_
 
 
 def test_plot_sweep_writes_the_figure_and_its_numbers(tmp_path, capsys):
-    code, _, out = cli_sweep(tmp_path, "[axes]\nd = [40, 80]\nseed = [0, 1]\nspacing = [200]\n")
+    code, _, out = cli_sweep(tmp_path, TWO_CELLS)
     assert code == 0
     assert main(["plot-sweep", str(out), "--x", "d", "--metric", "gt45_pct"]) == 0
     assert (out / "gt45_pct.png").stat().st_size > 1000 and len((out / "gt45_pct.csv").read_text().splitlines()) == 3
