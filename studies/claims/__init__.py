@@ -21,9 +21,9 @@ from . import (
     _ch5_visual as claims_ch5_visual,
 )
 from .. import thesis
-from ._common import BACKGROUNDS, CHECKS, ENVS, Missing, check
+from ._common import BACKGROUNDS, CANNOT_TELL, CHECKS, ENVS, Missing, Undefined, check
 
-__all__ = ["BACKGROUNDS", "CHECKS", "ENVS", "Missing", "check", "evaluate"]
+__all__ = ["BACKGROUNDS", "CHECKS", "ENVS", "Missing", "Undefined", "check", "evaluate"]
 
 _CHECK_MODULES = (
     claims_ch4,
@@ -56,6 +56,11 @@ def smallest_sample(keys: list[str], flat: dict, settings: dict | None) -> tuple
     return min(found, default=(float("inf"), ""))
 
 
+def _shown(value) -> str:
+    """A number as the claims table shows it where a check could not run to its end."""
+    return "no value" if value is None else f"{value:.3g}" if isinstance(value, float) else str(value)
+
+
 def evaluate(numbers_by_study: dict[str, dict], settings: dict | None = None) -> list[dict]:
     """One row per claim (module docstring); `settings` (the run's spacing and trials) gives each row the
     smallest sample behind its verdict (`sample`)."""
@@ -66,8 +71,10 @@ def evaluate(numbers_by_study: dict[str, dict], settings: dict | None = None) ->
 
     def get(key):
         read.append(key)
-        if key not in flat or flat[key] is None:
+        if key not in flat:
             raise Missing(key)
+        if flat[key] is None:
+            raise Undefined(key)
         return flat[key]
 
     rows = []
@@ -80,6 +87,10 @@ def evaluate(numbers_by_study: dict[str, dict], settings: dict | None = None) ->
         else:
             try:
                 ours, verdict, why = fn(get)
+            except Undefined as exc:  # the study ran; the number has no value at these settings
+                ours = "; ".join(f"{k} = {_shown(flat[k])}" for k in read)  # what was read, up to the gap
+                verdict = CANNOT_TELL
+                why = f"{exc.args[0]} has no value at these settings (e.g. no grid point in the region it counts)"
             except Missing as exc:
                 ours, verdict, why = "", "n/a", f"needs {exc.args[0]} (study not run)"
             except (TypeError, ValueError, IndexError, ZeroDivisionError) as exc:  # a number of the wrong shape

@@ -1,11 +1,13 @@
 """The claim-check registry and the helpers the checks share (used by `delvjax.studies.claims`).
 
 CHECKS maps a claim id of `delvjax.studies.thesis.CLAIMS` to its check, a function of `get` (key ->
-number, raising Missing when the study that makes it was not run) returning (ours, verdict,
+number, raising Missing when the study that makes it was not run, Undefined when it ran but recorded
+no value) returning (ours, verdict,
 why); `@check(claim_id)` registers one. The helpers format numbers and combine parts into a
 verdict. The checks themselves are in `delvjax.studies.claims._ch4` and `delvjax.studies.claims._ch5`.
 
-Verdicts (VERDICTS): "holds", "partly", "fails", "cannot tell" and "n/a" (a study not run).
+Verdicts (VERDICTS): "holds", "partly", "fails", "cannot tell" (also: a number without a value) and
+"n/a" (a study not run).
 Every check states its rule and tolerance in its `why` text (`_why`). A comparison of
 catchments or success rates whose sides are all at the ceiling (`at_ceiling`: every value
 >= 99 %, or too close to 100 % to show the margin the claim needs) or where no method loses
@@ -35,6 +37,12 @@ def check(claim_id: str):
 
 class Missing(KeyError):
     """A number the claim needs was not produced (its study was not run)."""
+
+
+class Undefined(Missing):
+    """A number the claim needs was recorded without a value (NaN, JSON null): its study ran, but the
+    quantity is undefined at these settings, e.g. a share of grid points inside a region no point of a
+    coarse grid falls in. The claim's verdict is "cannot tell", not "n/a"."""
 
 
 # --- helpers ----------------------------------------------------------------------------------

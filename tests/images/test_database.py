@@ -197,8 +197,11 @@ def test_database_masks_and_map_are_the_ring_model(robot_db):
     core = api.vector_map(env, "alv", spacing=iw.spacing, heading_deg=0.0, d=iw.spacing)
     cp = np.asarray(core.points)
     idx = [int(np.argmin(np.linalg.norm(cp - p, axis=1))) for p in pts]
-    assert np.asarray(core.included)[idx].all() and np.asarray(core.included).sum() == len(pts)
     included = np.arange(len(pts)) != db.home_index
+    # the same points: every database point but home (left out of both: docs/model.md §5 "Grid")
+    np.testing.assert_array_equal(np.asarray(core.included)[idx], included)
+    np.testing.assert_array_equal(np.asarray(vm.included), included)
+    assert np.asarray(core.included).sum() == len(pts) - 1
     np.testing.assert_array_equal(np.asarray(vm.valid)[included], np.asarray(core.valid)[idx][included])
     diff = np.degrees(np.abs(wrap(np.asarray(vm.direction) - np.asarray(core.direction)[idx])))[included]
     assert np.nanmax(diff) < 0.5, diff

@@ -224,6 +224,19 @@ def test_missing_numbers_are_not_applicable():
     assert all(r["verdict"] == "n/a" and "needs" in r["why"] for r in rows)
 
 
+def test_a_number_without_a_value_is_cannot_tell_not_a_study_not_run():
+    """A study records NaN (JSON null) where a number is undefined at its settings: on the tiny run's 5 x 5
+    grid no point but home lies inside env2's landmark hull, and home is left out (docs/model.md §5)."""
+    numbers = hull(0.0, 10.0)
+    assert verdict("errors_outside_landmark_hull", numbers)["verdict"] == "holds"
+    numbers["map:env2:delv:gt45_inside_hull_pct"] = None
+    row = verdict("errors_outside_landmark_hull", numbers)
+    assert row["verdict"] == CANNOT_TELL and "has no value" in row["why"] and "not run" not in row["why"], row
+    assert row["ours"].endswith("map:env2:delv:gt45_inside_hull_pct = no value"), row["ours"]
+    del numbers["map:env2:delv:gt45_inside_hull_pct"]
+    assert verdict("errors_outside_landmark_hull", numbers)["verdict"] == "n/a"
+
+
 def test_report_counts_cannot_tell():
     from delvjax.reproduce._report import VERDICT_MARK, claims_section
 

@@ -228,9 +228,13 @@ def test_a_fit_cell_equals_the_studies_catchment_under_the_default_rules(tiny_fi
         }
     ctx = SimpleNamespace(settings=reproduce.Settings(spacing=200.0, trials=10))
     s = catchment_summary(common.catchment(ctx, common.env("env1"), "delv-compass", occlude=1))
-    assert math.isclose(ours[("table5_3", "catchment")], s["catchment_pct"]["mean"], abs_tol=1e-6)
-    assert math.isclose(ours[("table5_1", "gt45")], s["gt45_pct"]["mean"], abs_tol=1e-6)
-    assert math.isclose(ours[("table5_1", "gt90")], s["gt90_pct"]["mean"], abs_tol=1e-6)
+    # the CSV keeps 6 significant digits (`outputs/_files.py`): 7.291666... is written 7.29167
+    for table, field, key in [
+        ("table5_3", "catchment", "catchment_pct"),
+        ("table5_1", "gt45", "gt45_pct"),
+        ("table5_1", "gt90", "gt90_pct"),
+    ]:
+        assert math.isclose(ours[(table, field)], s[key]["mean"], rel_tol=5e-6, abs_tol=1e-6), (field, s[key])
 
 
 def test_env3_variants_keep_the_description_and_are_reproducible():
