@@ -96,18 +96,21 @@ def check_grid(
     they are: grid points, or trials of a catchment) or no point clear of the landmarks."""
     check_size(limits.grid_count(env.arena, spacing) * copies, max_points, "spacing", spacing, what)
     if not _has_clear_point(env, spacing, clearance):
-        raise InputError("spacing", spacing, "leaves no grid point in the arena clear of the landmarks (r + clearance)")
+        raise InputError(
+            "spacing", spacing, "leaves no grid point in the arena clear of the landmarks (r + clearance) but home"
+        )
 
 
 _CLEAR: dict[tuple, bool] = {}  # (scene numbers, spacing, clearance) -> answer: a sweep asks again per cell
 
 
 def _has_clear_point(env: Env, spacing: float, clearance: float) -> bool:
-    """Whether some docs/model.md §5 grid point is clear of every landmark (r + clearance)."""
+    """Whether some docs/model.md §5 grid point is clear of every landmark (r + clearance) and not home."""
     key = (
         np.asarray(env.landmarks).tobytes(),
         np.asarray(env.valid).tobytes(),
         np.asarray(env.arena).tobytes(),
+        np.asarray(env.home).tobytes(),  # a point at home is left out
         float(spacing),
         float(clearance),
     )

@@ -91,6 +91,20 @@ def test_undefined_directions_are_invalid_not_nan_errors():
         assert np.median(np.asarray(one.error_deg)[inc]) < 5.0, method
 
 
+def test_a_grid_point_at_home_is_left_out_and_a_grid_of_only_home_is_refused():
+    """A grid whose only point is home (spacing 1000 cm in a 1000 cm arena) has nothing to evaluate: the
+    spacing is refused, naming home, before any work (docs/model.md §5 "Grid"). The same landmarks with
+    home elsewhere evaluate that point, whichever of the two was asked first (the answer is cached)."""
+    env1 = delvjax.load_env("env1")
+    away = delvjax.make_env(np.asarray(env1.landmarks), home=(400.0, 400.0))
+    vm = delvjax.vector_map(away, method="alv", spacing=1000.0)
+    assert np.asarray(vm.included).sum() == 1 and np.asarray(vm.valid).all()
+    for call in (delvjax.vector_map, delvjax.catchment):
+        with pytest.raises(delvjax.InputError) as exc:
+            call(env1, method="alv", spacing=1000.0)
+        assert exc.value.field == "spacing" and "but home" in str(exc.value)
+
+
 def test_one_visible_landmark_needs_a_compass():
     """Occlusion down to one visible landmark (`hidden`): delv-compass stays defined, delv does not."""
     hidden = [1, 2, 3]

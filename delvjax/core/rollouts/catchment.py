@@ -134,7 +134,7 @@ def catchment_area(
     counted = catchment_counted(env.arena, points, included, first_move, sensor.d)
     cells = np.flatnonzero(included)  # which cells are released
     if cells.size == 0:
-        raise InputError("spacing", spacing, "leaves no grid point clear of the landmarks (r + clearance)")
+        raise InputError("spacing", spacing, "leaves no grid point clear of the landmarks (r + clearance) but home")
     if not counted.any():
         raise InputError(
             "d",
