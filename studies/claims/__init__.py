@@ -21,7 +21,7 @@ from . import (
     _ch5_visual as claims_ch5_visual,
 )
 from .. import thesis
-from ._common import BACKGROUNDS, CANNOT_TELL, CHECKS, ENVS, Missing, Undefined, check
+from ._common import BACKGROUNDS, CANNOT_TELL, CHECKS, ENVS, Missing, Undefined, _n, check
 
 __all__ = ["BACKGROUNDS", "CHECKS", "ENVS", "Missing", "Undefined", "check", "evaluate"]
 
@@ -56,11 +56,6 @@ def smallest_sample(keys: list[str], flat: dict, settings: dict | None) -> tuple
     return min(found, default=(float("inf"), ""))
 
 
-def _shown(value) -> str:
-    """A number as the claims table shows it where a check could not run to its end."""
-    return "no value" if value is None else f"{value:.3g}" if isinstance(value, float) else str(value)
-
-
 def evaluate(numbers_by_study: dict[str, dict], settings: dict | None = None) -> list[dict]:
     """One row per claim (module docstring); `settings` (the run's spacing and trials) gives each row the
     smallest sample behind its verdict (`sample`)."""
@@ -88,7 +83,7 @@ def evaluate(numbers_by_study: dict[str, dict], settings: dict | None = None) ->
             try:
                 ours, verdict, why = fn(get)
             except Undefined as exc:  # the study ran; the number has no value at these settings
-                ours = "; ".join(f"{k} = {_shown(flat[k])}" for k in read)  # what was read, up to the gap
+                ours = "; ".join(f"{k} = {'no value' if flat[k] is None else _n(flat[k])}" for k in read)
                 verdict = CANNOT_TELL
                 why = f"{exc.args[0]} has no value at these settings (e.g. no grid point in the region it counts)"
             except Missing as exc:

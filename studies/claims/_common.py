@@ -2,8 +2,7 @@
 
 CHECKS maps a claim id of `delvjax.studies.thesis.CLAIMS` to its check, a function of `get` (key ->
 number, raising Missing when the study that makes it was not run, Undefined when it ran but recorded
-no value) returning (ours, verdict,
-why); `@check(claim_id)` registers one. The helpers format numbers and combine parts into a
+no value) returning (ours, verdict, why); `@check(claim_id)` registers one. The helpers format numbers and combine parts into a
 verdict. The checks themselves are in `delvjax.studies.claims._ch4` and `delvjax.studies.claims._ch5`.
 
 Verdicts (VERDICTS): "holds", "partly", "fails", "cannot tell" (also: a number without a value) and
