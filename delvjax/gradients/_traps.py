@@ -82,6 +82,13 @@ def _nearest(ends: np.ndarray, rows: list[dict], keep) -> np.ndarray:
     return np.min(np.hypot(*(ends[:, None, :] - pts[None]).transpose(2, 0, 1)), axis=1)
 
 
+def failed_rollouts(c, m: int = 0) -> int:
+    """Failed rollouts under mask m among the points the catchment counts (`Catchment.counted`, the
+    points `catchment_pct` is over; a grid point within d of a wall is not released under the default
+    first move and is no failure)."""
+    return int((np.asarray(c.counted) & ~np.asarray(c.success)[m]).sum())
+
+
 def find_traps(
     env: str | Path | Env,
     method: str = "delv",
@@ -185,7 +192,8 @@ def find_traps(
         "method": method,
         "grid_points": int(inc.sum()),
         "catchment_pct": float(c.catchment_pct()[0]),
-        "failed_rollouts": int((inc & ~np.asarray(c.success)[0]).sum()),
+        "counted_points": int(np.asarray(c.counted).sum()),
+        "failed_rollouts": failed_rollouts(c),
         "timed_out": int(timeout.sum()),
         "starts": int(len(starts)),
         "near_cm": near,

@@ -145,6 +145,21 @@ def inside_hull(e: Env, points: np.ndarray) -> np.ndarray:
     return Delaunay(lms).find_simplex(np.asarray(points)) >= 0
 
 
+def hull_failures(c, hull: np.ndarray, m: int = 0) -> dict:
+    """Failed rollouts (%) among the counted grid points of a `Catchment` c (`c.counted`, the points
+    `catchment_pct` is over) inside and outside the landmarks' hull (`hull`, per cell), and how many
+    counted points each region holds; NaN where a region holds none. Over `included` instead, the
+    near-wall points a blind first move may not be released from would count as failures."""
+    counted = np.asarray(c.counted)
+    failed = ~np.asarray(c.success)[m]
+    out = {}
+    for name, region in (("inside", counted & hull), ("outside", counted & ~hull)):
+        n = int(region.sum())
+        out[name] = 100.0 * float(failed[region].mean()) if n else float("nan")
+        out[f"n_{name}"] = n
+    return out
+
+
 def map_numbers(e: Env, vm: VectorMap) -> dict:
     """summarize_map plus e > 45 % inside and outside the landmarks' convex hull (Fig 4.3's reading)."""
     s = summarize_map(vm.error_deg, vm.valid, vm.included)

@@ -22,6 +22,7 @@ from ._common import (
     curve_number,
     curves_rows,
     env,
+    hull_failures,
     inside_hull,
     map_numbers,
     outcome_counts,
@@ -49,16 +50,14 @@ def run(ctx) -> None:
     items, curves, rows = [], {}, []
     for m in METHODS:  # two methods: two programs
         for rules, c in catchments(ctx, e, m).items():
-            inc = np.asarray(c.included)
-            hull = inside_hull(e, np.asarray(c.points))
-            ok = np.asarray(c.success)[0]
             pct = float(c.catchment_pct()[0])
             suffix = rule_suffix(rules)
             ctx.number(f"catchment:env1:{m}{suffix}", pct)
-            fail_in = 100.0 * float((~ok[inc & hull]).mean())
-            fail_out = 100.0 * float((~ok[inc & ~hull]).mean())
-            ctx.number(f"fail_inside_hull:env1:{m}{suffix}", fail_in)
-            ctx.number(f"fail_outside_hull:env1:{m}{suffix}", fail_out)
+            f = hull_failures(c, inside_hull(e, np.asarray(c.points)))  # over the counted points
+            fail_in, fail_out = f["inside"], f["outside"]
+            for region in ("inside", "outside"):
+                ctx.number(f"fail_{region}_hull:env1:{m}{suffix}", f[region])
+                ctx.number(f"n:fail_{region}_hull:env1:{m}{suffix}", [f[f"n_{region}"]])  # the sample behind it
             if rules == "default":
                 vm = as_vector_map(c)
                 s = map_numbers(e, vm)

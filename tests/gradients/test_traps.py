@@ -3,6 +3,8 @@ found with optimistix and classified from the Jacobian."""
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import jax.numpy as jnp
 import numpy as np
 import pytest
@@ -10,7 +12,7 @@ import pytest
 from delvjax.gradients._loss import loss_problem
 from delvjax.cli._main import main
 from delvjax.core.soft.traps import KINDS, classify, field_zeros
-from delvjax.gradients._traps import find_traps
+from delvjax.gradients._traps import failed_rollouts, find_traps
 
 
 @pytest.mark.parametrize(
@@ -43,6 +45,7 @@ def test_quantized_delv_on_env1_has_a_trap_where_its_rollouts_fail():
     discontinuity of the field it oscillates across, on period-2 orbits of the rollout step."""
     r = find_traps("env1", "delv", spacing=100, levels=2)
     s = r.summary
+    assert s["failed_rollouts"] == round(s["counted_points"] * (1 - s["catchment_pct"] / 100))
     assert s["timed_out"] > 0 and s["sinks"] >= 1 and s["home_sinks"] == 1 and s["saddles"] >= 1
     sinks = [(p["x"], p["y"]) for p in r.points if p["kind"] == "sink" and not p["home"]]
     assert min(np.hypot(x - 402.3, y - 436.6) for x, y in sinks) < 5.0
@@ -52,6 +55,18 @@ def test_quantized_delv_on_env1_has_a_trap_where_its_rollouts_fail():
     assert cycles and s["timed_out_on_a_2_cycle"] >= s["timed_out"] // 2
     for p in cycles:  # each end is a step d = 50 cm from the other
         assert abs(np.hypot(p["x"] - p["partner_x"], p["y"] - p["partner_y"]) - 50.0) < 1.0
+
+
+def test_failed_rollouts_are_counted_over_the_catchments_points():
+    """Issue 52: the failures are over the points the catchment counts (`Catchment.counted`), as
+    `catchment_pct` is; over `included`, a near-wall point (not released under the default first move,
+    never a success) counted as a failed rollout."""
+    c = SimpleNamespace(
+        included=np.array([True, True, True, True]),
+        counted=np.array([True, True, True, False]),  # the last point lies within d of a wall
+        success=np.array([[True, False, True, False]]),
+    )
+    assert failed_rollouts(c) == 1
 
 
 def test_delvjax_traps_writes_and_refuses(tmp_path, capsys):
