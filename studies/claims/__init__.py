@@ -34,20 +34,41 @@ _CHECK_MODULES = (
 )  # importing them fills CHECKS, chapter 4 first
 
 
-GRID_KEYS = ("map:", "catchment", "occlusion:", "gap:", "visual:", "compass_noise:", "error_curve:", "sensitivity:")
+GRID_KEYS = (
+    "map:",
+    "catchment",
+    "occlusion:",
+    "gap:",
+    "visual:",
+    "compass_noise:",
+    "error_curve:",
+    "sensitivity:",
+)
 TRIAL_KEYS = ("success", "trajectories:")
+# what the counts `n:KEY` of a key that is no error curve count (by the key's prefix)
+SAMPLE_WORDS = (
+    ("fail_", "counted grid points in the region"),
+    ("robot_images:", "database points"),
+)
+
+
+def _sample_words(key: str) -> str:
+    if ":catchment_pct" in key and key.startswith("robot_images:"):
+        return "releases"
+    return next((words for prefix, words in SAMPLE_WORDS if key.startswith(prefix)), "points in an error-curve bin")
 
 
 def smallest_sample(keys: list[str], flat: dict, settings: dict | None) -> tuple[float, str]:
-    """The smallest sample behind numbers `keys`: the fewest points of an error-curve bin (`n:KEY`), the
-    trials per release distance of a success rate, or the cells of the grid (docs/reproduce.md
-    "Claims"); (inf, "") when none is known."""
+    """The smallest sample behind numbers `keys`: the fewest observations a study recorded under `n:KEY`
+    (the points of an error-curve bin, the counted grid points of a hull region, the points and releases
+    of a robot-image map), the trials per release distance of a success rate, or the cells of the grid
+    (docs/reproduce.md "Claims"); (inf, "") when none is known."""
     found: list[tuple[float, str]] = []
     settings = settings or {}
     for key in keys:
         counts = [c for c in flat.get(f"n:{key}") or [] if c]
         if counts:
-            found.append((min(counts), f"{min(counts)} points in an error-curve bin"))
+            found.append((min(counts), f"{min(counts)} {_sample_words(key)}"))
         elif key.startswith(TRIAL_KEYS) and settings.get("trials"):
             found.append((settings["trials"], f"{settings['trials']} trials per release distance"))
         elif key.startswith(GRID_KEYS) and settings.get("spacing"):

@@ -82,9 +82,12 @@ def run(ctx) -> None:
             curves[f"{LABEL[m]} (ideal rings)"] = curve(ideal, home, BIN)
             maps[m] = (vm, s)
         ctx.number(f"robot_images:{tag}:mean_error_deg", s["mean_error_deg"])
+        ctx.number(f"n:robot_images:{tag}:mean_error_deg", [s["points"]])  # the sample behind it: map points
         if ideal is not None:
             ctx.number(f"robot_images:{tag}:ideal_mean_error_deg", si["mean_error_deg"])
+            ctx.number(f"n:robot_images:{tag}:ideal_mean_error_deg", [si["points"]])
         ctx.number(f"robot_images:{tag}:catchment_pct", c["catchment_pct"])
+        ctx.number(f"n:robot_images:{tag}:catchment_pct", [c["releases"]])
         rows.append(
             {
                 "method": label,
@@ -134,6 +137,7 @@ def run(ctx) -> None:
         s, si = numbers(vm), numbers(ideal)
         qcurves[f"{q} level{'s' * (q > 1)}"] = curve(vm, home, BIN)
         ctx.number(f"robot_images:delv:Q{q}:mean_error_deg", s["mean_error_deg"])
+        ctx.number(f"n:robot_images:delv:Q{q}:mean_error_deg", [s["points"]])
         qrows.append(
             {
                 "levels": q,

@@ -300,3 +300,26 @@ def test_the_smallest_sample_behind_a_verdict_is_the_fewest_observations_read():
     assert smallest_sample(both, flat, {"spacing": 200.0, "trials": 100}) == (25, "a 5 × 5 grid")
     assert smallest_sample(["catchment:env1:delv"], flat, {"spacing": 25.0, "trials": 100}) == (1600, "a 40 × 40 grid")
     assert smallest_sample(["fit:objective"], flat, settings) == (float("inf"), "")
+
+
+def test_claims_on_hull_regions_and_robot_images_state_their_smallest_sample():
+    """Issue 52: claims 10, 14, 15 and 16 read numbers of no grid of the run's spacing (the counted grid
+    points of a hull region; the robot world's snapshot database): the studies record their samples under
+    `n:KEY` (image_matching, robot_images) and the row names what they count."""
+    numbers = merge(
+        fail_hull(1.6, 44.6, 0.0),
+        {"n:fail_inside_hull:env1:warping": [3], "n:fail_outside_hull:env1:warping": [40]},
+        {"n:fail_outside_hull:env1:delv": [40]},
+        robot_vs(8.0, 20.0, 90.0, 70.0),
+        robot(13.0, 8.0, 90.0),
+        robot_q(10.0, 12.0),
+        {f"n:robot_images:{m}:mean_error_deg": [78] for m in ("delv", "warping")},
+        {"n:robot_images:delv:ideal_mean_error_deg": [78]},
+        {f"n:robot_images:{m}:catchment_pct": [76] for m in ("delv", "warping")},
+        {f"n:robot_images:delv:Q{q}:mean_error_deg": [78] for q in (1, 2, 4, 5)},
+    )
+    rows = {r["id"]: r for r in claims.evaluate({"synthetic": numbers}, {"spacing": 100.0, "trials": 100})}
+    assert rows["warping_fails_outside_hull"]["sample"] == "3 counted grid points in the region"
+    assert rows["robot_images_delv_errs_more_but_homes"]["sample"] == "76 releases"
+    assert rows["robot_images_delv_beats_warping"]["sample"] == "76 releases"
+    assert rows["robot_images_quantized_similar"]["sample"] == "78 database points"
