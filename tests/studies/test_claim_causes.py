@@ -109,3 +109,18 @@ def test_delv_and_alv_that_do_not_mix_name_alvs_steady_error():
     assert "ALV errs 9-11° in every bin" in why and "higher only in the nearest 1 bin (" in why
     numbers["error_curve:env1:delv-compass"] = [6.0] * 7 + [18.0] + [6.0] * 6  # higher far out: another story
     assert "ALV errs" not in verdict("delv_vs_acv_alv_error_mixed", numbers)["why"]
+
+
+def test_env2s_hull_is_named_a_square_around_home_not_a_thin_region_at_the_edge():
+    """Issue 52: claim 2's cause called env2's hull (a square of landmarks around home) 'a thin region at
+    the edge'; that is env3's, whose home lies outside its hull."""
+    from tests.cases.claims import hull
+
+    numbers = hull(0.5, 5.0)
+    numbers.update({"map:env2:delv:gt45_inside_hull_pct": 5.2, "map:env2:delv:gt45_outside_hull_pct": 1.1})
+    why = verdict("errors_outside_landmark_hull", numbers)["why"]
+    assert "not in env2: its hull surrounds home" in why and "1440 pixels" in why, why
+    assert "thin region" not in why and "env3" not in why.split("Rule:")[0].replace("(env2", ""), why
+    numbers.update({"map:env3:delv:gt45_inside_hull_pct": 24.5, "map:env3:delv:gt45_outside_hull_pct": 20.2})
+    why = verdict("errors_outside_landmark_hull", numbers)["why"]
+    assert "not in env3: home lies outside its hull, a thin region" in why, why
