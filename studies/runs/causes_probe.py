@@ -13,6 +13,10 @@ change nothing in the report); run them with
    of home) but gives no coordinates. Moving each landmark of ours up to `jitter` cm (kept east
    of home, non-overlapping) shows how far ACV's error point rate (Table 5.1, k = 0) and
    DELV-compass's catchment with one landmark hidden (Table 5.3, k = 1) depend on them.
+3. The ring radius (ALV, ring6, k = 1; the occlusion table's note): ALV's catchment with one of six
+   ring landmarks hidden per ring radius, and the distance of its field's sink from home.
+4. env2's hull (claim 2): DELV's error points inside a square of landmarks around home at 360 and
+   1440 pixels (25 cm grid).
 """
 
 from __future__ import annotations
@@ -52,6 +56,45 @@ def pixels(spacing: float = 50.0, ds=(20.0, 50.0, 100.0), widths=(360, 1440)) ->
             r["mean_deg"]
             for r in curve(r3, delvjax.vector_map(r3, method="delv", spacing=spacing, seed=0, n_pix=n_pix))
         ]
+    return out
+
+
+def ring_radius(radii=(150.0, 250.0, 350.0, 420.0), spacing: float = 50.0) -> dict:
+    """ALV's catchment (%) with the north landmark of six equally spaced around home hidden, per ring
+    radius (cm), and the sink of its field: where the five visible unit vectors cancel, on the line
+    through home away from the hidden landmark (its distance from home, cm)."""
+    out = {}
+    for radius in radii:  # a handful of layouts: the same program
+        angles = np.deg2rad(90.0 + 60.0 * np.arange(6))
+        lm = [(500.0 + radius * np.cos(a), 500.0 + radius * np.sin(a), 30.0) for a in angles]
+        e = make_env(lm, home=(500.0, 500.0), arena=(0.0, 0.0, 1000.0, 1000.0), pad_to=PAD)
+        c = delvjax.catchment(e, "alv", spacing=spacing, hidden=[0])
+        ys = np.linspace(500.0, 500.0 - 0.9 * radius, 2001)  # short of the south landmark
+        pts = np.stack([np.full_like(ys, 500.0), ys], 1)
+        to = np.asarray(lm)[1:, None, :2] - pts[None]
+        pull = (to[..., 1] / np.hypot(to[..., 0], to[..., 1])).sum(0)  # north component of the five unit vectors
+        out[f"{radius:g}"] = {
+            "catchment_pct": float(c.catchment_pct()[0]),
+            "sink_cm": float(500.0 - ys[np.argmin(abs(pull))]),
+        }
+    return out
+
+
+def hull_pixels(spacing: float = 25.0, widths=(360, 1440)) -> dict:
+    """env2 (a square of landmarks around home): DELV's error points (e > 45°, %) inside and outside the
+    landmarks' hull per ring width; on the 25 cm grid the points inside lie within 180 cm of home."""
+    from ._common import inside_hull
+
+    e = env("env2")
+    out = {}
+    for n_pix in widths:
+        vm = delvjax.vector_map(e, method="delv", spacing=spacing, seed=0, n_pix=n_pix)
+        inc, err = np.asarray(vm.included), np.asarray(vm.error_deg)
+        hull = inside_hull(e, np.asarray(vm.points))
+        out[n_pix] = {
+            "inside_gt45_pct": 100.0 * float((err[inc & hull] > 45.0).mean()),
+            "outside_gt45_pct": 100.0 * float((err[inc & ~hull] > 45.0).mean()),
+        }
     return out
 
 
@@ -123,7 +166,8 @@ def main() -> None:
         ("DELV-compass catchment % (k = 1)", lay["delv_compass_catchment_k1_pct"]),
     ):
         print(f"env3 variants, {name}: n {len(v)}, min {min(v):.1f}, median {np.median(v):.1f}, max {max(v):.1f}")
-    print(json.dumps({"pixels": px, "env3": lay}, indent=1))
+    rings, hull = ring_radius(), hull_pixels()
+    print(json.dumps({"pixels": px, "env3": lay, "ring_radius": rings, "env2_hull_pixels": hull}, indent=1))
 
 
 if __name__ == "__main__":
