@@ -41,25 +41,27 @@ def _physical(get, keys) -> str:
 
 FIG4_5 = {"env1": 98.52, "env2": 95.41, "env3": 77.66}  # thesis catchment %, DELV without compass
 LARGE = 75.0  # % "sufficient level of success" (the thesis's lowest, env3 77.66, within 3 points)
-GAP_TOL = 10.0  # points of tolerance on the env3 gap
+GAP_SHARE = 0.5  # env3's gap must be at least this share of the thesis's 17.75 points
 
 
 @check("delv_nocompass_catchment_all_envs")
 def _(get):
-    """Large catchment everywhere and env3 (landmarks on one side) strictly lowest by a margin near
-    the thesis's: min(env1, env2) - env3 >= 17.75 - 10 points. All three >= 99 %: cannot tell."""
+    """Large catchment everywhere and env3 (landmarks on one side) strictly lowest by at least half the
+    thesis's margin: min(env1, env2) - env3 >= 17.75 / 2 points ('affected by the distribution of
+    landmarks' as the thesis's numbers are, not by a margin within the run-to-run spread of a catchment;
+    a fixed tolerance of 10 points passed a gap of 8.0). All three >= 99 %: cannot tell."""
     c = {e: get(f"catchment:{e}:delv") for e in ENVS}
     gap = min(c["env1"], c["env2"]) - c["env3"]
     thesis_gap = min(FIG4_5["env1"], FIG4_5["env2"]) - FIG4_5["env3"]
-    need = thesis_gap - GAP_TOL
+    need = GAP_SHARE * thesis_gap
     large, gap_ok = all(v >= LARGE for v in c.values()), gap >= need
     ours = (
         "catchment env1/2/3: " + _n(list(c.values())) + " % (thesis 98.5/95.4/77.7); env3 below the others by "
         f"{gap:.1f} points (thesis {thesis_gap:.1f})" + _physical(get, [f"catchment:{e}:delv" for e in ENVS])
     )
     rule = (
-        f"every catchment >= {LARGE:.0f} % and env3 strictly lowest by >= {need:.2f} points (the thesis's gap "
-        f"{thesis_gap:.2f} minus a tolerance of {GAP_TOL:.0f}); all three >= {CEILING:.0f} %: cannot tell"
+        f"every catchment >= {LARGE:.0f} % and env3 strictly lowest by >= {need:.2f} points (half the thesis's "
+        f"gap of {thesis_gap:.2f}); all three >= {CEILING:.0f} %: cannot tell"
     )
     if at_ceiling(list(c.values())):
         return ours, CANNOT_TELL, _why(rule, "every environment is at the ceiling: the layouts cannot be told apart")
@@ -117,29 +119,30 @@ STEP_SPREAD = 10.0  # degrees / points: "do not differ by a large amount"
 
 @check("step_distance_rarely_matters")
 def _(get):
-    """The mean error curves for d = 20..150 cm lie within 10° of each other, and (the thesis: 'very
-    similar patterns in terms of homing performance') their catchments within 10 points; catchments
-    all >= 99 %: that part cannot tell."""
+    """The mean errors for d = 20..150 cm (the vector map's, the numbers the next claim reads; the mean of
+    an error curve's bins weighs a near bin of few points as much as a far one) lie within 10° of each
+    other, and (the thesis: 'very similar patterns in terms of homing performance') their catchments
+    within 10 points; catchments all >= 99 %: that part cannot tell."""
     ds = (20, 50, 100, 150)
-    means = {d: _mean(get(f"error_curve:env1:delv:d={d}")) for d in ds}
+    means = {d: get(f"map:env1:delv:d={d}:mean_error_deg") for d in ds}
     catch = {d: get(f"catchment:env1:delv:d={d}") for d in ds}
     spread = max(means.values()) - min(means.values())
     cspread = max(catch.values()) - min(catch.values())
     ours = (
-        "mean of the error curve, d = 20/50/100/150 cm: "
+        "mean error (vector map), d = 20/50/100/150 cm: "
         + _n(list(means.values()))
         + "°; catchment "
         + _n(list(catch.values()))
         + " %"
     )
     parts = [spread <= STEP_SPREAD, None if at_ceiling(list(catch.values())) else cspread <= STEP_SPREAD]
-    rule = f"error curves within {STEP_SPREAD:.0f}° and catchments within {STEP_SPREAD:.0f} points of each other"
+    rule = f"mean errors within {STEP_SPREAD:.0f}° and catchments within {STEP_SPREAD:.0f} points of each other"
     return (
         ours,
         _combine(parts),
         _why(
             rule,
-            "" if parts[0] else f"the curves differ by {spread:.1f}° on average",
+            "" if parts[0] else f"the mean errors differ by up to {spread:.1f}°",
             "" if parts[1] is not False else _step_loss_cause(get, catch, cspread),
         ),
     )

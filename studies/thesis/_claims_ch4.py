@@ -49,14 +49,14 @@ CLAIMS_CH4 = [
         "quote": "The angular errors do not differ by a large amount with varying moving "
         "distances d . This shows that the moving distance rarely affects the "
         "performance of the method.",
-        "statement": "DELV's mean angular error curves for d = 20, 50, 100 and 150 cm lie close "
-        "together (no d gives a clearly worse curve), and so do their catchments "
+        "statement": "DELV's mean angular errors (vector map, the numbers of the next claim) for d = 20, "
+        "50, 100 and 150 cm lie close together (no d errs clearly more), and so do their catchments "
         "(the thesis: 'very similar patterns in terms of homing performance').",
         "needs": [
-            "error_curve:env1:delv:d=20",
-            "error_curve:env1:delv:d=50",
-            "error_curve:env1:delv:d=100",
-            "error_curve:env1:delv:d=150",
+            "map:env1:delv:d=20:mean_error_deg",
+            "map:env1:delv:d=50:mean_error_deg",
+            "map:env1:delv:d=100:mean_error_deg",
+            "map:env1:delv:d=150:mean_error_deg",
             "catchment:env1:delv:d=20..150",
         ],
     },

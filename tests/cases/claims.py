@@ -75,6 +75,7 @@ def hull(ins, out):
 def steps(curves, catch):
     return merge(
         {f"error_curve:env1:delv:d={d}": c for d, c in zip((20, 50, 100, 150), curves)},
+        step_errors(*(sum(c) / len(c) for c in curves)),
         {f"catchment:env1:delv:d={d}": c for d, c in zip((20, 50, 100, 150), catch)},
     )
 

@@ -323,3 +323,19 @@ def test_claims_on_hull_regions_and_robot_images_state_their_smallest_sample():
     assert rows["robot_images_delv_errs_more_but_homes"]["sample"] == "76 releases"
     assert rows["robot_images_delv_beats_warping"]["sample"] == "76 releases"
     assert rows["robot_images_quantized_similar"]["sample"] == "78 database points"
+
+
+def test_claims_3_and_4_show_the_same_mean_error_at_each_step_distance():
+    """Issue 52: 'mean error at d = 20' was 14.9° in claim 3 (the mean of the error curve's bins) and
+    14.1° in claim 4 (the vector map's mean error); both read the vector map's now."""
+    numbers = merge(steps([[30.0, 10.0, 10.0]] * 4, [90.0, 92.0, 91.0, 89.0]), step_errors(14.1, 11.0, 14.0, 15.0))
+    three = verdict("step_distance_rarely_matters", numbers)["ours"]
+    four = verdict("small_step_slightly_better", numbers)["ours"]
+    assert "14.1/11.0/14.0/15.0°" in three and "14.1/11.0/14.0/15.0°" in four, (three, four)
+
+
+def test_claim_1_needs_half_the_thesiss_env3_gap():
+    """Issue 52: env3 lowest by 8.0 points passed a rule of 17.75 - 10 points by 0.25; half the
+    thesis's gap (8.9 points) is needed to hold."""
+    assert verdict("delv_nocompass_catchment_all_envs", c_catch_envs(98.0, 98.5, 90.0))["verdict"] == "partly"
+    assert verdict("delv_nocompass_catchment_all_envs", c_catch_envs(98.0, 98.5, 89.0))["verdict"] == "holds"
