@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from ._common import (
     ENVS,
+    FAILS,
     FAILURES,
     _combine,
     _failures,
@@ -196,12 +197,20 @@ def _(get):
         ]
     if None in parts:
         reasons.append("parts at the ceiling (both >= 99 %)")
+    pattern = [p for i, p in enumerate(parts) if i % 3 and p is not None]  # the near and far parts
     ours = f"success DELV {_n(d)}, ACV {_n(acv)}, ALV {_n(alv)} %"
-    rule = (
+    if pattern and not any(pattern):  # the sentence's own content (higher near, lower far) contradicted
+        reasons.append("every near / far part that can be decided is contradicted: 'similar' alone is not the claim")
+        return ours, FAILS, _why(_near_far_rule(), *reasons)
+    return ours, _combine(parts), _why(_near_far_rule(), *reasons)
+
+
+def _near_far_rule() -> str:
+    """Claim 20's rule (`delv_compass_success_near_far`)."""
+    return (
         f"overall within {SIMILAR:.0f} points; near {NEAR_FAR} distances DELV higher by {SR_TOL:.0f}..{LITTLE:.0f}; "
-        f"far {NEAR_FAR} DELV lower by >= {SR_TOL:.0f}"
+        f"far {NEAR_FAR} DELV lower by >= {SR_TOL:.0f}; fails when every decidable near / far part is contradicted"
     )
-    return ours, _combine(parts), _why(rule, *reasons)
 
 
 def _far_failures(get, method: str) -> str:

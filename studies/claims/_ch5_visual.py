@@ -7,6 +7,7 @@ from ._common import (
     BACKGROUNDS,
     CEILING,
     ENVS,
+    FAILS,
     _combine,
     _n,
     _verdict,
@@ -176,12 +177,17 @@ def _(get):
         + " points"
     )
     why = "no method loses catchment in some settings (homing succeeds despite heading errors)" if None in parts else ""
+    visual = [p for p in parts[:-1] if p is not None]  # the visual compass of Figs 5.11-5.12, the claim's subject
+    verdict = _combine(parts)
+    if visual and not any(visual):
+        verdict = FAILS
+        why = "under every background where something depends on the visual compass DELV is affected at least as much"
     return (
         ours,
-        _combine(parts),
+        verdict,
         _why(
             f"DELV's loss <= the others' - {LOSS_TOL:.0f} points, its rise <= theirs - "
-            f"{TIE_DEG:.0f}°; nobody losing: cannot tell",
+            f"{TIE_DEG:.0f}°; nobody losing: cannot tell; every decidable visual-compass part contradicted: fails",
             why,
         ),
     )

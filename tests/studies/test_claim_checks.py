@@ -14,6 +14,8 @@ from tests.cases.claims import *  # noqa: F401,F403  (the builders of synthetic 
 from tests.cases.claims import THESIS_TEXT, _combine, claims, thesis  # noqa: F401
 
 
+NESTED = {"landmark_number:nested": 1.0}  # layouts whose fewer landmarks are a subset of the more
+
 CASES = {
     "delv_nocompass_catchment_all_envs": {
         "holds": c_catch_envs(98.52, 95.41, 77.66),
@@ -41,10 +43,16 @@ CASES = {
         "holds": merge(
             random_curves("warping", [flat(60), flat(40), flat(30)]),
             random_curves("delv", [flat(10), flat(11), flat(12)]),
+            NESTED,
         ),
         "fails": merge(
             random_curves("warping", [flat(30), flat(30), flat(31)]),
             random_curves("delv", [flat(10), flat(20), flat(30)]),
+            NESTED,
+        ),
+        CANNOT_TELL: merge(  # the seeded layouts change arrangement and number together
+            random_curves("warping", [flat(60), flat(40), flat(30)]),
+            random_curves("delv", [flat(10), flat(11), flat(12)]),
         ),
         "n/a": random_curves("delv", [flat(10)] * 3),
     },  # no study records the warping curves yet
@@ -339,3 +347,16 @@ def test_claim_1_needs_half_the_thesiss_env3_gap():
     thesis's gap (8.9 points) is needed to hold."""
     assert verdict("delv_nocompass_catchment_all_envs", c_catch_envs(98.0, 98.5, 90.0))["verdict"] == "partly"
     assert verdict("delv_nocompass_catchment_all_envs", c_catch_envs(98.0, 98.5, 89.0))["verdict"] == "holds"
+
+
+def test_issue_52_verdicts_judge_what_the_sentences_say():
+    """Claim 7: 78.6 % of the bins with 11.2° against 58.5° holds (the mean error decides 'significantly').
+    Claim 20: overall similar, near at the ceiling, far contradicted: fails (not partly). Claim 33: ALV
+    less affected than DELV under every background: fails even where compass noise costs DELV least."""
+    w = [40.0] * 3 + [70.0] * 11
+    d = [50.0] * 3 + [5.0] * 11  # DELV lower in 11 of 14 bins
+    assert verdict("delv_smaller_error_than_warping", warping_err(d, w, 11.2, 58.5))["verdict"] == "holds"
+    near_far = success3([100.0] * 3 + [99.0] * 3 + [98.0] * 3, *[[100.0] * 3 + [99.0] * 3 + [92.0] * 3] * 2)
+    assert verdict("delv_compass_success_near_far", near_far)["verdict"] == "fails"
+    alv_least = dependence([50.0, 60.0, 90.0], [20.0, 10.0, 1.0], [99.0, 50.0, 50.0])
+    assert verdict("delv_least_compass_dependent", alv_least)["verdict"] == "fails"
