@@ -34,7 +34,7 @@ from delvjax.core.sensor import Sensor
 from delvjax.envs._presets import make_env, preset_dict, random_env
 from delvjax.options._registry import program
 
-from ._common import HOME_RADIUS, PAD, PROGRAM, RULES, curve, env
+from ._common import HOME_RADIUS, PAD, PROGRAM, RULES, curve, env, inside_hull
 from ._occlusion_layouts import stacked_masks
 
 EAST_OF_HOME = 80.0  # cm: every moved env3 landmark keeps its centre at least this far east of home
@@ -83,8 +83,6 @@ def ring_radius(radii=(150.0, 250.0, 350.0, 420.0), spacing: float = 50.0) -> di
 def hull_pixels(spacing: float = 25.0, widths=(360, 1440)) -> dict:
     """env2 (a square of landmarks around home): DELV's error points (e > 45°, %) inside and outside the
     landmarks' hull per ring width; on the 25 cm grid the points inside lie within 180 cm of home."""
-    from ._common import inside_hull
-
     e = env("env2")
     out = {}
     for n_pix in widths:
