@@ -1,5 +1,10 @@
-"""Environments from user input: the built-in presets, JSON files, seeded random layouts
-(docs/model.md §6-7)."""
+"""Environments from user input: the built-in presets, JSON files, seeded random layouts and the
+world ensembles of the thesis's families (docs/model.md §6-7, §6.1)."""
+
+from ._ensembles import FAMILIES as FAMILIES
+from ._ensembles import ensemble_envs as ensemble_envs
+from ._ensembles import violations as violations
+from ._ensembles import world_properties as world_properties
 
 from ._presets import PRESET_DESCRIPTIONS as PRESET_DESCRIPTIONS
 from ._presets import PRESETS as PRESETS
