@@ -139,7 +139,7 @@ def group_key(req: dict) -> tuple:
 
 
 def evaluate(
-    kind: SweepKind, setups: list[dict], mesh, rows: int = 1, total: int | None = None
+    kind: SweepKind, setups: list[dict], mesh, rows: int = 1, total: int | None = None, lanes: int = DEFAULT_LANES
 ) -> dict[str, np.ndarray]:
     """The cells `setups` (one group) as one call of their program, split over `mesh`'s devices if
     any (every device runs whole cells with the one-device program); rollout masks padded to `rows`.
@@ -149,7 +149,7 @@ def evaluate(
     stack = lambda *xs: np.stack([np.asarray(x) for x in xs])  # noqa: E731
     traced = jax.tree.map(stack, *[_traced(req, rows) for req in setups])
     shared, traced = kind.inputs(setups, traced)
-    program = _program(kind, DEFAULT_LANES, first.get("trials"))
+    program = _program(kind, lanes, first.get("trials"))
     if total is not None:
         res = over_processes(program, mesh, len(shared), total, *shared, *traced)
     elif mesh is None:

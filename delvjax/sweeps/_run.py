@@ -14,7 +14,8 @@ import numpy as np
 from ..evaluate import _vector_map as api
 from ._store import cell_digest, code_digest, load_cells, save_cells
 from ..core.batching import global_mesh, local_mesh, n_devices, process_rows
-from ..envs._presets import load_env, random_env
+from ..core.rollouts import DEFAULT_LANES
+from ..envs._presets import env_from_dict, load_env, random_env
 from ._kinds import cell_setup, evaluate, group_key, mask_rows, programs_compiled, sum_names
 from ._results import dataset, load_sweep, save_sweep, sweep_inputs
 from ._spec import SweepSpec
@@ -33,6 +34,8 @@ def _envs(spec: SweepSpec) -> dict:
     def env(name: str, pad_to: int | None = None):
         if name in spec.random_envs:
             return random_env(*spec.random_envs[name], pad_to=pad_to)
+        if name in spec.ensemble_envs:
+            return env_from_dict(spec.ensemble_envs[name], pad_to=pad_to)
         return load_env(name, pad_to=pad_to)
 
     envs = {name: env(name) for name in spec.axes["env"]}
@@ -66,12 +69,14 @@ def run_sweep(
     announce: Callable[[], None] | None = None,
     out: str | Path | None = None,
     phase: Callable[[str], None] | None = None,
+    lanes: int = DEFAULT_LANES,
 ) -> xarray.Dataset:
     """Every cell of `spec`: metrics as an `xarray.Dataset` (one dimension per axis of more than one
     value). Every cell is validated before any work; `announce()` is called then; `progress(done,
     total)` after each chunk; `phase(text)` says what runs now ("compiling program 2 of 3").
     With `out`, finished chunks are kept in out/.cells and cells found there are not computed again
-    (`cell_store`: a killed or changed sweep resumes)."""
+    (`cell_store`: a killed or changed sweep resumes). `lanes`: rollout trials advanced side by side
+    (`rollouts.run_trials`; no number depends on it): fewer waste less on cells of few trials."""
     envs = _envs(spec)
     groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None)
     n = spec.n_cells
@@ -111,7 +116,7 @@ def run_sweep(
         padded = chunk + [chunk[0]] * (size - len(chunk))
         start, stop = (0, size) if processes == 1 else process_rows(mesh, size)  # this process's rows
         setups = [cell_setup(spec, envs, spec.cell(i), max_points) for i in padded[start:stop]]
-        res = evaluate(spec.kind, setups, mesh, rows, None if processes == 1 else size)
+        res = evaluate(spec.kind, setups, mesh, rows, None if processes == 1 else size, lanes)
         own = chunk[start:stop]  # this process's real cells (the rest of its rows are padding)
         for k in names:
             sums[k][own] = res[k][: len(own)]

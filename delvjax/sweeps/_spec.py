@@ -13,6 +13,8 @@ import numpy as np
 
 from ..core.errors import InputError
 from ..core.rollouts.rules import DEFAULT_DISTANCES, TRIALS_PER_DISTANCE
+from ..envs._ensembles import FAMILIES
+from ..envs._ensembles import ensemble_envs as ensemble_envs_of
 from ..options._schema import ROLLOUT_ONLY, all_options
 from ._kind import KINDS, SweepKind
 
@@ -20,7 +22,8 @@ from ._kind import KINDS, SweepKind
 # Besides these, every setting declared on the modules is an axis (`options._schema`; read when a file is
 # parsed, so that a method registered later brings its settings): see `axes(kind)`.
 SCENE_AXES = {
-    "env": "environment: preset name, JSON path, or {random = COUNT, landmarks = N | [N, ...], seed = S}",
+    "env": "environment: preset name, JSON path, {random = COUNT, landmarks = N | [N, ...], seed = S} or "
+    "{ensemble = FAMILY, members = COUNT, seed = S, factor = F}",
     "method": "registry name",
     "spacing": "grid spacing, cm",
     "seed": "seed of headings, release points and noise, 0..2^32-1",
@@ -93,6 +96,7 @@ class SweepSpec:
     distances: tuple[float, ...] = DISTANCES
     trials: int = TRIALS
     random_envs: dict[str, tuple[int, int]] = field(default_factory=dict)  # env label -> (seed, landmarks)
+    ensemble_envs: dict[str, dict] = field(default_factory=dict)  # env label -> its docs/model.md §7 dictionary
 
     def __post_init__(self):
         if not isinstance(self.kind, SweepKind):  # a kind given by its name
@@ -179,39 +183,79 @@ def _values(name: str, raw, field: str | None = None) -> list:
     return values
 
 
-def _env_labels(raw, random_envs: dict[str, tuple[int, int]]) -> list:
-    """The env axis with every table {random = COUNT, landmarks = N or [N, ...], seed = S} replaced by
-    the labels of its seeded random layouts (`presets.random_env(S + i, N)`: "random<S+i>-<N>"),
-    recorded in `random_envs`."""
+def _env_labels(raw, random_envs: dict[str, tuple[int, int]], ensemble_envs: dict[str, dict]) -> list:
+    """The env axis with every table replaced by the labels of the worlds it stands for:
+    {random = COUNT, landmarks = N or [N, ...], seed = S} by its seeded random layouts
+    (`presets.random_env(S + i, N)`: "random<S+i>-<N>", recorded in `random_envs`) and
+    {ensemble = FAMILY, members = COUNT, seed = S, factor = F} by the members of a world family
+    (`envs.ensemble_envs`, docs/model.md §6.1: "env1-m0", ..., recorded in `ensemble_envs`)."""
     items = raw if isinstance(raw, list) else [raw]
     labels = []
     for item in items:
         if not isinstance(item, dict):
             labels.append(item)
-            continue
-        field_ = "axes.env"
-        if sorted(set(item) - {"random", "landmarks", "seed"}) or "random" not in item or "landmarks" not in item:
-            raise InputError(field_, item, "a random table is {random = COUNT, landmarks = N or [N, ...], seed = S}")
-        count, seed = item["random"], item.get("seed", 0)
-        counts = item["landmarks"] if isinstance(item["landmarks"], list) else [item["landmarks"]]
-        ints = [count, seed, *counts]
-        if (
-            not all(isinstance(v, int) and not isinstance(v, bool) for v in ints)
-            or count < 1
-            or seed < 0
-            or not counts
-            or min(counts) < 1
-            or max(counts) > 12
-        ):
-            raise InputError(field_, item, "random and seed must be integers >= 1 and >= 0, landmarks in 1..12")
-        if count * len(counts) + len(random_envs) > RANDOM_ENVS:
-            raise InputError(field_, item, f"asks for more than {RANDOM_ENVS} random layouts")
-        for n in counts:
-            for s_ in range(seed, seed + count):
-                label = f"random{s_}-{n}"
-                random_envs[label] = (s_, n)
-                labels.append(label)
+        elif "ensemble" in item:
+            labels += _ensemble_labels(item, len(random_envs), ensemble_envs)
+        else:
+            labels += _random_labels(item, random_envs, len(ensemble_envs))
     return labels
+
+
+def _random_labels(item: dict, random_envs: dict[str, tuple[int, int]], others: int) -> list[str]:
+    field_ = "axes.env"
+    if sorted(set(item) - {"random", "landmarks", "seed"}) or "random" not in item or "landmarks" not in item:
+        raise InputError(
+            field_,
+            item,
+            "a table is {random = COUNT, landmarks = N or [N, ...], seed = S} or "
+            "{ensemble = FAMILY, members = COUNT, seed = S, factor = F}",
+        )
+    count, seed = item["random"], item.get("seed", 0)
+    counts = item["landmarks"] if isinstance(item["landmarks"], list) else [item["landmarks"]]
+    ints = [count, seed, *counts]
+    if (
+        not all(isinstance(v, int) and not isinstance(v, bool) for v in ints)
+        or count < 1
+        or seed < 0
+        or not counts
+        or min(counts) < 1
+        or max(counts) > 12
+    ):
+        raise InputError(field_, item, "random and seed must be integers >= 1 and >= 0, landmarks in 1..12")
+    if count * len(counts) + len(random_envs) + others > RANDOM_ENVS:
+        raise InputError(field_, item, f"asks for more than {RANDOM_ENVS} generated layouts")
+    labels = []
+    for n in counts:
+        for s_ in range(seed, seed + count):
+            label = f"random{s_}-{n}"
+            random_envs[label] = (s_, n)
+            labels.append(label)
+    return labels
+
+
+def _ensemble_labels(item: dict, others: int, ensemble_envs: dict[str, dict]) -> list[str]:
+    field_ = "axes.env"
+    unknown = sorted(set(item) - {"ensemble", "members", "seed", "factor"}, key=str)
+    if unknown or "members" not in item:
+        what = f"unknown key {unknown[0]!r}" if unknown else "members is missing"
+        raise InputError(
+            field_, item, f"{what}: an ensemble is {{ensemble = FAMILY, members = COUNT, seed = S, factor = F}}"
+        )
+    members, seed, factor = item["members"], item.get("seed", 0), item.get("factor", 1.0)
+    if not isinstance(item["ensemble"], str) or item["ensemble"] not in FAMILIES:
+        raise InputError(f"{field_}.ensemble", item["ensemble"], f"must be a world family ({', '.join(FAMILIES)})")
+    if isinstance(members, bool) or not isinstance(members, int) or members < 1:
+        raise InputError(f"{field_}.members", members, "must be an integer >= 1")
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise InputError(f"{field_}.seed", seed, "must be an integer >= 0")
+    if isinstance(factor, bool) or not isinstance(factor, (int, float)) or not 0 < factor <= 2:
+        raise InputError(f"{field_}.factor", factor, "must be a number in (0, 2] (1: the family's own ranges)")
+    if members + len(ensemble_envs) + others > RANDOM_ENVS:
+        raise InputError(field_, item, f"asks for more than {RANDOM_ENVS} generated layouts")
+    worlds = ensemble_envs_of(item["ensemble"], members, seed, float(factor))
+    for w in worlds:
+        ensemble_envs[w["name"]] = w
+    return [w["name"] for w in worlds]
 
 
 def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
@@ -262,8 +306,9 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
                 f'is not an axis of kind = "{kind}" (an axis of kind = {" or ".join(repr(k) for k in users)})',
             )
     random_envs: dict[str, tuple[int, int]] = {}
+    ensemble_envs: dict[str, dict] = {}
     if "env" in table:
-        table = {**table, "env": _env_labels(table["env"], random_envs)}
+        table = {**table, "env": _env_labels(table["env"], random_envs, ensemble_envs)}
     values = {name: _values(name, raw) for name, raw in table.items()}
     for name, default in DEFAULTS.items():
         if name in kind_axes[kind]:
@@ -285,7 +330,13 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
             f"give {cells:.3g} cells, more than {MAX_CELLS:.0e}: split the sweep",
         )
     return SweepSpec(
-        kind=kind, axes=values, metrics=list(dict.fromkeys(metrics)), text=text, random_envs=random_envs, **extra
+        kind=kind,
+        axes=values,
+        metrics=list(dict.fromkeys(metrics)),
+        text=text,
+        random_envs=random_envs,
+        ensemble_envs=ensemble_envs,
+        **extra,
     )
 
 

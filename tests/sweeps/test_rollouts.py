@@ -180,6 +180,48 @@ def test_random_layouts_on_the_env_axis_are_the_seeded_random_envs():
         assert float(ds.gt45_pct.sel({"env": label}).squeeze()) == pytest.approx(ref["gt45_pct"], abs=1e-9), label
 
 
+def test_ensemble_members_on_the_env_axis_are_the_family_members():
+    """issue 52: a sweep names a world ensemble as an axis (docs/sweeps.md); the members are those of
+    `envs.ensemble_envs`, padded with the other worlds to one program."""
+    from delvjax.envs import ensemble_envs
+    from delvjax.envs._presets import env_from_dict
+
+    spec = parse_sweep(
+        "[axes]\nenv = ['env1', {ensemble = 'env1', members = 2, seed = 4}, {ensemble = 'ring5', members = 1}]\n"
+        "spacing = [150]\n"
+    )
+    assert spec.axes["env"] == ["env1", "env1-s4-m0", "env1-s4-m1", "ring5-m0"]
+    worlds = {w["name"]: w for w in [*ensemble_envs("env1", 2, seed=4), *ensemble_envs("ring5", 1)]}
+    assert spec.ensemble_envs == worlds
+    ds = run_sweep(spec)
+    assert ds.attrs["programs_compiled"] <= 1  # 4 and 5 landmarks padded to one shape
+    for label, world in worlds.items():
+        vm = delvjax.vector_map(env_from_dict(world, pad_to=5), spacing=150)
+        ref = delvjax.summarize_map(vm.error_deg, vm.valid, vm.included)
+        assert float(ds.gt45_pct.sel({"env": label}).squeeze()) == pytest.approx(ref["gt45_pct"], abs=1e-9), label
+
+
+@pytest.mark.parametrize(
+    "raw, field",
+    [
+        ("{ensemble = 'env9', members = 2}", "axes.env.ensemble"),
+        ("{ensemble = 3, members = 2}", "axes.env.ensemble"),
+        ("{ensemble = 'env1'}", "axes.env"),
+        ("{ensemble = 'env1', members = 0}", "axes.env.members"),
+        ("{ensemble = 'env1', members = 2.5}", "axes.env.members"),
+        ("{ensemble = 'env1', members = 2, seed = -1}", "axes.env.seed"),
+        ("{ensemble = 'env1', members = 2, factor = 0}", "axes.env.factor"),
+        ("{ensemble = 'env1', members = 2, factor = 'wide'}", "axes.env.factor"),
+        ("{ensemble = 'env1', members = 2, colour = 1}", "axes.env"),
+        ("{ensemble = 'env1', members = 100000}", "axes.env"),
+    ],
+)
+def test_a_bad_ensemble_table_names_its_field(raw, field):
+    with pytest.raises(InputError) as exc:
+        parse_sweep(f"[axes]\nenv = [{raw}]\n")
+    assert exc.value.field == field
+
+
 @pytest.mark.parametrize(
     "raw",
     [
