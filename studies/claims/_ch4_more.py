@@ -9,6 +9,7 @@ from ._common import (
     _failures,
     _mean,
     _n,
+    _opt,
     _pairs,
     _share,
     _verdict,
@@ -195,27 +196,50 @@ def _(get):
 
 
 LOWER = 1.0  # degrees
+SLIGHTLY = 10.0  # degrees: 'slightly smaller' at most this much (claims 4 and 17 read 'slight' alike)
+SURROUNDING = ("env2", "ring3", "ring6")  # equally spaced around home, as Fig 4.14a
 
 
 @check("surrounding_landmarks_lower_error")
 def _(get):
-    """With 3 levels, layouts of equally spaced landmarks around home (env2, ring3, ring6) err less than
-    env3 (all landmarks on one side) by >= 1°. 'Slightly' is not required: env3 lies further outside
-    the hull than the thesis's Fig 4.14b, so a larger gap does not contradict it."""
-    sur = {e: get(f"map:{e}:delv:Q3:mean_error_deg") for e in ("env2", "ring3", "ring6")}
-    edge = get("map:env3:delv:Q3:mean_error_deg")
-    lower = [v <= edge - LOWER for v in sur.values()]
+    """With 3 levels, layouts of equally spaced landmarks around home (env2, ring3, ring6; Fig 4.14a) err
+    'slightly' less than edge4, where home lies slightly outside the landmarks' hull as in Fig 4.14b (43 cm
+    beyond the hull of the centres, 13 cm beyond that of the cylinders; studies/runs/quantization.py):
+    each lower by >= 1° and by at most 10°. 'Slightly' is an absolute bound, the one claims 4 and 17 use:
+    the sentence calls every layout's error low ('low angular errors in various environments'), and a
+    gap of up to 10° keeps both errors low beside the 30° under which quantized DELV's error 'mostly
+    remains' (Fig 4.13a); a relative bound would call 4° against 8° more than slight. Lower but by more
+    than 10°: partly (the surrounding layouts err less, not slightly less); none lower: fails. env3 (home
+    135 cm outside, all four landmarks east) is shown, not judged: it is no 'slightly outside'."""
+    sur = {e: get(f"map:{e}:delv:Q3:mean_error_deg") for e in SURROUNDING}
+    edge = get("map:edge4:delv:Q3:mean_error_deg")
+    far = _opt(get, "map:env3:delv:Q3:mean_error_deg")
+    gaps = {e: edge - v for e, v in sur.items()}
+    lower = [g >= LOWER for g in gaps.values()]
+    slight = [LOWER <= g <= SLIGHTLY for g in gaps.values()]
     ours = (
         "3 levels, mean error "
         + ", ".join(f"{e} {_n(v)}°" for e, v in sur.items())
-        + f" vs env3 (one side) {_n(edge)}°"
+        + f" vs edge4 (home 43 cm outside the hull) {_n(edge)}°: lower by "
+        + "/".join(_n(g) for g in gaps.values())
+        + "°"
+        + ("" if far is None else f"; env3 (135 cm outside, not judged) {_n(far)}°")
+    )
+    verdict = "holds" if all(slight) else "fails" if not any(lower) else "partly"
+    why = (
+        ""
+        if all(slight)
+        else "some surrounding layouts err as much as edge4"
+        if not all(lower)
+        else f"the surrounding layouts err less by more than {SLIGHTLY:.0f}°: not slightly"
     )
     return (
         ours,
-        _verdict(lower),
+        verdict,
         _why(
-            f"each surrounding layout below env3 by >= {LOWER:.0f}°",
-            "" if all(lower) else "some surrounding layouts err as much as env3",
+            f"each surrounding layout (env2, ring3, ring6) below edge4 by {LOWER:.0f}-{SLIGHTLY:.0f}° ('slightly'); "
+            f"lower by more: partly",
+            why,
         ),
     )
 

@@ -2,17 +2,23 @@
 
 DELV without compass with Q = 1..5 distance levels and with continuous distances on env1:
 vector maps (Fig 4.12), error curves (Fig 4.13a), catchment per level, success rate vs
-release distance (Fig 4.13b), and level 3 in other layouts (Fig 4.14). Q is a traced leaf
+release distance (Fig 4.13b), and level 3 in other layouts (Fig 4.14: env1-3, ring3, ring6 and
+`edge4`, home slightly outside the landmarks' hull as in Fig 4.14b). Q is a traced leaf
 of the `DELV` module (`levels`), so every level runs through the one compiled rollout program; the
 vector maps are read from the catchment runs (`common.vector_map`).
 """
 
 from __future__ import annotations
 
+import math
+
+from delvjax.core.scene import DEFAULT_HOME
+from delvjax.envs._presets import make_env
 from delvjax.plots._maps import error_curve_figure
 from delvjax.plots._rollouts import success_rate_figure
 
 from ._common import (
+    PAD,
     as_vector_map,
     catchment_columns,
     catchments,
@@ -32,7 +38,28 @@ TITLE = "Quantized distances (Figs 4.12-4.14)"
 STEPS = 7
 LEVELS = (1, 2, 3, 4, 5)
 SUCCESS_LEVELS = LEVELS  # every level in Fig 4.13b (the thesis: "for each method")
-LAYOUTS = ("env1", "env2", "env3", "ring3", "ring6")
+LAYOUTS = ("env1", "env2", "env3", "ring3", "ring6", "edge4")
+# Fig 4.14b: "the home location is slightly outside the convex hull of the landmarks"; the thesis gives no
+# coordinates. edge4: four landmarks as env2's (r = 30 cm, 250 cm from home) equally spaced over 160° of
+# bearing (-80, -26.7, 26.7, 80°, east of home): home lies 43 cm outside the hull of their centres and 13 cm
+# outside that of the cylinders, outside however the hull is drawn but only just (env3's home lies 135 cm
+# outside, all four landmarks east). Number, size and distance are env2's: only the arrangement changes.
+# None lies within 20° of the home unit move's line (0/180°), which gives no parallax (docs/model.md §3.1).
+EDGE_SPAN_DEG, EDGE_DISTANCE, EDGE_RADIUS = 160.0, 250.0, 30.0
+EDGE_BEARINGS = tuple(-EDGE_SPAN_DEG / 2 + EDGE_SPAN_DEG * i / 3 for i in range(4))
+EDGE4 = [
+    (
+        round(DEFAULT_HOME[0] + EDGE_DISTANCE * math.cos(math.radians(b)), 3),
+        round(DEFAULT_HOME[1] + EDGE_DISTANCE * math.sin(math.radians(b)), 3),
+        EDGE_RADIUS,
+    )
+    for b in EDGE_BEARINGS
+]
+
+
+def layout(name: str):
+    """A Fig 4.14 layout padded to PAD landmark slots (the one compiled program): a preset or edge4."""
+    return make_env(EDGE4, name=name, pad_to=PAD) if name == "edge4" else env(name)
 
 
 def run(ctx) -> None:
@@ -94,8 +121,8 @@ def run(ctx) -> None:
     ctx.csv("fig4_13b_quantization_success.csv", rows=[{"levels": k, **r} for k, v in tables.items() for r in v])
     # Fig 4.14: three levels in other layouts.
     items, curves, rows = [], {}, []
-    for name in LAYOUTS:  # five layouts, one compiled program
-        le = env(name)
+    for name in LAYOUTS:  # six layouts, one compiled program
+        le = layout(name)
         vm = vector_map(ctx, le, "delv", levels=3)
         s = map_numbers(le, vm)
         curves[name] = curve(le, vm)
@@ -105,7 +132,14 @@ def run(ctx) -> None:
         )
         items.append((f"{name}: mean error {s['mean_error_deg']:.1f}°", le, vm))
     ctx.step("layouts")
-    ctx.table("quantization_layouts", "DELV with 3 levels in other layouts", rows, source="Fig 4.14")
+    ctx.table(
+        "quantization_layouts",
+        "DELV with 3 levels in other layouts",
+        rows,
+        source="Fig 4.14",
+        note="edge4: home 43 cm outside the hull of the landmark centres (Fig 4.14b: 'slightly outside'); env3: "
+        "135 cm outside; env2, ring3, ring6: equally spaced around home (Fig 4.14a).",
+    )
     ctx.figure(
         "fig4_14_layouts.png",
         panel_figure(items, spacing, title="DELV with 3 distance levels"),

@@ -3,9 +3,13 @@
 For each background setting (`distant`, `walls`, `none`; docs/model.md §2.3): the visual compass's
 heading error at every grid point (release heading random per point), and the catchment
 and mean angular error of DELV, ACV and ALV with the visual compass beside the true
-compass, on env1, under the default and the physical rollout rules. Then a compass-noise
-sweep (sigma 0-45 deg) of the catchment of DELV, ACV and ALV with the true compass: the
-one compiled rollout program, the sigma being a traced leaf of the `Sensor` (`noise.compass`).
+compass, on env1, under the default and the physical rollout rules. The thesis does not say
+which world Fig 5.11 shows, so the same numbers are recorded on env2 and env3 (`WORLDS`; keys
+`visual:<env>:<background>:...`, env1's without the env), under the default rules and the
+physical ones restated from the same run (one rollout per method and setting; the figures stay on
+env1). Then a compass-noise sweep (sigma 0-45 deg) of the catchment of DELV, ACV and ALV with the
+true compass on env1: the one compiled rollout program, the sigma being a traced leaf of the
+`Sensor` (`noise.compass`).
 """
 
 from __future__ import annotations
@@ -15,6 +19,7 @@ import jax.numpy as jnp
 from delvjax.plots._maps import subplots
 import numpy as np
 
+from delvjax.core import rollouts
 from delvjax.core.maps import grid_included, grid_points, random_headings
 from delvjax.core.methods.heading import visual_compass_errors
 from delvjax.options._settings import make_sensor
@@ -27,7 +32,10 @@ BACKGROUNDS = ("distant", "walls", "none")
 TRUE = ("delv-compass", "acv", "alv")
 VISUAL = ("delv-visual", "acv-visual", "alv-visual")
 SIGMAS = (0.0, 5.0, 10.0, 20.0, 30.0, 45.0)
-STEPS = len(BACKGROUNDS) * 2 + 2
+# Fig 5.11's world is not stated (thesis NOTES "fig5_11"): claims 31 and 32 read env1-3. Landmark
+# centroids from home: env1 42 cm, env2 0 cm, env3 193 cm (all four east).
+WORLDS = ("env1", "env2", "env3")
+STEPS = len(BACKGROUNDS) * 2 + 2 + len(WORLDS) - 1
 
 
 def heading_error_stats(err_deg: np.ndarray) -> dict:
@@ -41,12 +49,73 @@ def heading_error_stats(err_deg: np.ndarray) -> dict:
     }
 
 
+def visual_key(world: str, bg: str) -> str:
+    """The key prefix of a world's visual-compass numbers: `visual:<bg>` on env1 (the figures' world),
+    `visual:<env>:<bg>` on the others."""
+    return f"visual:{bg}" if world == "env1" else f"visual:{world}:{bg}"
+
+
+def grid(ctx, e):
+    """The grid points, those included, and the vector map's release headings (random per point)."""
+    points = jnp.asarray(grid_points(e.arena, ctx.settings.spacing))
+    included = np.asarray(grid_included(e, points, 10.0))
+    return points, included, random_headings(jax.random.PRNGKey(ctx.settings.seed), points.shape[0])
+
+
+def default_and_physical(ctx, e, method: str, **options) -> dict:
+    """The catchment under the default rules and under the physical ones restated from the same run
+    (`rollouts.under_collisions`, bit for bit the physical run): one rollout per method and setting,
+    where `catchments` also runs DELV under the homing rules, which the claims do not read."""
+    c = catchment(ctx, e, method, **options)
+    return {"default": c, "physical": rollouts.under_collisions(c)}
+
+
+def other_world(ctx, world: str) -> list[dict]:
+    """The numbers claims 31 and 32 read on a world besides env1 (same keys as env1's with the world
+    named; `visual_key`): the true compass's catchment and mean error, the visual compass's heading
+    errors, and each method's catchment (both rule sets) and mean error with the visual compass."""
+    e = env(world)
+    points, included, headings = grid(ctx, e)
+    true, rows = {}, []
+    for m in TRUE:
+        c = catchment(ctx, e, m)
+        true[m] = (float(c.catchment_pct()[0]), map_numbers(e, as_vector_map(c))["mean_error_deg"])
+        ctx.number(f"catchment:{world}:{m}", true[m][0])
+        ctx.number(f"map:{world}:{m}:mean_error_deg", true[m][1])
+    for bg in BACKGROUNDS:  # the same compiled programs as env1's (landmarks padded, background traced)
+        err = np.degrees(np.asarray(visual_compass_errors(e, points, headings, make_sensor(background=bg))))
+        stats = heading_error_stats(err[included])
+        ctx.number(f"{visual_key(world, bg)}:heading_error_mean_deg", stats["mean |error| °"])
+        ctx.number(f"{visual_key(world, bg)}:heading_error_gt5_pct", stats["error > 5° %"])
+        for tm, vm_name in zip(TRUE, VISUAL):
+            runs = default_and_physical(ctx, e, vm_name, background=bg)
+            pct = {rules: float(c.catchment_pct()[0]) for rules, c in runs.items()}
+            mean = map_numbers(e, as_vector_map(runs["default"]))["mean_error_deg"]
+            ctx.number(f"{visual_key(world, bg)}:{tm}:mean_error_deg", mean)
+            for rules, v in pct.items():
+                ctx.number(f"{visual_key(world, bg)}:{tm}:catchment" + rule_suffix(rules), v)
+            rows.append(world_row(world, bg, tm, stats["error > 5° %"], pct, mean, *true[tm]))
+    ctx.step(world)
+    return rows
+
+
+def world_row(world, bg, tm, gt5, pct, mean, true_pct, true_mean) -> dict:
+    return {
+        "env": world,
+        "background": bg,
+        "method": LABEL[tm],
+        "heading error > 5° %": gt5,
+        "visual default %": pct["default"],
+        "visual physical %": pct["physical"],
+        "visual mean error °": mean,
+        "true compass default %": true_pct,
+        "true compass mean error °": true_mean,
+    }
+
+
 def run(ctx) -> None:
     e = env("env1")
-    spacing = ctx.settings.spacing
-    points = jnp.asarray(grid_points(e.arena, spacing))
-    included = np.asarray(grid_included(e, points, 10.0))
-    headings = random_headings(jax.random.PRNGKey(ctx.settings.seed), points.shape[0])  # the vector map's headings
+    points, included, headings = grid(ctx, e)
     true = {}
     for m in TRUE:
         for rules, c in catchments(ctx, e, m).items():
@@ -56,7 +125,7 @@ def run(ctx) -> None:
         ctx.number(f"catchment:env1:{m}", true[m, "default"])
         ctx.number(f"map:env1:{m}:mean_error_deg", true[m, "mean_error"])
     ctx.step("true compass")
-    errors, compass_rows, catch_rows = {}, [], []
+    errors, compass_rows, catch_rows, world_rows = {}, [], [], []
     for bg in BACKGROUNDS:  # three settings of a traced leaf: one compiled program
         err = np.degrees(np.asarray(visual_compass_errors(e, points, headings, make_sensor(background=bg))))
         errors[bg] = err[included]
@@ -88,6 +157,18 @@ def run(ctx) -> None:
                 }
             )
             catch_rows.append(row)
+            world_rows.append(
+                world_row(
+                    "env1",
+                    bg,
+                    tm,
+                    stats["error > 5° %"],
+                    {r: row[f"visual {r} %"] for r in ("default", "physical")},
+                    row["visual mean error °"],
+                    true[tm, "default"],
+                    true[tm, "mean_error"],
+                )
+            )
         ctx.step(f"catchments {bg}")
     ctx.table(
         "visual_compass_heading_errors",
@@ -104,6 +185,17 @@ def run(ctx) -> None:
         source="Figs 5.11-5.12",
         note="Thesis (Fig 5.11): DELV 74.85, ACV 47.04, ALV 40.68 %. "
         "default / physical: the rollout rules (docs/model.md §5).",
+    )
+    for world in WORLDS[1:]:
+        world_rows += other_world(ctx, world)
+    ctx.table(
+        "visual_compass_worlds",
+        "Catchment and mean error with the visual compass, env1-3",
+        world_rows,
+        source="Figs 5.11-5.12",
+        note="The thesis does not say which world Fig 5.11 shows (DELV 74.85, ACV 47.04, ALV 40.68 %); "
+        "claims 31 and 32 read env1-3. Landmark centroids from home: env1 42 cm, env2 0 cm, env3 193 cm. "
+        "physical: the default run restated (a move ending inside a landmark fails; docs/model.md §5).",
     )
     fig, axes = subplots(1, 3, figsize=(13, 3.8), sharey=True)
     for ax, bg in zip(axes, BACKGROUNDS):

@@ -252,14 +252,11 @@ CLAIMS_CH5 = [
         "trap points",
         "statement": "With the visual compass the catchment orders DELV > ACV > ALV (thesis "
         "74.85 > 47.04 > 40.68 %), ACV and ALV losing far more than DELV relative "
-        "to the true compass.",
+        "to the true compass, in the world of Fig 5.11 (not stated: judged on env1, env2 and env3).",
         "needs": [
-            "catchment:env1:delv-visual",
-            "catchment:env1:acv-visual",
-            "catchment:env1:alv-visual",
-            "catchment:env1:delv-compass",
-            "catchment:env1:acv",
-            "catchment:env1:alv",
+            "catchment:env1..3:delv-visual",
+            "catchment:env1..3:acv-visual",
+            "catchment:env1..3:alv-visual",
         ],
     },
     {
@@ -269,12 +266,13 @@ CLAIMS_CH5 = [
         "quote": "upon application of the visual compass method, the error of the DELV method "
         "is smaller than that of the ALV model, whose error rate is the most increased.",
         "statement": "With the visual compass DELV's mean angular error is below ACV's and "
-        "ALV's, and ALV's error grows the most relative to the true compass.",
+        "ALV's, and ALV's error grows the most relative to the true compass, in the world of "
+        "Fig 5.12 (not stated: judged on env1, env2 and env3).",
         "needs": [
-            "error_curve:env1:delv-visual",
-            "error_curve:env1:acv-visual",
-            "error_curve:env1:alv-visual",
-            "error_curve:env1:alv",
+            "mean_error:env1..3:delv-visual",
+            "mean_error:env1..3:acv-visual",
+            "mean_error:env1..3:alv-visual",
+            "mean_error:env1..3:{delv-compass,acv,alv}",
         ],
     },
     {

@@ -140,11 +140,22 @@ def levels_success(s):
     )
 
 
-def surround(sur, edge):
+def surround(sur, edge, far=None):
+    """Claim 13: the surrounding layouts' error `sur`, edge4's (home slightly outside the hull) `edge`, and
+    env3's (far outside, shown only) `far` when given."""
     return merge(
         {f"map:{e}:delv:Q3:mean_error_deg": sur for e in ("env2", "ring3", "ring6")},
-        {"map:env3:delv:Q3:mean_error_deg": edge},
+        {"map:edge4:delv:Q3:mean_error_deg": edge},
+        {} if far is None else {"map:env3:delv:Q3:mean_error_deg": far},
     )
+
+
+SURROUND = {
+    "holds": surround(7.0, 12.0),
+    "fails": surround(30.0, 10.0),
+    "partly": surround(7.0, 26.0),  # lower, but by 19°: not slightly
+    "partly#full run": surround(7.0, 18.4, far=27.7),  # lower by 11.4°; before: holds against env3
+}
 
 
 def robot(img, ideal, catch):
@@ -214,18 +225,53 @@ def k3(values):
 
 
 TRUE_ERR = {"delv-compass": 8.0, "acv": 26.0, "alv": 9.0}
+ALV_LEAST = {"delv-compass": 4.0, "acv": 13.0, "alv": 0.2}  # rises with the visual compass on env1: ALV's barely grows
 
 
-def visual_err(rise, gt5=20.0):
+def vkey(world, bg):
+    """The visual_compass study's key prefix: env1's without the world (`visual_compass.visual_key`)."""
+    return f"visual:{bg}" if world == "env1" else f"visual:{world}:{bg}"
+
+
+def visual_err(rise, gt5=20.0, worlds=None):
+    """Mean errors with the visual compass: the true compass's plus `rise`, in every world, or per world
+    where `worlds` = {world: rise} gives them."""
+    worlds = worlds or dict.fromkeys(E3, rise)
     return merge(
-        {f"map:env1:{m}:mean_error_deg": v for m, v in TRUE_ERR.items()},
+        {f"map:{w}:{m}:mean_error_deg": v for w in E3 for m, v in TRUE_ERR.items()},
         {f"visual:{bg}:heading_error_gt5_pct": gt5 for bg in BGS},
-        {f"visual:{bg}:{m}:mean_error_deg": TRUE_ERR[m] + rise[m] for bg in BGS for m in TRUE3},
+        {
+            f"{vkey(w, bg)}:{m}:mean_error_deg": TRUE_ERR[m] + r[m]
+            for w, r in worlds.items()
+            for bg in BGS
+            for m in TRUE3
+        },
     )
 
 
-def visual_catch(c):
-    return {f"visual:{bg}:{m}:catchment{r}": v for bg in BGS for r in ("", ":physical") for m, v in zip(TRUE3, c)}
+def visual_catch(c, worlds=None):
+    """Catchments DELV/ACV/ALV with the visual compass, both rule sets: `c` in every world, or per world where
+    `worlds` = {world: c} gives them."""
+    worlds = worlds or dict.fromkeys(E3, c)
+    return {
+        f"{vkey(w, bg)}:{m}:catchment{r}": v
+        for w, cw in worlds.items()
+        for bg in BGS
+        for r in ("", ":physical")
+        for m, v in zip(TRUE3, cw)
+    }
+
+
+# claims 31, 32 (issue 52): the order fails on env1, cannot tell on env2 (the ceiling), holds on env3
+ORDER_WORLDS = {
+    "holds#env3": visual_catch(None, {"env1": [100.0, 97.0, 100.0], "env2": [100.0] * 3, "env3": [96.2, 68.3, 60.0]}),
+    f"{CANNOT_TELL}#env2": visual_catch(
+        None, {"env1": [100.0, 97.0, 100.0], "env2": [100.0] * 3, "env3": [96.0, 68.3, 67.9]}
+    ),
+}
+ERRORS_ON_ENV3 = visual_err(
+    None, worlds=dict(zip(E3, [ALV_LEAST, ALV_LEAST, {"delv-compass": 13.0, "acv": 15.0, "alv": 31.0}]))
+)
 
 
 def dependence(visual, rise, noise_end):

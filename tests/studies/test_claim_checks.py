@@ -86,7 +86,7 @@ CASES = {
         "holds#full run": levels_success([73.6, 81.6, 100.0, 100.0, 100.0]),  # at 100 % while level 1 loses
         CANNOT_TELL: levels_success([100.0] * 5),
     },
-    "surrounding_landmarks_lower_error": {"holds": surround(7.0, 26.0), "fails": surround(30.0, 10.0)},
+    "surrounding_landmarks_lower_error": SURROUND,  # judged against edge4, home slightly outside the hull
     "robot_images_delv_errs_more_but_homes": {"holds": robot(13.0, 8.0, 90.0), "fails": robot(8.0, 8.0, 50.0)},
     "robot_images_delv_beats_warping": {
         "holds": robot_vs(8.0, 20.0, 90.0, 70.0),
@@ -162,11 +162,13 @@ CASES = {
         "holds": visual_catch([74.85, 47.04, 40.68]),
         "fails": visual_catch([40.0, 47.0, 75.0]),
         CANNOT_TELL: visual_catch([100.0, 100.0, 100.0]),
+        **ORDER_WORLDS,  # Fig 5.11's world unstated: env1-3 judged
     },
     "visual_compass_error_order": {
         "holds": visual_err({"delv-compass": 4.0, "acv": 4.0, "alv": 31.0}),
         "fails": visual_err({"delv-compass": 42.0, "acv": 4.0, "alv": 1.0}),
         CANNOT_TELL: visual_err({m: 0.1 for m in TRUE3}),
+        "holds#env3": ERRORS_ON_ENV3,
     },
     "delv_least_compass_dependent": {
         "holds": dependence([95.0, 60.0, 50.0], [2.0, 14.0, 21.0], [95.0, 60.0, 50.0]),
@@ -360,3 +362,14 @@ def test_issue_52_verdicts_judge_what_the_sentences_say():
     assert verdict("delv_compass_success_near_far", near_far)["verdict"] == "fails"
     alv_least = dependence([50.0, 60.0, 90.0], [20.0, 10.0, 1.0], [99.0, 50.0, 50.0])
     assert verdict("delv_least_compass_dependent", alv_least)["verdict"] == "fails"
+
+
+def test_claims_13_31_32_judge_the_layout_and_worlds_their_figures_show():
+    """Issue 52: claim 13 compared with env3 (home 135 cm outside the hull) and dropped 'slightly': it reads
+    edge4 (home 43 cm outside, Fig 4.14b) and needs 1-10° (the full run: lower by 10.3-11.5°). Claims 31, 32
+    read env1 only, which Fig 5.11 need not show: each of env1-3 is judged, the best world decides."""
+    row = verdict("surrounding_landmarks_lower_error", SURROUND["partly#full run"])
+    assert "not slightly" in row["why"] and "1-10°" in row["why"] and "env3 (135 cm outside, not judged)" in row["ours"]
+    why = verdict("visual_compass_catchment_order", ORDER_WORLDS["holds#env3"])["why"]
+    assert "world of Figs 5.11-5.12 is not stated" in why and "env1 fails, env2 cannot tell, env3 holds" in why, why
+    assert "env1 fails, env2 fails, env3 holds" in verdict("visual_compass_error_order", ERRORS_ON_ENV3)["why"]
