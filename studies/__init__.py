@@ -22,6 +22,7 @@ STUDIES = [
     "natural_images",
     "image_effects",
     "hybrid",
+    "ensembles",
 ]
 
 # Studies beyond the thesis's simulations (the fit, gradients, layout design, image effects) and the
@@ -34,6 +35,7 @@ FULL_RUN_ONLY = ("fit", "sensitivity", "layouts", "robot_images", "natural_image
 # `benchmarks/bench_reproduce.py`): only the order in which studies side by side are started,
 # the longest first, so that a long one does not start last. A study missing here starts last.
 FULL_RUN_SECONDS = {
+    "ensembles": 300,
     "occlusion": 145,
     "hybrid": 130,
     "image_effects": 95,

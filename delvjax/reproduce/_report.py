@@ -86,11 +86,20 @@ def claims_section(claims: list[dict]) -> str:
             "ours": c["ours"],
             "verdict": VERDICT_MARK[c["verdict"]],
             "smallest sample": c.get("sample", ""),
+            "over worlds": c.get("over_worlds", ""),
             "why": c["why"],
         }
         for i, c in enumerate(claims)
     ]
     columns = ["#", "claim (thesis)", "what must hold", "ours", "verdict", "smallest sample", "why"]
+    if any(c.get("over_worlds") for c in claims):  # the ensemble study ran (studies/runs/ensembles.py)
+        columns.insert(6, "over worlds")
+        head += (
+            " *Over worlds*: the share of the world ensembles' members (docs/model.md §6.1) in which the same "
+            "check holds, with its 95 % Wilson interval: holds in at least 80 %, fails in at most 20 %, else it "
+            "depends on the world (the `ensembles` study's table names the world property that best separates "
+            "the members); the verdict beside it is the built-in world's alone."
+        )
     return head + "\n\n" + md_table(columns, rows)
 
 
@@ -185,6 +194,25 @@ QUICK_BANNER = (
 )
 
 
+def ensemble_section(records: dict, flat: dict) -> list[str]:
+    """The world ensembles in a few lines (`studies/runs/ensembles.py`): sizes, thesis numbers inside our band,
+    and what the members' coarser grid moves on the built-in worlds; [] when the study did not run."""
+    rec = records.get("ensembles")
+    if rec is None or "ensemble:members" not in rec.numbers:
+        return []
+    from ..studies.runs._ensemble_stats import grid_check_text  # the studies: loaded only when a report is written
+
+    rows = next((t["rows"] for t in rec.tables if t["id"] == "thesis_numbers_over_worlds"), [])
+    inside, total = rec.numbers.get("ensemble:thesis_inside_band", [0, 0])
+    text = (
+        f"**World ensembles** (study `ensembles`, docs/model.md §6.1): {rec.numbers['ensemble:members']} worlds per "
+        f"thesis world, grid spacing {rec.numbers['ensemble:spacing']:g} cm. {inside} of {total} thesis numbers lie "
+        "inside our 5-95 % band over the worlds; the claims' *over worlds* column above and the study's tables give "
+        "each number's percentile and each claim's share. " + grid_check_text(rows, flat)
+    )
+    return ["### Over the worlds the thesis's words allow", text]
+
+
 def build_markdown(records: dict, settings, versions: dict, wall_seconds: float, ran: list[str]) -> str:
     from ..studies.claims import evaluate  # the studies: loaded only when a report is written (they import the API)
 
@@ -201,6 +229,7 @@ def build_markdown(records: dict, settings, versions: dict, wall_seconds: float,
         settings_section(settings, versions, records, wall_seconds, ran),
         "## Claims of the thesis",
         claims_section(claims),
+        *ensemble_section(records, flat),
         "## What we chose",
         choices_section(flat),
     ]

@@ -1,0 +1,270 @@
+"""World ensembles: every thesis number of Figs 4.5/5.5 and Tables 5.1-5.4 over the worlds the thesis's
+words allow, and each claim's probability (beyond the thesis; docs/reproduce.md "Ensembles").
+
+The thesis gives no coordinates, so one reconstructed world per environment is an anecdote. Here each
+of its worlds is a family (`delvjax.envs.FAMILIES`, docs/model.md §6.1): MEMBERS layouts per family,
+each with its own seed (a member's release headings come from it), evaluated as catchment sweeps (one
+compiled program per landmark count: every world, method and occlusion choice of a group in one
+array program, `delvjax.sweeps`). The built-in world of each family runs beside its members on the
+same grid. Reported: per thesis number our median and 5-95 % band over members, where the thesis
+number falls in it (its percentile) and the built-in world's value; per claim whose numbers the
+ensemble makes, the share of members in which the check of `studies/claims` holds (Wilson 95 %
+interval), and for claims that depend on the world the world property that separates the members
+where they hold from those where they fail.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from delvjax.envs import FAMILIES, ensemble_envs, world_properties
+from delvjax.plots._maps import subplots
+from delvjax.sweeps import run_sweep
+from delvjax.sweeps._spec import parse_sweep
+
+from ..claims import WORLD_FAILS, WORLD_HOLDS
+from ._common import LABEL
+from ._ensemble_stats import (
+    BAND,
+    IDENTIFIES,
+    NOISE_DEG,
+    SEED_SPREAD,
+    claim_rows,
+    distribution_rows,
+    settings_rows,
+    settings_text,
+)
+
+TITLE = "World ensembles: the thesis's numbers and claims over every world its words allow (beyond the thesis)"
+
+
+@dataclass(frozen=True)
+class Group:
+    """One sweep of the study: the members of `families` (and, with `builtin`, their built-in worlds), or
+    with `members_too` False the built-in worlds alone; every method, k = 0..k_max, rule set
+    (`collisions`: "ignore" the default rules, "fail" the physical ones, docs/model.md §5) and seed offset."""
+
+    families: tuple[str, ...]
+    methods: tuple[str, ...]
+    k_max: int
+    collisions: str = "ignore"
+    seeds: tuple[int, ...] = (0,)
+    members_too: bool = True
+    bearing_noise_deg: float = 0.0
+
+    @property
+    def tail(self) -> str:
+        """The suffix of this group's keys: "" for the default setting, ":physical" for the physical rules,
+        ":bearing<sigma>" for bearing noise (SETTINGS)."""
+        if self.collisions == "fail":
+            return ":physical"
+        return f":bearing{self.bearing_noise_deg:g}" if self.bearing_noise_deg else ""
+
+
+FOUR = ("env1", "env2", "env3", "ring4")
+EVERY_METHOD = ("delv", "delv-compass", "acv", "alv")
+COMPASS_METHODS = ("delv-compass", "acv", "alv")
+# One program per landmark count and mask rows: Figs 4.5/5.5 and Tables 5.1/5.3 (with the built-in worlds under
+# four more seeds, the same program), their k = 0 catchments under the physical rules (the rule set is a setting
+# the thesis leaves unstated), Tables 5.2/5.4's L = 3 and L = 5, 6 rings.
+GROUPS = (
+    Group(FOUR, EVERY_METHOD, 2),
+    Group(FOUR, EVERY_METHOD, 2, seeds=SEED_SPREAD, members_too=False),
+    Group(FOUR, EVERY_METHOD, 2, bearing_noise_deg=NOISE_DEG),
+    Group(FOUR, EVERY_METHOD, 0, collisions="fail"),
+    Group(("ring3",), COMPASS_METHODS, 2),
+    Group(("ring5", "ring6"), COMPASS_METHODS, 3),
+)
+QUICK_GROUPS = GROUPS[:1]
+STEPS = len(GROUPS)
+MEMBERS = 44  # full run: members per family (Wilson 95 % half-width <= 14.6 points at any share)
+QUICK_MEMBERS = 4
+# cm: the members' grid (10 x 10). A 25 cm grid costs 16 times as much; the built-in worlds' numbers at 25 cm
+# (the occlusion study) beside those at this spacing show what the coarse grid moves (docs/reproduce.md "Ensembles")
+SPACING = 100.0
+
+
+def plan(ctx) -> tuple[tuple, int, float]:
+    """(groups, members per family, spacing) of this run: the full ensembles at SPACING, or under --quick or
+    a grid coarser than SPACING a preview (QUICK_MEMBERS of env1-3 and ring4, default rules, one seed)."""
+    if ctx.settings.quick or ctx.settings.spacing > SPACING:
+        return QUICK_GROUPS, QUICK_MEMBERS, max(ctx.settings.spacing, SPACING)
+    return GROUPS, MEMBERS, SPACING
+
+
+def sweep_text(group: Group, members: int, spacing: float, seed: int) -> str:
+    """The catchment sweep file of one group (docs/sweeps.md; the members are `{ensemble = ...}` tables)."""
+    envs = [f'{{ensemble = "{f}", members = {members}, seed = {seed}}}' for f in group.families if group.members_too]
+    envs += [f'"{f}"' for f in group.families]
+    quoted = lambda names: "[" + ", ".join(f'"{n}"' for n in names) + "]"  # noqa: E731
+    return (
+        '[sweep]\nkind = "catchment"\nmetrics = ["catchment_pct", "gt45_pct", "gt90_pct", "mean_error_deg"]\n'
+        f"[axes]\nenv = [{', '.join(envs)}]\nmethod = {quoted(group.methods)}\n"
+        f"occlude = {list(range(group.k_max + 1))}\nspacing = [{spacing}]\n"
+        f"seed = {[seed + s for s in group.seeds]}\ncollisions = {quoted([group.collisions])}\n"
+        f"bearing_noise_deg = [{group.bearing_noise_deg}]\n"
+    )
+
+
+def member_numbers(ds, group: Group) -> dict[str, dict]:
+    """{world label: {claims key: value}} of one group's sweep, under the keys the claims read
+    (`occlusion:<family>:<method>:gt45|gt90|catchment` over k, `catchment:<family>:<method>` and
+    `map:<family>:<method>:mean_error_deg` at k = 0; under the physical rules the catchments with
+    `:physical` appended, as the point run's studies record them). A member's label is `<family>-m<i>`;
+    with several seeds, the label gets `@<seed>`."""
+    out: dict[str, dict] = {}
+    tail = group.tail
+    seeds = [int(v) for v in np.atleast_1d(ds.seed.values)]
+    for label in ds.env.values:
+        family = str(label).rsplit("-m", 1)[0]
+        for seed in seeds:
+            nums: dict = {}
+            for m in group.methods:
+                where = {"env": label, "method": m} | ({"seed": seed} if "seed" in ds.dims else {})
+                cell = ds.sel(where)  # by a dict: sel(method=...) would be xarray's own keyword
+                by_k = lambda var: [float(v) for v in np.atleast_1d(cell[var].values)]  # noqa: E731
+                fields = ("catchment",) if group.collisions == "fail" else ("gt45", "gt90", "catchment")
+                for field in fields:
+                    nums[f"occlusion:{family}:{m}:{field}{tail}"] = by_k(f"{field}_pct")
+                nums[f"catchment:{family}:{m}{tail}"] = by_k("catchment_pct")[0]
+                if group.collisions != "fail":
+                    nums[f"map:{family}:{m}:mean_error_deg{tail}"] = by_k("mean_error_deg")[0]
+            key = str(label) if len(seeds) == 1 else f"{label}@{seed}"
+            out.setdefault(key, {}).update(nums)
+    return out
+
+
+def run(ctx) -> None:
+    groups, members, spacing = plan(ctx)
+    seed = ctx.settings.seed
+    worlds: dict[str, dict] = {}
+    for group in groups:  # five sweeps, four programs
+        ds = run_sweep(parse_sweep(sweep_text(group, members, spacing, seed), "ensembles"), lanes=ctx.settings.lanes)
+        for label, nums in member_numbers(ds, group).items():
+            worlds.setdefault(label, {}).update(nums)
+        ctx.step(", ".join(group.families) + (f" ({group.collisions})" if group.collisions != "ignore" else ""))
+    layouts = {
+        fam: np.array(
+            [[[lm["x"], lm["y"], lm["r"]] for lm in e["landmarks"]] for e in ensemble_envs(fam, members, seed)]
+        )
+        for fam in dict.fromkeys(f for g in groups for f in g.families)
+    }
+    rows = distribution_rows(worlds, members)
+    inside = sum(r["inside band"] for r in rows)
+    ctx.number("ensemble:members", members)
+    ctx.number("ensemble:spacing", spacing)
+    ctx.number("ensemble:thesis_inside_band", [inside, len(rows)])
+    ctx.json(
+        "ensemble_worlds.json",
+        {
+            "settings": {"members": members, "spacing": spacing, "seed": seed, "band": list(BAND)},
+            "layouts": {fam: lay.tolist() for fam, lay in layouts.items()},
+            "properties": {
+                fam: {k: v.tolist() for k, v in world_properties(lay).items()} for fam, lay in layouts.items()
+            },
+            "numbers": worlds,
+        },
+    )
+    ctx.table(
+        "thesis_numbers_over_worlds",
+        "Every thesis number beside our distribution over the worlds its words allow",
+        rows,
+        source="Figs 4.5, 5.5, Tables 5.1-5.4",
+        note=f"{members} worlds per family (docs/model.md §6.1), each with its own seed, grid spacing {spacing:g} cm, "
+        f"default rules; band: the {BAND[0]:g}-{BAND[1]:g} % percentiles over the members; thesis percentile: the "
+        "share of members below the thesis's number (ties half); built-in world: our named member on the same grid. "
+        f"{inside} of {len(rows)} thesis numbers lie inside our band. The thesis's L = 4 rows copy other rows "
+        "(docs/reproduce.md).",
+    )
+    ctx.figure(
+        "thesis_numbers_over_worlds.png",
+        bands_figure(rows),
+        "Each thesis number (red) against our 5-95 % band (grey bar) and median (black) over the ensemble; "
+        "the built-in world's value (blue).",
+    )
+    implied = settings_rows(rows)
+    if implied:
+        ctx.table(
+            "settings_the_thesis_favours",
+            "Which unstated settings the thesis's numbers favour",
+            implied,
+            source="Figs 4.5, 5.5, Tables 5.1-5.4",
+            note=f"A setting is favoured when it puts at least {IDENTIFIES:g} points more of the thesis's numbers inside "
+            "its 5-95 % band than the other, and its percentiles lie nearer 50. The physical rules were run at k = 0 "
+            f"only; {NOISE_DEG:g}° of bearing noise on env1-3 and ring4. {settings_text(rows)}",
+        )
+    claims = claim_rows(worlds, members, layouts)
+    for r in claims:  # read by the claims table (studies/claims: over_worlds)
+        lo, hi = (float(v) for v in r["95 % interval"].split("-"))
+        ctx.number(f"ensemble:claim:{r['id']}", [r["holds %"], lo, hi, r["members"], r["cannot tell %"]])
+    if claims:
+        ctx.table(
+            "claims_over_worlds",
+            "Claims over the worlds: the share of members in which each claim's check holds",
+            [{k: v for k, v in r.items() if k not in ("decided_by_values",)} for r in claims],
+            source="studies/claims",
+            note=f"holds: in at least {WORLD_HOLDS:g} % of members; fails: at most {WORLD_FAILS:g} %; else depends on "
+            "the world, "
+            "with the world property that best separates the members where it holds (AUC: 1 or 0 separates them "
+            "fully, 0.5 not at all); cannot tell: most members at a ceiling. A member is one world of each family "
+            "with its own seed.",
+        )
+        deciding = [r for r in claims if r.get("decided_by")]
+        if deciding:
+            ctx.figure(
+                "claims_decided_by.png",
+                decided_figure(deciding),
+                "Claims that depend on the world: the world property that best separates the members where the "
+                "claim holds (green) from those where it does not (red).",
+            )
+
+
+# --- figures ---------------------------------------------------------------------------------------
+
+
+def bands_figure(rows: list[dict]):
+    """Per thesis number a row of markers: our band over the worlds, its median, the thesis's value and the
+    built-in world's; catchments in the left panel, error point rates in the right."""
+    panels = [[r for r in rows if r["quantity"] == "catchment %"], [r for r in rows if r["quantity"] != "catchment %"]]
+    panels = [p for p in panels if p] or [[]]
+    n = max(len(p) for p in panels) or 1
+    fig, axes = subplots(1, len(panels), figsize=(7.5 * len(panels), 0.14 * n + 1.4), squeeze=False)
+    for ax, panel in zip(axes[0], panels):
+        for i, r in enumerate(panel):
+            y = len(panel) - i
+            ax.plot([r["ours 5 %"], r["ours 95 %"]], [y, y], color="0.75", lw=4, solid_capstyle="butt")
+            ax.plot(r["ours median"], y, "|", color="black", ms=8)
+            ax.plot(r["built-in world"], y, "o", color="tab:blue", ms=3)
+            ax.plot(r["thesis"], y, "x", color="tab:red", ms=5)
+        labels = [
+            f"{r['source']} {r['world']} {LABEL.get(r['method'], r['method'])} k={r['k']} {r['quantity']}"
+            for r in panel
+        ]
+        ax.set_yticks(range(len(panel), 0, -1), labels, fontsize=5)
+        ax.set_ylim(0.3, len(panel) + 0.7)
+        ax.set_xlabel("%")
+        ax.set_xlim(-2, 102)
+        ax.set_title("thesis (x), our 5-95 % band over worlds (bar), median (|), built-in world (o)", fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
+def decided_figure(rows: list[dict]):
+    """Per claim that depends on the world: its deciding property per member, coloured by whether it holds."""
+    fig, axes = subplots(1, len(rows), figsize=(3.2 * len(rows), 3.0), squeeze=False)
+    for ax, r in zip(axes[0], rows):
+        d = r["decided_by_values"]
+        v, held = np.asarray(d["values"]), np.asarray(d["holds"])
+        jitter = np.linspace(-0.15, 0.15, len(v))
+        ax.scatter(v[held], 1 + jitter[held], color="tab:green", s=10, label="holds")
+        ax.scatter(v[~held], jitter[~held], color="tab:red", s=10, label="does not")
+        ax.set_yticks([0, 1], ["no", "yes"])
+        ax.set_xlabel(f"{d['family']}: {d['property']}", fontsize=7)
+        ax.set_title(f"claim {r['#']} ({r['holds %']:.0f} %)", fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+__all__ = ["FAMILIES", "GROUPS", "TITLE", "run"]
