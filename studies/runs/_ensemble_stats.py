@@ -107,6 +107,9 @@ def distribution_rows(worlds: dict[str, dict], members: int) -> list[dict]:
                 row[f"{name}: 5 %"] = float(o_lo)
                 row[f"{name}: 95 %"] = float(o_hi)
                 row[f"{name}: thesis percentile"] = percentile_of(value, other)
+                spread = _sample(worlds, [fam, *(f"{fam}@{s}" for s in SEED_SPREAD)], f"{key}{tail}", k)
+                if len(spread) > 1:  # the built-in world under five seeds: what a seed alone moves
+                    row[f"{name}: built-in over seeds"] = f"{min(spread):.1f}-{max(spread):.1f} ({len(spread)} seeds)"
         rows.append(row)
     return rows
 

@@ -38,6 +38,7 @@ from ._ensemble_stats import (
 )
 
 TITLE = "World ensembles: the thesis's numbers and claims over every world its words allow (beyond the thesis)"
+COST = 400  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 
 
 @dataclass(frozen=True)
@@ -73,6 +74,7 @@ GROUPS = (
     Group(FOUR, EVERY_METHOD, 2),
     Group(FOUR, EVERY_METHOD, 2, seeds=SEED_SPREAD, members_too=False),
     Group(FOUR, EVERY_METHOD, 2, bearing_noise_deg=NOISE_DEG),
+    Group(FOUR, EVERY_METHOD, 2, seeds=SEED_SPREAD, members_too=False, bearing_noise_deg=NOISE_DEG),
     Group(FOUR, EVERY_METHOD, 0, collisions="fail"),
     Group(("ring3",), COMPASS_METHODS, 2),
     Group(("ring5", "ring6"), COMPASS_METHODS, 3),
@@ -140,7 +142,7 @@ def run(ctx) -> None:
     groups, members, spacing = plan(ctx)
     seed = ctx.settings.seed
     worlds: dict[str, dict] = {}
-    for group in groups:  # five sweeps, four programs
+    for group in groups:  # seven sweeps, four programs (the noise and extra seeds share the first one's)
         ds = run_sweep(parse_sweep(sweep_text(group, members, spacing, seed), "ensembles"), lanes=ctx.settings.lanes)
         for label, nums in member_numbers(ds, group).items():
             worlds.setdefault(label, {}).update(nums)
