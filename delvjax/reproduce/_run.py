@@ -150,10 +150,10 @@ MAX_WORKERS = 4
 
 
 def schedule(names: list[str]) -> list[str]:
-    """The studies longest first (`studies.FULL_RUN_SECONDS`), all of them side by side: two studies that
+    """The studies longest first (each study module's `COST`), all of them side by side: two studies that
     need the same new program wait for one compilation of it (docs/reproduce.md "Speed")."""
-    package = importlib.import_module(STUDIES)
-    return sorted(names, key=lambda n: -package.FULL_RUN_SECONDS.get(n, 0))  # stable: registry order among equals
+    modules = registry(names)  # already imported by a run: the order costs nothing
+    return sorted(names, key=lambda n: -modules[n].COST)  # stable: registry order among equals
 
 
 @contextmanager

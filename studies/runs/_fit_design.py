@@ -9,6 +9,7 @@ from ._fit_cells import DEFAULTS
 
 
 TITLE = "Fit of the thesis's unstated settings: noise, home radius, home move, landmark radii (beyond the thesis)"
+COST = 90  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 
 
 FIT_SPACING = 125.0  # cm: the full fit's grid (8 x 8; 100 cm takes 1.5 x as long, 25 cm about 25 x)

@@ -23,6 +23,7 @@ from ._common import (
 )
 
 TITLE = "DELV vs ACV vs ALV with a compass (Figs 5.6-5.8)"
+COST = 6  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 10
 METHODS = ("delv-compass", "acv", "alv")
 N_STARTS = 8

@@ -15,6 +15,7 @@ from delvjax.plots._maps import environments_figure
 from delvjax.envs._presets import PRESET_DESCRIPTIONS, PRESETS, env_to_dict
 
 TITLE = "The environments (thesis §4.2 and Tables 5.1-5.4)"
+COST = 1  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 1
 
 

@@ -37,10 +37,11 @@ from ._fit_tables import (
     objective_figure,
 )
 from ._fit_design import (
+    COST as COST,
     STEPS as STEPS,
     TITLE as TITLE,
     design,
-)  # the study's title and progress ticks (studies/__init__.py)
+)  # the study's title, cost and progress ticks (studies/__init__.py)
 
 
 def run(ctx) -> None:

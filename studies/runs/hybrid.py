@@ -35,6 +35,7 @@ from delvjax.plots._maps import subplots
 from ._images_common import CAMERA_NOISE, ROBOT_SCALE, database, numbers, preview
 
 TITLE = "DELV, MinWarping and the hybrid of thesis §6.3.3, on rendered images"
+COST = 130  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 3
 METHODS = ("delv", "minwarping", "hybrid")
 LABEL = {"delv": "DELV", "minwarping": "MinWarping", "hybrid": "hybrid"}

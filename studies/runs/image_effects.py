@@ -25,6 +25,7 @@ from delvjax.plots._maps import subplots
 from ._images_common import CAMERA_NOISE, LABEL, METHODS, database, ideal_map, image_map, numbers, preview
 
 TITLE = "The image path: resolution, band, threshold, noise and lighting (beyond the thesis)"
+COST = 95  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 5
 FACTORS = {  # factor -> (values, label, values of --quick)
     "cols": ((72, 144, 360, 720), "panorama width (pixels)", (360,)),  # another width is another program

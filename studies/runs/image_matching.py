@@ -34,6 +34,7 @@ from ._common import (
 )
 
 TITLE = "DELV vs predictive image matching, no compass (Figs 4.9-4.11)"
+COST = 90  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 8
 METHODS = ("delv", "warping")
 N_STARTS = 8

@@ -13,6 +13,7 @@ from delvjax.envs._presets import random_env
 from ._common import PAD, curve, curve_means, curve_number, curves_rows, map_numbers, panel_figure, vector_map
 
 TITLE = "Number of landmarks, arbitrary layouts (Fig 4.8)"
+COST = 16  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 3
 COUNTS = (3, 4, 5)
 

@@ -16,6 +16,7 @@ from delvjax.envs._presets import env_to_dict
 from ._common import env
 
 TITLE = "Optimised landmark layouts against the thesis's environments (gradients; beyond the thesis)"
+COST = 85  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 4
 
 

@@ -17,6 +17,7 @@ from delvjax.plots._images import paths_figure
 from ._images_common import LABEL, database, image_map, numbers, preview
 
 TITLE = "Robot experiments with natural landmarks, on rendered images (Fig 4.24)"
+COST = 45  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 2
 STARTS = ((380.0, 860.0), (620.0, 860.0), (900.0, 460.0), (460.0, 140.0))  # two upper, one right, one lower
 

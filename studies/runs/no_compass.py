@@ -25,6 +25,7 @@ from ._common import (
 )
 
 TITLE = "DELV without a compass, environments 1-3 (Figs 4.2-4.5)"
+COST = 25  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 3
 ENVS = ("env1", "env2", "env3")
 

@@ -32,6 +32,7 @@ from ._common import HOME_RADIUS, LABEL, PROGRAM, RULES, as_vector_map, env, eve
 from ._occlusion_layouts import ENVS, RING_SPACING, fmt_spread, spread, stacked_masks
 
 TITLE = "Occlusion: k landmarks hidden (Figs 5.9-5.10, Tables 5.1-5.4; and gap-aware DELV matching)"
+COST = 145  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 METHODS = ("delv-compass", "acv", "alv")
 STEPS = len(ENVS) * len(METHODS)
 SAME_LAYOUT = {"ring4": "env2"}

@@ -35,6 +35,7 @@ from ._common import (
 )
 
 TITLE = "Quantized distances (Figs 4.12-4.14)"
+COST = 35  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 7
 LEVELS = (1, 2, 3, 4, 5)
 SUCCESS_LEVELS = LEVELS  # every level in Fig 4.13b (the thesis: "for each method")

@@ -26,6 +26,7 @@ from ._images_common import LABEL, ROBOT_SCALE, curve, database, ideal_map, imag
 from delvjax.images._worlds import image_world
 
 TITLE = "Robot experiments with artificial landmarks, on rendered images (Figs 4.16-4.21)"
+COST = 45  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 3
 LEVELS = (1, 2, 4, 5)
 BIN = 20.0  # cm, error-curve bins in the 1.8 m arena

@@ -27,6 +27,7 @@ from ._common import env
 from delvjax.cli._main import main as cli
 
 TITLE = "Sensitivity of homing loss: landmarks, d and noise (gradients; beyond the thesis)"
+COST = 60  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 5
 GAIN_METHODS = ("delv", "delv-compass", "alv", "acv")
 # One compiled Jacobian program for these (a `Program`: 18.0 -> 7.1 s for the four maps, cold, 2 cores;

@@ -27,6 +27,7 @@ from ._common import (
 )
 
 TITLE = "Step distance d of the unit movement (Figs 4.6-4.7)"
+COST = 4  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 1
 DS = (20.0, 50.0, 100.0, 150.0)
 WIDE_RADIUS = 0.5 * DS[-1]  # the longest d again with a home radius of half the step (75 cm)

@@ -28,6 +28,7 @@ from .. import thesis
 from ._common import as_vector_map, catchment, catchments, env, map_numbers, outcome_counts, rule_suffix, LABEL
 
 TITLE = "The visual compass and compass noise (Figs 5.11-5.12)"
+COST = 50  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 BACKGROUNDS = ("distant", "walls", "none")
 TRUE = ("delv-compass", "acv", "alv")
 VISUAL = ("delv-visual", "acv-visual", "alv-visual")

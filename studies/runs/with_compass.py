@@ -29,6 +29,7 @@ from ._common import (
 )
 
 TITLE = "DELV with a compass, environments 1-3 (Figs 5.2-5.5)"
+COST = 5  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 3
 ENVS = ("env1", "env2", "env3")
 

@@ -75,10 +75,16 @@ def test_quick_report_says_what_it_left_out():
 def test_schedule_starts_every_study_side_by_side_longest_first():
     order = reproduce.schedule(list(studies.STUDIES))
     assert sorted(order) == sorted(studies.STUDIES)
-    assert order[0] == "occlusion" and order[-1] == "environments"
-    seconds = [studies.FULL_RUN_SECONDS.get(n, 0) for n in order]
-    assert seconds == sorted(seconds, reverse=True)
-    assert set(studies.FULL_RUN_SECONDS) == set(studies.STUDIES)
+    seconds = [reproduce.registry([n])[n].COST for n in order]  # each study's own (studies/runs/*.py)
+    assert seconds == sorted(seconds, reverse=True) and order[-1] == "environments"
+    assert order.index("occlusion") < order.index("image_matching")
+
+
+def test_every_study_declares_its_title_and_cost():
+    """A study module says what it is and roughly how long a full run of it takes (the order studies start)."""
+    for name, module in reproduce.registry().items():
+        assert isinstance(module.TITLE, str) and module.TITLE, name
+        assert isinstance(module.COST, (int, float)) and module.COST > 0, name
 
 
 def test_a_failure_side_by_side_stops_what_has_not_started():
