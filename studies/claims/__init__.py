@@ -1,14 +1,16 @@
 """The thesis's claims, each checked against this run's numbers (the report's claims table).
 
 `evaluate(numbers)` takes {study: {key: value}} (the `numbers` of every study.json) and
-returns one row per claim of `delvjax.studies.thesis.CLAIMS`: section, quote, statement, our
+returns one row per claim of CLAIMS: section, quote, statement, our
 numbers, a verdict ("holds", "partly", "fails", "cannot tell" when the numbers compared are
 at the ceiling, or "n/a" when a study it needs was not run or its numbers are unusable) and
-why (ending with the check's rule and tolerance). Verdicts are computed here, never typed in.
+why (ending with the claim's rule and tolerance). Verdicts are computed here, never typed in.
 
-The checks live in `delvjax.studies.claims._ch4` and `delvjax.studies.claims._ch5` (one function per claim,
-registered in CHECKS by `@check`), the registry and shared helpers in `delvjax.studies.claims._common`;
-this module imports them all and is the one to import from.
+CLAIMS is one `Claim` per claim of `delvjax.studies.thesis.CLAIMS`, in thesis order: its quote, section,
+statement and needs beside its check and tolerance (`delvjax.studies.claims._claim`); CHECKS maps an id
+to its check. The checks live in `delvjax.studies.claims._ch4` and `delvjax.studies.claims._ch5` (one
+function per claim, registered by `@check(id, tolerance)`), the registry and shared helpers in
+`delvjax.studies.claims._common`; this module imports them all and is the one to import from.
 """
 
 from __future__ import annotations
@@ -21,9 +23,10 @@ from . import (
     _ch5_visual as claims_ch5_visual,
 )
 from .. import thesis
-from ._common import BACKGROUNDS, CANNOT_TELL, CHECKS, ENVS, Missing, Undefined, _n, check
+from ._claim import Claim, claims
+from ._common import BACKGROUNDS, CANNOT_TELL, CHECKED, ENVS, Missing, Undefined, _n, check, why_text
 
-__all__ = ["BACKGROUNDS", "CHECKS", "ENVS", "Missing", "Undefined", "check", "evaluate"]
+__all__ = ["BACKGROUNDS", "CHECKS", "CLAIMS", "Claim", "ENVS", "Missing", "Undefined", "check", "evaluate"]
 
 _CHECK_MODULES = (
     claims_ch4,
@@ -31,7 +34,9 @@ _CHECK_MODULES = (
     claims_ch5,
     claims_ch5_occlusion,
     claims_ch5_visual,
-)  # importing them fills CHECKS, chapter 4 first
+)  # importing them fills CHECKED, chapter 4 first
+CLAIMS: list[Claim] = claims(thesis.CLAIMS, CHECKED)  # a claim without a check, or a check of none: refused here
+CHECKS = {c.id: c.check for c in CLAIMS}
 
 
 GRID_KEYS = (
@@ -94,24 +99,21 @@ def evaluate(numbers_by_study: dict[str, dict], settings: dict | None = None) ->
         return flat[key]
 
     rows = []
-    for claim in thesis.CLAIMS:
-        fn = CHECKS.get(claim["id"])
+    for claim in CLAIMS:
         row = {k: claim[k] for k in ("id", "section", "quote", "statement")}
         read.clear()
-        if fn is None:
-            row.update(ours="", verdict="n/a", why="no check written for this claim")
-        else:
-            try:
-                ours, verdict, why = fn(get)
-            except Undefined as exc:  # the study ran; the number has no value at these settings
-                ours = "; ".join(f"{k} = {'no value' if flat[k] is None else _n(flat[k])}" for k in read)
-                verdict = CANNOT_TELL
-                why = f"{exc.args[0]} has no value at these settings (e.g. no grid point in the region it counts)"
-            except Missing as exc:
-                ours, verdict, why = "", "n/a", f"needs {exc.args[0]} (study not run)"
-            except (TypeError, ValueError, IndexError, ZeroDivisionError) as exc:  # a number of the wrong shape
-                ours, verdict, why = "", "n/a", f"numbers unusable ({type(exc).__name__}: {exc})"
-            row.update(ours=ours, verdict=verdict, why=why)
+        try:
+            ours, verdict, why = claim.check(get)
+            why = why_text(why, claim.tolerance)
+        except Undefined as exc:  # the study ran; the number has no value at these settings
+            ours = "; ".join(f"{k} = {'no value' if flat[k] is None else _n(flat[k])}" for k in read)
+            verdict = CANNOT_TELL
+            why = f"{exc.args[0]} has no value at these settings (e.g. no grid point in the region it counts)"
+        except Missing as exc:
+            ours, verdict, why = "", "n/a", f"needs {exc.args[0]} (study not run)"
+        except (TypeError, ValueError, IndexError, ZeroDivisionError) as exc:  # a number of the wrong shape
+            ours, verdict, why = "", "n/a", f"numbers unusable ({type(exc).__name__}: {exc})"
+        row.update(ours=ours, verdict=verdict, why=why)
         row["sample"] = smallest_sample(read, flat, settings)[1] if row["verdict"] != "n/a" else ""
         rows.append(row)
     return rows

@@ -11,6 +11,7 @@ default rollout rules; a comparison whose sides are all at the ceiling is "canno
 
 from __future__ import annotations
 
+from .. import thesis
 from ._common import (
     CANNOT_TELL,
     CEILING,
@@ -39,12 +40,17 @@ def _physical(get, keys) -> str:
 
 # --- chapter 4 ----------------------------------------------------------------------------------
 
-FIG4_5 = {"env1": 98.52, "env2": 95.41, "env3": 77.66}  # thesis catchment %, DELV without compass
+FIG4_5 = {e: thesis.CATCHMENT["fig4_5"][e]["delv"][0] for e in ENVS}  # thesis catchment %, DELV without compass
 LARGE = 75.0  # % "sufficient level of success" (the thesis's lowest, env3 77.66, within 3 points)
 GAP_SHARE = 0.5  # env3's gap must be at least this share of the thesis's 17.75 points
+THESIS_GAP = min(FIG4_5["env1"], FIG4_5["env2"]) - FIG4_5["env3"]
 
 
-@check("delv_nocompass_catchment_all_envs")
+@check(
+    "delv_nocompass_catchment_all_envs",
+    f"every catchment >= {LARGE:.0f} % and env3 strictly lowest by >= {GAP_SHARE * THESIS_GAP:.2f} points (half "
+    f"the thesis's gap of {THESIS_GAP:.2f}); all three >= {CEILING:.0f} %: cannot tell",
+)
 def _(get):
     """Large catchment everywhere and env3 (landmarks on one side) strictly lowest by at least half the
     thesis's margin: min(env1, env2) - env3 >= 17.75 / 2 points ('affected by the distribution of
@@ -52,19 +58,13 @@ def _(get):
     a fixed tolerance of 10 points passed a gap of 8.0). All three >= 99 %: cannot tell."""
     c = {e: get(f"catchment:{e}:delv") for e in ENVS}
     gap = min(c["env1"], c["env2"]) - c["env3"]
-    thesis_gap = min(FIG4_5["env1"], FIG4_5["env2"]) - FIG4_5["env3"]
-    need = GAP_SHARE * thesis_gap
-    large, gap_ok = all(v >= LARGE for v in c.values()), gap >= need
+    large, gap_ok = all(v >= LARGE for v in c.values()), gap >= GAP_SHARE * THESIS_GAP
     ours = (
-        "catchment env1/2/3: " + _n(list(c.values())) + " % (thesis 98.5/95.4/77.7); env3 below the others by "
-        f"{gap:.1f} points (thesis {thesis_gap:.1f})" + _physical(get, [f"catchment:{e}:delv" for e in ENVS])
-    )
-    rule = (
-        f"every catchment >= {LARGE:.0f} % and env3 strictly lowest by >= {need:.2f} points (half the thesis's "
-        f"gap of {thesis_gap:.2f}); all three >= {CEILING:.0f} %: cannot tell"
+        f"catchment env1/2/3: {_n(list(c.values()))} % (thesis {_n(list(FIG4_5.values()))}); env3 below the "
+        f"others by {gap:.1f} points (thesis {THESIS_GAP:.1f})" + _physical(get, [f"catchment:{e}:delv" for e in ENVS])
     )
     if at_ceiling(list(c.values())):
-        return ours, CANNOT_TELL, _why(rule, "every environment is at the ceiling: the layouts cannot be told apart")
+        return ours, CANNOT_TELL, _why("every environment is at the ceiling: the layouts cannot be told apart")
     reasons = [
         "" if large else f"a catchment is below {LARGE:.0f} %",
         "" if gap > 0 else "env3 is not strictly the lowest",
@@ -73,7 +73,7 @@ def _(get):
         else f"env3 is lowest by only {gap:.1f} points (with the landmarks no "
         "obstacles DELV homes from almost everywhere)",
     ]
-    return ours, _verdict([large, gap_ok]), _why(rule, *reasons)
+    return ours, _verdict([large, gap_ok]), _why(*reasons)
 
 
 INSIDE_MAX = 2.0  # % "almost zero"
@@ -94,7 +94,11 @@ HULL_CAUSE = {
 }
 
 
-@check("errors_outside_landmark_hull")
+@check(
+    "errors_outside_landmark_hull",
+    f"inside <= {INSIDE_MAX:.0f} % ('almost zero') and outside > inside in every environment (partly: "
+    f"outside > inside in 2 of 3); all <= {FLOOR} %: cannot tell",
+)
 def _(get):
     """Error points (e > 45°) almost zero inside the hull (<= 2 %) and more frequent outside than inside,
     per environment. No error points anywhere (all <= 0.5 %): cannot tell where they lie."""
@@ -103,21 +107,20 @@ def _(get):
     near0 = [ins[e] <= INSIDE_MAX for e in ENVS]
     outside = [out[e] > ins[e] for e in ENVS]
     ours = "; ".join(f"{e} e>45 inside {_n(ins[e])} %, outside {_n(out[e])} %" for e in ENVS)
-    rule = (
-        f"inside <= {INSIDE_MAX:.0f} % ('almost zero') and outside > inside in every environment (partly: "
-        f"outside > inside in 2 of 3); all <= {FLOOR} %: cannot tell"
-    )
     if at_floor([*ins.values(), *out.values()], FLOOR):
-        return ours, CANNOT_TELL, _why(rule, "no error points inside or outside the hull")
+        return ours, CANNOT_TELL, _why("no error points inside or outside the hull")
     bad = [e for e, a, b in zip(ENVS, near0, outside) if not (a and b)]
     why = "; ".join(f"not in {e}: {HULL_CAUSE[e]}" for e in bad)
-    return ours, _verdict([all(near0) and all(outside), _share(outside) >= 2 / 3]), _why(rule, why)
+    return ours, _verdict([all(near0) and all(outside), _share(outside) >= 2 / 3]), _why(why)
 
 
 STEP_SPREAD = 10.0  # degrees / points: "do not differ by a large amount"
 
 
-@check("step_distance_rarely_matters")
+@check(
+    "step_distance_rarely_matters",
+    f"mean errors within {STEP_SPREAD:.0f}° and catchments within {STEP_SPREAD:.0f} points of each other",
+)
 def _(get):
     """The mean errors for d = 20..150 cm (the vector map's, the numbers the next claim reads; the mean of
     an error curve's bins weighs a near bin of few points as much as a far one) lie within 10° of each
@@ -136,12 +139,10 @@ def _(get):
         + " %"
     )
     parts = [spread <= STEP_SPREAD, None if at_ceiling(list(catch.values())) else cspread <= STEP_SPREAD]
-    rule = f"mean errors within {STEP_SPREAD:.0f}° and catchments within {STEP_SPREAD:.0f} points of each other"
     return (
         ours,
         _combine(parts),
         _why(
-            rule,
             "" if parts[0] else f"the mean errors differ by up to {spread:.1f}°",
             "" if parts[1] is not False else _step_loss_cause(get, catch, cspread),
         ),
@@ -174,7 +175,11 @@ SLIGHT = 10.0  # degrees: at most this is "slight"
 TIE = 1.0  # degrees: closer than this is no improvement
 
 
-@check("small_step_slightly_better")
+@check(
+    "small_step_slightly_better",
+    f"mean(d = 100, 150) - mean(d = 20, 50) between {TIE:.0f}° and {SLIGHT:.0f}° (partly: within {TIE:.0f}° "
+    "or more than slight)",
+)
 def _(get):
     """Small d (20, 50 cm) against large d (100, 150 cm): the mean vector-map error of the small ones
     must be lower by at least 1° (a tie is no improvement) and at most 10° ('slight'). Within 1°:
@@ -183,10 +188,6 @@ def _(get):
     gain = _mean([e[100], e[150]]) - _mean([e[20], e[50]])
     ours = f"mean error d = 20/50/100/150 cm: {_n(list(e.values()))}°; small d better by {gain:.1f}°"
     verdict = "holds" if TIE <= gain <= SLIGHT else "partly" if gain > -TIE else "fails"
-    rule = (
-        f"mean(d = 100, 150) - mean(d = 20, 50) between {TIE:.0f}° and {SLIGHT:.0f}° (partly: within {TIE:.0f}° "
-        "or more than slight)"
-    )
     why = (
         ""
         if verdict == "holds"
@@ -200,7 +201,7 @@ def _(get):
             "bearings, the only error of noise-free sensing (at 1440 pixels d = 20 cm's mean error falls by 2.8°, "
             "d = 50 cm's by 1.3°: docs/reproduce.md, 'Causes measured outside the run')"
         )
-    return ours, verdict, _why(rule, why)
+    return ours, verdict, _why(why)
 
 
 PIXEL_DEG = 1.0  # degrees per pixel of the 360-pixel ring (docs/model.md §2.2)
@@ -213,7 +214,10 @@ NEAR_HOME_CAUSE = (
 )
 
 
-@check("few_landmarks_error_below_90")
+@check(
+    "few_landmarks_error_below_90",
+    "every bin < 90° (partly: 90 % of the bins) and the far third of the bins >= the curve's mean",
+)
 def _(get):
     """Every bin's mean error below 90° (the thesis's own bound, no tolerance) in the 3/4/5-landmark
     layouts, and 'at a distance far from the nest, the angular errors are large': the far third of
@@ -235,18 +239,22 @@ def _(get):
         verdict = "partly" if _share(below) >= 0.9 else "fails"
     else:
         verdict = "holds" if all(far) else "partly"
-    rule = "every bin < 90° (partly: 90 % of the bins) and the far third of the bins >= the curve's mean"
     return (
         ours,
         verdict,
-        _why(rule, "" if all(below) else "some distance bins average 90° or more", "" if all(far) else NEAR_HOME_CAUSE),
+        _why("" if all(below) else "some distance bins average 90° or more", "" if all(far) else NEAR_HOME_CAUSE),
     )
 
 
 LANDMARK_NUMBER_GAP = 10.0  # degrees
 
 
-@check("warping_sensitive_to_landmark_number")
+@check(
+    "warping_sensitive_to_landmark_number",
+    f"image matching with 3 landmarks >= {LANDMARK_NUMBER_GAP:.0f}° above 5 landmarks, and its spread over "
+    f"3/4/5 >= max({LANDMARK_NUMBER_GAP:.0f}°, 2 x DELV's); layouts that change arrangement and number "
+    "together: cannot tell",
+)
 def _(get):
     """Image matching 'extremely sensitive to ... the number of landmarks': with 3 landmarks it errs
     at least 10° more than with 5 ('with few landmarks ... misjudge its direction'), and its error
@@ -263,10 +271,6 @@ def _(get):
         f"mean error with 3/4/5 landmarks: image matching {_n(list(w.values()))}°, DELV {_n(list(d.values()))}°; "
         f"spread {sw:.1f}° vs {sd:.1f}°"
     )
-    rule = (
-        f"image matching with 3 landmarks >= {LANDMARK_NUMBER_GAP:.0f}° above 5 landmarks, and its spread over "
-        f"3/4/5 >= max({LANDMARK_NUMBER_GAP:.0f}°, 2 x DELV's)"
-    )
     few_why = (
         "few landmarks do not make image matching err more (the seeded layouts differ in arrangement as "
         "well as in number, and our panoramas are noise-free renderings: its error follows the arrangement)"
@@ -276,7 +280,6 @@ def _(get):
             ours,
             CANNOT_TELL,
             _why(
-                rule + "; layouts that change arrangement and number together: cannot tell",
                 "the 3-, 4- and 5-landmark layouts are separate seeded draws: arrangement and number change "
                 "together, so no difference tells the number's effect",
             ),
@@ -284,7 +287,7 @@ def _(get):
     return (
         ours,
         _verdict([few, sensitive]),
-        _why(rule, "" if few else few_why, "" if sensitive else "image matching is not more sensitive than DELV"),
+        _why("" if few else few_why, "" if sensitive else "image matching is not more sensitive than DELV"),
     )
 
 
@@ -292,7 +295,10 @@ SIGNIFICANT = 10.0  # degrees: "significantly smaller"
 BIN_SHARE = 2 / 3  # of the distance bins where DELV must err less
 
 
-@check("delv_smaller_error_than_warping")
+@check(
+    "delv_smaller_error_than_warping",
+    f"mean error DELV <= image matching - {SIGNIFICANT:.0f}° and DELV lower in >= 2/3 of the bins",
+)
 def _(get):
     """'Significantly smaller': DELV's vector-map mean error (over every grid point) at least 10° below
     image matching's, and DELV lower in >= 2/3 of the distance bins (strictly; partly: one of the two).
@@ -303,12 +309,10 @@ def _(get):
     share = _share(a < b for a, b in _pairs(d, w))
     ours = f"env1 mean error DELV {_n(md)}°, image matching {_n(mw)}°; DELV lower in {share:.0%} of distance bins"
     parts = [md <= mw - SIGNIFICANT, share >= BIN_SHARE]
-    rule = f"mean error DELV <= image matching - {SIGNIFICANT:.0f}° and DELV lower in >= 2/3 of the bins"
     return (
         ours,
         _verdict(parts),
         _why(
-            rule,
             "" if parts[0] else f"the mean errors differ by less than {SIGNIFICANT:.0f}°",
             ""
             if parts[1]

@@ -20,7 +20,12 @@ from ._common import (
 from ._ch4 import FAR_DROP, LARGE, THIRD, _over90_far, _physical  # the first part's tolerances and helpers
 
 
-@check("delv_success_over_90")
+@check(
+    "delv_success_over_90",
+    f"min > 90 % and the far {THIRD} distances lowest (minimum among them, mean >= {FAR_DROP:.0f} points "
+    f"below the near {THIRD}) under the default rules, or under the physical ones where the default are at "
+    f"the ceiling (>= {CEILING:.0f} %)",
+)
 def _(get):
     """> 90 % at every release distance (the thesis's own bound, no tolerance) and the lowest rates at
     the largest distances (the minimum in the far third, whose mean lies >= 2 points below the near
@@ -30,26 +35,21 @@ def _(get):
     ceiling: cannot tell."""
     s, p = get("success:env1:delv"), get("success:env1:delv:physical")
     ours = f"default rules {_n(s)} %; physical rules {_n(p)} %"
-    rule = (
-        f"min > 90 % and the far {THIRD} distances lowest (minimum among them, mean >= {FAR_DROP:.0f} points "
-        f"below the near {THIRD}) under the default rules, or under the physical ones where the default are at "
-        f"the ceiling (>= {CEILING:.0f} %)"
-    )
     over_d, far_d = _over90_far(s)
     if not over_d:
         verdict = "partly" if _mean(s) > 90 else "fails"
-        return ours, verdict, _why(rule, "some release distances succeed in 90 % of trials or fewer")
+        return ours, verdict, _why("some release distances succeed in 90 % of trials or fewer")
     if far_d is not None:
-        return ours, "holds" if far_d else "partly", _why(rule, "" if far_d else "the far releases are not the lowest")
+        return ours, "holds" if far_d else "partly", _why("" if far_d else "the far releases are not the lowest")
     over_p, far_p = _over90_far(p)
     if far_p is None:
         return (
             ours,
             CANNOT_TELL,
-            _why(rule, "100 % at every distance under both rule sets: where it is lowest cannot be told"),
+            _why("100 % at every distance under both rule sets: where it is lowest cannot be told"),
         )
     if over_p and far_p:
-        return ours, "holds", _why(rule, "the far decrease shows under the physical rules")
+        return ours, "holds", _why("the far decrease shows under the physical rules")
     physical = "under the physical rules " + (
         "far releases are lowest but fall to 90 % or below" if far_p else "far releases are not the lowest"
     )
@@ -63,7 +63,6 @@ def _(get):
         ours,
         "partly",
         _why(
-            rule,
             "> 90 % under the default rules, where every distance is at the ceiling (noise-free "
             "sensing, landmarks no obstacles)",
             physical,
@@ -74,7 +73,11 @@ def _(get):
 BEAT = 5.0  # points: "higher probability", beyond the binomial noise of 100 trials
 
 
-@check("delv_beats_warping_success")
+@check(
+    "delv_beats_warping_success",
+    f"success DELV - image matching >= {BEAT:.0f} points on average over the distances not both at the "
+    f"ceiling and never below -{BEAT:.0f}; catchment DELV >= image matching + {BEAT:.0f}",
+)
 def _(get):
     """DELV's success rate higher than image matching's: over the distances where not both are at the
     ceiling, DELV higher by >= 5 points on average and nowhere lower by more than 5; catchment higher
@@ -85,15 +88,10 @@ def _(get):
     bins = None if not told else (all(a >= b - BEAT for a, b in told) and _mean([a - b for a, b in told]) >= BEAT)
     catch = None if at_ceiling([cd, cw]) else cd >= cw + BEAT
     ours = f"success DELV {_n(d)} vs image matching {_n(w)} %; catchment {_n(cd)} vs {_n(cw)} %"
-    rule = (
-        f"success DELV - image matching >= {BEAT:.0f} points on average over the distances not both at the "
-        f"ceiling and never below -{BEAT:.0f}; catchment DELV >= image matching + {BEAT:.0f}"
-    )
     return (
         ours,
         _combine([bins, catch]),
         _why(
-            rule,
             "" if bins is not False else "image matching succeeds as often at some distances",
             "" if catch is not False else "the catchments do not differ by 5 points",
             "" if None not in (bins, catch) else "a part is at the ceiling",
@@ -104,7 +102,10 @@ def _(get):
 OFTEN = 10.0  # points of failed releases
 
 
-@check("warping_fails_outside_hull")
+@check(
+    "warping_fails_outside_hull",
+    f"image matching outside >= inside + {OFTEN:.0f} and >= DELV outside + {OFTEN:.0f} points",
+)
 def _(get):
     """'Often has difficulty ... in the outer zone': image matching's failed releases outside the hull
     exceed those inside by >= 10 points and DELV's outside by >= 10 points. No failures anywhere
@@ -112,15 +113,13 @@ def _(get):
     wi, wo = get("fail_inside_hull:env1:warping"), get("fail_outside_hull:env1:warping")
     do = get("fail_outside_hull:env1:delv")
     ours = f"failed releases: image matching inside hull {_n(wi)} %, outside {_n(wo)} %; DELV outside {_n(do)} %"
-    rule = f"image matching outside >= inside + {OFTEN:.0f} and >= DELV outside + {OFTEN:.0f} points"
     if at_ceiling([100.0 - v for v in (wi, wo, do)]):
-        return ours, CANNOT_TELL, _why(rule, "no method fails from anywhere")
+        return ours, CANNOT_TELL, _why("no method fails from anywhere")
     parts = [wo >= wi + OFTEN, wo >= do + OFTEN]
     return (
         ours,
         _verdict(parts),
         _why(
-            rule,
             "" if parts[0] else "not much more often outside than inside",
             "" if parts[1] else "DELV fails about as often outside",
         ),
@@ -131,7 +130,10 @@ MOSTLY = 0.75  # share of bins: "mostly"
 LEVEL_CLOSE = 10.0  # degrees: "do not change much"
 
 
-@check("quantized_error_small_and_level_insensitive")
+@check(
+    "quantized_error_small_and_level_insensitive",
+    f"< 30° in >= {MOSTLY:.0%} of the bins and the mean within {LEVEL_CLOSE:.0f}° of continuous, every level",
+)
 def _(get):
     """'The error mostly remains less than 30 degrees' (the thesis's bound): in >= 75 % of the bins for
     every level Q = 1..5; 'do not change much': each level's mean within 10° of continuous distances."""
@@ -141,12 +143,10 @@ def _(get):
     close = [abs(_mean(c) - cont) <= LEVEL_CLOSE for c in levels.values()]
     ours = "mean error Q = 1..5: " + _n([_mean(c) for c in levels.values()]) + f"°, continuous {_n(cont)}°"
     bad = [q for q, ok in zip(levels, close) if not ok]
-    rule = f"< 30° in >= {MOSTLY:.0%} of the bins and the mean within {LEVEL_CLOSE:.0f}° of continuous, every level"
     return (
         ours,
         _verdict([all(small), all(close)]),
         _why(
-            rule,
             "" if all(small) else "some levels exceed 30° in more than a quarter of the bins",
             "" if not bad else f"Q = {bad} differ from continuous by more than {LEVEL_CLOSE:.0f}°",
         ),
@@ -158,7 +158,11 @@ LEVEL_WORST = 5.0  # points: level 1 below continuous by at least this
 THREE_CLOSE = 5.0  # points: three levels within this of continuous
 
 
-@check("fewer_levels_more_failures_three_suffice")
+@check(
+    "fewer_levels_more_failures_three_suffice",
+    f"success non-decreasing with the levels (within {LEVEL_STEP:.0f} points), level 1 >= {LEVEL_WORST:.0f} "
+    f"below continuous, three levels within {THREE_CLOSE:.0f} of continuous",
+)
 def _(get):
     """Fewer levels, more failures: the overall success rate never rises by more than 2 points towards
     fewer levels, and level 1 is >= 5 points below continuous; three levels within 5 points of
@@ -178,17 +182,12 @@ def _(get):
         + " %"
         + _physical(get, [f"success_overall:env1:delv:{t}" for t in tags])
     )
-    rule = (
-        f"success non-decreasing with the levels (within {LEVEL_STEP:.0f} points), level 1 >= {LEVEL_WORST:.0f} "
-        f"below continuous, three levels within {THREE_CLOSE:.0f} of continuous"
-    )
     if at_ceiling(s):
-        return ours, CANNOT_TELL, _why(rule, "every level succeeds from everywhere")
+        return ours, CANNOT_TELL, _why("every level succeeds from everywhere")
     return (
         ours,
         _verdict([monotone, three]),
         _why(
-            rule,
             "" if monotone else "success does not fall with fewer levels",
             "" if three else "three levels fall short of continuous",
         ),
@@ -200,7 +199,11 @@ SLIGHTLY = 10.0  # degrees: 'slightly smaller' at most this much (claims 4 and 1
 SURROUNDING = ("env2", "ring3", "ring6")  # equally spaced around home, as Fig 4.14a
 
 
-@check("surrounding_landmarks_lower_error")
+@check(
+    "surrounding_landmarks_lower_error",
+    f"each surrounding layout (env2, ring3, ring6) below edge4 by {LOWER:.0f}-{SLIGHTLY:.0f}° ('slightly'); "
+    f"lower by more: partly",
+)
 def _(get):
     """With 3 levels, layouts of equally spaced landmarks around home (env2, ring3, ring6; Fig 4.14a) err
     'slightly' less than edge4, where home lies slightly outside the landmarks' hull as in Fig 4.14b (43 cm
@@ -237,8 +240,6 @@ def _(get):
         ours,
         verdict,
         _why(
-            f"each surrounding layout (env2, ring3, ring6) below edge4 by {LOWER:.0f}-{SLIGHTLY:.0f}° ('slightly'); "
-            f"lower by more: partly",
             why,
         ),
     )
@@ -247,7 +248,7 @@ def _(get):
 MORE = 1.0  # degrees
 
 
-@check("robot_images_delv_errs_more_but_homes")
+@check("robot_images_delv_errs_more_but_homes", f"images >= ideal rings + {MORE:.0f}° and catchment >= {LARGE:.0f} %")
 def _(get):
     """On the images DELV errs more than on the ideal rings (by >= 1°) and still homes (nearest-snapshot
     catchment >= 75 %, as in claim 1)."""
@@ -268,14 +269,18 @@ def _(get):
     return (
         ours,
         _verdict([more and homes, homes]),
-        _why(f"images >= ideal rings + {MORE:.0f}° and catchment >= {LARGE:.0f} %", why),
+        _why(why),
     )
 
 
 ROBOT_BEAT = 2.0  # degrees / points
 
 
-@check("robot_images_delv_beats_warping")
+@check(
+    "robot_images_delv_beats_warping",
+    f"image matching must not beat DELV by > {ROBOT_BEAT:.0f}° or {ROBOT_BEAT:.0f} points; DELV better by "
+    f">= that on both for holds",
+)
 def _(get):
     """§6.2 (and §4.5, §6.3.1): DELV errs 'significantly' less than image matching and succeeds more.
     On the robot images: fails when image matching beats DELV by more than 2° of mean error or 2
@@ -284,16 +289,11 @@ def _(get):
     ed, ew = get("robot_images:delv:mean_error_deg"), get("robot_images:warping:mean_error_deg")
     cd, cw = get("robot_images:delv:catchment_pct"), get("robot_images:warping:catchment_pct")
     ours = f"robot images: mean error DELV {_n(ed)}° vs image matching {_n(ew)}°; catchment {_n(cd)} vs {_n(cw)} %"
-    rule = (
-        f"image matching must not beat DELV by > {ROBOT_BEAT:.0f}° or {ROBOT_BEAT:.0f} points; DELV better by "
-        f">= that on both for holds"
-    )
     if ew < ed - ROBOT_BEAT or cw > cd + ROBOT_BEAT:
         return (
             ours,
             "fails",
             _why(
-                rule,
                 "image matching "
                 + ("errs less" if ew < ed - ROBOT_BEAT else "homes more")
                 + ": the rendered arena has uniform light, no clutter and exact poses, the "
@@ -304,10 +304,10 @@ def _(get):
     parts = [ed <= ew - ROBOT_BEAT, None if at_ceiling([cd, cw]) else cd >= cw + ROBOT_BEAT]
     verdict = _combine(parts)
     verdict = "partly" if verdict == "fails" else verdict  # ties: not beaten, not better
-    return ours, verdict, _why(rule, "" if verdict == "holds" else "DELV is not clearly better")
+    return ours, verdict, _why("" if verdict == "holds" else "DELV is not clearly better")
 
 
-@check("robot_images_quantized_similar")
+@check("robot_images_quantized_similar", f"every level within {LEVEL_CLOSE:.0f}° of continuous")
 def _(get):
     """'Did not show significant increase ... similar level of errors': DELV with 1/2/4/5 levels within
     10° of continuous distances on the robot images (partly: half of the levels)."""
@@ -320,7 +320,6 @@ def _(get):
         ours,
         verdict,
         _why(
-            f"every level within {LEVEL_CLOSE:.0f}° of continuous",
             "" if verdict == "holds" else f"some levels differ by more than {LEVEL_CLOSE:.0f}°",
         ),
     )

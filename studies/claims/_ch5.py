@@ -10,6 +10,7 @@ is "cannot tell".
 
 from __future__ import annotations
 
+from .. import thesis
 from ._common import (
     ENVS,
     FAILS,
@@ -40,7 +41,7 @@ def _short(m: str) -> str:
 SLIGHTLY = 10.0  # degrees
 
 
-@check("compass_slightly_smaller_error")
+@check("compass_slightly_smaller_error", f"0 < without - with <= {SLIGHTLY:.0f}° in every environment")
 def _(get):
     """With the compass DELV's mean error is below (strictly) and at most 10° below ('slightly') the
     error without it, in env1-3 (partly: smaller in 2 of 3)."""
@@ -68,10 +69,12 @@ def _(get):
             + ", ".join(f"{e} {slips[e]:.1f} % of the points (mean error {rest[e]:.1f}° at the others)" for e in far)
             + "; with every landmark on one side of home, rotations of the view about home fit nearly alike"
         )
-    return ours, verdict, _why(f"0 < without - with <= {SLIGHTLY:.0f}° in every environment", why_not, why_far)
+    return ours, verdict, _why(why_not, why_far)
 
 
-FIG5_5_VS_4_5 = {"env1": (92.01, 98.52), "env2": (97.04, 95.41), "env3": (84.91, 77.66)}  # with, without compass
+FIG5_5_VS_4_5 = {
+    e: (thesis.CATCHMENT["fig5_5"][e]["delv-compass"][0], thesis.CATCHMENT["fig4_5"][e]["delv"][0]) for e in ENVS
+}  # with, without compass
 COMPASS_TOL = 5.0  # points on the thesis's difference
 
 
@@ -86,7 +89,10 @@ def _margin_part(with_, without, thesis_diff, tol):
     return thesis_diff - tol <= diff <= thesis_diff + tol
 
 
-@check("compass_catchment_env2_similar_env3_better")
+@check(
+    "compass_catchment_env2_similar_env3_better",
+    f"with - without within {COMPASS_TOL:.0f} points of the thesis's -6.5 / +1.6 / +7.3",
+)
 def _(get):
     """Each environment's difference (with - without compass) within 5 points of the thesis's: env1
     -6.5 (lower with compass), env2 +1.6 (similar), env3 +7.3 (better with compass, so at least
@@ -115,7 +121,7 @@ def _(get):
     return (
         ours,
         verdict,
-        _why(f"with - without within {COMPASS_TOL:.0f} points of the thesis's -6.5 / +1.6 / +7.3", *reasons),
+        _why(*reasons),
     )
 
 
@@ -123,7 +129,11 @@ TIE_DEG = 1.0
 MIXED = 0.2  # share of bins each way for "smaller in some regions, higher in others"
 
 
-@check("delv_vs_acv_alv_error_mixed")
+@check(
+    "delv_vs_acv_alv_error_mixed",
+    f"vs ACV lower in >= 60 % and higher (by <= {SLIGHTLY:.0f}°) in some bins; vs ALV each way in >= "
+    f"{MIXED:.0%} of the bins",
+)
 def _(get):
     """Bins closer than 1° are ties. Against ACV: DELV lower in >= 60 % of the bins ('most of the
     region') and higher in at least one, by at most 10° ('slightly higher in some'). Against ALV: lower
@@ -139,15 +149,11 @@ def _(get):
         f"DELV lower than ACV in {lo_acv:.0%}, higher in {len(hi_acv)} bins; lower than ALV in {lo_alv:.0%}, "
         f"higher in {hi_alv:.0%} of distance bins (env1; ties within {TIE_DEG:.0f}°)"
     )
-    rule = (
-        f"vs ACV lower in >= 60 % and higher (by <= {SLIGHTLY:.0f}°) in some bins; vs ALV each way in >= "
-        f"{MIXED:.0%} of the bins"
-    )
     alv_why = "" if alv_ok else "against ALV one side dominates, not a mix" + _alv_steady(d, alv)
     return (
         ours,
         _verdict([acv_ok, alv_ok]),
-        _why(rule, "" if acv_ok else "not 'smaller than ACV in most, slightly higher in some'", alv_why),
+        _why("" if acv_ok else "not 'smaller than ACV in most, slightly higher in some'", alv_why),
     )
 
 
@@ -172,9 +178,13 @@ NEAR_FAR = 3  # release-distance bins
 SR_TOL = 3.0  # points: beyond the binomial noise of 100 trials at 80-90 %
 LITTLE = 10.0  # points: "little higher"
 SIMILAR = 5.0  # points of overall success
+NEAR_FAR_RULE = (
+    f"overall within {SIMILAR:.0f} points; near {NEAR_FAR} distances DELV higher by {SR_TOL:.0f}..{LITTLE:.0f}; "
+    f"far {NEAR_FAR} DELV lower by >= {SR_TOL:.0f}; fails when every decidable near / far part is contradicted"
+)
 
 
-@check("delv_compass_success_near_far")
+@check("delv_compass_success_near_far", NEAR_FAR_RULE)
 def _(get):
     """Against ACV and ALV each: overall success within 5 points ('similar'); the near 3 distances DELV
     higher by 3..10 points ('little higher'); the far 3 distances DELV lower by >= 3 points. Each part
@@ -201,16 +211,8 @@ def _(get):
     ours = f"success DELV {_n(d)}, ACV {_n(acv)}, ALV {_n(alv)} %"
     if pattern and not any(pattern):  # the sentence's own content (higher near, lower far) contradicted
         reasons.append("every near / far part that can be decided is contradicted: 'similar' alone is not the claim")
-        return ours, FAILS, _why(_near_far_rule(), *reasons)
-    return ours, _combine(parts), _why(_near_far_rule(), *reasons)
-
-
-def _near_far_rule() -> str:
-    """Claim 20's rule (`delv_compass_success_near_far`)."""
-    return (
-        f"overall within {SIMILAR:.0f} points; near {NEAR_FAR} distances DELV higher by {SR_TOL:.0f}..{LITTLE:.0f}; "
-        f"far {NEAR_FAR} DELV lower by >= {SR_TOL:.0f}; fails when every decidable near / far part is contradicted"
-    )
+        return ours, FAILS, _why(*reasons)
+    return ours, _combine(parts), _why(*reasons)
 
 
 def _far_failures(get, method: str) -> str:
@@ -233,7 +235,10 @@ def _occl(get, env, m, field="catchment"):
 SEVERE = 20.0  # points of catchment lost: "severely"
 
 
-@check("matching_tolerates_unequal_landmark_numbers")
+@check(
+    "matching_tolerates_unequal_landmark_numbers",
+    f"catchment loss and e>45 rise from k = 0 to 1 below {SEVERE:.0f} points",
+)
 def _(get):
     """§3.2.4: different landmark numbers in the two views do 'not severely damage the homing rate or the
     average error'. With one landmark hidden (k = 1) DELV-compass loses < 20 points of catchment (the
@@ -253,7 +258,6 @@ def _(get):
         ours,
         _combine(parts),
         _why(
-            f"catchment loss and e>45 rise from k = 0 to 1 below {SEVERE:.0f} points",
             ""
             if not bad
             else f"severe damage in {', '.join(bad)} (as the thesis's own "
@@ -265,21 +269,22 @@ def _(get):
 
 
 STEP = 1.0  # points
+TABLE5_1_GT45 = thesis.ERROR_POINTS["table5_1"]["env1"]["delv-compass"]["gt45"]  # e>45 %, k = 0, 1, 2
+HALF_RISE = (TABLE5_1_GT45[2] - TABLE5_1_GT45[0]) / 2
 
 
-@check("occlusion_increases_errors")
+@check("occlusion_increases_errors", f"each step up by >= {STEP:.0f} point, k = 0 -> 2 up by >= {HALF_RISE:.1f} points")
 def _(get):
     """DELV-compass's e > 45° rate in env1 rises by >= 1 point with each hidden landmark, and by at least
     half the thesis's rise (8.75 -> 20.48: 11.7 points) from k = 0 to 2 (partly: one of the two)."""
     g = _occl(get, "env1", "delv-compass", "gt45")
     steps = g[1] >= g[0] + STEP and g[2] >= g[1] + STEP
-    total = g[2] - g[0] >= (20.48 - 8.75) / 2
-    ours = f"env1 DELV e>45, k = 0/1/2: {_n(g[:3])} % (thesis 8.75/13.99/20.48)"
+    total = g[2] - g[0] >= HALF_RISE
+    ours = f"env1 DELV e>45, k = 0/1/2: {_n(g[:3])} % (thesis {'/'.join(f'{v:g}' for v in TABLE5_1_GT45)})"
     return (
         ours,
         _verdict([steps, total]),
         _why(
-            f"each step up by >= {STEP:.0f} point, k = 0 -> 2 up by >= 5.9 points",
             "" if steps else "not rising with every hidden landmark",
             "" if total else "rises by less than half the thesis's",
         ),
@@ -289,7 +294,9 @@ def _(get):
 BELOW_TOL = 1.0  # points (the thesis's env2 k = 0 tie at 7.99)
 
 
-@check("acv_error_grows_faster_than_delv")
+@check(
+    "acv_error_grows_faster_than_delv", "DELV <= ACV + 1 at every k; ACV's rise >= 2 x DELV's and >= DELV's + 10 points"
+)
 def _(get):
     """DELV-compass's e > 45° rate at or below ACV's (within 1 point) for k = 0..2, and ACV's rise from
     k = 0 to 2 'much more rapid': at least twice DELV's and at least 10 points more (thesis env1 +70.8
@@ -307,7 +314,6 @@ def _(get):
         ours,
         verdict,
         _why(
-            "DELV <= ACV + 1 at every k; ACV's rise >= 2 x DELV's and >= DELV's + 10 points",
             "" if all(below) else "DELV above ACV somewhere",
             "" if all(faster) else "ACV's rate does not rise much faster somewhere",
         ),
@@ -317,7 +323,10 @@ def _(get):
 GT90_K0_TOL, GT90_TOL, GT90_FLOOR = 0.5, 1.0, 0.5  # points
 
 
-@check("error_rate_gt90_acv_lower_without_occlusion")
+@check(
+    "error_rate_gt90_acv_lower_without_occlusion",
+    f"k = 0: ACV <= DELV + {GT90_K0_TOL}; k >= 1: DELV <= ACV + {GT90_TOL:.0f}, every layout",
+)
 def _(get):
     """The e > 90° columns of Tables 5.1-5.2 as printed: with no landmark hidden ACV's rate is at or
     below DELV-compass's (within 0.5 point) in every layout, and with k >= 1 hidden DELV's is at or
@@ -343,14 +352,14 @@ def _(get):
         ours,
         verdict,
         _why(
-            f"k = 0: ACV <= DELV + {GT90_K0_TOL}; k >= 1: DELV <= ACV + {GT90_TOL:.0f}, every layout",
             "" if parts[0] is not False else "ACV above DELV without occlusion somewhere" + K0_CAUSE,
             "" if parts[1] is not False else "DELV above ACV with hidden landmarks somewhere",
         ),
     )
 
 
-SMALL_OCCL = {0: 100.0 - 92.01, 1: 52.88 - 49.11}  # the thesis's ACV - DELV gap, env1
+TABLE5_3_ENV1 = thesis.CATCHMENT["table5_3"]["env1"]
+SMALL_OCCL = {k: TABLE5_3_ENV1["acv"][k] - TABLE5_3_ENV1["delv-compass"][k] for k in (0, 1)}  # ACV - DELV, env1
 ACV_LAYOUT = (
     "ACV's errors depend strongly on the layout, which the thesis does not give (env3 moved by up to 150 cm: "
     "ACV's e>45 21-82 %, docs/reproduce.md 'Causes measured outside the run')"

@@ -25,7 +25,10 @@ from ._ch5 import (
 )  # tolerances and helpers
 
 
-@check("acv_larger_catchment_small_occlusion")
+@check(
+    "acv_larger_catchment_small_occlusion",
+    f"0.5 < ACV - DELV <= thesis gap + {GAP_TOL_OCCL:.0f} (k = 0: 18.0, k = 1: 13.8)",
+)
 def _(get):
     """env1: ACV's catchment above DELV-compass's by more than 0.5 point and by at most the thesis's gap
     + 10 points ('narrowly' at k = 1: 3.8 + 10), for k = 0 and 1. Both >= 99 %: cannot tell."""
@@ -53,7 +56,7 @@ def _(get):
     return (
         ours,
         _combine(parts),
-        _why(f"0.5 < ACV - DELV <= thesis gap + {GAP_TOL_OCCL:.0f} (k = 0: 18.0, k = 1: 13.8)", *reasons),
+        _why(*reasons),
     )
 
 
@@ -61,7 +64,10 @@ def _non_increasing(v, tol=1.0):
     return all(b <= a + tol for a, b in zip(v, v[1:]))
 
 
-@check("occlusion_catchment_both_severely_decrease")
+@check(
+    "occlusion_catchment_both_severely_decrease",
+    f"loss k = 0 -> 2 >= {SEVERE:.0f} points and no rise > 1 point, both methods",
+)
 def _(get):
     """'The percentage of catchment area in both methods severely decreases': DELV-compass and ACV each
     lose >= 20 points from k = 0 to 2 (the thesis's smallest loss is DELV env3, 22.6) without rising
@@ -79,7 +85,6 @@ def _(get):
         ours,
         verdict,
         _why(
-            f"loss k = 0 -> 2 >= {SEVERE:.0f} points and no rise > 1 point, both methods",
             "" if all(ok) else "some method does not lose severely",
         ),
     )
@@ -88,7 +93,11 @@ def _(get):
 SHRINK_MARGIN = 5.0  # points
 
 
-@check("acv_catchment_shrinks_faster")
+@check(
+    "acv_catchment_shrinks_faster",
+    f"ACV loss >= DELV loss + {SHRINK_MARGIN:.0f}, DELV >= ACV + {SHRINK_MARGIN:.0f} at k = 2, both losses >= "
+    f"{SEVERE:.0f}",
+)
 def _(get):
     """ACV loses >= 5 points more catchment than DELV-compass from k = 0 to 2, and at k = 2 DELV's
     exceeds ACV's by >= 5 points (thesis gaps 16-44), env1-3; and, as the thesis frames it ('both
@@ -117,8 +126,6 @@ def _(get):
         "catchment % for k = 0/1/2: " + "; ".join(parts),
         verdict,
         _why(
-            f"ACV loss >= DELV loss + {SHRINK_MARGIN:.0f}, DELV >= ACV + {SHRINK_MARGIN:.0f} at k = 2, both losses >= "
-            f"{SEVERE:.0f}",
             "" if all(ok) else "ACV does not shrink faster everywhere",
             "" if all(severe) else "DELV does not shrink severely (the thesis: both methods severely decrease)",
         ),
@@ -129,7 +136,11 @@ ALV_GAP = 5.0  # points below DELV: "much smaller"
 ALV_DROP = 20.0  # points lost at k = 1: "rapidly decreases"
 
 
-@check("alv_perfect_then_collapses_under_occlusion")
+@check(
+    "alv_perfect_then_collapses_under_occlusion",
+    f"k = 0: e>45 <= 0.5 %, catchment >= {CEILING:.0f} %; k = 1 loss >= {ALV_DROP:.0f}; "
+    f"ALV <= DELV - {ALV_GAP:.0f} at k = 1, 2",
+)
 def _(get):
     """ALV 'perfect' without occlusion: e > 45° <= 0.5 % and catchment >= 99 %, in all six layouts; then
     'rapidly decreases': it loses >= 20 points at k = 1, and 'much smaller than DELV': ALV <= DELV -
@@ -157,8 +168,6 @@ def _(get):
         ours,
         verdict,
         _why(
-            f"k = 0: e>45 <= 0.5 %, catchment >= {CEILING:.0f} %; k = 1 loss >= {ALV_DROP:.0f}; "
-            f"ALV <= DELV - {ALV_GAP:.0f} at k = 1, 2",
             "" if all(perfect) else why_not,
             "" if all(collapse) else "does not collapse below DELV everywhere",
         ),
@@ -168,7 +177,7 @@ def _(get):
 COLLAPSE_MAX = 15.0  # % left with three hidden (thesis 1.78-11.74)
 
 
-@check("k3_collapse")
+@check("k3_collapse", f"k = 3 catchment <= {COLLAPSE_MAX:.0f} % and <= half of k = 2, each method")
 def _(get):
     """Table 5.4, three of five / six landmarks hidden: every method's catchment collapses, to <= 15 %
     (the thesis's 1.8-11.7 % plus a tolerance) and to at most half its k = 2 value, for L = 5 and 6."""
@@ -186,7 +195,6 @@ def _(get):
         ours,
         verdict,
         _why(
-            f"k = 3 catchment <= {COLLAPSE_MAX:.0f} % and <= half of k = 2, each method",
             ""
             if all(ok)
             else "some method keeps its catchment with three hidden: two or three "

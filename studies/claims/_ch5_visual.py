@@ -36,7 +36,10 @@ WRONG_MIN = 1.0  # % of points with a heading error > 5°
 RISE_MIN = 2.0  # degrees (or 10 % of the true-compass error)
 
 
-@check("visual_compass_not_exact")
+@check(
+    "visual_compass_not_exact",
+    f"> 5° at >= {WRONG_MIN:.0f} % of points and each rise >= max({RISE_MIN:.0f}°, 10 %), per background",
+)
 def _(get):
     """Per background setting: the heading error exceeds 5° at >= 1 % of the points, and each method's
     mean error rises over the true compass by >= max(2°, 10 %) ('larger error'; +0.2° is not). Holds
@@ -54,12 +57,10 @@ def _(get):
             + "/".join(_n(r) for r, _ in rise.values())
             + "°"
         )
-    rule = f"> 5° at >= {WRONG_MIN:.0f} % of points and each rise >= max({RISE_MIN:.0f}°, 10 %), per background"
     return (
         "; ".join(parts) + " (DELV/ACV/ALV)",
         _verdict(ok),
         _why(
-            rule,
             ""
             if all(ok)
             else "exact or harmless under some background settings"
@@ -94,7 +95,11 @@ def _best_world(verdicts: dict) -> tuple[str, str]:
     return best, ", ".join(f"{w} {v}" for w, v in verdicts.items())
 
 
-@check("visual_compass_catchment_order")
+@check(
+    "visual_compass_catchment_order",
+    f"DELV >= ACV + {ORDER_GAP:.0f} >= ALV + {2 * ORDER_GAP:.0f} per background and rule set; all >= "
+    f"{CEILING:.0f} %: cannot tell; per world combined, the best world's verdict",
+)
 def _(get):
     """DELV > ACV > ALV with the visual compass, each gap >= 2 points (thesis 74.85 > 47.04 > 40.68), per
     background and rule set; a setting with all three >= 99 % cannot tell. Fig 5.11's world is not
@@ -122,14 +127,16 @@ def _(get):
         "; ".join(parts) + " % DELV/ACV/ALV, default rules unless physical (thesis 74.85 > 47.04 > 40.68)",
         verdict,
         _why(
-            f"DELV >= ACV + {ORDER_GAP:.0f} >= ALV + {2 * ORDER_GAP:.0f} per background and rule set; all >= "
-            f"{CEILING:.0f} %: cannot tell; per world combined, the best world's verdict",
             why,
         ),
     )
 
 
-@check("visual_compass_error_order")
+@check(
+    "visual_compass_error_order",
+    f"DELV <= min(ACV, ALV) - {TIE_DEG:.0f}° and ALV's rise >= the others' + {TIE_DEG:.0f}° per "
+    "background; per world combined, the best world's verdict",
+)
 def _(get):
     """Per background: DELV's mean error with the visual compass below ACV's and ALV's by >= 1°, and
     ALV's rise over the true compass the largest by >= 1° ('the most increased'). A background where no
@@ -162,8 +169,6 @@ def _(get):
         " | ".join(parts) + " (mean error with the visual compass, rise over the true compass)",
         verdict,
         _why(
-            f"DELV <= min(ACV, ALV) - {TIE_DEG:.0f}° and ALV's rise >= the others' + {TIE_DEG:.0f}° per "
-            "background; per world combined, the best world's verdict",
             f"{UNSTATED} ({per_world})",
             why,
         ),
@@ -173,7 +178,11 @@ def _(get):
 LOSS_TOL = 2.0  # points of catchment (rises: 1°)
 
 
-@check("delv_least_compass_dependent")
+@check(
+    "delv_least_compass_dependent",
+    f"DELV's loss <= the others' - {LOSS_TOL:.0f} points, its rise <= theirs - "
+    f"{TIE_DEG:.0f}°; nobody losing: cannot tell; every decidable visual-compass part contradicted: fails",
+)
 def _(get):
     """DELV 'less affected by the accuracy of the heading estimation': under every background its
     catchment loss (true -> visual compass) is below ACV's and ALV's by >= 2 points and its mean-error
@@ -226,8 +235,6 @@ def _(get):
         ours,
         verdict,
         _why(
-            f"DELV's loss <= the others' - {LOSS_TOL:.0f} points, its rise <= theirs - "
-            f"{TIE_DEG:.0f}°; nobody losing: cannot tell; every decidable visual-compass part contradicted: fails",
             why,
         ),
     )
@@ -236,7 +243,10 @@ def _(get):
 SIMILAR_ERR, SIMILAR_CATCH = 10.0, 15.0  # degrees; points (the thesis's own env3 gap is 13.8)
 
 
-@check("delv_acv_similar_without_occlusion")
+@check(
+    "delv_acv_similar_without_occlusion",
+    f"errors within {SIMILAR_ERR:.0f}°, catchments within {SIMILAR_CATCH:.0f} points",
+)
 def _(get):
     """'No big difference' between DELV-compass and ACV with every landmark visible, env1-3: mean
     errors within 10° and catchments (k = 0) within 15 points (the thesis's gaps: 8.0, 3.0, 13.8).
@@ -252,7 +262,6 @@ def _(get):
         "; ".join(cells),
         verdict,
         _why(
-            f"errors within {SIMILAR_ERR:.0f}°, catchments within {SIMILAR_CATCH:.0f} points",
             ""
             if all(p is not False for p in parts[::2])
             else "ACV errs far more somewhere: its corrections are tangential to "

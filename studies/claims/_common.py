@@ -1,13 +1,17 @@
 """The claim-check registry and the helpers the checks share (used by `delvjax.studies.claims`).
 
-CHECKS maps a claim id of `delvjax.studies.thesis.CLAIMS` to its check, a function of `get` (key ->
-number, raising Missing when the study that makes it was not run, Undefined when it ran but recorded
-no value) returning (ours, verdict, why); `@check(claim_id)` registers one. The helpers format numbers and combine parts into a
-verdict. The checks themselves are in `delvjax.studies.claims._ch4` and `delvjax.studies.claims._ch5`.
+`@check(claim_id, tolerance)` registers a claim's check in CHECKED (id -> (check, tolerance)): a function of
+`get` (key -> number, raising Missing when the study that makes it was not run, Undefined when it ran but
+recorded no value) returning (ours, verdict, reasons), and the text of its rule and tolerance.
+`delvjax.studies.claims` joins each with its quote into a `Claim` (`_claim.py`); an id that is no claim of
+`delvjax.studies.thesis.CLAIMS`, or one checked twice, is refused at import. The helpers format numbers
+and combine parts into a verdict. The checks themselves are in `delvjax.studies.claims._ch4` and
+`delvjax.studies.claims._ch5` (and their `_more`, `_occlusion`, `_visual` parts).
 
 Verdicts (VERDICTS): "holds", "partly", "fails", "cannot tell" (also: a number without a value) and
 "n/a" (a study not run).
-Every check states its rule and tolerance in its `why` text (`_why`). A comparison of
+Every why text ends with the claim's rule and tolerance (`why_text`): a check gives only its reasons
+(`_why`). A comparison of
 catchments or success rates whose sides are all at the ceiling (`at_ceiling`: every value
 >= 99 %, or too close to 100 % to show the margin the claim needs) or where no method loses
 anything under the condition the claim is about (`no_loss`) cannot tell the methods apart:
@@ -19,16 +23,28 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-CHECKS: dict[str, Callable] = {}
+from .. import thesis
+
+CHECKED: dict[str, tuple[Callable, str]] = {}  # claim id -> (check, tolerance), filled by @check
+_IDS = frozenset(c["id"] for c in thesis.CLAIMS)
 
 HOLDS, PARTLY, FAILS, CANNOT_TELL, NOT_RUN = "holds", "partly", "fails", "cannot tell", "n/a"
 VERDICTS = (HOLDS, PARTLY, FAILS, CANNOT_TELL, NOT_RUN)
 CEILING = 99.0  # %: a catchment or success rate at or above it has nothing left to lose or gain
 
 
-def check(claim_id: str):
+def check(claim_id: str, tolerance: str):
+    """Register the decorated function as the check of claim `claim_id`, judged by the rule `tolerance`
+    (ValueError for an id that is no claim, or a claim checked twice)."""
+    if claim_id not in _IDS:
+        raise ValueError(f"@check: {claim_id!r} is no claim of delvjax.studies.thesis.CLAIMS")
+    if not tolerance:
+        raise ValueError(f"@check: claim {claim_id!r} needs its rule and tolerance")
+
     def deco(fn):
-        CHECKS[claim_id] = fn
+        if claim_id in CHECKED:
+            raise ValueError(f"@check: claim {claim_id!r} is checked twice ({CHECKED[claim_id][0].__module__})")
+        CHECKED[claim_id] = (fn, tolerance)
         return fn
 
     return deco
@@ -89,10 +105,14 @@ def _combine(parts) -> str:
     return FAILS if not any(known) else PARTLY
 
 
-def _why(rule: str, *reasons: str) -> str:
-    """The why text: the reasons (empty ones left out), then the rule with its tolerance."""
-    text = "; ".join(r for r in reasons if r)
-    return (text + ". " if text else "") + "Rule: " + rule
+def _why(*reasons: str) -> str:
+    """A check's reasons, empty ones left out (`why_text` adds the claim's rule)."""
+    return "; ".join(r for r in reasons if r)
+
+
+def why_text(reasons: str, tolerance: str) -> str:
+    """The why text of a claims row: the check's reasons, then the claim's rule with its tolerance."""
+    return (reasons + ". " if reasons else "") + "Rule: " + tolerance
 
 
 def _opt(get, key):

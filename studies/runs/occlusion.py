@@ -240,8 +240,11 @@ RING_RADIUS_NOTE = (
     "350 / 420 cm ALV keeps 100 / 45 / 10 / 10 % with the north landmark hidden (50 cm grid)."
 )
 FIG5_10_NOTE = (
-    " The thesis disagrees with itself for DELV on env1: Table 5.3 gives 92.01 / 49.11 / 40.3 % for "
-    "k = 0 / 1 / 2, Fig 5.10's caption 92.01 / 82.04 / 59.11 %; both are shown."
+    " The thesis disagrees with itself for DELV on env1: Table 5.3 gives "
+    + " / ".join(f"{v:g}" for v in thesis.CATCHMENT["table5_3"]["env1"]["delv-compass"])
+    + " % for k = 0 / 1 / 2, Fig 5.10's caption "
+    + " / ".join(f"{v:g}" for v in thesis.CATCHMENT["fig5_10"]["env1"]["delv-compass"])
+    + " %; both are shown."
 )
 
 

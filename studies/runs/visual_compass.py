@@ -37,6 +37,8 @@ SIGMAS = (0.0, 5.0, 10.0, 20.0, 30.0, 45.0)
 # centroids from home: env1 42 cm, env2 0 cm, env3 193 cm (all four east).
 WORLDS = ("env1", "env2", "env3")
 STEPS = len(BACKGROUNDS) * 2 + 2 + len(WORLDS) - 1
+FIG5_11 = [thesis.CATCHMENT["fig5_11"]["env1"][m][0] for m in VISUAL]  # the thesis's catchments, DELV/ACV/ALV
+FIG5_11_TEXT = ", ".join(f"{m} {v:.2f}" for m, v in zip(("DELV", "ACV", "ALV"), FIG5_11)) + " %"
 
 
 def heading_error_stats(err_deg: np.ndarray) -> dict:
@@ -184,8 +186,7 @@ def run(ctx) -> None:
         "Catchment and mean error with the visual compass, env1",
         catch_rows,
         source="Figs 5.11-5.12",
-        note="Thesis (Fig 5.11): DELV 74.85, ACV 47.04, ALV 40.68 %. "
-        "default / physical: the rollout rules (docs/model.md §5).",
+        note=f"Thesis (Fig 5.11): {FIG5_11_TEXT}. default / physical: the rollout rules (docs/model.md §5).",
     )
     for world in WORLDS[1:]:
         world_rows += other_world(ctx, world)
@@ -194,7 +195,7 @@ def run(ctx) -> None:
         "Catchment and mean error with the visual compass, env1-3",
         world_rows,
         source="Figs 5.11-5.12",
-        note="The thesis does not say which world Fig 5.11 shows (DELV 74.85, ACV 47.04, ALV 40.68 %); "
+        note=f"The thesis does not say which world Fig 5.11 shows ({FIG5_11_TEXT}); "
         "claims 31 and 32 read env1-3. Landmark centroids from home: env1 42 cm, env2 0 cm, env3 193 cm. "
         "physical: the default run restated (a move ending inside a landmark fails; docs/model.md §5).",
     )
@@ -236,7 +237,7 @@ def run(ctx) -> None:
             edgecolor="black",
             label=bg if bg == "true compass" else f"visual compass, background {bg}",
         )
-    ax.plot(np.arange(3), [74.85, 47.04, 40.68], "k*", ms=12, label="thesis, visual compass (Fig 5.11)")
+    ax.plot(np.arange(3), FIG5_11, "k*", ms=12, label="thesis, visual compass (Fig 5.11)")
     ax.set_xticks(np.arange(3), [LABEL[m] for m in TRUE])
     ax.set_xlabel("method (env1)")
     ax.set_ylabel("catchment area (%)")
