@@ -25,7 +25,8 @@ NOTES           inconsistencies and ambiguities found in the thesis text, each w
 CLAIMS          the qualitative / quantitative claims about the simulation results, each
                 with a verbatim quote (shortened with "..." only), its line, a precise
                 statement of what our results must show for the claim to hold, and the
-                result quantities needed (``quantity:env:method[:detail]``).
+                result quantities needed (``quantity:env:method[:detail]``). Joined with its
+                check and tolerance it is a ``Claim`` of ``delvjax.studies.claims.CLAIMS``.
 
 Keys
 ----
