@@ -26,7 +26,20 @@ from .. import thesis
 from ._claim import Claim, claims
 from ._common import BACKGROUNDS, CANNOT_TELL, CHECKED, ENVS, Missing, Undefined, _n, check, why_text
 
-__all__ = ["BACKGROUNDS", "CHECKS", "CLAIMS", "Claim", "ENVS", "Missing", "Undefined", "check", "evaluate"]
+__all__ = [
+    "BACKGROUNDS",
+    "CHECKS",
+    "CLAIMS",
+    "Claim",
+    "ENVS",
+    "WORLD_FAILS",
+    "WORLD_HOLDS",
+    "Missing",
+    "Undefined",
+    "check",
+    "evaluate",
+    "world_verdict",
+]
 
 _CHECK_MODULES = (
     claims_ch4,
@@ -115,5 +128,35 @@ def evaluate(numbers_by_study: dict[str, dict], settings: dict | None = None) ->
             ours, verdict, why = "", "n/a", f"numbers unusable ({type(exc).__name__}: {exc})"
         row.update(ours=ours, verdict=verdict, why=why)
         row["sample"] = smallest_sample(read, flat, settings)[1] if row["verdict"] != "n/a" else ""
+        row["over_worlds"] = over_worlds(flat, claim["id"])
         rows.append(row)
     return rows
+
+
+WORLD_HOLDS, WORLD_FAILS = 80.0, 20.0  # % of ensemble members: a claim holds at or above, fails at or below
+
+
+def world_verdict(holds_pct: float, ceiling_pct: float) -> str:
+    """The verdict over worlds from the share of members in which a claim's check holds: "cannot tell" when
+    most members cannot tell (a ceiling), holds / fails by WORLD_HOLDS / WORLD_FAILS, else it depends on the
+    world (docs/reproduce.md "Ensembles")."""
+    if ceiling_pct > 50.0:
+        return "cannot tell (most members at a ceiling)"
+    if holds_pct >= WORLD_HOLDS:
+        return "holds"
+    return "fails" if holds_pct <= WORLD_FAILS else "depends on the world"
+
+
+def over_worlds(flat: dict, claim_id: str) -> str:
+    """The claim over the world ensembles (`studies/runs/ensembles.py`, `ensemble:claim:<id>` = [holds %,
+    interval low, high, members, cannot tell %]): its verdict over worlds and "holds in X % of N members
+    [a-b %]"; "" when the ensemble study was not run, "not covered" when the claim's numbers are not among
+    the ensemble's."""
+    if "ensemble:members" not in flat:
+        return ""
+    row = flat.get(f"ensemble:claim:{claim_id}")
+    if not isinstance(row, list) or len(row) != 5:
+        return "not covered (needs numbers the ensembles do not make)"
+    p, lo, hi, n, ceiling = row
+    text = f"{world_verdict(p, ceiling)}: holds in {p:.0f} % of {n:.0f} members [{lo:.0f}-{hi:.0f} %]"
+    return text + (f", {ceiling:.0f} % at a ceiling" if ceiling else "")

@@ -263,6 +263,7 @@ def decided_figure(rows: list[dict]):
         ax.scatter(v[held], 1 + jitter[held], color="tab:green", s=10, label="holds")
         ax.scatter(v[~held], jitter[~held], color="tab:red", s=10, label="does not")
         ax.set_yticks([0, 1], ["no", "yes"])
+        ax.set_ylabel("claim holds in the member")
         ax.set_xlabel(f"{d['family']}: {d['property']}", fontsize=7)
         ax.set_title(f"claim {r['#']} ({r['holds %']:.0f} %)", fontsize=8)
     fig.tight_layout()
