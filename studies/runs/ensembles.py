@@ -246,6 +246,7 @@ def bands_figure(rows: list[dict]):
         ]
         ax.set_yticks(range(len(panel), 0, -1), labels, fontsize=5)
         ax.set_ylim(0.3, len(panel) + 0.7)
+        ax.set_ylabel("thesis number (source, world, method, hidden k)", fontsize=7)
         ax.set_xlabel("%")
         ax.set_xlim(-2, 102)
         ax.set_title("thesis (x), our 5-95 % band over worlds (bar), median (|), built-in world (o)", fontsize=7)
