@@ -200,7 +200,7 @@ def grid_check_rows(rows: list[dict], flat: dict) -> list[dict]:
                 "built-in, ensemble's grid": r["built-in world"],
                 "shift": shift,
                 "band width": width,
-                "shift < band": bool(shift < width),
+                "shift <= band": bool(shift <= width),
             }
         )
     return out
@@ -213,12 +213,12 @@ def grid_check_text(rows: list[dict], flat: dict) -> str:
         return ""
     shifts = np.array([c["shift"] for c in check])
     widths = np.array([c["band width"] for c in check])
-    inside = int(sum(c["shift < band"] for c in check))
+    inside = int(sum(c["shift <= band"] for c in check))
     return (
         f"The members run on a coarser grid than the point run. On the built-in worlds, the {len(check)} numbers "
         f"move by a median of {np.median(shifts):.1f} points (largest {shifts.max():.1f}) between the point run's "
         f"grid and the ensemble's, against a median band width of {np.median(widths):.1f}: {inside} of "
-        f"{len(check)} shifts are smaller than their band."
+        f"{len(check)} shifts are at most their band's width."
     )
 
 

@@ -115,3 +115,58 @@ def test_a_setting_is_favoured_only_when_it_puts_clearly_more_thesis_numbers_ins
     (r,) = ensembles.settings_rows(alike)
     assert r["the numbers favour"].startswith("neither") and "do not identify" in ensembles.settings_text(alike)
     assert ensembles.settings_rows([{k: v for k, v in favoured[0].items() if not k.startswith(noisy)}]) == []
+
+
+def test_the_grid_check_compares_the_built_in_world_on_both_grids_with_the_band():
+    rows = [
+        {
+            "source": "Table 5.3",
+            "world": "env1",
+            "method": "acv",
+            "k": 1,
+            "quantity": "catchment %",
+            "ours 5 %": 40.0,
+            "ours 95 %": 70.0,
+            "built-in world": 45.7,
+        },
+        {
+            "source": "Table 5.3",
+            "world": "env2",
+            "method": "alv",
+            "k": 0,
+            "quantity": "catchment %",
+            "ours 5 %": 100.0,
+            "ours 95 %": 100.0,
+            "built-in world": 100.0,
+        },
+        {
+            "source": "Table 5.1",
+            "world": "env3",
+            "method": "alv",
+            "k": 0,
+            "quantity": "e>45 %",
+            "ours 5 %": 0.0,
+            "ours 95 %": 1.0,
+            "built-in world": 3.0,
+        },
+        {
+            "source": "Table 5.4",
+            "world": "ring4",
+            "method": "alv",
+            "k": 0,
+            "quantity": "catchment %",
+            "ours 5 %": 0.0,
+            "ours 95 %": 1.0,
+            "built-in world": 3.0,
+        },  # ring4: the point run has no rows of its own
+    ]
+    flat = {
+        "occlusion:env1:acv:catchment": [96.0, 52.0, 25.0],
+        "occlusion:env2:alv:catchment": [100.0],
+        "occlusion:env3:alv:gt45": [0.0],
+    }
+    check = ensembles.grid_check_rows(rows, flat)
+    assert [c["shift"] for c in check] == pytest.approx([6.3, 0.0, 3.0])
+    assert [c["shift <= band"] for c in check] == [True, True, False]
+    assert "2 of 3 shifts are at most their band's width" in ensembles.grid_check_text(rows, flat)
+    assert ensembles.grid_check_text(rows, {}) == ""
