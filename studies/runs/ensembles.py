@@ -117,10 +117,11 @@ def member_numbers(ds, group: Group) -> dict[str, dict]:
     (`occlusion:<family>:<method>:gt45|gt90|catchment` over k, `catchment:<family>:<method>` and
     `map:<family>:<method>:mean_error_deg` at k = 0; under the physical rules the catchments with
     `:physical` appended, as the point run's studies record them). A member's label is `<family>-m<i>`;
-    with several seeds, the label gets `@<seed>`."""
+    with several seeds, the label gets `@<offset>`, the seed's offset from the run's (`Group.seeds`)."""
     out: dict[str, dict] = {}
     tail = group.tail
     seeds = [int(v) for v in np.atleast_1d(ds.seed.values)]
+    offset = dict(zip(seeds, group.seeds))  # the run's seed + offset, in the sweep file's order
     for label in ds.env.values:
         family = str(label).rsplit("-m", 1)[0]
         for seed in seeds:
@@ -135,7 +136,7 @@ def member_numbers(ds, group: Group) -> dict[str, dict]:
                 nums[f"catchment:{family}:{m}{tail}"] = by_k("catchment_pct")[0]
                 if group.collisions != "fail":
                     nums[f"map:{family}:{m}:mean_error_deg{tail}"] = by_k("mean_error_deg")[0]
-            key = str(label) if len(seeds) == 1 else f"{label}@{seed}"
+            key = str(label) if len(seeds) == 1 else f"{label}@{offset[seed]}"
             out.setdefault(key, {}).update(nums)
     return out
 

@@ -170,3 +170,25 @@ def test_the_grid_check_compares_the_built_in_world_on_both_grids_with_the_band(
     assert [c["shift <= band"] for c in check] == [True, True, False]
     assert "2 of 3 shifts are at most their band's width" in ensembles.grid_check_text(rows, flat)
     assert ensembles.grid_check_text(rows, {}) == ""
+
+
+def test_member_numbers_label_extra_seeds_by_their_offset_whatever_the_runs_seed():
+    """The built-in worlds under seeds +1..+4 are found by their offset (`distribution_rows` reads `env1@1`),
+    also when the run's seed is not 0."""
+    import xarray as xr
+
+    from delvjax.studies.runs.ensembles import Group, member_numbers
+
+    group = Group(("env1",), ("acv", "alv"), 1, seeds=(1, 2), members_too=False)
+    shape = (2, 2, 2, 2)  # env, method, occlude, seed
+    dims = ("env", "method", "occlude", "seed")
+    coords = {"env": ["env1", "env1-m0"], "method": ["acv", "alv"], "occlude": [0, 1], "seed": [8, 9]}
+    values = np.arange(16.0).reshape(shape)
+    ds = xr.Dataset(
+        {v: (dims, values) for v in ("catchment_pct", "gt45_pct", "gt90_pct", "mean_error_deg")}, coords=coords
+    )
+    ds = ds.assign_coords(collisions="ignore")
+    out = member_numbers(ds, group)
+    assert sorted(out) == ["env1-m0@1", "env1-m0@2", "env1@1", "env1@2"]
+    assert out["env1@2"]["occlusion:env1:alv:catchment"] == [values[0, 1, 0, 1], values[0, 1, 1, 1]]
+    assert out["env1-m0@1"]["catchment:env1:acv"] == values[1, 0, 0, 0]
