@@ -150,6 +150,8 @@ def run(ctx) -> None:
         for label, nums in member_numbers(ds, group).items():
             worlds.setdefault(label, {}).update(nums)
         ctx.step(", ".join(group.families) + (f" ({group.collisions})" if group.collisions != "ignore" else ""))
+    for _ in range(STEPS - len(groups)):  # a preview: the progress bar still ends at its total
+        ctx.step("the other sweeps: full run only")
     layouts = {
         fam: np.array(
             [[[lm["x"], lm["y"], lm["r"]] for lm in e["landmarks"]] for e in ensemble_envs(fam, members, seed)]
