@@ -236,12 +236,14 @@ def violations(name: str | Family, landmarks, home=DEFAULT_HOME) -> list[str]:
     return [rule for rule, ok in _rules(shifted, fam, np).items() if not bool(ok)]
 
 
-def ensemble_envs(name: str, members: int, seed: int = 0, factor: float = 1.0) -> list[dict]:
-    """The members as docs/model.md §7 dictionaries, named `<family>-m<i>` (seed 0) or
-    `<family>-s<seed>-m<i>` (`<family>x<factor>-...` where `factor` narrows or widens the ranges,
+def ensemble_envs(name: str, members: int, seed: int = 0, factor: float = 1.0, first: int = 0) -> list[dict]:
+    """Members `first` .. `first + members - 1` as docs/model.md §7 dictionaries, named `<family>-m<i>` (seed 0)
+    or `<family>-s<seed>-m<i>` (`<family>x<factor>-...` where `factor` narrows or widens the ranges,
     `Family.scaled`)."""
     fam = family(name) if factor == 1.0 else family(name).scaled(factor)
-    layouts = member_layouts(fam, members, seed)
+    if isinstance(first, bool) or not isinstance(first, (int, np.integer)) or not 0 <= first < MAX_MEMBERS:
+        raise InputError("first", first, f"must be an integer in 0..{MAX_MEMBERS - 1}")
+    layouts = member_layouts(fam, first + members, seed)[first:]
     prefix = (name if factor == 1.0 else fam.name) + ("-m" if seed == 0 else f"-s{seed}-m")
     return [
         {
@@ -250,7 +252,7 @@ def ensemble_envs(name: str, members: int, seed: int = 0, factor: float = 1.0) -
             "home": list(DEFAULT_HOME),
             "landmarks": [{"x": float(x), "y": float(y), "r": float(r)} for x, y, r in lay],
         }
-        for i, lay in enumerate(layouts)
+        for i, lay in enumerate(layouts, start=first)
     ]
 
 

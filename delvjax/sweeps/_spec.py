@@ -23,7 +23,7 @@ from ._kind import KINDS, SweepKind
 # parsed, so that a method registered later brings its settings): see `axes(kind)`.
 SCENE_AXES = {
     "env": "environment: preset name, JSON path, {random = COUNT, landmarks = N | [N, ...], seed = S} or "
-    "{ensemble = FAMILY, members = COUNT, seed = S, factor = F}",
+    "{ensemble = FAMILY, members = COUNT, seed = S, factor = F, first = I}",
     "method": "registry name",
     "spacing": "grid spacing, cm",
     "seed": "seed of headings, release points and noise, 0..2^32-1",
@@ -187,7 +187,7 @@ def _env_labels(raw, random_envs: dict[str, tuple[int, int]], ensemble_envs: dic
     """The env axis with every table replaced by the labels of the worlds it stands for:
     {random = COUNT, landmarks = N or [N, ...], seed = S} by its seeded random layouts
     (`presets.random_env(S + i, N)`: "random<S+i>-<N>", recorded in `random_envs`) and
-    {ensemble = FAMILY, members = COUNT, seed = S, factor = F} by the members of a world family
+    {ensemble = FAMILY, members = COUNT, seed = S, factor = F, first = I} by the members of a world family
     (`envs.ensemble_envs`, docs/model.md §6.1: "env1-m0", ..., recorded in `ensemble_envs`)."""
     items = raw if isinstance(raw, list) else [raw]
     labels = []
@@ -208,7 +208,7 @@ def _random_labels(item: dict, random_envs: dict[str, tuple[int, int]], others: 
             field_,
             item,
             "a table is {random = COUNT, landmarks = N or [N, ...], seed = S} or "
-            "{ensemble = FAMILY, members = COUNT, seed = S, factor = F}",
+            "{ensemble = FAMILY, members = COUNT, seed = S, factor = F, first = I}",
         )
     count, seed = item["random"], item.get("seed", 0)
     counts = item["landmarks"] if isinstance(item["landmarks"], list) else [item["landmarks"]]
@@ -235,13 +235,18 @@ def _random_labels(item: dict, random_envs: dict[str, tuple[int, int]], others: 
 
 def _ensemble_labels(item: dict, others: int, ensemble_envs: dict[str, dict]) -> list[str]:
     field_ = "axes.env"
-    unknown = sorted(set(item) - {"ensemble", "members", "seed", "factor"}, key=str)
+    unknown = sorted(set(item) - {"ensemble", "members", "seed", "factor", "first"}, key=str)
     if unknown or "members" not in item:
         what = f"unknown key {unknown[0]!r}" if unknown else "members is missing"
         raise InputError(
-            field_, item, f"{what}: an ensemble is {{ensemble = FAMILY, members = COUNT, seed = S, factor = F}}"
+            field_,
+            item,
+            f"{what}: an ensemble is {{ensemble = FAMILY, members = COUNT, seed = S, factor = F, first = I}}",
         )
     members, seed, factor = item["members"], item.get("seed", 0), item.get("factor", 1.0)
+    first = item.get("first", 0)
+    if isinstance(first, bool) or not isinstance(first, int) or first < 0:
+        raise InputError(f"{field_}.first", first, "must be an integer >= 0 (the first member's index)")
     if not isinstance(item["ensemble"], str) or item["ensemble"] not in FAMILIES:
         raise InputError(f"{field_}.ensemble", item["ensemble"], f"must be a world family ({', '.join(FAMILIES)})")
     if isinstance(members, bool) or not isinstance(members, int) or members < 1:
@@ -250,9 +255,9 @@ def _ensemble_labels(item: dict, others: int, ensemble_envs: dict[str, dict]) ->
         raise InputError(f"{field_}.seed", seed, "must be an integer >= 0")
     if isinstance(factor, bool) or not isinstance(factor, (int, float)) or not 0 < factor <= 2:
         raise InputError(f"{field_}.factor", factor, "must be a number in (0, 2] (1: the family's own ranges)")
-    if members + len(ensemble_envs) + others > RANDOM_ENVS:
+    if members + first + len(ensemble_envs) + others > RANDOM_ENVS:
         raise InputError(field_, item, f"asks for more than {RANDOM_ENVS} generated layouts")
-    worlds = ensemble_envs_of(item["ensemble"], members, seed, float(factor))
+    worlds = ensemble_envs_of(item["ensemble"], members, seed, float(factor), first)
     for w in worlds:
         ensemble_envs[w["name"]] = w
     return [w["name"] for w in worlds]

@@ -15,6 +15,7 @@ where they hold from those where they fail.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -83,6 +84,7 @@ QUICK_GROUPS = (Group(("env1", "env2", "env3"), EVERY_METHOD, 2),)  # a preview:
 STEPS = len(GROUPS)
 MEMBERS = 44  # full run: members per family (Wilson 95 % half-width <= 14.6 points at any share)
 QUICK_MEMBERS = 2
+SEED_SLICES = 4  # a full run's members run in this many slices, each under its own seed (`sweep_texts`)
 PREVIEW_SPACING = 200.0  # cm: the preview's grid (5 x 5), the test suite's tiny run's too (one program for both)
 # cm: the members' grid (10 x 10). A 25 cm grid costs 16 times as much; the built-in worlds' numbers at 25 cm
 # (the occlusion study) beside those at this spacing show what the coarse grid moves (docs/reproduce.md "Ensembles")
@@ -98,18 +100,33 @@ def plan(ctx) -> tuple[tuple, int, float]:
     return GROUPS, MEMBERS, SPACING
 
 
-def sweep_text(group: Group, members: int, spacing: float, seed: int) -> str:
-    """The catchment sweep file of one group (docs/sweeps.md; the members are `{ensemble = ...}` tables)."""
-    envs = [f'{{ensemble = "{f}", members = {members}, seed = {seed}}}' for f in group.families if group.members_too]
-    envs += [f'"{f}"' for f in group.families]
+def sweep_texts(group: Group, members: int, spacing: float, seed: int, slices: int = SEED_SLICES) -> list[str]:
+    """The catchment sweep files of one group (docs/sweeps.md; the members are `{ensemble = ...}` tables). The
+    members are cut into `slices` slices, slice j under the run's seed + j (with the group's offsets): the
+    noise and release headings of a member are never those of every other (issue 52: "noisy settings are never
+    reported from one seed"); the built-in worlds run in the first slice. Layouts come from the run's seed."""
     quoted = lambda names: "[" + ", ".join(f'"{n}"' for n in names) + "]"  # noqa: E731
-    return (
-        '[sweep]\nkind = "catchment"\nmetrics = ["catchment_pct", "gt45_pct", "gt90_pct", "mean_error_deg"]\n'
-        f"[axes]\nenv = [{', '.join(envs)}]\nmethod = {quoted(group.methods)}\n"
-        f"occlude = {list(range(group.k_max + 1))}\nspacing = [{spacing}]\n"
-        f"seed = {[seed + s for s in group.seeds]}\ncollisions = {quoted([group.collisions])}\n"
-        f"bearing_noise_deg = [{group.bearing_noise_deg}]\n"
-    )
+    slices = slices if group.members_too else 1
+    size = -(-members // slices)
+    texts = []
+    for j in range(slices):  # a handful of sweep calls of one program: input preparation
+        first, count = j * size, min(size, members - j * size)
+        envs = [
+            f'{{ensemble = "{f}", members = {count}, first = {first}, seed = {seed}}}'
+            for f in group.families
+            if group.members_too and count > 0
+        ]
+        envs += [f'"{f}"' for f in group.families] if j == 0 else []
+        if not envs:
+            continue
+        texts.append(
+            '[sweep]\nkind = "catchment"\nmetrics = ["catchment_pct", "gt45_pct", "gt90_pct", "mean_error_deg"]\n'
+            f"[axes]\nenv = [{', '.join(envs)}]\nmethod = {quoted(group.methods)}\n"
+            f"occlude = {list(range(group.k_max + 1))}\nspacing = [{spacing}]\n"
+            f"seed = {[seed + j + s for s in group.seeds]}\ncollisions = {quoted([group.collisions])}\n"
+            f"bearing_noise_deg = [{group.bearing_noise_deg}]\n"
+        )
+    return texts
 
 
 def member_numbers(ds, group: Group) -> dict[str, dict]:
@@ -121,9 +138,10 @@ def member_numbers(ds, group: Group) -> dict[str, dict]:
     out: dict[str, dict] = {}
     tail = group.tail
     seeds = [int(v) for v in np.atleast_1d(ds.seed.values)]
-    offset = dict(zip(seeds, group.seeds))  # the run's seed + offset, in the sweep file's order
+    offset = dict(zip(seeds, group.seeds))  # the run's seed + offset, in the sweep file's order (first slice)
     for label in ds.env.values:
-        family = str(label).rsplit("-m", 1)[0]
+        label = re.sub(r"-s\d+-m(\d+)$", r"-m\1", str(label))  # members by index whatever the layouts' seed
+        family = label.rsplit("-m", 1)[0]
         for seed in seeds:
             nums: dict = {}
             for m in group.methods:
@@ -145,10 +163,11 @@ def run(ctx) -> None:
     groups, members, spacing = plan(ctx)
     seed = ctx.settings.seed
     worlds: dict[str, dict] = {}
-    for group in groups:  # seven sweeps, four programs (the noise and extra seeds share the first one's)
-        ds = run_sweep(parse_sweep(sweep_text(group, members, spacing, seed), "ensembles"), lanes=ctx.settings.lanes)
-        for label, nums in member_numbers(ds, group).items():
-            worlds.setdefault(label, {}).update(nums)
+    for group in groups:  # seven groups, four programs (the noise and extra seeds share the first one's)
+        for text in sweep_texts(group, members, spacing, seed, 1 if groups is QUICK_GROUPS else SEED_SLICES):
+            ds = run_sweep(parse_sweep(text, "ensembles"), lanes=ctx.settings.lanes)
+            for label, nums in member_numbers(ds, group).items():
+                worlds.setdefault(label, {}).update(nums)
         ctx.step(", ".join(group.families) + (f" ({group.collisions})" if group.collisions != "ignore" else ""))
     for _ in range(STEPS - len(groups)):  # a preview: the progress bar still ends at its total
         ctx.step("the other sweeps: full run only")

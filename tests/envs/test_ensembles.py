@@ -119,6 +119,8 @@ def test_ensemble_envs_are_valid_environments_with_member_names():
     assert [w["name"] for w in worlds] == ["ring5-s2-m0", "ring5-s2-m1", "ring5-s2-m2"]
     assert [w["name"] for w in ensemble_envs("env2", 2)] == ["env2-m0", "env2-m1"]
     assert ensemble_envs("env2", 1, factor=0.5)[0]["name"] == "env2x0.5-m0"
+    sliced = ensemble_envs("env2", 2, first=3)  # members 3 and 4: the same as in a run of five
+    assert sliced == ensemble_envs("env2", 5)[3:] and [w["name"] for w in sliced] == ["env2-m3", "env2-m4"]
     for w in worlds:
         assert env_from_dict(w).n_landmarks == 5
 

@@ -213,6 +213,7 @@ def test_ensemble_members_on_the_env_axis_are_the_family_members():
         ("{ensemble = 'env1', members = 2, factor = 0}", "axes.env.factor"),
         ("{ensemble = 'env1', members = 2, factor = 'wide'}", "axes.env.factor"),
         ("{ensemble = 'env1', members = 2, colour = 1}", "axes.env"),
+        ("{ensemble = 'env1', members = 2, first = -1}", "axes.env.first"),
         ("{ensemble = 'env1', members = 100000}", "axes.env"),
     ],
 )
