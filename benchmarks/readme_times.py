@@ -66,20 +66,23 @@ def machine() -> dict:
 def render(key: str, data: dict) -> str:
     """The README's sentence for `key`, from the measured numbers only."""
     m, t = data["machine"], data["times"]
-    where = f"{m['cores']} CPU cores ({m['cpu']}), {m['date']}"
+
+    def where(entry: dict) -> str:  # each time with the date it was measured (a run without --tests keeps the tests')
+        return f"{m['cores']} CPU cores ({m['cpu']}), {entry.get('date', m['date'])}"
+
     if key == "quick":
         first, cached, help_ = t["quick_first"], t["quick_cached"], t["help"]
         return (
             f"{first['seconds']:.0f} s on a first run with an empty compilation cache, {cached['seconds']:.0f} s "
             f"with the cache warm (peak memory {first['peak_mb'] / 1024:.1f} GB); `delvjax --help` answers in "
-            f"{help_['seconds']:.1f} s; measured by `python benchmarks/readme_times.py` on {where}"
+            f"{help_['seconds']:.1f} s; measured by `python benchmarks/readme_times.py` on {where(first)}"
         )
     if key == "tests":
         tests = t["tests"]
         return (
             f"{tests['seconds'] / 60:.0f} minutes ({tests['seconds']:.0f} s with an empty compilation cache, peak "
             f"memory {tests['peak_mb'] / 1024:.1f} GB), measured by `python benchmarks/readme_times.py --tests` "
-            f"on {where}"
+            f"on {where(tests)}"
         )
     raise KeyError(key)
 
@@ -105,13 +108,18 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         cache = {"DELVJAX_CACHE_DIR": str(Path(tmp) / "cache")}
         out = str(Path(tmp) / "results")
-        times["quick_first"] = measure([*delvjax, "reproduce", "--quick", "--out", out], cache)
-        times["quick_cached"] = measure([*delvjax, "reproduce", "--quick", "--force", "--out", out], cache)
+        today = datetime.date.today().isoformat()
+        times["quick_first"] = {**measure([*delvjax, "reproduce", "--quick", "--out", out], cache), "date": today}
+        times["quick_cached"] = {
+            **measure([*delvjax, "reproduce", "--quick", "--force", "--out", out], cache),
+            "date": today,
+        }
         if args.tests:
             own = "--ignore=tests/test_readme_times.py"  # it reads the file this run writes
-            times["tests"] = measure(
-                [sys.executable, "-m", "pytest", own], {"DELVJAX_CACHE_DIR": str(Path(tmp) / "c2")}
-            )
+            times["tests"] = {
+                **measure([sys.executable, "-m", "pytest", own], {"DELVJAX_CACHE_DIR": str(Path(tmp) / "c2")}),
+                "date": today,
+            }
     data["machine"] = machine()
     RESULTS.write_text(json.dumps(data, indent=1) + "\n")
     print(f"{'what':14s} {'seconds':>8s} {'peak MB':>8s}")
