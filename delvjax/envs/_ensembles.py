@@ -159,8 +159,7 @@ def _rules(xyr, fam: Family, xp):
         "home_gap": xp.all(dist - r >= fam.home_gap + eps, axis=-1),
         "off_line": xp.all(off_line >= fam.off_line_deg + eps, axis=-1),
     }
-    order = xp.sort(xp.mod(bearing, 2 * math.pi), axis=-1)
-    gaps = xp.degrees(xp.diff(xp.concatenate([order, order[..., :1] + 2 * math.pi], axis=-1), axis=-1))
+    gaps = angular_gaps_deg(bearing, xp)
     if fam.kind == "around":
         rules["around"] = xp.max(gaps, axis=-1) < 180.0 - eps
         rules["asymmetric"] = _asymmetry(rel, xp) > fam.asymmetry_cm + eps
@@ -171,6 +170,12 @@ def _rules(xyr, fam: Family, xp):
         if fam.kind == "ring":
             rules["common_distance_radius"] = (xp.ptp(dist, axis=-1) < 0.1) & (xp.ptp(r, axis=-1) < 0.02)
     return rules
+
+
+def angular_gaps_deg(bearing, xp):
+    """(..., n) the angular gaps (degrees) between consecutive bearings (radians) seen from home, around the circle."""
+    order = xp.sort(xp.mod(bearing, 2 * math.pi), axis=-1)
+    return xp.degrees(xp.diff(xp.concatenate([order, order[..., :1] + 2 * math.pi], axis=-1), axis=-1))
 
 
 def _asymmetry(rel, xp):
@@ -274,11 +279,10 @@ def world_properties(layouts) -> dict[str, np.ndarray]:
     rel = xyr[..., :2] - np.asarray(DEFAULT_HOME)
     dist = np.hypot(rel[..., 0], rel[..., 1])
     bearing = np.mod(np.arctan2(rel[..., 1], rel[..., 0]), 2 * math.pi)
-    order = np.sort(bearing, axis=-1)
-    gaps = np.diff(np.concatenate([order, order[..., :1] + 2 * math.pi], axis=-1), axis=-1)
+    gaps = angular_gaps_deg(bearing, np)
     return {
         "centroid_cm": np.hypot(*rel.mean(axis=-2).T),
-        "largest_gap_deg": np.degrees(gaps.max(axis=-1)),
+        "largest_gap_deg": gaps.max(axis=-1),
         "nearest_cm": dist.min(axis=-1),
         "farthest_cm": dist.max(axis=-1),
         "radius_ratio": xyr[..., 2].max(axis=-1) / xyr[..., 2].min(axis=-1),
