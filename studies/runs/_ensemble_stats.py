@@ -225,16 +225,19 @@ def grid_check_text(rows: list[dict], flat: dict) -> str:
 # --- claims over the members ------------------------------------------------------------------------
 
 
-def claim_rows(worlds: dict[str, dict], members: int, layouts: dict[str, np.ndarray]) -> list[dict]:
+def claim_rows(
+    worlds: dict[str, dict], members: int, layouts: dict[str, np.ndarray], ids: set[str] | None = None
+) -> list[dict]:
     """Per claim whose check reads only numbers the ensemble makes: the verdict in each member (member i =
     the i-th world of every family), the share that holds with its Wilson interval, the ensemble verdict
-    and, where it depends on the world, the deciding property."""
+    and, where it depends on the world, the deciding property. `ids`: only these claims (a study of the
+    ensembles judges the claims it covers; two studies never record the same `ensemble:claim:<id>`)."""
     props = {fam: world_properties(lay) for fam, lay in layouts.items()}
     families = sorted({label.rsplit("-m", 1)[0] for label in worlds if "-m" in label})
     rows = []
     for number, claim in enumerate(thesis.CLAIMS, 1):
         fn = CHECKS.get(claim["id"])
-        if fn is None:
+        if fn is None or (ids is not None and claim["id"] not in ids):
             continue
         verdicts, read = [], set()
         for i in range(members):

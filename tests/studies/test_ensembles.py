@@ -192,3 +192,10 @@ def test_member_numbers_label_extra_seeds_by_their_offset_whatever_the_runs_seed
     assert sorted(out) == ["env1-m0@1", "env1-m0@2", "env1@1", "env1@2"]
     assert out["env1@2"]["occlusion:env1:alv:catchment"] == [values[0, 1, 0, 1], values[0, 1, 1, 1]]
     assert out["env1-m0@1"]["catchment:env1:acv"] == values[1, 0, 0, 0]
+
+
+def test_a_study_judges_only_the_claims_it_names():
+    worlds = {f"{e}-m{i}": world(40.0) for e in ENVS for i in range(5)}
+    assert CLAIM in {r["id"] for r in ensembles.claim_rows(worlds, 5, {})}
+    assert ensembles.claim_rows(worlds, 5, {}, ids={"another_claim"}) == []
+    assert [r["id"] for r in ensembles.claim_rows(worlds, 5, {}, ids={CLAIM})] == [CLAIM]
