@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import sys
 
 
@@ -16,3 +17,14 @@ class InputError(ValueError):
 def warn(msg: str) -> None:
     """One line on stderr for a result that is valid but probably not what was meant, or for work redone."""
     print(f"delvjax: warning: {msg}", file=sys.stderr, flush=True)
+
+
+def is_finite_number(value: object) -> bool:
+    """An int or float (not a bool) that is finite as a float: an int beyond float range (JSON, YAML and TOML
+    allow any number of digits) is not, and is refused instead of raising OverflowError."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return False
+    try:
+        return math.isfinite(float(value))
+    except OverflowError:
+        return False

@@ -3,18 +3,15 @@ read: a malformed value is one line naming the file, the field and the value, be
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
-from ..core.errors import InputError
+from ..core.errors import InputError, is_finite_number
 
 
 def _numbers(value, n: int | None) -> bool:
     """A list of finite numbers (of length n, if given)."""
     return (
-        isinstance(value, (list, tuple))
-        and (n is None or len(value) == n)
-        and all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value)
+        isinstance(value, (list, tuple)) and (n is None or len(value) == n) and all(is_finite_number(v) for v in value)
     )
 
 

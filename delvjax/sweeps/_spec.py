@@ -11,7 +11,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from ..core.errors import InputError
+from ..core.errors import InputError, is_finite_number
 from ..core.rollouts.rules import DEFAULT_DISTANCES, TRIALS_PER_DISTANCE
 from ..envs._ensembles import FAMILIES
 from ..envs._ensembles import ensemble_envs as ensemble_envs_of
@@ -142,10 +142,7 @@ def _values(name: str, raw, field: str | None = None) -> list:
         if unknown or "start" not in raw or "stop" not in raw or ("step" in raw and "num" in raw):
             raise InputError(field, raw, "a range is {start, stop, step} or {start, stop, num}")
         start, stop = raw["start"], raw["stop"]
-        if not all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-            for v in (start, stop, raw.get("step", 1), raw.get("num", 2))
-        ):
+        if not all(is_finite_number(v) for v in (start, stop, raw.get("step", 1), raw.get("num", 2))):
             raise InputError(field, raw, "range bounds must be finite numbers")
         if "num" in raw:
             num = raw["num"]

@@ -9,6 +9,7 @@ import math
 import tempfile
 from pathlib import Path
 
+import pytest
 import yaml
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -130,3 +131,21 @@ def test_a_mutated_environment_file_is_read_or_refused(field, value, cut):
     with tempfile.TemporaryDirectory() as d:
         (Path(d) / "e.json").write_text(text[:cut] if cut is not None else text)
         refused_or_read(load_env, Path(d) / "e.json")
+
+
+def test_an_integer_beyond_float_range_is_refused_not_overflowed():
+    """Found by the mutation test above (1 run in ~20): `spacing_cm: 10**400` raised OverflowError from
+    math.isfinite instead of InputError; a sweep range's bounds had the same escape."""
+    with tempfile.TemporaryDirectory() as d:
+        folder = Path(d) / "db"
+        folder.mkdir()
+        good = [ROW.format(x=900 + 200 * i, y=900, i=i) for i in range(3)]
+        (folder / ENTRIES).write_text("\n".join([HEADER, *good]) + "\n", encoding="utf-8")
+        meta = dict(METADATA_BLOCK, spacing_cm=10**400)
+        (folder / METADATA).write_text("%YAML:1.0\n---\n" + yaml.safe_dump({"metadata": {"delvjax": meta}}))
+        with pytest.raises(InputError, match="spacing_cm"):
+            read_index(folder)
+        text = EXAMPLE.replace("[axes]", "[axes]\nturn_noise_deg = {start = " + str(10**400) + ", stop = 1}", 1)
+        (Path(d) / "s.toml").write_text(text)
+        with pytest.raises(InputError, match="axes.turn_noise_deg"):
+            read_sweep(Path(d) / "s.toml")
