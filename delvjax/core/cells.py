@@ -34,6 +34,13 @@ class CellMetrics(eqx.Module):
     error_sq_sum: Array
 
 
+def _errors(env, inc, method, sensor, key, points):
+    """One cell's per-point angular errors (P,) (degrees; invalid = 180), as `maps.vector_map` computes them."""
+    headings = random_headings(key, points.shape[0])
+    direction, valid = homing_directions(env, points, headings, key, sensor, method)
+    return angular_error_deg(direction, valid, points, env.home), valid
+
+
 @jax.jit
 def map_cells(
     envs: Env, points: Array, included: Array, methods: HomingMethod, sensors: Sensor, keys: Array
@@ -44,9 +51,7 @@ def map_cells(
 
     def one(cell):
         env, inc, method, sensor, key = cell
-        headings = random_headings(key, points.shape[0])
-        direction, valid = homing_directions(env, points, headings, key, sensor, method)
-        err = angular_error_deg(direction, valid, points, env.home)
+        err, valid = _errors(env, inc, method, sensor, key, points)
         count = lambda m: jnp.sum(m & inc).astype(jnp.int32)  # noqa: E731
         e = jnp.where(inc, err, 0.0)
         return CellMetrics(
@@ -57,5 +62,20 @@ def map_cells(
             error_sum=jnp.sum(e),
             error_sq_sum=jnp.sum(e * e),
         )
+
+    return jax.lax.map(one, (envs, included, methods, sensors, keys))
+
+
+@jax.jit
+def map_cells_errors(
+    envs: Env, points: Array, included: Array, methods: HomingMethod, sensors: Sensor, keys: Array
+) -> Array:
+    """The per-point angular errors (C, P) of C stacked cells, those `map_cells` sums (degrees; invalid =
+    180; NaN at a point not included): what error curves and regions of the grid (the landmarks' hull)
+    are read from, with the same arguments."""
+
+    def one(cell):
+        env, inc, method, sensor, key = cell
+        return jnp.where(inc, _errors(env, inc, method, sensor, key, points)[0], jnp.nan)
 
     return jax.lax.map(one, (envs, included, methods, sensors, keys))

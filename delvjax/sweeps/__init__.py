@@ -1,6 +1,7 @@
 """Sweeps (docs/sweeps.md): a file of axes -> every cell evaluated, one compiled program per
 shape -> labelled results (xarray)."""
 
+from ._points import point_errors as point_errors
 from ._run import load_sweep as load_sweep
 from ._run import run_sweep as run_sweep
 from ._run import save_sweep as save_sweep

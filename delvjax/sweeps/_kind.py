@@ -52,6 +52,9 @@ ERROR_METRICS = {
 CATCHMENT_METRICS = {
     "catchment_pct": "% of counted grid points whose rollout reaches home, mean over the masks (Tables 5.3/5.4; "
     "under first_move = release the points at least d from every wall, docs/model.md section 5)",
+    "catchment_physical_pct": "catchment_pct restated under collisions = fail from the same trials (a trial that "
+    "touches a landmark fails; docs/model.md section 5): under collisions = ignore, the physical rules' catchment "
+    "without a second run",
     "catchment_min_pct": "the same under the worst mask",
     "catchment_max_pct": "the same under the best mask",
     "catchment_points": "grid points counted in the catchment",

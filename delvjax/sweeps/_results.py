@@ -53,6 +53,7 @@ def catchment_metrics(sums: dict) -> dict:
     return {
         **error_metrics(sums, trials),
         "catchment_pct": _pct(sums["successes"], counted),
+        "catchment_physical_pct": _pct(sums["successes_untouched"], counted),
         "catchment_min_pct": _pct(sums["success_min"], points),
         "catchment_max_pct": _pct(sums["success_max"], points),
         "timeout_pct": _pct(sums["timeout"], counted),

@@ -23,7 +23,7 @@ from ..metrics import angular_error_deg
 from ..sensing import record_home
 from .lanes import run_block
 from .release import release_points
-from .rules import ARENA, LANDMARK, SUCCESS, TIMEOUT, rollout_keys
+from .rules import ARENA, LANDMARK, NO_CONTACT, SUCCESS, TIMEOUT, rollout_keys
 from .step import Rollout
 
 
@@ -47,8 +47,9 @@ class CatchmentSums(eqx.Module):
     """Per-cell counts and sums, (C,) each: released grid points (per mask), trials (points x masks),
     the grid points and trials that count in the catchment (`rules.catchment_counted`: under first_move "release"
     grid points at least d from every wall), their successes in total and under the worst and best
-    mask, failures by outcome, moves of the successful trials, and the first directions' (the vector
-    map under each mask, every released point) invalid count, errors > 45 and > 90 degrees, sum and
+    mask, the successes that never touched a landmark (those that also succeed under collisions "fail":
+    `rules.under_collisions`), failures by outcome, moves of the successful trials, and the first directions'
+    (the vector map under each mask, every released point) invalid count, errors > 45 and > 90 degrees, sum and
     sum of squares of the errors (degrees; invalid = 180)."""
 
     points: Array
@@ -56,6 +57,7 @@ class CatchmentSums(eqx.Module):
     counted_points: Array
     counted: Array
     successes: Array
+    successes_untouched: Array
     success_min: Array
     success_max: Array
     timeout: Array
@@ -133,6 +135,7 @@ def catchment_cells(
             counted_points=n_cnt,
             counted=cell.n_masks * n_cnt,
             successes=jnp.sum(per_mask),
+            successes_untouched=jnp.sum(ok & (res.contact == NO_CONTACT)).astype(jnp.int32),
             success_min=jnp.min(jnp.where(used, per_mask, n_cnt)),
             success_max=jnp.max(jnp.where(used, per_mask, 0)),
             timeout=count(res.outcome == TIMEOUT),
