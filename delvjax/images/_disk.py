@@ -192,6 +192,23 @@ def read_index(src: str | Path, conventions: dict | None = None) -> DatabaseInde
     )
 
 
+SIXTEEN_BIT = ("I;16", "I;16L", "I;16B", "I;16N")  # Pillow's modes of a 16-bit grayscale file (PNG, TIFF)
+
+
+def rgb8(im, path: Path) -> np.ndarray:
+    """An RGB uint8 array of an opened Pillow image. A 16-bit (or 32-bit integer holding 16-bit) grayscale image
+    keeps its top 8 bits: Pillow's `convert("RGB")` clips it, so a 16-bit PNG was read as white (issue 53). A
+    floating-point image has no agreed range and is refused."""
+    if im.mode in SIXTEEN_BIT or im.mode == "I":
+        gray = np.asarray(im).astype(np.int64)
+        if gray.min() < 0 or gray.max() > 65535:
+            raise InputError("image", str(path), f"is a {im.mode} image with values outside 0-65535 (not 16-bit)")
+        return np.repeat((gray >> 8).astype(np.uint8)[..., None], 3, axis=-1)
+    if im.mode == "F":
+        raise InputError("image", str(path), "is a floating-point image: save it as 8- or 16-bit")
+    return np.asarray(im.convert("RGB"))
+
+
 def read_image(path: Path) -> np.ndarray:
     """An RGB uint8 array (H, W, 3) of an image file (Pillow), as stored (file column order; `read_images`
     turns panoramas into memory order)."""
@@ -204,7 +221,7 @@ def read_image(path: Path) -> np.ndarray:
             w, h = im.size
             if w * h > MAX_PIXELS:
                 raise Image.DecompressionBombError(f"{w} x {h} pixels")
-            return np.asarray(im.convert("RGB"))
+            return rgb8(im, path)
     except Image.DecompressionBombError as exc:  # from its header, before the pixels are decoded
         size = str(exc) if " x " in str(exc) else "its header's size"
         raise InputError("image", str(path), f"is {size}, more than {MAX_PIXELS} pixels (a panorama is far smaller)")

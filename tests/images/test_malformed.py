@@ -132,3 +132,27 @@ def test_render_into_a_symlinked_empty_folder_writes_into_its_target(tmp_path):
     assert oct((tmp_path / "real").stat().st_mode & 0o777) != "0o700"
     meta = yaml.safe_load((tmp_path / "real" / METADATA).read_text().split("---", 1)[1])
     assert meta["metadata"]["delvjax"]["light_deg"] == [45.0, 50.0]  # the light is recorded
+
+
+@pytest.mark.parametrize("mode", ["I;16", "I"])
+def test_a_16_bit_grayscale_image_keeps_its_grey_levels(tmp_path, mode):
+    """Pillow's convert("RGB") clips a 16-bit grayscale PNG to white: every pixel 255, every point invalid
+    (issue 53). It must read as its top 8 bits, the same grey in the three channels."""
+    from PIL import Image
+
+    levels = np.linspace(0, 65535, 60 * 360).reshape(60, 360).astype(np.uint16)
+    im = Image.fromarray(levels) if mode == "I;16" else Image.fromarray(levels.astype(np.int32), mode="I")
+    path = tmp_path / ("g.png" if mode == "I;16" else "g.tiff")  # Pillow writes mode I as TIFF, not PNG
+    im.save(path)
+    rgb = read_image(path)
+    assert rgb.shape == (60, 360, 3) and rgb.dtype == np.uint8
+    np.testing.assert_array_equal(rgb[..., 0], levels >> 8)
+    np.testing.assert_array_equal(rgb[..., 0], rgb[..., 2])
+
+
+def test_a_floating_point_image_is_refused(tmp_path):
+    from PIL import Image
+
+    Image.fromarray(np.ones((4, 4), np.float32)).save(tmp_path / "f.tiff")
+    with pytest.raises(InputError, match="floating-point"):
+        read_image(tmp_path / "f.tiff")
