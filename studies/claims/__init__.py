@@ -149,14 +149,16 @@ def world_verdict(holds_pct: float, ceiling_pct: float) -> str:
 
 def over_worlds(flat: dict, claim_id: str) -> str:
     """The claim over the world ensembles (`studies/runs/ensembles.py`, `ensemble:claim:<id>` = [holds %,
-    interval low, high, members, cannot tell %]): its verdict over worlds and "holds in X % of N members
-    [a-b %]"; "" when the ensemble study was not run, "not covered" when the claim's numbers are not among
+    interval low, high, members, cannot tell %, partly %]): its verdict over worlds and "holds in X % of N
+    members [a-b %], partly in Y %" (a member where the check says "partly" does not count as holding);
+    "" when the ensemble study was not run, "not covered" when the claim's numbers are not among
     the ensemble's."""
     if "ensemble:members" not in flat:
         return ""
     row = flat.get(f"ensemble:claim:{claim_id}")
-    if not isinstance(row, list) or len(row) != 5:
+    if not isinstance(row, list) or len(row) not in (5, 6):
         return "not covered (needs numbers the ensembles do not make)"
-    p, lo, hi, n, ceiling = row
+    p, lo, hi, n, ceiling, partly = (*row, 0.0)[:6]  # partly: recorded since 2026-12-06
     text = f"{world_verdict(p, ceiling)}: holds in {p:.0f} % of {n:.0f} members [{lo:.0f}-{hi:.0f} %]"
+    text += f", partly in {partly:.0f} %" if partly else ""
     return text + (f", {ceiling:.0f} % at a ceiling" if ceiling else "")

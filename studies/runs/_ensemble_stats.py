@@ -15,6 +15,7 @@ from .. import thesis
 from ..claims import CHECKS, Missing, world_verdict
 from ..claims._common import CANNOT_TELL
 from ..claims._common import HOLDS as HOLDS_TEXT
+from ..claims._common import PARTLY
 
 SEED_SPREAD = (1, 2, 3, 4)  # extra seeds of the built-in worlds: the spread a seed alone makes
 NOISE_DEG = 2.0  # bearing noise (sigma, degrees) of the noisy setting: issue 52 found 2° bring Table 5.1 closest
@@ -263,6 +264,7 @@ def claim_rows(
         n = len(verdicts)
         held = np.array([v == HOLDS_TEXT for v in verdicts])
         ceiling = sum(v == CANNOT_TELL for v in verdicts)
+        partly = sum(v == PARTLY for v in verdicts)
         p = held.mean()
         lo, hi = wilson(int(held.sum()), n)
         verdict = world_verdict(100.0 * p, 100.0 * ceiling / n)
@@ -274,6 +276,7 @@ def claim_rows(
             "95 % interval": f"{100 * lo:.1f}-{100 * hi:.1f}",
             "members": n,
             "cannot tell %": 100.0 * ceiling / n,
+            "partly %": 100.0 * partly / n,
             "verdict over worlds": verdict,
             "decided_by": "",
         }

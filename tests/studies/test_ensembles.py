@@ -199,3 +199,13 @@ def test_a_study_judges_only_the_claims_it_names():
     assert CLAIM in {r["id"] for r in ensembles.claim_rows(worlds, 5, {})}
     assert ensembles.claim_rows(worlds, 5, {}, ids={"another_claim"}) == []
     assert [r["id"] for r in ensembles.claim_rows(worlds, 5, {}, ids={CLAIM})] == [CLAIM]
+
+
+def test_a_claim_that_partly_holds_says_so_over_the_worlds():
+    """A check saying "partly" in a member does not count as holding it; the column says how often it partly
+    holds, so "fails" is never read as "contradicted everywhere" when the claim half-holds in most worlds."""
+    flat = {"ensemble:members": 44, f"ensemble:claim:{CLAIM}": [2.3, 0.4, 11.8, 44, 0.0, 75.0]}
+    assert claims.over_worlds(flat, CLAIM) == "fails: holds in 2 % of 44 members [0-12 %], partly in 75 %"
+    worlds = {f"{e}-m{i}": world(40.0 if i < 2 else 1.0) for e in ENVS for i in range(5)}
+    row = {r["id"]: r for r in ensembles.claim_rows(worlds, 5, {})}[CLAIM]
+    assert row["holds %"] == 40.0 and row["partly %"] == 0.0
