@@ -201,6 +201,7 @@ def ensemble_section(records: dict, flat: dict) -> list[str]:
     if rec is None or "ensemble:members" not in rec.numbers:
         return []
     from ..studies.runs._ensemble_stats import grid_check_text  # the studies: loaded only when a report is written
+    from ..studies.runs._ensemble_gaps import gaps_text
 
     rows = next((t["rows"] for t in rec.tables if t["id"] == "thesis_numbers_over_worlds"), [])
     inside, total = rec.numbers.get("ensemble:thesis_inside_band", [0, 0])
@@ -210,6 +211,8 @@ def ensemble_section(records: dict, flat: dict) -> list[str]:
         "inside our 5-95 % band over the worlds; the claims' *over worlds* column above and the study's tables give "
         "each number's percentile and each claim's share. " + grid_check_text(rows, flat)
     )
+    if any("gap cause" in r for r in rows):  # why the others lie outside (studies/runs/_ensemble_gaps.py)
+        text += " " + gaps_text(rows)
     return ["### Over the worlds the thesis's words allow", text]
 
 
