@@ -1,8 +1,8 @@
 """World ensembles: every layout the thesis's words allow for each of its worlds (docs/model.md §6.1).
 
 The thesis describes its environments in words only (thesis §4.2, line 518-530; §5.3.1, Tables
-5.2/5.4), so a claim about them is judged over a family of layouts consistent with the words
-(SPEC §8). A family draws its members with `jax.random`: member `i` of seed `s` comes from the key
+5.2/5.4; the robot arena of §4.4.1), so a claim about them is judged over a family of layouts consistent
+with the words (SPEC §8). A family draws its members with `jax.random`: member `i` of seed `s` comes from the key
 `fold_in(PRNGKey(s), i)` alone, so a member does not depend on how many are asked for. Each member
 is the first of `CANDIDATES` candidate layouts that satisfies every rule of its family; all
 members' candidates are drawn and checked as one array program (vmap over members and candidates).
@@ -40,7 +40,8 @@ class Family:
     "around" (independent, largest gap seen from home < 180°, no rotation by 90/180/270° about home
     within `asymmetry_cm` of the layout), "square" (90° apart, one common rotation), "side" (within a
     `sector_deg` sector, so home lies outside the hull) or "ring" (equally spaced, one common
-    distance and radius)."""
+    distance and radius). `home` and `arena` are the world's (the default's; the robot family's
+    180 cm arena, `in_arena`)."""
 
     name: str
     kind: str
@@ -54,19 +55,43 @@ class Family:
     off_line_deg: float = 20.0
     asymmetry_cm: float = 50.0
     sector_deg: float = 150.0
+    home: tuple[float, float] = DEFAULT_HOME
+    arena: tuple[float, float, float, float] = DEFAULT_ARENA
+
+    @property
+    def unit(self) -> float:
+        """The arena's side over the default arena's (1 for the thesis's simulated worlds, 0.18 for the robot's)."""
+        return (self.arena[2] - self.arena[0]) / (DEFAULT_ARENA[2] - DEFAULT_ARENA[0])
 
     def scaled(self, factor: float) -> "Family":
         """The family with its distance and radius ranges narrowed (factor < 1) or widened (> 1) about
-        their centres (SPEC §8: "narrowed or widened by a third"); radii stay > 0."""
+        their centres (SPEC §8: "narrowed or widened by a third"); distances stay >= 60 cm and radii >= 5 cm
+        (times `unit`), which only factors above 1.57 reach."""
         if not (isinstance(factor, (int, float)) and 0 < factor <= 2):
             raise InputError("factor", factor, "must be a number in (0, 2]")
 
         def scale(lo: float, hi: float, floor: float) -> tuple[float, float]:
             mid, half = (lo + hi) / 2, (hi - lo) / 2 * factor
-            return (max(floor, mid - half), mid + half)
+            return (max(floor * self.unit, mid - half), mid + half)
 
         return dataclasses.replace(
             self, distance=scale(*self.distance, 60.0), radius=scale(*self.radius, 5.0), name=f"{self.name}x{factor:g}"
+        )
+
+    def in_arena(self, scale: float) -> "Family":
+        """This family in an arena `scale` times the default's side, home at its centre: every length rule
+        (distances, radii, gaps, asymmetry) times `scale`, angles as they are (SPEC §8's robot family)."""
+        times = lambda pair: (round(pair[0] * scale, 6), round(pair[1] * scale, 6))  # noqa: E731
+        side = (DEFAULT_ARENA[2] - DEFAULT_ARENA[0]) * scale
+        return dataclasses.replace(
+            self,
+            distance=times(self.distance),
+            radius=times(self.radius),
+            surface_gap=round(self.surface_gap * scale, 6),
+            home_gap=round(self.home_gap * scale, 6),
+            asymmetry_cm=round(self.asymmetry_cm * scale, 6),
+            home=(side / 2, side / 2),
+            arena=(0.0, 0.0, side, side),
         )
 
 
@@ -78,6 +103,12 @@ _SQUARE = (
 _SIDE = "thesis §4.2 (line 530): 'all four landmarks in the third environment are cornered to one side of the home'"
 _RING = "thesis §5.3.1 (line 881): 'equally distributed landmarks configuration with different landmark numbers'"
 _SIZES = "thesis §4.2 (line 518): 'four cylindrical landmarks but with different sizes and angular positions'"
+_ROBOT = (
+    "thesis §4.4.1 (line 642): 'Four landmarks are red-colored cylindrical objects, and the experimental environment "
+    "has a total area of 1.8 meters by 1.8 meters'; §4.1 (line 491): 'The environment for simulation experiments were "
+    "set similar to that of a real-world robotic experiment'"
+)
+ROBOT_SCALE = 0.18  # the robot's arena side (180 cm, thesis §4.4.1) over the simulated worlds' (1000 cm, SPEC §1)
 
 # The ring of L = 5 cannot keep every landmark 20° off the home unit move's line (its bearings mod 180° are
 # 36° apart, so the best rotation keeps 18°): that family keeps 15° (docs/model.md §6.1).
@@ -97,6 +128,14 @@ FAMILIES: dict[str, Family] = {
         for n in range(3, 7)
     },
 }
+# The robot arena (SPEC §8, thesis §4.4.1): env1's rules with every length times 0.18, home at the arena's centre
+# (docs/model.md §6.1; the built-in robot world of docs/images.md §8 misses its distance range, tested).
+FAMILIES["robot"] = dataclasses.replace(
+    FAMILIES["env1"].in_arena(ROBOT_SCALE),
+    name="robot",
+    description="four red cylinders around home in the 1.8 m arena, asymmetric",
+    source=f"{_ROBOT}; {_AROUND}",
+)
 
 
 def family(name: str) -> Family:
@@ -127,23 +166,30 @@ def _bearings(key, fam: Family, k: int):
     return jax.random.uniform(key, (k, 1), maxval=spacing) + spacing * jnp.arange(n)
 
 
-def _draw(key, fam: Family, k: int):
+def _ranges(fam: Family, bounds) -> tuple:
+    """(distance lo, hi, radius lo, hi): `bounds` where given (traced, `_first_valid`), else the family's."""
+    return (*fam.distance, *fam.radius) if bounds is None else tuple(bounds[i] for i in range(4))
+
+
+def _draw(key, fam: Family, k: int, bounds=None):
     """(k, n, 3) candidate layouts [x, y, r] and their (k, n) bearings."""
     kb, kd, kr = jax.random.split(key, 3)
+    d0, d1, r0, r1 = _ranges(fam, bounds)
     bearing = _bearings(kb, fam, k)
     common = fam.kind == "ring"
-    dist = _uniform(kd, (k, 1 if common else fam.n), fam.distance) * jnp.ones((k, fam.n))
-    rad = _uniform(kr, (k, 1 if common else fam.n), fam.radius) * jnp.ones((k, fam.n))
-    hx, hy = DEFAULT_HOME
+    dist = _uniform(kd, (k, 1 if common else fam.n), (d0, d1)) * jnp.ones((k, fam.n))
+    rad = _uniform(kr, (k, 1 if common else fam.n), (r0, r1)) * jnp.ones((k, fam.n))
+    hx, hy = fam.home
     xy = jnp.stack([hx + dist * jnp.cos(bearing), hy + dist * jnp.sin(bearing)], axis=-1)
     return jnp.concatenate([jnp.round(xy * 100) / 100, jnp.round(rad[..., None] * 100) / 100], axis=-1)
 
 
-def _rules(xyr, fam: Family, xp):
+def _rules(xyr, fam: Family, xp, bounds=None):
     """Per layout (..., n, 3): a dict of rule -> bool (..., ) that the layout keeps, written once for
-    both jnp (drawing) and numpy (`violations`); `eps` is the margin kept from every bound."""
+    both jnp (drawing) and numpy (`violations`); `eps` is the margin kept from every bound; `bounds` as `_draw`."""
     eps = EPS if xp is jnp else 0.0
-    home = xp.asarray(DEFAULT_HOME)
+    d0, d1, r0, r1 = _ranges(fam, bounds)
+    home = xp.asarray(fam.home)
     rel = xyr[..., :2] - home
     dist = xp.sqrt(xp.sum(rel**2, axis=-1))
     r = xyr[..., 2]
@@ -153,8 +199,8 @@ def _rules(xyr, fam: Family, xp):
     centres = xp.sqrt(xp.sum((xyr[..., i, :2] - xyr[..., j, :2]) ** 2, axis=-1))
     off_line = xp.degrees(xp.arcsin(xp.clip(xp.abs(xp.sin(bearing)), 0.0, 1.0)))
     rules = {
-        "distance": xp.all((dist >= fam.distance[0] + eps) & (dist <= fam.distance[1] - eps), axis=-1),
-        "radius": xp.all((r >= fam.radius[0] - 0.01) & (r <= fam.radius[1] + 0.01), axis=-1),
+        "distance": xp.all((dist >= d0 + eps) & (dist <= d1 - eps), axis=-1),
+        "radius": xp.all((r >= r0 - 0.01) & (r <= r1 + 0.01), axis=-1),
         "surface_gap": xp.all(centres - r[..., i] - r[..., j] >= fam.surface_gap + eps, axis=-1),
         "home_gap": xp.all(dist - r >= fam.home_gap + eps, axis=-1),
         "off_line": xp.all(off_line >= fam.off_line_deg + eps, axis=-1),
@@ -193,13 +239,15 @@ def _asymmetry(rel, xp):
     return xp.min(xp.stack(worst, axis=-1), axis=-1)
 
 
-@partial(jax.jit, static_argnames=("fam",))
-def _first_valid(keys, fam: Family):
-    """For each member key: its first valid candidate (n, 3) and whether one was found."""
+@partial(jax.jit, static_argnames=("shape",))
+def _first_valid(keys, shape: Family, bounds):
+    """For each member key: its first valid candidate (n, 3) and whether one was found. `shape` is the family
+    without its ranges (static), `bounds` its [distance lo, hi, radius lo, hi] (traced): a family narrowed or
+    widened (`Family.scaled`) runs the program of its default."""
 
     def one(key):
-        cands = _draw(key, fam, CANDIDATES)
-        ok = jnp.all(jnp.stack(list(_rules(cands, fam, jnp).values())), axis=0)
+        cands = _draw(key, shape, CANDIDATES, bounds)
+        ok = jnp.all(jnp.stack(list(_rules(cands, shape, jnp, bounds).values())), axis=0)
         first = jnp.argmax(ok)
         return cands[first], ok[first]
 
@@ -213,13 +261,15 @@ def member_layouts(name: str | Family, members: int, seed: int = 0) -> np.ndarra
         raise InputError("members", members, f"must be an integer in 1..{MAX_MEMBERS}")
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise InputError("seed", seed, "must be an integer >= 0")
+    shape = dataclasses.replace(fam, name="", distance=(0.0, 0.0), radius=(0.0, 0.0))  # one program per shape
+    bounds = jnp.asarray([*fam.distance, *fam.radius], jnp.float32)
     base = jax.random.PRNGKey(int(seed))
     keys = jax.vmap(lambda i: jax.random.fold_in(base, i))(jnp.arange(members))
     out = np.zeros((members, fam.n, 3))
     todo = np.ones(members, bool)
     for rnd in range(ROUNDS):  # rounds of candidates, not a loop over members
         round_keys = keys if rnd == 0 else jax.vmap(lambda k: jax.random.fold_in(k, rnd))(keys)
-        layout, ok = (np.asarray(a) for a in _first_valid(round_keys, fam))
+        layout, ok = (np.asarray(a) for a in _first_valid(round_keys, shape, bounds))
         take = todo & ok
         out[take] = layout[take]
         todo &= ~ok
@@ -230,14 +280,16 @@ def member_layouts(name: str | Family, members: int, seed: int = 0) -> np.ndarra
     return out.round(2)
 
 
-def violations(name: str | Family, landmarks, home=DEFAULT_HOME) -> list[str]:
-    """The rules of family `name` that a layout (rows x, y, r; home as given) breaks: [] for a member."""
+def violations(name: str | Family, landmarks, home=None) -> list[str]:
+    """The rules of family `name` that a layout (rows x, y, r; home as given, else the family's) breaks: [] for
+    a member."""
     fam = name if isinstance(name, Family) else family(name)
     xyr = np.asarray(landmarks, float).reshape(-1, 3)
     if xyr.shape[0] != fam.n:
         return [f"landmarks: {xyr.shape[0]}, the family has {fam.n}"]
     shifted = xyr.copy()
-    shifted[:, :2] += np.asarray(DEFAULT_HOME) - np.asarray(home, float)  # the rules are about home
+    if home is not None:  # the rules are about home
+        shifted[:, :2] += np.asarray(fam.home) - np.asarray(home, float)
     return [rule for rule, ok in _rules(shifted, fam, np).items() if not bool(ok)]
 
 
@@ -253,8 +305,8 @@ def ensemble_envs(name: str, members: int, seed: int = 0, factor: float = 1.0, f
     return [
         {
             "name": f"{prefix}{i}",
-            "arena": list(DEFAULT_ARENA),
-            "home": list(DEFAULT_HOME),
+            "arena": list(fam.arena),
+            "home": list(fam.home),
             "landmarks": [{"x": float(x), "y": float(y), "r": float(r)} for x, y, r in lay],
         }
         for i, lay in enumerate(layouts, start=first)
@@ -273,10 +325,11 @@ PROPERTIES = {
 }
 
 
-def world_properties(layouts) -> dict[str, np.ndarray]:
-    """(W,) arrays of each of PROPERTIES for layouts (W, n, 3) around the default home."""
+def world_properties(layouts, home=DEFAULT_HOME) -> dict[str, np.ndarray]:
+    """(W,) arrays of each of PROPERTIES for layouts (W, n, 3) around `home` (the default home; a robot member's
+    is its family's, (90, 90))."""
     xyr = np.asarray(layouts, float)
-    rel = xyr[..., :2] - np.asarray(DEFAULT_HOME)
+    rel = xyr[..., :2] - np.asarray(home, float)
     dist = np.hypot(rel[..., 0], rel[..., 1])
     bearing = np.mod(np.arctan2(rel[..., 1], rel[..., 0]), 2 * math.pi)
     gaps = angular_gaps_deg(bearing, np)

@@ -3,6 +3,7 @@ family's description, checked here independently of the generator's own rule cod
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -14,15 +15,23 @@ from delvjax.core.scene import rotation_mismatch
 from delvjax.envs import FAMILIES, ensemble_envs, violations, world_properties
 from delvjax.envs._ensembles import family, member_layouts
 from delvjax.envs._presets import PRESETS, env_from_dict
+from delvjax.images._worlds import image_world
 
 HOME = np.array([500.0, 500.0])
 MEMBERS = 256
 
 
+def built_in(name: str) -> np.ndarray:
+    """The built-in world of family `name`: a preset, or the robot image world's cylinders (docs/images.md §8)."""
+    if name == "robot":
+        return np.array(image_world("robot").obstacles()["cylinders"], float)
+    return np.array(PRESETS[name], float)
+
+
 def describe(fam, xyr: np.ndarray) -> list[str]:
     """A plain restatement of SPEC §8 for one layout, written without the generator's code: the rules it
     breaks. Asymmetry by `core.scene.rotation_mismatch` (bipartite matching), not by permutations."""
-    rel = xyr[:, :2] - HOME
+    rel = xyr[:, :2] - np.asarray(fam.home)
     dist = np.hypot(rel[:, 0], rel[:, 1])
     bearing = np.degrees(np.arctan2(rel[:, 1], rel[:, 0])) % 360.0
     broken = []
@@ -43,7 +52,7 @@ def describe(fam, xyr: np.ndarray) -> list[str]:
     if fam.kind == "around":
         if gaps.max() >= 180.0:
             broken.append("around")
-        env = delvjax.make_env(xyr)
+        env = delvjax.make_env(xyr, home=fam.home, arena=fam.arena)
         if min(rotation_mismatch(env).values()) <= fam.asymmetry_cm:
             broken.append("asymmetric")
     if fam.kind == "side" and gaps.max() <= 360.0 - fam.sector_deg:
@@ -89,12 +98,66 @@ def test_the_descriptions_can_fail():
 
 
 def test_the_built_in_worlds_are_named_members_except_where_documented():
-    """docs/model.md §6.1: env3's landmark at 19.1° misses the 20° off-line rule by 0.9°; every other
-    built-in world is a member of its family."""
+    """docs/model.md §6.1: env3's landmark at 19.1° misses the 20° off-line rule by 0.9°; the robot world's
+    centres lie 59.4-72.1 cm from home, three beyond the robot family's 63 cm by 0.6, 2.2 and 9.1 cm; every
+    other built-in world is a member of its family."""
+    missing = {"env3": ["off_line"], "robot": ["distance"]}
     for name in FAMILIES:
-        expected = ["off_line"] if name == "env3" else []
-        assert violations(name, np.array(PRESETS[name])) == expected, name
-        assert describe(FAMILIES[name], np.array(PRESETS[name], float)) == expected, name
+        assert violations(name, built_in(name)) == missing.get(name, []), name
+        assert describe(FAMILIES[name], built_in(name)) == missing.get(name, []), name
+    robot = built_in("robot")
+    beyond = np.hypot(*(robot[:, :2] - FAMILIES["robot"].home).T) - FAMILIES["robot"].distance[1]
+    np.testing.assert_allclose(np.sort(beyond[beyond > 0]), [0.64, 2.19, 9.11], atol=0.01)
+    # with the distance range reaching 73 cm it would be a member: no other rule is broken
+    assert violations(dataclasses.replace(FAMILIES["robot"], distance=(27.0, 73.0)), robot) == []
+
+
+def test_the_robot_family_is_env1s_scaled_to_the_robot_arena():
+    """SPEC §8: the 1.8 m arena, the same rules scaled to it (every length times 0.18, angles kept)."""
+    robot, env1 = FAMILIES["robot"], FAMILIES["env1"]
+    assert robot.arena == (0.0, 0.0, 180.0, 180.0) and robot.home == (90.0, 90.0) and robot.kind == env1.kind
+    assert robot.distance == (27.0, 63.0) and robot.radius == (2.7, 9.0)
+    assert (robot.surface_gap, robot.home_gap, robot.asymmetry_cm) == (3.6, 1.8, 9.0)
+    assert robot.off_line_deg == env1.off_line_deg and robot.unit == pytest.approx(0.18)
+    world = ensemble_envs("robot", 2, seed=1)[1]
+    assert world["name"] == "robot-s1-m1" and world["arena"] == [0.0, 0.0, 180.0, 180.0] and world["home"] == [90, 90]
+    assert env_from_dict(world).n_landmarks == 4
+    narrow, wide = robot.scaled(2 / 3), robot.scaled(4 / 3)
+    assert narrow.distance == pytest.approx((33.0, 57.0)) and wide.radius == pytest.approx((1.65, 10.05))
+
+
+def shrunk_env1() -> np.ndarray:
+    """env1's built-in layout shrunk by 0.18 about home into the robot arena (home (500, 500) -> (90, 90))."""
+    return built_in("env1") * 0.18
+
+
+def polar(distance: float, bearing_deg: float, r: float) -> list[float]:
+    """A robot-arena landmark `distance` cm from home (90, 90) at `bearing_deg`, radius `r`."""
+    a = math.radians(bearing_deg)
+    return [90.0 + distance * math.cos(a), 90.0 + distance * math.sin(a), r]
+
+
+# env1 shrunk into the robot arena: bearings 23, 142, -152, -70°, distances 52, 35, 37, 58 cm, radii 3.6-8.1 cm
+ROBOT_BREAKS = {
+    "distance": lambda x: np.r_[x[:3], [polar(66.0, -70.0, 5.0)]],  # 66 cm > 63
+    "radius": lambda x: np.r_[x[:3], [polar(58.0, -70.0, 9.5)]],  # 9.5 cm > 9
+    "surface_gap": lambda x: np.r_[x[:3], [polar(52.0, 35.2, 5.0)]],  # 2 cm from the first landmark (< 3.6)
+    "home_gap": lambda x: np.r_[x[:3], [polar(10.0, -70.0, 9.0)]],  # 1 cm from home (< 1.8; distance breaks too)
+    "off_line": lambda x: np.r_[x[:3], [polar(58.0, -10.0, 5.0)]],  # 10° off the unit move's line
+    "around": lambda x: np.array([polar(50.0, b, 5.0) for b in (30.0, 60.0, 120.0, 150.0)]),  # a 210° gap below
+    "asymmetric": lambda x: np.array([polar(50.0, b, 5.0) for b in (45.0, 135.0, 225.0, 315.0)]),  # a square
+}
+
+
+@pytest.mark.parametrize("rule", list(ROBOT_BREAKS))
+def test_each_robot_rule_can_fail(rule):
+    """The robot family's rules (env1's, scaled) each reject a layout that breaks that rule: the member test
+    above could fail for robot too."""
+    base = shrunk_env1()
+    assert violations("robot", base) == [] and describe(FAMILIES["robot"], base) == []  # every length scaled alike
+    broken = ROBOT_BREAKS[rule](base)
+    assert rule in violations("robot", broken), violations("robot", broken)
+    assert rule in describe(FAMILIES["robot"], broken)
 
 
 def test_a_member_does_not_depend_on_how_many_are_asked_for():
