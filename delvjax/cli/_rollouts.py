@@ -120,7 +120,7 @@ def cmd_catchment(args: argparse.Namespace) -> int:
     summary = {
         "env": env.name,
         "method": args.method,
-        "occlude": args.occlude or 0,
+        "occlude": args.occlude if args.occlude is not None else len(args.hide or ()),  # --hide 3: one hidden
         "seconds": seconds,
         **catchment_summary(res),
     }

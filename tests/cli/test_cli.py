@@ -173,3 +173,17 @@ def test_a_run_of_one_chunk_prints_its_phases_as_lines(capsys):
         bar.start(400, "compiling program 1 of 1 (cached for later runs)")
         bar(400, 400)
     assert capsys.readouterr().err == "[delvjax] compiling program 1 of 1 (cached for later runs) ...\n"
+
+
+def test_a_catchment_csv_read_in_pandas_gives_the_catchment_and_the_summary_its_hidden_count(tmp_path):
+    """Issue 53: near-wall rows had success = 0 and no column said which rows count, so `df.success.mean()` read
+    70.5 % for a 98.46 % catchment; the summary said occlude 0 beside hidden [3]."""
+    import pandas as pd
+
+    out, summary = tmp_path / "c.csv", tmp_path / "c.json"
+    args = ["catchment", "env1", "--method", "alv", "--hide", "3", "--spacing", "80", "--out", str(out)]
+    assert main([*args, "--summary", str(summary)]) == 0
+    df, s = pd.read_csv(out), json.loads(summary.read_text())
+    assert (~df.counted.astype(bool)).sum() == 23 and df.success[~df.counted.astype(bool)].isna().all()
+    assert 100.0 * df.success.mean() == pytest.approx(s["catchment_pct"]["mean"], abs=1e-6)
+    assert s["occlude"] == 1 and s["per_mask"][0]["hidden"] == [3]

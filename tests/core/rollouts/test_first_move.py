@@ -57,7 +57,12 @@ def test_catchment_counts_points_at_least_d_from_the_walls():
     outcome = np.asarray(c.outcome)[0]
     assert np.all(outcome[inc & ~counted] == rollouts.NEAR_WALL)
     assert c.catchment_pct()[0] == pytest.approx(100.0 * np.asarray(c.success)[0][counted].mean())
-    assert set(catchment_columns(c)["outcome"]) >= {"near_wall"}
+    columns = catchment_columns(c)
+    assert set(columns["outcome"]) >= {"near_wall"}
+    # a data frame's mean success is the catchment: near-wall rows are NaN (pandas skips them) and not counted
+    np.testing.assert_array_equal(columns["counted"], counted[inc])
+    assert np.isnan(columns["success"][~counted[inc]]).all()
+    assert 100.0 * np.nanmean(columns["success"]) == pytest.approx(c.catchment_pct()[0])
     summary = rollouts.catchment_summary(c)
     assert summary["catchment_points"] == int(counted.sum()) and summary["points"] == int(inc.sum())
     # under the earlier rule every grid point counts
