@@ -24,13 +24,23 @@ STUDIES = [
     "image_effects",
     "hybrid",
     "ensembles",
+    "ensemble_maps",
 ]
 
 # Studies beyond the thesis's simulations (the fit, gradients, layout design, image effects) and the
 # two on rendered images: a full run has them, `--quick` (a preview of the thesis's simulation
 # experiments) leaves them out unless `--only` names them. Together they were 177 of the 331 s of a
 # cold `--quick` on 2 CPU cores, 150 s of it compilation (docs/reproduce.md "Speed").
-FULL_RUN_ONLY = ("fit", "sensitivity", "layouts", "robot_images", "natural_images", "image_effects", "hybrid")
+FULL_RUN_ONLY = (
+    "fit",
+    "sensitivity",
+    "layouts",
+    "robot_images",
+    "natural_images",
+    "image_effects",
+    "hybrid",
+    "ensemble_maps",
+)
 
 # Each study declares its own `COST`: rough seconds of it in a full run on 2 CPU cores, two side by side
 # (measured 2026-12-04, `benchmarks/bench_reproduce.py`). `delvjax.reproduce` starts the studies side by

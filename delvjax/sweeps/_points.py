@@ -15,11 +15,14 @@ from ._kinds import _traced, cell_setup, grid_inputs
 from ._run import CELL_CHUNK, _envs, _plan
 from ._spec import SweepSpec
 
+QUANTUM = 8  # cells: a group smaller than a chunk is padded to a multiple of this
+
 
 def point_errors(spec: SweepSpec, max_points: int = api.MAX_POINTS) -> dict:
     """The per-point errors of every cell of a vector-map sweep of one grid (one spacing, one arena):
     {"errors": (*spec.shape, P) degrees (invalid = 180, NaN where a point is not included), "points": (P, 2)
-    cm, "homes": {env label: (2,) cm}}. Chunks of CELL_CHUNK cells, the last padded (one program per group)."""
+    cm, "homes": {env label: (2,) cm}, "landmarks": {env label: (L, 3) x, y, r cm}}. Chunks of CELL_CHUNK cells, the last padded to CELL_CHUNK, a group of
+    fewer cells to a multiple of QUANTUM (sweeps whose counts differ by a few cells share their programs)."""
     if spec.kind != "vector-map":
         raise InputError("sweep.kind", str(spec.kind), 'must be "vector-map" for per-point errors')
     envs = _envs(spec)
@@ -32,7 +35,7 @@ def point_errors(spec: SweepSpec, max_points: int = api.MAX_POINTS) -> dict:
     for cells in groups:  # one program per group, a few chunks each
         for start in range(0, len(cells), CELL_CHUNK):
             chunk = cells[start : start + CELL_CHUNK]
-            size = CELL_CHUNK if len(cells) > CELL_CHUNK else len(chunk)
+            size = CELL_CHUNK if len(cells) > CELL_CHUNK else -(-len(chunk) // QUANTUM) * QUANTUM
             padded = chunk + [chunk[0]] * (size - len(chunk))
             setups = [cell_setup(spec, envs, spec.cell(i), max_points) for i in padded]
             traced = jax.tree.map(stack, *[_traced(req) for req in setups])
@@ -42,4 +45,10 @@ def point_errors(spec: SweepSpec, max_points: int = api.MAX_POINTS) -> dict:
                 out = np.full((spec.n_cells, len(points)), np.nan, np.float32)
             out[chunk] = errors[: len(chunk)]
     homes = {label: np.asarray(e.home, float) for label, e in envs.items()}
-    return {"errors": out.reshape(*spec.shape, -1), "points": np.asarray(points, float), "homes": homes}
+    landmarks = {label: np.asarray(e.landmarks, float)[np.asarray(e.valid)] for label, e in envs.items()}
+    return {
+        "errors": out.reshape(*spec.shape, -1),
+        "points": np.asarray(points, float),
+        "homes": homes,
+        "landmarks": landmarks,
+    }
