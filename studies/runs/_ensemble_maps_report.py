@@ -211,7 +211,8 @@ def visual_figure(worlds: dict, visual_members: int):
                 if builtin:
                     ax.plot(x, builtin[0], "x", color="black", ms=6, label="built-in world" if g == c == 0 else None)
             ticks.append((4 * g + 1, bg))
-        ax.set_xticks([t for t, _ in ticks], [f"background\n{b}" for _, b in ticks], fontsize=8)
+        ax.set_xticks([t for t, _ in ticks], [b for _, b in ticks], fontsize=8)
+        ax.set_xlabel("background setting (per method: DELV, ACV, ALV)", fontsize=8)
         ax.set_title(f"{fam}: {visual_members} members", fontsize=9)
         ax.set_ylabel("catchment with the visual compass (%)")
         ax.set_ylim(-3, 103)
