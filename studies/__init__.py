@@ -25,6 +25,7 @@ STUDIES = [
     "hybrid",
     "ensembles",
     "ensemble_maps",
+    "ensemble_rollouts",
 ]
 
 # Studies beyond the thesis's simulations (the fit, gradients, layout design, image effects) and the
@@ -40,6 +41,7 @@ FULL_RUN_ONLY = (
     "image_effects",
     "hybrid",
     "ensemble_maps",
+    "ensemble_rollouts",
 )
 
 # Each study declares its own `COST`: rough seconds of it in a full run on 2 CPU cores, two side by side
