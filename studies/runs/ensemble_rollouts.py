@@ -33,7 +33,7 @@ from ._ensemble_stats import BAND, claim_rows
 from .ensembles import MEMBERS, PREVIEW_SPACING, QUICK_MEMBERS, SEED_SLICES, SPACING, decided_figure
 
 TITLE = "World ensembles: step distance, success rates and quantization over the worlds (beyond the thesis)"
-COST = 150  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
+COST = 240  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = len(SWEEPS)
 TRIALS = 20  # trials per release distance and member (the point run: 100); see docs/reproduce.md
 PREVIEW_TRIALS = 4
