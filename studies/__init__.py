@@ -15,7 +15,6 @@ STUDIES = [
     "with_compass",
     "comparators",
     "occlusion",
-    "fit",
     "visual_compass",
     "sensitivity",
     "layouts",
@@ -26,14 +25,14 @@ STUDIES = [
     "ensembles",
     "ensemble_maps",
     "ensemble_rollouts",
+    "ensemble_settings",
 ]
 
-# Studies beyond the thesis's simulations (the fit, gradients, layout design, image effects) and the
+# Studies beyond the thesis's simulations (gradients, layout design, image effects, most ensembles) and the
 # two on rendered images: a full run has them, `--quick` (a preview of the thesis's simulation
 # experiments) leaves them out unless `--only` names them. Together they were 177 of the 331 s of a
 # cold `--quick` on 2 CPU cores, 150 s of it compilation (docs/reproduce.md "Speed").
 FULL_RUN_ONLY = (
-    "fit",
     "sensitivity",
     "layouts",
     "robot_images",
@@ -42,6 +41,7 @@ FULL_RUN_ONLY = (
     "hybrid",
     "ensemble_maps",
     "ensemble_rollouts",
+    "ensemble_settings",
 )
 
 # Each study declares its own `COST`: rough seconds of it in a full run on 2 CPU cores, two side by side

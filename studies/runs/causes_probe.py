@@ -1,6 +1,6 @@
 """Causes measured outside the run (docs/reproduce.md "Causes measured outside the run"): the
-experiments behind the causes that the claims (`claims_ch4`) and the fit (`fit_causes`) name
-without numbers of their own study. Not a study of `delvjax reproduce` (they take minutes and
+experiments behind the causes that the claims (`claims_ch4`) name without numbers of their own
+study. Not a study of `delvjax reproduce` (they take minutes and
 change nothing in the report); run them with
 
     python -m delvjax.studies.runs.causes_probe [--variants N] [--spacing CM]
@@ -9,7 +9,7 @@ change nothing in the report); run them with
    50 and 100 cm on env1 and the 3-landmark layout of Fig 4.8. With noise-free sensing the only
    error of a bearing is its pixel; a short move's parallax magnifies it, and near home the short
    home vector turns most with it.
-2. env3's coordinates (the fit's two env3 numbers): the thesis describes env3 (four landmarks east
+2. env3's coordinates (two env3 numbers of the built-in world): the thesis describes env3 (four landmarks east
    of home) but gives no coordinates. Moving each landmark of ours up to `jitter` cm (kept east
    of home, non-overlapping) shows how far ACV's error point rate (Table 5.1, k = 0) and
    DELV-compass's catchment with one landmark hidden (Table 5.3, k = 1) depend on them.

@@ -45,19 +45,19 @@ def test_quick_leaves_the_studies_beyond_the_thesis_to_a_full_run():
     assert reproduce.select(None) == everything
     quick = reproduce.select(None, quick=True)
     assert quick == [n for n in everything if n not in studies.FULL_RUN_ONLY]
-    assert set(studies.FULL_RUN_ONLY) < set(everything) and "occlusion" in quick and "fit" not in quick
-    assert reproduce.select("fit,robot_images", quick=True) == ["fit", "robot_images"]  # --only runs what it names
+    assert set(studies.FULL_RUN_ONLY) < set(everything) and "occlusion" in quick and "sensitivity" not in quick
+    assert reproduce.select("sensitivity,robot_images", quick=True) == ["sensitivity", "robot_images"]  # --only runs what it names
 
 
 def test_only_takes_a_list_of_names_as_the_python_api_is_called(untyped):
     """`reproduce(only=[...])` as a Python user writes it, in registry order; a list of something else,
     an empty one or an unknown name is refused naming --only (it used to fail on `list.split`)."""
-    assert reproduce.select(["robot_images", " fit"]) == ["fit", "robot_images"]
+    assert reproduce.select(["robot_images", " sensitivity"]) == ["sensitivity", "robot_images"]
     for bad, why in (
-        ([["fit", 3]], "study names"),
+        ([["sensitivity", 3]], "study names"),
         ([5], "study names"),
         ([[]], "at least one"),
-        ([("fit", "x")], "unknown"),
+        ([("sensitivity", "x")], "unknown"),
     ):
         with pytest.raises(InputError, match=why) as err:
             reproduce.select(*bad)
