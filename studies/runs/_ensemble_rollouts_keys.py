@@ -12,6 +12,7 @@ import re
 import numpy as np
 
 from delvjax.core.scene import DEFAULT_ARENA, DEFAULT_HOME
+from delvjax.core.sensor import Sensor
 from delvjax.envs import FAMILIES
 from delvjax.envs._ensembles import angular_gaps_deg, member_layouts
 from delvjax.sweeps._spec import SweepSpec, parse_sweep
@@ -21,6 +22,7 @@ from .step_distance import DS
 
 LEVELS = (1, 2, 3, 5)  # the levels claim 12 reads (with continuous distances)
 COMPASS = ("delv-compass", "acv", "alv")  # Fig 5.7b
+DEFAULT_D = float(Sensor().d)  # cm: the unit movement of every other study (50)
 LAYOUTS = ("env2", "ring3", "ring6", "edge4")  # Fig 4.14 at three levels: the surrounding layouts and edge4
 RULE_CELLS = {  # (collisions, first_move) of the rules sweep -> key suffix (docs/model.md §5); the fourth cell unused
     ("ignore", "release"): "",
@@ -216,7 +218,7 @@ def sweep_numbers(name: str, ds, offset: int = 0) -> dict[str, dict]:
                 catch, err = float(cell["catchment_pct"]), float(cell["mean_error_deg"])
                 nums[f"catchment:env1:delv:d={d:g}"] = catch
                 nums[f"map:env1:delv:d={d:g}:mean_error_deg"] = err
-                if d == 50.0:  # the sensor's default d: the plain DELV of every other claim
+                if d == DEFAULT_D:  # the sensor's default d: the plain DELV of every other claim
                     for tag in ("", ":continuous"):
                         nums[f"catchment:env1:delv{tag}"] = catch
                         nums[f"map:env1:delv{tag}:mean_error_deg"] = err
