@@ -35,16 +35,17 @@ PAIRS = (("delv", 0),) + tuple((m, k) for m in METHODS[1:] for k in (0, 1, 2))
 SLOTS = 4  # landmark slots: env1-3 have four
 MASK_ROWS = 6  # C(4, 2): the most visibility masks of any cell (every cell padded to it: one program)
 CHUNK = 64  # cells per call of the program (the last chunk padded with copies)
-RULES = ("ignore", "fail")  # collisions: the default rules and the physical ones (docs/model.md §5)
+RULES = ("ignore", "fail")  # collisions under the default rules and the physical ones (docs/model.md §5)
 
-# setting -> (label, values); the first value of each is the project's default (docs/model.md §2.5, §5).
+# setting -> (name, values, unit); the first value of each is the project's default (docs/model.md §2.5, §5).
 # Odometry noise is one setting: none, or the move's length (sigma 0.1 d) and the reported turn (sigma 3°)
-# noisy together (the values the old fit tried one at a time)
+# noisy together (the values the old fit tried one at a time). The rules: the default (landmarks are no
+# obstacles) or the physical ones (a move ending inside a landmark fails); both with Algorithm 2's first move
 SETTINGS = {
-    "bearing_noise_deg": ("bearing noise (°)", (0.0, 1.0, 2.0, 3.0)),
-    "home_radius": ("home radius (cm)", (50.0, 25.0, 75.0)),
-    "odometry": ("odometry noise", ("none", "step 0.1 d, turn 3°")),
-    "collisions": ("rules: landmarks", RULES),
+    "bearing_noise_deg": ("bearing noise", (0.0, 1.0, 2.0, 3.0), "°"),
+    "home_radius": ("home radius", (50.0, 25.0, 75.0), " cm"),
+    "odometry": ("odometry noise", ("none", "step 0.1 d, turn 3°"), ""),
+    "rules": ("rules", ("default", "physical"), ""),
 }
 ODOMETRY = {
     "none": {"step_noise": 0.0, "odometry_turn_noise_deg": 0.0},
@@ -57,7 +58,7 @@ def design(runs: list[tuple[int, ...]] | None = None) -> np.ndarray:
     """(C, 4) value indices into SETTINGS (in its order) of every combination: every run (value indices of the
     settings but the rule set: the full factorial, or the `runs` given) under each rule set, the default rules
     first. Combination 0 is every default."""
-    sizes = [len(v[1]) for n, v in SETTINGS.items() if n != "collisions"]
+    sizes = [len(v[1]) for n, v in SETTINGS.items() if n != "rules"]
     runs = list(itertools.product(*map(range, sizes))) if runs is None else runs
     return np.array([(*r, rule) for r in runs for rule in range(len(RULES))], int)
 
@@ -68,10 +69,12 @@ def combination(levels) -> dict:
 
 
 def sweep_settings(levels) -> dict:
-    """The sweep cell's settings of one row of `design` (odometry noise as its two sigmas)."""
+    """The sweep cell's settings of one row of `design` (odometry noise as its two sigmas, the rules as
+    `collisions`)."""
     c = combination(levels)
     odometry = ODOMETRY[c.pop("odometry")]
-    return {**c, **odometry}
+    rules = SETTINGS["rules"][1].index(c.pop("rules"))
+    return {**c, **odometry, "collisions": RULES[rules]}
 
 
 def member_seed(seed: int, i: int) -> int:

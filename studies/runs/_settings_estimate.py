@@ -17,8 +17,9 @@ import numpy as np
 SHARE = 80.0  # %: a setting is identified when one value is best in at least this share of the resamples
 BAND = (5.0, 95.0)  # percentiles of the resamples: the band of a score
 # percentile of the resamples' gap to the best value that must lie above 0 for a value to be excluded: a
-# two-sided 1 % test per setting, 5 % over the five settings (Bonferroni); at the 5th percentile a setting
-# the numbers do not depend on came out "identified" in 10-15 % of synthetic draws (tests/studies)
+# two-sided 1 % test per setting, about 5 % over the four settings (Bonferroni). At the 5th percentile, means
+# over an orthogonal array of 12 members called a setting without effect identified in 10-15 % of synthetic
+# draws (the tests' `synthetic`); profiles at 0.5 over 8 members, in none of 100 per setting
 GAP = 0.5
 MIN_MEMBERS = 5  # fewer members (a preview) identify nothing: most of their resamples repeat one or two members
 TIE = 1e-9  # points: scores nearer than this are a tie (a setting the numbers do not depend on)
@@ -136,15 +137,22 @@ def sentence(found: dict[str, dict], names: dict[str, str], values: dict[str, li
     if not yes:
         return (
             "The thesis's numbers identify none of the unstated settings: for none of them is one value best in "
-            f"at least {SHARE:g} % of the member resamples with every other value worse in 95 % of them."
+            f"at least {SHARE:g} % of the member resamples with every other value worse in {100 - GAP:g} % of them."
         )
     said = [
-        f"{names[n]} = {values[n][found[n]['best']]} (best in {found[n]['share_best'][found[n]['best']]:.0f} %)"
+        f"the {names[n]} ({values[n][found[n]['best']]}, best in {found[n]['share_best'][found[n]['best']]:.4g} % "
+        "of the member resamples)"
         for n in yes
     ]
-    parts = [f"The thesis's numbers identify {', '.join(said)}."]
-    for n, f in found.items():
-        if not f["identified"]:
-            kept = ", ".join(values[n][v] for v in f["kept"])
-            parts.append(f"They do not identify {names[n]} (not excluded: {kept}).")
-    return " ".join(parts)
+    text = f"The thesis's numbers identify {_join(said)}."
+    no = [
+        f"the {names[n]} (not excluded: {', '.join(values[n][v] for v in f['kept'])})"
+        for n, f in found.items()
+        if not f["identified"]
+    ]
+    return text + (f" They do not identify {_join(no)}." if no else "")
+
+
+def _join(parts: list[str]) -> str:
+    """'a', 'a and b', 'a, b and c'."""
+    return parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]

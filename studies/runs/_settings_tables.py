@@ -14,7 +14,11 @@ from ._settings_estimate import BAND
 
 
 def _settings(levels) -> dict:
-    return {SETTINGS[n][0]: v for n, v in combination(levels).items()}
+    """A combination's settings under their names with units (the design table's columns)."""
+    return {
+        SETTINGS[n][0] + (f" ({SETTINGS[n][2].strip()})" if SETTINGS[n][2] else ""): v
+        for n, v in combination(levels).items()
+    }
 
 
 def design_rows(levels: np.ndarray, comb: dict, per_number: np.ndarray, offsets: np.ndarray, items: list) -> list[dict]:
@@ -117,18 +121,20 @@ def settings_figure(found: dict, labels: dict, shown: dict):
     grey, excluded red; the title says whether the thesis's numbers identify the setting."""
     fig, axes = subplots(1, len(found), figsize=(2.6 * len(found), 3.2), squeeze=False, sharey=True)
     for ax, (name, f) in zip(axes[0], found.items()):
-        for v in range(len(f["score"])):
+        values = SETTINGS[name][1]
+        order = list(np.argsort(values)) if not isinstance(values[0], str) else list(range(len(values)))
+        for x, v in enumerate(order):  # numeric values in their order (the default is listed first in SETTINGS)
             colour = "black" if v == f["best"] else "0.55" if v in f["kept"] else "tab:red"
             ax.errorbar(
-                v,
+                x,
                 f["score"][v],
                 yerr=[[f["score"][v] - f["lo"][v]], [f["hi"][v] - f["score"][v]]],
                 fmt="o",
                 color=colour,
                 capsize=3,
             )
-        ax.set_xticks(range(len(f["score"])), shown[name])
-        ax.set_xlim(-0.5, len(f["score"]) - 0.5)
+        ax.set_xticks(range(len(order)), [shown[name][v] for v in order])
+        ax.set_xlim(-0.5, len(order) - 0.5)
         ax.set_xlabel(labels[name], fontsize=8)
         ax.set_title("identified" if f["identified"] else "not identified", fontsize=8)
     axes[0][0].set_ylabel("mean CRPS of the thesis's numbers (points)", fontsize=8)

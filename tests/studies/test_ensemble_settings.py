@@ -93,7 +93,7 @@ def test_a_planted_bearing_noise_is_recovered_and_the_settings_without_effect_ar
     bearing = found["bearing_noise_deg"]
     assert bearing["identified"] and bearing["best"] == 2 and bearing["kept"] == [2]
     assert bearing["share_best"][2] >= est.SHARE
-    for name in ("home_radius", "odometry", "collisions"):
+    for name in ("home_radius", "odometry", "rules"):
         assert not found[name]["identified"], name
         assert len(found[name]["kept"]) > 1, name  # no value excluded
     comb = est.combinations(s)
@@ -102,17 +102,15 @@ def test_a_planted_bearing_noise_is_recovered_and_the_settings_without_effect_ar
     text = est.sentence(
         found, {n: n for n in SETTINGS}, {n: [str(v) for v in design_.SETTINGS[n][1]] for n in SETTINGS}, 12
     )
-    assert (
-        text.startswith("The thesis's numbers identify bearing_noise_deg = 2.0")
-        and "do not identify home_radius" in text
-    )
+    assert text.startswith("The thesis's numbers identify the bearing_noise_deg (2.0, best in ")
+    assert "They do not identify the home_radius (not excluded: " in text and text.count(". ") == 1
 
 
 def test_two_planted_settings_are_recovered_together():
-    d, x, t = synthetic({"bearing_noise_deg": 5.0, "collisions": 12.0}, {"bearing_noise_deg": 1, "collisions": 1})
+    d, x, t = synthetic({"bearing_noise_deg": 5.0, "rules": 12.0}, {"bearing_noise_deg": 1, "rules": 1})
     found, _ = estimate(d, x, t)
     assert found["bearing_noise_deg"]["identified"] and found["bearing_noise_deg"]["best"] == 1
-    assert found["collisions"]["identified"] and found["collisions"]["best"] == 1
+    assert found["rules"]["identified"] and found["rules"]["best"] == 1
     assert not found["odometry"]["identified"] and not found["home_radius"]["identified"]
 
 
