@@ -200,8 +200,8 @@ def ensemble_section(records: dict, flat: dict) -> list[str]:
     rec = records.get("ensembles")
     if rec is None or "ensemble:members" not in rec.numbers:
         return []
+    from ..studies.runs._ensemble_gaps import gaps_text  # the studies: loaded only when a report is written
     from ..studies.runs._ensemble_stats import grid_check_text  # the studies: loaded only when a report is written
-    from ..studies.runs._ensemble_gaps import gaps_text
 
     rows = next((t["rows"] for t in rec.tables if t["id"] == "thesis_numbers_over_worlds"), [])
     inside, total = rec.numbers.get("ensemble:thesis_inside_band", [0, 0])

@@ -141,13 +141,13 @@ def member_numbers(ds, group: Group) -> dict[str, dict]:
     tail = group.tail
     seeds = [int(v) for v in np.atleast_1d(ds.seed.values)]
     offset = dict(zip(seeds, group.seeds))  # the run's seed + offset, in the sweep file's order (first slice)
-    for label in ds.env.values:
-        label = re.sub(r"-s\d+-m(\d+)$", r"-m\1", str(label))  # members by index whatever the layouts' seed
+    for name in ds.env.values:
+        label = re.sub(r"-s\d+-m(\d+)$", r"-m\1", str(name))  # members by index whatever the layouts' seed
         family = label.rsplit("-m", 1)[0]
         for seed in seeds:
             nums: dict = {}
             for m in group.methods:
-                where = {"env": label, "method": m} | ({"seed": seed} if "seed" in ds.dims else {})
+                where = {"env": name, "method": m} | ({"seed": seed} if "seed" in ds.dims else {})
                 cell = ds.sel(where)  # by a dict: sel(method=...) would be xarray's own keyword
                 by_k = lambda var: [float(v) for v in np.atleast_1d(cell[var].values)]  # noqa: E731
                 fields = ("catchment",) if group.collisions == "fail" else ("gt45", "gt90", "catchment")
