@@ -4,8 +4,8 @@ changed, per-study wall and compile seconds, and peak memory (issue targets: ful
 
 Run: python benchmarks/bench_reproduce.py [--quick] [--out DIR] [--workers N] [--without STUDY[,STUDY]]
 (--workers 1 against the default, one run after the other, shows what studies side by side save;
---without fit measures the full-run target as the issue states it, the fit excluded: the run
-is then `reproduce --only` every other study.)
+--without ensemble_settings measures the run without that study, as the full-run target once left
+out the fit it replaced: the run is then `reproduce --only` every other study.)
 Each run is a subprocess (`python -m delvjax.cli reproduce`); peak memory is the largest
 resident set of those children (getrusage). This is a benchmark, not a test.
 """
@@ -40,7 +40,7 @@ def main() -> None:
     p.add_argument("--quick", action="store_true")
     p.add_argument("--out", default=None, help="output folder (default: a temporary one)")
     p.add_argument("--workers", type=int, default=None, help="studies side by side (default: reproduce's)")
-    p.add_argument("--without", default="", help="studies to leave out, comma-separated (e.g. fit)")
+    p.add_argument("--without", default="", help="studies to leave out, comma-separated (e.g. ensemble_settings)")
     a = p.parse_args()
     only = None
     if a.without:

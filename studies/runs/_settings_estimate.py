@@ -150,9 +150,9 @@ def sentence(found: dict[str, dict], names: dict[str, str], values: dict[str, li
         for n, f in found.items()
         if not f["identified"]
     ]
-    return text + (f" They do not identify {_join(no)}." if no else "")
+    return text + (f" They do not identify {_join(no, 'or')}." if no else "")
 
 
-def _join(parts: list[str]) -> str:
-    """'a', 'a and b', 'a, b and c'."""
-    return parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
+def _join(parts: list[str], word: str = "and") -> str:
+    """'a', 'a and b', 'a, b and c' (or another joining word)."""
+    return parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + f" {word} " + parts[-1]
