@@ -213,7 +213,42 @@ def ensemble_section(records: dict, flat: dict) -> list[str]:
     )
     if any("gap cause" in r for r in rows):  # why the others lie outside (studies/runs/_ensemble_gaps.py)
         text += " " + gaps_text(rows)
-    return ["### Over the worlds the thesis's words allow", text]
+    return ["### Over the worlds the thesis's words allow", text, *ensemble_more(records, flat)]
+
+
+def ensemble_more(records: dict, flat: dict) -> list[str]:
+    """The other ensemble studies in a few lines each: how many claims they judge over the worlds, the settings the
+    thesis's numbers imply (`ensemble_settings`), and the claims whose verdict changes when the families' ranges
+    are narrowed or widened by a third (`ensemble_ranges`, SPEC §8)."""
+    from ..studies.runs.ensemble_ranges import verdict_change_lines  # the studies: loaded only for a report
+
+    parts = []
+    covered = sum(k.startswith("ensemble:claim:") for k in flat)
+    if covered:
+        parts.append(
+            f"**Claims over the worlds**: {covered} of the thesis's claims are judged over the ensembles' members "
+            "(the claims table's *over worlds* column; studies `ensembles`, `ensemble_maps`, `ensemble_rollouts`); "
+            "the others say *not covered*."
+        )
+    if "ensemble_settings:sentence" in flat:
+        best = flat.get("ensemble_settings:best") or []
+        values = ", ".join(
+            f"{k.rsplit(':', 1)[1]} {v}" for k, v in flat.items() if k.startswith("ensemble_settings:best:")
+        )
+        score = f" Best combination ({values}): {best[1]:.2f} [{best[2]:.2f}-{best[3]:.2f}]" if len(best) == 4 else ""
+        default = flat.get("ensemble_settings:score:default")
+        parts.append(
+            "**The unstated settings** (study `ensemble_settings`, mean CRPS of the thesis's numbers over the members, "
+            f"points): {flat['ensemble_settings:sentence']}{score}"
+            + (f"; every default {default:.2f}." if isinstance(default, (int, float)) else ".")
+        )
+    if any(k.startswith("ensemble_ranges:") for k in flat):
+        lines = verdict_change_lines(flat)
+        parts.append(
+            "**Ranges narrowed or widened by a third** (study `ensemble_ranges`, SPEC §8): "
+            + (" ".join(lines) if lines else "no claim's verdict changes.")
+        )
+    return parts
 
 
 def build_markdown(records: dict, settings, versions: dict, wall_seconds: float, ran: list[str]) -> str:

@@ -144,7 +144,7 @@ def run(ctx) -> None:
     claims = claim_rows(worlds, members, layouts, ids=set(CLAIM_IDS))
     for r in claims:  # read by the claims table (studies/claims: over_worlds)
         lo, hi = (float(v) for v in r["95 % interval"].split("-"))
-        ctx.number(f"ensemble:claim:{r['id']}", [r["holds %"], lo, hi, r["members"], r["cannot tell %"]])
+        ctx.number(f"ensemble:claim:{r['id']}", [r["holds %"], lo, hi, r["members"], r["cannot tell %"], r["partly %"]])
     if claims:
         ctx.table(
             "claims_over_worlds_rollouts",

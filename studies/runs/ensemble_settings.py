@@ -92,6 +92,7 @@ def run(ctx) -> None:
     ctx.number("ensemble_settings:score:best", float(comb["score"][best]))
     ctx.number("ensemble_settings:indistinct", int(comb["indistinct"].sum()))
     ctx.number("ensemble_settings:identified", sum(f["identified"] for f in found.values()))
+    ctx.number("ensemble_settings:sentence", text)  # the report's one sentence (delvjax/reproduce/_report.py)
     for name, f in found.items():
         ctx.number(f"ensemble_settings:best:{name}", numeric(name, combination(levels[best])[name]))
         ctx.number(
