@@ -46,7 +46,10 @@ def test_quick_leaves_the_studies_beyond_the_thesis_to_a_full_run():
     quick = reproduce.select(None, quick=True)
     assert quick == [n for n in everything if n not in studies.FULL_RUN_ONLY]
     assert set(studies.FULL_RUN_ONLY) < set(everything) and "occlusion" in quick and "sensitivity" not in quick
-    assert reproduce.select("sensitivity,robot_images", quick=True) == ["sensitivity", "robot_images"]  # --only runs what it names
+    assert reproduce.select("sensitivity,robot_images", quick=True) == [
+        "sensitivity",
+        "robot_images",
+    ]  # --only runs what it names
 
 
 def test_only_takes_a_list_of_names_as_the_python_api_is_called(untyped):
