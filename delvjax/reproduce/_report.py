@@ -232,9 +232,7 @@ def ensemble_more(records: dict, flat: dict) -> list[str]:
         )
     if "ensemble_settings:sentence" in flat:
         best = flat.get("ensemble_settings:best") or []
-        values = ", ".join(
-            f"{k.rsplit(':', 1)[1]} {v}" for k, v in flat.items() if k.startswith("ensemble_settings:best:")
-        )
+        values = flat.get("ensemble_settings:best_text", "")
         score = f" Best combination ({values}): {best[1]:.2f} [{best[2]:.2f}-{best[3]:.2f}]" if len(best) == 4 else ""
         default = flat.get("ensemble_settings:score:default")
         parts.append(

@@ -93,6 +93,13 @@ def run(ctx) -> None:
     ctx.number("ensemble_settings:indistinct", int(comb["indistinct"].sum()))
     ctx.number("ensemble_settings:identified", sum(f["identified"] for f in found.values()))
     ctx.number("ensemble_settings:sentence", text)  # the report's one sentence (delvjax/reproduce/_report.py)
+    ctx.number(  # the best combination in words, for the report: "bearing noise 1°, home radius 25 cm, ..."
+        "ensemble_settings:best_text",
+        ", ".join(
+            f"{SETTINGS[n][0]} {v:g}{SETTINGS[n][2]}" if isinstance(v, float) else f"{SETTINGS[n][0]} {v}"
+            for n, v in combination(levels[best]).items()
+        ),
+    )
     for name, f in found.items():
         ctx.number(f"ensemble_settings:best:{name}", numeric(name, combination(levels[best])[name]))
         ctx.number(

@@ -18,13 +18,12 @@ def test_the_settings_sentence_and_the_best_combination_are_quoted():
         "ensemble:claim:b": [1, 0, 2, 44, 0, 0],
         "ensemble_settings:sentence": "The thesis's numbers identify the rules (default).",
         "ensemble_settings:best": [17, 4.5, 4.08, 5.04],
-        "ensemble_settings:best:bearing_noise_deg": 1.0,
-        "ensemble_settings:best:home_radius": 25.0,
+        "ensemble_settings:best_text": "bearing noise 1°, home radius 25 cm",
         "ensemble_settings:score:default": 5.15,
     }
     text = "\n".join(ensemble_more({}, flat))
     assert "2 of the thesis's claims are judged over the ensembles' members" in text
-    assert "identify the rules (default). Best combination (bearing_noise_deg 1.0, home_radius 25.0): 4.50" in text
+    assert "identify the rules (default). Best combination (bearing noise 1°, home radius 25 cm): 4.50" in text
     assert "[4.08-5.04]; every default 5.15." in text
 
 
