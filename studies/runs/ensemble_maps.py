@@ -42,7 +42,7 @@ from ._ensemble_maps_report import (
     visual_figure,
 )
 from ._ensemble_stats import claim_rows
-from .ensembles import decided_figure
+from .ensembles import record_claims
 from .visual_compass import BACKGROUNDS, TRUE, VISUAL
 
 TITLE = (
@@ -168,9 +168,6 @@ def run(ctx) -> None:
     claims = claim_rows(worlds, members, layouts, ids=CLAIMS)
     claims += [] if sizes["preview"] else claim_rows(worlds, visual_members, layouts, ids=VISUAL_CLAIMS)
     claims.sort(key=lambda r: r["#"])
-    for r in claims:  # read by the claims table (studies/claims: over_worlds)
-        lo, hi = (float(v) for v in r["95 % interval"].split("-"))
-        ctx.number(f"ensemble:claim:{r['id']}", [r["holds %"], lo, hi, r["members"], r["cannot tell %"], r["partly %"]])
     ctx.number("ensemble_maps:members", [members, 0 if sizes["preview"] else visual_members])
     ctx.number("ensemble_maps:spacing", [sizes["map_spacing"], sizes["spacing"]])
     ctx.json(
@@ -184,18 +181,13 @@ def run(ctx) -> None:
             "numbers": worlds,
         },
     )
-    ctx.table(
+    record_claims(
+        ctx,
+        claims,
         "claims_over_worlds",
         "Claims over the worlds: visual compass, error curves and the landmark hull",
-        [
-            {
-                **{k: v for k, v in r.items() if k != "decided_by_values"},
-                "built-in worlds": builtin_verdict(worlds, r["id"]),
-            }
-            for r in claims
-        ],
-        source="studies/claims",
-        note=CLAIMS_NOTE.format(holds=WORLD_HOLDS, fails=WORLD_FAILS, sizes=sizes_text(sizes, visual_members)),
+        CLAIMS_NOTE.format(holds=WORLD_HOLDS, fails=WORLD_FAILS, sizes=sizes_text(sizes, visual_members)),
+        extra=lambda r: {"built-in worlds": builtin_verdict(worlds, r["id"])},
     )
     rows = curve_rows(worlds, members, slices)
     ctx.table(
@@ -231,14 +223,6 @@ def run(ctx) -> None:
             visual_figure(worlds, visual_members),
             "Catchment with the visual compass per member (dots) and its median (bar), per world family and "
             "background (default rules); crosses: the built-in world on the same grid.",
-        )
-    deciding = [r for r in claims if r.get("decided_by")]
-    if deciding:
-        ctx.figure(
-            "claims_decided_by.png",
-            decided_figure(deciding),
-            "Claims that depend on the world: the world property that best separates the members where the "
-            "claim holds (green) from those where it does not (red).",
         )
 
 

@@ -30,7 +30,15 @@ from ._ensemble_rollouts_report import (
     thesis_rows,
 )
 from ._ensemble_stats import BAND, claim_rows
-from .ensembles import MEMBERS, PREVIEW_SPACING, QUICK_MEMBERS, SEED_SLICES, SPACING, decided_figure
+from .ensembles import (
+    CLAIMS_TABLE_NOTE,
+    MEMBERS,
+    PREVIEW_SPACING,
+    QUICK_MEMBERS,
+    SEED_SLICES,
+    SPACING,
+    record_claims,
+)
 
 TITLE = "World ensembles: step distance, success rates and quantization over the worlds (beyond the thesis)"
 COST = 240  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
@@ -141,27 +149,14 @@ def run(ctx) -> None:
             f"{BAND[0]:g}-{BAND[1]:g} % band (shaded); {sizes}.",
         )
         ctx.csv("success_over_worlds.csv", rows=success)
-    claims = claim_rows(worlds, members, layouts, ids=set(CLAIM_IDS))
-    for r in claims:  # read by the claims table (studies/claims: over_worlds)
-        lo, hi = (float(v) for v in r["95 % interval"].split("-"))
-        ctx.number(f"ensemble:claim:{r['id']}", [r["holds %"], lo, hi, r["members"], r["cannot tell %"], r["partly %"]])
-    if claims:
-        ctx.table(
-            "claims_over_worlds_rollouts",
-            "Claims of step distance, success rates and levels over the worlds: the share of members in which "
-            "each claim's check holds",
-            [{k: v for k, v in r.items() if k != "decided_by_values"} for r in claims],
-            source="studies/claims",
-            note=f"holds: in at least {WORLD_HOLDS:g} % of members; fails: at most {WORLD_FAILS:g} %; else depends on "
-            "the world, with the world property that best separates the members where it holds (AUC); cannot "
-            f"tell: most members at a ceiling. {sizes}. Member i: the i-th world of every family (claim 13: env2, "
-            "ring3, ring6 against edge4, home slightly outside the hull, docs/reproduce.md).",
-        )
-        deciding = [r for r in claims if r.get("decided_by")]
-        if deciding:
-            ctx.figure(
-                "claims_decided_by_rollouts.png",
-                decided_figure(deciding),
-                "Claims of step distance, success rates and levels that depend on the world: the world property "
-                "that best separates the members where the claim holds (green) from those where it does not (red).",
-            )
+    record_claims(
+        ctx,
+        claim_rows(worlds, members, layouts, ids=set(CLAIM_IDS)),
+        "claims_over_worlds_rollouts",
+        "Claims of step distance, success rates and levels over the worlds: the share of members in which each "
+        "claim's check holds",
+        CLAIMS_TABLE_NOTE.format(holds=WORLD_HOLDS, fails=WORLD_FAILS)
+        + f" {sizes}. Member i: the i-th world of every family (claim 13: env2, ring3, ring6 against edge4, home "
+        "slightly outside the hull, docs/reproduce.md).",
+        figure="claims_decided_by_rollouts.png",
+    )

@@ -231,30 +231,45 @@ def run(ctx) -> None:
             "its 5-95 % band than the other, and its percentiles lie nearer 50. The physical rules' catchments come "
             f"from the default trials (every k and world); {NOISE_DEG:g}° of bearing noise on env1-3 and ring4. {settings_text(rows)}",
         )
-    claims = claim_rows(worlds, members, layouts)
-    for r in claims:  # read by the claims table (studies/claims: over_worlds)
+    record_claims(
+        ctx,
+        claim_rows(worlds, members, layouts),
+        "claims_over_worlds",
+        "Claims over the worlds: the share of members in which each claim's check holds",
+        CLAIMS_TABLE_NOTE.format(holds=WORLD_HOLDS, fails=WORLD_FAILS)
+        + " A member is one world of each family with its own seed.",
+    )
+
+
+CLAIMS_TABLE_NOTE = (
+    "holds: in at least {holds:g} % of members; fails: at most {fails:g} %; else depends on the world, with the world "
+    "property that best separates the members where it holds (AUC: 1 or 0 separates them fully, 0.5 not at all); "
+    "cannot tell: most members at a ceiling; partly: the share where the check says partly (not counted as holding)."
+)
+
+
+def record_claims(
+    ctx, claims: list[dict], table: str, title: str, note: str, figure: str = "claims_decided_by.png", extra=None
+) -> None:
+    """What every ensemble study records of the claims it judges (`_ensemble_stats.claim_rows`): each claim's share
+    as `ensemble:claim:<id>` = [holds %, interval low, high, members, cannot tell %, partly %] (the claims table's
+    *over worlds* column, studies/claims `over_worlds`), the table `table` (with `extra(row)`'s columns) and, for
+    the claims that depend on the world, the figure `figure` of the property that decides them."""
+    for r in claims:
         lo, hi = (float(v) for v in r["95 % interval"].split("-"))
         ctx.number(f"ensemble:claim:{r['id']}", [r["holds %"], lo, hi, r["members"], r["cannot tell %"], r["partly %"]])
-    if claims:
-        ctx.table(
-            "claims_over_worlds",
-            "Claims over the worlds: the share of members in which each claim's check holds",
-            [{k: v for k, v in r.items() if k not in ("decided_by_values",)} for r in claims],
-            source="studies/claims",
-            note=f"holds: in at least {WORLD_HOLDS:g} % of members; fails: at most {WORLD_FAILS:g} %; else depends on "
-            "the world, "
-            "with the world property that best separates the members where it holds (AUC: 1 or 0 separates them "
-            "fully, 0.5 not at all); cannot tell: most members at a ceiling. A member is one world of each family "
-            "with its own seed.",
+    if not claims:
+        return
+    rows = [{**{k: v for k, v in r.items() if k != "decided_by_values"}, **(extra(r) if extra else {})} for r in claims]
+    ctx.table(table, title, rows, source="studies/claims", note=note)
+    deciding = [r for r in claims if r.get("decided_by")]
+    if deciding:
+        ctx.figure(
+            figure,
+            decided_figure(deciding),
+            "Claims that depend on the world: the world property that best separates the members where the claim "
+            "holds (green) from those where it does not (red).",
         )
-        deciding = [r for r in claims if r.get("decided_by")]
-        if deciding:
-            ctx.figure(
-                "claims_decided_by.png",
-                decided_figure(deciding),
-                "Claims that depend on the world: the world property that best separates the members where the "
-                "claim holds (green) from those where it does not (red).",
-            )
 
 
 # --- figures ---------------------------------------------------------------------------------------
