@@ -182,6 +182,46 @@ def visual_keys(ds, pairs, background: str, catchment: bool) -> dict[str, dict]:
     return out
 
 
+def level_keys(res: dict, labels, levels) -> dict[str, dict]:
+    """{world: {key: value}} of DELV's per-point sweep over the quantization levels (env x delv x one spacing and
+    seed x levels): the error curve per level `error_curve:<family>:delv:Q<q>` (bins with a point; `n:` the
+    points behind each), the keys of the `quantization` study (claim 11)."""
+    out = curve_keys(res, [f"delv:Q{q}" for q in levels], labels, mean_of=())
+    return {w: {k: v for k, v in nums.items() if k.startswith(("error_curve:", "n:"))} for w, nums in out.items()}
+
+
+def with_continuous(worlds: dict[str, dict]) -> None:
+    """Every world with DELV's quantized curves gets `error_curve:env1:delv:continuous`: its continuous curve of
+    the same sweep seed and grid (the per-point maps' `error_curve:env1:delv`; a sweep's levels are >= 1)."""
+    for nums in worlds.values():
+        if "error_curve:env1:delv:Q1" in nums and "error_curve:env1:delv" in nums:
+            nums["error_curve:env1:delv:continuous"] = nums["error_curve:env1:delv"]
+            nums["n:error_curve:env1:delv:continuous"] = nums["n:error_curve:env1:delv"]
+
+
+RANDOM_LABEL = re.compile(r"random(\d+)-(\d+)$")  # a sweep's seeded random layout `random<seed>-<landmarks>`
+
+
+def random_worlds(numbers: dict[str, dict], landmarks: dict, base: int) -> dict[str, dict]:
+    """The per-point numbers of a sweep over seeded random layouts (`curve_keys`, labels `random<s>-<n>`) as
+    worlds: layout seed s >= `base` is member `random-m<s - base>`, a smaller seed the built-in `random` (the
+    `landmark_number` study's layouts); keys `...:random<n>:...` (`error_curve:random<n>:<m>`, that study's).
+    `landmark_number:nested` (claim 6): 1.0 where each world's fewer landmarks are the first of its more (one
+    seed's draws, `presets.random_env`, drawn in order: checked here on the layouts the sweep ran), else 0.0."""
+    out: dict[str, dict] = {}
+    layouts: dict[str, dict[int, np.ndarray]] = {}
+    for label, nums in numbers.items():
+        s, n = (int(g) for g in RANDOM_LABEL.match(label).groups())
+        world = f"random-m{s - base}" if s >= base else "random"
+        out.setdefault(world, {}).update({k.replace(f":{label}:", f":random{n}:"): v for k, v in nums.items()})
+        layouts.setdefault(world, {})[n] = np.asarray(landmarks[label], float)
+    for world, by_n in layouts.items():
+        lays = [by_n[n] for n in sorted(by_n)]
+        nested = all(len(a) <= len(b) and np.array_equal(b[: len(a)], a) for a, b in zip(lays, lays[1:]))
+        out[world]["landmark_number:nested"] = float(nested and len(lays) > 1)
+    return out
+
+
 def merge(worlds: dict[str, dict], more: dict[str, dict], suffix: str = "") -> None:
     """Add `more`'s numbers to `worlds` (labels with `suffix`, e.g. a built-in world's seed offset)."""
     for label, nums in more.items():

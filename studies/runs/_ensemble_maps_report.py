@@ -152,9 +152,10 @@ def grid_check_rows(worlds: dict, flat: dict) -> list[dict]:
 
 def builtin_verdict(worlds: dict, claim_id: str) -> str:
     """The claim's check on the built-in worlds of the run (their numbers on the members' grids, the run's
-    seed): beside the members' share, what the point run's verdict becomes on these grids."""
+    seed; `random`: the `landmark_number` study's layouts): beside the members' share, what the point run's
+    verdict becomes on these grids."""
     flat: dict = {}
-    for fam in FAMILIES:
+    for fam in (*FAMILIES, "random"):
         flat.update(worlds.get(fam, {}))
 
     def get(key):

@@ -9,7 +9,10 @@ member i of every family, members in seed slices, layouts from the run's seed): 
 point run's 25 cm grid (`sweeps.point_errors`), the visual and true compass on the ensembles' 100 cm grid
 (vector maps and the heading errors for every member; the visual compass's rollouts, which cost 50 times a
 vector map, for the first slice), each kind of run one compiled program for every member. The built-in worlds
-run in every slice under its seed, beside the members (the grid check: what the coarse grid moves)."""
+run in every slice under its seed, beside the members (the grid check: what the coarse grid moves). Claim 11:
+DELV's per-point maps on env1's members with Q = 1..5 distance levels (one sweep per slice, `levels` an axis);
+claims 5 and 6: DELV's and image matching's in seeded random layouts of 3, 4 and 5 landmarks, member i's nested
+(one sweep)."""
 
 from __future__ import annotations
 
@@ -28,10 +31,13 @@ from ._ensemble_maps import (
     curve_keys,
     heading_errors,
     heading_stats,
+    level_keys,
     member_label,
     merge,
+    random_worlds,
     stacked_env,
     visual_keys,
+    with_continuous,
 )
 from ._ensemble_maps_report import (
     CLAIMS_NOTE,
@@ -69,9 +75,17 @@ CLAIMS = {
     "delv_vs_acv_alv_error_mixed",
     "visual_compass_not_exact",
     "visual_compass_error_order",
+    "quantized_error_small_and_level_insensitive",  # claim 11: DELV's quantized levels on env1's members
+    "few_landmarks_error_below_90",  # claims 5, 6: random layouts of 3, 4 and 5 landmarks
+    "warping_sensitive_to_landmark_number",
 }
 VISUAL_CLAIMS = {"visual_compass_catchment_order", "delv_least_compass_dependent"}
-STEPS = 5
+LEVELS = (1, 2, 3, 4, 5)  # DELV's distance levels Q (the `quantization` study's; continuous: the maps' own DELV)
+COUNTS = (3, 4, 5)  # landmarks of the random layouts (the `landmark_number` study's)
+RANDOM_METHODS = ("delv", "warping")  # claims 5 (DELV) and 6 (image matching against DELV)
+RANDOM_BASE = 1000  # member i's random layouts: seed RANDOM_BASE * (run seed + 1) + i, one seed for 3, 4 and 5
+POINT_RUN_SEED = 100  # `landmark_number` draws n landmarks under seed 100 + n: the built-in `random`
+STEPS = 6
 
 
 def plan(ctx) -> dict:
@@ -95,11 +109,11 @@ def sweep_text(kind: str, envs: list[str], methods, spacing: float, seed: int, *
     )
 
 
-def slice_envs(size: int, j: int, seed: int) -> list[str]:
+def slice_envs(size: int, j: int, seed: int, families=FAMILIES) -> list[str]:
     """The env axis of slice j: `size` members of every family from member j * size (layouts from the run's
     seed), and the built-in worlds (in every slice: one shape for every slice's program)."""
-    members = [f'{{ensemble = "{f}", members = {size}, first = {j * size}, seed = {seed}}}' for f in FAMILIES]
-    return members + [f'"{f}"' for f in FAMILIES]
+    members = [f'{{ensemble = "{f}", members = {size}, first = {j * size}, seed = {seed}}}' for f in families]
+    return members + [f'"{f}"' for f in families]
 
 
 def run_slice(ctx, sizes: dict, j: int, size: int, worlds: dict) -> None:
@@ -111,6 +125,9 @@ def run_slice(ctx, sizes: dict, j: int, size: int, worlds: dict) -> None:
     methods = MAP_METHODS[:4] if sizes["preview"] else MAP_METHODS
     spec = parse_sweep(sweep_text("vector-map", envs, methods, sizes["map_spacing"], seed), "maps")
     add(worlds, curve_keys(point_errors(spec), methods, spec.axes["env"]), suffix)
+    envs1 = slice_envs(size, j, ctx.settings.seed, families=("env1",))  # claim 11: one program over every Q
+    spec = parse_sweep(sweep_text("vector-map", envs1, ["delv"], sizes["map_spacing"], seed, levels=LEVELS), "levels")
+    add(worlds, level_keys(point_errors(spec), spec.axes["env"], LEVELS), suffix)
     if sizes["preview"]:
         return
     text = sweep_text("catchment", envs, TRUE, sizes["spacing"], seed, compass_noise_deg=SIGMAS)
@@ -123,6 +140,22 @@ def run_slice(ctx, sizes: dict, j: int, size: int, worlds: dict) -> None:
             ds = run_sweep(parse_sweep(text, "visual"), lanes=lanes)
             add(worlds, visual_keys(ds, zip(TRUE, VISUAL), bg, True), suffix)
     add(worlds, heading_keys(ctx, size, j, sizes["spacing"], seed), suffix)
+
+
+def random_layouts(ctx, sizes: dict, worlds: dict) -> dict[str, np.ndarray]:
+    """Claims 5 and 6: DELV's and image matching's per-point maps in `members` seeded random layouts of 3, 4 and
+    5 landmarks (member i: one seed, its fewer landmarks the first of its more: nested) and in the
+    `landmark_number` study's three (the built-in `random`: separate seeds), one sweep; their layouts (W, n, 3)
+    per count (`random<n>`, for the property that decides a claim). The preview: DELV only."""
+    base = RANDOM_BASE * (ctx.settings.seed + 1)
+    envs = [f"{{random = {sizes['members']}, landmarks = {list(COUNTS)}, seed = {base}}}"]
+    envs += [f"{{random = 1, landmarks = [{n}], seed = {POINT_RUN_SEED + n}}}" for n in COUNTS]
+    methods = RANDOM_METHODS[:1] if sizes["preview"] else RANDOM_METHODS
+    spec = parse_sweep(sweep_text("vector-map", envs, methods, sizes["map_spacing"], ctx.settings.seed), "random")
+    res = point_errors(spec)
+    merge(worlds, random_worlds(curve_keys(res, methods, spec.axes["env"]), res["landmarks"], base))
+    members = range(base, base + sizes["members"])
+    return {f"random{n}": np.stack([res["landmarks"][f"random{s}-{n}"] for s in members]) for n in COUNTS}
 
 
 def add(worlds: dict, more: dict, suffix: str) -> None:
@@ -155,7 +188,10 @@ def run(ctx) -> None:
     for j in range(slices):  # a handful of seed slices of the same programs: input preparation
         run_slice(ctx, sizes, j, size, worlds)
         ctx.step(f"slice {j + 1} of {slices}")
-    for _ in range(STEPS - slices):
+    with_continuous(worlds)
+    random = random_layouts(ctx, sizes, worlds)
+    ctx.step("random layouts of 3, 4 and 5 landmarks")
+    for _ in range(STEPS - slices - 1):
         ctx.step("preview: the other slices are the full run's")
     seed = ctx.settings.seed
     layouts = {
@@ -163,7 +199,7 @@ def run(ctx) -> None:
             [[[lm["x"], lm["y"], lm["r"]] for lm in e["landmarks"]] for e in ensemble_envs(fam, members, seed)]
         )
         for fam in FAMILIES
-    }
+    } | random
     visual_members = min(members, VISUAL_SLICES * size)
     claims = claim_rows(worlds, members, layouts, ids=CLAIMS)
     claims += [] if sizes["preview"] else claim_rows(worlds, visual_members, layouts, ids=VISUAL_CLAIMS)
@@ -231,12 +267,18 @@ def sizes_text(sizes: dict, visual_members: int) -> str:
     if sizes["preview"]:
         return (
             f"A preview: {sizes['members']} members per family, per-point maps of the landmark methods on a "
-            f"{sizes['map_spacing']:g} cm grid; the visual compass and image matching are the full run's."
+            f"{sizes['map_spacing']:g} cm grid, DELV's quantization levels on env1's members and DELV in "
+            f"{sizes['members']} random layouts of 3, 4 and 5 landmarks; the visual compass and image matching are "
+            "the full run's."
         )
     return (
         f"{sizes['members']} members per family in {sizes['slices']} seed slices; per-point maps on a "
         f"{sizes['map_spacing']:g} cm grid; the compasses on a {sizes['spacing']:g} cm grid, the visual compass's "
-        f"catchments (claims 31, 33) over the first {visual_members} members."
+        f"catchments (claims 31, 33) over the first {visual_members} members. Claim 11: DELV on env1's members "
+        f"with Q = 1-5 levels (continuous: its per-point map); claims 5, 6: DELV and image matching in "
+        f"{sizes['members']} seeded random layouts of 3, 4 and 5 landmarks, member i's nested (one seed: the 3 "
+        "landmarks are the first of its 4, the 4 of its 5, so only the number changes); built-in: the "
+        "`landmark_number` study's three layouts (separate seeds: claim 6 cannot tell)."
     )
 
 

@@ -12,7 +12,7 @@ import xarray as xr
 from delvjax.core.maps import grid_points, random_headings
 from delvjax.core.methods.heading import visual_compass_errors
 from delvjax.core.metrics import error_curve
-from delvjax.envs._presets import env_from_dict
+from delvjax.envs._presets import env_from_dict, random_env
 from delvjax.options._settings import make_sensor
 from delvjax.studies.runs import _ensemble_maps as em
 from delvjax.studies.runs import ensemble_maps
@@ -129,7 +129,42 @@ def synthetic_worlds(members: int, good: int) -> dict[str, dict]:
         em.merge(worlds, em.visual_keys(ds, zip(TRUE, VISUAL), bg, False))
         for i in range(members):
             worlds[f"env1-m{i}"][f"visual:{bg}:heading_error_gt5_pct"] = 10.0
+    levels, env1 = ensemble_maps.LEVELS, slice(0, members)  # claim 11: members < `good` err as little with every Q
+    q = errors[env1, 0, 0, 0] + np.where(worse[env1], 50.0, 0.0)[:, None]  # DELV's continuous map, or 50° more
+    q_errors = np.repeat(q[:, None, :], len(levels), axis=1).reshape(members, 1, 1, 1, len(levels), -1)
+    em.merge(worlds, em.level_keys({**res, "errors": q_errors}, labels[env1], levels))
+    em.with_continuous(worlds)
+    em.merge(worlds, random_numbers(members, good))
     return worlds
+
+
+BASE = 1000
+NESTED = np.array([[300.0, 300, 20], [700, 320, 25], [650, 700, 30], [320, 680, 15], [500, 800, 20]])
+
+
+def random_numbers(members: int, good: int) -> dict[str, dict]:
+    """Claims 5 and 6 on synthetic random layouts of 3, 4 and 5 landmarks (`random<seed>-<n>`): members < `good`
+    where DELV's error grows from 5° near home to 40° far away and image matching errs 40° more with 3 landmarks
+    than with 5 (both claims hold), the others where DELV errs 120° everywhere (claim 5 fails) and image matching
+    as DELV (claim 6 fails); the last member's layouts are not nested (claim 6 cannot tell)."""
+    counts, methods = ensemble_maps.COUNTS, ensemble_maps.RANDOM_METHODS
+    labels = [f"random{BASE + i}-{n}" for n in counts for i in range(members)]
+    dist = np.linalg.norm(POINTS - 500.0, axis=-1)
+    errors = np.zeros((len(labels), len(methods), 1, 1, len(POINTS)))
+    landmarks = {}
+    for w, label in enumerate(labels):  # a synthetic sweep's input, world by world
+        i, n = int(label[6:10]) - BASE, int(label[-1])
+        delv = 5.0 + 35.0 * dist / dist.max() if i < good else np.full(len(POINTS), 120.0)
+        errors[w, 0, 0, 0] = delv
+        errors[w, 1, 0, 0] = np.clip(delv + (20.0 * (5 - n) if i < good else 0.0), 0, 180)
+        landmarks[label] = NESTED[:n] + (i == members - 1) * 10.0 * n  # the last member: each layout moved
+    res = {
+        "errors": errors,
+        "points": POINTS,
+        "homes": {label: np.array([500.0, 500.0]) for label in labels},
+        "landmarks": landmarks,
+    }
+    return em.random_worlds(em.curve_keys(res, methods, labels), landmarks, BASE)
 
 
 def test_every_claim_of_the_study_is_judged_on_the_keys_its_sweeps_record():
@@ -138,12 +173,18 @@ def test_every_claim_of_the_study_is_judged_on_the_keys_its_sweeps_record():
     members = 10
     worlds = synthetic_worlds(members, good=6)
     lay = np.tile(np.array([[400.0, 400, 20], [600, 420, 20], [580, 620, 20], [420, 600, 20]]), (members, 1, 1))
-    layouts = {f: lay for f in ("env1", "env2", "env3")}
+    layouts = {f: lay for f in ("env1", "env2", "env3")} | {
+        f"random{n}": np.tile(NESTED[:n], (members, 1, 1)) for n in (3, 4, 5)
+    }
     ids = ensemble_maps.CLAIMS | ensemble_maps.VISUAL_CLAIMS
     rows = {r["id"]: r for r in claim_rows(worlds, members, layouts, ids=ids)}
     assert set(rows) == ids
     assert rows["delv_smaller_error_than_warping"]["holds %"] == pytest.approx(60.0)
     assert rows["delv_smaller_error_than_warping"]["verdict over worlds"] == "depends on the world"
+    assert rows["quantized_error_small_and_level_insensitive"]["holds %"] == pytest.approx(60.0)
+    assert rows["few_landmarks_error_below_90"]["holds %"] == pytest.approx(60.0)
+    six = rows["warping_sensitive_to_landmark_number"]
+    assert six["holds %"] == pytest.approx(60.0) and six["cannot tell %"] == pytest.approx(10.0)
     assert rows["visual_compass_catchment_order"]["holds %"] == 100.0  # 80 > 60 > 40 in every setting
     assert all(r["members"] == members for r in rows.values())
 
@@ -151,3 +192,36 @@ def test_every_claim_of_the_study_is_judged_on_the_keys_its_sweeps_record():
 def test_member_labels_drop_the_layouts_seed():
     assert em.member_label("env1-s3-m7") == "env1-m7" and em.family_of("env2-s0-m12") == "env2"
     assert em.member_label("env1") == "env1" and em.family_of("env1") == "env1"
+
+
+def test_quantized_and_random_keys_have_the_shapes_the_checks_read():
+    """Claim 11 reads a list of bin means per level Q1-Q5 and continuous; claims 5, 6 one per landmark count and
+    method, and whether the layouts are nested; a member's keys are under `random-m<i>`, the point run's
+    layouts (a seed below BASE) under the built-in `random`."""
+    worlds = synthetic_worlds(4, good=2)
+    env1 = worlds["env1-m0"]
+    for tag in [f"Q{q}" for q in ensemble_maps.LEVELS] + ["continuous"]:
+        curve = env1[f"error_curve:env1:delv:{tag}"]
+        assert isinstance(curve, list) and len(curve) > 3 and all(isinstance(v, float) for v in curve)
+        assert len(env1[f"n:error_curve:env1:delv:{tag}"]) == len(curve)
+    assert env1["error_curve:env1:delv:continuous"] == env1["error_curve:env1:delv"]
+    for i in range(4):
+        nums = worlds[f"random-m{i}"]
+        assert nums["landmark_number:nested"] == (1.0 if i < 3 else 0.0)
+        assert all(len(nums[f"error_curve:random{n}:{m}"]) > 3 for n in (3, 4, 5) for m in ("delv", "warping"))
+
+
+def test_seeded_random_layouts_of_one_seed_are_nested_and_the_point_runs_are_not():
+    """The sweep's random layouts (`presets.random_env(seed, n)`, the fewer landmarks drawn first) of one seed
+    are nested; the `landmark_number` study's (seed 100 + n) are not: `random_worlds` tells them apart."""
+    lms = {f"random{s}-{n}": np.asarray(random_env(s, n).landmarks) for s in (BASE, 103, 104, 105) for n in (3, 4, 5)}
+    labels = [f"random{BASE}-{n}" for n in (3, 4, 5)] + [f"random{100 + n}-{n}" for n in (3, 4, 5)]
+    worlds = em.random_worlds({label: {f"error_curve:{label}:delv": [1.0]} for label in labels}, lms, BASE)
+    assert worlds["random-m0"]["landmark_number:nested"] == 1.0
+    assert worlds["random"]["landmark_number:nested"] == 0.0
+    assert set(worlds["random"]) == {
+        "error_curve:random3:delv",
+        "error_curve:random4:delv",
+        "error_curve:random5:delv",
+        "landmark_number:nested",
+    }
