@@ -196,10 +196,12 @@ QUICK_BANNER = (
 
 def ensemble_section(records: dict, flat: dict) -> list[str]:
     """The world ensembles in a few lines (`studies/runs/ensembles.py`): sizes, thesis numbers inside our band,
-    and what the members' coarser grid moves on the built-in worlds; [] when the study did not run."""
+    and what the members' coarser grid moves on the built-in worlds, then the other ensemble studies' lines
+    (`ensemble_more`); [] when none of them ran."""
     rec = records.get("ensembles")
     if rec is None or "ensemble:members" not in rec.numbers:
-        return []
+        more = ensemble_more(records, flat)
+        return ["### Over the worlds the thesis's words allow", *more] if more else []
     from ..studies.runs._ensemble_gaps import gaps_text  # the studies: loaded only when a report is written
     from ..studies.runs._ensemble_stats import grid_check_text  # the studies: loaded only when a report is written
 
@@ -230,14 +232,18 @@ def ensemble_more(records: dict, flat: dict) -> list[str]:
             "(the claims table's *over worlds* column; studies `ensembles`, `ensemble_maps`, `ensemble_rollouts`); "
             "the others say *not covered*."
         )
-    if "ensemble_settings:sentence" in flat:
+    rec = records.get("ensemble_settings")
+    said = next((t.get("note", "") for t in (rec.tables if rec else []) if t["id"] == "settings_identified"), "")
+    if said:  # the table's note is the study's one sentence on what the thesis's numbers identify
         best = flat.get("ensemble_settings:best") or []
-        values = flat.get("ensemble_settings:best_text", "")
+        design = next((t["rows"] for t in rec.tables if t["id"] == "settings_design"), [])  # from the best
+        names = ("bearing noise (°)", "home radius (cm)", "odometry noise", "rules")
+        values = ", ".join(f"{n} {design[0][n]}" for n in names if design and n in design[0])
         score = f" Best combination ({values}): {best[1]:.2f} [{best[2]:.2f}-{best[3]:.2f}]" if len(best) == 4 else ""
         default = flat.get("ensemble_settings:score:default")
         parts.append(
             "**The unstated settings** (study `ensemble_settings`, mean CRPS of the thesis's numbers over the members, "
-            f"points): {flat['ensemble_settings:sentence']}{score}"
+            f"points): {said}{score}"
             + (f"; every default {default:.2f}." if isinstance(default, (int, float)) else ".")
         )
     if any(k.startswith("ensemble_ranges:") for k in flat):

@@ -92,14 +92,6 @@ def run(ctx) -> None:
     ctx.number("ensemble_settings:score:best", float(comb["score"][best]))
     ctx.number("ensemble_settings:indistinct", int(comb["indistinct"].sum()))
     ctx.number("ensemble_settings:identified", sum(f["identified"] for f in found.values()))
-    ctx.number("ensemble_settings:sentence", text)  # the report's one sentence (delvjax/reproduce/_report.py)
-    ctx.number(  # the best combination in words, for the report: "bearing noise 1°, home radius 25 cm, ..."
-        "ensemble_settings:best_text",
-        ", ".join(
-            f"{SETTINGS[n][0]} {v:g}{SETTINGS[n][2]}" if isinstance(v, float) else f"{SETTINGS[n][0]} {v}"
-            for n, v in combination(levels[best]).items()
-        ),
-    )
     for name, f in found.items():
         ctx.number(f"ensemble_settings:best:{name}", numeric(name, combination(levels[best])[name]))
         ctx.number(
@@ -128,16 +120,17 @@ def run(ctx) -> None:
         "Which unstated settings the thesis's numbers identify",
         identified_rows(found, shown),
         source="Figs 4.5, 5.5, 5.10, Tables 5.1, 5.3",
-        note=f"A setting's score per value is the score of the best combination with that value, the others free "
-        f"(its profile; in the full factorial every value meets the same combinations of the others). Identified: one value is best in at least {SHARE:g} % of the resamples and every "
-        f"other value's gap to it is above 0 in {100 - GAP:g} % of them (a two-sided 1 % test per setting). {text}",
+        note=text,  # exactly the sentence: the report quotes it (delvjax/reproduce/_report.py `ensemble_more`)
     )
     ctx.table(
         "settings_values",
         "Each setting value's score over the combinations with it, with its resample band",
         value_rows(found, shown),
         source="Figs 4.5, 5.5, 5.10, Tables 5.1, 5.3",
-        note=f"Score: the best combination's with the value. Gap bound: the {GAP:g}th percentile over the resamples of "
+        note=f"A setting's score per value is the score of the best combination with that value, the others free "
+        f"(its profile; in the full factorial every value meets the same combinations of the others). Identified: one "
+        f"value is best in at least {SHARE:g} % of the resamples and every other value's gap to it is above 0 in "
+        f"{100 - GAP:g} % of them (a two-sided 1 % test per setting). Score: the best combination's with the value. Gap bound: the {GAP:g}th percentile over the resamples of "
         "the value's score minus the best value's: a value whose bound is above 0 is excluded by the thesis's numbers.",
     )
     unreached = unreached_rows(x, items, levels)

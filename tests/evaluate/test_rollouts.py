@@ -61,7 +61,7 @@ def test_cli_catchment_success_rate_trajectories(tmp_path):
         == 0
     )
     header = out.read_text().splitlines()[0].split(",")
-    assert header[:5] == ["x", "y", "heading_deg", "success", "steps"] and "hidden" in header
+    assert header[:6] == ["x", "y", "heading_deg", "success", "counted", "steps"] and "hidden" in header
     env = delvjax.load_env("env1")
     n_points = int(np.sum(np.asarray(grid_included(env, jnp.asarray(grid_points(env.arena, 200.0)), 10.0))))
     assert len(out.read_text().splitlines()) == 1 + env.n_landmarks * n_points  # C(N, 1) masks

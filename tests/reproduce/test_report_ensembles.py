@@ -3,6 +3,8 @@ judge, the settings sentence with its best combination, and the claims whose ver
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 from delvjax.reproduce._report import ensemble_more
 
 CLAIM = "occlusion_increases_errors"  # claim 22
@@ -16,14 +18,24 @@ def test_the_settings_sentence_and_the_best_combination_are_quoted():
     flat = {
         "ensemble:claim:a": [1, 0, 2, 44, 0, 0],
         "ensemble:claim:b": [1, 0, 2, 44, 0, 0],
-        "ensemble_settings:sentence": "The thesis's numbers identify the rules (default).",
         "ensemble_settings:best": [17, 4.5, 4.08, 5.04],
-        "ensemble_settings:best_text": "bearing noise 1°, home radius 25 cm",
         "ensemble_settings:score:default": 5.15,
     }
-    text = "\n".join(ensemble_more({}, flat))
+    record = SimpleNamespace(
+        tables=[
+            {"id": "settings_identified", "note": "The thesis's numbers identify the rules (default)."},
+            {
+                "id": "settings_design",
+                "rows": [{"bearing noise (°)": 1.0, "home radius (cm)": 25.0, "rules": "default"}],
+            },
+        ]
+    )
+    text = "\n".join(ensemble_more({"ensemble_settings": record}, flat))
     assert "2 of the thesis's claims are judged over the ensembles' members" in text
-    assert "identify the rules (default). Best combination (bearing noise 1°, home radius 25 cm): 4.50" in text
+    assert (
+        "identify the rules (default). Best combination (bearing noise (°) 1.0, home radius (cm) 25.0, rules default): 4.50"
+        in text
+    )
     assert "[4.08-5.04]; every default 5.15." in text
 
 
