@@ -97,7 +97,7 @@ def load_record(folder: Path) -> StudyRecord | None:
     if not path.is_file():
         return None
     try:
-        return StudyRecord(**json.loads(path.read_text()))
+        return StudyRecord.from_json(json.loads(path.read_text()))
     except (OSError, ValueError, TypeError) as exc:
         warn(f"study record {path} cannot be read ({type(exc).__name__}): the study runs again")
         return None

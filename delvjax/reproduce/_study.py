@@ -132,6 +132,48 @@ class StudyRecord:
     numbers: dict = field(default_factory=dict)  # flat keys -> JSON values, read by the claims
     files: list = field(default_factory=list)
 
+    @classmethod
+    def from_json(cls, data: Any) -> StudyRecord:
+        """The record a study.json holds, its fields' types checked (TypeError naming the field): a record
+        that parses but is not one delvjax wrote must make the study run again, not fail the report."""
+        if not isinstance(data, dict):
+            raise TypeError(f"a study record is a JSON object, not {type(data).__name__}")
+        for name, value in data.items():
+            kind = RECORD_FIELDS.get(name)
+            if kind is None:
+                raise TypeError(f"unknown field {name!r}")
+            number = isinstance(value, (int, float)) and not isinstance(value, bool)
+            if not (number if kind is float else isinstance(value, kind)):
+                raise TypeError(f"field {name!r} is {type(value).__name__}, not {kind.__name__}")
+        for name, keys in (("figures", FIGURE_KEYS), ("tables", TABLE_KEYS)):
+            for item in data.get(name, []):
+                if (
+                    not isinstance(item, dict)
+                    or any(not isinstance(item.get(k), t) for k, t in keys.items())
+                    or (name == "tables" and any(not isinstance(r, dict) for r in item["rows"]))
+                ):
+                    raise TypeError(f"an entry of {name!r} lacks one of {sorted(keys)} or has the wrong type")
+        if any(not isinstance(f, str) for f in data.get("files", [])):
+            raise TypeError("field 'files' holds a name that is not a string")
+        return cls(**data)
+
+
+RECORD_FIELDS = {
+    "name": str,
+    "title": str,
+    "hash": str,
+    "settings": dict,
+    "versions": dict,
+    "seconds": float,
+    "compile_seconds": float,
+    "figures": list,
+    "tables": list,
+    "numbers": dict,
+    "files": list,
+}
+FIGURE_KEYS = {"file": str, "caption": str}
+TABLE_KEYS = {"id": str, "title": str, "source": str, "note": str, "file": str, "columns": list, "rows": list}
+
 
 class StudyContext:
     """The output folder and writers of one study; every write is atomic and recorded."""

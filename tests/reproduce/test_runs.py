@@ -4,6 +4,7 @@ worker; tests that change the folder put it back to "every study current under T
 
 from __future__ import annotations
 import base64
+import json
 import os
 import re
 import subprocess
@@ -265,3 +266,37 @@ def test_studies_importable_outside_the_repo(tmp_path):
     printed = proc.stdout.strip().splitlines()[-1]
     for name in studies.STUDIES:
         assert repr(name) in printed
+
+
+BAD_RECORDS = [  # parse as JSON, but no delvjax wrote them (issue 53 point 13)
+    [],
+    {"name": "environments", "files": "fig.png"},
+    {"name": "environments", "seconds": "12"},
+    {"name": "environments", "numbers": []},
+    {"name": "environments", "tables": [{"id": 3}]},
+    {
+        "name": "environments",
+        "tables": [{"id": "t", "title": "", "source": "", "note": "", "file": "t.csv", "columns": [], "rows": [1]}],
+    },
+    {"name": "environments", "figures": ["a.png"]},
+    {"name": "environments", "files": [1]},
+    {"name": "environments", "colour": "red"},
+]
+
+
+@pytest.mark.parametrize("bad", BAD_RECORDS, ids=range(len(BAD_RECORDS)))
+def test_a_record_of_wrong_types_is_not_read(bad):
+    with pytest.raises(TypeError):
+        reproduce.StudyRecord.from_json(bad)
+
+
+def test_a_record_of_wrong_types_makes_its_study_run_again(run, capsys):
+    out, _, _ = run
+    record = out / "environments" / reproduce.STUDY_FILE
+    good = record.read_text()
+    record.write_text('{"name": "environments", "title": "x", "hash": "h", "tables": [{"id": 3}], "files": "abc"}')
+    result = reproduce.reproduce(out, settings=TINY, progress=False)
+    assert result["ran"] == ["environments"]
+    assert "cannot be read (TypeError)" in capsys.readouterr().err
+    assert reproduce.StudyRecord.from_json(json.loads(record.read_text())).name == "environments"
+    assert reproduce.StudyRecord.from_json(json.loads(good)).name == "environments"
