@@ -3,6 +3,7 @@ host-side chunks (issue "hardening" item 2; docs/reproduce.md "Large grids")."""
 
 from __future__ import annotations
 
+import re
 import time
 
 import jax
@@ -13,7 +14,7 @@ import delvjax
 from delvjax.cli._main import main
 from delvjax.core import maps
 from delvjax.core.errors import InputError
-from delvjax.options._limits import MAX_POINTS, grid_count
+from delvjax.options._limits import MAX_POINTS, duration, grid_count
 
 
 def refused(capsys, argv, field) -> str:
@@ -41,7 +42,7 @@ def test_a_run_above_max_points_is_refused_with_an_estimate(tmp_path, capsys, ar
     out = tmp_path / "r.csv"
     extra = ["--max-points", "100000"] if "--occlude" in argv else []
     line = refused(capsys, argv + extra + ["--out", str(out)], field)
-    assert "max_points" in line and "GB" in line and " h " in line
+    assert "max_points" in line and "GB" in line and re.search(r"up to [0-9.]+ (s|min|h|days) on 2 CPU", line)
     assert not out.exists()
 
 
@@ -96,3 +97,11 @@ def test_recorded_paths_stay_within_their_budget_and_the_usual_block_is_shared()
     for n, steps in [(6, 100_000), (10**6, 5_000), (1, 10**7)]:
         block = trial_block(n, steps, True)
         assert block % 128 == 0 and (block * (steps + 1) <= PATH_BUDGET or block == 128)
+
+
+@pytest.mark.parametrize(
+    "seconds, text",
+    [(0.5, "0.5 s"), (40, "40 s"), (200, "3 min"), (10800, "3 h"), (3600 * 2.5, "2.5 h"), (3 * 86400, "3 days")],
+)
+def test_durations_read_as_a_person_says_them(seconds, text):
+    assert duration(seconds) == text

@@ -69,7 +69,7 @@ def test_trajectories_that_would_not_fit_are_refused_with_the_estimate():
 def test_rollouts_that_could_run_for_hours_are_refused_with_the_estimate(command, kw):
     with pytest.raises(InputError) as exc:
         getattr(delvjax, command)("env1", max_steps=HUGE, **kw)
-    assert exc.value.field == "max_steps" and "moves" in str(exc.value) and " h on 2 CPU cores" in str(exc.value)
+    assert exc.value.field == "max_steps" and "moves" in str(exc.value) and " on 2 CPU cores" in str(exc.value)
 
 
 def test_catchments_success_rates_and_trajectories_share_one_program(monkeypatch):
