@@ -2,6 +2,7 @@
 shape -> labelled results (xarray)."""
 
 from ._points import point_errors as point_errors
+from ._points import point_outcomes as point_outcomes
 from ._run import load_sweep as load_sweep
 from ._run import run_sweep as run_sweep
 from ._run import save_sweep as save_sweep

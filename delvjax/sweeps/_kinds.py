@@ -32,11 +32,14 @@ def sum_names(kind: SweepKind) -> tuple[str, ...]:
     return tuple(f.name for f in dataclasses.fields(kind.sums))
 
 
-def cell_setup(spec: SweepSpec, envs: dict, cell: dict, max_points: int) -> dict:
+def cell_setup(
+    spec: SweepSpec, envs: dict, cell: dict, max_points: int, program: tuple[str, ...] | None = None
+) -> dict:
     """One cell's setup, validated by the API call of its kind (`spec.kind.request`); an `InputError`
-    names the cell."""
+    names the cell. `program`: registry names compiled into one program with the cell's method, image methods
+    too (`point_outcomes`); None: the sweep's landmark methods (`shared_program`)."""
     try:
-        return spec.kind.request(envs[cell["env"]], cell, spec, max_points)
+        return spec.kind.request(envs[cell["env"]], cell, spec, max_points, program)
     except InputError as exc:
         where = ", ".join(f"{k}={v}" for k, v in cell.items())
         raise InputError(f"cell ({where})", exc.value, f"{exc.field}: {exc.expected}") from None
@@ -65,27 +68,35 @@ def shared_program(spec: SweepSpec, method) -> tuple[str, ...] | None:
     return mine if len(mine) > 1 else None
 
 
-def _with_program(request: Callable[..., dict], cell: dict, spec: SweepSpec, **kwargs) -> dict:
+def _with_program(request: Callable[..., dict], cell: dict, spec: SweepSpec, program=None, **kwargs) -> dict:
     """`request(method=..., **kwargs)` validated for the cell's method alone (a setting of another
-    method stays an error), then, where the sweep has companions, set up as one of their `Program`."""
+    method stays an error), then, where the sweep has companions (or `program` names them), set up as one
+    of their `Program`."""
     req = request(method=cell["method"], **kwargs)
-    names = shared_program(spec, cell["method"])
+    names = shared_program(spec, cell["method"]) if program is None else tuple(program)
     return req if names is None else request(method=cell["method"], program=names, **kwargs)
 
 
-def map_request(env, cell: dict, spec: SweepSpec, max_points: int) -> dict:
+def map_request(env, cell: dict, spec: SweepSpec, max_points: int, program=None) -> dict:
     """A vector-map cell, validated as `delvjax.vector_map` validates its keywords."""
     return _with_program(
-        functools.partial(api.map_request, env), cell, spec, seed=cell["seed"], max_points=max_points, **_options(cell)
+        functools.partial(api.map_request, env),
+        cell,
+        spec,
+        program,
+        seed=cell["seed"],
+        max_points=max_points,
+        **_options(cell),
     )
 
 
-def rollout_request(env, cell: dict, spec: SweepSpec, max_points: int) -> dict:
+def rollout_request(env, cell: dict, spec: SweepSpec, max_points: int, program=None) -> dict:
     """A catchment or success-rate cell, validated as `delvjax.catchment` / `success_rate` validate theirs."""
     return _with_program(
         functools.partial(api_rollouts.rollout_request, env),
         cell,
         spec,
+        program,
         kind=str(spec.kind),
         seed=cell["seed"],
         distances=spec.distances,

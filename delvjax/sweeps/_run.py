@@ -43,16 +43,18 @@ def _envs(spec: SweepSpec) -> dict:
     return {name: env(name, pad_to=slots) for name in envs}
 
 
-def _plan(spec: SweepSpec, envs: dict, max_points: int, code: str | None) -> tuple[list[list[int]], list[str], int]:
+def _plan(
+    spec: SweepSpec, envs: dict, max_points: int, code: str | None, program: tuple[str, ...] | None = None
+) -> tuple[list[list[int]], list[str], int]:
     """Validate every cell before any work; return the cells of each program (group), with `code`
     every cell's digest (`cell_store`), and the most visibility masks of any cell. Setups are not
-    kept: memory does not grow with them."""
+    kept: memory does not grow with them. `program`: as `cell_setup`'s."""
     ids: dict[tuple, int] = {}
     groups: list[list[int]] = []
     digests: list[str] = []
     rows = 1
     for i, cell in enumerate(spec.cells()):  # input preparation, one small pytree per cell
-        req = cell_setup(spec, envs, cell, max_points)
+        req = cell_setup(spec, envs, cell, max_points, program)
         rows = max(rows, mask_rows(req))
         gid = ids.setdefault(group_key(req), len(ids))
         if gid == len(groups):

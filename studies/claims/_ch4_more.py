@@ -109,10 +109,13 @@ OFTEN = 10.0  # points of failed releases
 def _(get):
     """'Often has difficulty ... in the outer zone': image matching's failed releases outside the hull
     exceed those inside by >= 10 points and DELV's outside by >= 10 points. No failures anywhere
-    (all <= 1 %): cannot tell."""
+    (all <= 1 %): cannot tell; no counted release point inside (or outside) the hull (a rate NaN, as in a
+    world of the ensembles whose hull holds no grid point): cannot tell."""
     wi, wo = get("fail_inside_hull:env1:warping"), get("fail_outside_hull:env1:warping")
     do = get("fail_outside_hull:env1:delv")
     ours = f"failed releases: image matching inside hull {_n(wi)} %, outside {_n(wo)} %; DELV outside {_n(do)} %"
+    if any(v != v for v in (wi, wo, do)):  # NaN: a region without a counted release point
+        return ours, CANNOT_TELL, _why("no counted release point inside or outside the hull")
     if at_ceiling([100.0 - v for v in (wi, wo, do)]):
         return ours, CANNOT_TELL, _why("no method fails from anywhere")
     parts = [wo >= wi + OFTEN, wo >= do + OFTEN]

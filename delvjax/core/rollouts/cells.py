@@ -100,6 +100,23 @@ def _trials(cell: RolloutCell, starts, headings, key_index, mask_index, n_valid,
     return run_block(rollout, starts, headings, n_valid, lanes)
 
 
+def _grid_trials(cell: RolloutCell, points: Array, inc: Array, max_steps: ArrayLike, lanes: int):
+    """One cell's catchment trials: every included point of `points` under each of its masks (included points
+    first, in grid order, mask after mask), random release headings per point from the cell's key. Returns
+    (results, run, point index, mask index, trials run) per trial slot."""
+    n_points = points.shape[0]
+    rows = cell.masks.shape[0]
+    n_inc = jnp.sum(inc).astype(jnp.int32)
+    order = jnp.argsort(~inc, stable=True).astype(jnp.int32)  # included points first, in grid order
+    t = jnp.arange(rows * n_points, dtype=jnp.int32)
+    mask = t // jnp.maximum(n_inc, 1)
+    point = order[t % jnp.maximum(n_inc, 1)]
+    n_valid = cell.n_masks * n_inc
+    headings = random_headings(cell.key, n_points)
+    res = _trials(cell, points[point], headings[point], point, mask, n_valid, max_steps, lanes)
+    return res, t < n_valid, point, mask, n_valid
+
+
 @partial(jax.jit, static_argnames=("lanes",))
 def catchment_cells(
     cells: RolloutCell, points: Array, included: Array, counted: Array, max_steps: ArrayLike, lanes: int
@@ -107,20 +124,11 @@ def catchment_cells(
     """Catchment sums of C stacked cells (`catchment_area`'s trials: every included grid point of
     `points` (P, 2) under every mask, random release headings per point from each cell's key).
     `included`, `counted`: (C, P)."""
-    n_points = points.shape[0]
 
     def one(args):
         cell, inc, cnt = args
         rows = cell.masks.shape[0]
-        n_inc = jnp.sum(inc).astype(jnp.int32)
-        order = jnp.argsort(~inc, stable=True).astype(jnp.int32)  # included points first, in grid order
-        t = jnp.arange(rows * n_points, dtype=jnp.int32)
-        mask = t // jnp.maximum(n_inc, 1)
-        point = order[t % jnp.maximum(n_inc, 1)]
-        n_valid = cell.n_masks * n_inc
-        headings = random_headings(cell.key, n_points)
-        res = _trials(cell, points[point], headings[point], point, mask, n_valid, max_steps, lanes)
-        run = t < n_valid
+        res, run, point, mask, n_valid = _grid_trials(cell, points, inc, max_steps, lanes)
         err = angular_error_deg(res.first_dir, res.first_valid, points[point], cell.env.home)
         counts = run & cnt[point]
         ok = counts & (res.outcome == SUCCESS)
@@ -130,7 +138,7 @@ def catchment_cells(
         e = jnp.where(run, err, 0.0)
         n_cnt = jnp.sum(inc & cnt).astype(jnp.int32)
         return CatchmentSums(
-            points=n_inc,
+            points=jnp.sum(inc).astype(jnp.int32),
             trials=n_valid,
             counted_points=n_cnt,
             counted=cell.n_masks * n_cnt,
@@ -188,3 +196,23 @@ def success_cells(
         )
 
     return jax.lax.map(one, cells)
+
+
+@partial(jax.jit, static_argnames=("lanes",))
+def catchment_cells_points(
+    cells: RolloutCell, points: Array, included: Array, max_steps: ArrayLike, lanes: int
+) -> tuple[Array, Array]:
+    """Per-point outcomes of C stacked cells, the trials of `catchment_cells` (the same trials, outcome for
+    outcome): (successes, untouched), (C, P) int32 each, the successful trials of each grid point summed over
+    the cell's masks, and those of them that never touched a landmark (`rules.under_collisions`); 0 at a point
+    not included. For numbers a sum cannot give (failures inside and outside the landmarks' hull)."""
+    n_points = points.shape[0]
+
+    def one(args):
+        cell, inc = args
+        res, run, point, _, _ = _grid_trials(cell, points, inc, max_steps, lanes)
+        ok = run & (res.outcome == SUCCESS)
+        per_point = lambda m: jax.ops.segment_sum(m.astype(jnp.int32), point, n_points)  # noqa: E731
+        return per_point(ok), per_point(ok & (res.contact == NO_CONTACT))
+
+    return jax.lax.map(one, (cells, included))
