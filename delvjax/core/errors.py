@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import difflib
 import math
 import sys
+from collections.abc import Iterable
 
 
 class InputError(ValueError):
@@ -28,3 +30,15 @@ def is_finite_number(value: object) -> bool:
         return math.isfinite(float(value))
     except OverflowError:
         return False
+
+
+def did_you_mean(name: object, choices: Iterable[str]) -> str:
+    """' (did you mean 'alv'?)' where one of `choices` is close to `name` (case, '_' for '-', a swapped or
+    missing letter: "ALV", "delv_compass", "bearing_nosie_deg"), else ''."""
+    if not isinstance(name, str):
+        return ""
+    choices = list(choices)
+    fold = {c.lower().replace("_", "-"): c for c in choices}
+    typed = name.strip().lower().replace("_", "-").replace(" ", "-")
+    close = difflib.get_close_matches(typed, list(fold), n=1, cutoff=0.75)  # an exact match scores highest
+    return f" (did you mean {fold[close[0]]!r}?)" if close else ""

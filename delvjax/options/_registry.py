@@ -8,9 +8,8 @@ beside the others).
 from __future__ import annotations
 
 import dataclasses
-import difflib
 
-from ..core.errors import InputError
+from ..core.errors import InputError, did_you_mean
 from ..core.settings import declared
 from ..core.methods.acv import ACV
 from ..core.methods.alv import ALV
@@ -83,18 +82,10 @@ def unregister(name: str) -> None:
 def get_method(name: str) -> HomingMethod:
     """The module registered under `name`; `InputError` naming the field otherwise."""
     if not isinstance(name, str) or name not in METHODS:
-        raise InputError("method", name, f"unknown method{_did_you_mean(name)} (choose from {', '.join(METHODS)})")
+        raise InputError(
+            "method", name, f"unknown method{did_you_mean(name, METHODS)} (choose from {', '.join(METHODS)})"
+        )
     return METHODS[name]
-
-
-def _did_you_mean(name) -> str:
-    """' (did you mean 'alv'?)' where a registered name is close to `name` ("ALV", "delv_compass",
-    "delvcompass"), else ''."""
-    if not isinstance(name, str):
-        return ""
-    typed = name.strip().lower().replace("_", "-").replace(" ", "-")
-    close = difflib.get_close_matches(typed, list(METHODS), n=1, cutoff=0.75)  # an exact match scores highest
-    return f" (did you mean {close[0]!r}?)" if close else ""
 
 
 def configure(method: HomingMethod, **settings) -> HomingMethod:
@@ -133,7 +124,7 @@ def program(method: str, names) -> tuple[Program, tuple[str, ...]]:
         raise InputError(
             "program",
             list(names),
-            f"unknown method {unknown[0]!r}{_did_you_mean(unknown[0])} (choose from {', '.join(METHODS)})",
+            f"unknown method {unknown[0]!r}{did_you_mean(unknown[0], METHODS)} (choose from {', '.join(METHODS)})",
         )
     if method not in names:
         raise InputError("program", list(names), f"must contain the method {method!r}")

@@ -11,7 +11,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from ..core.errors import InputError, is_finite_number
+from ..core.errors import InputError, did_you_mean, is_finite_number
 from ..core.rollouts.rules import DEFAULT_DISTANCES, TRIALS_PER_DISTANCE
 from ..envs._ensembles import FAMILIES
 from ..envs._ensembles import ensemble_envs as ensemble_envs_of
@@ -272,8 +272,16 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
     head, table = data.get("sweep", {}), data.get("axes", {})
     if not isinstance(head, dict) or not isinstance(table, dict):
         raise InputError("sweep", source, "[sweep] and [axes] must be tables")
-    for key in sorted(set(head) - {"kind", "metrics", "distances", "trials"}):
-        raise InputError(f"sweep.{key}", head[key], "unknown field (kind, metrics, distances, trials)")
+    fields = ("kind", "metrics", "distances", "trials")
+    for key in sorted(set(head) - set(fields)):
+        every_axis = sorted({a for k in KINDS.values() for a in axes(k)})
+        near_field, near_axis = did_you_mean(key, fields), did_you_mean(key, every_axis)
+        if key in every_axis:
+            what = "is an axis: put it under [axes]"
+        else:
+            what = f"unknown field{near_field}" if near_field else f"unknown field{near_axis or ''}"
+            what += "" if near_field or not near_axis else ", and axes go under [axes]"
+        raise InputError(f"sweep.{key}", head[key], f"{what} (the fields of [sweep]: {', '.join(fields)})")
     name = head.get("kind", "vector-map")
     if name not in KINDS:
         raise InputError("sweep.kind", name, f"must be one of {', '.join(KINDS)}")
@@ -291,7 +299,7 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
             raise InputError(f"sweep.metrics[{i}]", m, f"must be a metric name (choose from {', '.join(known)})")
         if m not in known:
             other = [k for k, v in KINDS.items() if m in v.metrics]
-            hint = f' (a metric of kind = "{other[0]}")' if other else ""
+            hint = f' (a metric of kind = "{other[0]}")' if other else did_you_mean(m, known)
             raise InputError(
                 f"sweep.metrics[{i}]", m, f'unknown metric of kind = "{kind}"{hint} (choose from {", ".join(known)})'
             )
@@ -299,7 +307,9 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
     every = {k: v for kind_ in kind_axes.values() for k, v in kind_.items()}  # the axes of any kind
     for name in table:
         if name not in every:
-            raise InputError(f"axes.{name}", table[name], f"unknown axis (choose from {', '.join(every)})")
+            raise InputError(
+                f"axes.{name}", table[name], f"unknown axis{did_you_mean(name, every)} (choose from {', '.join(every)})"
+            )
         if name not in kind_axes[kind]:
             users = [k for k in KINDS if name in kind_axes[k]]
             raise InputError(

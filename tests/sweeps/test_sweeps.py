@@ -129,6 +129,24 @@ def test_a_bad_sweep_file_names_its_field(text, field):
     assert exc.value.field == field
 
 
+@pytest.mark.parametrize(
+    "text, hint",
+    [
+        ("[axes]\nbearing_nosie_deg = [1]", "did you mean 'bearing_noise_deg'?"),
+        ("[axes]\nD = [20]", "did you mean 'd'?"),
+        ("[sweep]\nmetric = ['gt45_pct']", "did you mean 'metrics'?"),
+        ("[sweep]\nmetrics = ['mean_eror_deg']", "did you mean 'mean_error_deg'?"),
+        ("[sweep]\nbearing_noise_deg = [1]", "is an axis: put it under [axes]"),
+        ("[sweep]\nbearing_nois_deg = [1]", "did you mean 'bearing_noise_deg'?), and axes go under [axes]"),
+    ],
+)
+def test_a_typo_in_a_sweep_file_gets_the_name_it_was_meant_to_be(text, hint):
+    """Issue 53 point 8: 53 axis names and no hint were not enough to find a swapped letter."""
+    with pytest.raises(InputError) as exc:
+        parse_sweep(text)
+    assert hint in str(exc.value)
+
+
 def test_an_incompatible_cell_is_refused_before_any_work(tmp_path, capsys):
     code, _, out = cli_sweep(tmp_path, "[axes]\nmethod = ['delv', 'alv']\nlevels = [2]\nspacing = [200]\n")
     assert code == 2
