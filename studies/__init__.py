@@ -27,6 +27,8 @@ STUDIES = [
     "ensemble_maps",
     "ensemble_rollouts",
     "ensemble_settings",
+    "ensemble_robot",
+    "ensemble_hull",
 ]
 
 # Studies beyond the thesis's simulations (gradients, layout design, image effects, most ensembles) and the
@@ -44,6 +46,8 @@ FULL_RUN_ONLY = (
     "ensemble_maps",
     "ensemble_rollouts",
     "ensemble_settings",
+    "ensemble_robot",
+    "ensemble_hull",
 )
 
 # Each study declares its own `COST`: rough seconds of it in a full run on 2 CPU cores, two side by side
