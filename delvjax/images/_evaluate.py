@@ -36,6 +36,7 @@ from ..options._checks import non_negative, positive, positive_int, seed_value
 from ._render import database_metadata
 from ._writer import DatabaseWriter
 from ._render import ImageSettings, check_render, render_rings, world_grid
+from ._worlds import ImageWorld
 from ..options._limits import MAX_POINTS
 from ._load import LoadedDatabase, database_arena, database_spacing, check_home_move, load_database, with_channel
 
@@ -271,7 +272,7 @@ def import_database(
 
 
 def render_in_memory(
-    env: str,
+    env: str | ImageWorld,
     spacing: float | None = None,
     settings=None,
     seed: int = 0,
@@ -279,7 +280,8 @@ def render_in_memory(
     chunk: int = DEFAULT_CHUNK,
     panoramas: bool = False,
 ) -> LoadedDatabase:
-    """The database `render_database` would write, rendered and reduced to rings in memory (no files;
+    """The database `render_database` would write of `env` (a world's name, or an `ImageWorld`), rendered and
+    reduced to rings in memory (no files;
     ring for ring what `load_database` reads back from them, docs/images.md §5); panoramas: keep
     every gray panorama too (MinWarping, docs/model.md §4.7)."""
 
@@ -291,7 +293,7 @@ def render_in_memory(
         ex = dataclasses.replace(ex, panorama=True)
     rings = render_rings(iw, settings, pts, np.zeros(len(pts), np.float32), jax.random.PRNGKey(seed), ex, chunk)
     home_index = int(np.argmin(np.linalg.norm(pts - np.asarray(iw.home), axis=-1)))
-    check_home_move(pts, home_index, spacing, "env", env)
+    check_home_move(pts, home_index, spacing, "env", env if isinstance(env, str) else iw.name)
     return LoadedDatabase(
         iw.name,
         rings,

@@ -219,10 +219,10 @@ def render_rings(
 
 
 def check_render(
-    env: str, spacing: float | None, settings: ImageSettings, seed: int, max_points: int, chunk: int
+    env: str | ImageWorld, spacing: float | None, settings: ImageSettings, seed: int, max_points: int, chunk: int
 ) -> tuple[ImageWorld, float]:
-    """Validate a render before any work: the world, spacing, noise, seed, size."""
-    iw = image_world(env)
+    """Validate a render before any work: the world (a name, or an `ImageWorld`), spacing, noise, seed, size."""
+    iw = env if isinstance(env, ImageWorld) else image_world(env)
     spacing = iw.spacing if spacing is None else positive(spacing, "spacing")
     non_negative(settings.pixel_noise, "pixel_noise")
     non_negative(settings.gain_noise, "gain_noise")

@@ -39,10 +39,21 @@ class ImageWorld:
         return {"cylinders": c[c[:, 3] > 0, :3].tolist(), "boxes": b[b[:, 4] > 0, :4].tolist()}
 
 
+ROBOT_LANDMARKS = ((45.0, 135.0, 8.0), (130.0, 150.0, 8.0), (145.0, 55.0, 8.0), (55.0, 42.0, 8.0))  # x, y, r cm
+ROBOT_HEIGHT = 50.0  # cm, the robot world's cylinders
+
+
+def robot_arena(landmarks=ROBOT_LANDMARKS, name: str = "robot") -> ImageWorld:
+    """The robot world (thesis §4.4.1) with its cylinders at `landmarks` (rows x, y, r cm): red, ROBOT_HEIGHT cm
+    tall, in the 1.8 m arena with 60 cm walls, home at its centre, snapshots every 20 cm (a member of the
+    `robot` world family, docs/model.md §6.1, is one of these)."""
+    cyl = [(float(x), float(y), float(r), ROBOT_HEIGHT) for x, y, r in np.asarray(landmarks, float).reshape(-1, 3)]
+    world = make_world(cylinders=cyl, cylinder_rgb=[RED] * len(cyl), arena=(0.0, 0.0, 180.0, 180.0), wall_height=60.0)
+    return ImageWorld(name, world, (90.0, 90.0), 20.0, Extractor(max_blobs=len(cyl)))
+
+
 def _robot() -> ImageWorld:
-    cyl = [(45.0, 135.0, 8.0, 50.0), (130.0, 150.0, 8.0, 50.0), (145.0, 55.0, 8.0, 50.0), (55.0, 42.0, 8.0, 50.0)]
-    world = make_world(cylinders=cyl, cylinder_rgb=[RED] * 4, arena=(0.0, 0.0, 180.0, 180.0), wall_height=60.0)
-    return ImageWorld("robot", world, (90.0, 90.0), 20.0, Extractor(max_blobs=4))
+    return robot_arena()
 
 
 def _natural() -> ImageWorld:

@@ -10,7 +10,8 @@ from delvjax.images._evaluate import LoadedDatabase, database_vector_map, render
 from delvjax.images._render import ImageSettings
 from delvjax.core.maps import VectorMap
 from delvjax.core.metrics import error_curve, summarize_map
-from delvjax.images._worlds import image_world
+from delvjax.core.scene import Env
+from delvjax.images._worlds import ImageWorld, image_world
 from delvjax.envs._presets import make_env
 
 # the methods of the image studies, one compiled program (`registry.program`)
@@ -54,25 +55,25 @@ def curve(vm: VectorMap, home, bin_width: float) -> list[dict]:
     return error_curve(vm.error_deg, vm.points, home, vm.included, bin_width=bin_width)
 
 
-def ideal_map(world_name: str, method: str, **options) -> VectorMap:
-    """The ring model's vector map (docs/model.md: ideal rings, exact blobs) on the world's cylinders,
-    on the database's grid (spacing = unit move, heading along +x as the database's west neighbour move),
-    gray channel over the docs/model.md §2.3 `walls` background (the images' wall texture)."""
-    iw = image_world(world_name)
+def ring_env(iw: ImageWorld) -> Env:
+    """The ring model's scene of an image world: its cylinders, home and arena."""
     obs = iw.obstacles()
-    env = make_env(
+    return make_env(
         [tuple(c) for c in obs["cylinders"]],
         home=iw.home,
         arena=tuple(float(v) for v in np.asarray(iw.world.arena)),
-        name=world_name,
+        name=iw.name,
     )
+
+
+IDEAL_GRID = {"heading_deg": 0.0, "program": METHODS, "channel": CHANNEL, "background": "walls"}
+
+
+def ideal_map(world: str | ImageWorld, method: str, **options) -> VectorMap:
+    """The ring model's vector map (docs/model.md: ideal rings, exact blobs) on the world's cylinders,
+    on the database's grid (spacing = unit move, heading along +x as the database's west neighbour move),
+    gray channel over the docs/model.md §2.3 `walls` background (the images' wall texture)."""
+    iw = image_world(world) if isinstance(world, str) else world
     return delvjax.vector_map(
-        env,
-        method,
-        spacing=iw.spacing,
-        d=iw.spacing,
-        heading_deg=0.0,
-        clearance=iw.clearance,
-        program=METHODS,
-        **{"channel": CHANNEL, "background": "walls", **options},
+        ring_env(iw), method, spacing=iw.spacing, d=iw.spacing, clearance=iw.clearance, **{**IDEAL_GRID, **options}
     )
