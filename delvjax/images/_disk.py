@@ -91,6 +91,15 @@ def _rows(path: Path) -> list[dict[str, str]]:
             fields = [f.strip() for f in reader.fieldnames or []]
     except (OSError, UnicodeDecodeError, csv.Error) as exc:
         raise InputError("images", str(path), f"cannot be read ({exc})") from None
+    other = next((sep for sep in ";\t|" if len(fields) == 1 and sep in fields[0]), None)
+    if other is not None:  # a spreadsheet's export in a locale with decimal commas
+        raise InputError(
+            "images",
+            str(path),
+            f"separates its fields with {other!r}, not ',' (delvjax reads comma-separated values with '.' "
+            "decimals: export as 'CSV (comma delimited)' or convert, e.g. pandas.read_csv(f, sep=';', decimal=',')"
+            ".to_csv(f, index=False))",
+        )
     seen: dict[tuple, int] = {}
     for i, r in enumerate(raw):
         if None in r:

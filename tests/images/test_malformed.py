@@ -35,12 +35,16 @@ def test_a_byte_order_mark_is_read_as_utf8(bob):
     [
         (lambda lines: lines[:2] + [lines[2] + ",extra"] + lines[3:], "row 3 has 11 fields, the header 10"),
         (lambda lines: lines[:3] + [lines[2]] + lines[3:], "row 4 repeats row 3"),
+        (  # a spreadsheet's export with ';' between fields and decimal commas (issue 53 point 8)
+            lambda lines: [ln.replace(",", ";").replace(".", ",") for ln in lines],
+            "separates its fields with ';'",
+        ),
         (
             lambda lines: lines[:3] + [lines[2].replace(lines[2].split(",")[0], "12345", 1)] + lines[3:],
             "lists image_",
         ),  # the same file at another position
     ],
-    ids=["extra field", "duplicated row", "file twice"],
+    ids=["extra field", "duplicated row", "semicolons", "file twice"],
 )
 def test_a_malformed_index_row_is_named(bob, edit, says):
     lines = (bob / ENTRIES).read_text().splitlines()
