@@ -8,6 +8,7 @@ import importlib
 import re
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -42,3 +43,11 @@ def test_the_site_builds_with_warnings_as_errors(tmp_path):
     assert run.returncode == 0, run.stderr[-3000:]
     page = (tmp_path / "site" / "api" / "index.html").read_text()
     assert "Mean of 1 - cos(angular error)" in page  # the docstrings are in it
+
+
+def test_every_extra_the_docs_name_exists():
+    """`pip install -e '.[docs]'` in mkdocs.yml named an extra that did not exist (issue 53 point 8)."""
+    extras = set(tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["optional-dependencies"])
+    texts = [ROOT / "README.md", ROOT / "mkdocs.yml", ROOT / ".ci" / "run", *sorted((ROOT / "docs").glob("*.md"))]
+    named = {e for p in texts for group in re.findall(r"\.\[([a-z,\s-]+)\]", p.read_text()) for e in group.split(",")}
+    assert named and sorted(e.strip() for e in named if e.strip() not in extras) == []
