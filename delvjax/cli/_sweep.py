@@ -11,7 +11,7 @@ import time
 from ._args import ProgressBar, progress
 from ..core.errors import InputError
 from ..options._checks import positive
-from ..options._limits import MAX_POINTS
+from ..options._limits import MAX_POINTS, duration
 from ._help import COMMAND_HELP
 from ..sweeps._examples import EXAMPLES
 import jax
@@ -130,6 +130,11 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     lead = jax.process_index() == 0  # process 0 reports and writes
     t0 = time.perf_counter()
     n = spec.n_cells
+    if lead:  # before the cells are checked (about 1 ms each): a big sweep says what it is at once
+        progress(
+            f"sweep of {n} cells: about {duration(spec.seconds())} of work on 2 CPU cores plus compilation; "
+            f"checking every cell first{f' (about {duration(n * 1e-3)})' if n >= 10_000 else ''} ..."
+        )
     with ProgressBar("cell", 0 if lead else n) as bar:
 
         def announce() -> None:  # every cell is checked: the bar covers the rest of the run

@@ -318,3 +318,19 @@ def test_sweep_figures_of_many_values_stay_readable(y):
         ds = ds.isel(bearing_noise_deg=0)
     fig, rows = sweep_figure(ds, "d", y, "mean_error_deg")
     assert figure_defects(fig) == [] and len(rows) == (2 * 40 if y is None else 2 * 40 * 30)
+
+
+def test_a_list_of_a_million_seeds_is_refused_as_a_range_is():
+    """Issue 53 point 9: the 100,000-value cap applied to ranges only, so a list of 10**6 seeds ran for hours."""
+    text = "[axes]\nseed = [" + ", ".join(map(str, range(100_001))) + "]"
+    with pytest.raises(InputError) as exc:
+        parse_sweep(text)
+    assert exc.value.field == "axes.seed" and "more than 100000 values" in str(exc.value)
+
+
+def test_a_sweep_states_its_time_before_it_starts():
+    small = parse_sweep("[axes]\nseed = [0, 1]")
+    big = parse_sweep("[axes]\nseed = {start = 0, stop = 199}")
+    assert 0 < small.seconds() < big.seconds() == pytest.approx(100 * small.seconds())
+    rates = parse_sweep("[sweep]\nkind = 'success-rate'\ntrials = 100\n[axes]\nseed = [0, 1]")
+    assert rates.seconds() == pytest.approx(2 * len(rates.distances) * 100 * 1.5e-3)
