@@ -177,10 +177,10 @@ def run(ctx) -> None:
     ctx.number("ensemble_hull:members_without_inside_point", rows[0]["members without a counted point"])
     for r, (method, region) in zip(rows, ((m, g) for m in METHODS for g in REGIONS)):  # the grid check's inputs
         key = f"fail_{region}_hull:{FAMILY}:{method}"
-        ctx.number(
-            f"ensemble_hull:band:{key}", [r[f"fail % {BAND[0]:g} %"], r["fail % median"], r[f"fail % {BAND[1]:g} %"]]
-        )
-        ctx.number(f"ensemble_hull:builtin:{key}", r["built-in env1"])
+        band = [r[f"fail % {BAND[0]:g} %"], r["fail % median"], r[f"fail % {BAND[1]:g} %"]]
+        if np.isfinite(band).all() and np.isfinite(r["built-in env1"]):  # a region empty in every world: none
+            ctx.number(f"ensemble_hull:band:{key}", band)
+            ctx.number(f"ensemble_hull:builtin:{key}", r["built-in env1"])
     ctx.json(
         "ensemble_hull_worlds.json",
         {
