@@ -15,7 +15,7 @@ from ..options._limits import MAX_POINTS, duration
 from ._help import COMMAND_HELP
 from ..sweeps._examples import EXAMPLES
 import jax
-from ..sweeps._spec import read_sweep
+from ..sweeps._file import read_sweep
 from ..outputs._files import check_out_dir
 from ..sweeps._run import run_sweep, save_sweep
 from pathlib import Path
@@ -123,25 +123,23 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         raise InputError("--out", None, "give an output folder")
     spec = read_sweep(args.file)
     out = check_out_dir(args.out)
-    envs = [e for e in spec.axes.get("env", []) if isinstance(e, str) and Path(e).is_file()]
+    envs = [spec.env_files.get(e, e) for e in spec.axes.get("env", []) if Path(spec.env_files.get(e, e)).is_file()]
     check_no_clash({"--out": [out / "sweep.nc", out / "sweep.csv"]}, {"file": args.file, "axes.env": envs})
     start_processes(args)
 
     lead = jax.process_index() == 0  # process 0 reports and writes
     t0 = time.perf_counter()
     n = spec.n_cells
-    if lead:  # before the cells are checked (about 1 ms each): a big sweep says what it is at once
-        progress(
-            f"sweep of {n} cells: about {duration(spec.seconds())} of work on 2 CPU cores plus compilation; "
-            f"checking every cell first{f' (about {duration(n * 1e-3)})' if n >= 10_000 else ''} ..."
-        )
+    work = f"about {duration(spec.seconds())} of work on 2 CPU cores plus compilation"
+    if lead and n >= 10_000:  # checking the cells takes about 1 ms each: a big sweep says what it is first
+        progress(f"sweep of {n} cells: {work}; checking every cell first (about {duration(n * 1e-3)}) ...")
     with ProgressBar("cell", 0 if lead else n) as bar:
 
         def announce() -> None:  # every cell is checked: the bar covers the rest of the run
             if lead:
                 progress(
                     f"sweep of {n} cells ({' x '.join(map(str, spec.shape))}: {', '.join(spec.axes)}) on "
-                    f"{jax.process_count()} process(es), {jax.device_count()} device(s) ..."
+                    f"{jax.process_count()} process(es), {jax.device_count()} device(s): {work} ..."
                 )
                 bar.start(n)
 

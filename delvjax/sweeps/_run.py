@@ -36,7 +36,7 @@ def _envs(spec: SweepSpec) -> dict:
             return random_env(*spec.random_envs[name], pad_to=pad_to)
         if name in spec.ensemble_envs:
             return env_from_dict(spec.ensemble_envs[name], pad_to=pad_to)
-        return load_env(name, pad_to=pad_to)
+        return load_env(spec.env_files.get(name, name), pad_to=pad_to)
 
     envs = {name: env(name) for name in spec.axes["env"]}
     slots = max(int(e.landmarks.shape[0]) for e in envs.values())
@@ -72,13 +72,16 @@ def run_sweep(
     out: str | Path | None = None,
     phase: Callable[[str], None] | None = None,
     lanes: int = DEFAULT_LANES,
+    skip: Callable[[dict], bool] | None = None,
 ) -> xarray.Dataset:
     """Every cell of `spec`: metrics as an `xarray.Dataset` (one dimension per axis of more than one
     value). Every cell is validated before any work; `announce()` is called then; `progress(done,
     total)` after each chunk; `phase(text)` says what runs now ("compiling program 2 of 3").
     With `out`, finished chunks are kept in out/.cells and cells found there are not computed again
     (`cell_store`: a killed or changed sweep resumes). `lanes`: rollout trials advanced side by side
-    (`rollouts.run_trials`; no number depends on it): fewer waste less on cells of few trials."""
+    (`rollouts.run_trials`; no number depends on it): fewer waste less on cells of few trials.
+    `skip(cell)` True: the cell (its axis values, as `spec.cells()` gives them) is not computed and its
+    metrics are NaN (a study that needs only some cells of a product; the others' numbers are the same)."""
     envs = _envs(spec)
     groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None)
     n = spec.n_cells
@@ -93,6 +96,12 @@ def run_sweep(
                 todo[i] = False
                 for k in names:
                     sums[k][i] = done[digest][k]
+    skipped = np.zeros(n, bool)
+    if skip is not None:  # cells nobody reads: NaN, never computed
+        skipped = np.array([bool(skip(cell)) for cell in spec.cells()], bool) & todo
+        todo &= ~skipped
+        for k in names:
+            sums[k][skipped] = np.nan
     processes = jax.process_count()
     if processes > 1:  # a cell is computed again unless every process found it (--out need not be shared)
         from jax.experimental import multihost_utils  # only with several processes (jax.distributed)
@@ -130,7 +139,8 @@ def run_sweep(
     if processes > 1:
         sums = _merge(sums, mine)
     ds = dataset(spec, sums, programs_compiled() - compiled, {k: e.name for k, e in envs.items()})
-    ds.attrs["cells_reused"] = int((~todo).sum())
+    ds.attrs["cells_reused"] = int((~todo & ~skipped).sum())
+    ds.attrs["cells_skipped"] = int(skipped.sum())
     return ds
 
 

@@ -6,7 +6,6 @@ import itertools
 import math
 import tomllib
 from dataclasses import dataclass, field
-from pathlib import Path
 from collections.abc import Iterator
 
 import numpy as np
@@ -97,6 +96,7 @@ class SweepSpec:
     trials: int = TRIALS
     random_envs: dict[str, tuple[int, int]] = field(default_factory=dict)  # env label -> (seed, landmarks)
     ensemble_envs: dict[str, dict] = field(default_factory=dict)  # env label -> its docs/model.md §7 dictionary
+    env_files: dict[str, str] = field(default_factory=dict)  # env label -> the file it names (`read_sweep`)
 
     def __post_init__(self):
         if not isinstance(self.kind, SweepKind):  # a kind given by its name
@@ -357,13 +357,3 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
         ensemble_envs=ensemble_envs,
         **extra,
     )
-
-
-def read_sweep(path: str | Path) -> SweepSpec:
-    """A sweep file from disk (`parse_sweep`)."""
-    p = Path(path)
-    try:
-        text = p.read_text()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError("sweep", str(path), f"cannot be read ({getattr(exc, 'strerror', None) or exc})") from None
-    return parse_sweep(text, str(path))

@@ -18,7 +18,7 @@ from delvjax.core.errors import InputError
 from delvjax.envs._presets import load_env
 from delvjax.images._disk import ENTRIES, METADATA, read_index
 from delvjax.sweeps._examples import EXAMPLE
-from delvjax.sweeps._spec import read_sweep
+from delvjax.sweeps._file import read_sweep
 from tests.cases.strategies import FAST, JUNK
 
 TEXTS = st.text(alphabet=st.characters(codec="utf-8"), max_size=12)

@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
@@ -334,3 +336,26 @@ def test_a_sweep_states_its_time_before_it_starts():
     assert 0 < small.seconds() < big.seconds() == pytest.approx(100 * small.seconds())
     rates = parse_sweep("[sweep]\nkind = 'success-rate'\ntrials = 100\n[axes]\nseed = [0, 1]")
     assert rates.seconds() == pytest.approx(2 * len(rates.distances) * 100 * 1.5e-3)
+
+
+def test_a_relative_env_path_is_the_sweep_files_folders(tmp_path, monkeypatch, capsys):
+    """Issue 53 point 6: a relative env path resolved against the working folder, so the sweep.toml a sweep
+    writes could not be rerun from elsewhere. Now it is the file's folder's, and the text names it absolutely."""
+    from delvjax.envs._presets import preset_dict
+    from delvjax.sweeps import read_sweep
+    from delvjax.sweeps._run import _envs
+
+    (tmp_path / "a").mkdir()
+    (tmp_path / "a" / "mine.json").write_text(json.dumps({**preset_dict("env2"), "name": "mine"}))
+    (tmp_path / "a" / "s.toml").write_text("[axes]\nenv = ['mine.json', 'env1']\nmethod = 'alv'\n")
+    monkeypatch.chdir(tmp_path)  # not the file's folder
+    spec = read_sweep("a/s.toml")
+    assert spec.axes["env"] == ["mine.json", "env1"]  # the labels as written
+    assert spec.env_files == {"mine.json": str((tmp_path / "a" / "mine.json").resolve())}
+    assert _envs(spec)["mine.json"].name == "mine"
+    again = parse_sweep(spec.text)  # the text a sweep writes as sweep.toml, read from anywhere
+    assert again.axes["env"] == [str((tmp_path / "a" / "mine.json").resolve()), "env1"]
+    (tmp_path / "b.json").write_text(json.dumps(preset_dict("env3")))
+    (tmp_path / "a" / "t.toml").write_text("[axes]\nenv = ['b.json']\n")
+    assert read_sweep("a/t.toml").env_files == {"b.json": str((tmp_path / "b.json").resolve())}  # the old reading
+    assert "not in the sweep file's folder" in capsys.readouterr().err
