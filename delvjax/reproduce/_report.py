@@ -226,10 +226,11 @@ def ensemble_more(records: dict, flat: dict) -> list[str]:
 
     parts = []
     covered = sum(k.startswith("ensemble:claim:") for k in flat)
+    judges = [n for n, r in records.items() if any(k.startswith("ensemble:claim:") for k in r.numbers)]
     if covered:
         parts.append(
             f"**Claims over the worlds**: {covered} of the thesis's claims are judged over the ensembles' members "
-            "(the claims table's *over worlds* column; studies `ensembles`, `ensemble_maps`, `ensemble_rollouts`); "
+            f"(the claims table's *over worlds* column; studies {', '.join(f'`{n}`' for n in judges)}); "
             "the others say *not covered*."
         )
     rec = records.get("ensemble_settings")
