@@ -226,7 +226,7 @@ def ensemble_more(records: dict, flat: dict) -> list[str]:
 
     parts = []
     covered = sum(k.startswith("ensemble:claim:") for k in flat)
-    judges = [n for n, r in records.items() if any(k.startswith("ensemble:claim:") for k in r.numbers)]
+    judges = [n for n, r in records.items() if any(k.startswith("ensemble:claim:") for k in getattr(r, "numbers", {}))]
     if covered:
         parts.append(
             f"**Claims over the worlds**: {covered} of the thesis's claims are judged over the ensembles' members "
