@@ -72,6 +72,9 @@ def panels(ds, x: str, y: str | None) -> list[tuple[str, dict]]:
     ]
 
 
+DOMAIN = {"percent": (0.0, 100.0), "degree": (0.0, 180.0)}  # what a metric of these CF units can be (issue 53)
+
+
 def summarize(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Mean over the last axis (seeds) and the half-width of its Student-t 95 % interval (NaN for one seed)."""
     n = values.shape[-1]
@@ -119,6 +122,10 @@ def _lines(ax, ds, sel: dict, x: str, metric: str, title: str) -> list[dict]:
         pick = {**sel, OVERLAID: method} if method is not None else sel
         mean, half = summarize(_seeded(ds[metric].sel(pick), (x,)).values)
         lo, hi, what = mean - half, mean + half, "95 % interval over seeds"
+        bounds = DOMAIN.get(ds[metric].attrs.get("units", ""))
+        if bounds is not None and ((lo < bounds[0]) | (hi > bounds[1])).any():  # a rate's band stays a rate
+            lo, hi = np.clip(lo, *bounds), np.clip(hi, *bounds)
+            what += f" (Student-t, clipped to {bounds[0]:g}-{bounds[1]:g})"
         wilson = _wilson(ds, pick, x, metric)
         if not np.isfinite(half).any() and wilson is not None:  # one seed: the trials' own interval
             (lo, hi), what = wilson, "95 % Wilson interval"

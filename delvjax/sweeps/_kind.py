@@ -46,7 +46,8 @@ ERROR_METRICS = {
     "gt45_pct": "% of grid points with angular error > 45 deg (Tables 5.1/5.2)",
     "gt90_pct": "% of grid points with angular error > 90 deg",
     "mean_error_deg": "mean angular error over the grid points, invalid = 180 deg",
-    "mean_error_ci95_deg": "half-width of the 95 % Student-t interval of that mean",
+    "mean_error_ci95_deg": "half-width of the 95 % Student-t interval of that mean over this cell's grid points "
+    "(the spread of one map's points, not over seeds or worlds: for that, sweep a seed axis)",
     "invalid_pct": "% of grid points without a homing direction",
     "points": "grid points evaluated",
 }

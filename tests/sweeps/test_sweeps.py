@@ -249,6 +249,24 @@ def test_a_killed_sweep_resumes_and_a_changed_file_computes_only_its_new_cells(t
     assert calls == [2] and changed.attrs["cells_reused"] == 4  # only d = 120 (two seeds) is new
 
 
+def test_skipped_cells_are_not_computed_and_the_others_keep_their_numbers(monkeypatch):
+    text = TWO_CELLS.replace("[3]", "[0, 1]")  # 4 cells in chunks of 2: the program of TWO_CELLS
+    monkeypatch.setattr(sweeps, "CELL_CHUNK", 2)
+    real, calls = sweeps.evaluate, []
+    monkeypatch.setattr(
+        sweeps, "evaluate", lambda kind, setups, *a: calls.append(len(setups)) or real(kind, setups, *a)
+    )
+    full = sweeps.run_sweep(parse_sweep(text))
+    calls[:] = []
+    part = sweeps.run_sweep(parse_sweep(text), skip=lambda cell: cell["seed"] == 1 and cell["d"] == 80)
+    assert calls == [2, 2] and part.attrs["cells_skipped"] == 1 and part.attrs["cells_reused"] == 0
+    for name in full.data_vars:
+        kept = part[name].sel({"d": 40})
+        assert np.array_equal(kept.values, full[name].sel({"d": 40}).values, equal_nan=True), name
+        assert np.array_equal(part[name].sel({"d": 80, "seed": 0}), full[name].sel({"d": 80, "seed": 0})), name
+        assert np.isnan(part[name].sel({"d": 80, "seed": 1}).values), name
+
+
 def test_sweep_figures_heat_maps_and_lines_with_intervals_over_seeds(small, tmp_path):
     from delvjax.plots._sweep import check_plot, sweep_figure
 
@@ -359,3 +377,19 @@ def test_a_relative_env_path_is_the_sweep_files_folders(tmp_path, monkeypatch, c
     (tmp_path / "a" / "t.toml").write_text("[axes]\nenv = ['b.json']\n")
     assert read_sweep("a/t.toml").env_files == {"b.json": str((tmp_path / "b.json").resolve())}  # the old reading
     assert "not in the sweep file's folder" in capsys.readouterr().err
+
+
+def test_a_rates_band_over_seeds_stays_between_0_and_100():
+    """Issue 53 point 2: plot-sweep's Student-t band over three seeds of 0, 0 and 30 % went below 0 %."""
+    import xarray as xr
+
+    from delvjax.plots._sweep import sweep_figure
+
+    values = np.array([[0.0, 0.0, 30.0], [50.0, 55.0, 60.0]])
+    ds = xr.Dataset(
+        {"gt45_pct": (("d", "seed"), values, {"units": "percent"})},
+        coords={"d": ("d", [20.0, 50.0], {"units": "cm"}), "seed": [0, 1, 2]},
+    )
+    _, rows = sweep_figure(ds, "d", None, "gt45_pct")
+    assert rows[0]["ci95_lo"] == 0.0 and rows[0]["interval"].endswith("clipped to 0-100)")
+    assert rows[1]["ci95_lo"] > 40  # an interval inside 0-100 is as it was
