@@ -17,7 +17,7 @@ from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_distinct, check_output_path, output_set
 from ..options._limits import MAX_POINTS
 from ..options._schema import method_options, sensor_options
-from ..options._registry import METHODS
+from ..options._registry import METHODS, owns
 
 CSV = (".csv",)
 FIGURE = (".png", ".pdf", ".svg")
@@ -214,9 +214,46 @@ def image_input(args: argparse.Namespace) -> dict:
     return {"--images": args.images} if getattr(args, "images", None) else {}
 
 
+NOT_SETTINGS = {"out", "trials_out", "summary", "plot", "func", "command", "images_command", "defaults"}
+
+
+def command_settings(args: argparse.Namespace) -> dict:
+    """Every option the command ran with (the ones given and the defaults), outputs left out: recorded in the
+    summary JSON and, where not the default, under the figure (issue 53 point 3)."""
+    plain = (str, int, float, bool, type(None))
+    sensor, methods = sensor_options(), method_options()
+    chosen = METHODS.get(getattr(args, "method", None)) if isinstance(getattr(args, "method", None), str) else None
+    settings = {}
+    for k, v in sorted(vars(args).items()):
+        if k in NOT_SETTINGS or callable(v):
+            continue
+        if v is None:  # not given: the sensor's default, or the method's where the method has the setting
+            if k in sensor:
+                v = sensor[k].default
+            elif k in methods and chosen is not None and owns(chosen, k):
+                v = methods[k].default
+            else:
+                continue  # an option of another method or of image input: does not apply
+        if isinstance(v, (list, tuple)) and all(isinstance(x, plain) for x in v):
+            settings[k] = list(v)
+        elif isinstance(v, plain):
+            settings[k] = v
+    return settings
+
+
+def changed_settings(args: argparse.Namespace) -> str:
+    """The options given other than their defaults, "bearing_noise_deg = 2.0, d = 20.0" (env and method, in every
+    figure's title already, left out)."""
+    defaults = getattr(args, "defaults", {})
+    given = {k: v for k, v in vars(args).items() if k in defaults and v != defaults[k] and k not in NOT_SETTINGS}
+    shown = command_settings(args)
+    return ", ".join(f"{k} = {shown[k]}" for k in sorted(given) if k in shown and k not in ("env", "method", "methods"))
+
+
 def write_outputs(args: argparse.Namespace, columns, summary: dict, figure, trials_columns=None) -> None:
     """Write the outputs asked for as a unit (`io.output_set`), then the closing line: --out (a dict of
-    columns or a list of row dicts), --trials-out, --summary, --plot (`figure()` is built only then)."""
+    columns or a list of row dicts), --trials-out, --summary (with every setting the command ran with), --plot
+    (`figure()` is built only then, with the settings that are not the defaults under it)."""
     trials_out = getattr(args, "trials_out", None)
     with output_set() as files:  # all or nothing
         if args.out:
@@ -224,9 +261,13 @@ def write_outputs(args: argparse.Namespace, columns, summary: dict, figure, tria
         if trials_out:
             files.csv(trials_out, trials_columns, "--trials-out")
         if args.summary:
-            files.json(args.summary, summary, "--summary")
+            files.json(args.summary, {**summary, "command_settings": command_settings(args)}, "--summary")
         if args.plot:
-            files.figure(figure(), args.plot, "--plot")
+            fig, changed = figure(), changed_settings(args)
+            titled = [ax for ax in fig.axes if ax.get_title()]
+            if changed and titled:  # under the first panel's title: the settings that are not the defaults
+                titled[0].set_title(f"{titled[0].get_title()}\n{changed}", fontsize=8)
+            files.figure(fig, args.plot, "--plot")
     print(wrote(args.out, trials_out, args.plot, args.summary))
 
 

@@ -12,7 +12,7 @@ from ..gradients._loss import TAU
 from ..gradients._sensitivity import SENSITIVITY_METHODS as METHODS
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_out_dir, output_set
-from ..gradients._sensitivity import check_sensitivity, sensitivity
+from ..gradients._sensitivity import SETTING_UNITS, check_sensitivity, sensitivity
 from ..options._settings import NOISE_OPTIONS
 from ..gradients._traps import find_traps
 from ..gradients._layout import STEPS
@@ -68,8 +68,10 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
         "spacing": args.spacing,
         "seed": args.seed,
         "tau": args.tau,
+        "setting_units": SETTING_UNITS,  # d_loss_per_setting_unit: per cm of d, per degree of each sigma
         "methods": {
-            m: {"loss": r["loss"], "how": r["how"], "per_unit": r["per_unit"]} for m, r in result["methods"].items()
+            m: {"loss": r["loss"], "how": r["how"], "d_loss_per_setting_unit": r["per_setting_unit"]}
+            for m, r in result["methods"].items()
         },
     }
     with output_set() as files:

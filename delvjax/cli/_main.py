@@ -200,11 +200,24 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def command_defaults(parser: argparse.ArgumentParser, args: argparse.Namespace) -> dict:
+    """The default of every option of the command `args` ran (of its subcommand, for `images ...`)."""
+    for name in ("command", "images_command"):
+        chosen = getattr(args, name, None)
+        subs = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+        if chosen is None or not subs or chosen not in subs[0].choices:
+            break
+        parser = subs[0].choices[chosen]
+    return {a.dest: a.default for a in parser._actions if a.dest != "help"}
+
+
 def main(argv: list[str] | None = None, own_process: bool = False) -> int:
     """Run one command: exit 0, 2 on bad input (one line), 130 on Ctrl-C and 143 on SIGTERM (every
     temporary removed, finished work kept: docs/reliability.md). `own_process`: the `delvjax` command
     owns the process, and SIGTERM unwinds like Ctrl-C (not so for a call from Python)."""
-    args = build_parser().parse_args(argv)
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    args.defaults = command_defaults(parser, args)
     enable_compilation_cache()
     if own_process:
         terminate_as_interrupt()

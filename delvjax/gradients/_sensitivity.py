@@ -22,8 +22,10 @@ from ..core.errors import InputError
 SENSITIVITY_METHODS = ("delv", "alv", "acv", "warping")
 # the operating point at which sensitivities are taken: noise a real robot has (docs/differentiable.md)
 NOMINAL = {"d": 50.0, "bearing_noise_deg": 1.0, "odometry_turn_noise_deg": 1.0, "compass_noise_deg": 2.0}
-# what one "unit" of each parameter is in the table: 10 cm of d, 1 degree of each sigma
+# the step each parameter's change is shown per (figure, `d_loss_per_step`): 10 cm of d, 1 degree of each sigma;
+# `d_loss_per_setting_unit` (CSV, JSON, the study's numbers) is per cm of d and per degree, one unit per name
 UNITS = {"d": 10.0, "bearing_noise_deg": 1.0, "odometry_turn_noise_deg": 1.0, "compass_noise_deg": 1.0}
+SETTING_UNITS = {"d": "cm", "bearing_noise_deg": "deg", "odometry_turn_noise_deg": "deg", "compass_noise_deg": "deg"}
 FD_STEP = {"d": 5.0, "bearing_noise_deg": 0.5, "odometry_turn_noise_deg": 0.5, "compass_noise_deg": 0.5}
 READS = {"compass_noise_deg": ("alv", "acv")}  # parameters some methods never read (their sensitivity is 0)
 
@@ -89,15 +91,17 @@ def sensitivity(
             value, g = homing_loss_grad(env, m, spacing=spacing, seed=seed, tau=tau, **opts)
             per = {name: float(g.get(name, 0.0)) if name in opts else 0.0 for name in NOMINAL}
             grads, how = g["landmarks"], f"reverse mode, soft loss (tau {tau:g})"
-        out["methods"][m] = {"loss": value, "per_unit": per, "landmark_grad": grads, "how": how}
+        out["methods"][m] = {"loss": value, "per_setting_unit": per, "landmark_grad": grads, "how": how}
         for name in NOMINAL:
             out["parameter_rows"].append(
                 {
                     "method": m,
                     "parameter": name,
                     "nominal": opts.get(name, 0.0),
-                    "unit": UNITS[name],
-                    "d_loss_per_unit": per[name] * UNITS[name],
+                    "setting_unit": SETTING_UNITS[name],
+                    "d_loss_per_setting_unit": per[name],
+                    "step": f"{UNITS[name]:g} {SETTING_UNITS[name]}",
+                    "d_loss_per_step": per[name] * UNITS[name],
                     "loss": value,
                     "how": how,
                 }

@@ -66,7 +66,7 @@ def parameter_figure(result: dict):
     ax = axes[0, 0]
     width = 0.8 / len(methods)
     for k, m in enumerate(methods):
-        vals = [result["methods"][m]["per_unit"][n] * UNITS[n] for n in names]
+        vals = [result["methods"][m]["per_setting_unit"][n] * UNITS[n] for n in names]
         ax.bar(np.arange(len(names)) + (k - (len(methods) - 1) / 2) * width, vals, width, label=m)
     ax.axhline(0, color="black", linewidth=0.8)
     ax.set_xticks(range(len(names)), ["d (per 10 cm)", "bearing σ (per °)", "odometry σ (per °)", "compass σ (per °)"])

@@ -75,7 +75,7 @@ def run(ctx) -> None:
     result = sensitivity(e, spacing=ctx.settings.spacing, seed=ctx.settings.seed, progress=ctx.step)
     for m, r in result["methods"].items():
         ctx.number(f"sensitivity:env1:{m}:loss", r["loss"])
-        for name, v in r["per_unit"].items():
+        for name, v in r["per_setting_unit"].items():
             ctx.number(f"sensitivity:env1:{m}:{name}", v)
     ctx.table(
         "sensitivity_parameters",
@@ -85,7 +85,7 @@ def run(ctx) -> None:
         note="DELV, ALV, ACV: gradient of the soft loss (reverse mode). Warping: central differences of the "
         "ordinary loss; it reads only the current ring image, so d, blob-bearing and odometry noise do "
         "not enter it (exactly 0). Methods without a compass have no compass sensitivity.",
-        columns=["method", "parameter", "nominal", "d_loss_per_unit", "loss"],
+        columns=["method", "parameter", "nominal", "step", "d_loss_per_step", "loss"],
     )
     ctx.table(
         "sensitivity_landmarks",

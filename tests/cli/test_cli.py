@@ -187,3 +187,22 @@ def test_a_catchment_csv_read_in_pandas_gives_the_catchment_and_the_summary_its_
     assert (~df.counted.astype(bool)).sum() == 23 and df.success[~df.counted.astype(bool)].isna().all()
     assert 100.0 * df.success.mean() == pytest.approx(s["catchment_pct"]["mean"], abs=1e-6)
     assert s["occlude"] == 1 and s["per_mask"][0]["hidden"] == [3]
+
+
+def test_a_summary_records_every_setting_and_the_figure_the_changed_ones(tmp_path, capsys):
+    """Issue 53 point 3: the summary JSON had no d, spacing, seed or noise, and figure titles omitted the noise."""
+    from delvjax.cli._args import changed_settings, command_settings
+    from delvjax.cli._main import build_parser, command_defaults
+
+    argv = ["catchment", "env1", "--method", "alv", "--spacing", "200", "--bearing-noise-deg", "2"]
+    summary = tmp_path / "s.json"
+    assert main(argv + ["--summary", str(summary)]) == 0
+    settings = json.loads(summary.read_text())["command_settings"]
+    assert settings["bearing_noise_deg"] == 2.0 and settings["spacing"] == 200.0 and settings["seed"] == 0
+    assert settings["d"] == 50.0 and settings["home_radius"] == 50.0  # defaults are recorded too
+    assert "levels" not in settings and "mw_n_psi" not in settings  # settings ALV does not have
+    parser = build_parser()
+    args = parser.parse_args(argv + ["--plot", "x.png"])
+    args.defaults = command_defaults(parser, args)
+    assert changed_settings(args) == "bearing_noise_deg = 2.0, spacing = 200.0"
+    assert command_settings(args)["method"] == "alv"

@@ -257,7 +257,15 @@ def test_delvjax_sensitivity_writes_figures_and_numbers(tmp_path, capsys):
     assert [float(r["dq_dx_per_cm"]) for r in rows] == pytest.approx(grads["landmarks"][:, 0].tolist(), rel=1e-4)
     summary = json.loads((out / "sensitivity.json").read_text())
     assert summary["methods"]["alv"]["loss"] == pytest.approx(value, rel=1e-5)
-    assert summary["methods"]["warping"]["per_unit"]["d"] == 0.0  # warping reads no unit movement
+    assert summary["methods"]["warping"]["d_loss_per_setting_unit"]["d"] == 0.0  # warping reads no unit movement
+    params = list(csv.DictReader((out / "parameters.csv").open()))  # one name, one unit, in both files (issue 53)
+    alv = {r["parameter"]: r for r in params if r["method"] == "alv"}
+    for name, per in summary["methods"]["alv"]["d_loss_per_setting_unit"].items():
+        assert float(alv[name]["d_loss_per_setting_unit"]) == pytest.approx(per, rel=1e-6)
+        assert alv[name]["setting_unit"] == summary["setting_units"][name]
+    assert float(alv["d"]["d_loss_per_step"]) == pytest.approx(
+        10 * summary["methods"]["alv"]["d_loss_per_setting_unit"]["d"]
+    )
 
 
 @pytest.mark.parametrize(
