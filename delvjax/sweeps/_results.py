@@ -79,13 +79,20 @@ def success_metrics(sums: dict) -> dict:
     }
 
 
-def dataset(spec: SweepSpec, sums: dict, programs: int, env_names: dict[str, str] | None = None):
+def dataset(spec: SweepSpec, sums: dict, programs: int, env_names: dict[str, str] | None = None, missing=None):
     """Per-cell sums -> the requested metrics, labelled by the axes (and `distance_cm`). An axis with one
     value is a scalar coordinate, not a dimension; `env_names` (label -> the environment's own `name`)
-    become the coordinate `env_name` beside `env`."""
+    become the coordinate `env_name` beside `env`; `missing` (cells,) bool: cells not computed (`run_sweep`'s
+    `skip`), every metric NaN there."""
     import xarray as xr  # xarray: loaded only when results are labelled
 
-    values = spec.kind.metrics_of(sums)
+    if missing is None or not np.any(missing):
+        values = spec.kind.metrics_of(sums)
+    else:  # the missing cells' sums are 0: their metrics are computed, then replaced
+        with np.errstate(divide="ignore", invalid="ignore"):
+            values = {k: np.asarray(v, float).copy() for k, v in spec.kind.metrics_of(sums).items()}
+        for v in values.values():
+            v[np.asarray(missing, bool)] = np.nan
     dims, shape = list(spec.axes), spec.shape
     coords = {name: np.asarray(v) for name, v in spec.axes.items()}
     if spec.kind.per_distance:

@@ -97,11 +97,9 @@ def run_sweep(
                 for k in names:
                     sums[k][i] = done[digest][k]
     skipped = np.zeros(n, bool)
-    if skip is not None:  # cells nobody reads: NaN, never computed
+    if skip is not None:  # cells nobody reads: never computed, their metrics NaN (`dataset`)
         skipped = np.array([bool(skip(cell)) for cell in spec.cells()], bool) & todo
         todo &= ~skipped
-        for k in names:
-            sums[k][skipped] = np.nan
     processes = jax.process_count()
     if processes > 1:  # a cell is computed again unless every process found it (--out need not be shared)
         from jax.experimental import multihost_utils  # only with several processes (jax.distributed)
@@ -138,7 +136,7 @@ def run_sweep(
             progress(len(chunk), n)
     if processes > 1:
         sums = _merge(sums, mine)
-    ds = dataset(spec, sums, programs_compiled() - compiled, {k: e.name for k, e in envs.items()})
+    ds = dataset(spec, sums, programs_compiled() - compiled, {k: e.name for k, e in envs.items()}, skipped)
     ds.attrs["cells_reused"] = int((~todo & ~skipped).sum())
     ds.attrs["cells_skipped"] = int(skipped.sum())
     return ds
