@@ -30,10 +30,12 @@ VERDICT_MARK = {  # words, coloured by the CSS below (no emoji: they need a font
 CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;max-width:1200px;margin:2em auto;
 padding:0 1em;color:#222;line-height:1.45}
-table{border-collapse:collapse;margin:.8em 0;font-size:.86em;display:block;max-width:100%;overflow-x:auto}
-th,td{border:1px solid #ccc;padding:.25em .5em;vertical-align:top}
-th{background:#f3f3f3}
+table{border-collapse:collapse;margin:.8em 0;font-size:.8em;display:block;max-width:100%;overflow-x:auto}
+th,td{border:1px solid #ccc;padding:.25em .4em;vertical-align:top}
+th{background:#f3f3f3;overflow-wrap:anywhere;hyphens:auto;min-width:3.2em}
+td{background:#fff}
 tr:nth-child(even) td{background:#fafafa}
+th:first-child,td:first-child{position:sticky;left:0;z-index:1;box-shadow:1px 0 0 #ccc}
 img{max-width:100%;border:1px solid #eee}
 code{background:#f4f4f4;padding:0 .2em}
 h2{border-bottom:2px solid #ddd;padding-bottom:.2em;margin-top:2em}

@@ -183,6 +183,7 @@ class StudyContext:
     ):
         self.out, self.record, self.settings, self._bar = out, record, settings, bar
         self._painter, self._pending = painter, []  # type: ignore[var-annotated]
+        self.steps = 0  # `step` calls so far
         out.mkdir(parents=True, exist_ok=True)
 
     def _file(self, name: str) -> Path:
@@ -259,8 +260,12 @@ class StudyContext:
         self.record.numbers[key] = jsonable(value)
 
     def step(self, text: str) -> None:
-        """Progress within a long study (advances the inner bar)."""
+        """Progress within a long study (advances the inner bar). A study that takes more steps than its
+        `STEPS` declares (a bug of the study) widens the bar's total: never "11 of 8"."""
+        self.steps += 1
         if self._bar is not None:
+            if self._bar.total is not None and self.steps > self._bar.total:
+                self._bar.total = self.steps
             self._bar.set_postfix_str(text[:60])
             self._bar.update(1)
 

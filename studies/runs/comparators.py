@@ -11,6 +11,7 @@ from delvjax.plots._maps import error_curve_figure
 
 from ._common import (
     LABEL,
+    RULES,
     curve,
     curve_number,
     curves_rows,
@@ -24,15 +25,16 @@ from ._common import (
 
 TITLE = "DELV vs ACV vs ALV with a compass (Figs 5.6-5.8)"
 COST = 6  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
-STEPS = 10
 METHODS = ("delv-compass", "acv", "alv")
+ENVS = ("env1", "env2", "env3")
+STEPS = len(ENVS) + len(METHODS) * len(RULES)  # the maps of each environment, then env1's success rates per rule set
 N_STARTS = 8
 
 
 def run(ctx) -> None:
     spacing = ctx.settings.spacing
     rows = []
-    for name in ("env1", "env2", "env3"):  # three layouts x three methods, three compiled programs
+    for name in ENVS:  # three layouts x three methods, three compiled programs
         e = env(name)
         items, curves = [], {}
         for m in METHODS:

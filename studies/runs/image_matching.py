@@ -31,12 +31,15 @@ from ._common import (
     success_set,
     trajectory_set,
     LABEL,
+    RULES,
 )
 
 TITLE = "DELV vs predictive image matching, no compass (Figs 4.9-4.11)"
 COST = 90  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
-STEPS = 8
 METHODS = ("delv", "warping")
+# per method and rule set a catchment and a success-rate table, then MinWarping's map (a preview: a
+# step that says it is the full run's) and the trajectories
+STEPS = 2 * len(METHODS) * len(RULES) + 2
 N_STARTS = 8
 # MinWarping on env1's rendered panoramas (docs/images.md §10) in the authors' configuration: 288-column
 # panoramas, 96 x 96 hypotheses (MinWarping's defaults). Full run only: its vector map of the full grid
@@ -80,7 +83,9 @@ def run(ctx) -> None:
             )
             ctx.step(f"catchment {m} {rules}")
     own = {}
-    if not preview(ctx):
+    if preview(ctx):
+        ctx.step("MinWarping: full run only")
+    else:
         own["minwarping"] = SCENE_MINWARPING
         vm = delvjax.vector_map(e, method="minwarping", spacing=spacing, seed=ctx.settings.seed, **SCENE_MINWARPING)
         s = map_numbers(e, vm)
