@@ -83,6 +83,33 @@ def figure_defects(fig) -> list[str]:
     return defects
 
 
+def legends_over_data(fig) -> list[str]:
+    """Legends drawn over a panel's data: a line's point (a marker, a vertex) inside the legend's box."""
+    if not isinstance(fig.canvas, FigureCanvasAgg):
+        FigureCanvasAgg(fig)
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    found = []
+    for ax in fig.axes:
+        legend = ax.get_legend()
+        if legend is None or not legend.get_visible():
+            continue
+        box = legend.get_window_extent(renderer)
+        for line in ax.lines:
+            xy = line.get_xydata()
+            if not line.get_visible() or not len(xy):
+                continue
+            points = ax.transData.transform(xy)
+            inside = (
+                (points[:, 0] > box.x0) & (points[:, 0] < box.x1) & (points[:, 1] > box.y0) & (points[:, 1] < box.y1)
+            )
+            if inside.any():
+                found.append(
+                    f"legend of {ax.get_title()[:40]!r} covers {int(inside.sum())} points of {line.get_label()!r}"
+                )
+    return found
+
+
 def _is_colorbar(ax) -> bool:
     return hasattr(ax, "_colorbar") or ax.get_label() == "<colorbar>"
 
