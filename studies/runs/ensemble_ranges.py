@@ -29,7 +29,7 @@ from .. import thesis
 from ..claims import CHECKS, WORLD_FAILS, WORLD_HOLDS, Missing, world_verdict
 from ..claims._common import HOLDS as HOLDS_TEXT
 from ._ensemble_stats import claim_rows
-from .ensembles import EVERY_METHOD, PREVIEW_SPACING, SPACING, Group, member_numbers
+from .ensembles import EVERY_METHOD, PREVIEW_SPACING, SPACING, Group, member_numbers, shared_cells, skipped_cells
 
 TITLE = "Ensemble ranges: each claim over worlds with the families' ranges narrowed or widened by a third"
 COST = 180  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
@@ -43,7 +43,9 @@ ENVS = ("env1", "env2", "env3")  # no claim of the ensembles reads ring4's numbe
 GROUP = Group(ENVS, EVERY_METHOD, 2)
 MEMBERS = 22  # per family and factor: Wilson 95 % half-width <= 19.3 points (at 50 %; 15.6 at 18 or 82 %; 7.4 at 0 %)
 SLICES = 2  # slices of 11, slice j under the run's seed + j: factor 1's members are the `ensembles` study's first 22
-STEPS = SLICES
+STEPS = 2 * SLICES  # per slice: the scaled factors' sweep, then factor 1's (read from `ensembles`' cells if run)
+# factor 1's cells last: in a full run the `ensembles` study (started first) has finished them (`shared_cells`)
+ORDER = ((FACTORS[0], FACTORS[2]), (FACTORS[1],))
 QUICK_MEMBERS = 1  # the preview (--quick, the test suite's tiny run): one member per family and factor, a 200 cm grid
 # the claims of the `ensembles` study's default-setting sweeps that read env1-3 only: 1, 17, 18, 21-23, 25-27, 34
 CLAIMS = (
@@ -268,13 +270,15 @@ def run(ctx) -> None:
     members, spacing, slices = plan(ctx)
     seed = ctx.settings.seed
     worlds: dict[float, dict[str, dict]] = {f: {} for f in FACTORS}
-    for j, text in enumerate(range_texts(GROUP, members, spacing, seed, slices)):  # one program, `slices` calls
-        ds = run_sweep(parse_sweep(text, "ensemble_ranges"), lanes=ctx.settings.lanes)
-        for factor, found in numbers_by_factor(ds, GROUP).items():
+    texts = [(fs, t) for fs in ORDER for t in range_texts(GROUP, members, spacing, seed, slices, fs)]
+    for j, (factors, text) in enumerate(texts):  # one program, 2 x `slices` calls
+        spec = parse_sweep(text, "ensemble_ranges")  # the cells no claim reads are skipped, as in `ensembles`
+        ds = run_sweep(spec, lanes=ctx.settings.lanes, out=shared_cells(), skip=skipped_cells())
+        for factor, found in numbers_by_factor(ds, GROUP, factors).items():
             for label, nums in found.items():
                 worlds[factor].setdefault(label, {}).update(nums)
-        ctx.step(f"seed slice {j + 1} of {slices}")
-    for _ in range(STEPS - slices):  # a preview: the progress bar still ends at its total
+        ctx.step(f"sweep {j + 1} of {len(texts)} (factor {', '.join(f'{f:.3g}' for f in factors)})")
+    for _ in range(STEPS - len(texts)):  # a preview: the progress bar still ends at its total
         ctx.step("one slice only in a preview")
     layouts = {f: factor_layouts(ENVS, members, seed, f) for f in FACTORS}
     by_factor = {f: {r["id"]: r for r in claim_rows(worlds[f], members, layouts[f], ids=set(CLAIMS))} for f in FACTORS}

@@ -15,8 +15,13 @@ where they hold from those where they fail.
 
 from __future__ import annotations
 
+import atexit
 import re
+import shutil
+import tempfile
+import threading
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -37,6 +42,7 @@ from ._ensemble_stats import (
     distribution_rows,
     settings_rows,
     settings_text,
+    thesis_numbers,
 )
 
 TITLE = "World ensembles: the thesis's numbers and claims over every world its words allow (beyond the thesis)"
@@ -82,6 +88,8 @@ GROUPS = (
     Group(("ring5", "ring6"), COMPASS_METHODS, 3),
 )
 QUICK_GROUPS = (Group(("env1", "env2", "env3"), EVERY_METHOD, 2),)  # a preview: --quick stays under a minute
+# the default sweeps: their env1-3 cells are `ensemble_ranges`' factor-1 cells, read from `shared_cells`
+SHARED_GROUPS = (GROUPS[0], QUICK_GROUPS[0])
 STEPS = len(GROUPS)
 MEMBERS = 44  # full run: members per family (Wilson 95 % half-width <= 14.6 points at any share)
 QUICK_MEMBERS = 2
@@ -131,6 +139,40 @@ def sweep_texts(group: Group, members: int, spacing: float, seed: int, slices: i
     return texts
 
 
+_SHARED: list[Path] = []  # the folder of `shared_cells`, made on first use
+_SHARED_LOCK = threading.Lock()
+
+
+def shared_cells() -> Path:
+    """A folder of finished catchment cells the ensemble studies of this process share (`run_sweep(out=...)`,
+    docs/sweeps.md "Resuming": a cell is known by a digest of everything that decides its numbers, so a cell one
+    study finished is read, not computed, by another; `ensemble_ranges`' factor-1 members are this study's first
+    22). One per process (the studies of a run are its threads), removed at exit."""
+    with _SHARED_LOCK:
+        if not _SHARED:
+            path = Path(tempfile.mkdtemp(prefix="delvjax-ensemble-cells-"))
+            atexit.register(shutil.rmtree, path, True)
+            _SHARED.append(path)
+        return _SHARED[0]
+
+
+def skipped_cells():
+    """`run_sweep`'s `skip`: True for a cell no table or claim reads, so it is never computed (its numbers NaN, left
+    out by `member_numbers`): a cell is read only where a thesis number has its family, method and k
+    (`thesis_numbers`), and so is every cell a claim of `studies/claims` reads (DELV without a compass at k = 0 on
+    env1-3 only, none on ring4; the claims read its occlusion rows with a compass). `ensemble_ranges` skips the
+    same cells (members of a scaled family, `env1x0.666667-m3`, are their family's)."""
+    wanted: dict[tuple[str, str], set[int]] = {}
+    for _, fam, m, k, _, _ in thesis_numbers():
+        wanted.setdefault((fam, m), set()).add(k)
+
+    def skip(cell: dict) -> bool:
+        fam = re.sub(r"(x[0-9.]+)?(-s\d+)?-m\d+$", "", str(cell["env"]))
+        return int(cell["occlude"]) not in wanted.get((fam, str(cell["method"])), set())
+
+    return skip
+
+
 def member_numbers(ds, group: Group) -> dict[str, dict]:
     """{world label: {claims key: value}} of one group's sweep, under the keys the claims read
     (`occlusion:<family>:<method>:gt45|gt90|catchment` over k, `catchment:<family>:<method>` and
@@ -149,7 +191,7 @@ def member_numbers(ds, group: Group) -> dict[str, dict]:
             for m in group.methods:
                 where = {"env": name, "method": m} | ({"seed": seed} if "seed" in ds.dims else {})
                 cell = ds.sel(where)  # by a dict: sel(method=...) would be xarray's own keyword
-                by_k = lambda var: [float(v) for v in np.atleast_1d(cell[var].values)]  # noqa: E731
+                by_k = lambda var: [None if np.isnan(v) else float(v) for v in np.atleast_1d(cell[var].values)]  # noqa: E731
                 fields = ("catchment",) if group.collisions == "fail" else ("gt45", "gt90", "catchment")
                 for field in fields:
                     nums[f"occlusion:{family}:{m}:{field}{tail}"] = by_k(f"{field}_pct")
@@ -160,7 +202,12 @@ def member_numbers(ds, group: Group) -> dict[str, dict]:
                 if group.collisions != "fail":
                     nums[f"map:{family}:{m}:mean_error_deg{tail}"] = by_k("mean_error_deg")[0]
             key = str(label) if len(seeds) == 1 else f"{label}@{offset[seed]}"
-            out.setdefault(key, {}).update(nums)
+            kept = {
+                k: v
+                for k, v in nums.items()
+                if v is not None and (not isinstance(v, list) or any(x is not None for x in v))
+            }
+            out.setdefault(key, {}).update(kept)  # a skipped cell's numbers (None) are left out (`skipped_cells`)
     return out
 
 
@@ -170,7 +217,9 @@ def run(ctx) -> None:
     worlds: dict[str, dict] = {}
     for group in groups:  # seven groups, four programs (the noise and extra seeds share the first one's)
         for text in sweep_texts(group, members, spacing, seed, 1 if groups is QUICK_GROUPS else SEED_SLICES):
-            ds = run_sweep(parse_sweep(text, "ensembles"), lanes=ctx.settings.lanes)
+            shared = shared_cells() if group in SHARED_GROUPS else None  # ensemble_ranges reads these cells
+            spec = parse_sweep(text, "ensembles")
+            ds = run_sweep(spec, lanes=ctx.settings.lanes, out=shared, skip=skipped_cells())
             for label, nums in member_numbers(ds, group).items():
                 worlds.setdefault(label, {}).update(nums)
         ctx.step(", ".join(group.families) + (f" ({group.collisions})" if group.collisions != "ignore" else ""))

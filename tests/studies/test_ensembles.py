@@ -193,6 +193,23 @@ def test_member_numbers_label_extra_seeds_by_their_offset_whatever_the_runs_seed
     assert sorted(out) == ["env1-m0@1", "env1-m0@2", "env1@1", "env1@2"]
     assert out["env1@2"]["occlusion:env1:alv:catchment"] == [values[0, 1, 0, 1], values[0, 1, 1, 1]]
     assert out["env1-m0@1"]["catchment:env1:acv"] == values[1, 0, 0, 0]
+    values[:, 1, 1, :] = np.nan  # ALV at k = 1 skipped: left out of the lists, ALV's keys kept for k = 0
+    out = member_numbers(ds.copy(data={v: values for v in ds.data_vars}), group)
+    assert out["env1@2"]["occlusion:env1:alv:catchment"] == [values[0, 1, 0, 1], None]
+
+
+def test_only_cells_a_claim_or_a_thesis_number_reads_are_skipped():
+    """DELV without a compass is read at k = 0 on env1-3 only (Fig 4.5, Table 5.1; the claims read the occlusion
+    rows with a compass): its occlusion cells and ring4's are never computed; every other cell is."""
+    from delvjax.studies.runs.ensembles import skipped_cells
+
+    skip = skipped_cells()
+    cell = lambda env, m, k: {"env": env, "method": m, "occlude": k}  # noqa: E731
+    for env in ("env1-m3", "env2-s1-m0", "env3", "env1x0.666667-m2", "env3x1.33333-s1-m10"):
+        assert not any(skip(cell(env, m, k)) for m in ("delv-compass", "acv", "alv") for k in (0, 1, 2)), env
+        assert not skip(cell(env, "delv", 0)) and skip(cell(env, "delv", 1)) and skip(cell(env, "delv", 2)), env
+    assert skip(cell("ring4-m0", "delv", 0)) and not skip(cell("ring4-m0", "delv-compass", 2))
+    assert not skip(cell("ring6-m1", "acv", 3)) and skip(cell("ring3-m1", "acv", 3))
 
 
 def test_a_study_judges_only_the_claims_it_names():
