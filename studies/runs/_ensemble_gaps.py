@@ -6,6 +6,10 @@ from __future__ import annotations
 
 from collections import Counter
 
+from ._gap_probe import load_probes, matching
+
+PROBES = load_probes()  # the gap probe's bands (studies/runs/_gap_probes.json, `causes_probe --gaps`)
+
 # Entries of the thesis's own tables that its notes (`studies/thesis/_notes.py`) call copies or suspect:
 # (note id, source label, world, methods or None for every method, hidden k or None for every k)
 SUSPECT = (
@@ -16,6 +20,9 @@ SUSPECT = (
     ("table5_2_L6_acv_k3", "Table 5.2", "ring6", ("acv",), (3,)),
     ("table5_4_L3_delv_100", "Table 5.4", "ring3", ("delv-compass",), (1,)),
     ("table5_4_k3_delv_equal", "Table 5.4", None, ("delv-compass",), (3,)),
+    # the thesis prints env1's DELV-compass catchments twice: Table 5.3 (and line 902) 49.11 / 40.3 %, Fig 5.10's
+    # caption (line 857) 82.04 / 59.11 %; which is right it does not say
+    ("fig5_10_vs_table5_3", "Table 5.3", "env1", ("delv-compass",), (1, 2)),
 )
 SETTING_NAMES = ("2° bearing noise", "physical rules")  # the other settings' bands (`_ensemble_stats.SETTINGS`)
 
@@ -26,11 +33,12 @@ def grid_step(spacing: float, arena: float = 1000.0) -> float:
     return 100.0 / (side * side)
 
 
-def gap_cause(row: dict, spacing: float) -> str:
+def gap_cause(row: dict, spacing: float, probes: list[dict] | None = None) -> str:
     """The cause of one thesis number's gap (a row of `distribution_rows`): "" inside the band; else the first
     of: a thesis entry its notes call a copy or suspect; inside the band of another unstated setting; a
-    catchment between the default and the physical rules' bands; within
-    one grid point of the band; the built-in world under five seeds reaching it; "unexplained" (above/below)."""
+    catchment between the default and the physical rules' bands; within one grid point of the band; the
+    built-in world under five seeds reaching it; inside the band of an alternative the gap probe measured
+    (`probes`, default the committed PROBES; the first probe that holds it); "unexplained" (above/below)."""
     if row["inside band"]:
         return ""
     for note, source, world, methods, ks in SUSPECT:
@@ -63,6 +71,15 @@ def gap_cause(row: dict, spacing: float) -> str:
         lo, hi = float("nan"), float("nan")
     if lo <= value <= hi:
         return "inside the built-in world's range over five seeds"
+    found = matching(row, PROBES if probes is None else probes)
+    if found:
+        p = found[0]
+        keeps = p.get("keeps")
+        also = f"; {keeps[0]} of its {keeps[2]} thesis numbers inside, {keeps[1]} by default" if keeps else ""
+        return (
+            f"inside the band with {p['cause']} (gap probe {p['probe']}: {p['lo']:g}-{p['hi']:g} over "
+            f"{p['members']} members{also}; causes_probe --gaps)"
+        )
     return "unexplained: thesis " + ("above" if value > row["ours 95 %"] else "below") + " our band"
 
 

@@ -4,6 +4,7 @@ study. Not a study of `delvjax reproduce` (they take minutes and
 change nothing in the report); run them with
 
     python -m delvjax.studies.runs.causes_probe [--variants N] [--spacing CM]
+    python -m delvjax.studies.runs.causes_probe --gaps [--probe ID ...] [--members N]
 
 1. Pixels (claims 4 and 5): DELV's vector map at 360 (the model's ring) and 1440 pixels, d = 20,
    50 and 100 cm on env1 and the 3-landmark layout of Fig 4.8. With noise-free sensing the only
@@ -17,6 +18,10 @@ change nothing in the report); run them with
    ring landmarks hidden per ring radius, and the distance of its field's sink from home.
 4. env2's hull (claim 2): DELV's error points inside a square of landmarks around home at 360 and
    1440 pixels (25 cm grid).
+5. `--gaps`: the gap probe (`_gap_probe.PROBES`): the thesis numbers outside our band over the worlds measured
+   under alternatives the thesis allows (noise, ACV's pairing, home radius, env3's and the rings' geometry);
+   writes `_gap_probes.json`, which `_ensemble_gaps.gap_cause` reads (docs/reproduce.md "What the unexplained
+   gaps were"). `--probe` re-measures some probes and keeps the others' rows.
 """
 
 from __future__ import annotations
@@ -34,6 +39,7 @@ from delvjax.core.sensor import Sensor
 from delvjax.envs._presets import make_env, preset_dict, random_env
 from delvjax.options._registry import program
 
+from . import _gap_probe
 from ._common import HOME_RADIUS, PAD, PROGRAM, RULES, curve, env, inside_hull
 from ._occlusion_layouts import stacked_masks
 
@@ -152,11 +158,48 @@ def env3_layouts(
     }
 
 
+def probe_json(doc: dict) -> str:
+    """The probe file's text: its header keys indented, one row a line (small diffs when a probe is re-measured)."""
+    head = json.dumps({k: v for k, v in doc.items() if k != "rows"}, indent=1, ensure_ascii=False)[:-2]
+    rows = ",\n  ".join(json.dumps(r, ensure_ascii=False) for r in doc["rows"])
+    return f'{head},\n "rows": [\n  {rows}\n ]\n}}\n'
+
+
+def gap_probes(ids: list[str] | None, members: int, spacing: float, path=_gap_probe.PROBE_FILE) -> dict:
+    """Measure the gap probes `ids` (all when None) and write their rows to `path`, keeping other probes' rows."""
+    chosen = [pr for pr in _gap_probe.PROBES if ids is None or pr.id in ids]
+    kept = [r for r in _gap_probe.load_probes(path) if r["probe"] not in {pr.id for pr in chosen}]
+    for pr in chosen:  # a handful of probes, each a few sweeps
+        rows = _gap_probe.probe_rows(pr, _gap_probe.measure(pr, members=members, spacing=spacing))
+        kept += rows
+        inside = [f"{r['world']} {r['method']} k={r['k']} {r['quantity']}" for r in rows if r["inside"]]
+        print(f"{pr.id}: {len(inside)} of {len(rows)} thesis numbers inside its band", flush=True)
+    order = {pr.id: i for i, pr in enumerate(_gap_probe.PROBES)}
+    kept.sort(key=lambda r: order.get(r["probe"], len(order)))
+    doc = {"members": members, "slices": 2, "spacing_cm": spacing, "seed": 0}
+    doc["probes"] = {pr.id: pr.hypothesis for pr in _gap_probe.PROBES}
+    doc["rows"] = _gap_probe.with_net([{k: v for k, v in r.items() if k not in ("net", "keeps")} for r in kept])
+    doc["command"] = (
+        "python -m delvjax.studies.runs.causes_probe --gaps --members {members} --spacing {spacing:g}".format(
+            members=members, spacing=spacing
+        )
+    )
+    path.write_text(probe_json(doc))
+    return doc
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--variants", type=int, default=60, help="env3 variants for ACV (default 60)")
-    p.add_argument("--spacing", type=float, default=50.0, help="grid spacing cm (default 50)")
+    p.add_argument("--spacing", type=float, default=None, help="grid spacing cm (default 50; 100 with --gaps)")
+    p.add_argument("--gaps", action="store_true", help="run the gap probe and write _gap_probes.json")
+    p.add_argument("--probe", nargs="*", default=None, help="with --gaps: only these probes (ids of PROBES)")
+    p.add_argument("--members", type=int, default=16, help="with --gaps: members per family (default 16)")
     a = p.parse_args()
+    if a.gaps:
+        gap_probes(a.probe, a.members, a.spacing or 100.0)
+        return
+    a.spacing = a.spacing or 50.0
     px = pixels(a.spacing)
     lay = env3_layouts(a.variants, a.spacing)
     for name, v in (

@@ -60,3 +60,64 @@ def test_the_counts_say_how_many_gaps_have_no_cause():
     counts = cause_counts(rows)
     assert counts["within one grid point"] == 1 and sum(counts.values()) == 3
     assert gaps_text(rows).endswith("1 have a named cause, 2 none yet.")
+
+
+# --- the gap probe's rule (studies/runs/_gap_probe.py, _gap_probes.json) ---------------------------------------
+
+
+def probe_row(**over) -> dict:
+    base = {
+        "probe": "bearing5",
+        "cause": "5° of bearing noise",
+        "hypothesis": "h",
+        "source": "Table 5.3",
+        "world": "env1",
+        "method": "acv",
+        "k": 1,
+        "quantity": "catchment %",
+        "thesis": 30.0,
+        "lo": 20.0,
+        "median": 35.0,
+        "hi": 45.0,
+        "members": 16,
+        "inside": True,
+    }
+    return base | over
+
+
+@pytest.mark.parametrize(
+    "over, cause",
+    [
+        ({}, "inside the band with 5° of bearing noise (gap probe bearing5: 20-45 over 16 members"),
+        ({"inside": False, "lo": 31.0}, "unexplained: thesis below"),  # the alternative's band misses it
+        ({"k": 2}, "unexplained"),  # another thesis number
+        ({"world": "env2"}, "unexplained"),
+        ({"quantity": "e>45 %"}, "unexplained"),
+        ({"thesis": 31.0}, "unexplained"),  # the probe measured another value of the thesis (a stale file)
+    ],
+)
+def test_a_probe_band_holding_the_thesis_number_names_its_cause(over, cause):
+    assert gap_cause(row(), 100.0, probes=[probe_row(**over)]).startswith(cause)
+
+
+def test_earlier_causes_win_over_the_probe_and_the_first_probe_is_named():
+    probes = [probe_row(probe="home75", cause="a 75 cm home radius"), probe_row()]
+    assert gap_cause(row(thesis=49.5), 100.0, probes=probes).startswith("within one grid point")
+    assert gap_cause(row(), 100.0, probes=probes).startswith("inside the band with a 75 cm home radius")
+    assert gap_cause(row(), 100.0, probes=[]).startswith("unexplained")
+
+
+@pytest.mark.parametrize(
+    "method, k, doubted", [("delv-compass", 1, True), ("delv-compass", 0, False), ("acv", 1, False)]
+)
+def test_table5_3_env1_delv_compass_is_doubted_where_fig5_10_prints_another_value(method, k, doubted):
+    cause = gap_cause(row(method=method, k=k), 100.0, probes=[])
+    assert cause.startswith("a thesis entry its notes doubt (fig5_10_vs_table5_3)") == doubted
+
+
+def test_a_probe_that_moves_more_thesis_numbers_out_than_in_names_no_cause():
+    """The default probe is the reference, never a cause; a probe with a negative net gain is no cause either."""
+    assert gap_cause(row(), 100.0, probes=[probe_row(probe="default")]).startswith("unexplained")
+    assert gap_cause(row(), 100.0, probes=[probe_row(net=-3, keeps=[5, 8, 20])]).startswith("unexplained")
+    cause = gap_cause(row(), 100.0, probes=[probe_row(net=2, keeps=[10, 8, 20])])
+    assert "10 of its 20 thesis numbers inside, 8 by default" in cause
