@@ -66,6 +66,7 @@ TRIAL_KEYS = ("success", "trajectories:")
 # what the counts `n:KEY` of a key that is no error curve count (by the key's prefix)
 SAMPLE_WORDS = (
     ("fail_", "counted grid points in the region"),
+    ("map:", "counted grid points in the region"),
     ("robot_images:", "database points"),
 )
 

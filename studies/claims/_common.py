@@ -92,6 +92,23 @@ def no_loss(losses, limit: float = 2.0) -> bool:
     return at_floor(losses, limit)
 
 
+def points_of(get, key: str) -> int | None:
+    """The grid points behind share `key` (%): the smallest count a study recorded as `n:<key>`, or None."""
+    counts = [c for c in _flat(_opt(get, f"n:{key}") or []) if c]
+    return int(min(counts)) if counts else None
+
+
+def beyond(pct: float, limit: float, n: int | None) -> bool | None:
+    """The minimum-evidence rule of every check that compares a share of grid points (%, of `n` points)
+    with a bound: True when it exceeds `limit` by more than one grid point's share (100 / n), False when
+    it is within `limit`, None (cannot tell) when it exceeds `limit` only by the share of one grid point:
+    a verdict must not rest on one grid point (1 of 12 points inside a hull is 8.3 %, and one point the
+    other way makes it 0 %). `n` None (not recorded): the share alone decides."""
+    if pct <= limit:
+        return False
+    return None if n and pct - 100.0 / n <= limit else True
+
+
 def _combine(parts) -> str:
     """Parts are True (holds), False (fails) or None (cannot tell, e.g. at the ceiling).
     holds: every part holds; cannot tell: the decided parts hold but some cannot be told

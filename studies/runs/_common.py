@@ -169,6 +169,7 @@ def map_numbers(e: Env, vm: VectorMap) -> dict:
     err = np.asarray(vm.error_deg)
     s["gt45_inside_hull_pct"] = 100.0 * float((err[hull] > 45).mean()) if hull.any() else float("nan")
     s["gt45_outside_hull_pct"] = 100.0 * float((err[out] > 45).mean()) if out.any() else float("nan")
+    s["n_inside_hull"], s["n_outside_hull"] = int(hull.sum()), int(out.sum())  # the points behind each share
     return s
 
 

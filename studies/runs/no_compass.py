@@ -42,6 +42,8 @@ def run(ctx) -> None:
         curves[name] = curve(e, vm)
         for key in ("mean_error_deg", "gt45_pct", "gt90_pct", "gt45_inside_hull_pct", "gt45_outside_hull_pct"):
             ctx.number(f"map:{name}:delv:{key}", s[key])
+        for region in ("inside", "outside"):  # the points behind each share (the claims' one-point rule)
+            ctx.number(f"n:map:{name}:delv:gt45_{region}_hull_pct", [s[f"n_{region}_hull"]])
         curve_number(ctx, f"error_curve:{name}:delv", curves[name])
         thesis_pct = thesis.CATCHMENT["fig4_5"][name]["delv"][0]
         row = {"env": name, "thesis %": thesis_pct}

@@ -33,6 +33,15 @@ BACKGROUNDS = ("distant", "walls", "none")
 TRUE = ("delv-compass", "acv", "alv")
 VISUAL = ("delv-visual", "acv-visual", "alv-visual")
 SIGMAS = (0.0, 5.0, 10.0, 20.0, 30.0, 45.0)
+FAILED = "failures timeout/landmark/arena"
+# measured on env1 at spacing 25 (docs/reproduce.md "compass noise"): ACV's 41 timeouts without noise end
+# in two-step cycles, a move and its reverse ~50 cm apart, west of home near (90-180, 600-640) and (320-350,
+# 650-685) cm; with 10° of noise the same starts leave the cycle (and reach home or the arena's edge)
+ACV_CYCLES = (
+    "without noise ACV's rollouts west of home fall into two-step cycles (a move and its reverse, about "
+    "50 cm apart) until the step limit; compass noise turns each move a little and breaks the cycle, so "
+    "the timeouts go and the catchment grows (measured at spacing 25: 41 timeouts at sigma 0, 0 at 20°)."
+)
 # Fig 5.11's world is not stated (thesis NOTES "fig5_11"): claims 31 and 32 read env1-3. Landmark
 # centroids from home: env1 42 cm, env2 0 cm, env3 193 cm (all four east).
 WORLDS = ("env1", "env2", "env3")
@@ -254,25 +263,66 @@ def run(ctx) -> None:
     # compass-noise sweep
     rows = []
     for m in TRUE:  # one compiled program for all; sigma is traced
-        pcts = [float(catchment(ctx, e, m, compass_noise_deg=s).catchment_pct()[0]) for s in SIGMAS]
+        runs = [catchment(ctx, e, m, compass_noise_deg=s) for s in SIGMAS]
+        pcts = [float(c.catchment_pct()[0]) for c in runs]
         ctx.number(f"compass_noise:env1:{m}:catchment", pcts)
-        rows += [{"method": LABEL[m], "compass sigma °": s, "catchment %": p} for s, p in zip(SIGMAS, pcts)]
+        for s, p, c in zip(SIGMAS, pcts, runs):
+            counts = outcome_counts(c)
+            rows.append(
+                {
+                    "method": LABEL[m],
+                    "compass sigma °": s,
+                    "catchment %": p,
+                    "failures timeout/landmark/arena": f"{counts['timeout']}/{counts['landmark']}/{counts['arena']}",
+                }
+            )
     ctx.number("compass_noise:sigmas", list(SIGMAS))
     ctx.step("compass noise")
+    acv = [r for r in rows if r["method"] == LABEL["acv"]]
     ctx.table(
         "compass_noise",
         "Catchment vs compass noise, env1 (default rules)",
         rows,
         source="beyond the thesis",
-        note="The thesis's §5.4 claim: DELV depends least on the accuracy of the compass.",
+        note="The thesis's §5.4 claim: DELV depends least on the accuracy of the compass. "
+        + (
+            f"ACV's catchment rises with the noise ({acv[0]['catchment %']:.1f} -> {acv[-1]['catchment %']:.1f} %; "
+            f"timeout/landmark/arena {acv[0][FAILED]} at sigma 0, {acv[-1][FAILED]} at {SIGMAS[-1]:g}°): " + ACV_CYCLES
+            if acv[-1]["catchment %"] > acv[0]["catchment %"]
+            else ""
+        ),
     )
+    fig = compass_noise_figure(rows)
+    ctx.figure(
+        "compass_noise_catchment.png",
+        fig,
+        "Catchment on env1 vs the compass's Gaussian noise sigma (curves at 100 % lie on one another: each "
+        "has its own marker and line style). Where ACV rises with the noise, its rollouts without noise fall "
+        "into two-step cycles and time out, and the noise breaks them (the table's failure counts and note).",
+    )
+
+
+def compass_noise_figure(rows: list[dict]):
+    """Catchment vs compass noise, a line per method of TRUE (the compass_noise table's rows)."""
     fig, ax = subplots(figsize=(6.4, 4))
+    # the curves lie on one another at 100 %: a marker and a line style each, the largest marker drawn first
     for i, m in enumerate(TRUE):
-        ax.plot(SIGMAS, [r["catchment %"] for r in rows if r["method"] == LABEL[m]], marker="o", label=LABEL[m])
+        ax.plot(
+            SIGMAS,
+            [r["catchment %"] for r in rows if r["method"] == LABEL[m]],
+            marker="os^"[i],
+            ms=(10, 7, 4)[i],
+            ls=("-", "--", ":")[i],
+            lw=(3.0, 2.0, 1.5)[i],
+            mfc=("none", f"C{i}", f"C{i}")[i],
+            mew=1.5,
+            zorder=2 + i,
+            label=LABEL[m],
+        )
     ax.set_xlabel("compass noise sigma (°)")
     ax.set_ylabel("catchment area (%)")
     ax.set_ylim(0, 105)
     ax.grid(alpha=0.3)
-    ax.legend()
+    ax.legend(loc="lower left")
     fig.set_layout_engine("tight")  # applied when drawn (in the figure thread)
-    ctx.figure("compass_noise_catchment.png", fig, "Catchment on env1 vs the compass's Gaussian noise sigma.")
+    return fig

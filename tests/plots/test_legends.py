@@ -7,6 +7,8 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from delvjax.plots._rollouts import success_rate_figure
+from delvjax.studies.runs import visual_compass
+from delvjax.studies.runs._common import LABEL
 from tests.cases.figures import figure_defects, legends_over_data
 
 
@@ -38,3 +40,18 @@ def test_the_success_rate_legend_leaves_every_curve_in_view():
     fig = success_rate_figure(tables, "env1, with a compass")
     assert legends_over_data(fig) == []
     assert figure_defects(fig) == []
+
+
+def test_lines_on_one_another_stay_distinguishable():
+    """compass_noise_catchment.png: DELV's and ALV's lines both at 100 % (DELV's was hidden under ALV's)."""
+    rows = [
+        {"method": LABEL[m], "compass sigma °": s, "catchment %": 100.0 if m != "acv" else 96.0 + s / 15}
+        for m in visual_compass.TRUE
+        for s in visual_compass.SIGMAS
+    ]
+    fig = visual_compass.compass_noise_figure(rows)
+    lines = fig.axes[0].lines
+    assert len({(ln.get_marker(), ln.get_linestyle()) for ln in lines}) == len(lines) == 3
+    under, over = lines[0], lines[2]  # drawn first, larger: its marker shows around the one on top
+    assert under.get_markersize() > over.get_markersize() and under.get_zorder() < over.get_zorder()
+    assert legends_over_data(fig) == [] and figure_defects(fig) == []
