@@ -29,7 +29,7 @@ from .. import thesis
 from ..claims import CHECKS, WORLD_FAILS, WORLD_HOLDS, Missing, world_verdict
 from ..claims._common import HOLDS as HOLDS_TEXT
 from ._ensemble_stats import claim_rows
-from .ensembles import EVERY_METHOD, PREVIEW_SPACING, SPACING, Group, member_numbers, shared_cells, skipped_cells
+from .ensembles import EVERY_METHOD, LANES, PREVIEW_SPACING, SPACING, Group, member_numbers, shared_cells, skipped_cells
 
 TITLE = "Ensemble ranges: each claim over worlds with the families' ranges narrowed or widened by a third"
 COST = 180  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
@@ -270,10 +270,11 @@ def run(ctx) -> None:
     members, spacing, slices = plan(ctx)
     seed = ctx.settings.seed
     worlds: dict[float, dict[str, dict]] = {f: {} for f in FACTORS}
+    lanes = min(LANES, ctx.settings.lanes) if members == MEMBERS else ctx.settings.lanes  # as `ensembles`
     texts = [(fs, t) for fs in ORDER for t in range_texts(GROUP, members, spacing, seed, slices, fs)]
     for j, (factors, text) in enumerate(texts):  # one program, 2 x `slices` calls
         spec = parse_sweep(text, "ensemble_ranges")  # the cells no claim reads are skipped, as in `ensembles`
-        ds = run_sweep(spec, lanes=ctx.settings.lanes, out=shared_cells(), skip=skipped_cells())
+        ds = run_sweep(spec, lanes=lanes, out=shared_cells(), skip=skipped_cells())
         for factor, found in numbers_by_factor(ds, GROUP, factors).items():
             for label, nums in found.items():
                 worlds[factor].setdefault(label, {}).update(nums)

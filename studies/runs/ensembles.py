@@ -93,6 +93,7 @@ SHARED_GROUPS = (GROUPS[0], QUICK_GROUPS[0])
 STEPS = len(GROUPS)
 MEMBERS = 44  # full run: members per family (Wilson 95 % half-width <= 14.6 points at any share)
 QUICK_MEMBERS = 2
+LANES = 128  # a full run's rollout lanes (no number depends on them): 128 run these cells faster than 256
 SEED_SLICES = 4  # a full run's members run in this many slices, each under its own seed (`sweep_texts`)
 PREVIEW_SPACING = 200.0  # cm: the preview's grid (5 x 5), the test suite's tiny run's too (one program for both)
 # cm: the members' grid (10 x 10). A 25 cm grid costs 16 times as much; the built-in worlds' numbers at 25 cm
@@ -215,11 +216,12 @@ def run(ctx) -> None:
     groups, members, spacing = plan(ctx)
     seed = ctx.settings.seed
     worlds: dict[str, dict] = {}
+    lanes = min(LANES, ctx.settings.lanes) if groups is GROUPS else ctx.settings.lanes  # the preview's: settings'
     for group in groups:  # seven groups, four programs (the noise and extra seeds share the first one's)
         for text in sweep_texts(group, members, spacing, seed, 1 if groups is QUICK_GROUPS else SEED_SLICES):
             shared = shared_cells() if group in SHARED_GROUPS else None  # ensemble_ranges reads these cells
             spec = parse_sweep(text, "ensembles")
-            ds = run_sweep(spec, lanes=ctx.settings.lanes, out=shared, skip=skipped_cells())
+            ds = run_sweep(spec, lanes=lanes, out=shared, skip=skipped_cells())
             for label, nums in member_numbers(ds, group).items():
                 worlds.setdefault(label, {}).update(nums)
         ctx.step(", ".join(group.families) + (f" ({group.collisions})" if group.collisions != "ignore" else ""))
