@@ -191,7 +191,7 @@ def cmd_vector_map_images(args: argparse.Namespace) -> int:
         f"vector map of {args.method} on {len(db.files)} images ({db.camera.cols} x {db.camera.rows}, "
         f"unit move {db.spacing:g} cm) ..."
     )
-    vm = database_vector_map(db, args.method, **opts)
+    vm = database_vector_map(db, args.method, warn=warn, **opts)
     summary = {
         "images": args.images,
         "method": args.method,
@@ -241,7 +241,7 @@ def cmd_catchment_images(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     db, opts = load(args)
     radius = None if args.home_radius == args.parser_defaults.get("home_radius") else args.home_radius
-    vm = database_vector_map(db, args.method, **opts)
+    vm = database_vector_map(db, args.method, warn=warn, **opts)
     warn_empty(vm)
     starts, paths = database_catchment(
         db,

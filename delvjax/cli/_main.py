@@ -31,6 +31,7 @@ from ._sweep import add_plot_sweep, add_sweep
 from ..core import maps
 from ..core.errors import InputError
 from ..options._limits import grid_count
+from ..options._schema import all_options
 from ..envs._presets import PRESET_DESCRIPTIONS, PRESETS
 from ..options._registry import DESCRIPTIONS
 from ..core.tables import vector_map_columns
@@ -202,13 +203,33 @@ def build_parser() -> argparse.ArgumentParser:
 
 def command_defaults(parser: argparse.ArgumentParser, args: argparse.Namespace) -> dict:
     """The default of every option of the command `args` ran (of its subcommand, for `images ...`)."""
+    return {a.dest: a.default for a in command_parser(parser, args)._actions if a.dest != "help"}
+
+
+FILE_KEYED = ("sweep", "plot-sweep")  # commands whose settings are a file's keys (mw_n_psi), not flags
+
+
+def command_parser(parser: argparse.ArgumentParser, args: argparse.Namespace) -> argparse.ArgumentParser:
+    """The parser of the (sub)command `args` ran (of `images ...`'s subcommand)."""
     for name in ("command", "images_command"):
         chosen = getattr(args, name, None)
         subs = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
         if chosen is None or not subs or chosen not in subs[0].choices:
             break
         parser = subs[0].choices[chosen]
-    return {a.dest: a.default for a in parser._actions if a.dest != "help"}
+    return parser
+
+
+def as_typed(exc: InputError, parser: argparse.ArgumentParser, args: argparse.Namespace) -> InputError:
+    """The error as the user typed it: a field that is one of the command's options (`mw_n_psi`, the API
+    keyword a check raises with; `Option.flag` of the options registry, or the parser's own flags) named
+    by its flag (`--mw-n-psi`); a sweep's keys stay as its file writes them."""
+    if getattr(args, "command", None) in FILE_KEYED:
+        return exc
+    flags = {a.dest: a.option_strings[-1] for a in command_parser(parser, args)._actions if a.option_strings}
+    option = all_options().get(exc.field)
+    flag = flags.get(exc.field) or (option.flag if option is not None and option.flag in flags.values() else None)
+    return exc if flag is None else InputError(flag, exc.value, exc.expected)
 
 
 def main(argv: list[str] | None = None, own_process: bool = False) -> int:
@@ -224,7 +245,7 @@ def main(argv: list[str] | None = None, own_process: bool = False) -> int:
     try:
         return args.func(args)
     except InputError as exc:
-        print(f"delvjax: error: {exc}", file=sys.stderr)
+        print(f"delvjax: error: {as_typed(exc, parser, args)}", file=sys.stderr)
         return 2
     except KeyboardInterrupt as exc:
         term = isinstance(exc, Terminated)

@@ -73,6 +73,48 @@ def file_columns(images: np.ndarray, axis: int = -2) -> np.ndarray:
     return np.roll(np.flip(images, axis=axis), 1, axis=axis)
 
 
+def _circular(deg: np.ndarray) -> tuple[float, float]:
+    """Circular mean (deg, (-180, 180]) and resultant length (0..1) of angles in degrees."""
+    z = np.exp(1j * np.radians(deg)).mean()
+    return float(np.degrees(np.angle(z))), float(abs(z))
+
+
+def mismatch(signed_deg: np.ndarray, stored_deg: np.ndarray, width: int, used: Conventions) -> str | None:
+    """What the homing directions' signed errors (deg, one per point, NaN where invalid) say of the heading
+    conventions `used` to read `stored_deg` (each point's stored heading): None when the errors are small
+    or without a pattern; else the flags of the conventions under which the errors would vanish (a
+    database's own compass headings of the centre column read as a positions.csv folder's math headings
+    of column 0 turn every view and give errors of about 90°), or the consistent turn itself."""
+    ok = np.isfinite(signed_deg) & np.isfinite(stored_deg)
+    e, h = signed_deg[ok], stored_deg[ok]
+    if e.size < 8 or np.abs(e).mean() < 45.0:
+        return None
+    fits = []
+    for heading in CHOICES["heading"][1]:
+        for column in CHOICES["heading_column"][1]:
+            alt = Conventions(heading, column, used.columns)
+            turn = used.column0_deg(h, width) - alt.column0_deg(h, width)  # views turned by reading `used`
+            rest = np.mod(e - turn + 180.0, 360.0) - 180.0
+            mean, length = _circular(rest)
+            if alt != used and length > 0.8 and abs(mean) < 20.0:
+                fits.append((np.abs(rest).mean(), alt))
+    if fits:
+        alt = min(fits, key=lambda f: f[0])[1]
+        flags = " ".join(f"{CHOICES[n][2]} {getattr(alt, n)}" for n in CHOICES if getattr(alt, n) != getattr(used, n))
+        return (
+            f"the headings are probably not {used.heading} of the {used.heading_column} column: the homing "
+            f"directions err by {np.abs(e).mean():.0f}° on average, and read with {flags} they would not "
+            "(docs/images.md §4.1)"
+        )
+    mean, length = _circular(e)
+    if length > 0.8:
+        return (
+            f"every homing direction is turned by about {mean:.0f}°: the stored headings probably follow another "
+            "convention (--heading-convention, --heading-column, --columns; docs/images.md §4.1)"
+        )
+    return None
+
+
 BOB = Conventions("compass", "centre", "clockwise")  # BoB's ant world and its route recorder
 DELVJAX_BEFORE = Conventions("math", "first", "clockwise")  # delvjax databases written before conventions were declared
 PLAIN = DELVJAX_BEFORE  # positions.csv: heading_deg counter-clockwise from +x, of file column 0 (docs/images.md §4)

@@ -7,6 +7,7 @@ from __future__ import annotations
 import dataclasses
 
 import math
+from collections.abc import Callable
 from pathlib import Path
 
 import jax
@@ -29,7 +30,7 @@ from ..core.maps import VectorMap
 from ..core.rollouts import MAX_STEPS, TRIALS_PER_DISTANCE
 from ..core.rollouts.success import wilson_pct
 from ._disk import read_index
-from ._conventions import BOB, resolve
+from ._conventions import BOB, mismatch, resolve
 from ..core.errors import InputError
 from ..options._settings import make_setup
 from ..options._checks import non_negative, positive, positive_int, seed_value
@@ -38,7 +39,7 @@ from ._writer import DatabaseWriter
 from ._render import ImageSettings, check_render, render_rings, world_grid
 from ._worlds import ImageWorld
 from ..options._limits import MAX_POINTS
-from ._load import LoadedDatabase, database_arena, database_spacing, check_home_move, load_database, with_channel
+from ._load import _warn, LoadedDatabase, database_arena, database_spacing, check_home_move, load_database, with_channel
 
 
 def plans(db: LoadedDatabase):
@@ -60,7 +61,12 @@ def perceived(db: LoadedDatabase, delv) -> np.ndarray:
 
 
 def database_vector_map(
-    db: LoadedDatabase, method="delv", home_rings: RingDatabase | None = None, program=None, **options
+    db: LoadedDatabase,
+    method="delv",
+    home_rings: RingDatabase | None = None,
+    program=None,
+    warn: Callable[[str], None] = _warn,
+    **options,
 ) -> VectorMap:
     """The homing direction of `method` at every database point (docs/images.md §6). `options`: method
     settings and `channel` as in `api.vector_map`; `home_rings`: take the home record from another
@@ -75,6 +81,13 @@ def database_vector_map(
     pos = np.asarray(db.rings.positions)
     direction, valid, error = database_directions(rings, plan, home_db, home, module, jnp.asarray(db.home, jnp.float32))
     included = np.arange(len(pos)) != db.home_index
+    if db.conventions is not None and db.heading_deg is not None:  # views turned by a misread heading: say so
+        end = np.asarray(plan.end)
+        to_home = np.arctan2(*(db.home - pos[end]).T[::-1])
+        signed = np.degrees(np.angle(np.exp(1j * (np.asarray(direction, np.float64) - to_home))))
+        hint = mismatch(np.where(included, signed, np.nan), db.heading_deg[end], db.camera.cols, db.conventions)
+        if hint:
+            warn(f"{db.name}: {hint}")
     return VectorMap(
         points=jnp.asarray(pos),
         included=jnp.asarray(included),

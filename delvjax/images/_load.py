@@ -20,6 +20,7 @@ from ._render import DEFAULT_CHUNK, chunks, extract_rings, full, head
 from ..core.errors import InputError
 from ..core.images import Camera, Catadioptric, Extractor
 from ..core.images.database import RingDatabase, home_plan
+from ._conventions import Conventions
 from ._disk import DatabaseIndex, read_image, read_images, read_index
 from ..options._checks import finite, positive, positive_int
 from ..options._schema import extractor_options
@@ -42,6 +43,8 @@ class LoadedDatabase:
     mirror: Catadioptric | None = None
     kind: str = "grid"
     origin: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    heading_deg: np.ndarray | None = None  # (N,) the headings as stored, and how they were read
+    conventions: Conventions | None = None
 
     def absolute(self, xy) -> np.ndarray:
         """Positions of this database's frame (relative to `origin`, float64) in the database's own cm."""
@@ -309,6 +312,8 @@ def load_database(
         mirror,
         index.kind,
         origin,
+        index.heading_deg,
+        index.conventions,
     )
 
 

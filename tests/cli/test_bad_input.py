@@ -24,7 +24,7 @@ def error_line(capsys) -> str:
 def test_a_seed_out_of_range_is_one_line_naming_it(tmp_path, capsys, seed):
     out = tmp_path / "m.csv"
     assert main(["vector-map", "env1", "--seed", seed, "--spacing", "200", "--out", str(out)]) == 2
-    assert error_line(capsys).startswith("delvjax: error: seed:")
+    assert error_line(capsys).startswith("delvjax: error: --seed:")
     assert not out.exists()
 
 
@@ -79,7 +79,7 @@ def test_unknown_fields_of_an_environment_file_are_named(tmp_path, capsys, spec,
     path.write_text(json.dumps(spec))
     out = tmp_path / "m.csv"
     assert main(["vector-map", str(path), "--out", str(out)]) == 2
-    assert error_line(capsys).startswith(f"delvjax: error: {field}:")
+    assert error_line(capsys).startswith((f"delvjax: error: {field}:", f"delvjax: error: --{field.replace('_', '-')}:"))
     assert not out.exists()
 
 
@@ -95,7 +95,7 @@ def test_a_plot_alone_needs_no_csv_and_no_output_at_all_is_an_error(tmp_path, ca
 def test_a_setting_the_method_does_not_have_is_refused(tmp_path, capsys):
     out = tmp_path / "m.csv"
     assert main(["vector-map", "env1", "--method", "alv", "--levels", "3", "--out", str(out)]) == 2
-    assert error_line(capsys).startswith("delvjax: error: levels:")
+    assert error_line(capsys).startswith("delvjax: error: --levels:")
     assert not out.exists()
 
 
@@ -134,7 +134,7 @@ def test_rollout_commands_validate_everything_before_announcing_work(tmp_path, c
 def test_what_cannot_produce_a_result_is_refused(tmp_path, capsys, argv, field):
     out = tmp_path / "r.csv"
     assert main(argv + ["--out", str(out)]) == 2
-    assert error_line(capsys).startswith(f"delvjax: error: {field}:")
+    assert error_line(capsys).startswith((f"delvjax: error: {field}:", f"delvjax: error: --{field.replace('_', '-')}:"))
     assert not out.exists()
 
 
@@ -156,7 +156,7 @@ def test_a_result_with_every_point_invalid_warns_in_one_line(tmp_path, capsys, a
 def test_a_channel_for_a_method_that_reads_no_image_is_refused(tmp_path, capsys):
     out = tmp_path / "m.csv"
     assert main(["vector-map", "env1", "--method", "delv", "--channel", "gray", "--out", str(out)]) == 2
-    assert error_line(capsys).startswith("delvjax: error: channel:")
+    assert error_line(capsys).startswith("delvjax: error: --channel:")
     assert not out.exists()
     assert (
         main(["vector-map", "env1", "--method", "warping", "--channel", "gray", "--spacing", "200", "--out", str(out)])
@@ -177,7 +177,7 @@ def test_a_channel_for_a_method_that_reads_no_image_is_refused(tmp_path, capsys)
 def test_a_value_beyond_what_the_computation_holds_is_one_line(tmp_path, capsys, monkeypatch, argv, field):
     monkeypatch.chdir(tmp_path)
     assert main(argv) == 2
-    assert error_line(capsys).startswith(f"delvjax: error: {field}:")
+    assert error_line(capsys).startswith((f"delvjax: error: {field}:", f"delvjax: error: --{field.replace('_', '-')}:"))
     assert list(tmp_path.iterdir()) == []
 
 
@@ -203,7 +203,7 @@ def test_a_rollout_only_noise_on_a_vector_map_is_refused_not_ignored(tmp_path, c
     out = tmp_path / "m.csv"
     assert main(["vector-map", "env1", flag, "0.1", "--spacing", "200", "--out", str(out)]) == 2
     line = error_line(capsys)
-    assert line.startswith(f"delvjax: error: {flag[2:].replace('-', '_')}:") and "acts only in rollouts" in line
+    assert line.startswith(f"delvjax: error: {flag}:") and "acts only in rollouts" in line
     assert not out.exists()
     with pytest.raises(InputError, match="acts only in rollouts"):
         delvjax.vector_map("env1", spacing=200.0, **{flag[2:].replace("-", "_"): 0.1})
@@ -218,7 +218,7 @@ def test_a_method_name_typed_otherwise_is_refused_with_the_name_meant(tmp_path, 
     out = tmp_path / "m.csv"
     assert main(["vector-map", "env1", "--method", typed, "--spacing", "200", "--out", str(out)]) == 2
     line = error_line(capsys)
-    assert line.startswith("delvjax: error: method: unknown method") and f"(did you mean {meant!r}?)" in line
+    assert line.startswith("delvjax: error: --method: unknown method") and f"(did you mean {meant!r}?)" in line
     assert not out.exists()
     assert main(["success-rate", "env1", "--method", f"delv,{typed}", "--trials", "1", "--out", str(out)]) == 2
     assert f"(did you mean {meant!r}?)" in error_line(capsys)

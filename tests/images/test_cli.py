@@ -39,7 +39,7 @@ def test_options_that_do_not_apply_to_images_are_refused(small_db, tmp_path, cap
         argv = [command, flags[0], "--images", str(small_db), "--out", str(out)]
     assert main(argv) == 2
     line = error_line(capsys)
-    assert line.startswith(f"delvjax: error: {field}:"), line
+    assert line.startswith((f"delvjax: error: {field}:", f"delvjax: error: --{field.replace('_', '-')}:")), line
     assert not out.exists() and not list(tmp_path.iterdir())
 
 
@@ -55,7 +55,7 @@ def test_neither_an_environment_nor_images_is_an_error(tmp_path, capsys, command
 def test_catchment_images_refuses_an_unknown_collision_rule(small_db, tmp_path, capsys):
     out = tmp_path / "s.json"
     assert main(["catchment", "--images", str(small_db), "--collisions", "maybe", "--summary", str(out)]) == 2
-    assert error_line(capsys).startswith("delvjax: error: collisions:")
+    assert error_line(capsys).startswith("delvjax: error: --collisions:")
     assert not out.exists()
 
 
@@ -167,7 +167,7 @@ def test_a_database_of_one_image(small_db, tmp_path, capsys):
     # with a spacing, the lone image is home and has no neighbour for the home record's unit move
     assert main(["images", "import", str(one), "--out", str(out), "--spacing", "20"]) == 2
     line = error_line(capsys)
-    assert line.startswith("delvjax: error: home:") and "unit move" in line and "home" in line, line
+    assert line.startswith("delvjax: error: --home:") and "unit move" in line and "home" in line, line
     no_leftovers(out)
 
 
@@ -201,7 +201,7 @@ def test_a_home_without_an_axis_neighbour_does_not_pass_silently(small_db, tmp_p
     )
     err = capsys.readouterr().err
     if rc == 2:  # refused, naming home
-        assert "delvjax: error: home" in err and not out.exists(), err
+        assert "delvjax: error: --home" in err and not out.exists(), err
         return
     assert rc == 0
     rows = read_csv(out)

@@ -214,7 +214,9 @@ def test_render_db_checks_its_options_before_any_work(tmp_path, capsys, flags, f
     out = tmp_path / "db"
     assert main(["images", "render-db", "robot", *SMALL, *flags, "--out", str(out)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and err[0].startswith(f"delvjax: error: {field}:"), err  # before any progress line
+    assert len(err) == 1 and err[0].startswith(
+        (f"delvjax: error: {field}:", f"delvjax: error: --{field.replace('_', '-')}:")
+    ), err  # before any progress line
     assert not list(tmp_path.iterdir())
 
 

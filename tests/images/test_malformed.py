@@ -108,7 +108,7 @@ def test_settings_that_do_not_fit_the_images_are_refused_before_they_are_read(pl
     out = tmp_path / "r.csv"
     assert (narrow / POSITIONS).is_file()
     assert main(["vector-map", "--images", str(narrow), "--method", "warping", "--out", str(out)]) == 2
-    assert error_line(capsys).startswith("delvjax: error: n_psi:") and read == [] and not out.exists()
+    assert error_line(capsys).startswith("delvjax: error: --n-psi:") and read == [] and not out.exists()
 
 
 def test_render_into_a_symlinked_empty_folder_writes_into_its_target(tmp_path):

@@ -54,7 +54,7 @@ def test_bad_settings_are_one_line_and_nothing_is_written(small_db, tmp_path, ca
     out = tmp_path / "m.csv"
     assert main(["vector-map", "--images", str(small_db), "--method", "minwarping", *flags, "--out", str(out)]) == 2
     line = error_line(capsys)
-    assert line.startswith(f"delvjax: error: {field}"), line
+    assert line.startswith((f"delvjax: error: {field}", f"delvjax: error: --{field.replace('_', '-')}")), line
     assert not list(tmp_path.iterdir())
 
 
@@ -64,7 +64,7 @@ def test_a_ring_scene_renders_panoramas_but_refuses_hypotheses_that_do_not_divid
     out = tmp_path / "m.csv"
     assert main(["vector-map", "env1", "--method", "minwarping", "--out", str(out)]) == 2
     line = error_line(capsys)
-    assert line.startswith("delvjax: error: mw_n_alpha:") and "90" in line and "360" in line, line
+    assert line.startswith("delvjax: error: --mw-n-alpha:") and "90" in line and "360" in line, line
     assert not out.exists()
 
 

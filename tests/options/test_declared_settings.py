@@ -69,7 +69,7 @@ def test_the_cli_flag_sets_the_field_and_a_bad_value_is_refused_naming_it(toy, t
     out = tmp_path / "bad.json"
     assert main(["vector-map", "env1", "--method", "toy", "--turn-deg", "-5", "--summary", str(out)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "turn_deg" in err[0] and "must be >= 0" in err[0] and not out.exists()
+    assert len(err) == 1 and "--turn-deg" in err[0] and "must be >= 0" in err[0] and not out.exists()
     # a method without the setting refuses it, naming it
     assert main(["vector-map", "env1", "--method", "alv", "--turn-deg", "10", "--summary", str(out)]) == 2
     assert "turn_deg: is not a setting of the method alv" in capsys.readouterr().err

@@ -76,7 +76,9 @@ def test_process_options_are_checked_before_any_work(tmp_path, capsys):
         (["--coordinator", "h:1", "--num-processes", "2", "--process-id", "2"], "--process-id"),
     ]:
         assert main(["sweep", str(path), "--out", str(tmp_path / "o")] + extra) == 2
-        assert capsys.readouterr().err.startswith(f"delvjax: error: {field}:")
+        assert capsys.readouterr().err.startswith(
+            (f"delvjax: error: {field}:", f"delvjax: error: --{field.replace('_', '-')}:")
+        )
     assert not (tmp_path / "o").exists()
 
 
