@@ -5,7 +5,9 @@
 from __future__ import annotations
 
 import platform
+import sys
 import threading
+import time
 from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -95,21 +97,64 @@ def versions() -> dict[str, str]:
 _COMPILE_SECONDS: dict[int, float] = {}  # thread id -> seconds: studies run side by side (reproduce.py)
 
 
+_ADDING = threading.Lock()
+
+
+def _add(ident: int, seconds: float) -> None:
+    with _ADDING:
+        _COMPILE_SECONDS[ident] = _COMPILE_SECONDS.get(ident, 0.0) + seconds
+
+
 def _on_duration(event: str, duration: float, **_: Any) -> None:
     if event in COMPILE_EVENTS:  # reported in the thread that traces and compiles
-        ident = threading.get_ident()
-        _COMPILE_SECONDS[ident] = _COMPILE_SECONDS.get(ident, 0.0) + duration
+        _add(threading.get_ident(), duration)
 
 
-_LISTENING = []
+_LISTENING: list[bool] = []
+# A study that asks for a program a study beside it is compiling waits inside jaxlib (C++) until it is
+# ready, and no compile event reaches its thread: without this it would count the wait as computation
+# and report no compilation. A sampler looks at the study threads every SAMPLE_S seconds: one that sits
+# in a call from the project's own code into C while another thread is inside JAX's tracing, lowering or
+# compilation is counted as waiting for that compilation.
+SAMPLE_S = 0.02
+_JAX = str(Path(jax.__file__).parent / "_src")
+_OWN = (str(Path(__file__).parents[1]), str(Path(__file__).parents[2] / "studies"))  # delvjax, studies
+_MAKING = ("pjit.py", "pxla.py", "compiler.py", "mlir.py", "partial_eval.py")  # JAX making a program
+_STUDY_THREADS: set[int] = set()
+
+
+def _making_program(frame) -> bool:
+    while frame is not None:
+        name = frame.f_code.co_filename
+        if name.startswith(_JAX) and name.endswith(_MAKING):
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _sample() -> None:
+    while True:
+        time.sleep(SAMPLE_S)
+        frames = sys._current_frames()
+        making = {ident for ident, frame in frames.items() if _making_program(frame)}
+        if not making:
+            continue
+        for ident in _STUDY_THREADS - making:
+            frame = frames.get(ident)
+            if frame is not None and frame.f_code.co_filename.startswith(_OWN):  # in a C call: a jit call
+                _add(ident, SAMPLE_S)
 
 
 def compile_seconds() -> float:
-    """Seconds this thread has spent tracing, lowering and compiling XLA programs so far (each
-    study runs in one thread, so a study's compile time is not mixed with its neighbour's)."""
+    """Seconds this thread has spent tracing, lowering and compiling XLA programs so far, and waiting for
+    a program another thread was compiling (each study runs in one thread, so a study's compile time is
+    not mixed with its neighbour's, and a study that needs the program its neighbour compiles counts
+    the wait as compilation; sampled, to SAMPLE_S)."""
     if not _LISTENING:
         jax.monitoring.register_event_duration_secs_listener(_on_duration)
+        threading.Thread(target=_sample, name="compile-waits", daemon=True).start()
         _LISTENING.append(True)
+    _STUDY_THREADS.add(threading.get_ident())
     return _COMPILE_SECONDS.get(threading.get_ident(), 0.0)
 
 
