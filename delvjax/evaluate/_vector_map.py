@@ -24,7 +24,7 @@ from ..core.scene import Env
 from ..core.sensor import Sensor
 from ..options._schema import ROLLOUT_ONLY
 from ..options._settings import make_setup
-from ..options._checks import angle_deg, non_negative, positive, positive_int, seed_value
+from ..options._checks import is_traced, angle_deg, non_negative, positive, positive_int, seed_value
 from ..options._limits import MAX_POINTS, check_size
 from ..envs._presets import load_env
 from ._config import GRID_DEFAULTS, Grid, unpack
@@ -84,8 +84,31 @@ def scene_request(
     module, sensor = make_setup(method, program, **options)
     clearance = non_negative(clearance, "clearance")
     env = load_env(env)
+    check_step(env, sensor.d)
+    limits.check_memory(env, module, sensor)  # one group of items fits in memory, before any work
     heading, key = resolve_headings(heading_deg, seed)
     return env, module, sensor, heading, key, clearance
+
+
+MOVE_RESOLUTION = 100  # a unit move spans at least this many steps of float32 at the arena's farthest corner
+
+
+def check_step(env: Env, d) -> None:
+    """`InputError` naming d when the unit move is too short for float32 coordinates to resolve (below
+    `MOVE_RESOLUTION` steps at the arena's farthest corner: the move would not move) or longer than the
+    arena's diagonal (it would leave the arena from anywhere). A traced d is the caller's to keep in range."""
+    if is_traced(d) or is_traced(env.arena):
+        return
+    arena = np.asarray(env.arena, np.float64)
+    shortest = MOVE_RESOLUTION * float(np.spacing(np.float32(np.abs(arena).max())))
+    diagonal = math.hypot(arena[2] - arena[0], arena[3] - arena[1])
+    if not shortest <= float(d) <= diagonal:
+        raise InputError(
+            "d",
+            float(d),
+            f"must be in [{shortest:.2g}, {diagonal:.4g}] cm: at least {MOVE_RESOLUTION} steps of the float32 "
+            "coordinates at the arena's farthest corner, at most the arena's diagonal",
+        )
 
 
 def check_grid(
@@ -94,10 +117,23 @@ def check_grid(
     """`InputError` naming `spacing` when the docs/model.md §5 grid (times `copies`, e.g. occlusion masks)
     has more than `max_points` points (`limits.check_size`, checked before the grid is built; `what`
     they are: grid points, or trials of a catchment) or no point clear of the landmarks."""
-    check_size(limits.grid_count(env.arena, spacing) * copies, max_points, "spacing", spacing, what)
+    count = limits.grid_count(env.arena, spacing)
+    check_size(count * copies, max_points, "spacing", spacing, what)
+    xmin, ymin, xmax, ymax = (float(v) for v in np.asarray(env.arena))
+    if count == 0:
+        raise InputError(
+            "spacing",
+            spacing,
+            f"must be smaller than the arena ({xmax - xmin:.4g} x {ymax - ymin:.4g} cm): no grid cell fits",
+        )
+    if clearance >= math.hypot(xmax - xmin, ymax - ymin):
+        raise InputError("clearance", clearance, "keeps every grid point away: it exceeds the arena's diagonal")
     if not _has_clear_point(env, spacing, clearance):
         raise InputError(
-            "spacing", spacing, "leaves no grid point in the arena clear of the landmarks (r + clearance) but home"
+            "spacing",
+            spacing,
+            f"leaves no grid point in the arena clear of the landmarks (r + clearance {clearance:g} cm) but home: "
+            "use a smaller spacing or clearance",
         )
 
 

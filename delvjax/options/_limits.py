@@ -4,12 +4,23 @@ too large for the machine is refused with an estimate instead of exhausting memo
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import os
 
+import jax
+import jax.numpy as jnp
 import numpy as np
+from jax.extend import core as jcore
 
+from ..core.batching import item_width
 from ..core.errors import InputError
-from ._checks import positive_int
+from ..core.kernel import direction_from, map_poses
+from ..core.methods import HomingMethod
+from ..core.scene import Env
+from ..core.sensing import record_home
+from ..core.sensor import Sensor
+from ._checks import is_traced, positive_int
 
 MAX_POINTS = 1_000_000  # grid points (times masks) or trials in one run, by default
 # host memory per item of the results and their CSV rows, bytes; slowest method per item on 2 CPU cores, s
@@ -66,3 +77,112 @@ def check_size(count: int, max_points, field: str, value, what: str = "grid poin
             f"--max-points",
         )
     return limit
+
+
+def available_bytes() -> int:
+    """Memory a program may use now: the accelerator's free memory, else the host's MemAvailable
+    (/proc/meminfo; free pages where that cannot be read)."""
+    device = jax.local_devices()[0]
+    stats = device.memory_stats() if device.platform != "cpu" else None
+    if stats and "bytes_limit" in stats:
+        return int(stats["bytes_limit"]) - int(stats.get("bytes_in_use", 0))
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+
+
+def _largest(jaxpr, best: int = 0) -> int:
+    """Bytes of the largest array any equation of `jaxpr` (and of the programs inside it) makes."""
+    for eqn in jaxpr.eqns:
+        for v in eqn.outvars:
+            shape = getattr(v.aval, "shape", None)
+            if shape is not None:
+                best = max(best, math.prod(shape) * v.aval.dtype.itemsize)
+        for param in eqn.params.values():
+            for sub in param if isinstance(param, (list, tuple)) else (param,):
+                if isinstance(sub, (jcore.ClosedJaxpr, jcore.Jaxpr)):
+                    best = _largest(getattr(sub, "jaxpr", sub), best)
+    return best
+
+
+_PEAK: dict[tuple, int] = {}  # (scene shapes, method and sensor structure) -> bytes: one trace per program
+
+
+def item_peak_bytes(env: Env, method: HomingMethod, sensor: Sensor) -> int:
+    """The largest array one item (one grid point's or one rollout step's homing direction) makes, from
+    the shapes alone: the program is traced (`jax.make_jaxpr`), not run; a lower bound of its peak."""
+    leaves = jax.tree.leaves((env, method, sensor))
+    key = (
+        jax.tree.structure((env, method, sensor)),  # an Env's name is not part of it (`scene.Name`)
+        tuple((np.shape(x), str(jnp.result_type(x))) for x in leaves),
+    )
+    if key not in _PEAK:
+        seed = jax.random.PRNGKey(0)
+
+        def one(scene: Env, point: jax.Array, heading: jax.Array):
+            home = record_home(scene, seed, sensor)
+            seen = jnp.ones(scene.landmarks.shape[0], bool)
+            return direction_from(scene, seen, map_poses(point, heading, seed, 0, sensor), home, method, sensor)
+
+        shapes = jax.tree.map(lambda a: jax.ShapeDtypeStruct(np.shape(a), jnp.result_type(a)), env)
+        _PEAK[key] = _largest(jax.make_jaxpr(one)(shapes, jnp.zeros(2), jnp.zeros(())).jaxpr)
+    return _PEAK[key]
+
+
+# Hypothesis tables a method builds on the host while its program is traced, bytes per entry of the
+# product of the fields named (float64 with its temporaries): Warping's warp_indices (n_alpha x n_rho x n_pix)
+HOST_TABLES = {("n_alpha", "n_rho"): 32}
+
+
+def host_table_bytes(module: object, n_pix: int) -> int:
+    """Bytes of the largest host table (`HOST_TABLES`) of `module` or of a module inside it on `n_pix` pixels."""
+    best = 0
+    for fields, per_entry in HOST_TABLES.items():
+        counts = [getattr(module, f, None) for f in fields]
+        if all(isinstance(c, int) for c in counts):
+            best = max(best, per_entry * n_pix * math.prod(counts))
+    for f in dataclasses.fields(module) if dataclasses.is_dataclass(module) else ():
+        inner = getattr(module, f.name, None)
+        if dataclasses.is_dataclass(inner) and not isinstance(inner, type):
+            best = max(best, host_table_bytes(inner, n_pix))
+    for inner in getattr(module, "methods", ()) or ():  # a Program's methods
+        best = max(best, host_table_bytes(inner, n_pix))
+    return best
+
+
+def _sizes(module: object) -> list[str]:
+    """The integer settings of a module (and of the modules in it) that differ from their defaults."""
+    out = []
+    for f in dataclasses.fields(module) if dataclasses.is_dataclass(module) else ():
+        value = getattr(module, f.name, None)
+        if isinstance(value, int) and not isinstance(value, bool) and value != f.default:
+            out.append(f"{f.name} = {value}")
+        elif dataclasses.is_dataclass(value) and not isinstance(value, type):
+            out.extend(_sizes(value))
+    return out
+
+
+def check_memory(env: Env, method: HomingMethod, sensor: Sensor, limit: int | None = None) -> None:
+    """`InputError` naming the landmarks and the method's sizes when one vectorised group of items
+    (`batching.item_width` grid points or trials) would need more memory than `limit` (default: what is
+    available now, `available_bytes`), checked before any work (docs/reliability.md "Memory")."""
+    if any(is_traced(x) for x in jax.tree.leaves((env, method, sensor))):
+        return  # inside a user's jax transformation: the program is theirs to size
+    width = item_width(method.reads_panorama())
+    limit = available_bytes() if limit is None else limit
+    tables = host_table_bytes(method, sensor.n_pix)  # made while the program is traced: bounded first
+    need = tables if tables > limit else width * item_peak_bytes(env, method, sensor)
+    if need > limit:
+        sizes = ", ".join([f"{env.n_landmarks} landmarks", *_sizes(method), *_sizes(sensor)])
+        raise InputError(
+            "landmarks" if not _sizes(method) and not _sizes(sensor) else "settings",
+            sizes,
+            f"need at least {need / 2**30:.3g} GiB ({'hypothesis tables' if need == tables else f'one group of {width} items'} "
+            f"of {type(method).__name__}), more "
+            f"than the {limit / 2**30:.3g} GiB available: use fewer landmarks or smaller settings",
+        )

@@ -1,0 +1,195 @@
+"""The hostile battery (issue 53): inputs a new user or a hostile one may give, over every command and
+file format (environment JSON, sweep TOML, image folders, study folders, flags). Each case is refused
+in one line naming the field, before any work and without leaving a file behind, or handled correctly
+(docs/reliability.md "Which inputs the battery covers")."""
+
+from __future__ import annotations
+
+import json
+import re
+import shutil
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import delvjax
+from delvjax.cli._main import main
+from delvjax.core.errors import InputError
+from delvjax.envs._presets import preset_dict
+from delvjax.images._disk import ENTRIES
+
+
+def shifted(by: float) -> dict:
+    """env1 with every coordinate moved by `by` cm along x and y."""
+    d = preset_dict("env1")
+    d["arena"] = [v + by for v in d["arena"]]
+    d["home"] = [v + by for v in d["home"]]
+    d["landmarks"] = [{"x": lm["x"] + by, "y": lm["y"] + by, "r": lm["r"]} for lm in d["landmarks"]]
+    return d
+
+
+def grid_of(n: int) -> dict:
+    """n x n small landmarks 100 cm apart in a square arena, home between them."""
+    lms = [{"x": 50.0 + 100 * i, "y": 50.0 + 100 * j, "r": 1.0} for i in range(n) for j in range(n)]
+    return {"arena": [0, 0, 100 * n, 100 * n], "home": [50 * n, 50 * n], "landmarks": lms}
+
+
+ENV1 = preset_dict("env1")
+SWEEP = '[sweep]\nkind = "vector-map"\n[axes]\nspacing = [200]\n'
+# (id, files to write, argv with {t} for the folder, regex the one error line must match after "error: ")
+REFUSED = [
+    ("env shifted 1e6 cm", {"e.json": shifted(1e6)}, ["vector-map", "{t}/e.json"], r"arena\[0\]: .*float32"),
+    ("env shifted 1e8 cm", {"e.json": shifted(1e8)}, ["catchment", "{t}/e.json"], r"arena\[0\]: .*float32"),
+    ("env shifted 1e10 cm", {"e.json": shifted(1e10)}, ["catchment", "{t}/e.json"], r"arena\[0\]: .*too far"),
+    ("10,000 landmarks", {"e.json": grid_of(100)}, ["vector-map", "{t}/e.json", "--spacing", "400"], r"landmarks: "),
+    (
+        "warping hypotheses product",
+        {},
+        ["vector-map", "env1", "--method", "warping", "--n-alpha", "3600", "--n-rho", "1000"],
+        r"settings: .*GiB.*n_alpha = 3600, n_rho = 1000",
+    ),
+    ("env NaN", {"e.json": "NAN"}, ["vector-map", "{t}/e.json"], r"landmarks\[0\]\.x: must be finite"),
+    ("env top-level list", {"e.json": [ENV1]}, ["vector-map", "{t}/e.json"], r"environment: "),
+    ("env no landmarks", {"e.json": {**ENV1, "landmarks": []}}, ["vector-map", "{t}/e.json"], r"landmarks: "),
+    ("env home as text", {"e.json": {**ENV1, "home": ["500", 500]}}, ["vector-map", "{t}/e.json"], r"home\[0\]: "),
+    ("env radius true", {"e.json": "BOOL"}, ["catchment", "{t}/e.json"], r"landmarks\[0\]\.r: "),
+    ("env overlap", {"e.json": "TWIN"}, ["vector-map", "{t}/e.json"], r"landmarks\[1\]: .*overlaps landmarks\[0\]"),
+    ("env empty file", {"e.json": ""}, ["vector-map", "{t}/e.json"], r"env: .*JSON"),
+    ("env is a folder", {"e.json/x": ""}, ["vector-map", "{t}/e.json"], r"env: "),
+    ("spacing 0", {}, ["vector-map", "env1", "--spacing", "0"], r"spacing: "),
+    ("spacing nan", {}, ["catchment", "env1", "--spacing", "nan"], r"spacing: "),
+    ("d negative", {}, ["vector-map", "env1", "--d", "-5"], r"d: "),
+    ("n_heading 0", {}, ["vector-map", "env1", "--n-heading", "0"], r"n.heading: "),
+    ("hide beyond landmarks", {}, ["catchment", "env1", "--hide", "9"], r"hide: "),
+    ("trials 0", {}, ["success-rate", "env1", "--trials", "0"], r"trials: "),
+    ("distance negative", {}, ["success-rate", "env1", "--distances", "-10"], r"distances?: "),
+    ("max steps huge", {}, ["catchment", "env1", "--max-steps", "1000000000"], r"max.steps: "),
+    ("start outside", {}, ["trajectories", "env1", "--start", "5000", "5000"], r"start"),
+    ("seed fraction", {}, ["vector-map", "env1", "--seed", "1.5"], r"seed: "),
+    ("out suffix", {}, ["vector-map", "env1", "--out", "{t}/m.txt"], r"out: "),
+    (
+        "sweep axis typo",
+        {"s.toml": SWEEP + "bering_noise_deg = [1]\n"},
+        ["sweep", "{t}/s.toml", "--out", "{t}/sw"],
+        r"did you mean",
+    ),
+    ("sweep bad TOML", {"s.toml": "[sweep\nkind = 1\n"}, ["sweep", "{t}/s.toml", "--out", "{t}/sw"], r"s\.toml|sweep"),
+    ("sweep empty axis", {"s.toml": SWEEP + "d = []\n"}, ["sweep", "{t}/s.toml", "--out", "{t}/sw"], r"d"),
+    (
+        "sweep step 0",
+        {"s.toml": SWEEP + "d = {start = 1, stop = 5, step = 0}\n"},
+        ["sweep", "{t}/s.toml", "--out", "{t}/sw"],
+        r"d",
+    ),
+    (
+        "sweep env missing",
+        {"s.toml": SWEEP + 'env = ["nowhere.json"]\n'},
+        ["sweep", "{t}/s.toml", "--out", "{t}/sw"],
+        r"env",
+    ),
+    ("plot-sweep no sweep", {"x/a.txt": "a"}, ["plot-sweep", "{t}/x", "--out", "{t}/p.png"], r"."),
+    ("reproduce unknown study", {}, ["reproduce", "--only", "nosuchstudy", "--out", "{t}/r"], r"only: "),
+    ("reproduce out is a file", {"r": "x"}, ["reproduce", "--only", "environments", "--out", "{t}/r"], r"out: "),
+    ("layout landmarks 0", {}, ["optimise-layout", "--landmarks", "0", "--out", "{t}/o"], r"landmarks: "),
+    ("sensitivity tau 0", {}, ["sensitivity", "env1", "--tau", "0", "--out", "{t}/s"], r"tau: "),
+    ("traps near negative", {}, ["traps", "env1", "--near", "-1", "--out", "{t}/t"], r"near: "),
+    ("images empty folder", {"db/x.txt": ""}, ["images", "import", "{t}/db", "--out", "{t}/bob"], r"."),
+    ("radius below float32", {"e.json": "TINY"}, ["vector-map", "{t}/e.json"], r"landmarks\[0\]\.r: .*float32"),
+    (
+        "arena thinner than spacing",
+        {"e.json": "THIN"},
+        ["vector-map", "{t}/e.json"],
+        r"spacing: .*smaller than the arena",
+    ),
+    ("clearance huge", {}, ["vector-map", "env1", "--clearance", "1e30"], r"clearance: "),
+    ("d below resolution", {}, ["vector-map", "env1", "--d", "1e-30"], r"d: .*float32"),
+    ("d beyond the arena", {}, ["catchment", "env1", "--d", "1e30"], r"d: .*diagonal"),
+]
+SPECIAL = {
+    "NAN": '{"arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": NaN, "y": 10, "r": 5}]}',
+    "BOOL": '{"arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": 100, "y": 100, "r": true}]}',
+    "TINY": '{"arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": 100, "y": 100, "r": 1e-50}]}',
+    "THIN": '{"arena": [0, 0, 1000, 1], "home": [500, 0.5], "landmarks": [{"x": 100, "y": 0.5, "r": 0.1}]}',
+    "TWIN": json.dumps({**ENV1, "landmarks": [ENV1["landmarks"][0]] * 2}),
+}
+
+
+def run(argv: list[str]) -> int:
+    """The exit status of `delvjax argv` (argparse's own refusals exit instead of returning)."""
+    try:
+        return main(argv)
+    except SystemExit as exc:
+        return int(exc.code)
+
+
+def write(folder: Path, files: dict) -> set[Path]:
+    for name, content in files.items():
+        path = folder / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        text = content if isinstance(content, str) else json.dumps(content)
+        path.write_text(SPECIAL.get(text, text))
+    return set(folder.rglob("*"))
+
+
+@pytest.mark.parametrize("files, argv, says", [c[1:] for c in REFUSED], ids=[c[0] for c in REFUSED])
+def test_a_hostile_input_is_refused_in_one_line_naming_it(tmp_path, capsys, monkeypatch, files, argv, says):
+    monkeypatch.chdir(tmp_path)
+    before = write(tmp_path, files)
+    start = time.perf_counter()
+    if argv[0] in ("vector-map", "catchment", "success-rate", "trajectories") and "--out" not in argv:
+        argv = [*argv, "--out", "{t}/o.csv"]
+    assert run([a.replace("{t}", str(tmp_path)) for a in argv]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1, err  # one line: no traceback, no usage block
+    assert re.search(says, err[0].removeprefix("delvjax: error: ")), err[0]
+    assert time.perf_counter() - start < 20  # refused before any work: no hang
+    assert set(tmp_path.rglob("*")) == before  # no litter
+
+
+def test_a_shifted_environment_within_float32s_resolution_gives_the_same_numbers():
+    """Shifted by 1000 cm (float32 resolves 1.2e-4 cm there) env1's map is env1's, moved: within the
+    tolerance the coordinates are kept, beyond it they are refused (above)."""
+    kw = dict(method="delv-compass", spacing=100.0, heading_deg=30.0)
+    a = delvjax.vector_map("env1", **kw)
+    b = delvjax.vector_map(delvjax.make_env(*_parts(shifted(1000.0))), **kw)
+    assert np.allclose(np.asarray(b.points) - 1000.0, np.asarray(a.points))
+    assert np.allclose(np.asarray(a.error_deg), np.asarray(b.error_deg), atol=0.05)
+
+
+def _parts(d: dict) -> tuple:
+    return [(lm["x"], lm["y"], lm["r"]) for lm in d["landmarks"]], d["home"], d["arena"]
+
+
+def test_the_far_coordinates_of_the_api_name_the_field_too():
+    with pytest.raises(InputError, match=r"home\[0\].*float32"):
+        delvjax.make_env([(10.0, 10.0, 1.0)], home=(2e5, 500.0), arena=(0.0, 0.0, 1000.0, 1000.0))
+
+
+def test_ten_thousand_landmarks_are_checked_in_seconds_not_minutes():
+    start = time.perf_counter()
+    with pytest.raises(InputError, match="landmarks"):
+        delvjax.vector_map(delvjax.make_env(*_parts(grid_of(100))), spacing=400.0)
+    assert time.perf_counter() - start < 15  # the overlap check took 17 s in Python loops
+
+
+def test_the_default_runs_pass_the_memory_check(tmp_path, capsys):
+    for method in ("delv", "warping", "alv"):
+        assert (
+            main(["vector-map", "env1", "--method", method, "--spacing", "200", "--out", str(tmp_path / "m.csv")]) == 0
+        )
+    capsys.readouterr()
+
+
+def test_a_mutated_image_index_is_refused_without_litter(small_db, tmp_path, capsys):
+    """A position that is not a number in a database's index: one line naming the file, nothing written."""
+    db = Path(shutil.copytree(small_db, tmp_path / "db"))
+    lines = (db / ENTRIES).read_text().splitlines()
+    fields = lines[2].split(",")
+    lines[2] = ",".join([fields[0], "nan", *fields[2:]])
+    (db / ENTRIES).write_text("\n".join(lines) + "\n")
+    assert main(["images", "import", str(db), "--out", str(tmp_path / "bob")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and ENTRIES in err[0], err
+    assert not (tmp_path / "bob").exists()
