@@ -15,7 +15,7 @@ from tqdm import tqdm
 
 from delvjax.reproduce import _study
 from delvjax.reproduce._study import Settings, StudyContext, StudyRecord, compile_seconds
-from delvjax.studies.runs import _common, comparators, image_matching
+from delvjax.studies.runs import _common, comparators, hybrid, image_matching, natural_images
 
 
 def test_a_study_taking_more_steps_than_it_declares_never_shows_more_than_its_total(tmp_path):
@@ -29,10 +29,12 @@ def test_a_study_taking_more_steps_than_it_declares_never_shows_more_than_its_to
 
 def test_image_matching_and_comparators_declare_the_steps_they_take():
     """image_matching took 14 steps (11 in the issue's version) and declared 8; comparators 12 of 10:
-    per method and rule set one catchment and one success-rate step."""
+    per method and rule set one catchment and one success-rate step; natural_images and hybrid fewer than
+    a full run takes (a preview fills its bar with steps that say what the full run adds)."""
     rules = len(_common.RULES)
     assert image_matching.STEPS == 2 * len(image_matching.METHODS) * rules + 2 == 14
     assert comparators.STEPS == len(comparators.ENVS) + len(comparators.METHODS) * rules == 12
+    assert natural_images.STEPS == 4 and hybrid.STEPS == 5  # a full run's 4 maps (2 declared), 3 + 2 (3)
 
 
 def _slow_to_compile(seed: float):
