@@ -15,7 +15,9 @@ from ._common import (
     _verdict,
     _why,
     at_ceiling,
+    at_least,
     check,
+    points_of,
 )
 from ._ch4 import FAR_DROP, LARGE, THIRD, _over90_far, _physical  # the first part's tolerances and helpers
 
@@ -104,7 +106,8 @@ OFTEN = 10.0  # points of failed releases
 
 @check(
     "warping_fails_outside_hull",
-    f"image matching outside >= inside + {OFTEN:.0f} and >= DELV outside + {OFTEN:.0f} points",
+    f"image matching outside >= inside + {OFTEN:.0f} and >= DELV outside + {OFTEN:.0f} points; a part that one "
+    "grid point the other way would turn cannot tell (`at_least`)",
 )
 def _(get):
     """'Often has difficulty ... in the outer zone': image matching's failed releases outside the hull
@@ -118,13 +121,19 @@ def _(get):
         return ours, CANNOT_TELL, _why("no counted release point inside or outside the hull")
     if at_ceiling([100.0 - v for v in (wi, wo, do)]):
         return ours, CANNOT_TELL, _why("no method fails from anywhere")
-    parts = [wo >= wi + OFTEN, wo >= do + OFTEN]
+    n = {k: points_of(get, f"fail_{k}_hull:env1:{m}") for k, m in (("inside", "warping"), ("outside", "warping"))}
+    n_delv = points_of(get, "fail_outside_hull:env1:delv")
+    parts = [at_least(wo - wi, OFTEN, n["outside"], n["inside"]), at_least(wo - do, OFTEN, n["outside"], n_delv)]
     return (
         ours,
-        _verdict(parts),
+        _combine(parts),
         _why(
-            "" if parts[0] else "not much more often outside than inside",
-            "" if parts[1] else "DELV fails about as often outside",
+            ""
+            if parts[0]
+            else "not much more often outside than inside" + (" (by one grid point)" if parts[0] is None else ""),
+            ""
+            if parts[1]
+            else "DELV fails about as often outside" + (" (by one grid point)" if parts[1] is None else ""),
         ),
     )
 

@@ -109,6 +109,16 @@ def beyond(pct: float, limit: float, n: int | None) -> bool | None:
     return None if n and pct - 100.0 / n <= limit else True
 
 
+def at_least(value: float, bound: float, *counts: int | None) -> bool | None:
+    """`value >= bound` under the same rule as `beyond`, for a difference of shares (%, of `counts`
+    points each): None (cannot tell) when moving one grid point of each share the other way would turn
+    the answer (100 / n per count); counts None: the values alone decide."""
+    slack = sum(100.0 / n for n in counts if n)
+    if value >= bound:
+        return True if value - slack >= bound else None
+    return False if value + slack < bound else None
+
+
 def _combine(parts) -> str:
     """Parts are True (holds), False (fails) or None (cannot tell, e.g. at the ceiling).
     holds: every part holds; cannot tell: the decided parts hold but some cannot be told
