@@ -155,6 +155,23 @@ def host_table_bytes(module: object, n_pix: int) -> int:
     return best
 
 
+def check_tables(method: HomingMethod, n_pix: int, limit: int | None = None) -> None:
+    """`InputError` naming the settings when the host tables of `method` on `n_pix`-pixel views
+    (`host_table_bytes`) would pass `limit` (default: the memory available now), before any work:
+    every setup calls it (`options.make_setup`), image databases too."""
+    tables = host_table_bytes(method, n_pix)
+    if not tables:
+        return
+    limit = available_bytes() if limit is None else limit
+    if tables > limit:
+        raise InputError(
+            "settings",
+            ", ".join(_sizes(method)),
+            f"need at least {tables / 2**30:.3g} GiB (hypothesis tables of {type(method).__name__} on {n_pix} "
+            f"pixels), more than the {limit / 2**30:.3g} GiB available: use smaller settings",
+        )
+
+
 def _sizes(module: object) -> list[str]:
     """The integer settings of a module (and of the modules in it) that differ from their defaults."""
     out = []

@@ -19,6 +19,7 @@ from ..core.methods import HomingMethod, Program, Warping
 from ..core.sensor import Noise, Sensor
 from ..core.settings import declared
 from ..core.types import Real
+from ._limits import check_tables
 from ._registry import configure, get_method, owns
 from ._registry import program as registry_program
 from ._schema import method_options, sensor_options
@@ -143,6 +144,9 @@ def make_setup(
         if not owns(module, name):
             raise InputError(name, value, f"is not a setting of the method {label}")
     configured = configure(module, **settings)
+    width = sensor.n_pix if panorama_cols is None else panorama_cols  # 0: a database not read yet
+    if width:
+        check_tables(configured, width)  # before a trace builds them
     if configured.reads_panorama():
         if panorama_cols is None:  # a scene of rings: its cylinders rendered as panoramas (docs/images.md §10)
             configured.check_input(sensor.n_pix)

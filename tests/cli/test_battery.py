@@ -19,6 +19,7 @@ from delvjax.cli._main import main
 from delvjax.core.errors import InputError
 from delvjax.envs._presets import preset_dict
 from delvjax.images._disk import ENTRIES
+from delvjax.options import _limits as limits
 
 
 def shifted(by: float) -> dict:
@@ -193,3 +194,16 @@ def test_a_mutated_image_index_is_refused_without_litter(small_db, tmp_path, cap
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and ENTRIES in err[0], err
     assert not (tmp_path / "bob").exists()
+
+
+def test_an_image_databases_hypothesis_tables_are_bounded_before_they_are_built(
+    small_db, tmp_path, capsys, monkeypatch
+):
+    """Warping's tables on a database's images (n_alpha x n_rho x width, 2.5 GB here) are checked in the
+    setup every command shares, against the memory available (1 GiB here): one line, no output."""
+    monkeypatch.setattr(limits, "available_bytes", lambda: 2**30)
+    argv = ["vector-map", "--images", str(small_db), "--method", "warping", "--n-alpha", "3600", "--n-rho", "300"]
+    assert run([*argv, "--out", str(tmp_path / "m.csv")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "n_alpha = 3600, n_rho = 300" in err[0], err
+    assert not list(tmp_path.iterdir())

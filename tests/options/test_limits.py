@@ -22,7 +22,7 @@ def refused(capsys, argv, field) -> str:
     assert main(argv) == 2
     assert time.perf_counter() - t < 5.0  # refused before any work
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and err[0].startswith(f"delvjax: error: {field}:"), err
+    assert len(err) == 1 and err[0].startswith(f"delvjax: error: --{field.replace('_', '-')}:"), err
     return err[0]
 
 
