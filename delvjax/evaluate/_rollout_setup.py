@@ -27,7 +27,7 @@ from ..core.rollouts import (
 )
 from ..core.scene import Env
 from ..options._limits import check_size
-from ..options._checks import finite, occlusion_count, positive, positive_int
+from ..options._checks import finite, is_traced, occlusion_count, positive, positive_int
 
 
 class RolloutSetup(NamedTuple):
@@ -85,6 +85,15 @@ def _rollout_options(
     )
     max_steps = positive_int(max_steps, "max_steps")
     home_radius = positive(home_radius, "home_radius")
+    if not is_traced(env.arena) and not is_traced(env.home):
+        arena, home = np.asarray(env.arena, np.float64), np.asarray(env.home, np.float64)
+        farthest = float(np.max(np.hypot(arena[[0, 2]][:, None] - home[0], arena[[1, 3]][None, :] - home[1])))
+        if home_radius >= farthest:  # every release point would count as home: 100 % without a move
+            raise InputError(
+                "home_radius",
+                home_radius,
+                f"must be < {farthest:.4g} cm, home's distance to the arena's farthest corner",
+            )
     lanes = positive_int(lanes, "lanes")
     return RolloutSetup(
         env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance, first_move, collisions

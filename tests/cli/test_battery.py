@@ -107,6 +107,7 @@ REFUSED = [
     ("clearance huge", {}, ["vector-map", "env1", "--clearance", "1e30"], r"clearance: "),
     ("d below resolution", {}, ["vector-map", "env1", "--d", "1e-30"], r"d: .*float32"),
     ("d beyond the arena", {}, ["catchment", "env1", "--d", "1e30"], r"d: .*diagonal"),
+    ("home radius past the arena", {}, ["catchment", "env1", "--home-radius", "1e30"], r"home.radius: .*farthest"),
 ]
 SPECIAL = {
     "NAN": '{"arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": NaN, "y": 10, "r": 5}]}',
