@@ -208,3 +208,35 @@ def test_an_image_databases_hypothesis_tables_are_bounded_before_they_are_built(
     err = capsys.readouterr().err.strip().splitlines()  # "reading ..." (the width comes from the index), then:
     assert "n_alpha = 3600, n_rho = 300" in err[-1] and not any("Traceback" in e for e in err), err
     assert not list(tmp_path.iterdir())
+
+
+@pytest.fixture(scope="module")
+def finished_sweep(tmp_path_factory) -> Path:
+    folder = tmp_path_factory.mktemp("sweep")
+    (folder / "s.toml").write_text(SWEEP.replace("spacing = [200]", "spacing = [200]\nd = [10, 20]"))
+    assert run(["sweep", str(folder / "s.toml"), "--out", str(folder / "out")]) == 0
+    return folder / "out"
+
+
+@pytest.mark.parametrize(
+    "extra, says",
+    [
+        (["--x", "d", "--metric", "gt45"], r"metric: .*gt45_pct"),
+        (["--x", "nope"], r"x: .*axes: d"),
+        (["--x", "d", "--y", "d"], r"y: must differ"),
+        (["--x", "d", "--out", "{t}/p.txt"], r"out: must end in"),
+        (["--x", "d", "--sweep-nc-cut"], r"sweep\.nc that cannot be read"),
+    ],
+    ids=["metric typo", "axis typo", "y is x", "figure suffix", "truncated sweep.nc"],
+)
+def test_plot_sweep_refuses_in_one_line(finished_sweep, tmp_path, capsys, extra, says):
+    folder = Path(shutil.copytree(finished_sweep, tmp_path / "sw"))
+    if "--sweep-nc-cut" in extra:
+        extra = extra[:-1]
+        (folder / "sweep.nc").write_bytes((finished_sweep / "sweep.nc").read_bytes()[:100])
+    before = set(tmp_path.rglob("*"))
+    argv = ["plot-sweep", str(folder), *extra] + ([] if "--out" in extra else ["--out", "{t}/p.png"])
+    assert run([a.replace("{t}", str(tmp_path)) for a in argv]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and re.search(says, err[0]), err
+    assert set(tmp_path.rglob("*")) == before
