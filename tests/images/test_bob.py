@@ -125,7 +125,12 @@ def test_bob_conventions_home_correctly_and_the_wrong_ones_do_not(bob_grid, bob_
     route home; read as delvjax's former conventions (math heading of column 0) they are ~90 deg off."""
     for folder in (bob_grid, bob_route):
         right = mean_error(load_database(folder, **READ))
-        wrong = mean_error(load_database(folder, conventions={"heading": "math", "heading_column": "first"}, **READ))
+        wrong_db = load_database(folder, conventions={"heading": "math", "heading_column": "first"}, **READ)
+        if folder == bob_grid:  # headings alike: the misreading is told, with the flags that fix it
+            with pytest.warns(DatabaseWarning, match="--heading-convention compass --heading-column centre"):
+                wrong = mean_error(wrong_db)
+        else:
+            wrong = mean_error(wrong_db)
         assert right < 25.0 and wrong > 60.0, (folder.name, right, wrong)
 
 
