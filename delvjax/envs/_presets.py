@@ -279,4 +279,7 @@ def load_env(name_or_path: str | Path | Env, pad_to: int | None = None) -> Env:
         raise InputError("env", str(path), f"is not readable JSON ({type(exc).__name__}: {str(exc)[:80]})") from None
     if isinstance(spec, dict) and "name" not in spec:
         spec = {**spec, "name": path.stem}
-    return env_from_dict(spec, pad_to=pad_to)
+    try:
+        return env_from_dict(spec, pad_to=pad_to)
+    except InputError as exc:  # which file: a sweep or a study reads several
+        raise InputError(exc.field, exc.value, f"{exc.expected} (in {path})") from None

@@ -108,6 +108,12 @@ REFUSED = [
     ("d below resolution", {}, ["vector-map", "env1", "--d", "1e-30"], r"d: .*float32"),
     ("d beyond the arena", {}, ["catchment", "env1", "--d", "1e30"], r"d: .*diagonal"),
     ("home radius past the arena", {}, ["catchment", "env1", "--home-radius", "1e30"], r"home.radius: .*farthest"),
+    (
+        "sweep env shifted 1e6 cm",
+        {"e.json": shifted(1e6), "s.toml": SWEEP + 'env = ["e.json"]\n'},
+        ["sweep", "{t}/s.toml", "--out", "{t}/sw"],
+        r"arena\[0\]: .*float32.*\(in .*e\.json\)",
+    ),
 ]
 SPECIAL = {
     "NAN": '{"arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": NaN, "y": 10, "r": 5}]}',
