@@ -227,9 +227,14 @@ def as_typed(exc: InputError, parser: argparse.ArgumentParser, args: argparse.Na
     if getattr(args, "command", None) in FILE_KEYED:
         return exc
     flags = {a.dest: a.option_strings[-1] for a in command_parser(parser, args)._actions if a.option_strings}
-    option = all_options().get(exc.field)
-    flag = flags.get(exc.field) or (option.flag if option is not None and option.flag in flags.values() else None)
-    return exc if flag is None else InputError(flag, exc.value, exc.expected)
+
+    def typed(field: str) -> str:
+        option = all_options().get(field)
+        flag = flags.get(field) or (option.flag if option is not None and option.flag in flags.values() else None)
+        return field if flag is None else flag
+
+    field = " and ".join(typed(f) for f in exc.field.split(" and "))  # "mw_n_alpha and mw_n_psi": each by its flag
+    return exc if field == exc.field else InputError(field, exc.value, exc.expected)
 
 
 def main(argv: list[str] | None = None, own_process: bool = False) -> int:

@@ -13,7 +13,7 @@ def test_minwarping_on_the_default_width_names_the_flag_to_change(tmp_path, caps
     out = tmp_path / "m.csv"
     assert main(["vector-map", "env1", "--method", "minwarping", "--spacing", "200", "--out", str(out)]) == 2
     line = capsys.readouterr().err.strip().splitlines()[-1]
-    assert line.startswith("delvjax: error: --mw-n-alpha: must divide the panorama width 360"), line
+    assert line.startswith("delvjax: error: --mw-n-alpha and --mw-n-psi: must divide the panorama width 360"), line
     assert "90" in line and not out.exists()  # a count that divides it
 
 

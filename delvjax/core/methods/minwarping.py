@@ -85,10 +85,20 @@ def check_grid(cfg, rows: int | None, cols: int) -> None:
     """`InputError` unless the hypothesis grid and scale planes suit (rows, cols) panoramas (trace
     time, and from the edge before any work; rows None: not known yet)."""
     name = {f: opt for opt, (f, _, _) in declared(type(cfg)).items()}  # field -> option, as users type it
-    for field in ("n_alpha", "n_psi"):
-        n = getattr(cfg, field)
-        if isinstance(n, bool) or not isinstance(n, int) or n < 1 or cols % n:
-            raise InputError(name[field], n, f"must divide the panorama width {cols} (e.g. {hypothesis_counts(cols)})")
+    bad = [
+        f
+        for f in ("n_alpha", "n_psi")
+        if isinstance(getattr(cfg, f), bool)
+        or not isinstance(getattr(cfg, f), int)
+        or getattr(cfg, f) < 1
+        or cols % getattr(cfg, f)
+    ]
+    if bad:  # both named at once: the defaults (96) fail together on a 360-column panorama
+        raise InputError(
+            " and ".join(name[f] for f in bad),
+            getattr(cfg, bad[0]) if len(bad) == 1 else tuple(getattr(cfg, f) for f in bad),
+            f"must divide the panorama width {cols} (e.g. {hypothesis_counts(cols)})",
+        )
     if cfg.n_planes < 3 or cfg.n_planes % 2 == 0:
         raise InputError(name["n_planes"], cfg.n_planes, "must be odd and >= 3 (symmetric scale factors around 1)")
     if not cfg.max_scale > 1.0:
