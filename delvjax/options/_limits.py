@@ -124,13 +124,14 @@ def item_peak_bytes(env: Env, method: HomingMethod, sensor: Sensor) -> int:
     if key not in _PEAK:
         seed = jax.random.PRNGKey(0)
 
-        def one(scene: Env, point: jax.Array, heading: jax.Array):
-            home = record_home(scene, seed, sensor)
+        def one(scene: Env, meth: HomingMethod, sens: Sensor, point: jax.Array, heading: jax.Array):
+            home = record_home(scene, seed, sens)
             seen = jnp.ones(scene.landmarks.shape[0], bool)
-            return direction_from(scene, seen, map_poses(point, heading, seed, 0, sensor), home, method, sensor)
+            return direction_from(scene, seen, map_poses(point, heading, seed, 0, sens), home, meth, sens)
 
-        shapes = jax.tree.map(lambda a: jax.ShapeDtypeStruct(np.shape(a), jnp.result_type(a)), env)
-        _PEAK[key] = _largest(jax.make_jaxpr(one)(shapes, jnp.zeros(2), jnp.zeros(())).jaxpr)
+        # every leaf an argument, as in the programs that run (a method's float settings arrive traced)
+        shapes = jax.tree.map(lambda a: jax.ShapeDtypeStruct(np.shape(a), jnp.result_type(a)), (env, method, sensor))
+        _PEAK[key] = _largest(jax.make_jaxpr(one)(*shapes, jnp.zeros(2), jnp.zeros(())).jaxpr)
     return _PEAK[key]
 
 

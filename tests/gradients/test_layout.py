@@ -76,7 +76,11 @@ def test_delvjax_optimise_layout_writes_a_loadable_environment(tmp_path, capsys)
 def test_bad_layout_requests_are_refused_before_any_work(tmp_path, capsys, args, field):
     out = tmp_path / "lay"
     assert main(["optimise-layout", "--out", str(out)] + args) == 2
-    assert capsys.readouterr().err.splitlines()[-1].startswith(f"delvjax: error: {field}")
+    assert (
+        capsys.readouterr()
+        .err.splitlines()[-1]
+        .startswith((f"delvjax: error: {field}", f"delvjax: error: --{field.replace('_', '-')}"))
+    )
     assert not out.exists()
 
 

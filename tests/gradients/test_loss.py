@@ -281,7 +281,9 @@ def test_delvjax_sensitivity_refuses_bad_input_before_any_work(tmp_path, capsys,
 
     out = tmp_path / "sens"
     assert main(["sensitivity", "env1", "--out", str(out)] + args) == 2
-    assert capsys.readouterr().err.startswith(f"delvjax: error: {field}:")
+    assert capsys.readouterr().err.startswith(
+        (f"delvjax: error: {field}:", f"delvjax: error: --{field.replace('_', '-')}:")
+    )
     assert not out.exists()
 
 

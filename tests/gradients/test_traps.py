@@ -76,5 +76,9 @@ def test_delvjax_traps_writes_and_refuses(tmp_path, capsys):
     for args, field in [(["--method", "warping"], "method"), (["--tau", "-1"], "tau"), (["--near", "0"], "near")]:
         bad = tmp_path / field
         assert main(["traps", "env1", "--spacing", "200", "--out", str(bad)] + args) == 2
-        assert capsys.readouterr().err.splitlines()[-1].startswith(f"delvjax: error: {field}:")
+        assert (
+            capsys.readouterr()
+            .err.splitlines()[-1]
+            .startswith((f"delvjax: error: {field}:", f"delvjax: error: --{field.replace('_', '-')}:"))
+        )
         assert not bad.exists()

@@ -72,7 +72,7 @@ def test_the_cli_flag_sets_the_field_and_a_bad_value_is_refused_naming_it(toy, t
     assert len(err) == 1 and "--turn-deg" in err[0] and "must be >= 0" in err[0] and not out.exists()
     # a method without the setting refuses it, naming it
     assert main(["vector-map", "env1", "--method", "alv", "--turn-deg", "10", "--summary", str(out)]) == 2
-    assert "turn_deg: is not a setting of the method alv" in capsys.readouterr().err
+    assert "--turn-deg: is not a setting of the method alv" in capsys.readouterr().err
 
 
 def test_the_setting_is_an_api_keyword(toy):
