@@ -85,7 +85,8 @@ def by_position(rows: list[dict[str, str]]) -> dict[tuple[float, float], dict[st
 
 def summary_numbers(path: Path) -> dict:
     s = json.loads(path.read_text())
-    return {k: v for k, v in s.items() if k not in ("images", "seconds")}
+    settings = {k: v for k, v in s.get("command_settings", {}).items() if k != "images"}  # the folder differs
+    return {**{k: v for k, v in s.items() if k not in ("images", "seconds")}, "command_settings": settings}
 
 
 def write_plain(folder: Path, src: Path, rows: list[dict[str, str]], rename=lambda i, f: f, heading=True) -> Path:

@@ -64,7 +64,7 @@ def test_a_ring_scene_renders_panoramas_but_refuses_hypotheses_that_do_not_divid
     out = tmp_path / "m.csv"
     assert main(["vector-map", "env1", "--method", "minwarping", "--out", str(out)]) == 2
     line = error_line(capsys)
-    assert line.startswith("delvjax: error: --mw-n-alpha:") and "90" in line and "360" in line, line
+    assert line.startswith("delvjax: error: --mw-n-alpha and --mw-n-psi:") and "90" in line and "360" in line, line
     assert not out.exists()
 
 
