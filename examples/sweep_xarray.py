@@ -4,7 +4,7 @@
 
 Every combination of the axes is one cell; cells of one shape share one compiled program
 (docs/sweeps.md). The result is an `xarray.Dataset` with one dimension per axis of more than one
-value, CF `units` and `long_name` on every variable.
+value (the axis `method` as `homing_method`), CF `units` and `long_name` on every variable.
 """
 
 from pathlib import Path
@@ -38,4 +38,7 @@ print("units:", ds.mean_error_deg.attrs["units"], "| environment:", ds.env_name.
 cost = mean.sel(bearing_noise_deg=3.0) - mean.sel(bearing_noise_deg=0.0)
 print("what 3° of bearing noise costs, degrees of mean error:")
 print(cost.to_pandas())  # methods x d
+# the axis `method` is the dimension `homing_method` (`method` is a keyword of xarray's `sel`: docs/sweeps.md)
+delv = ds.mean_error_deg.sel(homing_method="delv", d=60).mean("seed")
+print("DELV at d = 60 cm, mean error by noise:", delv.values.round(2).tolist())
 assert load_sweep(out).mean_error_deg.identical(ds.mean_error_deg)  # the netCDF file holds the same

@@ -21,6 +21,7 @@ from ..sweeps._run import run_sweep, save_sweep
 from pathlib import Path
 from ._args import FIGURE
 from ..outputs._files import check_output_path, output_set
+from ..sweeps._results import dim_name
 from ..sweeps._run import load_sweep, sweep_inputs
 from ..outputs._clashes import check_no_clash
 
@@ -183,6 +184,7 @@ def cmd_plot_sweep(args: argparse.Namespace) -> int:
     from ..plots._sweep import check_plot, sweep_figure  # matplotlib: loaded only when a figure is drawn
 
     ds = load_sweep(args.dir)
+    args.x, args.y = dim_name(args.x), None if args.y is None else dim_name(args.y)  # --x method: homing_method
     check_plot(ds, args.x, args.y, args.metric)
     fig_path = check_output_path(args.out or Path(args.dir) / f"{args.metric}.png", "--out", FIGURE)
     csv_path = fig_path.with_suffix(".csv")

@@ -10,12 +10,13 @@ from matplotlib.patches import Patch
 
 from ..core.errors import InputError
 from ..core.metrics import t_quantile
+from ..sweeps._results import axis_name, dim_name
 from ._maps import subplots
 
 MAX_PANELS = 24
 
 
-OVERLAID = "method"  # line plots draw this axis as one line each, on shared axes, not as panels
+OVERLAID = dim_name("method")  # line plots draw this axis as one line each, on shared axes, not as panels
 MAX_ANNOTATED = 400  # heat-map cells that get their value written in them
 MAX_TICKS = 10  # tick labels per axis (more are thinned: they would overlap)
 
@@ -59,7 +60,7 @@ def value_label(ds, axis: str, value) -> str:
 def axis_label(ds, name: str) -> str:
     """An axis or metric label with its units from the data's CF attributes: "d (cm)"."""
     units = ds[name].attrs.get("units", "") if name in ds.variables else ""
-    return f"{name} ({units})" if units and units != "1" else name
+    return f"{axis_name(name)} ({units})" if units and units != "1" else axis_name(name)
 
 
 def panels(ds, x: str, y: str | None) -> list[tuple[str, dict]]:
@@ -67,7 +68,7 @@ def panels(ds, x: str, y: str | None) -> list[tuple[str, dict]]:
     facets = _facets(ds, x, y)
     combos = itertools.product(*[ds[d].values.tolist() for d in facets])
     return [
-        (", ".join(f"{d}={value_label(ds, d, v)}" for d, v in zip(facets, c)) or "all", dict(zip(facets, c)))
+        (", ".join(f"{axis_name(d)}={value_label(ds, d, v)}" for d, v in zip(facets, c)) or "all", dict(zip(facets, c)))
         for c in combos
     ]
 
@@ -136,8 +137,9 @@ def _lines(ax, ds, sel: dict, x: str, metric: str, title: str) -> list[dict]:
         ax.plot(xs, mean, marker="o", color=colour, label=str(name))
         if np.isfinite(lo).any():
             ax.fill_between(xs, lo, hi, color=colour, alpha=0.2, linewidth=0)
+        named = {"panel": title, axis_name(OVERLAID): name}
         rows += [
-            {"panel": title, OVERLAID: name, x: v, metric: m, "ci95_lo": a, "ci95_hi": b, "interval": what}
+            {**named, axis_name(x): v, metric: m, "ci95_lo": a, "ci95_hi": b, "interval": what}
             for v, m, a, b in zip(xs.tolist(), mean, lo, hi)
         ]
     handles, _ = ax.get_legend_handles_labels()
@@ -167,7 +169,7 @@ def _heat(fig, ax, ds, sel: dict, x: str, y: str, metric: str, title: str) -> li
             colour = "black" if np.isfinite(v) and v > middle else "white"
             ax.text(j, i, text, ha="center", va="center", fontsize=size, color=colour)
     return [
-        {"panel": title, y: vy, x: vx, metric: float(mean[i, j])}
+        {"panel": title, axis_name(y): vy, axis_name(x): vx, metric: float(mean[i, j])}
         for i, vy in enumerate(ds[y].values.tolist())
         for j, vx in enumerate(ds[x].values.tolist())
     ]

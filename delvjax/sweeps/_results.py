@@ -21,6 +21,47 @@ if TYPE_CHECKING:  # types only: the kinds are built from this module
 
 FILES = ("sweep.nc", "sweep.csv", "sweep.toml")
 
+# The arguments of xarray's methods that take dimensions as keywords (sel, isel, interp, reindex, head, tail,
+# thin, drop_sel, drop_isel, pad, shift, roll, expand_dims, assign_coords, swap_dims, rename, query): a dimension
+# so named is swallowed by `ds.sel(method="delv")`, which then returns every method without a word (issue 53).
+# An axis so named is a dimension under another name in the Dataset (`dim_name`); the sweep file and sweep.csv
+# keep the axis's own name, and the Dataset's attribute `renamed_axes` records the mapping.
+SELECTORS = ("sel", "isel", "interp", "reindex", "head", "tail", "thin", "drop_sel", "drop_isel", "pad", "shift")
+SELECTORS += ("roll", "expand_dims", "assign_coords", "swap_dims", "rename", "query")
+XARRAY_KEYWORDS = frozenset(
+    "indexers method tolerance drop missing_dims coords assume_sorted kwargs method_non_numeric copy fill_value "
+    "labels errors pad_width mode stat_length constant_values end_values reflect_type keep_attrs shifts "
+    "roll_coords dim axis create_index_for_new_dim dims_dict name_dict names queries parser engine "
+    "indexers_kwargs coords_kwargs labels_kwargs pad_width_kwargs shifts_kwargs dim_kwargs dims_kwargs "
+    "queries_kwargs".split()
+)
+RENAMED = {"method": "homing_method"}  # the one axis so named today; any other gets the prefix `sweep_`
+
+
+def dim_name(axis: str) -> str:
+    """The Dataset's name of a sweep axis: `method` -> `homing_method`, another xarray keyword -> `sweep_<axis>`,
+    every other axis its own name. A name already a dimension's is returned as it is."""
+    return RENAMED.get(axis, f"sweep_{axis}" if axis in XARRAY_KEYWORDS else axis)
+
+
+def axis_name(dim: str) -> str:
+    """The sweep file's (and sweep.csv's) name of a Dataset dimension: `dim_name`'s inverse."""
+    back = {v: k for k, v in RENAMED.items()}
+    return back.get(dim, dim[len("sweep_") :] if dim.startswith("sweep_") and dim[6:] in XARRAY_KEYWORDS else dim)
+
+
+def safe_names(ds):
+    """`ds` with every dimension and coordinate named like an xarray keyword renamed (`dim_name`), the
+    mapping in its attribute `renamed_axes` ("method -> homing_method", ...); a file written before the
+    renaming reads as one written after."""
+    names = {n: dim_name(n) for n in ds.variables if dim_name(n) != n}
+    if not names:
+        return ds
+    done = [s.strip() for s in str(ds.attrs.get("renamed_axes", "")).split(";") if s.strip()]
+    ds = ds.rename(names)
+    ds.attrs["renamed_axes"] = "; ".join(done + [f"{k} -> {v}" for k, v in names.items()])
+    return ds
+
 
 def _pct(part: np.ndarray, whole: np.ndarray) -> np.ndarray:
     """100 part / whole, NaN where whole is 0."""
@@ -106,6 +147,7 @@ def dataset(spec: SweepSpec, sums: dict, programs: int, env_names: dict[str, str
         ds = ds.assign_coords(env_name=("env", np.asarray(names)))
         ds["env_name"].attrs["long_name"] = "the environment's name (its JSON `name`, a preset's name)"
     ds = ds.squeeze([d for d in ds.dims if ds.sizes[d] == 1])  # kept as scalar coordinates
+    ds = safe_names(ds)
     ds.attrs.update(
         sweep_toml=spec.text,
         kind=str(spec.kind),
@@ -156,7 +198,8 @@ def table_of(ds):
         table = ds.to_dataframe().reset_index()
     else:  # every axis has one value: one row
         table = pd.DataFrame([{k: v.item() for k, v in {**ds.coords, **ds.data_vars}.items()}])
-    first = [c for c in ds.coords if c in table.columns and c != "env_name"]
+    table = table.rename(columns=axis_name)  # the sweep file's names: `method`, not `homing_method`
+    first = [axis_name(c) for c in ds.coords if axis_name(c) in table.columns and c != "env_name"]
     if "env_name" in table.columns:
         first.insert(first.index("env") + 1, "env_name")
     return table[first + [c for c in table.columns if c not in first]]
@@ -176,7 +219,7 @@ def load_sweep(out: str | Path):
         raise InputError("out", str(out), f"has no {FILES[0]} (not a finished sweep folder)")
     try:
         with xr.open_dataset(path, engine="scipy") as ds:
-            return ds.load()
+            return safe_names(ds.load())
     except Exception as exc:  # noqa: BLE001 - a damaged file raises whatever the reader meets first
         raise InputError(
             "out",

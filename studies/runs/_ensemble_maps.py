@@ -155,7 +155,7 @@ def compass_keys(ds, methods, sigmas) -> dict[str, dict]:
     for label in ds.env.values:
         fam, nums = family_of(label), out.setdefault(member_label(label), {})
         for m in methods:
-            cell = ds.sel({"env": label, "method": m})  # by a dict: sel(method=...) is xarray's own keyword
+            cell = ds.sel({"env": label, "homing_method": m})  # the axis `method` (docs/sweeps.md)
             by_sigma = [float(cell.sel({"compass_noise_deg": s}).catchment_pct) for s in sigmas]
             nums[f"catchment:{fam}:{m}"] = by_sigma[0]
             nums[f"map:{fam}:{m}:mean_error_deg"] = float(cell.sel({"compass_noise_deg": sigmas[0]}).mean_error_deg)
@@ -172,7 +172,7 @@ def visual_keys(ds, pairs, background: str, catchment: bool) -> dict[str, dict]:
     for label in ds.env.values:
         fam, nums = family_of(label), out.setdefault(member_label(label), {})
         for true, visual in pairs:
-            cell = ds.sel({"env": label, "method": visual})
+            cell = ds.sel({"env": label, "homing_method": visual})
             prefix = f"{visual_key(fam, background)}:{true}"
             if catchment:
                 nums[f"{prefix}:catchment"] = float(cell.catchment_pct)

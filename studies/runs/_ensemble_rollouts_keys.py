@@ -186,7 +186,7 @@ def world_label(env: str, offset: int) -> str:
 
 def _cell(ds, **coords):
     """The cell at `coords`, selecting only the axes that are dimensions (an axis of one value is a scalar)."""
-    return ds.sel({k: v for k, v in coords.items() if k in ds.dims})  # a dict: sel(method=...) is xarray's keyword
+    return ds.sel({k: v for k, v in coords.items() if k in ds.dims})  # by a dict: any axis name is taken
 
 
 def _values(ds, axis: str) -> list:
@@ -236,8 +236,8 @@ def sweep_numbers(name: str, ds, offset: int = 0) -> dict[str, dict]:
                 for tag in ("", ":continuous"):
                     nums[f"success:env1:delv{tag}{tail}"], nums[f"success_overall:env1:delv{tag}{tail}"] = by, overall
         elif name in ("compass_success", "warping_success"):
-            for m in _values(ds, "method"):
-                nums[f"success:env1:{m}"], nums[f"success_overall:env1:{m}"] = _success(at(method=m))
+            for m in _values(ds, "homing_method"):  # the axis `method` (docs/sweeps.md)
+                nums[f"success:env1:{m}"], nums[f"success_overall:env1:{m}"] = _success(at(homing_method=m))
         elif name == "warping":
             cell = at()
             nums["catchment:env1:warping"] = float(cell["catchment_pct"])

@@ -187,7 +187,7 @@ def _sweep(probe: Probe, envs: list[str], spacing: float, seed: int) -> dict:
     family = np.array([re.search(r"(env\d|ring\d)", str(e).rsplit("/", 1)[-1]).group(1) for e in ds.env.values])
     out = {}
     for _, run in probe.methods:
-        cell = ds.sel({"method": run}) if "method" in ds.dims else ds
+        cell = ds.sel({"homing_method": run}) if "homing_method" in ds.dims else ds
         for q, metric in METRIC.items():
             values = np.asarray(cell[metric].transpose("env", "occlude").values, float)
             out |= {(f, run, q): values[family == f] for f in probe.families}

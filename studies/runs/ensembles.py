@@ -190,8 +190,8 @@ def member_numbers(ds, group: Group) -> dict[str, dict]:
         for seed in seeds:
             nums: dict = {}
             for m in group.methods:
-                where = {"env": name, "method": m} | ({"seed": seed} if "seed" in ds.dims else {})
-                cell = ds.sel(where)  # by a dict: sel(method=...) would be xarray's own keyword
+                where = {"env": name, "homing_method": m} | ({"seed": seed} if "seed" in ds.dims else {})
+                cell = ds.sel(where)  # the axis `method` is the Dataset's `homing_method` (docs/sweeps.md)
                 by_k = lambda var: [None if np.isnan(v) else float(v) for v in np.atleast_1d(cell[var].values)]  # noqa: E731
                 fields = ("catchment",) if group.collisions == "fail" else ("gt45", "gt90", "catchment")
                 for field in fields:

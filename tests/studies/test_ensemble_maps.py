@@ -107,7 +107,7 @@ def synthetic_worlds(members: int, good: int) -> dict[str, dict]:
     }
     worlds: dict[str, dict] = {}
     em.merge(worlds, em.curve_keys(res, methods, labels))
-    coords = {"env": labels, "method": list(TRUE), "compass_noise_deg": [0.0, 45.0]}
+    coords = {"env": labels, "homing_method": list(TRUE), "compass_noise_deg": [0.0, 45.0]}
     shape = (len(labels), 3, 2)
     ds = xr.Dataset(
         {"catchment_pct": (list(coords), np.full(shape, 90.0)), "mean_error_deg": (list(coords), np.full(shape, 9.0))},
@@ -115,13 +115,13 @@ def synthetic_worlds(members: int, good: int) -> dict[str, dict]:
     )
     em.merge(worlds, em.compass_keys(ds, TRUE, (0.0, 45.0)))
     for bg in BACKGROUNDS:
-        coords = {"env": labels, "method": list(VISUAL)}
+        coords = {"env": labels, "homing_method": list(VISUAL)}
         values = np.tile([80.0, 60.0, 40.0], (len(labels), 1))
         ds = xr.Dataset(
             {
-                "catchment_pct": (["env", "method"], values),
-                "catchment_physical_pct": (["env", "method"], values - 1),
-                "mean_error_deg": (["env", "method"], np.tile([12.0, 20.0, 30.0], (len(labels), 1))),
+                "catchment_pct": (["env", "homing_method"], values),
+                "catchment_physical_pct": (["env", "homing_method"], values - 1),
+                "mean_error_deg": (["env", "homing_method"], np.tile([12.0, 20.0, 30.0], (len(labels), 1))),
             },
             coords=coords,
         )

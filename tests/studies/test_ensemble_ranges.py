@@ -49,9 +49,9 @@ def sweep_of(labels: list[str]) -> xarray.Dataset:
     """A catchment sweep's Dataset over `labels` whose every number is the label's index (+ k and method offsets)."""
     n, m, k = len(labels), len(EVERY_METHOD), 3
     base = np.arange(n)[:, None, None] * 10.0 + np.arange(m)[None, :, None] + np.arange(k)[None, None, :] * 0.1
-    dims = ("env", "method", "occlude")
+    dims = ("env", "homing_method", "occlude")
     data = {v: (dims, base) for v in ("catchment_pct", "gt45_pct", "gt90_pct", "mean_error_deg")}
-    coords = {"env": labels, "method": list(EVERY_METHOD), "occlude": list(range(k)), "seed": 3}
+    coords = {"env": labels, "homing_method": list(EVERY_METHOD), "occlude": list(range(k)), "seed": 3}
     return xarray.Dataset(data, coords=coords)
 
 

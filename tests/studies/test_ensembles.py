@@ -181,9 +181,9 @@ def test_member_numbers_label_extra_seeds_by_their_offset_whatever_the_runs_seed
 
     group = Group(("env1",), ("acv", "alv"), 1, seeds=(1, 2), members_too=False)
     shape = (2, 2, 2, 2)  # env, method, occlude, seed
-    dims = ("env", "method", "occlude", "seed")
+    dims = ("env", "homing_method", "occlude", "seed")
     # the layouts' seed in a member's name (a run with --seed 3) is dropped from its label, not from the lookup
-    coords = {"env": ["env1", "env1-s3-m0"], "method": ["acv", "alv"], "occlude": [0, 1], "seed": [8, 9]}
+    coords = {"env": ["env1", "env1-s3-m0"], "homing_method": ["acv", "alv"], "occlude": [0, 1], "seed": [8, 9]}
     values = np.arange(16.0).reshape(shape)
     ds = xr.Dataset(
         {v: (dims, values) for v in ("catchment_pct", "gt45_pct", "gt90_pct", "mean_error_deg")}, coords=coords

@@ -63,7 +63,7 @@ def test_a_catchment_cell_equals_the_catchment_run_with_its_options(catchments):
                         bearing_noise_deg=3.0,
                     )
                 )
-                cell = ds.sel({"method": method, "occlude": occlude, "first_move": first_move}).squeeze()
+                cell = ds.sel({"homing_method": method, "occlude": occlude, "first_move": first_move}).squeeze()
                 where = (method, occlude, first_move)
                 assert int(cell.points) == ref["points"], where
                 for name in ("catchment", "gt45", "gt90"):
@@ -75,7 +75,9 @@ def test_a_catchment_cell_equals_the_catchment_run_with_its_options(catchments):
                 assert int(cell.catchment_points) == ref["catchment_points"], where
                 assert float(cell.landmark_pct) == pytest.approx(100 * landmark, abs=1e-9), where
     # the rules reach the cells: DELV's first move along the release heading changes the outcomes
-    homing, release = (ds.sel({"method": "delv", "first_move": m}).catchment_pct.values for m in ("homing", "release"))
+    homing, release = (
+        ds.sel({"homing_method": "delv", "first_move": m}).catchment_pct.values for m in ("homing", "release")
+    )
     assert not np.array_equal(homing, release)
 
 

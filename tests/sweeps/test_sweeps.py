@@ -60,7 +60,7 @@ def test_the_example_file_is_valid_and_printed(capsys):
 
 
 def test_every_cell_equals_the_vector_map_of_its_settings(small):
-    assert dict(small.sizes) == {"method": 2, "d": 2, "bearing_noise_deg": 2, "seed": 2}
+    assert dict(small.sizes) == {"homing_method": 2, "d": 2, "bearing_noise_deg": 2, "seed": 2}
     # axes with one value are scalar coordinates, labelled with the environment's own name
     assert small["env"].item() == "env1" and small["env_name"].item() == "env1" and float(small["spacing"]) == 90.0
     # one program for both landmark methods (none if an earlier test compiled it)
@@ -69,7 +69,7 @@ def test_every_cell_equals_the_vector_map_of_its_settings(small):
         for seed in (0, 1):
             vm = delvjax.vector_map("env1", method=method, d=60, bearing_noise_deg=3.0, seed=seed, spacing=90.0)
             s = delvjax.summarize_map(vm.error_deg, vm.valid, vm.included)
-            cell = small.sel({"method": method, "d": 60, "bearing_noise_deg": 3.0, "seed": seed}).squeeze()
+            cell = small.sel({"homing_method": method, "d": 60, "bearing_noise_deg": 3.0, "seed": seed}).squeeze()
             assert int(cell.points) == s["points"] and float(cell.invalid_pct) == 100 * s["invalid"] / s["points"]
             assert float(cell.gt45_pct) == s["gt45_pct"] and float(cell.gt90_pct) == s["gt90_pct"]
             assert float(cell.mean_error_deg) == pytest.approx(s["mean_error_deg"], rel=1e-6)
@@ -92,7 +92,9 @@ def test_landmark_methods_share_one_program_and_keep_their_numbers_bit_for_bit(s
     assert shared_program(parse_sweep("[axes]\nmethod = ['alv']"), "alv") is None
     alone = sweeps.run_sweep(parse_sweep(SMALL.replace('["delv", "alv"]', '["alv"]')))  # ALV's own program
     for name in small.data_vars:
-        assert np.array_equal(small[name].sel({"method": "alv"}).values, alone[name].values, equal_nan=True), name
+        assert np.array_equal(small[name].sel({"homing_method": "alv"}).values, alone[name].values, equal_nan=True), (
+            name
+        )
 
 
 @pytest.mark.parametrize(
@@ -253,7 +255,7 @@ def test_sweep_figures_heat_maps_and_lines_with_intervals_over_seeds(small, tmp_
 
     fig, rows = sweep_figure(small, "d", "bearing_noise_deg", "gt45_pct")  # one panel per method
     assert len([a for a in fig.axes if a.get_visible() and a.get_title()]) == 2 and len(rows) == 2 * 2 * 2
-    cell = small.gt45_pct.sel({"method": "alv", "d": 60, "bearing_noise_deg": 3.0}).values.mean()
+    cell = small.gt45_pct.sel({"homing_method": "alv", "d": 60, "bearing_noise_deg": 3.0}).values.mean()
     assert [
         r["gt45_pct"] for r in rows if r["panel"] == "method=alv" and r["d"] == 60 and r["bearing_noise_deg"] == 3.0
     ] == [pytest.approx(cell)]
@@ -312,8 +314,13 @@ def test_sweep_figures_of_many_values_stay_readable(y):
     d, noise = np.linspace(10.0, 400.0, 40), np.linspace(0.0, 14.5, 30)
     values = np.random.default_rng(0).uniform(0, 90, (2, 40, 30, 2))
     ds = xr.Dataset(
-        {"mean_error_deg": (("method", "d", "bearing_noise_deg", "seed"), values, {"units": "degree"})},
-        coords={"method": ["delv", "alv"], "d": ("d", d, {"units": "cm"}), "bearing_noise_deg": noise, "seed": [0, 1]},
+        {"mean_error_deg": (("homing_method", "d", "bearing_noise_deg", "seed"), values, {"units": "degree"})},
+        coords={
+            "homing_method": ["delv", "alv"],
+            "d": ("d", d, {"units": "cm"}),
+            "bearing_noise_deg": noise,
+            "seed": [0, 1],
+        },
     )
     if y is None:
         ds = ds.isel(bearing_noise_deg=0)
