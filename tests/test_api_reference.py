@@ -43,6 +43,10 @@ def test_the_site_builds_with_warnings_as_errors(tmp_path):
     assert run.returncode == 0, run.stderr[-3000:]
     page = (tmp_path / "site" / "api" / "index.html").read_text()
     assert "Mean of 1 - cos(angular error)" in page  # the docstrings are in it
+    # defaults written as constants show their values (docs/_ext/evaluated_defaults.py; issue 53 point 8)
+    text = re.sub(r"<[^>]+>", "", page)
+    assert "spacing: float = 25.0" in text and "trials: int = 100" in text, "a default shows its value"
+    assert not re.findall(r"= (SPACING|MAX_STEPS|HOME_RADIUS|DEFAULT_DISTANCES|TRIALS_PER_DISTANCE)\b", text)
 
 
 def test_every_extra_the_docs_name_exists():
