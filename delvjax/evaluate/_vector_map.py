@@ -86,6 +86,7 @@ def scene_request(
     env = load_env(env)
     check_step(env, sensor.d)
     limits.check_memory(env, module, sensor)  # one group of items fits in memory, before any work
+    limits.check_pixels(env, sensor)  # the ring resolves a landmark at home (issue 53)
     heading, key = resolve_headings(heading_deg, seed)
     return env, module, sensor, heading, key, clearance
 

@@ -204,3 +204,24 @@ def check_memory(env: Env, method: HomingMethod, sensor: Sensor, limit: int | No
             f"of {type(method).__name__}), more "
             f"than the {limit / 2**30:.3g} GiB available: use fewer landmarks or smaller settings",
         )
+
+
+def check_pixels(env: Env, sensor: Sensor) -> None:
+    """`InputError` naming n_pix when the ring's pixels are wider than every landmark seen from home: the
+    snapshot may then hold no landmark at all (n_pix = 1 or 8 on env1 left every point invalid, with a hint
+    about landmarks). A landmark of angular width w is hit by at least one pixel ray when w >= 360 / n_pix."""
+    if any(is_traced(x) for x in jax.tree.leaves((env, sensor))):
+        return  # inside a user's jax transformation: the program is theirs to size
+    lms, valid = np.asarray(env.landmarks, np.float64), np.asarray(env.valid, bool)
+    if not valid.any():
+        return
+    lms = lms[valid]
+    dist = np.hypot(lms[:, 0] - float(env.home[0]), lms[:, 1] - float(env.home[1]))
+    widest = float(np.degrees(2.0 * np.arcsin(np.minimum(lms[:, 2] / np.maximum(dist, 1e-12), 1.0))).max())
+    if 360.0 / sensor.n_pix > widest:
+        raise InputError(
+            "n_pix",
+            sensor.n_pix,
+            f"makes pixels of {360.0 / sensor.n_pix:.3g} deg, wider than every landmark seen from home (the widest "
+            f"spans {widest:.3g} deg): the snapshot may hold no landmark; use n_pix >= {math.ceil(360.0 / widest)}",
+        )

@@ -12,6 +12,7 @@ sees radians.
 from __future__ import annotations
 
 import dataclasses
+import math
 
 from ..core.errors import InputError
 from ..core.images.scene_panorama import scene_panorama
@@ -19,6 +20,8 @@ from ..core.methods import HomingMethod, Program, Warping
 from ..core.sensor import Noise, Sensor
 from ..core.settings import declared
 from ..core.types import Real
+from ..envs._presets import RESOLUTION_CM
+from ._checks import is_traced
 from ._limits import check_tables
 from ._registry import configure, get_method, owns
 from ._registry import program as registry_program
@@ -58,6 +61,25 @@ def make_sensor(**options) -> Sensor:
     return Sensor(noise=noise, **fields)
 
 
+def check_quantum(levels, scale, named_scale: bool) -> None:
+    """`InputError` naming the scale (or the levels, when the scale is the default) when DELV's quantization
+    step a/Q (Eq 3.17) is below float32's resolution of distances (`RESOLUTION_CM`): a scale of 1e-40 cm made
+    every distance 0 and every point invalid, with a hint about landmarks. A traced value is not checked."""
+    if is_traced(levels) or is_traced(scale) or not levels or scale / levels >= RESOLUTION_CM:
+        return
+    fix = (
+        f"scale >= levels x {RESOLUTION_CM} cm = {levels * RESOLUTION_CM:.3g} cm"
+        if named_scale
+        else f"levels <= scale / {RESOLUTION_CM} cm = {math.floor(scale / RESOLUTION_CM)}"
+    )
+    raise InputError(
+        "scale" if named_scale else "levels",
+        scale if named_scale else levels,
+        f"gives a quantization step scale/levels = {scale / levels:.3g} cm, below float32's {RESOLUTION_CM} cm "
+        f"resolution of distances: use {fix}",
+    )
+
+
 def method_settings(
     options: dict, n_pix: int | None = None, extra=(), method: HomingMethod | None = None
 ) -> dict[str, object]:
@@ -66,6 +88,8 @@ def method_settings(
     pixels, rho_min <= rho_max (the warping hypotheses)."""
     known = method_options(extra)
     out = {name: known[name].validate(value) for name, value in options.items() if value is not None}
+    if {"levels", "scale"} & set(out) and "scale" in known and (method is None or owns(method, "scale")):
+        check_quantum(out.get("levels", 0), out.get("scale", known["scale"].default), "scale" in out)
     if method is not None and not owns(method, "n_psi"):
         return out
     warping = defaults(Warping)

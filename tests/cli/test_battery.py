@@ -108,6 +108,16 @@ REFUSED = [
     ("d below resolution", {}, ["vector-map", "env1", "--d", "1e-30"], r"d: .*float32"),
     ("d beyond the arena", {}, ["catchment", "env1", "--d", "1e30"], r"d: .*diagonal"),
     ("home radius past the arena", {}, ["catchment", "env1", "--home-radius", "1e30"], r"home.radius: .*farthest"),
+    ("n_pix 1", {}, ["vector-map", "env1", "--n-pix", "1"], r"^--n-pix: .*wider than every landmark.*got 1$"),
+    ("n_pix 8", {}, ["catchment", "env1", "--n-pix", "8"], r"^--n-pix: .*use n_pix >= 16, got 8$"),
+    ("scale 1e-40", {}, ["vector-map", "env1", "--scale", "1e-40", "--levels", "3"], r"^--scale: .*step.*got 1e-40$"),
+    ("levels 10^6", {}, ["success-rate", "env1", "--levels", "1000000"], r"^--levels: .*step.*got 1000000$"),
+    (
+        "sweep n_pix 1",
+        {"s.toml": SWEEP + "n_pix = [1]\n"},
+        ["sweep", "{t}/s.toml", "--out", "{t}/sw"],
+        r"n_pix: .*wider",
+    ),
     (
         "sweep env shifted 1e6 cm",
         {"e.json": shifted(1e6), "s.toml": SWEEP + 'env = ["e.json"]\n'},
@@ -119,7 +129,7 @@ SPECIAL = {
     "NAN": '{"arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": NaN, "y": 10, "r": 5}]}',
     "BOOL": '{"arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": 100, "y": 100, "r": true}]}',
     "TINY": '{"arena": [0, 0, 1000, 1000], "home": [500, 500], "landmarks": [{"x": 100, "y": 100, "r": 1e-50}]}',
-    "THIN": '{"arena": [0, 0, 1000, 1], "home": [500, 0.5], "landmarks": [{"x": 100, "y": 0.5, "r": 0.1}]}',
+    "THIN": '{"arena": [0, 0, 1000, 1], "home": [500, 0.5], "landmarks": [{"x": 499, "y": 0.5, "r": 0.1}]}',
     "TWIN": json.dumps({**ENV1, "landmarks": [ENV1["landmarks"][0]] * 2}),
 }
 
@@ -246,3 +256,14 @@ def test_plot_sweep_refuses_in_one_line(finished_sweep, tmp_path, capsys, extra,
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and re.search(says, err[0]), err
     assert set(tmp_path.rglob("*")) == before
+
+
+def test_a_ring_too_coarse_and_a_step_below_resolution_are_refused_by_the_api_too():
+    """The checks sit in the setup every command and the Python API share (issue 53: both ran, every point
+    invalid, with a hint about landmarks); the smallest accepted values run."""
+    with pytest.raises(InputError, match=r"n_pix: .*use n_pix >= 16"):
+        delvjax.vector_map("env1", n_pix=15, spacing=400.0)
+    with pytest.raises(InputError, match=r"scale: .*scale >= levels x 0.01 cm = 0.03 cm"):
+        delvjax.catchment("env1", levels=3, scale=0.029, spacing=400.0)
+    vm = delvjax.vector_map("env1", n_pix=16, levels=3, scale=0.03, spacing=400.0)
+    assert np.asarray(vm.included).any()
