@@ -149,16 +149,36 @@ def group_key(req: dict) -> tuple:
     )
 
 
+def idle_padding(traced: tuple, real: int | None) -> tuple:
+    """A chunk's stacked traced inputs with its rows from `real` on (copies that pad the chunk to its
+    program's size, results thrown away) given no trials: a rollout cell with no masks runs none, so a
+    padded row costs nearly nothing (the cells run one after the other, `lax.map`) and the real rows'
+    numbers are unchanged (a cell's trials do not depend on its chunk). Vector-map rows are left as they are."""
+    cell = traced[0]
+    if real is None or not isinstance(cell, rollout_programs.RolloutCell) or real >= len(cell.n_masks):
+        return traced
+    n_masks = np.array(cell.n_masks, np.int32)
+    n_masks[real:] = 0
+    return (dataclasses.replace(cell, n_masks=n_masks), *traced[1:])
+
+
 def evaluate(
-    kind: SweepKind, setups: list[dict], mesh, rows: int = 1, total: int | None = None, lanes: int = DEFAULT_LANES
+    kind: SweepKind,
+    setups: list[dict],
+    mesh,
+    rows: int = 1,
+    total: int | None = None,
+    lanes: int = DEFAULT_LANES,
+    real: int | None = None,
 ) -> dict[str, np.ndarray]:
     """The cells `setups` (one group) as one call of their program, split over `mesh`'s devices if
     any (every device runs whole cells with the one-device program); rollout masks padded to `rows`.
     With `total`, `mesh` spans every process and `setups` are this process's rows of a chunk of
-    `total` cells (`batching.over_processes`). Returns the sums (of `setups`) by name."""
+    `total` cells (`batching.over_processes`). `real`: the rows before it are cells, those from it on
+    padding (`idle_padding`: no trials). Returns the sums (of `setups`) by name."""
     first = setups[0]
     stack = lambda *xs: np.stack([np.asarray(x) for x in xs])  # noqa: E731
-    traced = jax.tree.map(stack, *[_traced(req, rows) for req in setups])
+    traced = idle_padding(jax.tree.map(stack, *[_traced(req, rows) for req in setups]), real)
     shared, traced = kind.inputs(setups, traced)
     program = _program(kind, lanes, first.get("trials"))
     if total is not None:

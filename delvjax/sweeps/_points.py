@@ -14,7 +14,7 @@ from ..core.rollouts import DEFAULT_LANES
 from ..core.rollouts.cells import catchment_cells_points
 from ..core.errors import InputError
 from ..evaluate import _vector_map as api
-from ._kinds import _traced, catchment_inputs, cell_setup, grid_inputs
+from ._kinds import _traced, catchment_inputs, cell_setup, grid_inputs, idle_padding
 from ._run import CELL_CHUNK, _envs, _plan
 from ._spec import SweepSpec
 
@@ -90,6 +90,7 @@ def _per_point(spec: SweepSpec, max_points: int, run, fill: dict, rollouts: bool
             padded = chunk + [chunk[0]] * (size - len(chunk))
             setups = [cell_setup(spec, envs, spec.cell(i), max_points, program) for i in padded]
             traced = jax.tree.map(stack, *[_traced(req, rows) if rollouts else _traced(req) for req in setups])
+            traced = idle_padding(traced, len(chunk))  # the padding's rollouts run no trials
             points, res = run(setups, traced)
             for name, values in res.items():
                 if name not in out:

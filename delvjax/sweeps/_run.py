@@ -125,8 +125,8 @@ def run_sweep(
         padded = chunk + [chunk[0]] * (size - len(chunk))
         start, stop = (0, size) if processes == 1 else process_rows(mesh, size)  # this process's rows
         setups = [cell_setup(spec, envs, spec.cell(i), max_points) for i in padded[start:stop]]
-        res = evaluate(spec.kind, setups, mesh, rows, None if processes == 1 else size, lanes)
-        own = chunk[start:stop]  # this process's real cells (the rest of its rows are padding)
+        own = chunk[start:stop]  # this process's real cells (the rest of its rows are padding: no trials)
+        res = evaluate(spec.kind, setups, mesh, rows, None if processes == 1 else size, lanes, real=len(own))
         for k in names:
             sums[k][own] = res[k][: len(own)]
         mine += own

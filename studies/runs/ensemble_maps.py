@@ -7,8 +7,8 @@ The `ensembles` study judges the claims its catchment sweeps make; this one thos
 the visual compass (claims 30-33) and compass noise. The same families and members as `ensembles` (env1-3;
 member i of every family, members in seed slices, layouts from the run's seed): per-point vector maps on the
 point run's 25 cm grid (`sweeps.point_errors`), the visual and true compass on the ensembles' 100 cm grid
-(vector maps and the heading errors for every member; the visual compass's rollouts, which cost 50 times a
-vector map, for the first slice), each kind of run one compiled program for every member. The built-in worlds
+(vector maps, heading errors and the visual compass's rollouts, which cost 50 times a vector map, for every
+member; the built-in worlds' rollouts in the first slice), each kind of run one compiled program for every member. The built-in worlds
 run in every slice under its seed, beside the members (the grid check: what the coarse grid moves). Claim 11:
 DELV's per-point maps on env1's members with Q = 1..5 distance levels (one sweep per slice, `levels` an axis);
 claims 5 and 6: DELV's and image matching's in seeded random layouts of 3, 4 and 5 landmarks, member i's nested
@@ -61,7 +61,7 @@ MAP_METHODS = ("delv", "delv-compass", "acv", "alv", "warping")  # per-point map
 SIGMAS = (0.0, 45.0)  # compass noise (claim 33 reads the catchment lost from 0 to 45 degrees)
 MEMBERS = 44  # members per family (as `ensembles`), in SLICES seed slices of 11
 SLICES = 4
-VISUAL_SLICES = 1  # slices whose members run the visual compass's rollouts (claims 31 and 33)
+VISUAL_SLICES = SLICES  # slices whose members run the visual compass's rollouts (claims 31, 33: all 44 members)
 MAP_SPACING = 25.0  # cm: the per-point maps' grid, the point run's (error curves need points in every bin)
 SPACING = (
     100.0  # cm: the compasses' grid, the ensembles' (128 trials advance side by side: a coarser one costs as much)
@@ -118,7 +118,8 @@ def slice_envs(size: int, j: int, seed: int, families=FAMILIES) -> list[str]:
 
 def run_slice(ctx, sizes: dict, j: int, size: int, worlds: dict) -> None:
     """One seed slice (the run's seed + j): the per-point maps, and on the full run the true compass's
-    catchments, the visual compass's vector maps and heading errors, and in the visual slices its rollouts."""
+    catchments, the visual compass's vector maps and heading errors, and in the visual slices its rollouts
+    (the built-in worlds' in the first)."""
     seed, lanes = ctx.settings.seed + j, ctx.settings.lanes
     envs = slice_envs(size, j, ctx.settings.seed)
     suffix = f"@{j}" if j else ""  # the built-in worlds of slice j: `env1@j` (their seed spread)
@@ -135,8 +136,9 @@ def run_slice(ctx, sizes: dict, j: int, size: int, worlds: dict) -> None:
     for bg in BACKGROUNDS:  # three sweeps of one program per method (the background a traced leaf)
         text = sweep_text("vector-map", envs, VISUAL, sizes["spacing"], seed, background=[bg])
         add(worlds, visual_keys(run_sweep(parse_sweep(text, "visual")), zip(TRUE, VISUAL), bg, False), suffix)
-        if j < VISUAL_SLICES:
-            text = sweep_text("catchment", envs, VISUAL, sizes["spacing"], seed, background=[bg])
+        if j < VISUAL_SLICES:  # the built-in worlds' catchments in the first slice only (the same program)
+            where = envs if j == 0 else envs[: len(FAMILIES)]
+            text = sweep_text("catchment", where, VISUAL, sizes["spacing"], seed, background=[bg])
             ds = run_sweep(parse_sweep(text, "visual"), lanes=lanes)
             add(worlds, visual_keys(ds, zip(TRUE, VISUAL), bg, True), suffix)
     add(worlds, heading_keys(ctx, size, j, sizes["spacing"], seed), suffix)

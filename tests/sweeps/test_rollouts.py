@@ -278,3 +278,20 @@ def test_an_output_folder_on_a_file_system_that_refuses_writes_is_refused_before
     sweep.write_text("[axes]\nspacing = [200]\n")
     assert main(["sweep", str(sweep), "--out", "/proc/delvjax-out"]) == 2
     assert capsys.readouterr().err.startswith("delvjax: error: --out: is not writable (folder /proc")
+
+
+def test_padding_runs_no_trials_and_moves_no_number():
+    """A chunk padded to its program's size (`evaluate`'s `real`): the padding's cells run no trials
+    (`idle_padding`: no masks) and every real cell's numbers are those of the chunk padded with running copies."""
+    from delvjax.sweeps._kinds import cell_setup, evaluate, mask_rows
+    from delvjax.sweeps._run import _envs
+
+    spec = parse_sweep(SUCCESS, "padded")
+    envs = _envs(spec)
+    setups = [cell_setup(spec, envs, spec.cell(i), 10_000) for i in range(spec.n_cells)]
+    chunk, rows = setups + [setups[0]] * 2, max(mask_rows(s) for s in setups)
+    idle = evaluate(spec.kind, chunk, None, rows, lanes=16, real=len(setups))
+    running = evaluate(spec.kind, chunk, None, rows, lanes=16)
+    assert running["placed"][len(setups) :].sum() > 0 and idle["placed"][len(setups) :].sum() == 0
+    for name, values in idle.items():
+        np.testing.assert_array_equal(values[: len(setups)], running[name][: len(setups)])
