@@ -9,6 +9,7 @@ from collections import Counter
 from ._gap_probe import load_probes, matching
 
 PROBES = load_probes()  # the gap probe's bands (studies/runs/_gap_probes.json, `causes_probe --gaps`)
+PROBE_SPACING = 100.0  # cm: the probes' grid (the file's spacing_cm)
 
 # Entries of the thesis's own tables that its notes (`studies/thesis/_notes.py`) call copies or suspect:
 # (note id, source label, world, methods or None for every method, hidden k or None for every k)
@@ -37,8 +38,9 @@ def gap_cause(row: dict, spacing: float, probes: list[dict] | None = None) -> st
     """The cause of one thesis number's gap (a row of `distribution_rows`): "" inside the band; else the first
     of: a thesis entry its notes call a copy or suspect; inside the band of another unstated setting; a
     catchment between the default and the physical rules' bands; within one grid point of the band; the
-    built-in world under five seeds reaching it; inside the band of an alternative the gap probe measured
-    (`probes`, default the committed PROBES; the first probe that holds it); "unexplained" (above/below)."""
+    built-in world under five seeds reaching it; inside the band of an alternative the gap probe measured, or
+    within one grid point of the probes' grid of it (`probes`, default the committed PROBES; a probe whose band
+    holds it first); "unexplained" (above/below)."""
     if row["inside band"]:
         return ""
     for note, source, world, methods, ks in SUSPECT:
@@ -71,13 +73,14 @@ def gap_cause(row: dict, spacing: float, probes: list[dict] | None = None) -> st
         lo, hi = float("nan"), float("nan")
     if lo <= value <= hi:
         return "inside the built-in world's range over five seeds"
-    found = matching(row, PROBES if probes is None else probes)
+    found = matching(row, PROBES if probes is None else probes, grid_step(PROBE_SPACING))
     if found:
         p = found[0]
         keeps = p.get("keeps")
         also = f"; {keeps[0]} of its {keeps[2]} thesis numbers inside, {keeps[1]} by default" if keeps else ""
+        where = "inside the band" if p["inside"] else "within one grid point of the band"
         return (
-            f"inside the band with {p['cause']} (gap probe {p['probe']}: {p['lo']:g}-{p['hi']:g} over "
+            f"{where} with {p['cause']} (gap probe {p['probe']}: {p['lo']:g}-{p['hi']:g} over "
             f"{p['members']} members{also}; causes_probe --gaps)"
         )
     return "unexplained: thesis " + ("above" if value > row["ours 95 %"] else "below") + " our band"

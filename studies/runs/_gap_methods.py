@@ -10,10 +10,14 @@ from jax import Array
 from delvjax.core.geometry import angle_of, safe_norm, unit, wrap
 from delvjax.core.methods.base import HomingMethod
 from delvjax.core.methods.heading import Compass, HeadingSource
+from delvjax.core.methods.pairing import shift_pairs
+from delvjax.core.search import first_argmin
 from delvjax.core.sensing import UnitMove
 from delvjax.options import register, unregister
 
 ACV_NEAREST = "acv-nearest"
+ACV_AGENT = "acv-agent"
+ALV_MEAN = "alv-mean"
 
 
 class ACVNearest(HomingMethod):
@@ -36,13 +40,58 @@ class ACVNearest(HomingMethod):
         return jnp.where(valid, wrap(angle_of(hv) - heading), jnp.nan), valid
 
 
+class ACVAgent(HomingMethod):
+    """ACV whose current list keeps the order the camera reads it, sorted by agent-frame bearing
+    (`DELV(order="agent")`'s list, docs/model.md §3.3), instead of re-sorted by home-frame bearing (§4.2).
+    With every landmark seen a cyclic shift only relabels the pairs, so the two agree; with a landmark
+    hidden the list wraps where the agent faces, so a rollout gets a fresh chance at every step to pair the
+    visible landmarks with their own home bearings (the thesis does not say in which frame ACV sorts)."""
+
+    heading: HeadingSource = Compass()
+
+    def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
+        heading = self.heading(home, view)
+        theta, theta_ok = home.start.bearing, home.start.valid
+        a, a_ok = view.end.bearing + heading, view.end.valid  # blobs arrive sorted in the agent frame
+        ref_idx, cur_idx, pair_ok, shift_ok = shift_pairs(theta_ok, a_ok)
+        diff = wrap(theta[ref_idx] - a[cur_idx])  # (K, S)
+        cost = jnp.where(shift_ok, jnp.sum(jnp.where(pair_ok, diff * diff, 0.0), axis=1), jnp.inf)
+        k = first_argmin(cost)
+        corr = -diff[k][:, None] * unit(a[cur_idx[k]] + jnp.pi / 2)
+        hv = jnp.sum(jnp.where(pair_ok[k][:, None], corr, 0.0), axis=0)
+        valid = jnp.any(pair_ok[k]) & (safe_norm(hv) > 0)
+        return jnp.where(valid, wrap(angle_of(hv) - heading), jnp.nan), valid
+
+
+class ALVMean(HomingMethod):
+    """ALV as the *average* of the unit landmark vectors (thesis lines 209, 234, 408: "the average landmark vector
+    at each point"; Lambrinos et al. 2000) instead of Eq 3.11's sum (docs/model.md §4.1). With as many blobs as
+    the home view the two give the same direction; where a landmark is hidden or two blobs merge, the sum loses a
+    whole unit vector and the average only the hidden one's share."""
+
+    heading: HeadingSource = Compass()
+
+    def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
+        heading = self.heading(home, view)
+        here = jnp.sum(jnp.where(view.end.valid[:, None], unit(view.end.bearing + heading), 0.0), axis=0)
+        there = jnp.sum(jnp.where(home.start.valid[:, None], unit(home.start.bearing), 0.0), axis=0)
+        m, n = jnp.sum(view.end.valid), jnp.sum(home.start.valid)
+        h = here / jnp.maximum(m, 1) - there / jnp.maximum(n, 1)
+        valid = (m > 0) & (n > 0) & (safe_norm(h) > 0)
+        return jnp.where(valid, wrap(angle_of(h) - heading), jnp.nan), valid
+
+
 def register_variants() -> tuple[str, ...]:
     """Register the probe's method variants (idempotent) and return their names; `unregister_variants` removes
     them (the registry's methods live in `delvjax/core/methods`: these are the probe's alone)."""
     register(ACV_NEAREST, ACVNearest(), "ACV pairing each landmark with the nearest home bearing (gap probe)")
-    return (ACV_NEAREST,)
+    register(ACV_AGENT, ACVAgent(), "ACV with the current list in the agent frame (gap probe)")
+    register(ALV_MEAN, ALVMean(), "ALV averaging the unit landmark vectors (gap probe)")
+    return (ACV_NEAREST, ACV_AGENT, ALV_MEAN)
 
 
 def unregister_variants() -> None:
     """Remove the probe's method variants from the registry."""
     unregister(ACV_NEAREST)
+    unregister(ACV_AGENT)
+    unregister(ALV_MEAN)

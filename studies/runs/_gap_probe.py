@@ -29,6 +29,7 @@ from ._gap_methods import register_variants, unregister_variants
 PROBE_FILE = Path(__file__).with_name("_gap_probes.json")
 QUANTITY = {"catchment": "catchment %", "gt45": "e>45 %", "gt90": "e>90 %"}
 METRIC = {"catchment": "catchment_pct", "gt45": "gt45_pct", "gt90": "gt90_pct"}
+CHOICE = {"catchment_min": "catchment_min_pct", "catchment_max": "catchment_max_pct"}  # a world's worst and best mask
 RINGS = ("ring3", "ring5", "ring6")
 ENVS = ("env1", "env2", "env3")
 COMPASS = (("delv-compass", "delv-compass"), ("acv", "acv"), ("alv", "alv"))
@@ -39,7 +40,8 @@ class Probe:
     """One alternative: `families` (thesis family names) run with `methods` ((thesis method, method run)
     pairs), `axes` (extra sweep axis lines, e.g. 'bearing_noise_deg = [5.0]'), `variant` (Family fields
     replaced: the members are that variant's layouts, same rules otherwise) and up to `k_max` hidden landmarks
-    (at most the family's, `k_max`); `cause` names it in a gap's cause."""
+    (at most the family's, `k_max`); `cause` names it in a gap's cause. `choice`: a catchment's band is the one
+    choice of hidden landmarks' (`CHOICE`), not the mean over every choice's."""
 
     id: str
     cause: str
@@ -49,6 +51,7 @@ class Probe:
     axes: str = ""
     variant: dict = field(default_factory=dict)
     k_max: int = 3
+    choice: bool = False
 
 
 DEFAULT = "default"  # the reference probe: our families and settings on the probes' members, seeds and grid
@@ -83,6 +86,50 @@ PROBES = (
         "landmarks) instead of the best cyclic shift of the sorted lists (docs/model.md §4.2)",
         ("ring5", "ring6", "env1"),
         methods=(("acv", "acv-nearest"),),
+        k_max=2,
+    ),
+    Probe(
+        "acv-agent",
+        "ACV's current list in the agent frame",
+        "ACV keeps the current landmarks in the order the camera reads them (agent frame, as DELV's earlier "
+        "order, docs/model.md §3.3) instead of sorting them by home-frame bearing (§4.2): the thesis does not say "
+        "in which frame ACV's rotational matching lists them (Tables 5.2/5.4, Yu and Kim 2011a)",
+        RINGS,
+        methods=(("acv", "acv-agent"),),
+    ),
+    Probe(
+        "acv-agent-env",
+        "ACV's current list in the agent frame",
+        "the same ACV on env1-3 (Tables 5.1/5.3, Yu and Kim 2011b)",
+        ENVS,
+        methods=(("acv", "acv-agent"),),
+    ),
+    Probe(
+        "agent-lists",
+        "current lists in the agent frame (DELV and ACV)",
+        "DELV (compass) and ACV both keep the current list in the agent frame (`delv-compass-agent`, "
+        "`acv-agent`; docs/model.md §3.3): the rings' tables come from Yu and Kim 2011a, whose matching need "
+        "not list the landmarks as Fig 3.4 draws them",
+        RINGS,
+        methods=(("delv-compass", "delv-compass-agent"), ("acv", "acv-agent")),
+    ),
+    Probe(
+        "one-choice",
+        "one choice of hidden landmarks",
+        "the thesis does not say which landmarks it hid nor that it averaged over the choices (docs/model.md §5): "
+        "a table's catchment may be one choice's, which lies between its world's worst and best choice; the band "
+        "runs from the 5th percentile of the members' worst choice to the 95th of their best",
+        RINGS + ENVS,
+        choice=True,
+    ),
+    Probe(
+        "alv-mean",
+        "ALV averaging its unit vectors",
+        "ALV as the average of the unit landmark vectors (thesis lines 209, 234, 408, 'the average landmark "
+        "vector'; Lambrinos et al. 2000) instead of Eq 3.11's sum: the same direction with every landmark seen as "
+        "its own blob, different where a landmark is hidden or two blobs merge",
+        RINGS + ENVS,
+        methods=(("alv", "alv-mean"),),
         k_max=2,
     ),
     Probe(
@@ -155,12 +202,24 @@ def member_envs(probe: Probe, family: str, members: int, seed: int, folder: Path
     return paths
 
 
-def sweep_text(probe: Probe, envs: list[str], spacing: float, seed: int) -> str:
-    """The catchment sweep of some of a probe's members (every family of it: one program) under one seed."""
+def k_groups(probe: Probe) -> dict[int, tuple[str, ...]]:
+    """The probe's families by the most hidden landmarks they are run with (min of the probe's `k_max` and the
+    family's): one sweep per group and seed slice, so ring5/ring6 reach k = 3 beside ring3's k = 2."""
+    groups: dict[int, tuple[str, ...]] = {}
+    for f in probe.families:
+        k = min(probe.k_max, family_k_max(f))
+        groups[k] = groups.get(k, ()) + (f,)
+    return groups
+
+
+def sweep_text(probe: Probe, envs: list[str], spacing: float, seed: int, k: int | None = None) -> str:
+    """The catchment sweep of some of a probe's members (the families of one k group: one program) under one
+    seed, up to `k` hidden landmarks (default: the smallest of the probe's families')."""
     methods = ", ".join(f'"{run}"' for _, run in probe.methods)
-    k = min([probe.k_max] + [family_k_max(f) for f in probe.families])
+    k = min([probe.k_max] + [family_k_max(f) for f in probe.families]) if k is None else k
+    metrics = ", ".join(f'"{m}"' for m in [*METRIC.values(), *(CHOICE.values() if probe.choice else ())])
     return (
-        '[sweep]\nkind = "catchment"\nmetrics = ["catchment_pct", "gt45_pct", "gt90_pct"]\n'
+        f'[sweep]\nkind = "catchment"\nmetrics = [{metrics}]\n'
         f"[axes]\nenv = [{', '.join(envs)}]\nmethod = [{methods}]\nocclude = {list(range(k + 1))}\n"
         f"spacing = [{spacing}]\nseed = [{seed}]\n{probe.axes}\n"
     )
@@ -175,22 +234,32 @@ def measure(probe: Probe, members: int = 16, slices: int = 2, spacing: float = 1
     try:
         with tempfile.TemporaryDirectory() as tmp:
             envs = {f: member_envs(probe, f, members, seed, Path(tmp)) for f in probe.families}
-            parts = [[e for f in probe.families for e in envs[f][j * size : (j + 1) * size]] for j in range(slices)]
-            return _stack([_sweep(probe, part, spacing, seed + j) for j, part in enumerate(parts)])
+            groups, parts = k_groups(probe), []
+            width = max(groups) + 1
+            for j in range(slices):  # a few seed slices x k groups: input preparation, one sweep each
+                part: dict = {}
+                for k, fams in groups.items():
+                    chunk = [e for f in fams for e in envs[f][j * size : (j + 1) * size]]
+                    part |= _sweep(probe, chunk, fams, spacing, seed + j, k, width)
+                parts.append(part)
+            return _stack(parts)
     finally:
         unregister_variants()
 
 
-def _sweep(probe: Probe, envs: list[str], spacing: float, seed: int) -> dict:
-    """One seed slice's sweep: {(family, run method, quantity): (members, k + 1) array}."""
-    ds = run_sweep(parse_sweep(sweep_text(probe, envs, spacing, seed), f"gap-{probe.id}"), lanes=128)
+def _sweep(probe: Probe, envs: list[str], fams: tuple, spacing: float, seed: int, k: int, width: int) -> dict:
+    """One seed slice's sweep of the families `fams` up to k hidden: {(family, run method, quantity): (members,
+    `width`) array}, NaN beyond k."""
+    ds = run_sweep(parse_sweep(sweep_text(probe, envs, spacing, seed, k), f"gap-{probe.id}"), lanes=128)
     family = np.array([re.search(r"(env\d|ring\d)", str(e).rsplit("/", 1)[-1]).group(1) for e in ds.env.values])
     out = {}
     for _, run in probe.methods:
-        cell = ds.sel({"homing_method": run}) if "homing_method" in ds.dims else ds
-        for q, metric in METRIC.items():
+        dim = next((d for d in ("homing_method", "method") if d in ds.dims), None)  # the name before issue 53: method
+        cell = ds.sel({dim: run}) if dim else ds
+        for q, metric in (METRIC | CHOICE if probe.choice else METRIC).items():
             values = np.asarray(cell[metric].transpose("env", "occlude").values, float)
-            out |= {(f, run, q): values[family == f] for f in probe.families}
+            values = np.pad(values, ((0, 0), (0, width - values.shape[1])), constant_values=np.nan)
+            out |= {(f, run, q): values[family == f] for f in fams}
     return out
 
 
@@ -207,9 +276,16 @@ def probe_rows(probe: Probe, measured: dict) -> list[dict]:
         key = (fam, run_of.get(m), q)
         if key not in measured or k >= measured[key].shape[1] or source in ("fig4_5", "fig5_5", "fig5_10"):
             continue
+        if probe.choice and q != "catchment":  # a sweep pools the rates over the masks: the default's band
+            continue
         sample = measured[key][:, k]
         sample = sample[~np.isnan(sample)]
+        if not len(sample):  # k beyond the family's (ring3 beside ring5's k = 3)
+            continue
         lo, med, hi = np.percentile(sample, [BAND[0], 50.0, BAND[1]])
+        if probe.choice and q == "catchment":  # one choice lies in [worst, best] of its world: the ends of those
+            lo = np.nanpercentile(measured[(fam, key[1], "catchment_min")][:, k], BAND[0])
+            hi = np.nanpercentile(measured[(fam, key[1], "catchment_max")][:, k], BAND[1])
         rows.append(
             {
                 "probe": probe.id,
@@ -252,16 +328,19 @@ def with_net(rows: list[dict]) -> list[dict]:
     return out
 
 
-def matching(row: dict, probes: list[dict]) -> list[dict]:
-    """The probe rows of the same thesis number as `row` (a `distribution_rows` row) whose band holds it, of probes
-    that are not the DEFAULT and put at least as many of the thesis's numbers inside their bands as the default
-    (`net` >= 0): an alternative that moves this number inside and more others out is not its cause."""
-    return [
+def matching(row: dict, probes: list[dict], step: float = 0.0) -> list[dict]:
+    """The probe rows of the same thesis number as `row` (a `distribution_rows` row) whose band holds it, or comes
+    within `step` points of it (one grid point of the probes' grid, as `_ensemble_gaps.gap_cause` allows for our
+    own band), of probes that are not the DEFAULT and put at least as many of the thesis's numbers inside their
+    bands as the default (`net` >= 0): an alternative that moves this number inside and more others out is not its
+    cause. Rows whose band holds it come first."""
+    found = [
         p
         for p in probes
-        if p["inside"]
+        if p["lo"] - step <= p["thesis"] <= p["hi"] + step
         and p["probe"] != DEFAULT
         and p.get("net", 0) >= 0
         and all(str(p[f]) == str(row[f]) for f in NUMBER)
         and math.isclose(p["thesis"], row["thesis"])
     ]
+    return sorted(found, key=lambda p: not p["inside"])
