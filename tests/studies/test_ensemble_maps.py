@@ -225,3 +225,15 @@ def test_seeded_random_layouts_of_one_seed_are_nested_and_the_point_runs_are_not
         "error_curve:random5:delv",
         "landmark_number:nested",
     }
+
+
+def test_every_claim_of_a_full_run_is_judged_over_members_enough_for_15_points():
+    """Issue 52: a claim's 95 % interval at most ±15 points; claims 31 and 33 (the visual compass's catchments)
+    over every slice's members like the others, so over 44, where any share's Wilson half-width is below 15."""
+    from delvjax.studies.runs._ensemble_stats import wilson
+
+    size = -(-ensemble_maps.MEMBERS // ensemble_maps.SLICES)
+    visual = min(ensemble_maps.MEMBERS, ensemble_maps.VISUAL_SLICES * size)
+    assert visual == ensemble_maps.MEMBERS == 44
+    assert max(50 * (hi - lo) for lo, hi in (wilson(k, visual) for k in range(visual + 1))) < 15.0
+    assert max(50 * (hi - lo) for lo, hi in (wilson(k, 11) for k in range(12))) > 15.0  # the 11 members before
