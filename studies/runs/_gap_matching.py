@@ -22,7 +22,7 @@ from delvjax.plots._maps import subplots
 from delvjax.options._registry import program
 
 from ._common import HOME_RADIUS, PROGRAM, RULES
-from ._occlusion_layouts import ENVS, RING_SPACING, fmt_spread, spread
+from ._occlusion_layouts import ENVS, QUICK_RING_SPACING, RING_SPACING, fmt_spread, spread
 
 METHODS = ("delv-compass", "delv-gap-compass", "delv-compass-agent")
 LABELS = {
@@ -118,7 +118,7 @@ def table(ctx, rows: list[dict]) -> None:
         "thesis's DELV, which lists the landmarks in the home frame (Fig 3.4), as ACV does. Where a view shows as many "
         "blobs as the home view both matchings pair alike (bitwise the same direction); with k = 0 they "
         "differ only where landmarks overlap in the view and merge into one blob. ring3, ring5, ring6: "
-        f"grid spacing max(spacing, {RING_SPACING:g}) cm.",
+        f"grid spacing max(spacing, {RING_SPACING:g}) cm (--quick: {QUICK_RING_SPACING:g} cm).",
     )
 
 

@@ -29,7 +29,15 @@ from .. import thesis
 
 from . import _gap_matching as gap_matching
 from ._common import HOME_RADIUS, LABEL, PROGRAM, RULES, as_vector_map, env, every_rule, panel_figure
-from ._occlusion_layouts import ENVS, RING_SPACING, fmt_spread, spread, stacked_masks
+from ._occlusion_layouts import (
+    ENVS,
+    QUICK_RING_SPACING,
+    RING_SPACING,
+    fmt_spread,
+    layout_spacing,
+    spread,
+    stacked_masks,
+)
 
 TITLE = "Occlusion: k landmarks hidden (Figs 5.9-5.10, Tables 5.1-5.4; and gap-aware DELV matching)"
 COST = 145  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
@@ -56,7 +64,7 @@ def run(ctx) -> None:
     for name, k_max in ENVS.items():  # six layouts x three methods (and gap-aware DELV)
         e = env(name)
         masks, hidden, ks = stacked_masks(e, k_max)
-        spacing = settings.spacing if name.startswith("env") else max(settings.spacing, RING_SPACING)
+        spacing = layout_spacing(name, settings)
         for m in METHODS:
             res = rule_catchments(e, m, sensor, spacing, key, masks, hidden, settings.lanes)
             summaries = {rules: rollouts.catchment_summary(c)["per_mask"] for rules, c in res.items()}
@@ -228,7 +236,10 @@ NOTE = (
     "homing-first: every first move follows the direction computed at the release point (the earlier default, "
     "all grid points). physical: Algorithm 2, and a move ending inside a landmark fails."
 )
-RING_NOTE = f" ring3, ring5, ring6: grid spacing max(spacing, {RING_SPACING:g}) cm; ring4 (= env2): the env1-3 grid."
+RING_NOTE = (
+    f" ring3, ring5, ring6: grid spacing max(spacing, {RING_SPACING:g}) cm (--quick: {QUICK_RING_SPACING:g} cm); "
+    "ring4 (= env2): the env1-3 grid."
+)
 # The ring radius decides ALV's catchment with one landmark hidden (docs/reproduce.md, "Causes measured
 # outside the run"; `causes_probe.ring_radius`): its field's one sink is where the visible landmarks'
 # unit vectors cancel, and every success is a path that crosses the home disc on its way there.
