@@ -214,7 +214,7 @@ def image_input(args: argparse.Namespace) -> dict:
     return {"--images": args.images} if getattr(args, "images", None) else {}
 
 
-NOT_SETTINGS = {"out", "trials_out", "summary", "plot", "func", "command", "images_command", "defaults"}
+NOT_SETTINGS = {"out", "trials_out", "summary", "plot", "func", "command", "images_command", "defaults", "not_applied"}
 
 
 def command_settings(args: argparse.Namespace) -> dict:
@@ -224,12 +224,14 @@ def command_settings(args: argparse.Namespace) -> dict:
     sensor, methods = sensor_options(), method_options()
     chosen = METHODS.get(getattr(args, "method", None)) if isinstance(getattr(args, "method", None), str) else None
     settings = {}
+    unused = set(getattr(args, "not_applied", ()))  # options the input replaces (an image database's d, n_pix)
     for k, v in sorted(vars(args).items()):
-        if k in NOT_SETTINGS or callable(v):
+        if k in NOT_SETTINGS or k in unused or callable(v):
             continue
         if v is None:  # not given: the sensor's default, or the method's where the method has the setting
-            if k in sensor:
-                v = sensor[k].default
+            if k in sensor:  # a choice stored as its index (background 0) is recorded by its name ("distant")
+                choices, v = sensor[k].setting.choices, sensor[k].default
+                v = choices[v] if choices and isinstance(v, int) and not isinstance(v, bool) else v
             elif k in methods and chosen is not None and owns(chosen, k):
                 v = methods[k].default
             else:

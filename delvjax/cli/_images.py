@@ -121,6 +121,7 @@ def _refuse_unused(args: argparse.Namespace, extra=()) -> None:
     for dest in (*UNUSED_WITH_IMAGES, *extra):
         if hasattr(args, dest) and getattr(args, dest) != defaults.get(dest):
             raise InputError("--" + dest.replace("_", "-"), getattr(args, dest), "is not used with --images")
+    args.not_applied = (*UNUSED_WITH_IMAGES, *extra)  # left out of the settings a summary records (d, n_pix, ...)
     if args.env is not None:
         raise InputError("env", args.env, "cannot be combined with --images (the database is the scene)")
 
@@ -164,6 +165,7 @@ def load(args: argparse.Namespace):
             panoramas=module.reads_panorama(),
             **reading_options(args),
         )
+    args.spacing = db.spacing  # what ran, as the summary's command_settings records it: the database's unit move
     return db, opts
 
 

@@ -267,3 +267,16 @@ def test_a_ring_too_coarse_and_a_step_below_resolution_are_refused_by_the_api_to
         delvjax.catchment("env1", levels=3, scale=0.029, spacing=400.0)
     vm = delvjax.vector_map("env1", n_pix=16, levels=3, scale=0.03, spacing=400.0)
     assert np.asarray(vm.included).any()
+
+
+def test_an_image_summary_records_the_settings_that_ran(small_db, tmp_path, capsys):
+    """Newcomer pass (issue 53 point 3): an image database's summary recorded d = 50 and spacing = 25 (the
+    scene defaults, which the database replaces: its unit move ran) and `background` as its index 0."""
+    out = tmp_path / "s.json"
+    assert main(["vector-map", "--images", str(small_db), "--method", "delv", "--summary", str(out)]) == 0
+    s = json.loads(out.read_text())
+    settings = s["command_settings"]
+    assert settings["spacing"] == s["spacing_cm"] and not {"d", "n_pix", "background", "clearance"} & set(settings)
+    assert main(["vector-map", "env1", "--spacing", "400", "--summary", str(out)]) == 0
+    assert json.loads(out.read_text())["command_settings"]["background"] == "distant"
+    capsys.readouterr()
