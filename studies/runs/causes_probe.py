@@ -27,6 +27,7 @@ change nothing in the report); run them with
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 
 import jax
@@ -36,6 +37,7 @@ import delvjax
 from delvjax.core import rollouts
 from delvjax.core.errors import InputError
 from delvjax.core.sensor import Sensor
+from delvjax.envs._ensembles import FAMILIES, member_layouts
 from delvjax.envs._presets import make_env, preset_dict, random_env
 from delvjax.options._registry import program
 
@@ -158,6 +160,35 @@ def env3_layouts(
     }
 
 
+def choice_maps(probe: _gap_probe.Probe, members: int, spacing: float, seed: int = 0, slices: int = 2) -> dict:
+    """The error-point rates of one choice of hidden landmarks (Table 5.1's first row "corresponds to the error
+    graphs in Figure 5.9", one map per k): {(family, run method, gt45|gt90[_min|_max]): (members, k + 1)}, the
+    mean over the choices and a member's worst and best choice, from every member's vector map under every choice
+    (slice j's members under seed + j, as `_gap_probe.measure`). Catchment sweeps pool the rates over the masks, so
+    these come from vector maps, a loop on the host (~10 ms a map once compiled; a few thousand maps)."""
+    size, width = -(-members // slices), max(_gap_probe.k_groups(probe)) + 1
+    out: dict = {}
+    for fam in probe.families:  # families x members x methods x choices: a loop of small programs
+        family, k_max = FAMILIES[fam], min(probe.k_max, _gap_probe.family_k_max(fam))
+        for i, lay in enumerate(member_layouts(family, members, seed)):
+            e = make_env([tuple(map(float, lm)) for lm in lay], home=family.home, arena=family.arena, pad_to=PAD)
+            for _, run in probe.methods:
+                for k in range(k_max + 1):
+                    rates = []
+                    for hidden in itertools.combinations(range(family.n), k):
+                        vm = delvjax.vector_map(
+                            e, method=run, spacing=spacing, seed=seed + i // size, hidden=list(hidden) or None
+                        )
+                        err = np.asarray(vm.error_deg)[np.asarray(vm.included)]
+                        rates.append((100.0 * np.mean(err > 45.0), 100.0 * np.mean(err > 90.0)))
+                    for q, col in (("gt45", 0), ("gt90", 1)):
+                        vals = [r[col] for r in rates]
+                        for stat, v in (("", np.mean(vals)), ("_min", min(vals)), ("_max", max(vals))):
+                            arr = out.setdefault((fam, run, q + stat), np.full((members, width), np.nan))
+                            arr[i, k] = v
+    return out
+
+
 def probe_json(doc: dict) -> str:
     """The probe file's text: its header keys indented, one row a line (small diffs when a probe is re-measured)."""
     head = json.dumps({k: v for k, v in doc.items() if k != "rows"}, indent=1, ensure_ascii=False)[:-2]
@@ -170,7 +201,10 @@ def gap_probes(ids: list[str] | None, members: int, spacing: float, path=_gap_pr
     chosen = [pr for pr in _gap_probe.PROBES if ids is None or pr.id in ids]
     kept = [r for r in _gap_probe.load_probes(path) if r["probe"] not in {pr.id for pr in chosen}]
     for pr in chosen:  # a handful of probes, each a few sweeps
-        rows = _gap_probe.probe_rows(pr, _gap_probe.measure(pr, members=members, spacing=spacing))
+        measured = _gap_probe.measure(pr, members=members, spacing=spacing)
+        if pr.choice:  # the rates of one choice: vector maps (the sweeps pool them over the masks)
+            measured |= choice_maps(pr, members, spacing)
+        rows = _gap_probe.probe_rows(pr, measured)
         kept += rows
         inside = [f"{r['world']} {r['method']} k={r['k']} {r['quantity']}" for r in rows if r["inside"]]
         print(f"{pr.id}: {len(inside)} of {len(rows)} thesis numbers inside its band", flush=True)

@@ -168,3 +168,13 @@ def test_one_choice_bands_run_from_the_worst_choice_to_the_best():
     assert not rates
     assert '"catchment_min_pct", "catchment_max_pct"' in _gap_probe.sweep_text(probe, ["x"], 100.0, 0)
     assert "catchment_min_pct" not in _gap_probe.sweep_text(PROBE, ["x"], 100.0, 0)
+
+
+def test_choice_maps_give_each_member_its_mean_worst_and_best_choice():
+    probe = _gap_probe.Probe("t", "c", "h", ("ring3",), methods=(("alv", "alv"),), k_max=1, choice=True)
+    out = causes_probe.choice_maps(probe, members=2, spacing=200.0)
+    mean, lo, hi = (out[("ring3", "alv", "gt45" + s)] for s in ("", "_min", "_max"))
+    assert mean.shape == (2, 2) and np.all(lo <= mean) and np.all(mean <= hi)
+    assert np.array_equal(lo[:, 0], hi[:, 0])  # k = 0: one choice
+    rows = _gap_probe.probe_rows(probe, out)
+    assert {r["quantity"] for r in rows} == {"e>45 %", "e>90 %"} and all(r["world"] == "ring3" for r in rows)
