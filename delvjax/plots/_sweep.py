@@ -107,6 +107,8 @@ def _seeded(da, keep: tuple[str, ...]):
     """`da` over `keep` and the seeds (a seed axis of one value when the sweep has one seed)."""
     rest = [d for d in da.dims if d not in (*keep, "seed")]
     da = da.squeeze(rest, drop=True) if rest else da
+    if "seed" in keep:  # the seeds drawn along an axis (--x seed): each value one replicate, no interval
+        return da.transpose(*keep).expand_dims(replicate=[0], axis=-1)
     if "seed" not in da.dims:
         da = da.expand_dims(seed=[0])
     return da.transpose(*keep, "seed")
@@ -130,6 +132,8 @@ def _lines(ax, ds, sel: dict, x: str, metric: str, title: str) -> list[dict]:
         wilson = _wilson(ds, pick, x, metric)
         if not np.isfinite(half).any() and wilson is not None:  # one seed: the trials' own interval
             (lo, hi), what = wilson, "95 % Wilson interval"
+        elif not np.isfinite(half).any():
+            what = "none: one seed per point"
         if method is not None:
             name = method
         else:  # one line: the method of a sweep of one method, else the metric
@@ -197,5 +201,6 @@ def sweep_figure(ds, x: str, y: str | None, metric: str):
         ax.set_title(title, fontsize=9)
     for ax in axes.ravel()[len(items) :]:
         ax.set_visible(False)
-    fig.suptitle(f"{metric}" + (" (mean over seeds)" if "seed" in ds.dims and ds.sizes["seed"] > 1 else ""))
+    over_seeds = "seed" in ds.dims and ds.sizes["seed"] > 1 and "seed" not in (x, y)
+    fig.suptitle(f"{metric}" + (" (mean over seeds)" if over_seeds else ""))
     return fig, rows

@@ -280,3 +280,26 @@ def test_an_image_summary_records_the_settings_that_ran(small_db, tmp_path, caps
     assert main(["vector-map", "env1", "--spacing", "400", "--summary", str(out)]) == 0
     assert json.loads(out.read_text())["command_settings"]["background"] == "distant"
     capsys.readouterr()
+
+
+@pytest.mark.parametrize("extra", [["--x", "seed"], ["--x", "d", "--y", "seed"], ["--x", "method"]])
+def test_plot_sweep_draws_the_seeds_along_an_axis(tmp_path, capsys, extra):
+    """Newcomer pass: `plot-sweep --x seed` (or --y seed) ended in a traceback ("axes don't match array"):
+    the seeds, replicates elsewhere, are drawn one value each, without an interval; `--x method` draws the
+    dimension `homing_method` (docs/sweeps.md)."""
+    from delvjax.sweeps._kinds import sum_names
+    from delvjax.sweeps._results import dataset, save_sweep
+    from delvjax.sweeps._spec import parse_sweep
+
+    spec = parse_sweep('[axes]\nmethod = ["delv", "alv"]\nd = [10, 20]\nseed = [0, 1, 2]\nspacing = [200]\n')
+    sums = {k: np.arange(1.0, spec.n_cells + 1) for k in sum_names(spec.kind)}
+    save_sweep(dataset(spec, sums, 0), tmp_path / "sw")
+    assert main(["plot-sweep", str(tmp_path / "sw"), *extra, "--out", str(tmp_path / "p.png")]) == 0
+    rows = (tmp_path / "p.csv").read_text().splitlines()
+    assert (tmp_path / "p.png").is_file() and rows[0].split(",")[:2] == [
+        "panel",
+        "method" if len(extra) == 2 else "seed",
+    ]
+    if extra == ["--x", "seed"]:
+        assert len(rows) == 1 + 2 * 2 * 3 and all(r.endswith("none: one seed per point") for r in rows[1:])
+    capsys.readouterr()
