@@ -35,6 +35,7 @@ from ..types import (
 from .base import HomingMethod
 from .heading import HeadingSource
 from .pairing import shift_pairs
+from .rotations import MIN_SLOTS, best_rotated
 
 
 ORDERS = ("home", "agent")  # docs/model.md §3.3: the frame in which the current landmark list is sorted
@@ -82,7 +83,8 @@ def rotated_rows(
     `cur_idx` (K, S) indexes the list as sorted (agent frame). Returns (rows (R, K, S), row_of (A,)):
     hypothesis a pairs through rows[row_of[a]]. `offsets` None keeps the list as sorted (R = 1);
     with one hypothesis (a compass) the list is rotated once (R = 1); with A hypotheses each
-    rotation r = 0..B-1 is a row block and row_of = offsets (docs/model.md §3.3-3.4)."""
+    rotation r = 0..B-1 is a row block and row_of = offsets (docs/model.md §3.3-3.4): B^3 indices, the
+    direct table, used below `rotations.MIN_SLOTS` slots (`rotations.best_rotated` above)."""
     if offsets is None:
         return cur_idx[None], jnp.zeros(alphas.shape, jnp.int32)
     m = jnp.maximum(jnp.sum(cur_valid), 1)
@@ -111,11 +113,38 @@ def match_arrangement(
     first current blob of the home-frame list under each alpha (`list_offsets`), None to pair the
     list in its agent-frame order (docs/model.md §3.3).
     """
-    ref_idx, cur_idx, pair_ok, shift_ok = shift_pairs(ref_valid, cur_valid)
-    rows, row_of = rotated_rows(cur_idx, cur_valid, alphas, offsets)
-    n = jnp.sum(pair_ok[0])
-    p, alpha, var = best_pairing(ref_v, cur_v, ref_idx, rows, pair_ok, shift_ok, n, alphas, row_of)
+    p, alpha, var, n, _ = search_pairings(ref_v, ref_valid, cur_v, cur_valid, alphas, offsets)
     return p, alpha, var, n
+
+
+def search_pairings(
+    ref_v: BlobVectors,
+    ref_valid: BlobFlags,
+    cur_v: CurrentVectors,
+    cur_valid: CurrentFlags,
+    alphas: Hypotheses,
+    offsets: Array | None = None,
+) -> tuple[Point, Scalar, Scalar, Array, tuple[Array, Array, Array]]:
+    """`match_arrangement` and the winning pairing: (p, alpha, var, n, (ref_row (S,), cur_row (S,),
+    pair_ok_row (S,))). Without a compass in the home-frame order (A > 1 hypotheses, each its own
+    rotation of the list) and with at least `rotations.MIN_SLOTS` slots the search is
+    `rotations.best_rotated`, O(B^2 + B A); below, the direct table of every rotation
+    (`pairing_table`, O(B^3 + B A)); with a compass or the agent-frame order one block of it."""
+    ref_idx, cur_idx, pair_ok, shift_ok = shift_pairs(ref_valid, cur_valid)
+    n = jnp.sum(pair_ok[0])
+    if offsets is not None and alphas.shape[0] > 1 and ref_idx.shape[0] >= MIN_SLOTS:
+        pairs = (ref_idx, cur_idx, pair_ok, shift_ok)
+        p, alpha, var, rows = best_rotated(
+            ref_v, ref_valid, cur_v, cur_valid, alphas, offsets.astype(jnp.int32), pairs, n
+        )
+        return p, alpha, var, n, rows
+    rows, row_of = rotated_rows(cur_idx, cur_valid, alphas, offsets)
+    var, a_mean, b_mean = pairing_table(ref_v, cur_v, ref_idx, rows, pair_ok, shift_ok, n, alphas, row_of)
+    h, a = best_index(var)
+    alpha = alphas[a]
+    block = 0 if b_mean.shape[0] == 1 else row_of[a]
+    p = a_mean[h] - rotate(b_mean[block, h], alpha)
+    return p, alpha, var[h, a], n, (ref_idx[h], rows[block, h], pair_ok[h])
 
 
 def pairing_table(

@@ -21,8 +21,7 @@ from jax import Array
 
 from ..geometry import rotate
 from ..types import BlobFlags, BlobVectors, Hypotheses, Point, Scalar
-from .delv import DELV, best_index, pairing_table, rotated_rows
-from .pairing import shift_pairs
+from .delv import DELV, search_pairings
 
 STEPS = 32
 
@@ -44,15 +43,8 @@ def refined_match(
 ) -> tuple[Point, Scalar, Scalar, Array]:
     """`match_arrangement` (with its `offsets`), then least squares on (alpha, p) for its pairing:
     (p, alpha, var, n)."""
-    ref_idx, cur_idx, pair_ok, shift_ok = shift_pairs(ref_valid, cur_valid)
-    rows, row_of = rotated_rows(cur_idx, cur_valid, alphas, offsets)
-    n = jnp.sum(pair_ok[0])
-    var, a_mean, b_mean = pairing_table(ref_v, cur_v, ref_idx, rows, pair_ok, shift_ok, n, alphas, row_of)
-    h, a = best_index(var)
-    alpha0 = alphas[a]
-    block = row_of[a]
-    p0 = a_mean[h] - rotate(b_mean[block, h], alpha0)
-    ref, cur, w = ref_v[ref_idx[h]], cur_v[rows[block, h]], pair_ok[h].astype(ref_v.dtype)[:, None]
+    p0, alpha0, _, n, (ref_row, cur_row, paired) = search_pairings(ref_v, ref_valid, cur_v, cur_valid, alphas, offsets)
+    ref, cur, w = ref_v[ref_row], cur_v[cur_row], paired.astype(ref_v.dtype)[:, None]
 
     def residuals(y, _):
         return (w * (ref - rotate(cur, y[0]) - y[1:])).ravel()
