@@ -5,6 +5,7 @@ change nothing in the report); run them with
 
     python -m delvjax.studies.runs.causes_probe [--variants N] [--spacing CM]
     python -m delvjax.studies.runs.causes_probe --gaps [--probe ID ...] [--members N]
+    python -m delvjax.studies.runs.causes_probe --tail FAMILY METHOD [--members N]
 
 1. Pixels (claims 4 and 5): DELV's vector map at 360 (the model's ring) and 1440 pixels, d = 20,
    50 and 100 cm on env1 and the 3-landmark layout of Fig 4.8. With noise-free sensing the only
@@ -22,6 +23,8 @@ change nothing in the report); run them with
    under alternatives the thesis allows (noise, ACV's pairing, home radius, env3's and the rings' geometry);
    writes `_gap_probes.json`, which `_ensemble_gaps.gap_cause` reads (docs/reproduce.md "What the unexplained
    gaps were"). `--probe` re-measures some probes and keeps the others' rows.
+6. `--tail FAMILY METHOD`: how rare a world is whose vector map has as few error points as the thesis's (200 members,
+   k = 0): the two numbers no probe explains (env1's ACV, docs/reproduce.md "The gap probe's second round").
 """
 
 from __future__ import annotations
@@ -189,6 +192,28 @@ def choice_maps(probe: _gap_probe.Probe, members: int, spacing: float, seed: int
     return out
 
 
+def family_tail(family: str, method: str, members: int = 200, spacing: float = 100.0, best: int = 12) -> dict:
+    """How rare a world is that gives the thesis's number (docs/reproduce.md "The gap probe's second round": env1's
+    ACV with every landmark seen): every member's vector map (k = 0, seed 0) and the catchment of the `best` members
+    with the fewest e>45 points. {"gt45": [...], "gt90": [...], "best": [(member, gt45, gt90, catchment)]}."""
+    fam = FAMILIES[family]
+    envs = [
+        make_env([tuple(map(float, lm)) for lm in lay], home=fam.home, arena=fam.arena, pad_to=PAD)
+        for lay in member_layouts(fam, members, 0)
+    ]
+    rates = []
+    for e in envs:  # a few hundred small vector maps on the host (~10 ms each once compiled)
+        err = np.asarray((vm := delvjax.vector_map(e, method=method, spacing=spacing, seed=0)).error_deg)
+        err = err[np.asarray(vm.included)]
+        rates.append((100.0 * float(np.mean(err > 45.0)), 100.0 * float(np.mean(err > 90.0))))
+    order = np.argsort([r[0] for r in rates])[:best]
+    top = [
+        (int(i), *rates[i], float(delvjax.catchment(envs[i], method, spacing=spacing, seed=0).catchment_pct()[0]))
+        for i in order
+    ]
+    return {"gt45": [r[0] for r in rates], "gt90": [r[1] for r in rates], "best": top}
+
+
 def probe_json(doc: dict) -> str:
     """The probe file's text: its header keys indented, one row a line (small diffs when a probe is re-measured)."""
     head = json.dumps({k: v for k, v in doc.items() if k != "rows"}, indent=1, ensure_ascii=False)[:-2]
@@ -229,7 +254,21 @@ def main() -> None:
     p.add_argument("--gaps", action="store_true", help="run the gap probe and write _gap_probes.json")
     p.add_argument("--probe", nargs="*", default=None, help="with --gaps: only these probes (ids of PROBES)")
     p.add_argument("--members", type=int, default=16, help="with --gaps: members per family (default 16)")
+    p.add_argument("--tail", nargs=2, metavar=("FAMILY", "METHOD"), help="how rare a world with few error points is")
     a = p.parse_args()
+    if a.tail:
+        out = family_tail(*a.tail, members=200 if a.members == 16 else a.members, spacing=a.spacing or 100.0)
+        g45, g90 = np.array(out["gt45"]), np.array(out["gt90"])
+        print(
+            f"{a.tail[0]} {a.tail[1]} k = 0 over {len(g45)} members: e>45 5th percentile {np.percentile(g45, 5):.2f} %"
+        )
+        for v in (5.0, 9.8, 10.0):  # 9.8 / 0.15 %: Table 5.1's env1 ACV at k = 0
+            n45, both = int((g45 <= v).sum()), int(((g45 <= v) & (g90 <= 0.15)).sum())
+            print(f"  e>45 <= {v:g} %: {n45} members, {both} with e>90 <= 0.15 % too")
+        print(
+            "  fewest e>45 (member, e>45 %, e>90 %, catchment %):", [tuple(round(x, 2) for x in t) for t in out["best"]]
+        )
+        return
     if a.gaps:
         gap_probes(a.probe, a.members, a.spacing or 100.0)
         return
