@@ -3,8 +3,11 @@ row it describes and on no other, and a gap no rule explains is counted as unexp
 
 from __future__ import annotations
 
+import json
+
 import pytest
 
+from delvjax.studies.runs import _ensemble_gaps, _gap_probe
 from delvjax.studies.runs._ensemble_gaps import cause_counts, gap_cause, gaps_text, grid_step
 
 
@@ -122,3 +125,9 @@ def test_a_probe_that_moves_more_thesis_numbers_out_than_in_names_no_cause():
     assert gap_cause(row(), 100.0, probes=[probe_row(net=-3, keeps=[5, 8, 20])]).startswith("unexplained")
     cause = gap_cause(row(), 100.0, probes=[probe_row(net=2, keeps=[10, 8, 20])])
     assert "10 of its 20 thesis numbers inside, 8 by default" in cause
+
+
+def test_the_probes_grid_step_is_the_committed_files():
+    """A probe band one grid point short names its cause: the step must be the probe file's grid's."""
+    doc = json.loads(_gap_probe.PROBE_FILE.read_text())
+    assert doc["spacing_cm"] == _ensemble_gaps.PROBE_SPACING and _ensemble_gaps.grid_step(doc["spacing_cm"]) == 1.0
