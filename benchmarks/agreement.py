@@ -17,7 +17,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository root: tests.twins
 from tests.twins import methods as ref
-from conftest import random_landmarks
+from tests.conftest import random_landmarks
 
 import delvjax
 from delvjax.core.sensor import Sensor

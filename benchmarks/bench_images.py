@@ -5,7 +5,9 @@ evaluate a method on the database, in a fresh process so the first run includes 
 Rows: in memory (render -> rings -> vector map, no files), and through files (render-db writes the
 BoB database, load_database reads it back, vector map). The per-image time of the plain NumPy
 reference (tests/twins/images.py) on a few images gives the ratio.
-Run: python benchmarks/bench_images.py [--env env1] [--spacing 25] [--methods delv alv acv warping]
+Run: python benchmarks/bench_images.py [--env env1] [--spacing 25] [--methods delv alv acv warping] [--smoke]
+--smoke: a 200 cm grid, in memory, one reference image: that it runs, not how fast (the test suite
+runs it, tests/test_benchmarks_smoke.py).
 """
 
 from __future__ import annotations
@@ -24,17 +26,17 @@ CHILD = r"""
 import sys, time, json
 t0 = time.perf_counter()
 import numpy as np, jax
-from delvjax import api_images as A, api_image_eval as E
+from delvjax import images as I
 env, spacing, method, mode, folder = sys.argv[1], float(sys.argv[2]), sys.argv[3], sys.argv[4], sys.argv[5]
 t_import = time.perf_counter() - t0
 def run():
     if mode == "memory":
-        db = E.render_in_memory(env, spacing)
+        db = I.render_in_memory(env, spacing)
     else:
         shutil.rmtree(folder, ignore_errors=True)
-        A.render_database(env, folder, spacing)
-        db = E.load_database(folder)
-    vm = E.database_vector_map(db, method)
+        I.render_database(env, folder, spacing)
+        db = I.load_database(folder)
+    vm = I.database_vector_map(db, method)
     vm.error_deg.block_until_ready()
     return db, vm
 import shutil
@@ -91,7 +93,10 @@ def main() -> None:
     p.add_argument("--methods", nargs="+", default=["delv"])
     p.add_argument("--ref-images", type=int, default=2)
     p.add_argument("--modes", nargs="+", default=["memory", "files"], choices=["memory", "files"])
+    p.add_argument("--smoke", action="store_true", help="a coarse grid, in memory only: that it runs")
     a = p.parse_args()
+    if a.smoke:
+        a.spacing, a.modes, a.ref_images = 200.0, ["memory"], 1
     print(f"env {a.env}, spacing {a.spacing:g} cm (fresh process per row; first run includes compilation)")
     print(
         f"{'method':10s} {'mode':7s} {'images':>6s} {'size':>7s} {'first s':>8s} {'warm s':>7s} {'ms/img':>7s} "

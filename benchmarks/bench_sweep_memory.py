@@ -18,7 +18,8 @@ from child import run_child
 CHILD = r"""
 import json, resource, sys, time
 from delvjax.sweeps._spec import parse_sweep
-from delvjax.sweeps import CELL_CHUNK, run_sweep
+from delvjax.sweeps import run_sweep
+from delvjax.sweeps._run import CELL_CHUNK
 cells, spacing = int(sys.argv[1]), float(sys.argv[2])
 spec = parse_sweep(f"[axes]\nd = {{start = 10, stop = 100, num = 100}}\nseed = {{start = 0, stop = {cells // 100 - 1}}}\n"
                    f"spacing = [{spacing}]\n")

@@ -26,6 +26,7 @@ median difference (deg), the bound stated for the method (docs/images.md §6).
 
 from __future__ import annotations
 
+import argparse
 import dataclasses
 import time
 
@@ -103,6 +104,7 @@ def difference_deg(a, b) -> tuple[np.ndarray, int]:
 
 
 def main() -> None:
+    argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     t0 = time.perf_counter()
     noisy = render_in_memory(ENV, spacing=SPACING, seed=SEED)
     clean = dataclasses.replace(noisy, rings=rerendered(noisy, np.zeros(len(noisy.rings.positions))).rings)

@@ -1,0 +1,161 @@
+"""Every benchmark script still runs (issue 54): no timing is asserted.
+
+Each benchmarks/*.py, and each program text it runs in a child process (the `CHILD = r\"\"\"...` strings),
+names only delvjax (and tests.twins, benchmarks-local) modules and attributes that exist: a rename in the
+package breaks this test, not the benchmark a month later (benchmarks/bench_images.py imported a module
+that had gone). Then one process runs every script's `--help` (its top-level imports and argument
+parser) and the smoke size of the DELV landmark benchmark (`--smoke`: L = 4 on a coarse grid)."""
+
+from __future__ import annotations
+
+import ast
+import importlib
+import subprocess
+import sys
+import types
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+BENCH = ROOT / "benchmarks"
+SCRIPTS = sorted(BENCH.glob("*.py"))
+OURS = ("delvjax", "tests")  # whose attributes are checked too
+
+
+def programs(path: Path) -> list[ast.Module]:
+    """The script's own syntax tree and that of every string in it that is a program importing delvjax."""
+    tree = ast.parse(path.read_text())
+    texts = [n.value for n in ast.walk(tree) if isinstance(n, ast.Constant) and isinstance(n.value, str)]
+    return [tree] + [ast.parse(t) for t in texts if "import" in t and "delvjax" in t and _parses(t)]
+
+
+def _parses(text: str) -> bool:
+    try:
+        ast.parse(text)
+    except SyntaxError:
+        return False
+    return True
+
+
+def _ours(obj) -> bool:
+    return isinstance(obj, types.ModuleType) and obj.__name__.split(".")[0] in OURS
+
+
+def _catches_import_error(handler: ast.ExceptHandler) -> bool:
+    names = handler.type.elts if isinstance(handler.type, ast.Tuple) else [handler.type]
+    return any(isinstance(n, ast.Name) and n.id in ("ImportError", "ModuleNotFoundError") for n in names)
+
+
+def missing_names(tree: ast.Module) -> list[str]:
+    """Imports that fail, imported names that do not exist, and `alias.attr` chains on delvjax (and
+    tests) modules that name nothing (followed while the value is one of those modules)."""
+    bad, bound = [], {}
+    fallbacks = {  # imports tried in turn (`try: ... except ImportError:`, a script that runs older trees too)
+        id(n)
+        for t in ast.walk(tree)
+        if isinstance(t, ast.Try) and any(_catches_import_error(h) for h in t.handlers)
+        for part in (t.body, *(h.body for h in t.handlers))
+        for s in part
+        for n in ast.walk(s)
+    }
+    for node in ast.walk(tree):
+        if id(node) in fallbacks:
+            continue
+        if isinstance(node, ast.Import):  # every import, not only delvjax's: a misnamed helper fails too
+            for a in node.names:
+                try:
+                    importlib.import_module(a.name)
+                except ImportError as e:
+                    bad.append(f"import {a.name}: {e}")
+                    continue
+                bound[a.asname or a.name.split(".")[0]] = importlib.import_module(
+                    a.name if a.asname else a.name.split(".")[0]
+                )
+        elif isinstance(node, ast.ImportFrom) and node.module and not node.level:
+            try:
+                mod = importlib.import_module(node.module)
+            except ImportError as e:
+                bad.append(f"from {node.module}: {e}")
+                continue
+            for a in node.names:
+                if hasattr(mod, a.name):
+                    bound[a.asname or a.name] = getattr(mod, a.name)
+                else:
+                    try:
+                        bound[a.asname or a.name] = importlib.import_module(f"{node.module}.{a.name}")
+                    except ImportError:
+                        bad.append(f"from {node.module} import {a.name}")
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Attribute):
+            chain, base = [], node
+            while isinstance(base, ast.Attribute):
+                chain.append(base.attr)
+                base = base.value
+            if not isinstance(base, ast.Name) or not _ours(bound.get(base.id)):
+                continue
+            obj = bound[base.id]
+            for attr in reversed(chain):
+                if not _ours(obj):
+                    break
+                if not hasattr(obj, attr):
+                    bad.append(f"{base.id}.{'.'.join(reversed(chain))}: no {attr} in {obj.__name__}")
+                    break
+                obj = getattr(obj, attr)
+    return bad
+
+
+@pytest.mark.parametrize("path", SCRIPTS, ids=[p.name for p in SCRIPTS])
+def test_a_benchmark_names_only_what_exists(path, monkeypatch):
+    monkeypatch.syspath_prepend(str(BENCH))  # benchmark-local helpers (child, timing) import each other so
+    monkeypatch.syspath_prepend(str(ROOT))  # and tests.twins
+    bad = [b for tree in programs(path) for b in missing_names(tree)]
+    assert not bad, bad
+
+
+def test_the_checker_catches_a_renamed_module_or_attribute():
+    """The failure of issue 54, found: an import of a module that is gone, and an attribute that is gone."""
+    gone = ast.parse("from delvjax import api_images as A\nimport delvjax\ndelvjax.no_such_function()")
+    assert len(missing_names(gone)) == 2
+    tried = "try:\n    from delvjax import api_images\nexcept ImportError:\n    from delvjax import images"
+    assert not missing_names(ast.parse(tried))  # a fallback for older trees is no rename
+    assert not missing_names(
+        ast.parse("import delvjax\nfrom delvjax import images as I\nI.render_in_memory\ndelvjax.vector_map")
+    )
+
+
+RUN_ALL = r"""
+import runpy, sys
+bad = []
+for path in sys.argv[1:]:
+    sys.argv = [path, "--help"]
+    try:
+        runpy.run_path(path, run_name="__main__")
+        bad.append(f"{path}: --help did not exit")
+    except SystemExit as e:
+        if e.code not in (0, None):
+            bad.append(f"{path}: exit {e.code}")
+    except Exception as e:
+        bad.append(f"{path}: {type(e).__name__}: {e}")
+print("BAD", bad)
+"""
+
+
+def test_every_benchmark_imports_and_parses_its_arguments_and_the_delv_one_runs():
+    mains = [str(p) for p in SCRIPTS if "__main__" in p.read_text()]
+    assert len(mains) >= 20  # the helpers child.py and timing.py have no main
+    env_path = f"{BENCH}:{ROOT}"
+    out = subprocess.run(
+        [sys.executable, "-c", RUN_ALL, *mains], cwd=ROOT, capture_output=True, text=True, timeout=300,
+        env={**__import__("os").environ, "PYTHONPATH": env_path},
+    )  # fmt: skip
+    assert out.returncode == 0 and "BAD []" in out.stdout, (out.stdout[-3000:], out.stderr[-3000:])
+    smoke = subprocess.run(
+        [sys.executable, "benchmarks/bench_delv_landmarks.py", "--smoke"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert smoke.returncode == 0, smoke.stderr[-3000:]
+    assert "L = 4" not in smoke.stdout and smoke.stdout.splitlines()[-1].split()[0] == "4"
