@@ -26,7 +26,7 @@ from pathlib import Path
 from collections.abc import Iterator, Sequence
 from typing import Any
 
-from ..core.errors import InputError, warn
+from ..core.errors import InputError, did_you_mean, warn
 from ..outputs._files import check_out_dir, write_json
 from ..outputs._cache import package_sources
 from ._study import STUDY_FILE, Settings, StudyContext, StudyRecord, compile_seconds, settings_record, versions
@@ -137,7 +137,7 @@ def select(only: str | Sequence[str] | None, quick: bool = False) -> list[str]:
         raise InputError("--only", only, "must name at least one study")
     for s in wanted:
         if s not in names:
-            raise InputError("--only", s, f"unknown study (choose from {', '.join(names)})")
+            raise InputError("--only", s, f"unknown study{did_you_mean(s, names)} (choose from {', '.join(names)})")
     return [n for n in names if n in wanted]
 
 

@@ -92,6 +92,12 @@ REFUSED = [
     ),
     ("plot-sweep no sweep", {"x/a.txt": "a"}, ["plot-sweep", "{t}/x", "--out", "{t}/p.png"], r"."),
     ("reproduce unknown study", {}, ["reproduce", "--only", "nosuchstudy", "--out", "{t}/r"], r"only: "),
+    (
+        "reproduce study typo",
+        {},
+        ["reproduce", "--only", "step_distanse", "--out", "{t}/r"],
+        r"^--only: unknown study \(did you mean 'step_distance'\?\)",
+    ),
     ("reproduce out is a file", {"r": "x"}, ["reproduce", "--only", "environments", "--out", "{t}/r"], r"out: "),
     ("layout landmarks 0", {}, ["optimise-layout", "--landmarks", "0", "--out", "{t}/o"], r"landmarks: "),
     ("sensitivity tau 0", {}, ["sensitivity", "env1", "--tau", "0", "--out", "{t}/s"], r"tau: "),
