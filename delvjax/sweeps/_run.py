@@ -73,6 +73,8 @@ def run_sweep(
     phase: Callable[[str], None] | None = None,
     lanes: int = DEFAULT_LANES,
     skip: Callable[[dict], bool] | None = None,
+    program: tuple[str, ...] | None = None,
+    mask_rows: int = 1,
 ) -> xarray.Dataset:
     """Every cell of `spec`: metrics as an `xarray.Dataset` (one dimension per axis of more than one
     value). Every cell is validated before any work; `announce()` is called then; `progress(done,
@@ -81,9 +83,13 @@ def run_sweep(
     (`cell_store`: a killed or changed sweep resumes). `lanes`: rollout trials advanced side by side
     (`rollouts.run_trials`; no number depends on it): fewer waste less on cells of few trials.
     `skip(cell)` True: the cell (its axis values, as `spec.cells()` gives them) is not computed and its
-    metrics are NaN (a study that needs only some cells of a product; the others' numbers are the same)."""
+    metrics are NaN (a study that needs only some cells of a product; the others' numbers are the same).
+    `program` (registry names compiled into one program with every cell's method, as `point_outcomes`') and
+    `mask_rows` (visibility masks padded to at least this many rows) let sweeps of other methods or occlusions
+    share one compiled program (the same numbers: a cell's trials do not depend on its companions)."""
     envs = _envs(spec)
-    groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None)
+    groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None, program)
+    rows = max(rows, mask_rows)
     n = spec.n_cells
     names = sum_names(spec.kind)
     extra = (len(spec.distances),) if spec.kind.per_distance else ()
@@ -115,16 +121,17 @@ def run_sweep(
     width = -(-CELL_CHUNK // per_call) * per_call  # cells per call, a multiple of the devices
     live = [cells for cells in ([i for i in g if todo[i]] for g in groups) if cells]  # one program each
     jobs = []  # (cells, padded size, the program's number on its first chunk else False); chunks padded to `width`
-    for program, cells in enumerate(live, 1):
-        size = width if len(cells) > width else -(-len(cells) // per_call) * per_call
-        jobs += [(cells[start : start + width], size, start == 0 and program) for start in range(0, len(cells), width)]
+    idle = str(spec.kind) != "vector-map"  # a rollout chunk's padding runs no trials: every chunk `width` cells,
+    for number, cells in enumerate(live, 1):  # one program shape for sweeps of any size (`idle_padding`)
+        size = width if idle or len(cells) > width else -(-len(cells) // per_call) * per_call
+        jobs += [(cells[start : start + width], size, start == 0 and number) for start in range(0, len(cells), width)]
     mine: list[int] = []  # the cells this process computed
     for chunk, size, first in jobs:
         if first and phase is not None:  # the program's first call compiles it (or loads it from the cache)
             phase(f"compiling program {first} of {len(live)}")
         padded = chunk + [chunk[0]] * (size - len(chunk))
         start, stop = (0, size) if processes == 1 else process_rows(mesh, size)  # this process's rows
-        setups = [cell_setup(spec, envs, spec.cell(i), max_points) for i in padded[start:stop]]
+        setups = [cell_setup(spec, envs, spec.cell(i), max_points, program) for i in padded[start:stop]]
         own = chunk[start:stop]  # this process's real cells (the rest of its rows are padding: no trials)
         res = evaluate(spec.kind, setups, mesh, rows, None if processes == 1 else size, lanes, real=len(own))
         for k in names:

@@ -48,7 +48,8 @@ from ._ensemble_maps_report import (
     visual_figure,
 )
 from ._ensemble_stats import claim_rows
-from .ensembles import record_claims
+from ._settings_design import MASK_ROWS
+from .ensembles import EVERY_METHOD, LANES, record_claims
 from .visual_compass import BACKGROUNDS, TRUE, VISUAL
 
 TITLE = (
@@ -132,7 +133,9 @@ def run_slice(ctx, sizes: dict, j: int, size: int, worlds: dict) -> None:
     if sizes["preview"]:
         return
     text = sweep_text("catchment", envs, TRUE, sizes["spacing"], seed, compass_noise_deg=SIGMAS)
-    add(worlds, compass_keys(run_sweep(parse_sweep(text, "compass"), lanes=lanes), TRUE, SIGMAS), suffix)
+    # the `ensembles` study's compiled program (its methods, masks and lanes): no program of its own
+    shared = {"lanes": min(LANES, lanes), "program": EVERY_METHOD, "mask_rows": MASK_ROWS}
+    add(worlds, compass_keys(run_sweep(parse_sweep(text, "compass"), **shared), TRUE, SIGMAS), suffix)
     for bg in BACKGROUNDS:  # three sweeps of one program per method (the background a traced leaf)
         text = sweep_text("vector-map", envs, VISUAL, sizes["spacing"], seed, background=[bg])
         add(worlds, visual_keys(run_sweep(parse_sweep(text, "visual")), zip(TRUE, VISUAL), bg, False), suffix)

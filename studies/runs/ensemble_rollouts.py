@@ -30,7 +30,10 @@ from ._ensemble_rollouts_report import (
     thesis_rows,
 )
 from ._ensemble_stats import BAND, claim_rows
+from ._settings_design import MASK_ROWS
 from .ensembles import (
+    EVERY_METHOD,
+    LANES,
     CLAIMS_TABLE_NOTE,
     MEMBERS,
     PREVIEW_SPACING,
@@ -66,6 +69,17 @@ def plan(ctx) -> tuple[tuple[str, ...], int, float, int, int]:
     return SWEEPS, MEMBERS, SPACING, min(TRIALS, ctx.settings.trials), SEED_SLICES
 
 
+def sharing(name: str, lanes: int, full: bool = True) -> dict:
+    """`run_sweep`'s arguments of a sweep: DELV's catchments (d, levels) in the `ensembles` study's compiled program
+    (its methods, masks and lanes: a full run's LANES, a preview's the run's), the landmark methods' success rates
+    in one program; the numbers are the same (a cell's trials do not depend on the program's other methods)."""
+    if name in ("steps", "levels"):
+        return {"lanes": min(LANES, lanes) if full else lanes, "program": EVERY_METHOD, "mask_rows": MASK_ROWS}
+    if name in ("levels_success", "rules_success", "compass_success"):
+        return {"lanes": lanes, "program": EVERY_METHOD}
+    return {"lanes": lanes}
+
+
 def run_members(sweeps, members: int, spacing: float, trials: int, slices: int, seed: int, lanes: int, step=None):
     """{world label: {claims key: value}} of every sweep over every seed slice (slice j: members j * size ..,
     under seed + j; the built-in worlds in every slice, labelled `<world>@j` beyond the first)."""
@@ -75,7 +89,8 @@ def run_members(sweeps, members: int, spacing: float, trials: int, slices: int, 
         for j in range(slices):
             first, count = j * size, min(size, members - j * size)
             for _, spec in sweep_specs(count, first, seed, j, spacing, trials, (name,), members):
-                for label, nums in sweep_numbers(name, run_sweep(spec, lanes=lanes), j).items():
+                ds = run_sweep(spec, **sharing(name, lanes, slices > 1))
+                for label, nums in sweep_numbers(name, ds, j).items():
                     worlds.setdefault(label, {}).update(nums)
         if step is not None:
             step(name)
