@@ -56,7 +56,7 @@ TITLE = (
     "World ensembles: the visual compass, error curves and the landmark hull over every world the thesis's words "
     "allow (beyond the thesis)"
 )
-COST = 300  # rough seconds of a full run (2 CPU cores shared with a test run: 276 s; 232 s without claims 5, 6, 11)
+COST = 500  # rough seconds of a full run: 300 before the visual catchments of every slice (about +145 CPU-s a slice)
 FAMILIES = ("env1", "env2", "env3")
 MAP_METHODS = ("delv", "delv-compass", "acv", "alv", "warping")  # per-point maps: claims 2, 7, 19
 SIGMAS = (0.0, 45.0)  # compass noise (claim 33 reads the catchment lost from 0 to 45 degrees)
