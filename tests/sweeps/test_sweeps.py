@@ -210,11 +210,11 @@ def test_a_killed_sweep_resumes_and_a_changed_file_computes_only_its_new_cells(t
     monkeypatch.setattr(sweeps, "CELL_CHUNK", 2)
     real, calls = sweeps.evaluate, []
 
-    def counted(kind, setups, *args):
+    def counted(kind, setups, *args, **kwargs):
         calls.append(len(setups))
         if len(calls) == 2 and kill:
             raise KeyboardInterrupt  # killed after the first chunk
-        return real(kind, setups, *args)
+        return real(kind, setups, *args, **kwargs)
 
     monkeypatch.setattr(sweeps, "evaluate", counted)
     kill, out = True, tmp_path / "out"
@@ -237,7 +237,7 @@ def test_skipped_cells_are_not_computed_and_the_others_keep_their_numbers(monkey
     monkeypatch.setattr(sweeps, "CELL_CHUNK", 2)
     real, calls = sweeps.evaluate, []
     monkeypatch.setattr(
-        sweeps, "evaluate", lambda kind, setups, *a: calls.append(len(setups)) or real(kind, setups, *a)
+        sweeps, "evaluate", lambda kind, setups, *a, **k: calls.append(len(setups)) or real(kind, setups, *a, **k)
     )
     full = sweeps.run_sweep(parse_sweep(text))
     calls[:] = []
