@@ -8,10 +8,9 @@ import jax.numpy as jnp
 from jax import Array
 
 from delvjax.core.geometry import angle_of, safe_norm, unit, wrap
+from delvjax.core.methods.acv import correction_direction
 from delvjax.core.methods.base import HomingMethod
 from delvjax.core.methods.heading import Compass, HeadingSource
-from delvjax.core.methods.pairing import shift_pairs
-from delvjax.core.search import first_argmin
 from delvjax.core.sensing import UnitMove
 from delvjax.options import register, unregister
 
@@ -51,16 +50,8 @@ class ACVAgent(HomingMethod):
 
     def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
         heading = self.heading(home, view)
-        theta, theta_ok = home.start.bearing, home.start.valid
         a, a_ok = view.end.bearing + heading, view.end.valid  # blobs arrive sorted in the agent frame
-        ref_idx, cur_idx, pair_ok, shift_ok = shift_pairs(theta_ok, a_ok)
-        diff = wrap(theta[ref_idx] - a[cur_idx])  # (K, S)
-        cost = jnp.where(shift_ok, jnp.sum(jnp.where(pair_ok, diff * diff, 0.0), axis=1), jnp.inf)
-        k = first_argmin(cost)
-        corr = -diff[k][:, None] * unit(a[cur_idx[k]] + jnp.pi / 2)
-        hv = jnp.sum(jnp.where(pair_ok[k][:, None], corr, 0.0), axis=0)
-        valid = jnp.any(pair_ok[k]) & (safe_norm(hv) > 0)
-        return jnp.where(valid, wrap(angle_of(hv) - heading), jnp.nan), valid
+        return correction_direction(home.start.bearing, home.start.valid, a, a_ok, heading)
 
 
 class ALVMean(HomingMethod):

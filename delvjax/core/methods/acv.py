@@ -25,16 +25,21 @@ class ACV(HomingMethod):
 
     def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:
         heading = self.heading(home, view)
-        theta, theta_ok = home.start.bearing, home.start.valid
         a, a_ok = sort_blobs(view.end.bearing + heading, view.end.valid)
-        ref_idx, cur_idx, pair_ok, shift_ok = shift_pairs(theta_ok, a_ok)
-        diff = wrap(theta[ref_idx] - a[cur_idx])  # (K, S)
-        cost = jnp.where(shift_ok, jnp.sum(jnp.where(pair_ok, diff * diff, 0.0), axis=1), jnp.inf)
-        k = first_argmin(cost)
-        corr = -diff[k][:, None] * unit(a[cur_idx[k]] + jnp.pi / 2)
-        hv = jnp.sum(jnp.where(pair_ok[k][:, None], corr, 0.0), axis=0)
-        valid = jnp.any(pair_ok[k]) & (safe_norm(hv) > 0)
-        return jnp.where(valid, wrap(angle_of(hv) - heading), jnp.nan), valid
+        return correction_direction(home.start.bearing, home.start.valid, a, a_ok, heading)
 
     def reads_gray(self, channel: str) -> bool:
         return self.heading.reads_gray
+
+
+def correction_direction(theta: Array, theta_ok: Array, a: Array, a_ok: Array, heading: Array) -> tuple[Array, Array]:
+    """Eq 5.2 on two bearing lists in the home frame: pair by the cyclic shift minimising
+    sum wrap(theta - a)^2, sum the corrections; (direction in the agent frame, valid)."""
+    ref_idx, cur_idx, pair_ok, shift_ok = shift_pairs(theta_ok, a_ok)
+    diff = wrap(theta[ref_idx] - a[cur_idx])  # (K, S)
+    cost = jnp.where(shift_ok, jnp.sum(jnp.where(pair_ok, diff * diff, 0.0), axis=1), jnp.inf)
+    k = first_argmin(cost)
+    corr = -diff[k][:, None] * unit(a[cur_idx[k]] + jnp.pi / 2)
+    hv = jnp.sum(jnp.where(pair_ok[k][:, None], corr, 0.0), axis=0)
+    valid = jnp.any(pair_ok[k]) & (safe_norm(hv) > 0)
+    return jnp.where(valid, wrap(angle_of(hv) - heading), jnp.nan), valid
