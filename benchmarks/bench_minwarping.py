@@ -42,6 +42,12 @@ from delvjax.images._render import ImageSettings  # noqa: E402
 from tests.twins import minwarping as tw  # noqa: E402
 
 CAMERA = Camera(rows=48, cols=288)
+# the authors' configuration: 96 x 96 hypotheses on 288 columns (the defaults are 72 x 72: mw.AUTHORS_GRID)
+GRID = {
+    "minwarping": {f"mw_{k}": v for k, v in mw.AUTHORS_GRID.items()},
+    "hybrid": {f"mw_{k}": v for k, v in mw.AUTHORS_GRID.items()},
+    "warping2d": {f"w2d_{k}": v for k, v in mw.AUTHORS_GRID.items()},
+}
 
 
 def peak_rss_mb() -> float:
@@ -53,11 +59,11 @@ def time_map(method: str, spacing: float) -> dict:
     db = render_in_memory("env1", spacing=spacing, settings=ImageSettings(camera=CAMERA), panoramas=True)
     render = time.perf_counter() - t0
     t0 = time.perf_counter()
-    vm = database_vector_map(db, method)
+    vm = database_vector_map(db, method, **GRID[method])
     jax.block_until_ready(vm.direction)
     first = time.perf_counter() - t0
     t0 = time.perf_counter()
-    vm = database_vector_map(db, method)
+    vm = database_vector_map(db, method, **GRID[method])
     jax.block_until_ready(vm.direction)
     warm = time.perf_counter() - t0
     e = np.asarray(vm.error_deg)[np.asarray(vm.included)]
@@ -119,7 +125,7 @@ def error_table() -> None:
     runs = [("minwarping", {}), ("warping2d", {}), ("hybrid", {}), ("delv", {})]
     runs += [("warping", {"channel": c, "n_psi": 72}) for c in ("gray", "mask")]
     for method, opts in runs:
-        vm = database_vector_map(db, method, **opts)
+        vm = database_vector_map(db, method, **{**GRID.get(method, {}), **opts})
         e = np.asarray(vm.error_deg)[np.asarray(vm.included)]
         c = catchment_numbers(database_catchment(db, vm)[1])
         name = f"{method} {opts.get('channel', '')}".strip()

@@ -42,10 +42,10 @@ METHODS = ("delv", "warping")
 STEPS = 2 * len(METHODS) * len(RULES) + 2
 N_STARTS = 8
 # MinWarping on env1's rendered panoramas (docs/images.md §10) in the authors' configuration: 288-column
-# panoramas, 96 x 96 hypotheses (MinWarping's defaults). Full run only: its vector map of the full grid
+# panoramas, 96 x 96 hypotheses (minwarping.AUTHORS_GRID). Full run only: its vector map of the full grid
 # takes about 30 s on 2 cores (at 360 columns and 90 x 90, 75 s, and 4.57° against 4.51° mean error at
 # spacing 50), a catchment of the full grid minutes, so no rollouts but trajectories.
-SCENE_MINWARPING = {"n_pix": 288}
+SCENE_MINWARPING = {"n_pix": 288, "mw_n_alpha": 96, "mw_n_psi": 96}
 
 
 def run(ctx) -> None:

@@ -11,7 +11,8 @@ from delvjax.core.errors import InputError
 
 def test_minwarping_on_the_default_width_names_the_flag_to_change(tmp_path, capsys):
     out = tmp_path / "m.csv"
-    assert main(["vector-map", "env1", "--method", "minwarping", "--spacing", "200", "--out", str(out)]) == 2
+    grid = ["--mw-n-alpha", "96", "--mw-n-psi", "96"]  # the authors' counts: the defaults (72) divide 360
+    assert main(["vector-map", "env1", "--method", "minwarping", *grid, "--spacing", "200", "--out", str(out)]) == 2
     line = capsys.readouterr().err.strip().splitlines()[-1]
     assert line.startswith("delvjax: error: --mw-n-alpha and --mw-n-psi: must divide the panorama width 360"), line
     assert "90" in line and not out.exists()  # a count that divides it

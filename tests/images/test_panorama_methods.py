@@ -12,13 +12,14 @@ import pytest
 from delvjax.cli._main import main
 from delvjax.core.errors import InputError
 from delvjax.core.images import Camera
+from delvjax.core.methods.minwarping import AUTHORS_GRID
 from delvjax.images import load_database, render_in_memory
 from delvjax.images._evaluate import database_vector_map
 from delvjax.images._render import ImageSettings
 
 from tests.cases.images_io import error_line, read_csv
 
-GRID36 = ["--mw-n-alpha", "36", "--mw-n-psi", "36"]  # small_db is 72 columns wide: 96 does not divide it
+GRID36 = ["--mw-n-alpha", "36", "--mw-n-psi", "36"]  # small_db is 72 columns wide: a small grid that divides it
 
 
 @pytest.mark.parametrize(
@@ -41,7 +42,7 @@ def test_vector_map_and_catchment_on_a_database(small_db, tmp_path, capsys, meth
 @pytest.mark.parametrize(
     "flags, field",
     [
-        ([], "mw_n_alpha"),  # the default 96 does not divide 72 columns
+        (["--mw-n-alpha", "96", "--mw-n-psi", "96"], "mw_n_alpha"),  # the authors' 96 does not divide 72 columns
         (["--mw-n-alpha", "36", "--mw-n-psi", "5"], "mw_n_psi"),
         ([*GRID36, "--mw-n-planes", "1"], "mw_n_planes"),  # one scale plane
         ([*GRID36, "--mw-n-planes", "0"], "mw_n_planes"),
@@ -59,10 +60,11 @@ def test_bad_settings_are_one_line_and_nothing_is_written(small_db, tmp_path, ca
 
 
 def test_a_ring_scene_renders_panoramas_but_refuses_hypotheses_that_do_not_divide_its_rings(tmp_path, capsys):
-    """docs/images.md §10: 96 does not divide the 360-pixel rings; the message names the setting and the
-    divisors that would do, nothing is written."""
+    """docs/images.md §10: the authors' 96 does not divide the 360-pixel rings; the message names the setting
+    and the divisors that would do, nothing is written."""
     out = tmp_path / "m.csv"
-    assert main(["vector-map", "env1", "--method", "minwarping", "--out", str(out)]) == 2
+    grid = ["--mw-n-alpha", "96", "--mw-n-psi", "96"]
+    assert main(["vector-map", "env1", "--method", "minwarping", *grid, "--out", str(out)]) == 2
     line = error_line(capsys)
     assert line.startswith("delvjax: error: --mw-n-alpha and --mw-n-psi:") and "90" in line and "360" in line, line
     assert not out.exists()
@@ -86,8 +88,9 @@ def test_rendered_world_maps_match_the_reference_numbers():
         "env1", spacing=100.0, settings=ImageSettings(camera=Camera(rows=48, cols=288)), panoramas=True
     )
     errors = {}
+    authors = {"minwarping": "mw", "warping2d": "w2d"}  # the reference's 96 x 96 hypotheses (the defaults: 72)
     for method in ("minwarping", "warping2d"):
-        vm = database_vector_map(db, method)
+        vm = database_vector_map(db, method, **{f"{authors[method]}_{k}": v for k, v in AUTHORS_GRID.items()})
         e = np.asarray(vm.error_deg)[np.asarray(vm.included)]
         errors[method] = (e.mean(), np.median(e), int((e > 45).sum()))
     mean, median, wild = errors["minwarping"]
@@ -109,7 +112,7 @@ def test_minwarpings_compass_serves_delv_and_alv(small_db):
         assert np.asarray(vm.valid)[inc].mean() > 0.9
         assert np.asarray(vm.error_deg)[inc].mean() < 45
     with pytest.raises(InputError, match="mw_n_alpha"):
-        database_vector_map(db, DELV(heading=MinWarpingCompass()))  # 96 does not divide 72
+        database_vector_map(db, DELV(heading=MinWarpingCompass(warping=MinWarping(**AUTHORS_GRID))))  # 96 ∤ 72
 
 
 def test_success_rate_on_a_database(small_db):

@@ -325,3 +325,13 @@ def test_bad_settings_are_refused_naming_the_setting(settings, field):
     ss, cv = pair(0)
     with pytest.raises(InputError):
         mw.search(jnp.asarray(ss), jnp.asarray(cv), jnp.asarray(ELEV), cfg)
+
+
+@pytest.mark.parametrize("cls", [MinWarping, Warping2D])
+@pytest.mark.parametrize("cols", [72, 288, 360])
+def test_the_default_hypotheses_divide_every_width_delvjax_renders_or_the_studies_use(cls, cols):
+    """360 (the default ring and render width), 288 (the authors'), 72 (the tests' databases): 96 divided only
+    288, so `--method minwarping` was refused on the default width (issue 53 point 7)."""
+    cfg = cls()
+    assert cols % cfg.n_alpha == 0 and cols % cfg.n_psi == 0
+    mw.check_grid(cfg, None, cols)  # no InputError
