@@ -55,7 +55,7 @@ def main() -> None:
     print(f"cold (compilation included): {times[0]:.1f} s; warm: {times[1]:.1f} s")
     print(f"warm: {cells / times[1]:.1f} cells/s, {rollouts / times[1]:.0f} rollouts/s")
     print(
-        f"median DELV (compass) catchment at k = 1: {float(np.median(ds.catchment_pct.sel({'method': 'delv-compass', 'occlude': 1}).values)):.1f} %"
+        f"median DELV (compass) catchment at k = 1: {float(np.median(ds.catchment_pct.sel({'homing_method': 'delv-compass', 'occlude': 1}).values)):.1f} %"
     )
 
 

@@ -89,8 +89,14 @@ def test_valid_environments_give_finite_results_where_valid(scene, seed, clearan
         try:
             vm = delvjax.vector_map(env, method=method, spacing=spacing, seed=seed, clearance=clearance, d=d, **noise)
         except InputError as exc:
-            # the only refusals of a valid scene: no grid point clear, a method that reads panoramas
-            assert exc.field == "spacing" or (exc.field == "method" and "panoramas" in str(exc)), exc
+            # the only refusals of a valid scene: no grid point clear, a method that reads panoramas, or every
+            # landmark narrower from home than the default ring's 1-degree pixel (options._limits.check_pixels)
+            widest = max(2 * np.degrees(np.arcsin(min(r / np.hypot(x - home[0], y - home[1]), 1.0))) for x, y, r in lms)
+            assert (
+                exc.field == "spacing"
+                or (exc.field == "method" and "panoramas" in str(exc))
+                or (exc.field == "n_pix" and widest < 1.0)
+            ), exc
             continue
         valid, direction, error = (np.asarray(a) for a in (vm.valid, vm.direction, vm.error_deg))
         assert np.isfinite(np.asarray(vm.points)).all() and np.isfinite(np.asarray(vm.heading)).all()
