@@ -209,6 +209,7 @@ LATE = (
     "markdown",
     "tqdm",
     "scipy",
+    "optimistix",
     "jax.experimental",
     "importlib",
     "delvjax.plots",

@@ -159,3 +159,17 @@ def test_every_benchmark_imports_and_parses_its_arguments_and_the_delv_one_runs(
     )
     assert smoke.returncode == 0, smoke.stderr[-3000:]
     assert "L = 4" not in smoke.stdout and smoke.stdout.splitlines()[-1].split()[0] == "4"
+
+
+def test_the_startup_benchmark_runs_and_prints_its_ratio():
+    """benchmarks/bench_startup.py --smoke: one cold and one warm vector map on a 200 cm grid, import jax
+    and --help, as whole processes; the ratio line of issue 54 (no timing asserted)."""
+    smoke = subprocess.run(
+        [sys.executable, "benchmarks/bench_startup.py", "--smoke"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert smoke.returncode == 0, smoke.stderr[-3000:]
+    assert "warm vector map / import jax:" in smoke.stdout.splitlines()[-1], smoke.stdout

@@ -12,6 +12,7 @@ import numpy as np
 
 from ..evaluate import _vector_map as api
 from ..outputs._cache import enable_compilation_cache
+from ..outputs._programs import stored_program
 from ..outputs._temporary import Terminated, terminate_as_interrupt
 from ._args import (
     ProgressBar,
@@ -42,6 +43,10 @@ from ..reproduce._study import figure_formats
 
 # --- commands ---------------------------------------------------------------------------
 
+# A vector map's chunk program, kept on disk between `delvjax` processes (`outputs._programs`): a warm run
+# neither traces nor lowers it. Not for a call of `main` from Python, whose process keeps its programs itself.
+KEPT_MAP = stored_program(maps.chunk_program, lambda leaves: maps.VectorMap(*leaves))
+
 
 def cmd_envs(args: argparse.Namespace) -> int:
     for name in PRESETS:
@@ -63,8 +68,6 @@ def add_vector_map(sub) -> None:
 
 
 def cmd_vector_map(args: argparse.Namespace) -> int:
-    from ..plots._maps import vector_map_figure  # matplotlib: loaded only when a figure is drawn
-
     if args.images is not None:
         return cmd_vector_map_images(args)
     check_outputs(args)
@@ -75,7 +78,7 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     progress(f"vector map of {args.method} on {env.name} (spacing {args.spacing:g} cm, {n_points} cells) ...")
     with ProgressBar("pt", request["batch_size"]) as bar:  # a bar only when the grid runs in several chunks
         bar.start(n_points, compiling(1, 1))
-        vm = maps.vector_map(**request, progress=bar)
+        vm = maps.vector_map(**request, progress=bar, program=getattr(args, "map_program", None))
     vm.error_deg.block_until_ready()
     summary = {
         "env": env.name,
@@ -91,12 +94,13 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     if not bool(np.any(np.asarray(vm.valid) & np.asarray(vm.included))):
         warn("every grid point is invalid: the method finds no homing direction anywhere (too few visible landmarks?)")
     title = f"{args.method} on {env.name}: mean error {summary['mean_error_deg']:.1f}°"
-    write_outputs(
-        args,
-        vector_map_columns(vm),
-        summary,
-        lambda: vector_map_figure(env, vm, args.spacing, title=title, classes=args.classes),
-    )
+
+    def figure():
+        from ..plots._maps import vector_map_figure  # matplotlib: loaded only when a figure is drawn
+
+        return vector_map_figure(env, vm, args.spacing, title=title, classes=args.classes)
+
+    write_outputs(args, vector_map_columns(vm), summary, figure)
     return 0
 
 
@@ -237,13 +241,16 @@ def as_typed(exc: InputError, parser: argparse.ArgumentParser, args: argparse.Na
     return exc if field == exc.field else InputError(field, exc.value, exc.expected)
 
 
-def main(argv: list[str] | None = None, own_process: bool = False) -> int:
+def main(argv: list[str] | None = None, own_process: bool = False, keep_programs: bool = False) -> int:
     """Run one command: exit 0, 2 on bad input (one line), 130 on Ctrl-C and 143 on SIGTERM (every
     temporary removed, finished work kept: docs/reliability.md). `own_process`: the `delvjax` command
-    owns the process, and SIGTERM unwinds like Ctrl-C (not so for a call from Python)."""
+    owns the process, and SIGTERM unwinds like Ctrl-C (not so for a call from Python). `keep_programs`:
+    a vector map's compiled program is kept on disk for the next process (`KEPT_MAP`)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     args.defaults = command_defaults(parser, args)
+    if keep_programs:
+        args.map_program = KEPT_MAP  # a callable: no setting of the run (`command_settings`)
     enable_compilation_cache()
     if own_process:
         terminate_as_interrupt()

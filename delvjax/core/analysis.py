@@ -14,7 +14,6 @@ from collections.abc import Callable
 
 import jax
 import jax.numpy as jnp
-import optimistix as optx
 from jax import Array
 from jax.typing import ArrayLike
 
@@ -45,6 +44,8 @@ def equilibria(
     env: Env, starts: ArrayLike, field: str = "alv", rtol: float = 1e-6, atol: float = 1e-4, max_steps: int = 64
 ) -> tuple[Array, Array]:
     """Zeros of a homing field from every start (vmapped optimistix Newton): (points (S, 2), converged (S,))."""
+    import optimistix as optx  # optimistix: loaded only when a solver runs (not by a vector map)
+
     fn = FIELDS[field]
     solver = optx.Newton(rtol=rtol, atol=atol)
 

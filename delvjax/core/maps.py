@@ -139,12 +139,14 @@ def vector_map(
     visible: Array | None = None,
     batch_size: int = DEFAULT_BATCH,
     progress: Callable[[int, int], None] | None = None,
+    program: Callable[..., VectorMap] | None = None,
 ) -> VectorMap:
     """The vector map of `method` on the docs/model.md §5 grid; heading fixed (rad) or random per point from `key`.
 
     The grid runs in host-side chunks of `batch_size` points (the last one padded, so one
     program), so memory is bounded by the chunk; `progress(n, P)` is called after each chunk of
-    n of the P points. The numbers are the same for every `batch_size`.
+    n of the P points. The numbers are the same for every `batch_size`. `program` stands in for
+    the chunk's jitted program on one device (the command line's, kept on disk between runs).
     """
     key = jax.random.PRNGKey(0) if key is None else key
     points = grid_points(env.arena, spacing)
@@ -158,7 +160,9 @@ def vector_map(
         rows = points[start : start + chunk]
         rows = np.concatenate([rows, np.repeat(rows[:1], chunk - len(rows), axis=0)])
         if mesh is None:
-            part = _vector_map(env, rows, heading, key, sensor, method, clearance, visible, np.int32(start))
+            part = (program or _vector_map)(
+                env, rows, heading, key, sensor, method, clearance, visible, np.int32(start)
+            )
         else:  # device d evaluates grid points start + d * per_device ...: the same per-point program
             starts = (start + per_device * np.arange(mesh.size)).astype(np.int32)
             part = over_devices(
@@ -211,6 +215,9 @@ def _vector_map(
         valid=valid,
         error_deg=angular_error_deg(direction, valid, points, env.home),
     )
+
+
+chunk_program = _vector_map  # one chunk's jitted program: what `vector_map(program=)` stands in for
 
 
 def replace_field(method: HomingMethod, sensor: Sensor, name: str, value) -> tuple[HomingMethod, Sensor]:
@@ -280,7 +287,7 @@ def vector_map_columns(vm: VectorMap) -> dict[str, np.ndarray]:
         "direction_deg": np.degrees(np.asarray(vm.direction)[inc]),
         "error_deg": np.asarray(vm.error_deg)[inc],
         "valid": np.asarray(vm.valid)[inc],
-        "error_class": np.asarray(error_class(vm.error_deg))[inc],
+        "error_class": error_class(np.asarray(vm.error_deg))[inc],  # NumPy's comparisons: no programs compiled
     }
 
 

@@ -23,7 +23,6 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 import numpy as np
-import optimistix as optx
 
 from ..envs._presets import load_env
 from ..evaluate._rollouts import catchment
@@ -98,7 +97,13 @@ def _objective(u, args):
     return loss + PENALTY * penalty
 
 
-SOLVER = optx.BFGS(rtol=1e-5, atol=1e-6)
+def solver() -> eqx.Module:
+    """optimistix's BFGS, built where a step is traced (equal settings: an equal solver)."""
+    import optimistix as optx  # optimistix: loaded only when a solver runs (not by a vector map)
+
+    return optx.BFGS(rtol=1e-5, atol=1e-6)
+
+
 F_STRUCT = jax.ShapeDtypeStruct((), jnp.float32)
 
 
@@ -108,9 +113,9 @@ def _fn(u, args):
 
 
 # module-level programs: every layout of one shape reuses them (a lambda per call would recompile)
-_init = eqx.filter_jit(lambda u, a: SOLVER.init(_fn, u, a, {}, F_STRUCT, None, frozenset()))
-_step = eqx.filter_jit(lambda u, s, a: SOLVER.step(_fn, u, a, {}, s, frozenset()))
-_done = eqx.filter_jit(lambda u, s, a: SOLVER.terminate(_fn, u, a, {}, s, frozenset())[0])
+_init = eqx.filter_jit(lambda u, a: solver().init(_fn, u, a, {}, F_STRUCT, None, frozenset()))
+_step = eqx.filter_jit(lambda u, s, a: solver().step(_fn, u, a, {}, s, frozenset()))
+_done = eqx.filter_jit(lambda u, s, a: solver().terminate(_fn, u, a, {}, s, frozenset())[0])
 _value = eqx.filter_jit(_objective)
 
 

@@ -20,6 +20,7 @@ from ..core.methods import HomingMethod
 from ..core.scene import Env
 from ..core.sensing import record_home
 from ..core.sensor import Sensor
+from ..outputs._programs import kept_number
 from ._checks import is_traced, positive_int
 
 MAX_POINTS = 1_000_000  # grid points (times masks) or trials in one run, by default
@@ -121,18 +122,23 @@ def item_peak_bytes(env: Env, method: HomingMethod, sensor: Sensor) -> int:
         jax.tree.structure((env, method, sensor)),  # an Env's name is not part of it (`scene.Name`)
         tuple((np.shape(x), str(jnp.result_type(x))) for x in leaves),
     )
-    if key not in _PEAK:
-        seed = jax.random.PRNGKey(0)
-
-        def one(scene: Env, meth: HomingMethod, sens: Sensor, point: jax.Array, heading: jax.Array):
-            home = record_home(scene, seed, sens)
-            seen = jnp.ones(scene.landmarks.shape[0], bool)
-            return direction_from(scene, seen, map_poses(point, heading, seed, 0, sens), home, meth, sens)
-
-        # every leaf an argument, as in the programs that run (a method's float settings arrive traced)
-        shapes = jax.tree.map(lambda a: jax.ShapeDtypeStruct(np.shape(a), jnp.result_type(a)), (env, method, sensor))
-        _PEAK[key] = _largest(jax.make_jaxpr(one)(*shapes, jnp.zeros(2), jnp.zeros(())).jaxpr)
+    if key not in _PEAK:  # kept on disk by the command line (`kept_number`): a warm run traces nothing here
+        _PEAK[key] = kept_number("item_peak_bytes", repr(key), lambda: _traced_peak(env, method, sensor))
     return _PEAK[key]
+
+
+def _traced_peak(env: Env, method: HomingMethod, sensor: Sensor) -> int:
+    """`item_peak_bytes` by tracing one item's program."""
+    seed = jax.random.PRNGKey(0)
+
+    def one(scene: Env, meth: HomingMethod, sens: Sensor, point: jax.Array, heading: jax.Array):
+        home = record_home(scene, seed, sens)
+        seen = jnp.ones(scene.landmarks.shape[0], bool)
+        return direction_from(scene, seen, map_poses(point, heading, seed, 0, sens), home, meth, sens)
+
+    # every leaf an argument, as in the programs that run (a method's float settings arrive traced)
+    shapes = jax.tree.map(lambda a: jax.ShapeDtypeStruct(np.shape(a), jnp.result_type(a)), (env, method, sensor))
+    return _largest(jax.make_jaxpr(one)(*shapes, jnp.zeros(2), jnp.zeros(())).jaxpr)
 
 
 # Hypothesis tables a method builds on the host while its program is traced, bytes per entry of the
@@ -215,8 +221,8 @@ def check_pixels(env: Env, sensor: Sensor) -> None:
     lms, valid = np.asarray(env.landmarks, np.float64), np.asarray(env.valid, bool)
     if not valid.any():
         return
-    lms = lms[valid]
-    dist = np.hypot(lms[:, 0] - float(env.home[0]), lms[:, 1] - float(env.home[1]))
+    lms, home = lms[valid], np.asarray(env.home, np.float64)  # on the host: no program compiled for an index
+    dist = np.hypot(lms[:, 0] - home[0], lms[:, 1] - home[1])
     widest = float(np.degrees(2.0 * np.arcsin(np.minimum(lms[:, 2] / np.maximum(dist, 1e-12), 1.0))).max())
     if 360.0 / sensor.n_pix > widest:
         raise InputError(

@@ -15,8 +15,8 @@ heading is refined too: the landmarks then correct a noisy compass reading.
 from __future__ import annotations
 
 
+import equinox as eqx
 import jax.numpy as jnp
-import optimistix as optx
 from jax import Array
 
 from ..geometry import rotate
@@ -26,10 +26,12 @@ from .delv import DELV, search_pairings
 STEPS = 32
 
 
-def solver() -> optx.GaussNewton:
-    """Gauss-Newton (nearly linear: 8 steps where Levenberg-Marquardt took 23). Built at each trace:
+def solver() -> eqx.Module:
+    """optimistix's Gauss-Newton (nearly linear: 8 steps where Levenberg-Marquardt took 23). Built at each trace:
     constructing one at import starts JAX's backend (which must wait for jax.distributed), and one
     instance shared by traces of other shapes made jit run a program compiled for another shape."""
+    import optimistix as optx  # optimistix: loaded only when a solver runs (not by a vector map)
+
     return optx.GaussNewton(rtol=1e-6, atol=1e-6)
 
 
@@ -48,6 +50,8 @@ def refined_match(
 
     def residuals(y, _):
         return (w * (ref - rotate(cur, y[0]) - y[1:])).ravel()
+
+    import optimistix as optx  # optimistix: loaded only when a solver runs (not by a vector map)
 
     y0 = jnp.concatenate([alpha0[None], p0])
     sol = optx.least_squares(residuals, solver(), y0, max_steps=STEPS, throw=False)

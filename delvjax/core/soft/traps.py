@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import jax
 import jax.numpy as jnp
-import optimistix as optx
+import equinox as eqx
 from jax import Array
 
 from ..geometry import TWO_PI, rotate
@@ -38,10 +38,12 @@ FIELD_HEADINGS = 8
 KINDS = ("sink", "saddle", "source", "degenerate")
 
 
-def solver() -> optx.LevenbergMarquardt:
-    """Damped Newton (Newton overshoots where the field is flat). Built at each trace: constructing one
-    at import starts JAX's backend (which must wait for jax.distributed), and one instance shared by
-    traces of other shapes made jit run a program compiled for another shape."""
+def solver() -> eqx.Module:
+    """Damped Newton (Newton overshoots where the field is flat), optimistix's LevenbergMarquardt. Built at
+    each trace: constructing one at import starts JAX's backend (which must wait for jax.distributed), and
+    one instance shared by traces of other shapes made jit run a program compiled for another shape."""
+    import optimistix as optx  # optimistix: loaded only when a solver runs (not by a vector map)
+
     return optx.LevenbergMarquardt(rtol=1e-6, atol=1e-6)
 
 
@@ -77,6 +79,8 @@ def field_zeros(
     solver converged (S,), kind (S,) into KINDS, Jacobian (S, 2, 2), residual |H| at the point
     relative to the median |H| at the starts (S,)). A point with a residual that is not small is a
     minimum of |H| but no zero: a discontinuity of the field (e.g. a blob that appears)."""
+    import optimistix as optx  # optimistix: loaded only when a solver runs (not by a vector map)
+
     field = lambda x, _: soft_vector(x, env, sensor, method, key, tau, sharpness)  # noqa: E731
 
     def one(y0):
@@ -103,6 +107,8 @@ def two_cycles(
     zeros of S(S(x)) - x, root-found from every start. Returns (x (S, 2), its partner S(x) (S, 2),
     residual |S(S(x)) - x| in cm (S,)). An agent on such an orbit steps back and forth between x and
     S(x) across a line where the field flips: the limit cycles of the timed-out rollouts."""
+
+    import optimistix as optx  # optimistix: loaded only when a solver runs (not by a vector map)
 
     def step(x):
         h = soft_vector(x, env, sensor, method, key, tau, sharpness)
