@@ -171,7 +171,7 @@ def vector_map(
         parts.append(jax.tree.map(lambda a: np.asarray(a)[: n - start], part))
         if progress is not None:
             progress(min(chunk, n - start), n)
-    return jax.tree.map(lambda *a: jnp.asarray(np.concatenate(a)), *parts)
+    return jax.tree.map(lambda *a: jax.device_put(np.concatenate(a)), *parts)  # a plain copy: no program compiled
 
 
 def _device_chunk(

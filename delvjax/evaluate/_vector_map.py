@@ -27,6 +27,7 @@ from ..options._settings import make_setup
 from ..options._checks import is_traced, angle_deg, non_negative, positive, positive_int, seed_value
 from ..options._limits import MAX_POINTS, check_size
 from ..envs._presets import load_env
+from ..outputs._programs import kept_number
 from ._config import GRID_DEFAULTS, Grid, unpack
 
 
@@ -151,14 +152,18 @@ def _has_clear_point(env: Env, spacing: float, clearance: float) -> bool:
         float(spacing),
         float(clearance),
     )
-    if key not in _CLEAR:
-        points = maps.grid_points(env.arena, spacing)
-        _CLEAR[key] = points.shape[0] > 0 and bool(
-            np.asarray(maps.grid_included(env, jax.device_put(points), clearance)).any()
-        )
+    if key not in _CLEAR:  # kept on disk by the command line (`kept_number`): a warm run compiles nothing here
+        text = "|".join(k.hex() if isinstance(k, bytes) else repr(k) for k in key)
+        _CLEAR[key] = bool(kept_number("has_clear_point", text, lambda: int(_clear_point(env, spacing, clearance))))
         if len(_CLEAR) > 4096:
             _CLEAR.pop(next(iter(_CLEAR)))
     return _CLEAR[key]
+
+
+def _clear_point(env: Env, spacing: float, clearance: float) -> bool:
+    """`_has_clear_point`, computed: the grid's mask (`maps.grid_included`) on the device."""
+    points = maps.grid_points(env.arena, spacing)
+    return points.shape[0] > 0 and bool(np.asarray(maps.grid_included(env, jax.device_put(points), clearance)).any())
 
 
 def map_request(
