@@ -54,3 +54,30 @@ def test_version_prints_the_installed_version_without_loading_jax():
     code = "import sys; from delvjax.cli import main; main(['--version']); print('jax' in sys.modules)"
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert run.stdout.splitlines() == [f"delvjax {version('delvjax')}", "False"]
+
+
+LEAVE = """
+import atexit, sys, threading
+atexit.register(lambda: print("atexit ran", flush=True))
+go = threading.Event()
+if sys.argv[1] == "thread":  # a thread Python waits for: the process ends as usual, after it
+    threading.Thread(target=lambda: (go.wait(), print("thread done", flush=True))).start()
+sys.argv = ["delvjax", "vector-map", "no-such-env", "--out", "x.csv"]
+from delvjax.cli import main
+code = main()
+print("returned", code, flush=True)
+go.set()
+sys.exit(code)
+"""
+
+
+@pytest.mark.parametrize("case", ["plain", "thread"])
+def test_the_delvjax_process_ends_with_its_code_after_atexit_and_waits_for_threads(case, tmp_path):
+    """`delvjax` skips the interpreter's teardown (`_entry.leave`, issue 54): exit code, atexit's functions
+    and flushed output as before; with a thread still running it returns and Python waits for the thread."""
+    run = subprocess.run([sys.executable, "-c", LEAVE, case], capture_output=True, text=True, cwd=tmp_path)
+    assert run.returncode == 2 and "atexit ran" in run.stdout and "no-such-env" in run.stderr, run
+    if case == "plain":
+        assert "returned" not in run.stdout  # ended in main, after its output
+    else:
+        assert run.stdout.split() == ["returned", "2", "thread", "done", "atexit", "ran"], run.stdout
