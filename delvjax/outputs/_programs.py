@@ -14,6 +14,7 @@ import hashlib
 import os
 import pickle
 import platform
+import re
 import threading
 from collections.abc import Callable
 from functools import cache
@@ -27,10 +28,15 @@ import numpy as np
 
 from ._cache import package_sources
 
+try:  # what jax.export calls before it runs a program it did not lower (a kept one is not traced either)
+    from jax._src.lax.linalg import initialize_lapack
+except ImportError:  # another JAX: a program with LAPACK calls is then compiled again, not loaded
+    initialize_lapack = None
+
 PREFIX = "delvjax-program-"  # beside JAX's entries (jit_...-cache) in the compilation cache folder
 FACT = "delvjax-fact-"  # a number found by tracing (`kept_number`)
 MAX_ENTRIES = 64  # programs kept (about 0.5-3 MB each); the least recently used go first
-FORMAT = 1  # of an entry file: {"format", "outputs", "payload"}
+FORMAT = 2  # of an entry file: {"format", "outputs", "targets" (its custom calls), "payload"}
 UNKEYED = ("compilation_cache", "persistent_cache", "log", "explain_cache_misses")  # settings that change no program
 
 _LOADED: dict[str, Callable] = {}  # this process's loaded programs, by entry name
@@ -129,6 +135,10 @@ def load(path: Path, args: tuple) -> Callable | None:
         entry = pickle.loads(path.read_bytes())
         if entry.get("format") != FORMAT:
             return None
+        if any(t.startswith("lapack") for t in entry["targets"]):  # LAPACK's kernels find their routines
+            if initialize_lapack is None:  # only once initialised (a trace does it; jax.export does too)
+                return None
+            initialize_lapack()
         outputs = jax.tree.structure([0] * entry["outputs"])
         compiled = serialize_executable.deserialize_and_load(entry["payload"], jax.tree.structure((args, {})), outputs)
     except Exception:  # a missing, half-evicted or foreign entry: compiled again
@@ -147,12 +157,17 @@ def compile_and_keep(fn: Callable, args: tuple, path: Path) -> Callable | None:
     from jax.experimental import serialize_executable  # jax.experimental: only when a program is kept
 
     with _no_cache():
-        compiled = fn.lower(*args).compile()
+        lowered = fn.lower(*args)
+        compiled = lowered.compile()
+    targets = sorted(set(re.findall(r"custom_call @([\w.]+)", lowered.as_text())))
+    if any("callback" in t for t in targets):  # a host callback's address is this process's: never kept
+        return compiled
     try:
         payload, _, _ = serialize_executable.serialize(compiled)
     except Exception:  # e.g. `LessThan` is not serializable (a program compiled by a jit call before)
         return compiled
-    data = pickle.dumps({"format": FORMAT, "outputs": len(jax.tree.leaves(compiled.out_info)), "payload": payload})
+    n_out = len(jax.tree.leaves(compiled.out_info))
+    data = pickle.dumps({"format": FORMAT, "outputs": n_out, "targets": targets, "payload": payload})
     temp = path.with_name(f".{path.name}.{os.getpid()}.{threading.get_ident()}.tmp")
     try:
         temp.write_bytes(data)
