@@ -173,3 +173,19 @@ def test_the_startup_benchmark_runs_and_prints_its_ratio():
     )
     assert smoke.returncode == 0, smoke.stderr[-3000:]
     assert "warm vector map / import jax:" in smoke.stdout.splitlines()[-1], smoke.stdout
+
+
+def test_the_bucket_benchmark_runs_and_a_second_size_compiles_nothing():
+    """benchmarks/bench_buckets.py --smoke: ALV vector maps on 100 and 81 grid points and success rates of 2
+    and 3 trials; the second of each compiles no program (counted, not timed) and both ratio lines print."""
+    smoke = subprocess.run(
+        [sys.executable, "benchmarks/bench_buckets.py", "--smoke"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert smoke.returncode == 0, smoke.stderr[-3000:]
+    rows = {line[:24].strip(): line.split() for line in smoke.stdout.splitlines()}
+    assert rows["vector_map spacing 110"][-2] == "0" and rows["success_rate 3 trials"][-2] == "0", smoke.stdout
+    assert sum("of the first's" in line for line in smoke.stdout.splitlines()) == 2, smoke.stdout

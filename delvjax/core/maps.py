@@ -3,8 +3,8 @@
 Every grid point gets its own PRNG key `fold_in(key_views, i)` and, when headings are
 random, its heading from `fold_in(key_headings, i)`; points are evaluated `batching.WIDTH`
 at a time. So the numbers do not depend on how the points are chunked: the grid runs in
-host-side chunks of `batch_size` points (one compiled program per chunk size), which bounds
-the memory however large the grid.
+host-side chunks of at most `batch_size` points, which bounds the memory however large the grid,
+each padded to a shape bucket (`batching.bucket`), so grids of many sizes share one program.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
-from .batching import fixed_width_map, item_width, local_mesh, n_devices, over_devices, padded
+from .batching import bucket, fixed_width_map, item_width, local_mesh, n_devices, over_devices
 from .geometry import TWO_PI
 from .kernel import direction_from, map_poses
 from .methods.base import HomingMethod
@@ -109,12 +109,14 @@ def homing_directions(
     method: HomingMethod,
     visible: BlobFlags | None = None,
     start: Array | int = 0,
+    n_valid: Array | None = None,
 ) -> tuple[PerPoint, PerPointFlag]:
     """World homing directions (P,) and validity (P,) of `method` at `points` with `headings`.
 
     The home record sees every landmark; the current views see only `visible` ones
     (occlusion, docs/model.md §5). Point i uses the view stream of index `start + i`.
-    One program, `batching.item_width` points at a time.
+    One program, `batching.item_width` points at a time; with `n_valid` only the first n_valid
+    points are evaluated (a group of padding is skipped; its outputs are zeros, not to be used).
     """
     k_home, k_views, _ = stream_keys(key)
     home = record_home(env, k_home, sensor)
@@ -125,7 +127,8 @@ def homing_directions(
         return direction_from(env, seen, map_poses(point, heading, k_views, index, sensor), home, method, sensor)
 
     index = start + jnp.arange(points.shape[0])
-    return fixed_width_map(lambda *a: one(a), (points, headings, index), width=item_width(method.reads_panorama()))
+    width = item_width(method.reads_panorama())
+    return fixed_width_map(lambda *a: one(a), (points, headings, index), width=width, n_valid=n_valid)
 
 
 def vector_map(
@@ -144,29 +147,33 @@ def vector_map(
     """The vector map of `method` on the docs/model.md §5 grid; heading fixed (rad) or random per point from `key`.
 
     The grid runs in host-side chunks of `batch_size` points (the last one padded, so one
-    program), so memory is bounded by the chunk; `progress(n, P)` is called after each chunk of
-    n of the P points. The numbers are the same for every `batch_size`. `program` stands in for
-    the chunk's jitted program on one device (the command line's, kept on disk between runs).
+    program), so memory is bounded by the chunk; a grid smaller than a chunk is padded to its shape
+    bucket (`batching.bucket`: grids of 1025 to 4096 points run one program). The padding is never
+    evaluated. `progress(n, P)` is called after each chunk of n of the P points. The numbers are the
+    same for every `batch_size`. `program` stands in for the chunk's jitted program on one device (the
+    command line's, kept on disk between runs).
     """
     key = jax.random.PRNGKey(0) if key is None else key
     points = grid_points(env.arena, spacing)
     heading = None if heading is None else jnp.asarray(heading, jnp.float32)
     n = points.shape[0]
     mesh = local_mesh()
-    per_device = padded(-(-min(batch_size, n) // n_devices(mesh)))
+    per_device = bucket(-(-min(batch_size, n) // n_devices(mesh)), -(-batch_size // n_devices(mesh)))
     chunk = per_device * n_devices(mesh)
     parts = []
     for start in range(0, n, chunk):  # chunked driver: every chunk is the same compiled program
         rows = points[start : start + chunk]
         rows = np.concatenate([rows, np.repeat(rows[:1], chunk - len(rows), axis=0)])
+        n_valid = np.int32(min(chunk, n - start))
         if mesh is None:
             part = (program or _vector_map)(
-                env, rows, heading, key, sensor, method, clearance, visible, np.int32(start)
+                env, rows, heading, key, sensor, method, clearance, visible, np.int32(start), n_valid
             )
         else:  # device d evaluates grid points start + d * per_device ...: the same per-point program
             starts = (start + per_device * np.arange(mesh.size)).astype(np.int32)
+            counts = np.clip(n_valid - per_device * np.arange(mesh.size), 0, per_device).astype(np.int32)
             part = over_devices(
-                _device_chunk, mesh, 7, env, heading, key, sensor, method, clearance, visible, rows, starts
+                _device_chunk, mesh, 7, env, heading, key, sensor, method, clearance, visible, rows, starts, counts
             )
         parts.append(jax.tree.map(lambda a: np.asarray(a)[: n - start], part))
         if progress is not None:
@@ -184,9 +191,11 @@ def _device_chunk(
     visible: Array | None,
     points: Array,
     starts: Array,
+    counts: Array,
 ) -> VectorMap:
-    """One device's part of a chunk (`batching.over_devices`): its points start at starts[0]."""
-    return _vector_map(env, points, heading, key, sensor, method, clearance, visible, starts[0])
+    """One device's part of a chunk (`batching.over_devices`): its points start at starts[0], the first
+    counts[0] of them grid points (the rest padding)."""
+    return _vector_map(env, points, heading, key, sensor, method, clearance, visible, starts[0], counts[0])
 
 
 @jax.jit
@@ -200,13 +209,15 @@ def _vector_map(
     clearance: Real,
     visible: Array | None,
     start: Array | int = 0,
+    n_valid: Array | None = None,
 ) -> VectorMap:
-    """One program for a chunk of the map: headings, directions, grid mask and errors; point i is grid point start + i."""
+    """One program for a chunk of the map: headings, directions, grid mask and errors; point i is grid point
+    start + i; with `n_valid` the points from n_valid on are padding, not evaluated (zero direction and validity)."""
     if heading is None:
         headings = random_headings(key, points.shape[0], start)
     else:
         headings = jnp.full(points.shape[0], heading, jnp.float32)
-    direction, valid = homing_directions(env, points, headings, key, sensor, method, visible, start)
+    direction, valid = homing_directions(env, points, headings, key, sensor, method, visible, start, n_valid)
     return VectorMap(
         points=points,
         included=grid_included(env, points, clearance),

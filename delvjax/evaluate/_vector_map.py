@@ -17,6 +17,7 @@ import numpy as np
 
 from ..options import _limits as limits
 from ..core import maps
+from ..core.batching import bucket
 from ..core.maps import CLEARANCE, SPACING
 from ..core.errors import InputError
 from ..core.methods import HomingMethod
@@ -163,7 +164,12 @@ def _has_clear_point(env: Env, spacing: float, clearance: float) -> bool:
 def _clear_point(env: Env, spacing: float, clearance: float) -> bool:
     """`_has_clear_point`, computed: the grid's mask (`maps.grid_included`) on the device."""
     points = maps.grid_points(env.arena, spacing)
-    return points.shape[0] > 0 and bool(np.asarray(maps.grid_included(env, jax.device_put(points), clearance)).any())
+    n = points.shape[0]
+    if n == 0:
+        return False
+    # padded to its shape bucket (`batching.bucket`): grids of many sizes share the mask's program
+    padded = np.concatenate([points, np.repeat(points[:1], bucket(n, max(n, maps.DEFAULT_BATCH)) - n, axis=0)])
+    return bool(np.asarray(maps.grid_included(env, jax.device_put(padded), clearance))[:n].any())
 
 
 def map_request(

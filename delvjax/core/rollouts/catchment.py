@@ -13,6 +13,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
+from ..batching import bucket
 from ..errors import InputError
 from ..maps import CLEARANCE, SPACING, grid_included, grid_points, random_headings
 from ..methods.base import HomingMethod
@@ -35,7 +36,7 @@ from .rules import (
     outcome_names,
     rule_columns,
 )
-from .trials import run_trials
+from .trials import TRIAL_BLOCK, run_trials
 from ..types import Real
 
 
@@ -126,11 +127,16 @@ def catchment_area(
     """
     key = jax.random.PRNGKey(0) if key is None else key
     masks = np.asarray(env.valid, bool)[None, :] if masks is None else np.asarray(masks, bool)
-    # input preparation on the host (NumPy): eager device ops would compile once per shape
+    # input preparation on the host (NumPy): eager device ops would compile once per shape; the grid's
+    # programs (headings, grid mask, errors) run on it padded to a shape bucket (`batching.bucket`), so
+    # grids of many sizes share them (a cell's heading and mask depend only on its index and position)
     points = grid_points(env.arena, spacing)
     n_cells = points.shape[0]
-    headings = np.asarray(random_headings(key, n_cells) if heading is None else np.full(n_cells, heading, np.float32))
-    included = np.asarray(grid_included(env, points, clearance))
+    size = bucket(n_cells, max(n_cells, TRIAL_BLOCK))
+    padded = np.concatenate([points, np.repeat(points[:1], size - n_cells, axis=0)])
+    headings = np.asarray(random_headings(key, size) if heading is None else np.full(size, heading, np.float32))
+    headings = headings[:n_cells]
+    included = np.asarray(grid_included(env, padded, clearance))[:n_cells]
     counted = catchment_counted(env.arena, points, included, first_move, sensor.d)
     cells = np.flatnonzero(included)  # which cells are released
     if cells.size == 0:
@@ -163,33 +169,34 @@ def catchment_area(
         progress=progress,
     )
 
-    def per_cell(values, fill):
+    def per_cell(values, fill, width=n_cells):  # NumPy (M, width, ...): the trials' values on the grid
         values = np.asarray(values)
-        full = np.full((n_masks, n_cells) + values.shape[1:], fill, values.dtype)
+        full = np.full((n_masks, width) + values.shape[1:], fill, values.dtype)
         full[:, cells] = values.reshape((n_masks, n_inc) + values.shape[1:])
-        return jax.device_put(full)  # host to device without an eager op (no compile per shape)
+        return full
 
-    direction = per_cell(trials.first_direction, jnp.nan)  # the vector map under each mask
-    valid = per_cell(trials.first_valid, False)
-    error = angular_error_deg(direction, valid, points[None], env.home)
-    outcome = per_cell(trials.outcome, EXCLUDED)
-    outcome = jnp.where(jnp.asarray(counted | ~included)[None, :], outcome, NEAR_WALL)
+    put = jax.device_put  # host to device without an eager op (no compile per shape)
+    direction = per_cell(trials.first_direction, np.nan, size)  # the vector map under each mask, padded
+    valid = per_cell(trials.first_valid, False, size)
+    error = np.asarray(angular_error_deg(direction, valid, padded[None], env.home))[:, :n_cells]
+    outcome = np.where((counted | ~included)[None, :], per_cell(trials.outcome, EXCLUDED), NEAR_WALL)
+    direction, valid = direction[:, :n_cells], valid[:, :n_cells]
     return Catchment(
         points=jax.device_put(points),
         included=jax.device_put(included),
         counted=jax.device_put(counted),
         heading=jax.device_put(headings),
         visible=jax.device_put(masks),
-        outcome=outcome,
-        steps=per_cell(trials.steps, 0),
-        end=per_cell(trials.end, jnp.nan),
-        invalid_steps=per_cell(trials.invalid_steps, 0),
-        direction=direction,
-        valid=valid,
-        error_deg=error,
-        contact=per_cell(trials.contact, NO_CONTACT),
-        contact_end=per_cell(trials.contact_end, jnp.nan),
-        contact_invalid=per_cell(trials.contact_invalid, 0),
+        outcome=put(outcome),
+        steps=put(per_cell(trials.steps, 0)),
+        end=put(per_cell(trials.end, np.nan)),
+        invalid_steps=put(per_cell(trials.invalid_steps, 0)),
+        direction=put(direction),
+        valid=put(valid),
+        error_deg=put(error),
+        contact=put(per_cell(trials.contact, NO_CONTACT)),
+        contact_end=put(per_cell(trials.contact_end, np.nan)),
+        contact_invalid=put(per_cell(trials.contact_invalid, 0)),
         hidden=tuple(tuple(int(i) for i in h) for h in hidden),
         first_move=first_move,
         collisions=collisions,

@@ -12,6 +12,7 @@ import numpy as np
 from jax import Array
 from jax.typing import ArrayLike
 
+from ..batching import bucket
 from ..maps import CLEARANCE
 from ..methods.base import HomingMethod
 from ..scene import Env
@@ -36,6 +37,10 @@ from .rules import (
 )
 from .trials import run_trials
 from ..types import Real
+
+
+RELEASE_BUCKETS = 1024  # trials a distance up to which the release draws run in shape buckets (memory: 9 bins
+# of 16384 trials would hold 0.9 GB of candidates at once, against 0.5 GB for 5000)
 
 
 class SuccessRate(Outcomes):
@@ -134,7 +139,11 @@ def success_rate_trials(
     key = jax.random.PRNGKey(0) if key is None else key
     dist = np.asarray(distances, np.float32)
     n_bins = dist.shape[0]
-    starts, heads, placed = (np.asarray(a) for a in _release_bins(env, key, dist, trials, clearance))
+    # every trial count of a shape bucket (`batching.bucket`: 1-256, 257-1024) draws its release points in one
+    # program; trial t's draw depends only on t, so the first `trials` of the bucket are this call's. Above
+    # RELEASE_BUCKETS trials the draw is not padded further: it holds bins x trials x START_TRIES candidates
+    drawn = _release_bins(env, key, dist, bucket(trials, max(trials, RELEASE_BUCKETS)), clearance)
+    starts, heads, placed = (np.asarray(a)[:, :trials] for a in drawn)
     if heading is not None:
         heads = np.full_like(heads, heading)
     visible = np.asarray(env.valid if visible is None else visible, bool)
