@@ -81,3 +81,23 @@ def test_only_the_most_recently_used_entries_are_kept(tmp_path):
         f"{_programs.PREFIX}4",
         "jit_other-cache",
     ]
+
+
+LAPACK = """
+import sys, jax, jax.numpy as jnp
+jax.config.update("jax_compilation_cache_dir", sys.argv[1])
+from delvjax.outputs import _programs
+kept = _programs.stored_program(jax.jit(lambda a: jnp.linalg.qr(a)[1]), lambda leaves: leaves[0])
+print(repr(kept(jnp.eye(3, dtype=jnp.float32) + 1.0).tolist()))
+"""
+
+
+def test_a_kept_program_with_lapack_calls_runs_in_a_fresh_process(tmp_path):
+    """A program's LAPACK kernels (delv-refined's least squares) need LAPACK initialised, which a trace
+    does: a loaded program is not traced (it segfaulted before `load` initialised it, as jax.export does)."""
+    runs = [
+        subprocess.run([sys.executable, "-c", LAPACK, str(tmp_path)], capture_output=True, text=True, timeout=300)
+        for _ in range(2)
+    ]
+    assert [r.returncode for r in runs] == [0, 0], runs[-1].stderr[-2000:]
+    assert runs[0].stdout == runs[1].stdout and len(list(tmp_path.glob(_programs.PREFIX + "*"))) == 1
