@@ -7,8 +7,10 @@ from __future__ import annotations
 from collections import Counter
 
 from ._gap_probe import load_probes, matching
+from ._gap_tail import load_tails, tail_cause
 
 PROBES = load_probes()  # the gap probe's bands (studies/runs/_gap_probes.json, `causes_probe --gaps`)
+TAILS = load_tails()  # many members of one family and method (studies/runs/_gap_tails.json, `causes_probe --tail`)
 PROBE_SPACING = 100.0  # cm: the probes' grid (the file's spacing_cm)
 
 # Entries of the thesis's own tables that its notes (`studies/thesis/_notes.py`) call copies or suspect:
@@ -34,13 +36,14 @@ def grid_step(spacing: float, arena: float = 1000.0) -> float:
     return 100.0 / (side * side)
 
 
-def gap_cause(row: dict, spacing: float, probes: list[dict] | None = None) -> str:
+def gap_cause(row: dict, spacing: float, probes: list[dict] | None = None, tails: list[dict] | None = None) -> str:
     """The cause of one thesis number's gap (a row of `distribution_rows`): "" inside the band; else the first
     of: a thesis entry its notes call a copy or suspect; inside the band of another unstated setting; a
     catchment between the default and the physical rules' bands; within one grid point of the band; the
     built-in world under five seeds reaching it; inside the band of an alternative the gap probe measured, or
     within one grid point of the probes' grid of it (`probes`, default the committed PROBES; a probe whose band
-    holds it first); "unexplained" (above/below)."""
+    holds it first); a world of the family that at least `_gap_tail.MIN_SHARE` % of many members reach (`tails`,
+    default the committed `_gap_tails.json`); "unexplained" (above/below)."""
     if row["inside band"]:
         return ""
     for note, source, world, methods, ks in SUSPECT:
@@ -83,6 +86,9 @@ def gap_cause(row: dict, spacing: float, probes: list[dict] | None = None) -> st
             f"{where} with {p['cause']} (gap probe {p['probe']}: {p['lo']:g}-{p['hi']:g} over "
             f"{p['members']} members{also}; causes_probe --gaps)"
         )
+    rare = tail_cause(row, TAILS if tails is None else tails)
+    if rare:
+        return rare
     return "unexplained: thesis " + ("above" if value > row["ours 95 %"] else "below") + " our band"
 
 

@@ -23,8 +23,9 @@ change nothing in the report); run them with
    under alternatives the thesis allows (noise, ACV's pairing, home radius, env3's and the rings' geometry);
    writes `_gap_probes.json`, which `_ensemble_gaps.gap_cause` reads (docs/reproduce.md "What the unexplained
    gaps were"). `--probe` re-measures some probes and keeps the others' rows.
-6. `--tail FAMILY METHOD`: how rare a world is whose vector map has as few error points as the thesis's (200 members,
-   k = 0): the two numbers no probe explains (env1's ACV, docs/reproduce.md "The gap probe's second round").
+6. `--tail FAMILY METHOD`: every number of many members (200, k = 0) of one family and method, written to
+   `_gap_tails.json`, which `_ensemble_gaps.gap_cause` reads: a thesis number outside our band that at least 1 % of
+   them reach is a rare world of the family (`_gap_tail`; docs/reproduce.md "The gap probe's third round").
 """
 
 from __future__ import annotations
@@ -44,8 +45,7 @@ from delvjax.envs._ensembles import FAMILIES, member_layouts
 from delvjax.envs._presets import make_env, preset_dict, random_env
 from delvjax.options._registry import program
 
-from .. import thesis
-from . import _gap_probe
+from . import _gap_probe, _gap_tail
 from ._common import HOME_RADIUS, PAD, PROGRAM, RULES, curve, env, inside_hull
 from ._occlusion_layouts import stacked_masks
 
@@ -193,28 +193,6 @@ def choice_maps(probe: _gap_probe.Probe, members: int, spacing: float, seed: int
     return out
 
 
-def family_tail(family: str, method: str, members: int = 200, spacing: float = 100.0, best: int = 12) -> dict:
-    """How rare a world is that gives the thesis's number (docs/reproduce.md "The gap probe's second round": env1's
-    ACV with every landmark seen): every member's vector map (k = 0, seed 0) and the catchment of the `best` members
-    with the fewest e>45 points. {"gt45": [...], "gt90": [...], "best": [(member, gt45, gt90, catchment)]}."""
-    fam = FAMILIES[family]
-    envs = [
-        make_env([tuple(map(float, lm)) for lm in lay], home=fam.home, arena=fam.arena, pad_to=PAD)
-        for lay in member_layouts(fam, members, 0)
-    ]
-    rates = []
-    for e in envs:  # a few hundred small vector maps on the host (~10 ms each once compiled)
-        err = np.asarray((vm := delvjax.vector_map(e, method=method, spacing=spacing, seed=0)).error_deg)
-        err = err[np.asarray(vm.included)]
-        rates.append((100.0 * float(np.mean(err > 45.0)), 100.0 * float(np.mean(err > 90.0))))
-    order = np.argsort([r[0] for r in rates])[:best]
-    top = [
-        (int(i), *rates[i], float(delvjax.catchment(envs[i], method, spacing=spacing, seed=0).catchment_pct()[0]))
-        for i in order
-    ]
-    return {"gt45": [r[0] for r in rates], "gt90": [r[1] for r in rates], "best": top}
-
-
 def probe_json(doc: dict) -> str:
     """The probe file's text: its header keys indented, one row a line (small diffs when a probe is re-measured)."""
     head = json.dumps({k: v for k, v in doc.items() if k != "rows"}, indent=1, ensure_ascii=False)[:-2]
@@ -258,19 +236,15 @@ def main() -> None:
     p.add_argument("--tail", nargs=2, metavar=("FAMILY", "METHOD"), help="how rare a world with few error points is")
     a = p.parse_args()
     if a.tail:
-        out = family_tail(*a.tail, members=200 if a.members == 16 else a.members, spacing=a.spacing or 100.0)
-        g45, g90 = np.array(out["gt45"]), np.array(out["gt90"])
-        print(
-            f"{a.tail[0]} {a.tail[1]} k = 0 over {len(g45)} members: e>45 5th percentile {np.percentile(g45, 5):.2f} %"
-        )
-        printed = thesis.ERROR_POINTS["table5_1"].get(a.tail[0], {}).get(a.tail[1], {"gt45": [10.0], "gt90": [0.0]})
-        t45, t90 = printed["gt45"][0], printed["gt90"][0]  # Table 5.1 at k = 0 (env1 ACV: 9.80 / 0.15 %)
-        for v in (5.0, t45, 10.0):
-            n45, both = int((g45 <= v).sum()), int(((g45 <= v) & (g90 <= t90)).sum())
-            print(f"  e>45 <= {v:g} %: {n45} members, {both} with e>90 <= {t90:g} % too")
-        print(
-            "  fewest e>45 (member, e>45 %, e>90 %, catchment %):", [tuple(round(x, 2) for x in t) for t in out["best"]]
-        )
+        row = _gap_tail.measure(*a.tail, members=200 if a.members == 16 else a.members, spacing=a.spacing or 100.0)
+        _gap_tail.write_tails([row])
+        for q in _gap_tail.QUANTITIES:
+            v = np.asarray(row[q])
+            print(
+                f"{a.tail[0]} {a.tail[1]} k = 0, {q} over {len(v)} members: 5-95 % {np.percentile(v, 5):.2f}-"
+                f"{np.percentile(v, 95):.2f}, min {v.min():.2f}, max {v.max():.2f}"
+            )
+        print(f"written to {_gap_tail.TAIL_FILE}")
         return
     if a.gaps:
         gap_probes(a.probe, a.members, a.spacing or 100.0)

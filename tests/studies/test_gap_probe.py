@@ -178,10 +178,3 @@ def test_choice_maps_give_each_member_its_mean_worst_and_best_choice():
     assert np.array_equal(lo[:, 0], hi[:, 0])  # k = 0: one choice
     rows = _gap_probe.probe_rows(probe, out)
     assert {r["quantity"] for r in rows} == {"e>45 %", "e>90 %"} and all(r["world"] == "ring3" for r in rows)
-
-
-def test_family_tail_ranks_the_members_by_their_error_points():
-    out = causes_probe.family_tail("env2", "acv", members=3, spacing=200.0, best=2)
-    assert len(out["gt45"]) == len(out["gt90"]) == 3 and all(a >= b for a, b in zip(out["gt45"], out["gt90"]))
-    (i, g45, g90, catch), (_, g45b, _, _) = out["best"]
-    assert g45 == min(out["gt45"]) <= g45b and out["gt90"][i] == g90 and 0.0 <= catch <= 100.0
