@@ -12,7 +12,7 @@ from typing import ClassVar, Protocol, runtime_checkable
 import equinox as eqx
 import jax
 import jax.numpy as jnp
-from jax import Array, lax
+from jax import Array
 from ..types import Move, PerPoint, Scalar
 
 from ..geometry import TWO_PI, wrap
@@ -28,14 +28,12 @@ def visual_compass(home_gray: Array, view_gray: Array) -> Array:
     The pixel shift k minimising sum_j |C[j + k] - S[j]| (first minimum) gives -2 pi k / n.
     """
     n = home_gray.shape[-1]
-    doubled = jnp.concatenate([view_gray, view_gray])
-
-    def cost(k: Array) -> Array:
-        return jnp.sum(jnp.abs(lax.dynamic_slice(doubled, (k,), (n,)) - home_gray))
-
-    # A scan over the n shifts (each step vectorised over whatever is vmapped outside)
-    # is 5x faster on CPU than materialising the (n, n) circulant by a gather.
-    costs = lax.map(cost, jnp.arange(n))
+    # sum_j |C[j + k] - S[j]| = sum_j |C[j] - S[j - k]|: the shifted copies are the home image's, the same for
+    # every view a vmap batches (a rollout's lanes, a map's points), so the (n, n) table is gathered once and
+    # each view's n costs are one fused subtract-abs-sum, 2.8x faster on CPU than a scan over the n shifts
+    # (which was 5x faster than gathering each view's own (n, n) shifts).
+    shifted = home_gray[(jnp.arange(n)[None, :] - jnp.arange(n)[:, None]) % n]  # [k, j] = S[j - k]
+    costs = jnp.sum(jnp.abs(view_gray[None, :] - shifted), axis=-1)
     return wrap(-TWO_PI * first_argmin(costs) / n)
 
 
