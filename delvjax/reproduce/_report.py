@@ -98,9 +98,10 @@ def claims_section(claims: list[dict]) -> str:
         columns.insert(6, "over worlds")
         head += (
             " *Over worlds*: the share of the world ensembles' members (docs/model.md §6.1) in which the same "
-            "check holds, with its 95 % Wilson interval: holds in at least 80 %, fails in at most 20 %, else it "
-            "depends on the world (the `ensembles` study's table names the world property that best separates "
-            "the members); the verdict beside it is the built-in world's alone."
+            "check holds, with its 95 % Wilson interval: holds in at least 80 %; fails where it holds or partly "
+            "holds in at most 20 %; partly where it holds or partly holds in at least 80 %; else it depends on the "
+            "world (the `ensembles` study's table names the world property that best separates the members); the "
+            "verdict beside it is the built-in world's alone."
         )
     return head + "\n\n" + md_table(columns, rows)
 

@@ -137,15 +137,19 @@ def evaluate(numbers_by_study: dict[str, dict], settings: dict | None = None) ->
 WORLD_HOLDS, WORLD_FAILS = 80.0, 20.0  # % of ensemble members: a claim holds at or above, fails at or below
 
 
-def world_verdict(holds_pct: float, ceiling_pct: float) -> str:
-    """The verdict over worlds from the share of members in which a claim's check holds: "cannot tell" when
-    most members cannot tell (a ceiling), holds / fails by WORLD_HOLDS / WORLD_FAILS, else it depends on the
-    world (docs/reproduce.md "Ensembles")."""
+def world_verdict(holds_pct: float, ceiling_pct: float, partly_pct: float = 0.0) -> str:
+    """The verdict over worlds from the shares of members in which a claim's check holds and says "partly":
+    "cannot tell" when most members cannot tell (a ceiling); holds when it holds in at least WORLD_HOLDS %;
+    fails when it holds or partly holds in at most WORLD_FAILS % (it fails in the rest); partly when it holds or
+    partly holds in at least WORLD_HOLDS % (a claim that holds in part in most worlds does not fail there);
+    else it depends on the world (docs/reproduce.md "Ensembles")."""
     if ceiling_pct > 50.0:
         return "cannot tell (most members at a ceiling)"
     if holds_pct >= WORLD_HOLDS:
         return "holds"
-    return "fails" if holds_pct <= WORLD_FAILS else "depends on the world"
+    if holds_pct + partly_pct <= WORLD_FAILS:
+        return "fails"
+    return "partly" if holds_pct + partly_pct >= WORLD_HOLDS else "depends on the world"
 
 
 def over_worlds(flat: dict, claim_id: str) -> str:
@@ -160,6 +164,6 @@ def over_worlds(flat: dict, claim_id: str) -> str:
     if not isinstance(row, list) or len(row) not in (5, 6):
         return "not covered (needs numbers the ensembles do not make)"
     p, lo, hi, n, ceiling, partly = (*row, 0.0)[:6]  # partly: recorded since 2026-12-06
-    text = f"{world_verdict(p, ceiling)}: holds in {p:.0f} % of {n:.0f} members [{lo:.0f}-{hi:.0f} %]"
+    text = f"{world_verdict(p, ceiling, partly)}: holds in {p:.0f} % of {n:.0f} members [{lo:.0f}-{hi:.0f} %]"
     text += f", partly in {partly:.0f} %" if partly else ""
     return text + (f", {ceiling:.0f} % at a ceiling" if ceiling else "")

@@ -19,8 +19,8 @@ from .visual_compass import BACKGROUNDS, TRUE, visual_key
 FAMILIES = ("env1", "env2", "env3")
 CURVE_PANELS = (("delv", "warping"), ("delv-compass", "acv", "alv"))  # claims 7 and 19, env1
 CLAIMS_NOTE = (
-    "holds: in at least {holds:g} % of members; fails: at most {fails:g} %; else depends on the world, with the "
-    "world property that best separates the members where it holds (AUC: 1 or 0 separates them fully, 0.5 not at "
+    "holds: in at least {holds:g} % of members; fails: it holds or partly holds in at most {fails:g} %; partly: it "
+    "holds or partly holds in at least {holds:g} %; else depends on the world, with the world property that best separates the members where it holds (AUC: 1 or 0 separates them fully, 0.5 not at "
     "all); cannot tell: most members at a ceiling. A member is one world of each family with its own seed; built-in "
     "worlds: the check on our named worlds on the same grids and seed. {sizes}"
 )

@@ -267,7 +267,7 @@ def claim_rows(
         partly = sum(v == PARTLY for v in verdicts)
         p = held.mean()
         lo, hi = wilson(int(held.sum()), n)
-        verdict = world_verdict(100.0 * p, 100.0 * ceiling / n)
+        verdict = world_verdict(100.0 * p, 100.0 * ceiling / n, 100.0 * partly / n)
         row = {
             "#": number,
             "id": claim["id"],
@@ -280,7 +280,7 @@ def claim_rows(
             "verdict over worlds": verdict,
             "decided_by": "",
         }
-        if verdict == "depends on the world":
+        if verdict in ("depends on the world", "partly") and 0 < held.sum() < n:  # where it holds, and where not
             read_families = sorted({k.split(":")[1] for k in read if k.split(":")[1] in props})
             best = deciding_property(held, {f: props[f] for f in read_families})
             if best is not None:

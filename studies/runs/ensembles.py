@@ -293,9 +293,10 @@ def run(ctx) -> None:
 
 
 CLAIMS_TABLE_NOTE = (
-    "holds: in at least {holds:g} % of members; fails: at most {fails:g} %; else depends on the world, with the world "
-    "property that best separates the members where it holds (AUC: 1 or 0 separates them fully, 0.5 not at all); "
-    "cannot tell: most members at a ceiling; partly: the share where the check says partly (not counted as holding)."
+    "holds: in at least {holds:g} % of members; fails: it holds or partly holds in at most {fails:g} %; partly: it "
+    "holds or partly holds in at least {holds:g} %; else depends on the world, with the world property that best "
+    "separates the members where it holds (AUC: 1 or 0 separates them fully, 0.5 not at all); cannot tell: most "
+    "members at a ceiling; partly %: the share where the check says partly (not counted in holds %)."
 )
 
 

@@ -72,6 +72,12 @@ def test_a_claim_that_holds_or_fails_everywhere_gets_that_verdict(rise, verdict)
 def test_world_verdicts_and_the_claims_table_column():
     assert claims.world_verdict(80.0, 0.0) == "holds" and claims.world_verdict(79.9, 0.0) == "depends on the world"
     assert claims.world_verdict(20.0, 0.0) == "fails" and claims.world_verdict(100.0, 51.0).startswith("cannot tell")
+    # a claim that partly holds in most worlds does not fail there (claim 1 on 2026-12-06: 15.9 % holds, 72.7 % partly)
+    assert claims.world_verdict(15.9, 0.0, 72.7) == "partly" and claims.world_verdict(15.9, 0.0, 4.0) == "fails"
+    assert claims.world_verdict(15.9, 0.0, 40.0) == "depends on the world"
+    assert claims.over_worlds(
+        {"ensemble:members": 44, f"ensemble:claim:{CLAIM}": [15.9, 7.9, 29.4, 44, 0.0, 72.7]}, CLAIM
+    ).startswith("partly: holds in 16 % of 44 members [8-29 %], partly in 73 %")
     flat = {"ensemble:members": 48, f"ensemble:claim:{CLAIM}": [62.5, 48.4, 74.8, 48, 0.0]}
     assert claims.over_worlds(flat, CLAIM) == "depends on the world: holds in 62 % of 48 members [48-75 %]"
     assert claims.over_worlds(flat, "other").startswith("not covered")
@@ -220,10 +226,13 @@ def test_a_study_judges_only_the_claims_it_names():
 
 
 def test_a_claim_that_partly_holds_says_so_over_the_worlds():
-    """A check saying "partly" in a member does not count as holding it; the column says how often it partly
-    holds, so "fails" is never read as "contradicted everywhere" when the claim half-holds in most worlds."""
+    """A check saying "partly" in a member does not count as holding it, and the column says how often it partly
+    holds; a claim that holds or partly holds in 77 % of the worlds does not fail over them (it did until
+    2026-12-06: "fails" read as "contradicted everywhere" where the claim half-held in most worlds)."""
     flat = {"ensemble:members": 44, f"ensemble:claim:{CLAIM}": [2.3, 0.4, 11.8, 44, 0.0, 75.0]}
-    assert claims.over_worlds(flat, CLAIM) == "fails: holds in 2 % of 44 members [0-12 %], partly in 75 %"
+    assert (
+        claims.over_worlds(flat, CLAIM) == "depends on the world: holds in 2 % of 44 members [0-12 %], partly in 75 %"
+    )
     worlds = {f"{e}-m{i}": world(40.0 if i < 2 else 1.0) for e in ENVS for i in range(5)}
     row = {r["id"]: r for r in ensembles.claim_rows(worlds, 5, {})}[CLAIM]
     assert row["holds %"] == 40.0 and row["partly %"] == 0.0
