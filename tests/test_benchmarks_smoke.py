@@ -189,3 +189,15 @@ def test_the_bucket_benchmark_runs_and_a_second_size_compiles_nothing():
     rows = {line[:24].strip(): line.split() for line in smoke.stdout.splitlines()}
     assert rows["vector_map spacing 110"][-2] == "0" and rows["success_rate 3 trials"][-2] == "0", smoke.stdout
     assert sum("of the first's" in line for line in smoke.stdout.splitlines()) == 2, smoke.stdout
+
+
+def test_the_cores_benchmark_runs_one_device_against_every_core():
+    """benchmarks/bench_cores.py --smoke: an ALV map of 100 points on 1 device and on every core (2 forced
+    devices on a one-core machine), each in a fresh process, and the ratio line against the 1.6x target."""
+    smoke = subprocess.run(
+        [sys.executable, "benchmarks/bench_cores.py", "--smoke"], cwd=ROOT, capture_output=True, text=True, timeout=600
+    )
+    assert smoke.returncode == 0, smoke.stderr[-3000:]
+    devices = [line.split()[1] for line in smoke.stdout.splitlines() if line.startswith("map ")]
+    assert devices[0] == "1" and int(devices[1]) >= 2, smoke.stdout
+    assert "map: 1 device /" in smoke.stdout and ">= 1.6x" in smoke.stdout, smoke.stdout
