@@ -4,6 +4,7 @@ the pytest-xdist workers), image databases."""
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -16,6 +17,11 @@ import pytest
 from delvjax.outputs._cache import enable_compilation_cache
 
 enable_compilation_cache()
+
+# The command-line subprocesses run on one device, as the workers do (the `delvjax` command's default is one
+# per core on a CPU host, `cli._entry.host_devices`): they share the workers' one-device programs, and two
+# workers already fill 2 cores. tests/cli/test_host_devices.py runs the default.
+os.environ.setdefault("DELVJAX_DEVICES", "1")
 
 
 @pytest.fixture(autouse=True, scope="module")
