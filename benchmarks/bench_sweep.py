@@ -1,7 +1,16 @@
-"""Benchmark: sweep throughput (cells per second) on 1, 2 and 4 forced host devices and 2 processes.
+"""Benchmark: a sweep against a loop of single calls (issue 54), and sweep throughput (cells per second)
+on 1, 2 and 4 forced host devices and 2 processes.
 
     python benchmarks/bench_sweep.py [--kinds vector-map catchment] [--devices 1 2 4] [--processes 2]
-                                     [--cells 1000] [--catchment-cells 100]
+                                     [--cells 1000] [--catchment-cells 100] [--versus N] [--repeats 2] [--smoke]
+
+First, sweep versus loop: the cells of a vector-map sweep on env1 (seed x bearing noise, --versus cells, for
+DELV and ALV) against a Python loop of `delvjax.vector_map` calls with the same settings, and a catchment sweep
+of --versus/5 cells against a loop of `delvjax.catchment` calls; each side in fresh processes with an empty
+compilation cache, interleaved (sweep, loop, loop, sweep, ...), --repeats times. Printed per side: CPU and
+wall seconds of the first run (compilation included) and of a second run with other seeds (warm), and the
+ratio loop / sweep (the issue's target: >= 1.5 with compilation, CPU seconds). --smoke: 4 cells on a 100 cm
+grid, ALV only, one repeat, no scaling table.
 
 Two sweeps on env1, DELV:
   * vector-map: 40 x 40 grid, d x bearing noise x seed, --cells cells (10 x 10 x cells/100);
@@ -49,6 +58,55 @@ print(json.dumps({"devices": jax.device_count(), "processes": jax.process_count(
 """
 
 
+VERSUS = r"""
+import json, sys, time
+import jax
+import delvjax
+from delvjax.sweeps._spec import parse_sweep
+from delvjax.sweeps import run_sweep
+side, kind, method, seeds, noises, spacing = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5]), float(sys.argv[6])
+levels = [round(0.5 * i, 1) for i in range(noises)]
+def sweep(first):
+    axes = f'method = ["{method}"]\nseed = {{start = {first}, stop = {first + seeds - 1}}}\nbearing_noise_deg = {levels}'
+    run_sweep(parse_sweep(f'[sweep]\nkind = "{kind}"\n[axes]\nenv = ["env1"]\n{axes}\nspacing = [{spacing}]\n'))
+def loop(first):
+    call = delvjax.vector_map if kind == "vector-map" else delvjax.catchment
+    for seed in range(first, first + seeds):
+        for noise in levels:
+            out = call("env1", method=method, seed=seed, bearing_noise_deg=noise, spacing=spacing)
+            jax.block_until_ready(out.error_deg if kind == "vector-map" else out)
+run = sweep if side == "sweep" else loop
+times = []
+for first in (0, 1000):
+    c, t = time.process_time(), time.perf_counter()
+    run(first)
+    times.append((time.process_time() - c, time.perf_counter() - t))
+print(json.dumps({"first_cpu": times[0][0], "first_wall": times[0][1], "warm_cpu": times[1][0], "warm_wall": times[1][1]}))
+"""
+
+
+def versus(kind: str, method: str, cells: int, spacing: float, repeats: int) -> None:
+    """Sweep against loop, fresh processes with an empty cache, interleaved; prints the rows and the ratio."""
+    noises = min(10, cells)
+    seeds = max(1, cells // noises)
+    runs: dict[str, list[dict]] = {"sweep": [], "loop": []}
+    for r in range(repeats):
+        for side in ("sweep", "loop") if r % 2 == 0 else ("loop", "sweep"):
+            runs[side].append(run_child(VERSUS, side, kind, method, seeds, noises, spacing, DELVJAX_CACHE_DIR=""))
+    best = {side: {k: min(x[k] for x in rs) for k in rs[0]} for side, rs in runs.items()}
+    print(f"\n{method.upper()} {kind}: {seeds * noises} cells (seed x bearing noise), env1, {spacing:g} cm grid")
+    print(f"{'side':>6} {'first cpu s':>11} {'first wall s':>12} {'warm cpu s':>10} {'warm wall s':>11}")
+    for side, b in best.items():
+        print(f"{side:>6} {b['first_cpu']:11.2f} {b['first_wall']:12.2f} {b['warm_cpu']:10.2f} {b['warm_wall']:11.2f}")
+    s, lp = best["sweep"], best["loop"]
+    print(
+        f"loop / sweep, compile included: {lp['first_cpu'] / s['first_cpu']:.2f}x CPU, "
+        f"{lp['first_wall'] / s['first_wall']:.2f}x wall (target >= 1.5); warm: {lp['warm_cpu'] / s['warm_cpu']:.2f}x CPU, "
+        f"{lp['warm_wall'] / s['warm_wall']:.2f}x wall",
+        flush=True,
+    )
+
+
 def free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
@@ -87,7 +145,19 @@ def main() -> None:
     ap.add_argument("--processes", type=int, nargs="*", default=[2])
     ap.add_argument("--cells", type=int, default=1000, help="vector-map cells, a multiple of 100")
     ap.add_argument("--catchment-cells", type=int, default=100, help="catchment cells, a multiple of 10")
+    ap.add_argument("--versus", type=int, default=100, help="vector-map cells of the sweep-versus-loop comparison")
+    ap.add_argument("--repeats", type=int, default=2, help="fresh processes per side of the comparison")
+    ap.add_argument("--versus-only", action="store_true", help="the comparison alone, no scaling table")
+    ap.add_argument("--smoke", action="store_true", help="the ALV comparison on 4 cells, 100 cm grid, alone")
     a = ap.parse_args()
+    cells, spacing, repeats = (4, 100.0, 1) if a.smoke else (a.versus, 25.0, a.repeats)
+    if "vector-map" in a.kinds:
+        for method in ("alv",) if a.smoke else ("delv", "alv"):
+            versus("vector-map", method, cells, spacing, repeats)
+    if "catchment" in a.kinds and not a.smoke:
+        versus("catchment", "delv", max(2, cells // 5), spacing, repeats)
+    if a.smoke or a.versus_only:
+        return
     for kind in a.kinds:
         seeds = max(1, a.cells // 100) if kind == "vector-map" else max(1, a.catchment_cells // 10)
         grid = "40 x 40 grid" if kind == "vector-map" else "1559 rollouts a cell"

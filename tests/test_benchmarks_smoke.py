@@ -201,3 +201,14 @@ def test_the_cores_benchmark_runs_one_device_against_every_core():
     devices = [line.split()[1] for line in smoke.stdout.splitlines() if line.startswith("map ")]
     assert devices[0] == "1" and int(devices[1]) >= 2, smoke.stdout
     assert "map: 1 device /" in smoke.stdout and ">= 1.6x" in smoke.stdout, smoke.stdout
+
+
+def test_the_sweep_benchmark_runs_and_prints_sweep_against_loop():
+    """benchmarks/bench_sweep.py --smoke: an ALV vector-map sweep of 4 cells against a loop of 4 `vector_map`
+    calls, each in a fresh process with an empty cache; the ratio line of issue 54 (no timing asserted)."""
+    smoke = subprocess.run(
+        [sys.executable, "benchmarks/bench_sweep.py", "--smoke"], cwd=ROOT, capture_output=True, text=True, timeout=600
+    )
+    assert smoke.returncode == 0, smoke.stderr[-3000:]
+    last = smoke.stdout.splitlines()[-1]
+    assert last.startswith("loop / sweep, compile included:") and "(target >= 1.5)" in last, smoke.stdout

@@ -34,24 +34,27 @@ class CellMetrics(eqx.Module):
     error_sq_sum: Array
 
 
-def _errors(env, inc, method, sensor, key, points):
-    """One cell's per-point angular errors (P,) (degrees; invalid = 180), as `maps.vector_map` computes them."""
+def _errors(env, inc, method, sensor, key, points, n_valid=None):
+    """One cell's per-point angular errors (P,) (degrees; invalid = 180), as `maps.vector_map` computes them;
+    with `n_valid` 0 none is evaluated (a row that pads a chunk: its numbers are thrown away)."""
     headings = random_headings(key, points.shape[0])
-    direction, valid = homing_directions(env, points, headings, key, sensor, method)
+    direction, valid = homing_directions(env, points, headings, key, sensor, method, n_valid=n_valid)
     return angular_error_deg(direction, valid, points, env.home), valid
 
 
 @jax.jit
 def map_cells(
-    envs: Env, points: Array, included: Array, methods: HomingMethod, sensors: Sensor, keys: Array
+    envs: Env, points: Array, included: Array, methods: HomingMethod, sensors: Sensor, keys: Array, live: Array
 ) -> CellMetrics:
     """Vector-map metrics of C stacked cells (leading axis C on `envs`, `included`, `methods`,
-    `sensors`, `keys`); `points` (P, 2) is the shared grid. Headings are random per point from each
-    cell's key, as in `maps.vector_map`."""
+    `sensors`, `keys`, `live`); `points` (P, 2) is the shared grid. Headings are random per point from each
+    cell's key, as in `maps.vector_map`. `live` (C,): False for a row that only pads the chunk to its
+    program's size (none of its points is evaluated, as a shape bucket's padding: it costs nearly nothing)."""
+    counts = jnp.where(live, points.shape[0], 0).astype(jnp.int32)
 
     def one(cell):
-        env, inc, method, sensor, key = cell
-        err, valid = _errors(env, inc, method, sensor, key, points)
+        env, inc, method, sensor, key, n_valid = cell
+        err, valid = _errors(env, inc, method, sensor, key, points, n_valid)
         count = lambda m: jnp.sum(m & inc).astype(jnp.int32)  # noqa: E731
         e = jnp.where(inc, err, 0.0)
         return CellMetrics(
@@ -63,7 +66,7 @@ def map_cells(
             error_sq_sum=jnp.sum(e * e),
         )
 
-    return jax.lax.map(one, (envs, included, methods, sensors, keys))
+    return jax.lax.map(one, (envs, included, methods, sensors, keys, counts))
 
 
 @jax.jit

@@ -151,11 +151,15 @@ def group_key(req: dict) -> tuple:
 
 def idle_padding(traced: tuple, real: int | None) -> tuple:
     """A chunk's stacked traced inputs with its rows from `real` on (copies that pad the chunk to its
-    program's size, results thrown away) given no trials: a rollout cell with no masks runs none, so a
-    padded row costs nearly nothing (the cells run one after the other, `lax.map`) and the real rows'
-    numbers are unchanged (a cell's trials do not depend on its chunk). Vector-map rows are left as they are."""
+    program's size, results thrown away) left idle: a rollout cell with no masks runs no trials, and a
+    vector-map row gets a False flag (appended: one per row, `map_cells`' `live`) and evaluates no grid point.
+    So a padded row costs nearly nothing (the cells run one after the other, `lax.map`) and the real rows'
+    numbers are unchanged (a cell's numbers do not depend on its chunk)."""
     cell = traced[0]
-    if real is None or not isinstance(cell, rollout_programs.RolloutCell) or real >= len(cell.n_masks):
+    if not isinstance(cell, rollout_programs.RolloutCell):
+        rows = len(np.asarray(traced[3]))
+        return (*traced, np.arange(rows) < (rows if real is None else real))
+    if real is None or real >= len(cell.n_masks):
         return traced
     n_masks = np.array(cell.n_masks, np.int32)
     n_masks[real:] = 0
@@ -194,8 +198,18 @@ def grid_inputs(setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
     """(shared, traced) of a vector-map chunk: the grid points shared, each cell's included points."""
     first = setups[0]
     points = grid_points(first["env"].arena, first["spacing"])
-    included = np.stack([np.asarray(grid_included(req["env"], points, req["clearance"])) for req in setups])
+    included = np.stack(_masks(setups, points))
     return (points,), traced + (included,)
+
+
+def _masks(setups: list[dict], points) -> list[np.ndarray]:
+    """Each cell's grid mask (`grid_included`), computed once for the cells of one world and clearance."""
+    known: dict[tuple, np.ndarray] = {}
+    for req in setups:
+        key = (id(req["env"]), float(req["clearance"]))  # the setups live through the call: ids are unique
+        if key not in known:
+            known[key] = np.asarray(grid_included(req["env"], points, req["clearance"]))
+    return [known[(id(req["env"]), float(req["clearance"]))] for req in setups]
 
 
 def catchment_inputs(setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
@@ -220,8 +234,8 @@ def distance_inputs(setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
 
 
 def map_program(lanes: int, trials: int | None):
-    return lambda points, envs, methods, sensors, keys, included: map_cells.map_cells(
-        envs, points, included, methods, sensors, keys
+    return lambda points, envs, methods, sensors, keys, live, included: map_cells.map_cells(
+        envs, points, included, methods, sensors, keys, live
     )
 
 

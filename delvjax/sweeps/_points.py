@@ -32,7 +32,7 @@ def point_errors(spec: SweepSpec, max_points: int = api.MAX_POINTS) -> dict:
 
     def errors(setups: list[dict], traced: tuple) -> tuple[np.ndarray, dict]:
         (points,), traced = grid_inputs(setups, traced)
-        return points, {"errors": np.asarray(map_cells_errors(traced[0], points, traced[4], *traced[1:4]))}
+        return points, {"errors": np.asarray(map_cells_errors(traced[0], points, traced[-1], *traced[1:4]))}
 
     points, out, envs = _per_point(spec, max_points, errors, {"errors": np.nan})
     return {"errors": out["errors"], "points": points, **_scenes(envs)}

@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     import xarray
 
 CELL_CHUNK = 64  # cells per call of a group's program (the last chunk padded): bounds memory
+KEEP_SETUPS = 1024  # a sweep of at most this many cells keeps the setups its validation made (`_plan`)
 
 
 def _envs(spec: SweepSpec) -> dict:
@@ -44,11 +45,18 @@ def _envs(spec: SweepSpec) -> dict:
 
 
 def _plan(
-    spec: SweepSpec, envs: dict, max_points: int, code: str | None, program: tuple[str, ...] | None = None
+    spec: SweepSpec,
+    envs: dict,
+    max_points: int,
+    code: str | None,
+    program: tuple[str, ...] | None = None,
+    kept: dict[int, dict] | None = None,
 ) -> tuple[list[list[int]], list[str], int]:
     """Validate every cell before any work; return the cells of each program (group), with `code`
-    every cell's digest (`cell_store`), and the most visibility masks of any cell. Setups are not
-    kept: memory does not grow with them. `program`: as `cell_setup`'s."""
+    every cell's digest (`cell_store`), and the most visibility masks of any cell. With `kept` (a dict) and
+    at most KEEP_SETUPS cells, each cell's setup is kept there (cell number -> setup) for the run to use rather
+    than make again; a larger sweep's are not: memory does not grow with them. `program`: as `cell_setup`'s."""
+    keep = kept is not None and spec.n_cells <= KEEP_SETUPS
     ids: dict[tuple, int] = {}
     groups: list[list[int]] = []
     digests: list[str] = []
@@ -61,7 +69,18 @@ def _plan(
             groups.append([])
         groups[gid].append(i)
         digests.append(cell_digest(req, code) if code is not None else "")
+        if keep:
+            kept[i] = req
     return groups, digests, rows
+
+
+def _setups(spec: SweepSpec, envs: dict, rows: list[int], kept: dict[int, dict], max_points: int, program) -> list:
+    """The setups of a chunk's rows: those `_plan` kept, the others made once each (padding repeats a cell)."""
+    made: dict[int, dict] = {}
+    for i in rows:
+        if i not in made:
+            made[i] = kept[i] if i in kept else cell_setup(spec, envs, spec.cell(i), max_points, program)
+    return [made[i] for i in rows]
 
 
 def run_sweep(
@@ -88,7 +107,8 @@ def run_sweep(
     `mask_rows` (visibility masks padded to at least this many rows) let sweeps of other methods or occlusions
     share one compiled program (the same numbers: a cell's trials do not depend on its companions)."""
     envs = _envs(spec)
-    groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None, program)
+    kept: dict[int, dict] = {}
+    groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None, program, kept)
     rows = max(rows, mask_rows)
     n = spec.n_cells
     names = sum_names(spec.kind)
@@ -131,7 +151,7 @@ def run_sweep(
             phase(f"compiling program {first} of {len(live)}")
         padded = chunk + [chunk[0]] * (size - len(chunk))
         start, stop = (0, size) if processes == 1 else process_rows(mesh, size)  # this process's rows
-        setups = [cell_setup(spec, envs, spec.cell(i), max_points, program) for i in padded[start:stop]]
+        setups = _setups(spec, envs, padded[start:stop], kept, max_points, program)
         own = chunk[start:stop]  # this process's real cells (the rest of its rows are padding: no trials)
         res = evaluate(spec.kind, setups, mesh, rows, None if processes == 1 else size, lanes, real=len(own))
         for k in names:

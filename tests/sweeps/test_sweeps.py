@@ -326,3 +326,22 @@ def test_sweep_figures_of_many_values_stay_readable(y):
         ds = ds.isel(bearing_noise_deg=0)
     fig, rows = sweep_figure(ds, "d", y, "mean_error_deg")
     assert figure_defects(fig) == [] and len(rows) == (2 * 40 if y is None else 2 * 40 * 30)
+
+
+def test_a_vector_map_chunks_padding_evaluates_no_point_and_each_cell_is_set_up_once(monkeypatch):
+    """Issue 54: a row that pads a chunk (`evaluate`'s `real`) evaluates no grid point (`map_cells`' `live`: all
+    its points invalid) and leaves the real rows' numbers as they were; a sweep validates and sets up each cell
+    once (`_plan` keeps the setups; before, every chunk set its cells and padding up again)."""
+    from delvjax.sweeps._kinds import cell_setup, evaluate
+
+    spec = parse_sweep(TWO_CELLS)
+    envs = sweeps._envs(spec)
+    setups = [cell_setup(spec, envs, spec.cell(i), 10_000) for i in range(2)]
+    idle, running = (evaluate(spec.kind, setups, None, real=real) for real in (1, None))
+    assert idle["invalid"][1] == idle["points"][1] > 0 and running["invalid"][1] < running["points"][1]
+    for name, values in idle.items():
+        np.testing.assert_array_equal(values[0], running[name][0])
+    calls = []
+    monkeypatch.setattr(sweeps, "cell_setup", lambda *a, **k: calls.append(1) or cell_setup(*a, **k))
+    sweeps.run_sweep(spec)
+    assert len(calls) == 2
