@@ -47,8 +47,8 @@ def call(seed):
     if work == "catchment":
         return delvjax.catchment("env1", method="alv", spacing=100 if smoke else 25, seed=seed).outcome
     if work == "success":
-        return delvjax.success_rate("env1", method="alv" if smoke else "delv", trials=3 if smoke else 100,
-                                    distances=[100.0] if smoke else None, seed=seed).outcome
+        few = {"method": "alv", "trials": 3, "distances": [100.0]} if smoke else {"method": "delv", "trials": 100}
+        return delvjax.success_rate("env1", seed=seed, **few).outcome
     from delvjax.sweeps import run_sweep
     from delvjax.sweeps._spec import parse_sweep
     d = "[10, 20]" if smoke else "{start = 10, stop = 50, num = 5}"

@@ -47,9 +47,11 @@ def main(argv: list[str] | None = None) -> int:
 DEVICES_ENV = "DELVJAX_DEVICES"  # CPU devices a `delvjax` process splits its work over (1: one device)
 DEVICE_FLAG = "--xla_force_host_platform_device_count"
 # Commands whose work `batching.over_devices` splits over a `local_mesh`, and that gain by it on a CPU host
-# (benchmarks/bench_cores.py). Not `vector-map` (a warm map runs the program kept on disk for one device,
-# `outputs/_programs.py`), nor `reproduce` (its studies already run side by side in threads).
-EVERY_CORE = frozenset({"catchment", "success-rate", "trajectories", "sweep"})
+# (benchmarks/bench_cores.py, 2 loaded cores: catchment 1.00x cold / 1.39x warm, sweep 1.08x / 1.14x). Not
+# `success-rate` or `trajectories` (a few hundred rollouts: 0.92x cold, the partitioned program compiles longer),
+# `vector-map` (0.92x cold, and a warm map runs the program kept on disk for one device, `outputs/_programs.py`)
+# nor `reproduce` (its studies already run side by side in threads: --quick 148 CPU-s on 2 devices, 120 on one).
+EVERY_CORE = frozenset({"catchment", "sweep"})
 
 
 def host_devices(command: str | None, environ: Mapping[str, str]) -> int:
