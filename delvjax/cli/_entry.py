@@ -32,7 +32,7 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     if whole_process:
         try:
-            use_host_devices(host_devices(argv[0] if argv else None, os.environ))
+            use_host_devices(host_devices(split_command(argv), os.environ))
         except ValueError as exc:
             print(f"delvjax: error: {exc}", file=sys.stderr)
             return 2
@@ -52,6 +52,12 @@ DEVICE_FLAG = "--xla_force_host_platform_device_count"
 # `vector-map` (0.92x cold, and a warm map runs the program kept on disk for one device, `outputs/_programs.py`)
 # nor `reproduce` (its studies already run side by side in threads: --quick 148 CPU-s on 2 devices, 120 on one).
 EVERY_CORE = frozenset({"catchment", "sweep"})
+
+
+def split_command(argv: list[str]) -> str | None:
+    """The command of `argv` whose work may take every core; None for a process of a `--num-processes`
+    run (its processes share the cores already)."""
+    return None if not argv or any(a.startswith("--num-processes") for a in argv) else argv[0]
 
 
 def host_devices(command: str | None, environ: Mapping[str, str]) -> int:

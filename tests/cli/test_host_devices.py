@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from delvjax.cli._entry import DEVICE_FLAG, DEVICES_ENV, EVERY_CORE, host_devices, main as entry
+from delvjax.cli._entry import DEVICE_FLAG, DEVICES_ENV, EVERY_CORE, host_devices, main as entry, split_command
 
 CORES = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
 
@@ -44,6 +44,8 @@ def test_the_default_asks_for_every_core_for_the_commands_that_gain():
     assert host_devices("catchment", {"XLA_FLAGS": f"{DEVICE_FLAG}=3"}) == 0  # the user's count stands
     assert host_devices("vector-map", {DEVICES_ENV: "3"}) == 3
     assert host_devices("catchment", {DEVICES_ENV: "1"}) == 1
+    assert split_command(["sweep", "s.toml", "--out", "d"]) == "sweep"
+    assert split_command(["sweep", "s.toml", "--num-processes", "2", "--process-id", "0"]) is None  # cores shared
     for bad in ("0", "two", "-1"):
         with pytest.raises(ValueError, match=DEVICES_ENV):
             host_devices("catchment", {DEVICES_ENV: bad})
