@@ -124,6 +124,13 @@ def test_the_checker_catches_a_renamed_module_or_attribute():
     )
 
 
+def smoke_run(script: str) -> subprocess.CompletedProcess:
+    """Run `script --smoke` from the repository root; it must succeed (its stderr tail otherwise)."""
+    smoke = subprocess.run([sys.executable, script, "--smoke"], cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert smoke.returncode == 0, smoke.stderr[-3000:]
+    return smoke
+
+
 RUN_ALL = r"""
 import runpy, sys
 bad = []
@@ -150,42 +157,21 @@ def test_every_benchmark_imports_and_parses_its_arguments_and_the_delv_one_runs(
         env={**__import__("os").environ, "PYTHONPATH": env_path},
     )  # fmt: skip
     assert out.returncode == 0 and "BAD []" in out.stdout, (out.stdout[-3000:], out.stderr[-3000:])
-    smoke = subprocess.run(
-        [sys.executable, "benchmarks/bench_delv_landmarks.py", "--smoke"],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
-    assert smoke.returncode == 0, smoke.stderr[-3000:]
+    smoke = smoke_run("benchmarks/bench_delv_landmarks.py")
     assert "L = 4" not in smoke.stdout and smoke.stdout.splitlines()[-1].split()[0] == "4"
 
 
 def test_the_startup_benchmark_runs_and_prints_its_ratio():
     """benchmarks/bench_startup.py --smoke: one cold and one warm vector map on a 200 cm grid, import jax
     and --help, as whole processes; the ratio line of issue 54 (no timing asserted)."""
-    smoke = subprocess.run(
-        [sys.executable, "benchmarks/bench_startup.py", "--smoke"],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
-    assert smoke.returncode == 0, smoke.stderr[-3000:]
+    smoke = smoke_run("benchmarks/bench_startup.py")
     assert "warm vector map / import jax:" in smoke.stdout.splitlines()[-1], smoke.stdout
 
 
 def test_the_bucket_benchmark_runs_and_a_second_size_compiles_nothing():
     """benchmarks/bench_buckets.py --smoke: ALV vector maps on 100 and 81 grid points and success rates of 2
     and 3 trials; the second of each compiles no program (counted, not timed) and both ratio lines print."""
-    smoke = subprocess.run(
-        [sys.executable, "benchmarks/bench_buckets.py", "--smoke"],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
-    assert smoke.returncode == 0, smoke.stderr[-3000:]
+    smoke = smoke_run("benchmarks/bench_buckets.py")
     rows = {line[:24].strip(): line.split() for line in smoke.stdout.splitlines()}
     assert rows["vector_map spacing 110"][-2] == "0" and rows["success_rate 3 trials"][-2] == "0", smoke.stdout
     assert sum("of the first's" in line for line in smoke.stdout.splitlines()) == 2, smoke.stdout
@@ -194,10 +180,7 @@ def test_the_bucket_benchmark_runs_and_a_second_size_compiles_nothing():
 def test_the_cores_benchmark_runs_one_device_against_every_core():
     """benchmarks/bench_cores.py --smoke: an ALV map of 100 points on 1 device and on every core (2 forced
     devices on a one-core machine), each in a fresh process, and the ratio line against the 1.6x target."""
-    smoke = subprocess.run(
-        [sys.executable, "benchmarks/bench_cores.py", "--smoke"], cwd=ROOT, capture_output=True, text=True, timeout=600
-    )
-    assert smoke.returncode == 0, smoke.stderr[-3000:]
+    smoke = smoke_run("benchmarks/bench_cores.py")
     devices = [line.split()[1] for line in smoke.stdout.splitlines() if line.startswith("map ")]
     assert devices[0] == "1" and int(devices[1]) >= 2, smoke.stdout
     assert "map: 1 device /" in smoke.stdout and ">= 1.6x" in smoke.stdout, smoke.stdout
@@ -206,9 +189,6 @@ def test_the_cores_benchmark_runs_one_device_against_every_core():
 def test_the_sweep_benchmark_runs_and_prints_sweep_against_loop():
     """benchmarks/bench_sweep.py --smoke: an ALV vector-map sweep of 4 cells against a loop of 4 `vector_map`
     calls, each in a fresh process with an empty cache; the ratio line of issue 54 (no timing asserted)."""
-    smoke = subprocess.run(
-        [sys.executable, "benchmarks/bench_sweep.py", "--smoke"], cwd=ROOT, capture_output=True, text=True, timeout=600
-    )
-    assert smoke.returncode == 0, smoke.stderr[-3000:]
+    smoke = smoke_run("benchmarks/bench_sweep.py")
     last = smoke.stdout.splitlines()[-1]
     assert last.startswith("loop / sweep, compile included:") and "(target >= 1.5)" in last, smoke.stdout
