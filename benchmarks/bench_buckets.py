@@ -25,6 +25,7 @@ import jax
 jax.config.update("jax_enable_compilation_cache", False)
 
 import delvjax  # noqa: E402
+from child import save_json  # noqa: E402
 from delvjax.core import batching, maps  # noqa: E402
 
 EVENTS = (
@@ -76,6 +77,7 @@ def main() -> None:
     p.add_argument("--trials", type=int, nargs=2, default=[20, 30], help="trials per distance: first, second")
     p.add_argument("--distances", type=float, nargs="+", default=[100.0, 200.0, 300.0])
     p.add_argument("--smoke", action="store_true", help="tiny sizes, ALV: that the script runs")
+    p.add_argument("--json", metavar="PATH", help="also write the ratio(s) and raw numbers here (speed_targets.py)")
     a = p.parse_args()
     if a.smoke:
         a.method, a.spacings, a.trials, a.distances = "alv", [100.0, 110.0], [2, 3], [100.0]
@@ -95,8 +97,13 @@ def main() -> None:
         m = measured(run)
         row(f"success_rate {trials} trials", trials, padded(trials, 1 << 14), m)
         sr.append(m)
-    ratio("vector map, another grid size", *vm)
-    ratio("success rate, another trial count", *sr)
+    pct_vm = ratio("vector map, another grid size", *vm)
+    pct_sr = ratio("success rate, another trial count", *sr)
+    save_json(a.json, {
+        "method": a.method, "env": a.env, "spacings": a.spacings, "trials": a.trials,
+        "vector_map": {"first": vm[0], "second": vm[1], "pct": pct_vm},
+        "success_rate": {"first": sr[0], "second": sr[1], "pct": pct_sr},
+    })  # fmt: skip
 
 
 if __name__ == "__main__":

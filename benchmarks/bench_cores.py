@@ -23,7 +23,7 @@ import os
 import statistics
 import sys
 
-from child import run_child
+from child import run_child, save_json
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from delvjax.cli._entry import DEVICE_FLAG, host_devices  # noqa: E402  (no JAX: the parent stays light)
@@ -80,6 +80,7 @@ def main() -> None:
     p.add_argument("--devices", type=int, default=0, help="the N compared to 1 (default: the CLI's default)")
     p.add_argument("--works", nargs="+", choices=WORKS, default=list(WORKS))
     p.add_argument("--smoke", action="store_true", help="a tiny map, one round: that the script runs")
+    p.add_argument("--json", metavar="PATH", help="also write the ratio(s) and raw numbers here (speed_targets.py)")
     a = p.parse_args()
     if DEVICE_FLAG in os.environ.get("XLA_FLAGS", ""):
         raise SystemExit(f"XLA_FLAGS sets {DEVICE_FLAG}: this script sets it itself")
@@ -92,6 +93,7 @@ def main() -> None:
     print(
         f"{'work':10s} {'dev':>3s} {'compile s':>9s} {'first wall':>10s} {'first CPU':>9s} {'warm wall':>9s} {'warm CPU':>8s}"
     )
+    raw = {}
     for work in works:
         runs: dict[int, list[dict]] = {1: [], n: []}
         for _ in range(rounds):
@@ -112,6 +114,8 @@ def main() -> None:
             f"{work}: 1 device / {n} devices, warm {warm:.2f}x ({verdict} >= {TARGET:g}x), first call {first:.2f}x"
             f" (compile {100 * share:.0f} % of a first call's wall on 1 device)"
         )
+        raw[work] = {"one": best[1], "every": best[n], "warm_ratio": warm, "first_ratio": first, "compile_share": share}
+    save_json(a.json, {"devices": n, "rounds": rounds, "reps": reps, "works": raw})
 
 
 if __name__ == "__main__":

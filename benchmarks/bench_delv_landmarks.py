@@ -16,7 +16,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from child import run_child
+from child import run_child, save_json
 
 CHILD = r"""
 import json, math, resource, sys, time
@@ -53,24 +53,30 @@ def main() -> None:
     ap.add_argument("--landmarks", type=int, nargs="+", default=[4, 8, 16, 32, 64])
     ap.add_argument("--spacing", type=float, default=50.0)
     ap.add_argument("--smoke", action="store_true", help="L = 4 on a 200 cm grid: that it runs, not how fast")
+    ap.add_argument("--json", metavar="PATH", help="also write the ratio(s) and raw numbers here (speed_targets.py)")
     a = ap.parse_args()
     sizes, spacing = ([4], 200.0) if a.smoke else (a.landmarks, a.spacing)
     print(f"vector map of delv (no compass), {spacing:g} cm spacing; a fresh process per L")
     print(
         f"{'L':>4} {'points':>7} {'us/point':>9} {'CPU us/pt':>9} {'exponent':>9} {'compile s':>9} {'peak RSS MB':>12}"
     )
-    per_point, per_point_cpu, last = {}, {}, None
+    per_point, per_point_cpu, last, raw = {}, {}, None, {}
     for n in sizes:
-        r = run(n, spacing)
+        r = raw[str(n)] = run(n, spacing)
         per_point[n], cpu = r["seconds"] / r["points"] * 1e6, r["cpu"] / r["points"] * 1e6
         per_point_cpu[n] = cpu
         slope = "" if last is None else f"{math.log(per_point[n] / per_point[last]) / math.log(n / last):.2f}"
         row = f"{n:4d} {r['points']:7d} {per_point[n]:9.1f} {cpu:9.1f} {slope:>9} {r['compile']:9.2f}"
         print(f"{row} {r['peak_rss_mb']:12.0f}")
         last = n
+    ratio = ratio_cpu = None
     if 8 in per_point and 32 in per_point:
         ratio, ratio_cpu = per_point[32] / per_point[8], per_point_cpu[32] / per_point_cpu[8]
         print(f"time a point at L = 32 / L = 8: {ratio:.1f}x wall, {ratio_cpu:.1f}x CPU (issue 54 asks <= 20x)")
+    save_json(a.json, {
+        "spacing": spacing, "runs": raw, "us_per_point": {str(n): v for n, v in per_point.items()},
+        "cpu_us_per_point": {str(n): v for n, v in per_point_cpu.items()}, "ratio_wall": ratio, "ratio_cpu": ratio_cpu,
+    })  # fmt: skip
 
 
 if __name__ == "__main__":

@@ -25,6 +25,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from child import save_json
+
 TARGET = 2.0  # warm vector map / import jax (issue 54)
 
 
@@ -63,6 +65,7 @@ def main() -> None:
         help="keep PYTHONDONTWRITEBYTECODE as set (default: every child may keep bytecode, as an installed "
         "package has; delvjax's 128 modules compiled from source cost about 0.1 s a run)",
     )
+    ap.add_argument("--json", metavar="PATH", help="also write the ratio(s) and raw numbers here (speed_targets.py)")
     a = ap.parse_args()
     runs, spacing = (1, 200.0) if a.smoke else (a.runs, a.spacing)
     with tempfile.TemporaryDirectory() as tmp:
@@ -88,6 +91,10 @@ def main() -> None:
         print(f"{name:28s} {wall[name]:8.2f} {cpu[name]:8.2f}")
     ratio, ratio_cpu = wall[vm] / wall["import jax"], cpu[vm] / cpu["import jax"]
     verdict = "met" if ratio < TARGET else "missed"
+    save_json(a.json, {
+        "runs": runs, "method": a.method, "spacing": spacing, "cold": {"wall": cold[0], "cpu": cold[1]},
+        "wall": wall, "cpu": cpu, "vector_map": vm, "ratio_wall": ratio, "ratio_cpu": ratio_cpu,
+    })  # fmt: skip
     print(
         f"warm vector map / import jax: {ratio:.2f}x wall, {ratio_cpu:.2f}x CPU (target < {TARGET:g}x wall: {verdict})"
     )

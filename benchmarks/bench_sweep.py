@@ -33,7 +33,7 @@ import socket
 import subprocess
 import sys
 
-from child import run_child
+from child import run_child, save_json
 
 CHILD = r"""
 import json, sys, time
@@ -85,8 +85,9 @@ print(json.dumps({"first_cpu": times[0][0], "first_wall": times[0][1], "warm_cpu
 """
 
 
-def versus(kind: str, method: str, cells: int, spacing: float, repeats: int) -> None:
-    """Sweep against loop, fresh processes with an empty cache, interleaved; prints the rows and the ratio."""
+def versus(kind: str, method: str, cells: int, spacing: float, repeats: int) -> dict:
+    """Sweep against loop, fresh processes with an empty cache, interleaved; prints the rows and the ratio,
+    returns them (the best of each side, the ratios loop / sweep)."""
     noises = min(10, cells)
     seeds = max(1, cells // noises)
     runs: dict[str, list[dict]] = {"sweep": [], "loop": []}
@@ -105,6 +106,11 @@ def versus(kind: str, method: str, cells: int, spacing: float, repeats: int) -> 
         f"{lp['warm_wall'] / s['warm_wall']:.2f}x wall",
         flush=True,
     )
+    return {
+        "cells": seeds * noises, "spacing": spacing, "repeats": repeats, "sweep": s, "loop": lp,
+        "first_cpu_ratio": lp["first_cpu"] / s["first_cpu"], "first_wall_ratio": lp["first_wall"] / s["first_wall"],
+        "warm_cpu_ratio": lp["warm_cpu"] / s["warm_cpu"], "warm_wall_ratio": lp["warm_wall"] / s["warm_wall"],
+    }  # fmt: skip
 
 
 def free_port() -> int:
@@ -149,13 +155,18 @@ def main() -> None:
     ap.add_argument("--repeats", type=int, default=2, help="fresh processes per side of the comparison")
     ap.add_argument("--versus-only", action="store_true", help="the comparison alone, no scaling table")
     ap.add_argument("--smoke", action="store_true", help="the ALV comparison on 4 cells, 100 cm grid, alone")
+    ap.add_argument(
+        "--json", metavar="PATH", help="also write the sweep-versus-loop ratios and raw numbers here (speed_targets.py)"
+    )
     a = ap.parse_args()
     cells, spacing, repeats = (4, 100.0, 1) if a.smoke else (a.versus, 25.0, a.repeats)
+    raw = {}
     if "vector-map" in a.kinds:
         for method in ("alv",) if a.smoke else ("delv", "alv"):
-            versus("vector-map", method, cells, spacing, repeats)
+            raw[f"vector-map {method}"] = versus("vector-map", method, cells, spacing, repeats)
     if "catchment" in a.kinds and not a.smoke:
-        versus("catchment", "delv", max(2, cells // 5), spacing, repeats)
+        raw["catchment delv"] = versus("catchment", "delv", max(2, cells // 5), spacing, repeats)
+    save_json(a.json, {"versus": raw})
     if a.smoke or a.versus_only:
         return
     for kind in a.kinds:

@@ -16,3 +16,12 @@ def run_child(code: str, *args, **env: str) -> dict:
     if out.returncode != 0:
         raise SystemExit(out.stderr[-3000:])
     return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def save_json(path: str | None, data: dict) -> None:
+    """Write a script's ratio(s) and the raw numbers behind them to `path` (its `--json PATH`; None: nothing),
+    for benchmarks/speed_targets.py."""
+    if path:
+        with open(path, "w") as f:
+            json.dump(data, f, indent=1)
+            f.write("\n")
