@@ -28,6 +28,7 @@ from ..core.scene import DEFAULT_ARENA, DEFAULT_HOME
 CANDIDATES = 256  # candidate layouts drawn per member and round (a round accepts > 99.99 % of members)
 ROUNDS = 16  # rounds of candidates before a member is given up (never seen: the test draws 4096 members)
 MAX_MEMBERS = 100_000  # members one call may ask for
+MEMBER_CHUNK = 4096  # members drawn by one program call (memory: 256 candidates each)
 EPS = 1e-3  # the drawn layouts keep this margin (cm, degrees) from every rule's bound: rounding keeps them members
 
 
@@ -239,19 +240,28 @@ def _asymmetry(rel, xp):
     return xp.min(xp.stack(worst, axis=-1), axis=-1)
 
 
-@partial(jax.jit, static_argnames=("shape",))
-def _first_valid(keys, shape: Family, bounds):
-    """For each member key: its first valid candidate (n, 3) and whether one was found. `shape` is the family
-    without its ranges (static), `bounds` its [distance lo, hi, radius lo, hi] (traced): a family narrowed or
-    widened (`Family.scaled`) runs the program of its default."""
+@partial(jax.jit, static_argnames=("shape", "size"))
+def _first_valid(base, first, rnd, shape: Family, bounds, size: int):
+    """For members first .. first + size - 1 (key `fold_in(base, i)`, in round `rnd` > 0 folded again with
+    `rnd`): each one's first valid candidate (n, 3) and whether one was found. `shape` is the family without
+    its ranges (static), `bounds` its [distance lo, hi, radius lo, hi] (traced): a family narrowed or widened
+    (`Family.scaled`) runs the program of its default; `size` is a bucket of member counts (`member_chunk`)."""
+    keys = jax.vmap(lambda i: jax.random.fold_in(base, i))(first + jnp.arange(size))
+    keys = jnp.where(rnd == 0, keys, jax.vmap(lambda k: jax.random.fold_in(k, rnd))(keys))
 
     def one(key):
         cands = _draw(key, shape, CANDIDATES, bounds)
         ok = jnp.all(jnp.stack(list(_rules(cands, shape, jnp, bounds).values())), axis=0)
-        first = jnp.argmax(ok)
-        return cands[first], ok[first]
+        pick = jnp.argmax(ok)
+        return cands[pick], ok[pick]
 
     return jax.vmap(one)(keys)
+
+
+def member_chunk(members: int) -> int:
+    """The members one `_first_valid` call draws: a power of two >= `members` (at least 8, at most
+    MEMBER_CHUNK), so that a handful of programs serve every member count (the padding is dropped)."""
+    return min(max(8, 1 << (int(members) - 1).bit_length()), MEMBER_CHUNK)
 
 
 def member_layouts(name: str | Family, members: int, seed: int = 0) -> np.ndarray:
@@ -262,21 +272,26 @@ def member_layouts(name: str | Family, members: int, seed: int = 0) -> np.ndarra
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise InputError("seed", seed, "must be an integer >= 0")
     shape = dataclasses.replace(fam, name="", distance=(0.0, 0.0), radius=(0.0, 0.0))  # one program per shape
-    bounds = jnp.asarray([*fam.distance, *fam.radius], jnp.float32)
+    bounds = np.asarray([*fam.distance, *fam.radius], np.float32)
     base = jax.random.PRNGKey(int(seed))
-    keys = jax.vmap(lambda i: jax.random.fold_in(base, i))(jnp.arange(members))
+    size = member_chunk(members)
     out = np.zeros((members, fam.n, 3))
-    todo = np.ones(members, bool)
-    for rnd in range(ROUNDS):  # rounds of candidates, not a loop over members
-        round_keys = keys if rnd == 0 else jax.vmap(lambda k: jax.random.fold_in(k, rnd))(keys)
-        layout, ok = (np.asarray(a) for a in _first_valid(round_keys, shape, bounds))
-        take = todo & ok
-        out[take] = layout[take]
-        todo &= ~ok
-        if not todo.any():
-            break
-    if todo.any():
-        raise InputError("ensemble", fam.name, f"found no layout for {int(todo.sum())} members: the rules leave none")
+    for start in range(0, members, size):  # chunks of a bounded size (memory), not a loop over members
+        n = min(size, members - start)
+        todo = np.ones(n, bool)
+        for rnd in range(ROUNDS):  # rounds of candidates, not a loop over members
+            layout, ok = (
+                np.asarray(a)[:n] for a in _first_valid(base, np.int32(start), np.int32(rnd), shape, bounds, size)
+            )
+            take = todo & ok
+            out[start : start + n][take] = layout[take]
+            todo &= ~ok
+            if not todo.any():
+                break
+        if todo.any():
+            raise InputError(
+                "ensemble", fam.name, f"found no layout for {int(todo.sum())} members: the rules leave none"
+            )
     return out.round(2)
 
 

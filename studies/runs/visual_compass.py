@@ -20,7 +20,7 @@ from delvjax.plots._maps import subplots
 import numpy as np
 
 from delvjax.core import rollouts
-from delvjax.core.maps import grid_included, grid_points, random_headings
+from delvjax.core.maps import grid_points
 from delvjax.core.methods.heading import visual_compass_errors
 from delvjax.options._settings import make_sensor
 from .. import thesis
@@ -69,9 +69,10 @@ def visual_key(world: str, bg: str) -> str:
 
 def grid(ctx, e):
     """The grid points, those included, and the vector map's release headings (random per point)."""
-    points = jnp.asarray(grid_points(e.arena, ctx.settings.spacing))
-    included = np.asarray(grid_included(e, points, 10.0))
-    return points, included, random_headings(jax.random.PRNGKey(ctx.settings.seed), points.shape[0])
+    points = grid_points(e.arena, ctx.settings.spacing)
+    key = jax.random.PRNGKey(ctx.settings.seed)
+    _, headings, included = rollouts.bucketed_grid(e, points, key, None, 10.0)  # the catchments' programs
+    return jnp.asarray(points), included, jnp.asarray(headings)
 
 
 def default_and_physical(ctx, e, method: str, **options) -> dict:

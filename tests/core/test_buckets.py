@@ -91,3 +91,18 @@ def test_a_catchment_of_another_grid_size_in_the_bucket_compiles_nothing():
     with compiled_functions() as names:
         c = delvjax.catchment("env1", method="alv", spacing=110.0, max_steps=3)
     assert names == [] and c.outcome.shape == (1, 81)  # before: headings, grid mask, errors, outcome
+
+
+def test_catchments_of_any_mask_count_share_the_error_program():
+    """A catchment's per-mask angular errors run on the masks padded to the rollouts' MASK_ROWS: one
+    program for one and two hidden landmarks (4 and 6 masks on env1), where each count compiled its own,
+    and the same errors as without the padding."""
+    from delvjax.core import metrics
+
+    env = delvjax.load_env("env1")
+    delvjax.catchment(env, "alv", spacing=70, occlude=1)
+    before = metrics.angular_error_deg._cache_size()
+    two = delvjax.catchment(env, "alv", spacing=70, occlude=2)
+    assert metrics.angular_error_deg._cache_size() == before
+    unpadded = metrics.angular_error_deg(two.direction, two.valid, two.points[None], env.home)
+    np.testing.assert_array_equal(np.asarray(two.error_deg), np.asarray(unpadded))

@@ -166,6 +166,18 @@ def test_a_member_does_not_depend_on_how_many_are_asked_for():
     assert not np.array_equal(member_layouts("env1", 7, seed=6), many[:7])
 
 
+def test_member_counts_of_one_bucket_share_a_program():
+    """Member counts are padded to a power of two (`member_chunk`): 9 and 13 members of a family draw
+    with one compiled program (each count compiled its own: 1-2 s each), and chunks keep each member."""
+    from delvjax.envs import _ensembles
+
+    nine = member_layouts("env2", 9, seed=11)
+    before = _ensembles._first_valid._cache_size()
+    np.testing.assert_array_equal(member_layouts("env2", 13, seed=11)[:9], nine)
+    assert _ensembles._first_valid._cache_size() == before
+    assert [_ensembles.member_chunk(n) for n in (1, 8, 9, 44, 10**5)] == [8, 8, 16, 64, _ensembles.MEMBER_CHUNK]
+
+
 def test_narrowed_and_widened_families_keep_their_scaled_rules():
     for factor in (2 / 3, 4 / 3):
         fam = family("env1").scaled(factor)

@@ -5,7 +5,15 @@ scheduler), trials (blocks of trials as one program), release (seeded release po
 catchment, success (success rate vs distance), trajectories.
 """
 
-from .catchment import Catchment, catchment_area, catchment_summary, hidden_masks, occlusion_masks, under_release
+from .catchment import (
+    Catchment,
+    bucketed_grid,
+    catchment_area,
+    catchment_summary,
+    hidden_masks,
+    occlusion_masks,
+    under_release,
+)
 from .release import START_TRIES, release_points
 from .rules import (
     ARENA,
@@ -74,6 +82,7 @@ __all__ = [
     "TRIAL_BLOCK",
     "Trajectories",
     "Trials",
+    "bucketed_grid",
     "catchment_area",
     "catchment_summary",
     "check_rules",

@@ -9,7 +9,6 @@ from collections.abc import Callable, Sequence
 
 import equinox as eqx
 import jax
-import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
@@ -36,7 +35,7 @@ from .rules import (
     outcome_names,
     rule_columns,
 )
-from .trials import TRIAL_BLOCK, run_trials
+from .trials import MASK_ROWS, TRIAL_BLOCK, run_trials
 from ..types import Real
 
 
@@ -132,11 +131,8 @@ def catchment_area(
     # grids of many sizes share them (a cell's heading and mask depend only on its index and position)
     points = grid_points(env.arena, spacing)
     n_cells = points.shape[0]
-    size = bucket(n_cells, max(n_cells, TRIAL_BLOCK))
-    padded = np.concatenate([points, np.repeat(points[:1], size - n_cells, axis=0)])
-    headings = np.asarray(random_headings(key, size) if heading is None else np.full(size, heading, np.float32))
-    headings = headings[:n_cells]
-    included = np.asarray(grid_included(env, padded, clearance))[:n_cells]
+    padded, headings, included = bucketed_grid(env, points, key, heading, clearance)
+    size = padded.shape[0]
     counted = catchment_counted(env.arena, points, included, first_move, sensor.d)
     cells = np.flatnonzero(included)  # which cells are released
     if cells.size == 0:
@@ -178,7 +174,7 @@ def catchment_area(
     put = jax.device_put  # host to device without an eager op (no compile per shape)
     direction = per_cell(trials.first_direction, np.nan, size)  # the vector map under each mask, padded
     valid = per_cell(trials.first_valid, False, size)
-    error = np.asarray(angular_error_deg(direction, valid, padded[None], env.home))[:, :n_cells]
+    error = mask_errors(direction, valid, padded, env.home)[:, :n_cells]
     outcome = np.where((counted | ~included)[None, :], per_cell(trials.outcome, EXCLUDED), NEAR_WALL)
     direction, valid = direction[:, :n_cells], valid[:, :n_cells]
     return Catchment(
@@ -203,6 +199,19 @@ def catchment_area(
     )
 
 
+def bucketed_grid(env: Env, points, key: Array, heading: float | None, clearance: Real) -> tuple:
+    """(padded points, headings, included) of a grid: the points padded to a shape bucket
+    (`batching.bucket`), each point's release heading (fixed, or random from `key` as `maps.random_headings`)
+    and whether it is clear of the landmarks, computed on the padded grid so that grids of many sizes share
+    one program (a point's heading and flag depend only on its index and position); the last two unpadded."""
+    points = np.asarray(points, np.float32)
+    n = points.shape[0]
+    size = bucket(n, max(n, TRIAL_BLOCK))
+    padded = np.concatenate([points, np.repeat(points[:1], size - n, axis=0)])
+    headings = np.asarray(random_headings(key, size) if heading is None else np.full(size, heading, np.float32))
+    return padded, headings[:n], np.asarray(grid_included(env, padded, clearance))[:n]
+
+
 def under_release(result: Outcomes, arena, d) -> Outcomes:
     """A rollout result under first_move "homing" restated under "release" (the default), for a method
     that reads only the current view: such a method turns at once under either rule (docs/model.md
@@ -215,8 +224,21 @@ def under_release(result: Outcomes, arena, d) -> Outcomes:
         return dataclasses.replace(result, first_move="release")
     included = np.asarray(result.included)
     counted = catchment_counted(arena, np.asarray(result.points), included, "release", d)
-    outcome = jnp.where(jnp.asarray(counted | ~included)[None, :], result.outcome, NEAR_WALL)
-    return dataclasses.replace(result, counted=jax.device_put(counted), outcome=outcome, first_move="release")
+    # NumPy, then one transfer: an eager `jnp.where` compiled a program per grid and mask count (2-3 s of a
+    # cold `reproduce --quick`)
+    outcome = np.where((counted | ~included)[None, :], np.asarray(result.outcome), NEAR_WALL)
+    return dataclasses.replace(
+        result, counted=jax.device_put(counted), outcome=jax.device_put(outcome), first_move="release"
+    )
+
+
+def mask_errors(direction: np.ndarray, valid: np.ndarray, points: np.ndarray, home) -> np.ndarray:
+    """`angular_error_deg` of (M, P) first directions at the (P, 2) padded grid points, M > 1 padded to
+    MASK_ROWS rows (the rollouts' own padding): one compiled program per grid bucket, not per mask count."""
+    rows = direction.shape[0]
+    pad = 0 if rows == 1 else max(0, MASK_ROWS - rows)
+    extend = lambda a: np.concatenate([a, np.repeat(a[:1], pad, axis=0)]) if pad else a  # noqa: E731
+    return np.asarray(angular_error_deg(extend(direction), extend(valid), points[None], home))[:rows]
 
 
 def catchment_summary(result: Catchment) -> dict:

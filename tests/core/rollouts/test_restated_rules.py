@@ -97,3 +97,17 @@ def test_the_studies_run_each_method_once_or_twice_for_three_rule_sets(method, r
     assert made == runs_made and list(results) == list(RULES)
     for rules, res in results.items():
         assert_same(res, delvjax.catchment(env, method, spacing=80, occlude=1, **RULES[rules]))
+
+
+def test_restating_a_catchment_compiles_nothing():
+    """`under_release` is host work: restating a catchment of a grid and mask count seen nowhere else
+    compiles no program (an eager `jnp.where` once compiled one per grid and mask count: 2-3 s of a cold
+    `reproduce --quick`)."""
+    from tests.core.test_buckets import compiled_functions
+
+    env = delvjax.load_env("env1")
+    homing = delvjax.catchment(env, "alv", spacing=70, occlude=2, first_move="homing")
+    with compiled_functions() as names:
+        default = rollouts.under_release(homing, env.arena, Sensor().d)
+    assert names == []
+    assert_same(default, delvjax.catchment(env, "alv", spacing=70, occlude=2))
