@@ -10,12 +10,15 @@ from __future__ import annotations
 
 import ast
 import importlib
+import json
 import subprocess
 import sys
 import types
 from pathlib import Path
 
 import pytest
+
+from tests.test_speed_targets import speed_targets
 
 ROOT = Path(__file__).resolve().parents[1]
 BENCH = ROOT / "benchmarks"
@@ -124,9 +127,10 @@ def test_the_checker_catches_a_renamed_module_or_attribute():
     )
 
 
-def smoke_run(script: str) -> subprocess.CompletedProcess:
-    """Run `script --smoke` from the repository root; it must succeed (its stderr tail otherwise)."""
-    smoke = subprocess.run([sys.executable, script, "--smoke"], cwd=ROOT, capture_output=True, text=True, timeout=600)
+def smoke_run(script: str, *args: str) -> subprocess.CompletedProcess:
+    """Run `script --smoke args` from the repository root; it must succeed (its stderr tail otherwise)."""
+    cmd = [sys.executable, script, "--smoke", *args]
+    smoke = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=600)
     assert smoke.returncode == 0, smoke.stderr[-3000:]
     return smoke
 
@@ -148,7 +152,12 @@ print("BAD", bad)
 """
 
 
-def test_every_benchmark_imports_and_parses_its_arguments_and_the_delv_one_runs():
+def measured(run: str, path: Path) -> list:
+    """What benchmarks/speed_targets.py reads from a script's `--json` output: the values of its targets."""
+    return [v for v in speed_targets.ratios(run, json.loads(path.read_text())).values() if v is not None]
+
+
+def test_every_benchmark_imports_and_parses_its_arguments_and_the_delv_one_runs(tmp_path):
     mains = [str(p) for p in SCRIPTS if "__main__" in p.read_text()]
     assert len(mains) >= 20  # the helpers child.py and timing.py have no main
     env_path = f"{BENCH}:{ROOT}"
@@ -157,38 +166,55 @@ def test_every_benchmark_imports_and_parses_its_arguments_and_the_delv_one_runs(
         env={**__import__("os").environ, "PYTHONPATH": env_path},
     )  # fmt: skip
     assert out.returncode == 0 and "BAD []" in out.stdout, (out.stdout[-3000:], out.stderr[-3000:])
-    smoke = smoke_run("benchmarks/bench_delv_landmarks.py")
+    smoke = smoke_run("benchmarks/bench_delv_landmarks.py", "--json", str(tmp_path / "delv.json"))
     assert "L = 4" not in smoke.stdout and smoke.stdout.splitlines()[-1].split()[0] == "4"
+    out = json.loads((tmp_path / "delv.json").read_text())
+    assert out["cpu_us_per_point"]["4"] > 0 and out["ratio_cpu"] is None  # L = 32 / L = 8 not run at smoke size
 
 
-def test_the_startup_benchmark_runs_and_prints_its_ratio():
+def test_the_startup_benchmark_runs_and_prints_its_ratio(tmp_path):
     """benchmarks/bench_startup.py --smoke: one cold and one warm vector map on a 200 cm grid, import jax
-    and --help, as whole processes; the ratio line of issue 54 (no timing asserted)."""
-    smoke = smoke_run("benchmarks/bench_startup.py")
+    and --help, as whole processes; the ratio line of issue 54 (no timing asserted), and in --json."""
+    smoke = smoke_run("benchmarks/bench_startup.py", "--json", str(tmp_path / "startup.json"))
     assert "warm vector map / import jax:" in smoke.stdout.splitlines()[-1], smoke.stdout
+    assert len(measured("startup", tmp_path / "startup.json")) == 1
 
 
-def test_the_bucket_benchmark_runs_and_a_second_size_compiles_nothing():
+def test_the_bucket_benchmark_runs_and_a_second_size_compiles_nothing(tmp_path):
     """benchmarks/bench_buckets.py --smoke: ALV vector maps on 100 and 81 grid points and success rates of 2
     and 3 trials; the second of each compiles no program (counted, not timed) and both ratio lines print."""
-    smoke = smoke_run("benchmarks/bench_buckets.py")
+    smoke = smoke_run("benchmarks/bench_buckets.py", "--json", str(tmp_path / "buckets.json"))
     rows = {line[:24].strip(): line.split() for line in smoke.stdout.splitlines()}
     assert rows["vector_map spacing 110"][-2] == "0" and rows["success_rate 3 trials"][-2] == "0", smoke.stdout
     assert sum("of the first's" in line for line in smoke.stdout.splitlines()) == 2, smoke.stdout
+    assert measured("buckets", tmp_path / "buckets.json") == [0.0]  # the second compiles nothing: 0 %
 
 
-def test_the_cores_benchmark_runs_one_device_against_every_core():
+def test_the_cores_benchmark_runs_one_device_against_every_core(tmp_path):
     """benchmarks/bench_cores.py --smoke: an ALV map of 100 points on 1 device and on every core (2 forced
     devices on a one-core machine), each in a fresh process, and the ratio line against the 1.6x target."""
-    smoke = smoke_run("benchmarks/bench_cores.py")
+    smoke = smoke_run("benchmarks/bench_cores.py", "--json", str(tmp_path / "cores.json"))
     devices = [line.split()[1] for line in smoke.stdout.splitlines() if line.startswith("map ")]
     assert devices[0] == "1" and int(devices[1]) >= 2, smoke.stdout
     assert "map: 1 device /" in smoke.stdout and ">= 1.6x" in smoke.stdout, smoke.stdout
+    assert len(measured("cores", tmp_path / "cores.json")) == 1  # the map; the rest not run at smoke size
 
 
-def test_the_sweep_benchmark_runs_and_prints_sweep_against_loop():
+def test_the_sweep_benchmark_runs_and_prints_sweep_against_loop(tmp_path):
     """benchmarks/bench_sweep.py --smoke: an ALV vector-map sweep of 4 cells against a loop of 4 `vector_map`
     calls, each in a fresh process with an empty cache; the ratio line of issue 54 (no timing asserted)."""
-    smoke = smoke_run("benchmarks/bench_sweep.py")
+    smoke = smoke_run("benchmarks/bench_sweep.py", "--json", str(tmp_path / "sweep.json"))
     last = smoke.stdout.splitlines()[-1]
     assert last.startswith("loop / sweep, compile included:") and "(target >= 1.5)" in last, smoke.stdout
+    assert len(measured("sweep", tmp_path / "sweep.json")) == 1  # ALV; DELV not run at smoke size
+
+
+def test_the_speed_targets_table_is_made_from_saved_outputs(tmp_path):
+    """benchmarks/speed_targets.py with --from-json: the table of issue 54's targets again from the outputs
+    the last full run saved, nothing measured (the five scripts' smoke runs above already cost about 70 CPU-s;
+    their --json is checked there), one row per target and the suite's, with its verdict."""
+    saved = speed_targets.OUT
+    smoke = smoke_run("benchmarks/speed_targets.py", "--from-json", str(saved), "--out", str(tmp_path / "t.json"))
+    rows = [line for line in smoke.stdout.splitlines() if line.startswith("| ") and "---" not in line][1:]
+    assert len(rows) == len(speed_targets.TARGETS) + 1 and all(" met |" in r for r in rows), smoke.stdout
+    assert json.loads((tmp_path / "t.json").read_text())["rows"] == json.loads(saved.read_text())["rows"]
