@@ -60,6 +60,14 @@ BUCKET_BASE = 256
 BUCKET_GROWTH = 4
 
 
+def pad_rows(a, size: int) -> np.ndarray:
+    """The rows of `a` (host array) padded to `size` with copies of row 0, as is where it has `size` rows or
+    more: every chunk or bucket has one shape, so one program serves them all (the padding's results are
+    dropped)."""
+    a = np.asarray(a)
+    return a if len(a) >= size else np.concatenate([a, np.repeat(a[:1], size - len(a), axis=0)])
+
+
 def bucket(n: int, cap: int, width: int = WIDTH) -> int:
     """The padded length of a chunk of `n` items: the smallest `BUCKET_BASE * BUCKET_GROWTH**k` holding
     them, but at most `padded(cap, width)` (the chunk size a caller bounds memory with; n <= cap)."""

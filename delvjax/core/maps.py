@@ -18,7 +18,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
-from .batching import bucket, fixed_width_map, item_width, local_mesh, n_devices, over_devices
+from .batching import bucket, fixed_width_map, item_width, local_mesh, n_devices, over_devices, pad_rows
 from .geometry import TWO_PI
 from .kernel import direction_from, map_poses
 from .methods.base import HomingMethod
@@ -162,8 +162,7 @@ def vector_map(
     chunk = per_device * n_devices(mesh)
     parts = []
     for start in range(0, n, chunk):  # chunked driver: every chunk is the same compiled program
-        rows = points[start : start + chunk]
-        rows = np.concatenate([rows, np.repeat(rows[:1], chunk - len(rows), axis=0)])
+        rows = pad_rows(points[start : start + chunk], chunk)
         n_valid = np.int32(min(chunk, n - start))
         if mesh is None:
             part = (program or _vector_map)(

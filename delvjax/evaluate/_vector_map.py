@@ -17,7 +17,7 @@ import numpy as np
 
 from ..options import _limits as limits
 from ..core import maps
-from ..core.batching import bucket
+from ..core.batching import bucket, pad_rows
 from ..core.maps import CLEARANCE, SPACING
 from ..core.errors import InputError
 from ..core.methods import HomingMethod
@@ -168,7 +168,7 @@ def _clear_point(env: Env, spacing: float, clearance: float) -> bool:
     if n == 0:
         return False
     # padded to its shape bucket (`batching.bucket`): grids of many sizes share the mask's program
-    padded = np.concatenate([points, np.repeat(points[:1], bucket(n, max(n, maps.DEFAULT_BATCH)) - n, axis=0)])
+    padded = pad_rows(points, bucket(n, max(n, maps.DEFAULT_BATCH)))
     return bool(np.asarray(maps.grid_included(env, jax.device_put(padded), clearance))[:n].any())
 
 

@@ -16,7 +16,8 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from ._render import DEFAULT_CHUNK, chunks, extract_rings, full, head
+from ._render import DEFAULT_CHUNK, chunks, extract_rings, head
+from ..core.batching import pad_rows
 from ..core.errors import InputError
 from ..core.images import Camera, Catadioptric, Extractor
 from ..core.images.database import RingDatabase, home_plan
@@ -285,7 +286,7 @@ def load_database(
     size = min(chunk, len(index.files))
     for lo, hi in chunks(len(index.files), size):
         images = read_images(index, range(lo, hi), shape)
-        parts.append(head(extract_rings(jnp.asarray(full(images, size)), cam, mirror, ex), hi - lo))
+        parts.append(head(extract_rings(jnp.asarray(pad_rows(images, size)), cam, mirror, ex), hi - lo))
         if sink:
             sink(images, slice(lo, hi))
         if progress:

@@ -17,7 +17,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from ..core.batching import fixed_width_map, traced_floats
+from ..core.batching import fixed_width_map, pad_rows, traced_floats
 from ..core.errors import InputError
 from ..core.images import Camera, Catadioptric, Extractor, camera_noise, donut, panorama, to_uint8, unwrap
 from ..core.images.database import RingDatabase
@@ -148,13 +148,6 @@ def chunks(n: int, chunk: int):
         yield lo, min(n, lo + chunk)
 
 
-def full(a, size: int):
-    """The rows of `a` padded to `size` with copies of row 0: every chunk has one shape, so one program
-    serves the last chunk too (the padding's results are dropped)."""
-    a = np.asarray(a)
-    return a if len(a) == size else np.concatenate([a, np.repeat(a[:1], size - len(a), axis=0)])
-
-
 def head(tree, n: int):
     """The first n rows of every array of a pytree (a chunk without its padding)."""
     return jax.tree.map(lambda a: a[:n], tree)
@@ -171,8 +164,8 @@ def rendered_chunks(world, settings: "ImageSettings", positions, headings, key, 
             world,
             settings.camera,
             settings.mirror,
-            jnp.asarray(full(positions[lo:hi], size)),
-            jnp.asarray(full(headings[lo:hi], size)),
+            jnp.asarray(pad_rows(positions[lo:hi], size)),
+            jnp.asarray(pad_rows(headings[lo:hi], size)),
             jnp.arange(lo, lo + size),
             key,
             settings.pixel_noise,

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..evaluate import _vector_map as api, _rollouts as api_rollouts
 from ..core import cells as map_cells
-from ..core.batching import over_devices, over_processes
+from ..core.batching import over_devices, over_processes, pad_rows
 from ..core.errors import InputError
 from ..core.maps import grid_included, grid_points
 from ..core.rollouts import DEFAULT_LANES, catchment_counted
@@ -112,7 +112,7 @@ def _traced(req: dict, mask_rows: int = 1) -> tuple:
     if req.get("kind") is None:
         return req["env"], req["method"], req["sensor"], req["key"]
     masks = np.asarray(req["masks"], bool)
-    padded = np.concatenate([masks, np.repeat(masks[:1], max(0, mask_rows - len(masks)), axis=0)])
+    padded = pad_rows(masks, mask_rows)
     return (
         rollout_programs.RolloutCell(
             env=req["env"],

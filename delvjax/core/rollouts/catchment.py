@@ -12,7 +12,7 @@ import jax
 import numpy as np
 from jax import Array
 
-from ..batching import bucket
+from ..batching import bucket, pad_rows
 from ..errors import InputError
 from ..maps import CLEARANCE, SPACING, grid_included, grid_points, random_headings
 from ..methods.base import HomingMethod
@@ -207,7 +207,7 @@ def bucketed_grid(env: Env, points, key: Array, heading: float | None, clearance
     points = np.asarray(points, np.float32)
     n = points.shape[0]
     size = bucket(n, max(n, TRIAL_BLOCK))
-    padded = np.concatenate([points, np.repeat(points[:1], size - n, axis=0)])
+    padded = pad_rows(points, size)
     headings = np.asarray(random_headings(key, size) if heading is None else np.full(size, heading, np.float32))
     return padded, headings[:n], np.asarray(grid_included(env, padded, clearance))[:n]
 
@@ -236,9 +236,8 @@ def mask_errors(direction: np.ndarray, valid: np.ndarray, points: np.ndarray, ho
     """`angular_error_deg` of (M, P) first directions at the (P, 2) padded grid points, M > 1 padded to
     MASK_ROWS rows (the rollouts' own padding): one compiled program per grid bucket, not per mask count."""
     rows = direction.shape[0]
-    pad = 0 if rows == 1 else max(0, MASK_ROWS - rows)
-    extend = lambda a: np.concatenate([a, np.repeat(a[:1], pad, axis=0)]) if pad else a  # noqa: E731
-    return np.asarray(angular_error_deg(extend(direction), extend(valid), points[None], home))[:rows]
+    size = rows if rows == 1 else MASK_ROWS
+    return np.asarray(angular_error_deg(pad_rows(direction, size), pad_rows(valid, size), points[None], home))[:rows]
 
 
 def catchment_summary(result: Catchment) -> dict:

@@ -23,7 +23,7 @@ from ..scene import Env
 from ..sensing import UnitMove, record_home
 from ..sensor import Sensor
 from ..types import Masks, PerTrial, PerTrialFlag, PerTrialInt, TrialPoints
-from ..batching import WIDTH, local_mesh, n_devices, over_devices
+from ..batching import WIDTH, local_mesh, n_devices, over_devices, pad_rows
 from ..batching import padded as padded_width
 from .lanes import run_block
 from .rules import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes, check_rules, rollout_keys
@@ -161,10 +161,10 @@ def run_trials(
     block = -(-trial_block(n, max_steps, paths) // n_devices(mesh)) * n_devices(mesh)
     padded = -(-n // block) * block
     # host-side padding and slicing (NumPy): no eager device op, so no compilation per shape
-    pad = lambda a, m, dtype: np.concatenate([np.asarray(a, dtype), np.repeat(np.asarray(a, dtype)[:1], m, axis=0)])  # noqa: E731
-    starts, headings = pad(starts, padded - n, np.float32), pad(headings, padded - n, np.float32)
-    key_index, mask_index = pad(key_index, padded - n, np.int32), pad(mask_index, padded - n, np.int32)
-    masks = pad(masks, max(0, MASK_ROWS - len(masks)), bool)  # C(N, k) masks of every k, padded likewise
+    pad = lambda a, dtype, size=padded: pad_rows(np.asarray(a, dtype), size)  # noqa: E731
+    starts, headings = pad(starts, np.float32), pad(headings, np.float32)
+    key_index, mask_index = pad(key_index, np.int32), pad(mask_index, np.int32)
+    masks = pad(masks, bool, MASK_ROWS)  # C(N, k) masks of every k, padded likewise
     _, k_roll, _ = rollout_keys(key)
     _, k_views, _ = stream_keys(key)
     per_device = block // n_devices(mesh)
