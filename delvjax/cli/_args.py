@@ -91,7 +91,7 @@ class ProgressBar:
 
 def add_scene_args(p: argparse.ArgumentParser, methods=None, grid: bool = True, images: bool = False) -> None:
     """The scene, method and noise options; `grid`: the command evaluates a grid (--spacing); `images`:
-    it can run on an image database instead (`cli_images.add_image_args`; the environment is optional).
+    it can run on an image database instead (`_images.add_image_args`; the environment is optional).
     The method and sensor flags are made from the settings declared on the modules (`add_setting_args`)."""
     p.add_argument(
         "env",
@@ -195,7 +195,7 @@ OUTPUTS = (
 
 
 def check_outputs(args: argparse.Namespace) -> None:
-    """Validate every output path before any work (`io.check_output_path`; no two the same file, none
+    """Validate every output path before any work (`outputs._files.check_output_path`; no two the same file, none
     the environment file); at least one output must be asked for; an environment (or --images)."""
     if args.env is None and getattr(args, "images", None) is None:
         raise InputError("env", None, "give an environment (preset name or JSON file) or --images DIR")
@@ -253,7 +253,7 @@ def changed_settings(args: argparse.Namespace) -> str:
 
 
 def write_outputs(args: argparse.Namespace, columns, summary: dict, figure, trials_columns=None) -> None:
-    """Write the outputs asked for as a unit (`io.output_set`), then the closing line: --out (a dict of
+    """Write the outputs asked for as a unit (`outputs._files.output_set`), then the closing line: --out (a dict of
     columns or a list of row dicts), --trials-out, --summary (with every setting the command ran with), --plot
     (`figure()` is built only then, with the settings that are not the defaults under it)."""
     trials_out = getattr(args, "trials_out", None)

@@ -64,7 +64,7 @@ def _rollout_options(
     rules: Rules | None = None,
     **_,
 ) -> RolloutSetup:
-    """Validate the shared keywords before any work (`api.scene_request` plus the rollout limits and
+    """Validate the shared keywords before any work (`_vector_map.scene_request` plus the rollout limits and
     rules), taking the grid's clearance and heading and the rules from `grid=` and `rules=` if given.
     Each rollout function passes its own keywords, `_rollout_options(**locals())` on entry; the
     keywords that are not shared (spacing, distances, starts, ...) are ignored here."""

@@ -65,10 +65,10 @@ def catchment(
     (the headings of `vector_map` with the same seed). `occlude=k` evaluates every choice of
     k hidden landmarks (C(N, k) masks, one program; the home record sees all); `hidden`
     names one choice. `options`: noise sigmas as in `vector_map` plus motion_heading_noise_deg
-    and motion_step_noise, or any other `api.vector_map` option (e.g. warping's n_alpha).
+    and motion_step_noise, or any other `evaluate.vector_map` option (e.g. warping's n_alpha).
     `first_move` ("release", thesis Algorithm 2, | "homing") and `collisions` ("ignore" | "fail"): the rollout
     rules of `core.rollouts.rules` (defaults: docs/model.md §5). `program`: registry names compiled into
-    one rollout program with this one (`registry.program`). `announce`: called once every option is
+    one rollout program with this one (`options._registry.program`). `announce`: called once every option is
     valid, just before the work (the CLI prints its progress line there, so an error stays one line).
     More than `max_points` trials (grid points x masks) are refused with an estimate (`limits`).
     `progress(done, total)` is called after each block of trials.

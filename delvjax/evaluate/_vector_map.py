@@ -118,7 +118,7 @@ def check_grid(
     env: Env, spacing: float, clearance: float, max_points: int = MAX_POINTS, copies: int = 1, what: str = "grid point"
 ) -> None:
     """`InputError` naming `spacing` when the docs/model.md §5 grid (times `copies`, e.g. occlusion masks)
-    has more than `max_points` points (`limits.check_size`, checked before the grid is built; `what`
+    has more than `max_points` points (`options._limits.check_size`, checked before the grid is built; `what`
     they are: grid points, or trials of a catchment) or no point clear of the landmarks."""
     count = limits.grid_count(env.arena, spacing)
     check_size(count * copies, max_points, "spacing", spacing, what)

@@ -69,9 +69,9 @@ def database_vector_map(
     **options,
 ) -> VectorMap:
     """The homing direction of `method` at every database point (docs/images.md §6). `options`: method
-    settings and `channel` as in `api.vector_map`; `home_rings`: take the home record from another
+    settings and `channel` as in `evaluate.vector_map`; `home_rings`: take the home record from another
     rendering of the same positions (e.g. other lighting); `program`: registry names compiled into one
-    program with `method` (`registry.program`). The home point itself is not included."""
+    program with `method` (`options._registry.program`). The home point itself is not included."""
     module, sensor = make_setup(method, program, n_pix=db.camera.cols, panorama_cols=db.camera.cols, **options)
     if module.reads_panorama():
         check_panorama_field(db, method)

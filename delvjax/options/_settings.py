@@ -125,7 +125,7 @@ def make_setup(
 ) -> tuple[HomingMethod, Sensor]:
     """(method module, sensor), validated before any work. `method`: a registry name or a method
     module (`DELV(levels=3, heading=Compass())`); `program`: registry names compiled into one
-    program with `method` (`registry.program`); `sensor`: a `Sensor` instead of sensor options;
+    program with `method` (`_registry.program`); `sensor`: a `Sensor` instead of sensor options;
     `noise`: a `Noise` instead of the noise options; `panorama_cols`: the width of the panoramas of an
     image database (0: a database not read yet; None: a scene of rings, whose sensor then renders the
     panoramas of its cylinders for a method that reads them, `core.images.scene_panorama`).

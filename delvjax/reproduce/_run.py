@@ -6,7 +6,7 @@ registry `studies.STUDIES` lists them in report order. The runner gives each stu
 table and number), then writes `<study>/study.json` last. A study whose content hash (its
 code, the code of `delvjax`, the settings and the versions) matches its `study.json` is
 skipped, so an interrupted run resumes where it stopped and a second run does no work.
-Every file is written under a temporary name and renamed (`io.atomic_path`).
+Every file is written under a temporary name and renamed (`outputs._files.atomic_path`).
 """
 
 from __future__ import annotations

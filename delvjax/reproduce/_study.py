@@ -94,7 +94,7 @@ def versions() -> dict[str, str]:
 
 # --- compile-time accounting -------------------------------------------------------------
 
-_COMPILE_SECONDS: dict[int, float] = {}  # thread id -> seconds: studies run side by side (reproduce.py)
+_COMPILE_SECONDS: dict[int, float] = {}  # thread id -> seconds: studies run side by side (`_run.py`)
 
 
 _ADDING = threading.Lock()

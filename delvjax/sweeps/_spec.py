@@ -190,7 +190,7 @@ def _values(name: str, raw, field: str | None = None) -> list:
 def _env_labels(raw, random_envs: dict[str, tuple[int, int]], ensemble_envs: dict[str, dict]) -> list:
     """The env axis with every table replaced by the labels of the worlds it stands for:
     {random = COUNT, landmarks = N or [N, ...], seed = S} by its seeded random layouts
-    (`presets.random_env(S + i, N)`: "random<S+i>-<N>", recorded in `random_envs`) and
+    (`envs._presets.random_env(S + i, N)`: "random<S+i>-<N>", recorded in `random_envs`) and
     {ensemble = FAMILY, members = COUNT, seed = S, factor = F, first = I} by the members of a world family
     (`envs.ensemble_envs`, docs/model.md §6.1: "env1-m0", ..., recorded in `ensemble_envs`)."""
     items = raw if isinstance(raw, list) else [raw]

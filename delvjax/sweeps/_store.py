@@ -28,7 +28,7 @@ def code_digest() -> str:
 
 
 def cell_digest(req: dict, code: str) -> str:
-    """Digest of one cell's setup (`sweep_kinds.cell_setup`'s result: every leaf and setting) under `code`."""
+    """Digest of one cell's setup (`_kinds.cell_setup`'s result: every leaf and setting) under `code`."""
     h = hashlib.sha256(code.encode())
     leaves, treedef = jax.tree.flatten({k: v.arrays() if hasattr(v, "arrays") else v for k, v in req.items()})
     h.update(str(treedef).encode())

@@ -1,7 +1,7 @@
 """Panoramas of a ring scene: its cylinders rendered as a colour world, for the methods that read
 whole panoramas (MinWarping, 2D-Warping, the hybrid; docs/images.md §10).
 
-A ring scene (`Env`) has no third dimension. `ScenePanorama` gives it one as `images.env_world` does
+A ring scene (`Env`) has no third dimension. `ScenePanorama` gives it one as `images._worlds.env_world` does
 for a rendered database: every landmark a cylinder of `landmark_height` and `landmark_rgb`, the
 arena's textured walls, floor and ceiling of `world`; a hidden landmark (occlusion) or a padding slot
 has height 0 and is never hit. It renders at the agent's pose inside the traced program
@@ -61,7 +61,7 @@ def scene_panorama(
     n_pix: int, rows: int = SCENE_ROWS, height: float = 100.0, wall_height: float = 150.0
 ) -> ScenePanorama:
     """The renderer of a ring scene's panoramas: red cylinders of `height` cm in walls of `wall_height`
-    (the worlds of `images.env_world`), a camera of `rows` x `n_pix` 25 cm above the floor (+-30 deg)."""
+    (the worlds of `images._worlds.env_world`), a camera of `rows` x `n_pix` 25 cm above the floor (+-30 deg)."""
     return ScenePanorama(
         camera=Camera(rows=rows, cols=n_pix),
         world=make_world(wall_height=wall_height),

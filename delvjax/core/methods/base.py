@@ -55,7 +55,7 @@ class HomingMethod(eqx.Module):
 
     def parts(self) -> dict[str, "HomingMethod"]:
         """The methods this one is made of, by field name (the hybrid's two); their settings are set
-        through it (`options.configure`)."""
+        through it (`options._registry.configure`)."""
         return {}
 
     def check_input(self, n_pix: int) -> None:
