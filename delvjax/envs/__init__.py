@@ -3,6 +3,8 @@ world ensembles of the thesis's families (docs/model.md §6-7, §6.1)."""
 
 from ._ensembles import FAMILIES as FAMILIES
 from ._ensembles import ensemble_envs as ensemble_envs
+from ._ensembles import family as family
+from ._ensembles import member_layouts as member_layouts
 from ._ensembles import violations as violations
 from ._ensembles import world_properties as world_properties
 

@@ -5,6 +5,7 @@ trap points near failed rollouts, an optimised layout beside its start."""
 from __future__ import annotations
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from ..gradients._layout import LayoutResult
 from ..gradients._sensitivity import NOMINAL, UNITS
@@ -13,7 +14,7 @@ from ._maps import draw_env, subplots
 from ._rollouts import catchment_panel
 
 
-def landmark_figure(result: dict):
+def landmark_figure(result: dict) -> Figure:
     """Arrows on the landmarks: the direction that lowers the homing loss (minus the position gradient),
     scaled per method so that its longest arrow is 150 cm; the number is |grad| x 100 (per metre)."""
     env = result["env"]
@@ -58,7 +59,7 @@ def landmark_figure(result: dict):
     return fig
 
 
-def parameter_figure(result: dict):
+def parameter_figure(result: dict) -> Figure:
     """Bars: change of homing loss per unit of d (10 cm) and of each noise sigma (1 degree)."""
     methods = list(result["methods"])
     names = list(NOMINAL)
@@ -77,7 +78,7 @@ def parameter_figure(result: dict):
     return fig
 
 
-def trap_figure(report: TrapReport, spacing: float):
+def trap_figure(report: TrapReport, spacing: float) -> Figure:
     """The catchment map (squares: rollouts that reach home) and vector map with the zeros drawn
     (the sink at home left out): sinks red discs, saddles orange crosses, sources blue triangles, discontinuities grey diamonds;
     the end points of the timed-out rollouts as small red dots."""
@@ -121,7 +122,7 @@ def trap_figure(report: TrapReport, spacing: float):
     return fig
 
 
-def layout_figure(result: LayoutResult, spacing: float):
+def layout_figure(result: LayoutResult, spacing: float) -> Figure:
     """Start and optimised layouts side by side: each one's vector map and catchment (the comparison's
     own runs; the worst mask under occlusion), and the soft objective per step."""
     fig, axes = subplots(1, 3, figsize=(16.5, 5.6), squeeze=False, layout="constrained")

@@ -5,10 +5,24 @@ from __future__ import annotations
 
 import matplotlib
 import numpy as np
+from jax.typing import ArrayLike
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+from ..core.images.rollouts import Paths
+from ..core.maps import VectorMap
+from ..images._load import LoadedDatabase
 from ._maps import draw_vector_map, draw_world, subplots
 
 
-def database_map_figure(db, vm, title: str = "", classes: bool = False, ax=None, perceived=None):
+def database_map_figure(
+    db: LoadedDatabase,
+    vm: VectorMap,
+    title: str = "",
+    classes: bool = False,
+    ax: Axes | None = None,
+    perceived: ArrayLike | None = None,
+) -> Figure:
     """Vector map on a database (Fig 4.18): arrows, invalid points as red x, obstacles."""
     fig, ax = subplots(figsize=(6.4, 6.4)) if ax is None else (ax.figure, ax)
     draw_vector_map(
@@ -30,7 +44,9 @@ def database_map_figure(db, vm, title: str = "", classes: bool = False, ax=None,
     return fig
 
 
-def database_catchment_figure(db, vm, starts, paths, title: str = ""):
+def database_catchment_figure(
+    db: LoadedDatabase, vm: VectorMap, starts: ArrayLike, paths: Paths, title: str = ""
+) -> Figure:
     """Catchment on a database: the vector map with a square on every release point that homed."""
     fig = database_map_figure(db, vm, title)
     ax = fig.axes[0]
@@ -41,7 +57,7 @@ def database_catchment_figure(db, vm, starts, paths, title: str = ""):
     return fig
 
 
-def paths_figure(db, vm, paths, title: str = ""):
+def paths_figure(db: LoadedDatabase, vm: VectorMap, paths: Paths, title: str = "") -> Figure:
     """Fig 4.24: (a) homing paths from a few release points, (b) the vector map."""
     fig, (a, b) = subplots(1, 2, figsize=(12.0, 6.0))
     draw_world(a, db.arena, db.home, db.obstacles)
@@ -57,7 +73,9 @@ def paths_figure(db, vm, paths, title: str = ""):
     return fig
 
 
-def pipeline_figure(donut_image, panorama_image, mask_image, ring_mask, title: str = ""):
+def pipeline_figure(
+    donut_image: ArrayLike, panorama_image: ArrayLike, mask_image: ArrayLike, ring_mask: ArrayLike, title: str = ""
+) -> Figure:
     """Figs 4.16b-4.17: the donut image, its unwrapped panorama, the segmented landmarks and the ring."""
     fig = matplotlib.figure.Figure(figsize=(10.0, 6.2))
     grid = fig.add_gridspec(3, 2, width_ratios=[1.0, 2.4])

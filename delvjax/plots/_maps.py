@@ -3,16 +3,21 @@
 from __future__ import annotations
 
 import numpy as np
+from jax.typing import ArrayLike
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Rectangle
 from matplotlib.path import Path as Outline
 
+from ..core.maps import VectorMap
 from ..core.metrics import error_class
 from ..core.scene import Env
 
 
-def subplots(*grid: int, figsize: tuple[float, float], layout: str | None = None, **kw):
+def subplots(
+    *grid: int, figsize: tuple[float, float], layout: str | None = None, **kw
+) -> tuple[Figure, Axes | np.ndarray]:
     """(figure, axes) of a new figure that belongs to no pyplot state (no backend switch, no global
     figure list; safe to draw on any thread): `Figure(figsize, layout).subplots(*grid, **kw)`."""
     fig = Figure(figsize=figsize, layout=layout)
@@ -24,6 +29,7 @@ ARROW = Outline(  # a legend marker for a homing direction, drawn from vertices:
     [(-1.0, 0.0), (1.0, 0.0), (0.45, 0.4), (1.0, 0.0), (0.45, -0.4)],
     [Outline.MOVETO, Outline.LINETO, Outline.MOVETO, Outline.LINETO, Outline.LINETO],
 )
+HOMING_ARROW = ARROW  # its public name (delvjax.plots): `Line2D(marker=HOMING_ARROW)` in a legend
 CLASS_STYLE = (  # Fig 4.3: dot < 45, star 45-90, triangle > 90
     ("<45°", dict(marker=".", color="0.35", s=10)),
     ("45–90°", dict(marker="*", color="tab:orange", s=40)),
@@ -31,7 +37,7 @@ CLASS_STYLE = (  # Fig 4.3: dot < 45, star 45-90, triangle > 90
 )
 
 
-def draw_env(ax, env: Env, perceived_radius: float | None = None) -> None:
+def draw_env(ax: Axes, env: Env, perceived_radius: float | None = None) -> None:
     """Arena box, landmarks to scale (filled discs), home as a black square."""
     lm = np.asarray(env.landmarks)[np.asarray(env.valid)]
     draw_world(ax, env.arena, env.home, {"cylinders": lm.tolist()})
@@ -58,7 +64,16 @@ def draw_world(ax, arena, home, obstacles: dict, perceived=None) -> None:
     ax.set_ylabel("y (cm)")
 
 
-def draw_vector_map(ax, env: Env | None, points, direction, valid, included, spacing: float, error_deg=None) -> None:
+def draw_vector_map(
+    ax: Axes,
+    env: Env | None,
+    points: ArrayLike,
+    direction: ArrayLike,
+    valid: ArrayLike,
+    included: ArrayLike,
+    spacing: float,
+    error_deg: ArrayLike | None = None,
+) -> None:
     """Unit arrows of the homing direction at each included point; invalid points as red x;
     error class markers when `error_deg` is given."""
     inc = np.asarray(included)
@@ -116,7 +131,7 @@ def vector_map_handles(classes: bool = False, first: bool = False) -> list:
     return handles
 
 
-def vector_map_figure(env: Env, vm, spacing: float, title: str = "", classes: bool = False):
+def vector_map_figure(env: Env, vm: VectorMap, spacing: float, title: str = "", classes: bool = False) -> Figure:
     """Figure of one vector map (Fig 4.2; with `classes`, the error markers of Fig 4.3)."""
     fig, ax = subplots(figsize=(6.4, 7.0), layout="constrained")
     draw_vector_map(
@@ -128,7 +143,7 @@ def vector_map_figure(env: Env, vm, spacing: float, title: str = "", classes: bo
     return fig
 
 
-def error_curve_figure(curves: dict[str, list[dict]], title: str = ""):
+def error_curve_figure(curves: dict[str, list[dict]], title: str = "") -> Figure:
     """Mean angular error vs distance from home with 95% t intervals, one line per label (Fig 4.4)."""
     fig, ax = subplots(figsize=(6.4, 4.2))
     for label, rows in curves.items():
@@ -147,7 +162,7 @@ def error_curve_figure(curves: dict[str, list[dict]], title: str = ""):
     return fig
 
 
-def environments_figure(envs: list[Env]):
+def environments_figure(envs: list[Env]) -> Figure:
     """The built-in environments side by side (README), in centimetres, with a legend of what is drawn."""
     cols = min(len(envs), 4)
     rows = -(-len(envs) // cols)

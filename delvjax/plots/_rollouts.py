@@ -7,15 +7,18 @@ import math
 
 import matplotlib
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.collections import PatchCollection
+from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Patch, Rectangle
 
-from ..core.rollouts import OUTCOMES, SUCCESS
+from ..core.rollouts import OUTCOMES, SUCCESS, Catchment
 from ..core.scene import Env
 from ._maps import draw_env, draw_vector_map, subplots, vector_map_handles
 
 SQUARE = dict(facecolor=(0.55, 0.75, 0.95, 0.35), edgecolor=(0.1, 0.35, 0.75), linewidth=0.6)
+CATCHMENT_SQUARE = SQUARE  # its public name (delvjax.plots): the patch style of a cell that reaches home
 NOT_COUNTED = dict(facecolor="none", edgecolor="0.55", hatch="////", linewidth=0.0)
 FAIL_STYLE = {"timeout": ("o", "black"), "landmark": ("x", "black"), "arena": ("s", "black")}
 
@@ -38,9 +41,12 @@ def draw_not_counted(ax, points, included, counted, spacing: float) -> None:
         ax.add_collection(PatchCollection(squares, zorder=1, match_original=False, **NOT_COUNTED))
 
 
-def not_counted(result) -> bool:
+def has_uncounted(result: Catchment) -> bool:
     """Whether a `Catchment` has released grid points that are not counted."""
     return bool((np.asarray(result.included) & ~np.asarray(result.counted)).any())
+
+
+not_counted = has_uncounted  # the name before it was public (delvjax.plots.has_uncounted)
 
 
 def catchment_handles(uncounted: bool, hidden: bool = False) -> list:
@@ -56,7 +62,7 @@ def catchment_handles(uncounted: bool, hidden: bool = False) -> list:
     return handles
 
 
-def catchment_panel(ax, env: Env, result, m: int, spacing: float, title: str = "") -> None:
+def catchment_panel(ax: Axes, env: Env, result: Catchment, m: int, spacing: float, title: str = "") -> None:
     """One mask of a `Catchment`: its vector map with the catchment squares underneath (and the cells
     not counted hatched)."""
     draw_catchment(ax, result.points, np.asarray(result.success)[m], result.counted, spacing)
@@ -72,7 +78,7 @@ def catchment_panel(ax, env: Env, result, m: int, spacing: float, title: str = "
     ax.set_title(title, fontsize=10)
 
 
-def catchment_figure(env: Env, result, spacing: float, title: str = ""):
+def catchment_figure(env: Env, result: Catchment, spacing: float, title: str = "") -> Figure:
     """Catchment map (Fig 4.5 style); with occlusion one panel per choice of hidden landmarks (Fig 5.10)."""
     pct = result.catchment_pct()
     n = len(pct)
@@ -128,7 +134,7 @@ def draw_trajectories(ax, env: Env, traj, home_radius: float, margin: float = 60
     ax.plot(start[:, 0], start[:, 1], "*", color="black", ms=12, zorder=7)
 
 
-def trajectories_figure(env: Env, results: dict, home_radius: float, title: str = ""):
+def trajectories_figure(env: Env, results: dict, home_radius: float, title: str = "") -> Figure:
     """One panel per method, same release points (Figs 4.11, 5.8)."""
     n = len(results)
     cols = min(n, 3)
@@ -152,7 +158,7 @@ def trajectories_figure(env: Env, results: dict, home_radius: float, title: str 
     return fig
 
 
-def success_rate_figure(tables: dict, title: str = ""):
+def success_rate_figure(tables: dict, title: str = "") -> Figure:
     """Success rate (%) vs release distance, one line per method (Figs 4.10b, 5.7b), with 95% Wilson
     intervals (lines offset a few cm apart) and a table of per-bin counts (successes / trials placed)."""
     n = len(tables)

@@ -6,6 +6,7 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
 from ..core.errors import InputError
@@ -179,7 +180,7 @@ def _heat(fig, ax, ds, sel: dict, x: str, y: str, metric: str, title: str) -> li
     ]
 
 
-def sweep_figure(ds, x: str, y: str | None, metric: str):
+def sweep_figure(ds, x: str, y: str | None, metric: str) -> tuple[Figure, list[dict]]:
     """(figure, rows): heat maps of `metric` over (x, y) with their values written in, or lines over x
     with 95 % intervals over seeds, every method on one shared axes; one panel per combination of the
     other axes. Axis labels carry the units of the data's attributes."""

@@ -7,4 +7,5 @@ from ._run import load_sweep as load_sweep
 from ._run import run_sweep as run_sweep
 from ._run import save_sweep as save_sweep
 from ._spec import SweepSpec as SweepSpec
+from ._spec import parse_sweep as parse_sweep
 from ._file import read_sweep as read_sweep

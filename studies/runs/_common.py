@@ -12,19 +12,18 @@ from __future__ import annotations
 
 import jax
 import numpy as np
-from delvjax.plots._maps import subplots
+from delvjax.plots import catchment_handles, catchment_panel, draw_env, draw_vector_map, subplots, vector_map_handles
+from delvjax.plots import has_uncounted as not_counted
 from scipy.spatial import Delaunay
 
 import delvjax
 from delvjax.core import rollouts
 from delvjax.core.maps import VectorMap
 from delvjax.core.metrics import error_curve, summarize_map
-from delvjax.plots._maps import draw_env, draw_vector_map, vector_map_handles
-from delvjax.plots._rollouts import catchment_handles, catchment_panel, not_counted
 from delvjax.core.scene import Env
 from delvjax.core.sensor import Sensor
-from delvjax.envs._presets import load_env
-from delvjax.options._registry import get_method
+from delvjax.envs import load_env
+from delvjax.options import get_method
 from delvjax.core.tables import concat_columns, success_rows, trajectory_columns
 
 PAD = 6
@@ -312,7 +311,7 @@ def catchment_columns(ctx, key: str, results: dict, row: dict) -> None:
 def success_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, source: str, note: str) -> dict:
     """Success rate vs release distance of `methods` under both rule sets: numbers
     `success:env1:<method>[:physical]` and `success_overall:...`, a table, a figure and the counts CSV."""
-    from delvjax.plots._rollouts import success_rate_figure  # matplotlib: loaded only when a figure is drawn
+    from delvjax.plots import success_rate_figure  # matplotlib: loaded only when a figure is drawn
 
     tables = {}
     for m in methods:  # a few methods x three rule sets; one compiled program
@@ -353,7 +352,7 @@ def trajectory_set(
     """Homing paths of `methods` from the same `n_starts` seeded release points (Figs 4.11, 5.8):
     numbers `trajectories:env1:<method>:reach_home`, the figure and the CSV of every position. A method
     in `own` runs in a program of its own with those options (one outside the shared PROGRAM)."""
-    from delvjax.plots._rollouts import trajectories_figure  # matplotlib: loaded only when a figure is drawn
+    from delvjax.plots import trajectories_figure  # matplotlib: loaded only when a figure is drawn
 
     results, tables = {}, []
     for m in methods:

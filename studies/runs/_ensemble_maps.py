@@ -13,7 +13,7 @@ import numpy as np
 from delvjax.core.maps import grid_included, random_headings
 from delvjax.core.methods.heading import visual_compass_errors
 from delvjax.core.scene import Env
-from delvjax.envs._presets import env_from_dict, load_env
+from delvjax.envs import env_from_dict, load_env
 
 from .visual_compass import visual_key
 

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from delvjax.plots._maps import subplots
+from delvjax.plots import subplots
 
 from ..claims import CHECKS, Missing
 from ._common import LABEL

@@ -31,9 +31,9 @@ from delvjax.core.scene import Env
 from delvjax.envs import ensemble_envs
 from delvjax.evaluate._vector_map import map_request
 from delvjax.images._load import with_channel
-from delvjax.images._render import ImageSettings
+from delvjax.images import ImageSettings
 from delvjax.images._worlds import ImageWorld, robot_arena
-from delvjax.options._settings import make_setup
+from delvjax.options import make_setup
 
 from ._images_common import CAMERA_NOISE, CHANNEL, IDEAL_GRID, METHODS, ring_env
 

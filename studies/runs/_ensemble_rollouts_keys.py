@@ -13,9 +13,9 @@ import numpy as np
 
 from delvjax.core.scene import DEFAULT_ARENA, DEFAULT_HOME
 from delvjax.core.sensor import Sensor
-from delvjax.envs import FAMILIES
-from delvjax.envs._ensembles import angular_gaps_deg, member_layouts
-from delvjax.sweeps._spec import SweepSpec, parse_sweep
+from delvjax.envs import FAMILIES, member_layouts
+from delvjax.envs._ensembles import angular_gaps_deg
+from delvjax.sweeps import SweepSpec, parse_sweep
 
 from .quantization import EDGE4
 from .step_distance import DS

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from delvjax.plots._maps import subplots
+from delvjax.plots import subplots
 
 from .. import thesis
 from ._common import LABEL

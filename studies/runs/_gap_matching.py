@@ -18,7 +18,7 @@ import numpy as np
 
 from delvjax.core import rollouts
 from delvjax.core.sensor import Sensor
-from delvjax.plots._maps import subplots
+from delvjax.plots import subplots
 from delvjax.options._registry import program
 
 from ._common import HOME_RADIUS, PROGRAM, RULES

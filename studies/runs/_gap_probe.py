@@ -19,9 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
-from delvjax.envs._ensembles import FAMILIES, member_layouts
-from delvjax.sweeps import run_sweep
-from delvjax.sweeps._spec import parse_sweep
+from delvjax.envs import FAMILIES, member_layouts
+from delvjax.sweeps import run_sweep, parse_sweep
 
 from ._ensemble_stats import BAND, SOURCE_LABEL, thesis_numbers
 from ._gap_methods import register_variants, unregister_variants

@@ -6,13 +6,12 @@ from __future__ import annotations
 import numpy as np
 
 import delvjax
-from delvjax.images._evaluate import LoadedDatabase, database_vector_map, render_in_memory
-from delvjax.images._render import ImageSettings
+from delvjax.images import LoadedDatabase, database_vector_map, render_in_memory, ImageSettings, image_world
 from delvjax.core.maps import VectorMap
 from delvjax.core.metrics import error_curve, summarize_map
 from delvjax.core.scene import Env
-from delvjax.images._worlds import ImageWorld, image_world
-from delvjax.envs._presets import make_env
+from delvjax.images._worlds import ImageWorld
+from delvjax.envs import make_env
 
 # the methods of the image studies, one compiled program (`registry.program`)
 METHODS = ("delv", "alv", "acv", "warping")

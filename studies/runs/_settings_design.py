@@ -17,14 +17,13 @@ from collections.abc import Callable
 
 import numpy as np
 
-from delvjax.envs import ensemble_envs
-from delvjax.envs._presets import env_from_dict
+from delvjax.envs import ensemble_envs, env_from_dict
 from delvjax.options._checks import SEED_LIMIT
-from delvjax.options._limits import MAX_POINTS
+from delvjax.options import MAX_POINTS
 from delvjax.options._registry import program
 from delvjax.sweeps._kinds import cell_setup, evaluate
 from delvjax.sweeps._results import catchment_metrics
-from delvjax.sweeps._spec import SweepSpec
+from delvjax.sweeps import SweepSpec
 
 from ._ensemble_stats import thesis_numbers
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from delvjax.plots._maps import subplots
+from delvjax.plots import subplots
 
 from ._common import LABEL
 from ._ensemble_stats import SOURCE_LABEL

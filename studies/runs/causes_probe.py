@@ -41,8 +41,8 @@ import delvjax
 from delvjax.core import rollouts
 from delvjax.core.errors import InputError
 from delvjax.core.sensor import Sensor
-from delvjax.envs._ensembles import FAMILIES, member_layouts
-from delvjax.envs._presets import make_env, preset_dict, random_env
+from delvjax.envs import FAMILIES, member_layouts, make_env, random_env
+from delvjax.envs._presets import preset_dict
 from delvjax.options._registry import program
 
 from . import _gap_probe, _gap_tail

@@ -7,7 +7,7 @@ same release points (Fig 5.8) on env1.
 
 from __future__ import annotations
 
-from delvjax.plots._maps import error_curve_figure
+from delvjax.plots import error_curve_figure
 
 from ._common import (
     LABEL,

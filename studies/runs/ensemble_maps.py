@@ -22,8 +22,7 @@ import numpy as np
 from delvjax.core.maps import grid_points
 from delvjax.envs import ensemble_envs, world_properties
 from delvjax.options._settings import make_sensor
-from delvjax.sweeps import point_errors, run_sweep
-from delvjax.sweeps._spec import parse_sweep
+from delvjax.sweeps import point_errors, run_sweep, parse_sweep
 
 from ..claims import WORLD_FAILS, WORLD_HOLDS
 from ._ensemble_maps import (

@@ -19,11 +19,9 @@ import re
 
 import numpy as np
 
-from delvjax.envs import world_properties
-from delvjax.envs._ensembles import family, member_layouts
-from delvjax.plots._maps import subplots
-from delvjax.sweeps import run_sweep
-from delvjax.sweeps._spec import parse_sweep
+from delvjax.envs import world_properties, family, member_layouts
+from delvjax.plots import subplots
+from delvjax.sweeps import run_sweep, parse_sweep
 
 from .. import thesis
 from ..claims import CHECKS, WORLD_FAILS, WORLD_HOLDS, Missing, world_verdict

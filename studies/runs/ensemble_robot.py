@@ -16,10 +16,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from delvjax.envs import world_properties
-from delvjax.envs._ensembles import family
+from delvjax.envs import world_properties, family
 from delvjax.images._worlds import robot_arena
-from delvjax.plots._maps import subplots
+from delvjax.plots import subplots
 
 from ..claims import CHECKS, Missing, WORLD_FAILS, WORLD_HOLDS
 from ..claims._common import HOLDS as HOLDS_TEXT

@@ -26,9 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from delvjax.envs import FAMILIES, ensemble_envs, world_properties
-from delvjax.plots._maps import subplots
-from delvjax.sweeps import run_sweep
-from delvjax.sweeps._spec import parse_sweep
+from delvjax.plots import subplots
+from delvjax.sweeps import run_sweep, parse_sweep
 
 from ..claims import WORLD_FAILS, WORLD_HOLDS
 from ._common import LABEL

@@ -21,16 +21,10 @@ import numpy as np
 
 from delvjax.core.maps import VectorMap
 from delvjax.core.methods.hybrid import HybridGate, combine
-from delvjax.images._evaluate import (
-    catchment_numbers,
-    database_catchment,
-    database_success_rate,
-    database_vector_map,
-)
+from delvjax.images import database_catchment, database_success_rate, database_vector_map, image_world
+from delvjax.images._evaluate import catchment_numbers
 from delvjax.images._render import render_rings
-from delvjax.images._worlds import image_world
-from delvjax.plots._images import database_map_figure
-from delvjax.plots._maps import subplots
+from delvjax.plots import database_map_figure, subplots
 
 from ._images_common import CAMERA_NOISE, ROBOT_SCALE, database, numbers, preview
 

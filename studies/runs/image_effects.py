@@ -18,9 +18,9 @@ import equinox as eqx
 import numpy as np
 
 from delvjax.core.methods.minwarping import hypothesis_counts
-from delvjax.images._render import ImageSettings, camera
-from delvjax.images._worlds import image_world
-from delvjax.plots._maps import subplots
+from delvjax.images import ImageSettings, image_world
+from delvjax.images._render import camera
+from delvjax.plots import subplots
 
 from ._images_common import CAMERA_NOISE, LABEL, METHODS, database, ideal_map, image_map, numbers, preview
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 import delvjax
-from delvjax.plots._maps import error_curve_figure
+from delvjax.plots import error_curve_figure
 
 from ._images_common import preview
 from ._common import (

@@ -7,7 +7,7 @@ rules and the physical ones. The vector maps are the catchments' own first direc
 
 from __future__ import annotations
 
-from delvjax.plots._maps import error_curve_figure
+from delvjax.plots import error_curve_figure
 from .. import thesis
 
 from ._common import (

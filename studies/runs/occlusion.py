@@ -16,13 +16,14 @@ matching runs on the same masks (`gap_matching`: what it changes in Tables 5.1-5
 from __future__ import annotations
 
 import jax
-from delvjax.plots._maps import ARROW, subplots
+from delvjax.plots import catchment_panel, subplots
+from delvjax.plots import CATCHMENT_SQUARE as SQUARE
+from delvjax.plots import HOMING_ARROW as ARROW
 import numpy as np
 
 from delvjax.core import rollouts
 from delvjax.core.sensor import Sensor
 from delvjax.options._registry import program
-from delvjax.plots._rollouts import SQUARE, catchment_panel
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Patch
 from .. import thesis

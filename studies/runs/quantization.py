@@ -13,9 +13,8 @@ from __future__ import annotations
 import math
 
 from delvjax.core.scene import DEFAULT_HOME
-from delvjax.envs._presets import make_env
-from delvjax.plots._maps import error_curve_figure
-from delvjax.plots._rollouts import success_rate_figure
+from delvjax.envs import make_env
+from delvjax.plots import error_curve_figure, success_rate_figure
 
 from ._common import (
     PAD,

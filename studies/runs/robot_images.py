@@ -14,16 +14,15 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from delvjax.images._evaluate import catchment_numbers, database_catchment, perceived
+from delvjax.images import database_catchment, image_world
+from delvjax.images._evaluate import catchment_numbers, perceived
 from delvjax.core.images import Camera, Catadioptric, donut, rgb_to_hsv, segment, unwrap
 from delvjax.core.methods import DELV
 from delvjax.images._disk import file_columns
-from delvjax.plots._maps import error_curve_figure, subplots
-from delvjax.plots._images import database_map_figure, pipeline_figure
+from delvjax.plots import error_curve_figure, subplots, database_map_figure, pipeline_figure
 
 from ._common import curves_rows
 from ._images_common import LABEL, ROBOT_SCALE, curve, database, ideal_map, image_map, numbers, preview
-from delvjax.images._worlds import image_world
 
 TITLE = "Robot experiments with artificial landmarks, on rendered images (Figs 4.16-4.21)"
 COST = 45  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first

@@ -18,10 +18,10 @@ from delvjax.evaluate._vector_map import resolve_headings
 from delvjax.core import maps
 from delvjax.core.sensitivity import bearing_noise_gain
 from delvjax.core.sensor import Sensor
-from delvjax.plots._maps import draw_env, subplots
-from delvjax.options._registry import METHODS as REGISTRY, program
-from delvjax.gradients._sensitivity import sensitivity
-from delvjax.plots._gradients import landmark_figure, parameter_figure
+from delvjax.plots import draw_env, subplots, landmark_figure, parameter_figure
+from delvjax.options import METHODS as REGISTRY
+from delvjax.options._registry import program
+from delvjax.gradients import sensitivity
 
 from ._common import env
 from delvjax.cli._main import main as cli

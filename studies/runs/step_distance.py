@@ -8,7 +8,7 @@ catchment run (`common.vector_map`), which also gives the catchment per d.
 
 from __future__ import annotations
 
-from delvjax.plots._maps import error_curve_figure
+from delvjax.plots import error_curve_figure
 
 from ._common import (
     FAILURES,

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import jax
 import jax.numpy as jnp
-from delvjax.plots._maps import subplots
+from delvjax.plots import subplots
 import numpy as np
 
 from delvjax.core import rollouts

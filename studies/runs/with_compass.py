@@ -10,7 +10,7 @@ says how much of the gap is heading estimation (claim "compass_slightly_smaller_
 from __future__ import annotations
 
 import numpy as np
-from delvjax.plots._maps import error_curve_figure
+from delvjax.plots import error_curve_figure
 from .. import thesis
 
 from ._common import (
