@@ -29,7 +29,7 @@ from ..images._evaluate import catchment_numbers, database_catchment
 from ..core.images.rollouts import OUTCOMES
 from ..images._render import ImageSettings, camera, check_render, render_database
 from ..core.images import Catadioptric
-from ..images._evaluate import import_database
+from ..images._import import import_database
 from ..images._conventions import CHOICES
 
 # scene options that mean nothing for a database (its images fix the scene, the poses and the unit move)

@@ -4,18 +4,13 @@ Validation first (`InputError` naming the field, or the file, and the value)."""
 
 from __future__ import annotations
 
-import dataclasses
-
 import math
 from collections.abc import Callable
-from pathlib import Path
 
 import jax
 import jax.numpy as jnp
 import numpy as np
 
-from ._render import DEFAULT_CHUNK
-from ..core.images import Extractor
 from ..core.images.database import (
     RingDatabase,
     database_directions,
@@ -29,17 +24,11 @@ from ..core.images.rollouts import OUTCOMES, Field, Paths, nearest_snapshot_roll
 from ..core.maps import VectorMap
 from ..core.rollouts import MAX_STEPS, TRIALS_PER_DISTANCE
 from ..core.rollouts.success import wilson_pct
-from ._disk import read_index
-from ._conventions import BOB, mismatch, resolve
+from ._conventions import mismatch
 from ..core.errors import InputError
 from ..options._settings import make_setup
 from ..options._checks import non_negative, positive, positive_int, seed_value
-from ._render import database_metadata
-from ._writer import DatabaseWriter
-from ._render import ImageSettings, check_render, render_rings, world_grid
-from ._worlds import ImageWorld
-from ..options._limits import MAX_POINTS
-from ._load import _warn, LoadedDatabase, database_arena, database_spacing, check_home_move, load_database, with_channel
+from ._load import _warn, LoadedDatabase, with_channel
 
 
 def plans(db: LoadedDatabase):
@@ -232,94 +221,3 @@ def catchment_numbers(paths: Paths) -> dict:
     steps = np.asarray(paths.steps)[code == 0]
     out["mean_steps_success"] = float(steps.mean()) if steps.size else float("nan")
     return out
-
-
-def import_database(
-    src: str | Path, out: str | Path, conventions: dict | None = None, write_as: dict | None = None, **options
-) -> LoadedDatabase:
-    """Read a database (BoB or a plain folder; `load_database` options; `conventions` where it does not
-    declare its own, docs/images.md §4.1), check every image, and write it as a BoB database at `out`
-    with delvjax metadata, in BoB's conventions or `write_as` (heading, heading_column, columns).
-    Positions (float64 mm), Z and, where the conventions stay, the headings are copied exactly; nothing
-    is left at `out` if any image fails."""
-    index = read_index(src, conventions)
-    spacing = database_spacing(index, options.get("spacing"))
-    arena = database_arena(index, options.get("arena"), spacing)
-    target = resolve({}, BOB, write_as or {}, str(out))
-    writer = DatabaseWriter(out, target)
-    grid = None
-    if index.kind == "grid":
-        grid = np.round((index.positions - arena[:2] - spacing / 2) / spacing).astype(int)
-        grid -= grid.min(0)  # BoB's grid cells are unsigned
-
-    def sink(images: np.ndarray, rows: slice) -> None:
-        width = images.shape[2]
-        same = index.conventions == target or index.needs_unwrapping
-        writer.add(
-            images,
-            index.xyz_mm[rows],
-            np.degrees(index.headings(width)[rows]),
-            None if grid is None else grid[rows],
-            donut=index.needs_unwrapping,
-            stored=index.heading_deg[rows] if same else None,
-        )
-
-    try:
-        db = load_database(src, sink=sink, conventions=conventions, **options)
-        writer.commit(
-            database_metadata(
-                db.name,
-                db.absolute(db.arena.reshape(2, 2)).ravel(),
-                db.absolute(db.home),
-                db.spacing,
-                db.camera,
-                db.mirror,
-                db.extractor,
-                index.meta.get("obstacles") or {"cylinders": [], "boxes": []},  # as stored: absolute
-            )
-        )
-    except BaseException:
-        writer.discard()
-        raise
-    return db
-
-
-def render_in_memory(
-    env: str | ImageWorld,
-    spacing: float | None = None,
-    settings=None,
-    seed: int = 0,
-    extractor: Extractor | None = None,
-    chunk: int = DEFAULT_CHUNK,
-    panoramas: bool = False,
-) -> LoadedDatabase:
-    """The database `render_database` would write of `env` (a world's name, or an `ImageWorld`), rendered and
-    reduced to rings in memory (no files;
-    ring for ring what `load_database` reads back from them, docs/images.md §5); panoramas: keep
-    every gray panorama too (MinWarping, docs/model.md §4.7)."""
-
-    settings = settings or ImageSettings()
-    iw, spacing = check_render(env, spacing, settings, seed, MAX_POINTS, chunk)
-    pts, _ = world_grid(iw, spacing)
-    ex = extractor or iw.extractor
-    if panoramas:
-        ex = dataclasses.replace(ex, panorama=True)
-    rings = render_rings(iw, settings, pts, np.zeros(len(pts), np.float32), jax.random.PRNGKey(seed), ex, chunk)
-    home_index = int(np.argmin(np.linalg.norm(pts - np.asarray(iw.home), axis=-1)))
-    check_home_move(pts, home_index, spacing, "env", env if isinstance(env, str) else iw.name)
-    return LoadedDatabase(
-        iw.name,
-        rings,
-        [],
-        pts[home_index].astype(np.float64),
-        home_index,
-        np.asarray(iw.world.arena, np.float64),
-        spacing,
-        settings.camera,
-        ex,
-        iw.obstacles(),
-        settings.mirror,
-    )
-
-
-rendered_database = render_in_memory  # the name until 0.1 (CHANGELOG): `render_database` writes files, this does not

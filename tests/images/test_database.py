@@ -13,7 +13,8 @@ import pytest
 
 from tests.twins.sensing import wrap
 from delvjax.evaluate import _vector_map as api
-from delvjax.images._evaluate import LoadedDatabase, database_vector_map, render_in_memory
+from delvjax.images import LoadedDatabase, database_vector_map, import_database, render_in_memory
+from delvjax.images import _evaluate, rendered_database
 from delvjax.images._render import ImageSettings, render_rings, world_grid
 from delvjax.core.images.database import home_plan, move_plan
 from delvjax.core.images.rollouts import Field, nearest_snapshot_rollouts
@@ -288,3 +289,12 @@ def test_every_registered_method_runs_on_image_rings():
         assert np.isfinite(np.asarray(vm.direction)[inc]).all(), name
         if name in ("delv-compass", "alv"):
             assert np.asarray(vm.error_deg)[inc].mean() < 20.0, name
+
+
+def test_importing_and_rendering_in_memory_live_in_modules_named_for_them():
+    # would catch: import_database or render_in_memory back in images/_evaluate.py beside the evaluators
+    # (issue 55), or the 0.1 name rendered_database lost in the move
+    assert import_database.__module__ == "delvjax.images._import"
+    assert render_in_memory.__module__ == "delvjax.images._in_memory"
+    assert rendered_database is render_in_memory
+    assert not {"import_database", "render_in_memory", "rendered_database"} & set(vars(_evaluate))

@@ -12,7 +12,7 @@ import pytest
 import yaml
 from PIL import Image
 
-from delvjax.images._evaluate import load_database
+from delvjax.images import load_database
 from delvjax.images._render import ImageSettings, camera, lit, render_images, render_rings, world_grid
 from delvjax.cli._main import main
 from delvjax.core.images import Catadioptric

@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 from delvjax.core.images.database import RingDatabase, move_plan, rolled
-from delvjax.images._evaluate import database_vector_map, render_in_memory
+from delvjax.images import database_vector_map, render_in_memory
 from tests.cases.compiled import compiled
 
 FLOAT_DEG = 0.01  # float32 rounding of the headings and twice-turned bearings (measured at most 0.0062 deg)
