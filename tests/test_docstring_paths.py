@@ -19,6 +19,9 @@ ROOT = Path(__file__).resolve().parents[1]
 FILES = sorted([*(ROOT / "delvjax").rglob("*.py"), *(ROOT / "studies").rglob("*.py")])
 # a path ending in .py, not inside a longer path or URL (`https://.../x.py` starts after a `/`)
 PATH = re.compile(r"(?<![\w./-])((?:[A-Za-z_][\w-]*/)*[A-Za-z_]\w*\.py)(?!\w)")
+# a package folder (`core/images/`, `delvjax/sweeps/`): checked where its first part is a package or a
+# folder of the repository (`out/`, an output folder, is not)
+FOLDER = re.compile(r"(?<![\w./-])((?:[A-Za-z_][\w-]*/)+)(?![\w.-])")
 # a dotted name, not inside a longer one, a path or a quoted string ("sensor.noise.bearing" is a setting)
 DOTTED = re.compile(r"(?<![\w./\"'])([A-Za-z_]\w*(?:\.[A-Za-z_]\w*)+)(?!\w)")
 # file names (`docs/images.md`, `images.md §6`), not modules and attributes
@@ -29,6 +32,7 @@ BASES = ("", "delvjax", "delvjax/core", "studies", "studies/runs")
 # package of the tree named so (`maps` is core/maps.py, `_common` any of the three); a first part that
 # names no module (`np`, `db`, `self`) is not a module name and is not checked
 MODULES = [p.parent if p.name == "__init__.py" else p for p in FILES]
+TOP_FOLDERS = {p.parent.name for p in FILES if p.name == "__init__.py"} | {p.name for p in ROOT.iterdir() if p.is_dir()}
 # module names of the layouts before today's (`git log --diff-filter=DR -- delvjax studies`): a dotted name
 # starting with one (`registry.program`, `api.vector_map`, `presets.random_env`) names nothing any more
 FORMER = frozenset(
@@ -133,10 +137,13 @@ def dotted_exists(name: str, text: str) -> bool | None:
     return any(found(start, rest) for start in starts)
 
 
-def path_exists(name: str, where: Path) -> bool:
-    """Whether a path names a file from the naming file's folder, a folder above it, or one of BASES."""
+def path_exists(name: str, where: Path) -> bool | None:
+    """Whether a path names a file (a folder, where it ends in `/`) from the naming file's folder, a folder
+    above it, or one of BASES; None for a folder that starts with no package or folder of the repository."""
+    if name.endswith("/") and name.split("/")[0] not in TOP_FOLDERS:
+        return None
     folders = [*where.parents[: len(where.relative_to(ROOT).parts)], *(ROOT / b for b in BASES)]
-    return any((folder / name).is_file() for folder in folders)
+    return any((folder / name).is_dir() if name.endswith("/") else (folder / name).is_file() for folder in folders)
 
 
 def stale_names() -> list[tuple[str, int, str]]:
@@ -144,7 +151,7 @@ def stale_names() -> list[tuple[str, int, str]]:
     stale = []
     for path in FILES:
         for line, text in texts(path):
-            names = [(m, path_exists(m, path)) for m in PATH.findall(text)]
+            names = [(m, path_exists(m, path)) for m in PATH.findall(text) + FOLDER.findall(text)]
             names += [(m, dotted_exists(m, text)) for m in DOTTED.findall(text)]
             stale += [(str(path.relative_to(ROOT)), line, m) for m, ok in names if ok is False]
     return stale
@@ -156,12 +163,9 @@ def test_the_patterns_find_module_names_and_pass_over_the_rest():
     text = '`core/maps.py`, `_disk.py`, see https://x.org/a/b.py, `sweeps/_kinds.py` and "sensor.noise.bearing"'
     assert PATH.findall(text) == ["core/maps.py", "_disk.py", "sweeps/_kinds.py"]
     assert DOTTED.findall('`core.maps`, docs/images.md, "noise.bearing", `np.asarray`') == ["core.maps", "np.asarray"]
-    assert [path_exists(p, here) for p in ("core/maps.py", "_disk.py", "core/mapz.py", "images.py")] == [
-        True,
-        True,
-        False,
-        False,
-    ]
+    assert FOLDER.findall("`core/images/`, out/, `core/maps.py`, https://x.org/a/") == ["core/images/", "out/"]
+    paths = ("core/maps.py", "_disk.py", "core/images/", "core/mapz.py", "images.py", "delvjax/methods/", "out/")
+    assert [path_exists(p, here) for p in paths] == [True, True, True, False, False, False, None]
     exists = {
         "delvjax.core.maps.vector_map": True,
         "core.maps": True,
