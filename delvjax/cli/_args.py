@@ -1,6 +1,6 @@
-"""Argument groups shared by the CLI commands (`cli`, `cli_rollouts`). The method and sensor flags,
-their help and defaults are made from the settings declared on the modules (`options._schema`),
-so they are written once."""
+"""Argument groups shared by the CLI commands (`_main.py`, `_rollouts.py`, `_sweep.py`, ...). The method
+and sensor flags, their help and defaults are made from the settings declared on the modules
+(`options._schema`), so they are written once."""
 
 from __future__ import annotations
 

@@ -17,14 +17,14 @@ from jax import Array
 
 from .maps import homing_directions, random_headings
 from .methods.base import HomingMethod
-from .metrics import angular_error_deg
+from .metrics import angular_error_deg, over_edges
 from .scene import Env
 from .sensor import Sensor
 
 
 class CellMetrics(eqx.Module):
     """Per-cell sums over the included grid points, (C,) each: points, invalid points, points with
-    error > 45 and > 90 degrees, sum of errors and of squared errors (degrees; invalid = 180)."""
+    error > 45 and > 90 degrees (`metrics.over_edges`), sum of errors and of squared errors (degrees; invalid = 180)."""
 
     points: Array
     invalid: Array
@@ -57,11 +57,12 @@ def map_cells(
         err, valid = _errors(env, inc, method, sensor, key, points, n_valid)
         count = lambda m: jnp.sum(m & inc).astype(jnp.int32)  # noqa: E731
         e = jnp.where(inc, err, 0.0)
+        gt45, gt90 = over_edges(err)
         return CellMetrics(
             points=count(jnp.ones_like(inc)),
             invalid=count(~valid),
-            gt45=count(err > 45.0),
-            gt90=count(err > 90.0),
+            gt45=count(gt45),
+            gt90=count(gt90),
             error_sum=jnp.sum(e),
             error_sq_sum=jnp.sum(e * e),
         )

@@ -70,7 +70,7 @@ def catchment(
     rules of `core.rollouts.rules` (defaults: docs/model.md §5). `program`: registry names compiled into
     one rollout program with this one (`options._registry.program`). `announce`: called once every option is
     valid, just before the work (the CLI prints its progress line there, so an error stays one line).
-    More than `max_points` trials (grid points x masks) are refused with an estimate (`limits`).
+    More than `max_points` trials (grid points x masks) are refused with an estimate (`options._limits`).
     `progress(done, total)` is called after each block of trials.
     Returns a `Catchment` (see `catchment_summary`).
     """

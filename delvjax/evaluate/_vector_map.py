@@ -234,7 +234,7 @@ def vector_map(
     rho_max; mfdid_blur_deg); omitted ones take the modules' defaults.
     `hidden` lists landmark indices invisible in the current views (occlusion). The grid runs in
     host-side chunks of `batch_size` points (memory bounded by the chunk, the same numbers for every
-    chunk size); a grid of more than `max_points` points is refused with an estimate (`limits`).
+    chunk size); a grid of more than `max_points` points is refused with an estimate (`options._limits`).
     Config objects may replace the keywords: `grid=Grid(spacing, clearance, heading_deg)`,
     `sensor=Sensor(...)`, `noise=Noise(...)` (evaluate/_config.py).
     Returns a `VectorMap` pytree (points, included, heading, direction, valid, error_deg).

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from ..core import metrics as table
 from ..core.cells import CellMetrics
 from ..core.rollouts.cells import CatchmentSums, SuccessSums
 from ._kinds import (
@@ -42,35 +43,10 @@ class SweepKind(str):
         return self
 
 
-ERROR_METRICS = {
-    "gt45_pct": "% of grid points with angular error > 45 deg (Tables 5.1/5.2)",
-    "gt90_pct": "% of grid points with angular error > 90 deg",
-    "mean_error_deg": "mean angular error over the grid points, invalid = 180 deg",
-    "mean_error_ci95_deg": "half-width of the 95 % Student-t interval of that mean over this cell's grid points "
-    "(the spread of one map's points, not over seeds or worlds: for that, sweep a seed axis)",
-    "invalid_pct": "% of grid points without a homing direction",
-    "points": "grid points evaluated",
-}
-CATCHMENT_METRICS = {
-    "catchment_pct": "% of counted grid points whose rollout reaches home, mean over the masks (Tables 5.3/5.4; "
-    "under first_move = release the points at least d from every wall, docs/model.md section 5)",
-    "catchment_physical_pct": "catchment_pct restated under collisions = fail from the same trials (a trial that "
-    "touches a landmark fails; docs/model.md section 5): under collisions = ignore, the physical rules' catchment "
-    "without a second run",
-    "catchment_min_pct": "the same under the worst mask",
-    "catchment_max_pct": "the same under the best mask",
-    "catchment_points": "grid points counted in the catchment",
-    "timeout_pct": "% of counted trials (points x masks) that ran out of moves",
-    "landmark_pct": "% of counted trials that ended inside a landmark (collisions = fail)",
-    "arena_pct": "% of counted trials that left the arena",
-    "mean_steps_success": "mean moves of the successful trials",
-}
-SUCCESS_METRICS = {
-    "success_pct": "% of placed trials that reach home, per release distance (Figs 4.10b, 5.7b)",
-    "success_ci95_lo_pct": "lower end of its 95 % Wilson interval",
-    "success_ci95_hi_pct": "upper end of its 95 % Wilson interval",
-    "placed": "trials placed per distance (over every mask)",
-}
+# name -> description of each kind's metrics, from the one metrics table (`core.metrics.METRICS`)
+ERROR_METRICS = {m.name: m.description for m in table.MAP_METRICS}
+CATCHMENT_METRICS = {m.name: m.description for m in table.CATCHMENT_METRICS}
+SUCCESS_METRICS = {m.name: m.description for m in table.SUCCESS_METRICS}
 
 
 VECTOR_MAP = SweepKind(

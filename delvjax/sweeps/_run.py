@@ -1,6 +1,6 @@
 """Running a sweep (docs/sweeps.md): every cell validated first, cells grouped by shape, one compiled
 program per shape called on chunks of cells, split over the local devices and dealt over the
-processes, finished chunks kept on disk; results as labelled data (`sweep_results`)."""
+processes, finished chunks kept on disk; results as labelled data (`_results.py`)."""
 
 from __future__ import annotations
 
@@ -53,7 +53,7 @@ def _plan(
     kept: dict[int, dict] | None = None,
 ) -> tuple[list[list[int]], list[str], int]:
     """Validate every cell before any work; return the cells of each program (group), with `code`
-    every cell's digest (`cell_store`), and the most visibility masks of any cell. With `kept` (a dict) and
+    every cell's digest (`_store.py`), and the most visibility masks of any cell. With `kept` (a dict) and
     at most KEEP_SETUPS cells, each cell's setup is kept there (cell number -> setup) for the run to use rather
     than make again; a larger sweep's are not: memory does not grow with them. `program`: as `cell_setup`'s."""
     keep = kept is not None and spec.n_cells <= KEEP_SETUPS
@@ -99,7 +99,7 @@ def run_sweep(
     value). Every cell is validated before any work; `announce()` is called then; `progress(done,
     total)` after each chunk; `phase(text)` says what runs now ("compiling program 2 of 3").
     With `out`, finished chunks are kept in out/.cells and cells found there are not computed again
-    (`cell_store`: a killed or changed sweep resumes). `lanes`: rollout trials advanced side by side
+    (`_store.py`: a killed or changed sweep resumes). `lanes`: rollout trials advanced side by side
     (`rollouts.run_trials`; no number depends on it): fewer waste less on cells of few trials.
     `skip(cell)` True: the cell (its axis values, as `spec.cells()` gives them) is not computed and its
     metrics are NaN (a study that needs only some cells of a product; the others' numbers are the same).

@@ -16,7 +16,7 @@ from ..batching import bucket, pad_rows
 from ..errors import InputError
 from ..maps import CLEARANCE, SPACING, grid_included, grid_points, random_headings
 from ..methods.base import HomingMethod
-from ..metrics import angular_error_deg, error_point_rates
+from ..metrics import RATES, angular_error_deg, error_point_rates
 from ..scene import Env
 from ..sensor import Sensor
 from ..types import GridFlag, GridFloat, GridPoints, MaskGridFlag, MaskGridFloat, MaskGridInt, MaskGridPoints, Masks
@@ -272,8 +272,7 @@ def catchment_summary(result: Catchment) -> dict:
         "catchment_points": int(counted.sum()),
         "masks": len(per_mask),
         "catchment_pct": spread("catchment_pct"),
-        "gt45_pct": spread("gt45_pct"),
-        "gt90_pct": spread("gt90_pct"),
+        **{m.name: spread(m.name) for m in RATES},  # gt45_pct, gt90_pct
         "per_mask": per_mask,
     }
 

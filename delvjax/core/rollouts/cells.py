@@ -19,7 +19,7 @@ from jax import Array
 from jax.typing import ArrayLike
 
 from ..maps import random_headings, stream_keys
-from ..metrics import angular_error_deg
+from ..metrics import angular_error_deg, over_edges
 from ..sensing import record_home
 from .lanes import run_block
 from .release import release_points
@@ -49,7 +49,8 @@ class CatchmentSums(eqx.Module):
     grid points at least d from every wall), their successes in total and under the worst and best
     mask, the successes that never touched a landmark (those that also succeed under collisions "fail":
     `rules.under_collisions`), failures by outcome, moves of the successful trials, and the first directions'
-    (the vector map under each mask, every released point) invalid count, errors > 45 and > 90 degrees, sum and
+    (the vector map under each mask, every released point) invalid count, errors > 45 and > 90 degrees
+    (`metrics.over_edges`), sum and
     sum of squares of the errors (degrees; invalid = 180)."""
 
     points: Array
@@ -137,6 +138,7 @@ def catchment_cells(
         count = lambda m: jnp.sum(m & counts).astype(jnp.int32)  # noqa: E731
         e = jnp.where(run, err, 0.0)
         n_cnt = jnp.sum(inc & cnt).astype(jnp.int32)
+        gt45, gt90 = over_edges(err)
         return CatchmentSums(
             points=jnp.sum(inc).astype(jnp.int32),
             trials=n_valid,
@@ -151,8 +153,8 @@ def catchment_cells(
             arena=count(res.outcome == ARENA),
             steps_success=jnp.sum(jnp.where(ok, res.steps, 0)),
             invalid=jnp.sum(~res.first_valid & run).astype(jnp.int32),
-            gt45=jnp.sum((err > 45.0) & run).astype(jnp.int32),
-            gt90=jnp.sum((err > 90.0) & run).astype(jnp.int32),
+            gt45=jnp.sum(gt45 & run).astype(jnp.int32),
+            gt90=jnp.sum(gt90 & run).astype(jnp.int32),
             error_sum=jnp.sum(e),
             error_sq_sum=jnp.sum(e * e),
         )

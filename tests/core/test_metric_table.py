@@ -1,0 +1,104 @@
+"""The one metrics table (`delvjax.core.metrics.METRICS`, issue 55 point 4): the error point rates' thresholds
+written once, each sweep kind's metrics derived from the table, docs/sweeps.md's table rendered from it, and
+the >45/>90 rates of a vector map equal on every path that counts them."""
+
+from __future__ import annotations
+
+import ast
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+
+import delvjax
+from delvjax.core import metrics
+from delvjax.core.metrics import CATCHMENT_METRICS, MAP_METRICS, METRICS, SUCCESS_METRICS
+from delvjax.sweeps import run_sweep
+from delvjax.sweeps._kind import KINDS
+from delvjax.sweeps._spec import metric_units, parse_sweep
+
+ROOT = Path(__file__).resolve().parents[2]
+# every module that counts, sums or describes the error point rates (issue 55: "five homes")
+PATHS = ("core/metrics.py", "core/cells.py", "core/rollouts/cells.py", "core/rollouts/catchment.py")
+PATHS += ("sweeps/_results.py", "sweeps/_kind.py")
+KIND_METRICS = {
+    "vector-map": MAP_METRICS,
+    "catchment": CATCHMENT_METRICS + MAP_METRICS,
+    "success-rate": SUCCESS_METRICS,
+}
+START, END = "<!-- metrics -->", "<!-- /metrics -->"
+
+
+def test_the_thresholds_are_written_once():
+    """No number 45 or 90 in the code of the rates' paths but `CLASS_EDGES_DEG` (docstrings and descriptions
+    are strings, not numbers). Fails on the old code: core/cells.py and core/rollouts/cells.py compared with
+    45.0 and 90.0, error_point_rates too."""
+    found = []
+    for rel in PATHS:
+        tree = ast.parse((ROOT / "delvjax" / rel).read_text())
+        edges = [n for n in ast.walk(tree) if isinstance(n, ast.Assign) and ast.unparse(n.targets) == "CLASS_EDGES_DEG"]
+        allowed = {id(c) for a in edges for c in ast.walk(a.value)}
+        found += [
+            f"{rel}:{n.lineno} {n.value!r}"
+            for n in ast.walk(tree)
+            if isinstance(n, ast.Constant) and type(n.value) in (int, float) and n.value in (45, 90)
+            if id(n) not in allowed
+        ]
+    assert not found, found
+    assert metrics.CLASS_EDGES_DEG == tuple(m.edge_deg for m in metrics.RATES) == (45.0, 90.0)
+    assert [m.name for m in metrics.RATES] == ["gt45_pct", "gt90_pct"]
+
+
+def test_each_kinds_metrics_are_the_tables():
+    """Each sweep kind's metrics (names, order and descriptions) are the table's, and its `metrics_of` returns
+    exactly those names, in the units the results write. Fails when a metric is added to a kind, to the table or
+    to `sweeps._results` alone."""
+    assert set(KINDS) == set(KIND_METRICS)
+    for name, rows in KIND_METRICS.items():
+        kind = KINDS[name]
+        assert list(kind.metrics) == [m.name for m in rows], name
+        over = "first directions (points x masks)" if name == "catchment" else "grid points"
+        assert list(kind.metrics.values()) == [
+            m.description.replace("grid points", over) if m in MAP_METRICS else m.description for m in rows
+        ]
+        sums = {f.name: np.array([0, 3, 7]) for f in dataclasses.fields(kind.sums)}
+        with np.errstate(all="ignore"):
+            assert set(kind.metrics_of(sums)) == set(kind.metrics), name
+    assert len(METRICS) == len(MAP_METRICS + CATCHMENT_METRICS + SUCCESS_METRICS)  # no name twice
+    assert {n: metric_units(n) for n in METRICS} == {n: m.unit for n, m in METRICS.items()}
+
+
+def metrics_markdown() -> str:
+    """docs/sweeps.md's metrics table, rendered from the table and the kinds."""
+    rows = ["| metric | sweep kinds | units | formula | description |", "|---|---|---|---|---|"]
+    for m in METRICS.values():
+        kinds = ", ".join(k for k, ms in KIND_METRICS.items() if m in ms)
+        rows.append(f"| `{m.name}` | {kinds} | {m.unit} | {m.formula} | {m.description} |")
+    return "\n".join(rows)
+
+
+def test_the_docs_table_is_the_metrics_table():
+    """docs/sweeps.md's metrics table is `metrics_markdown()` (on a difference, paste the expected block)."""
+    doc = (ROOT / "docs" / "sweeps.md").read_text()
+    assert doc.count(START) == doc.count(END) == 1
+    block = doc[doc.index(START) + len(START) : doc.index(END)].strip()
+    assert block == metrics_markdown(), f"docs/sweeps.md's metrics table should read:\n{metrics_markdown()}"
+
+
+def test_every_path_counts_the_same_rates():
+    """ALV on env1 (100 cm grid, 60 deg of bearing noise: some errors > 45 and > 90): the rates of
+    `core.metrics.error_point_rates` (a vector map's summary), of `core.cells.map_cells` (a vector-map sweep) and
+    of `core.rollouts.cells.catchment_cells` (a catchment sweep's first directions, one mask) equal a NumPy count
+    on the vector map's errors. Fails when one path's threshold or comparison (> vs >=) differs."""
+    options = {"spacing": 100, "seed": 3, "bearing_noise_deg": 60.0}
+    vm = delvjax.vector_map("env1", "alv", **options)
+    e = np.asarray(vm.error_deg)[np.asarray(vm.included)]
+    expected = {"gt45_pct": 100.0 * np.sum(e > 45) / e.size, "gt90_pct": 100.0 * np.sum(e > 90) / e.size}
+    assert 0 < expected["gt90_pct"] < expected["gt45_pct"] < 100
+    assert metrics.error_point_rates(vm.error_deg, vm.included) == expected
+    axes = "\n".join(f"{k} = [{v}]" for k, v in options.items())
+    for kind in ("vector-map", "catchment"):
+        text = f'[sweep]\nkind = "{kind}"\nmetrics = ["gt45_pct", "gt90_pct", "points"]\n[axes]\n'
+        ds = run_sweep(parse_sweep(f'{text}env = ["env1"]\nmethod = ["alv"]\n{axes}\n'))
+        assert int(ds.points) == e.size, kind
+        assert {k: float(ds[k]) for k in expected} == expected, kind
