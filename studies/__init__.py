@@ -52,4 +52,4 @@ FULL_RUN_ONLY = (
 
 # Each study declares its own `COST`: rough seconds of it in a full run on 2 CPU cores, two side by side
 # (measured 2026-12-04, `benchmarks/bench_reproduce.py`). `delvjax.reproduce` starts the studies side by
-# side in that order, the longest first, so that a long one does not start last (`reproduce.schedule`).
+# side in that order, the longest first, so that a long one does not start last (`reproduce._run.schedule`).

@@ -49,21 +49,6 @@ FORMER = frozenset(
 # (file, name) -> why it is left: stale names in studies/ (issue 55; its import lines were another
 # helper's part) and names that look like modules but are not
 ALLOWED = {
-    ("studies/__init__.py", "reproduce.schedule"): "reproduce._run.schedule (fixed by the lead)",
-    ("studies/runs/_common.py", "claims_common._failures"): "claims._common._failures (fixed by the lead)",
-    ("studies/runs/_common.py", "registry.program"): "options._registry.program (fixed by the lead)",
-    ("studies/runs/_ensemble_maps.py", "presets.random_env"): "envs._presets.random_env (fixed by the lead)",
-    ("studies/runs/_images_common.py", "registry.program"): "options._registry.program (fixed by the lead)",
-    ("studies/runs/_settings_design.py", "sweep_kinds.cell_setup"): "sweeps._kinds.cell_setup (fixed by the lead)",
-    ("studies/runs/_settings_design.py", "sweep_kinds.evaluate"): "sweeps._kinds.evaluate (fixed by the lead)",
-    ("studies/runs/quantization.py", "common.vector_map"): "runs._common.vector_map (fixed by the lead)",
-    ("studies/runs/step_distance.py", "common.vector_map"): "runs._common.vector_map (fixed by the lead)",
-    ("studies/claims/_ch4_more.py", "claims_ch4"): "claims._ch4 (fixed by the lead)",
-    ("studies/claims/_ch5_occlusion.py", "claims_ch5"): "claims._ch5 (fixed by the lead)",
-    ("studies/claims/_ch5_visual.py", "claims_ch5_occlusion"): "claims._ch5_occlusion (fixed by the lead)",
-    ("studies/runs/causes_probe.py", "claims_ch4"): "claims._ch4 (fixed by the lead)",
-    ("studies/runs/ensembles.py", "thesis_numbers"): "thesis._numbers (fixed by the lead)",
-    ("studies/runs/occlusion.py", "gap_matching"): "runs._gap_matching (fixed by the lead)",
     ("delvjax/evaluate/_config.py", "config"): "the parameter `config`, not the delvjax/config.py of before",
     ("studies/runs/_common.py", "settings.trials"): "a study's settings object (`ctx.settings`), not core/settings.py",
 }

@@ -1,4 +1,4 @@
-"""Checks of the thesis's chapter 4 claims, second part (continued from `claims_ch4`; registered by `delvjax.studies.claims`)."""
+"""Checks of the thesis's chapter 4 claims, second part (continued from `claims._ch4`; registered by `delvjax.studies.claims`)."""
 
 from __future__ import annotations
 

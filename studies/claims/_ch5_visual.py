@@ -1,5 +1,5 @@
 """Checks of the thesis's chapter 5 claims, third part: the visual compass and how much each method
-depends on a compass (continued from `claims_ch5_occlusion`; registered by `delvjax.studies.claims`)."""
+depends on a compass (continued from `claims._ch5_occlusion`; registered by `delvjax.studies.claims`)."""
 
 from __future__ import annotations
 

@@ -50,7 +50,7 @@ LABEL = {
     "minwarping": "MinWarping",
 }
 HOME_RADIUS = rollouts.HOME_RADIUS
-# Every method of the reproduction is compiled into one rollout program (`registry.program`: a
+# Every method of the reproduction is compiled into one rollout program (`options._registry.program`: a
 # `Program` module whose traced index picks the method): compiling a rollout program costs about 6 CPU-seconds, so the
 # reproduction compiles one, not eight. Rendering a method does not need (the start snapshot, the gray
 # channel) is skipped at run time, so no method runs slower for sharing (docs/reproduce.md).
@@ -232,7 +232,7 @@ def failures_text(counts: dict[str, int]) -> str:
 
 def record_failures(ctx, key: str, counts: dict[str, int]) -> None:
     """Failure counts by outcome as numbers `<key>:timeout`, `<key>:landmark`, `<key>:arena` (read back by
-    `claims_common._failures`)."""
+    `claims._common._failures`)."""
     for outcome in FAILURES:
         ctx.number(f"{key}:{outcome}", int(counts[outcome]))
 

@@ -207,7 +207,7 @@ def random_worlds(numbers: dict[str, dict], landmarks: dict, base: int) -> dict[
     worlds: layout seed s >= `base` is member `random-m<s - base>`, a smaller seed the built-in `random` (the
     `landmark_number` study's layouts); keys `...:random<n>:...` (`error_curve:random<n>:<m>`, that study's).
     `landmark_number:nested` (claim 6): 1.0 where each world's fewer landmarks are the first of its more (one
-    seed's draws, `presets.random_env`, drawn in order: checked here on the layouts the sweep ran), else 0.0."""
+    seed's draws, `envs._presets.random_env`, drawn in order: checked here on the layouts the sweep ran), else 0.0."""
     out: dict[str, dict] = {}
     layouts: dict[str, dict[int, np.ndarray]] = {}
     for label, nums in numbers.items():

@@ -13,7 +13,7 @@ from delvjax.core.scene import Env
 from delvjax.images._worlds import ImageWorld
 from delvjax.envs import make_env
 
-# the methods of the image studies, one compiled program (`registry.program`)
+# the methods of the image studies, one compiled program (`options._registry.program`)
 METHODS = ("delv", "alv", "acv", "warping")
 LABEL = {"delv": "DELV", "alv": "ALV", "acv": "ACV", "warping": "image matching", "minwarping": "MinWarping"}
 # MinWarping (docs/model.md §4.7) reads whole panoramas: its own program, its grid on 360 columns

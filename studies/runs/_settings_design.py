@@ -5,8 +5,8 @@ and the rollouts of every (combination, world, member, method, k) as cells of on
 Every combination of bearing noise, home radius and odometry noise is run (4 x 3 x 2 = 24 runs); the rule set
 costs no rollouts: every cell runs under `collisions = "ignore"` and its catchment is restated under the
 physical rules from the same trials (`catchment_physical_pct`, docs/sweeps.md), so each run is two
-combinations (48). A cell is one of a catchment sweep's (validated by `sweep_kinds.cell_setup`, run by
-`sweep_kinds.evaluate`); the cells are listed here, not from a sweep file's product, because DELV without a
+combinations (48). A cell is one of a catchment sweep's (validated by `sweeps._kinds.cell_setup`, run by
+`sweeps._kinds.evaluate`); the cells are listed here, not from a sweep file's product, because DELV without a
 compass is needed at k = 0 only and each member runs under its own seed: every cell of the study is one
 program (the four methods one `Program`, the worlds padded alike, the settings traced leaves)."""
 

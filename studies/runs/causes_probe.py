@@ -1,5 +1,5 @@
 """Causes measured outside the run (docs/reproduce.md "Causes measured outside the run"): the
-experiments behind the causes that the claims (`claims_ch4`) name without numbers of their own
+experiments behind the causes that the claims (`claims._ch4`) name without numbers of their own
 study. Not a study of `delvjax reproduce` (they take minutes and
 change nothing in the report); run them with
 

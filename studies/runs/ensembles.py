@@ -159,7 +159,7 @@ def shared_cells() -> Path:
 def skipped_cells():
     """`run_sweep`'s `skip`: True for a cell no table or claim reads, so it is never computed (its numbers NaN, left
     out by `member_numbers`): a cell is read only where a thesis number has its family, method and k
-    (`thesis_numbers`), and so is every cell a claim of `studies/claims` reads (DELV without a compass at k = 0 on
+    (`_ensemble_stats.thesis_numbers`), and so is every cell a claim of `studies/claims` reads (DELV without a compass at k = 0 on
     env1-3 only, none on ring4; the claims read its occlusion rows with a compass). `ensemble_ranges` skips the
     same cells (members of a scaled family, `env1x0.666667-m3`, are their family's)."""
     wanted: dict[tuple[str, str], set[int]] = {}

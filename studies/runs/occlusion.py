@@ -10,7 +10,7 @@ ring4 (L = 4 equally spaced) is the same layout as env2, so its rows are env2's 
 the thesis's own L = 4 rows copy other rows (see the table notes). The ring layouts (Tables
 5.2/5.4: 75 masks against env1-3's 37) run on a grid of spacing at least RING_SPACING cm, to
 keep the full run within minutes; the tables say so. Beyond the thesis, DELV with gap-aware
-matching runs on the same masks (`gap_matching`: what it changes in Tables 5.1-5.4).
+matching runs on the same masks (`_gap_matching`: what it changes in Tables 5.1-5.4).
 """
 
 from __future__ import annotations

@@ -5,7 +5,7 @@ vector maps (Fig 4.12), error curves (Fig 4.13a), catchment per level, success r
 release distance (Fig 4.13b), and level 3 in other layouts (Fig 4.14: env1-3, ring3, ring6 and
 `edge4`, home slightly outside the landmarks' hull as in Fig 4.14b). Q is a traced leaf
 of the `DELV` module (`levels`), so every level runs through the one compiled rollout program; the
-vector maps are read from the catchment runs (`common.vector_map`).
+vector maps are read from the catchment runs (`runs._common.vector_map`).
 """
 
 from __future__ import annotations

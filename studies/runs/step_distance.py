@@ -3,7 +3,7 @@
 DELV without compass on env1 for d in {20, 50, 100, 150} cm. d is a traced leaf of the
 method's settings, so all four values run through the one compiled rollout program that
 every other study of DELV uses (no compilation per value); each vector map is read from a
-catchment run (`common.vector_map`), which also gives the catchment per d.
+catchment run (`runs._common.vector_map`), which also gives the catchment per d.
 """
 
 from __future__ import annotations
