@@ -46,8 +46,7 @@ FORMER = frozenset(
     sensitivities study sweep_examples sweep_kinds sweep_results sweep_spec thesis_claims_ch4 thesis_claims_ch5
     thesis_notes thesis_numbers vector_maps""".split()
 )
-# (file, name) -> why it is left: stale names in studies/ (issue 55; its import lines were another
-# helper's part) and names that look like modules but are not
+# (file, name) -> why it is left: names that look like modules but are not
 ALLOWED = {
     ("delvjax/evaluate/_config.py", "config"): "the parameter `config`, not the delvjax/config.py of before",
     ("studies/runs/_common.py", "settings.trials"): "a study's settings object (`ctx.settings`), not core/settings.py",
