@@ -139,7 +139,7 @@ def run(tmp_path_factory):
     return own, result, seconds
 
 
-# --- image databases (test_images_io.py, test_images_errors.py, test_images_cli.py) ---------------
+# --- image databases (images/test_disk.py, images/test_errors.py, images/test_cli.py) ----
 
 from tests.cases.images_io import SEED, SMALL, entries, render_db, write_plain
 

@@ -1,8 +1,8 @@
 """Docstrings and comments name today's modules (issue 55): every module path (`core/maps.py`,
 `sweeps/_kinds.py`, `_load.py`) and every dotted module name (`core.maps`, `delvjax.core.maps`,
-`options._registry`, `maps.vector_map`) a docstring or comment in delvjax/ or studies/ names exists: a
-module file or package, and in `module.name` forms a name the module binds (a function, class,
-constant, re-export or submodule). Read statically (ast and tokenize): nothing is imported."""
+`options._registry`, `maps.vector_map`) a docstring or comment in delvjax/, studies/, tests/, benchmarks/ or
+examples/ names exists: a module file or package, and in `module.name` forms a name the module binds (a
+function, class, constant, re-export or submodule). Read statically (ast and tokenize): nothing is imported."""
 
 from __future__ import annotations
 
@@ -16,7 +16,8 @@ import tokenize
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-FILES = sorted([*(ROOT / "delvjax").rglob("*.py"), *(ROOT / "studies").rglob("*.py")])
+FOLDERS = ("delvjax", "studies", "tests", "benchmarks", "examples")
+FILES = sorted(p for folder in FOLDERS for p in (ROOT / folder).rglob("*.py") if p != Path(__file__).resolve())
 # a path ending in .py, not inside a longer path or URL (`https://.../x.py` starts after a `/`)
 PATH = re.compile(r"(?<![\w./-])((?:[A-Za-z_][\w-]*/)*[A-Za-z_]\w*\.py)(?!\w)")
 # a package folder (`core/images/`, `delvjax/sweeps/`): checked where its first part is a package or a
@@ -29,7 +30,7 @@ BARE = re.compile(r"`([A-Za-z_]\w*)`")
 # file names (`docs/images.md`, `images.md §6`), not modules and attributes
 SUFFIXES = {"md", "py", "csv", "json", "toml", "nc", "png", "pdf", "txt", "yaml", "yml", "npz", "svg", "html", "cff"}
 # where a path is looked up besides the naming file's own folder and the folders above it
-BASES = ("", "delvjax", "delvjax/core", "studies", "studies/runs")
+BASES = ("", "delvjax", "delvjax/core", "studies", "studies/runs", "tests", "benchmarks")
 # where a dotted name's first part is looked up when it is not `delvjax` or `studies`: any module or
 # package of the tree named so (`maps` is core/maps.py, `_common` any of the three); a first part that
 # names no module (`np`, `db`, `self`) is not a module name and is not checked
@@ -50,6 +51,11 @@ FORMER = frozenset(
 ALLOWED = {
     ("delvjax/evaluate/_config.py", "config"): "the parameter `config`, not the delvjax/config.py of before",
     ("studies/runs/_common.py", "settings.trials"): "a study's settings object (`ctx.settings`), not core/settings.py",
+    ("benchmarks/ab_vector_map.py", "delvjax.config.Config"): "the API of old revisions this A/B script also runs",
+    ("tests/examples/test_examples.py", "examples/NAME.py"): "a placeholder",
+    ("tests/test_api_reference.py", "delvjax.NAME"): "a placeholder",
+    ("tests/test_architecture.py", "_name.py"): "a placeholder",
+    ("tests/images/test_navipy.py", "navipy/sensors/renderer.py"): "a file of the navipy repository",
 }
 
 

@@ -1,4 +1,4 @@
-"""Helpers of the image-database tests (test_images_io.py, test_images_errors.py, test_images_cli.py):
+"""Helpers of the image-database tests (tests/images/test_disk.py, images/test_errors.py, images/test_cli.py):
 small renders of the robot world, plain-folder copies, error lines. Their databases are conftest.py fixtures."""
 
 from __future__ import annotations

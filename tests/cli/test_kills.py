@@ -15,7 +15,7 @@ from delvjax.cli._main import main
 from tests.cases.faults import contents, run_killed, temporaries
 from tests.cases.images_io import SMALL
 
-SWEEP = "[axes]\nd = [30, 60]\nseed = [0, 1]\nspacing = [150]\n"  # the programs of test_sweeps.py's resume test
+SWEEP = "[axes]\nd = [30, 60]\nseed = [0, 1]\nspacing = [150]\n"  # the programs of sweeps/test_sweeps.py's resume test
 RENDER = ["images", "render-db", "robot", *SMALL, "--spacing", "40", "--chunk", "4"]
 
 

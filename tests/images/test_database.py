@@ -1,6 +1,6 @@
 """Homing on image databases against plain references (docs/images.md §6-7): move plans, directions per
 point, independence of the image headings, the ring model's masks and map, chunking, nearest-snapshot
-rollouts (reference_image_db.py)."""
+rollouts (twins/image_db.py)."""
 
 from __future__ import annotations
 
@@ -184,7 +184,7 @@ def test_map_does_not_depend_on_the_image_headings(robot_db, robot_db_turned, na
 
 def test_database_masks_and_map_are_the_ring_model(robot_db):
     """Cylinders 50 cm high seen from 25 cm fill the whole +-5 deg band: the image masks are the ring model's
-    masks (measured: all 71 x 360 identical), and ALV's map from the images equals api.vector_map's in the ring
+    masks (measured: all 71 x 360 identical), and ALV's map from the images equals evaluate.vector_map's in the ring
     model at every point (ALV reads only the current view and the compass, so the move does not matter;
     measured: 0 deg everywhere)."""
     iw, pts, db = robot_db
@@ -274,7 +274,7 @@ def test_nearest_snapshot_rollouts_match_reference_trials():
 
 def test_every_registered_method_runs_on_image_rings():
     """docs/images.md §5: the pipeline's `Snapshot` is what every method reads. Each registry method, in
-    one program (`registry.program`), gives a finite direction at every point of a small database."""
+    one program (`options._registry.program`), gives a finite direction at every point of a small database."""
     from delvjax.images._render import camera
     from delvjax.options._registry import METHODS
 

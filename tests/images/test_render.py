@@ -1,4 +1,4 @@
-"""Rendering and the image pipeline (docs/images.md §2-5) against their NumPy twin (reference_images.py)
+"""Rendering and the image pipeline (docs/images.md §2-5) against their NumPy twin (twins/images.py)
 and analytic cases: ray casting, cameras, unwrapping, HSV, thresholds, bands, blobs."""
 
 from __future__ import annotations

@@ -20,7 +20,7 @@ from tests.cases.claims import FALLING, OURS_PHYSICAL
 
 
 def _flat(key: str, counts: dict) -> dict:
-    """Failure counts as the studies record them (`common.record_failures`)."""
+    """Failure counts as the studies record them (`runs._common.record_failures`)."""
     return {f"{key}:{o}": v for o, v in counts.items()}
 
 

@@ -212,7 +212,7 @@ def test_quantized_and_random_keys_have_the_shapes_the_checks_read():
 
 
 def test_seeded_random_layouts_of_one_seed_are_nested_and_the_point_runs_are_not():
-    """The sweep's random layouts (`presets.random_env(seed, n)`, the fewer landmarks drawn first) of one seed
+    """The sweep's random layouts (`envs._presets.random_env(seed, n)`, the fewer landmarks drawn first) of one seed
     are nested; the `landmark_number` study's (seed 100 + n) are not: `random_worlds` tells them apart."""
     lms = {f"random{s}-{n}": np.asarray(random_env(s, n).landmarks) for s in (BASE, 103, 104, 105) for n in (3, 4, 5)}
     labels = [f"random{BASE}-{n}" for n in (3, 4, 5)] + [f"random{100 + n}-{n}" for n in (3, 4, 5)]

@@ -2,7 +2,7 @@
 (docs/model.md §1-§3.2): angles, ring images, blobs, sine-law distances, quantization.
 
 Explicit Python loops over pixels and blobs; slow on purpose, meant to be read. The methods
-built on it are in `reference.py`.
+built on it are in `methods.py`.
 """
 
 import math
