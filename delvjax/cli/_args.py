@@ -7,12 +7,14 @@ from __future__ import annotations
 import argparse
 import re
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 from ..core.errors import InputError, warn  # noqa: F401 - warn: the commands import it from here
 from ..core.maps import CLEARANCE, SPACING
 from ..core.rollouts import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
 from ..core.sensor import Noise, Sensor
+from ..evaluate._progress import Progress
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_distinct, check_output_path, output_set
 from ..options._limits import MAX_POINTS
@@ -38,14 +40,23 @@ def compiling(k: int, m: int) -> str:
     return f"compiling program {k} of {m} (cached for later runs)"
 
 
-class ProgressBar:
-    """A `progress(done, total)` callback: a bar on stderr with rate and ETA once the work runs in
-    more than one chunk (`total` > `single`); nothing for a run of one chunk. `start(total, phase)`
-    shows the bar at once (the whole run, compilation included) with what is happening now
-    ("compiling program 1 of 2"); `phase(text)` changes it; a run of one chunk prints the phases as lines."""
+class ProgressBar(Progress):
+    """The command line's `Progress` (evaluate/_progress.py): a bar on stderr with rate and ETA once the
+    work runs in more than one chunk (`total` > `single`); nothing for a run of one chunk. `start(total,
+    phase)` (the API calls it once every option is valid) prints `announce(total)` when given (the
+    command's line: "vector map of ... (1600 cells) ...") and shows the bar at once (the whole run,
+    compilation included) with what is happening now (`phase`, else `first_phase`: "compiling program 1
+    of 2"); `phase(text)` changes it; a run of one chunk prints the phases as lines."""
 
-    def __init__(self, unit: str, single: int):
+    def __init__(
+        self,
+        unit: str,
+        single: int,
+        announce: Callable[[int | None], str] | None = None,
+        first_phase: str | None = None,
+    ):
         self.unit, self.single, self.bar = unit, single, None
+        self.announce, self.first_phase = announce, first_phase
         self._phase: str | None = None
 
     def _open(self, total: int) -> None:
@@ -57,10 +68,13 @@ class ProgressBar:
         if self._phase:
             self.phase(self._phase)
 
-    def start(self, total: int, phase: str | None = None) -> None:
-        """Show the bar now, before the first chunk (whose call compiles the program)."""
-        self._phase = phase
-        if self.bar is None:
+    def start(self, total: int | None, phase: str | None = None) -> None:
+        """Print the announcement and show the bar now, before the first chunk (whose call compiles the
+        program); with `total` None the bar opens at the first chunk's report."""
+        if self.announce is not None:
+            progress(self.announce(total))
+        self._phase = phase if phase is not None else self.first_phase
+        if self.bar is None and total is not None:
             self._open(total)
 
     def phase(self, text: str) -> None:

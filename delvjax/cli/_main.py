@@ -31,7 +31,6 @@ from ._images import IMAGE_COMMANDS, add_image_args, cmd_vector_map_images
 from ._sweep import add_plot_sweep, add_sweep
 from ..core import maps
 from ..core.errors import InputError
-from ..options._limits import grid_count
 from ..options._schema import all_options
 from ..envs._presets import PRESET_DESCRIPTIONS, PRESETS
 from ..options._registry import DESCRIPTIONS
@@ -71,14 +70,13 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     if args.images is not None:
         return cmd_vector_map_images(args)
     check_outputs(args)
-    request = api.map_request(args.env, **scene_kwargs(args))
-    env = request["env"]
+    kw = scene_kwargs(args)
+    env = api.load_env(args.env)
     t0 = time.perf_counter()
-    n_points = grid_count(env.arena, args.spacing)
-    progress(f"vector map of {args.method} on {env.name} (spacing {args.spacing:g} cm, {n_points} cells) ...")
-    with ProgressBar("pt", request["batch_size"]) as bar:  # a bar only when the grid runs in several chunks
-        bar.start(n_points, compiling(1, 1))
-        vm = maps.vector_map(**request, progress=bar, program=getattr(args, "map_program", None))
+    announce = lambda n: f"vector map of {args.method} on {env.name} (spacing {args.spacing:g} cm, {n} cells) ..."  # noqa: E731
+    with ProgressBar("pt", maps.DEFAULT_BATCH, announce, compiling(1, 1)) as bar:
+        # a bar only when the grid runs in several chunks; the API counts the grid and calls bar.start
+        vm = api.vector_map(env, **kw, progress=bar, chunk_program=getattr(args, "map_program", None))
     vm.error_deg.block_until_ready()
     summary = {
         "env": env.name,
@@ -98,7 +96,7 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     def figure():
         from ..plots._maps import vector_map_figure  # matplotlib: loaded only when a figure is drawn
 
-        return vector_map_figure(env, vm, args.spacing, title=title, classes=args.classes)
+        return vector_map_figure(env, vm, title=title, classes=args.classes)  # the map carries its spacing
 
     write_outputs(args, vector_map_columns(vm), summary, figure)
     return 0

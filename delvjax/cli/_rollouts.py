@@ -104,17 +104,13 @@ def cmd_catchment(args: argparse.Namespace) -> int:
     if args.occlude is not None:
         occlusion_count(args.occlude, env.n_landmarks)
     t0 = time.perf_counter()
-    with ProgressBar("trial", TRIAL_BLOCK) as bar:  # a bar once the trials run in several blocks
-        res = api_rollouts.catchment(
-            env,
-            **kw,
-            progress=bar,
-            announce=lambda: progress(
-                f"catchment of {args.method} on {env.name} (spacing {args.spacing:g} cm"
-                + (f", {args.occlude} of {env.n_landmarks} landmarks hidden" if args.occlude else "")
-                + f") ...\n[delvjax] {compiling(1, 1)} ..."
-            ),
-        )
+    line = (  # printed when the API starts the bar: every option is valid
+        f"catchment of {args.method} on {env.name} (spacing {args.spacing:g} cm"
+        + (f", {args.occlude} of {env.n_landmarks} landmarks hidden" if args.occlude else "")
+        + f") ...\n[delvjax] {compiling(1, 1)} ..."
+    )
+    with ProgressBar("trial", TRIAL_BLOCK, lambda total: line) as bar:  # a bar once the trials run in several blocks
+        res = api_rollouts.catchment(env, **kw, progress=bar)
     res.outcome.block_until_ready()
     seconds = time.perf_counter() - t0
     summary = {
@@ -185,15 +181,11 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
     tables, rows, trial_cols, timing = {}, [], [], {}
     for m in methods:  # one program per method (different methods are different programs)
         t0 = time.perf_counter()
-        res = api_rollouts.success_rate(
-            env,
-            method=m,
-            **kw,
-            announce=lambda: progress(
-                f"success rate of {m} on {env.name}: {args.trials} trials x {len(args.distances)} distances ...\n"
-                f"[delvjax] {compiling(methods.index(m) + 1, len(methods))} ..."
-            ),
+        line = (
+            f"success rate of {m} on {env.name}: {args.trials} trials x {len(args.distances)} distances ...\n"
+            f"[delvjax] {compiling(methods.index(m) + 1, len(methods))} ..."
         )
+        res = api_rollouts.success_rate(env, method=m, **kw, progress=ProgressBar("trial", 0, lambda total: line))
         res.outcome.block_until_ready()
         timing[m] = time.perf_counter() - t0
         tables[m] = res.table()
@@ -261,14 +253,8 @@ def cmd_trajectories(args: argparse.Namespace) -> int:
     summary = {"env": env.name, "rules": check_rules(args.first_move, args.collisions), "trials": {}}
     _check_methods(methods, kw)
     for m in methods:  # one program per method
-        tr = api_rollouts.trajectories(
-            env,
-            method=m,
-            **kw,
-            announce=lambda: progress(
-                f"trajectories of {m} on {env.name} ...\n[delvjax] {compiling(methods.index(m) + 1, len(methods))} ..."
-            ),
-        )
+        line = f"trajectories of {m} on {env.name} ...\n[delvjax] {compiling(methods.index(m) + 1, len(methods))} ..."
+        tr = api_rollouts.trajectories(env, method=m, **kw, progress=ProgressBar("trial", 0, lambda total: line))
         results[m] = tr
         path, steps = np.asarray(tr.path), np.asarray(tr.steps)
         cols.append(trajectory_columns(tr, m))

@@ -9,6 +9,7 @@ each padded to a shape bucket (`batching.bucket`), so grids of many sizes share 
 
 from __future__ import annotations
 
+import dataclasses
 from functools import partial
 from collections.abc import Callable
 
@@ -41,7 +42,9 @@ class VectorMap(eqx.Module):
     points: (P, 2) cm; included: (P,) cell is a grid point (not within r + clearance of a
     landmark); heading: (P,) release heading of the unit move, rad; direction: (P,) world
     homing direction, rad, NaN where invalid; valid: (P,); error_deg: (P,) angular error,
-    180 where invalid.
+    180 where invalid; spacing: the grid's cell side in cm (`vector_map` and `sweep` set it; None on
+    scattered points such as an image database, and on one chunk's result): a static field, no leaf, so
+    a figure needs no `spacing=` (`plots.vector_map_figure`).
     """
 
     points: GridPoints
@@ -50,6 +53,7 @@ class VectorMap(eqx.Module):
     direction: GridFloat
     valid: GridFlag
     error_deg: GridFloat
+    spacing: float | None = eqx.field(static=True, default=None)
 
     def columns(self, method: str = "") -> dict:
         """The columns of the vector-map CSV (`vector_map_columns`); `method` is not a column of it."""
@@ -143,6 +147,7 @@ def vector_map(
     batch_size: int = DEFAULT_BATCH,
     progress: Callable[[int, int], None] | None = None,
     program: Callable[..., VectorMap] | None = None,
+    points: np.ndarray | None = None,
 ) -> VectorMap:
     """The vector map of `method` on the docs/model.md §5 grid; heading fixed (rad) or random per point from `key`.
 
@@ -151,10 +156,11 @@ def vector_map(
     bucket (`batching.bucket`: grids of 1025 to 4096 points run one program). The padding is never
     evaluated. `progress(n, P)` is called after each chunk of n of the P points. The numbers are the
     same for every `batch_size`. `program` stands in for the chunk's jitted program on one device (the
-    command line's, kept on disk between runs).
+    command line's, kept on disk between runs). `points`: the grid `grid_points(env.arena, spacing)`
+    when the caller has built it already (the API has, to check it). The result carries `spacing`.
     """
     key = jax.random.PRNGKey(0) if key is None else key
-    points = grid_points(env.arena, spacing)
+    points = grid_points(env.arena, spacing) if points is None else points
     heading = None if heading is None else jnp.asarray(heading, jnp.float32)
     n = points.shape[0]
     mesh = local_mesh()
@@ -177,7 +183,8 @@ def vector_map(
         parts.append(jax.tree.map(lambda a: np.asarray(a)[: n - start], part))
         if progress is not None:
             progress(min(chunk, n - start), n)
-    return jax.tree.map(lambda *a: jax.device_put(np.concatenate(a)), *parts)  # a plain copy: no program compiled
+    vm = jax.tree.map(lambda *a: jax.device_put(np.concatenate(a)), *parts)  # a plain copy: no program compiled
+    return dataclasses.replace(vm, spacing=float(spacing))
 
 
 def _device_chunk(
@@ -282,7 +289,7 @@ def sweep(
         m, s = replace_field(method, sensor, name, v)
         return _vector_map(env, points, heading, key, s, m, clearance, visible)
 
-    return jax.vmap(one)(jnp.asarray(values))
+    return dataclasses.replace(jax.vmap(one)(jnp.asarray(values)), spacing=float(spacing))
 
 
 def vector_map_columns(vm: VectorMap) -> dict[str, np.ndarray]:

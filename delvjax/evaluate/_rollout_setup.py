@@ -14,6 +14,7 @@ from jax import Array
 from ._vector_map import Indices, Values, scene_request, visible_mask
 from ..core.errors import InputError
 from ._config import GRID_DEFAULTS, RULES_DEFAULTS, Grid, Rules, unpack
+from ._progress import Progress, as_progress
 from ..core.methods import HomingMethod
 from ..core.rollouts import (
     ARENA,
@@ -137,9 +138,17 @@ def _distances(env: Env, distances: Values, trials: int, max_points: int, copies
     return distances, trials
 
 
-def _announce(announce: Callable[[], None] | None) -> None:
+def _announce(
+    announce: Callable[[], None] | None, progress: Progress | Callable[[int, int], None] | None, total: int | None
+) -> Progress:
+    """The call's `Progress` (`as_progress`), started: every option is valid, the work begins (`total` items,
+    None when the core reports no chunks or counts them itself). `announce()`, the older form of `start`,
+    is still called first."""
     if announce is not None:
         announce()
+    report = as_progress(progress)
+    report.start(total)
+    return report
 
 
 def _check_starts(env: Env, starts) -> Array:

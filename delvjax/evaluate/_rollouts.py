@@ -12,6 +12,7 @@ import numpy as np
 from ._vector_map import Indices, PointList, Values, check_grid, visible_mask
 from ..core.errors import InputError
 from ._config import Grid, Rules
+from ._progress import Progress
 from ..core.maps import CLEARANCE, SPACING
 from ..core.methods import HomingMethod
 from ..core.rollouts import (
@@ -54,7 +55,7 @@ def catchment(
     program: Sequence[str] | None = None,
     announce: Callable[[], None] | None = None,
     max_points: int = MAX_POINTS,
-    progress: Callable[[int, int], None] | None = None,
+    progress: Progress | Callable[[int, int], None] | None = None,
     grid: Grid | None = None,
     rules: Rules | None = None,
     **options,
@@ -68,10 +69,12 @@ def catchment(
     and motion_step_noise, or any other `evaluate.vector_map` option (e.g. warping's n_alpha).
     `first_move` ("release", thesis Algorithm 2, | "homing") and `collisions` ("ignore" | "fail"): the rollout
     rules of `core.rollouts.rules` (defaults: docs/model.md §5). `program`: registry names compiled into
-    one rollout program with this one (`options._registry.program`). `announce`: called once every option is
-    valid, just before the work (the CLI prints its progress line there, so an error stays one line).
+    one rollout program with this one (`options._registry.program`).
     More than `max_points` trials (grid points x masks) are refused with an estimate (`options._limits`).
-    `progress(done, total)` is called after each block of trials.
+    `progress`: a `Progress` (evaluate/_progress.py): `progress.start(None)` once every option is valid,
+    just before the work (the CLI prints its line there, so an error stays one line), then `progress(done,
+    total)` after each block of trials (a plain `f(done, total)` also works). `announce()`: the older
+    form of `progress.start`, still called.
     Returns a `Catchment` (see `catchment_summary`).
     """
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance, first_move, collisions = (
@@ -82,7 +85,7 @@ def catchment(
     masks, combos = _masks(env, occlude, hidden)
     check_grid(env, spacing, clearance, max_points, copies=len(masks), what="trial")
     check_moves(grid_count(env.arena, spacing) * len(masks), max_steps, max_points)
-    _announce(announce)
+    report = _announce(announce, progress, None)  # the core counts the trials: the bar opens at its first report
     return catchment_area(
         env,
         module,
@@ -98,7 +101,7 @@ def catchment(
         lanes=lanes,
         first_move=first_move,
         collisions=collisions,
-        progress=progress,
+        progress=report,
     )
 
 
@@ -121,6 +124,7 @@ def success_rate(
     max_points: int = MAX_POINTS,
     grid: Grid | None = None,
     rules: Rules | None = None,
+    progress: Progress | None = None,
     **options,
 ) -> SuccessRate:
     """Success rate vs release distance (Figs 4.10b, 5.7b): `trials` rollouts per distance from home.
@@ -128,7 +132,8 @@ def success_rate(
     Each trial: a random direction from home at that distance and a random heading (seeded);
     a release point inside a landmark's r + clearance or outside the arena is redrawn
     (deterministically, up to 64 times; else the trial is not placed and not counted).
-    `options`, `first_move`, `collisions`, `program`, `announce` and `max_points` as in `catchment`.
+    `options`, `first_move`, `collisions`, `program`, `announce` and `max_points` as in `catchment`;
+    `progress.start(None)` just before the work (one program: no reports of chunks).
     """
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance, first_move, collisions = (
         _rollout_options(**locals())
@@ -136,7 +141,7 @@ def success_rate(
     distances, trials = _distances(env, distances, trials, max_points)
     check_moves(len(distances) * trials, max_steps, max_points)
     visible = visible_mask(env, hidden)
-    _announce(announce)
+    _announce(announce, progress, None)
     return success_rate_trials(
         env,
         module,
@@ -174,6 +179,7 @@ def trajectories(
     max_points: int = MAX_POINTS,
     grid: Grid | None = None,
     rules: Rules | None = None,
+    progress: Progress | None = None,
     **options,
 ) -> Trajectories:
     """Homing paths (Figs 4.11, 5.8) from `starts` [(x, y), ...] or `n_starts` seeded random release points.
@@ -184,7 +190,8 @@ def trajectories(
     from home; headings are
     random per trial from `seed` unless heading_deg is given. The same seed gives the same
     release points for every method. `options`, `first_move`, `collisions`, `program` and `announce` as in
-    `catchment`. Every position is kept: more than 100 x `max_points` of them (trials x (max_steps + 1)) are refused.
+    `catchment`, and `progress.start(None)` just before the work. Every position is kept: more than 100 x
+    `max_points` of them (trials x (max_steps + 1)) are refused.
     """
     env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance, first_move, collisions = (
         _rollout_options(**locals())
@@ -205,7 +212,7 @@ def trajectories(
         _, heads, _ = release_points(env, k_start, pts.shape[0], None, clearance)
     if heading is not None:
         heads = jnp.full(pts.shape[0], heading, jnp.float32)
-    _announce(announce)
+    _announce(announce, progress, None)
     return trajectory_trials(
         env,
         module,

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import jax
@@ -30,6 +30,7 @@ from ..options._limits import MAX_POINTS, check_size
 from ..envs._presets import load_env
 from ..outputs._programs import kept_number
 from ._config import GRID_DEFAULTS, Grid, unpack
+from ._progress import Progress, as_progress
 
 
 def resolve_headings(heading_deg: float | None, seed: int) -> tuple[float | None, jax.Array]:
@@ -116,10 +117,11 @@ def check_step(env: Env, d) -> None:
 
 def check_grid(
     env: Env, spacing: float, clearance: float, max_points: int = MAX_POINTS, copies: int = 1, what: str = "grid point"
-) -> None:
-    """`InputError` naming `spacing` when the docs/model.md §5 grid (times `copies`, e.g. occlusion masks)
-    has more than `max_points` points (`options._limits.check_size`, checked before the grid is built; `what`
-    they are: grid points, or trials of a catchment) or no point clear of the landmarks."""
+) -> np.ndarray:
+    """The docs/model.md §5 grid's points (`maps.grid_points`), built once and checked: `InputError` naming
+    `spacing` when the grid (times `copies`, e.g. occlusion masks) has more than `max_points` points
+    (`options._limits.check_size`, counted before the grid is built; `what` they are: grid points, or trials
+    of a catchment) or no point clear of the landmarks."""
     count = limits.grid_count(env.arena, spacing)
     check_size(count * copies, max_points, "spacing", spacing, what)
     xmin, ymin, xmax, ymax = (float(v) for v in np.asarray(env.arena))
@@ -131,20 +133,23 @@ def check_grid(
         )
     if clearance >= math.hypot(xmax - xmin, ymax - ymin):
         raise InputError("clearance", clearance, "keeps every grid point away: it exceeds the arena's diagonal")
-    if not _has_clear_point(env, spacing, clearance):
+    points = maps.grid_points(env.arena, spacing)
+    if not _has_clear_point(env, points, spacing, clearance):
         raise InputError(
             "spacing",
             spacing,
             f"leaves no grid point in the arena clear of the landmarks (r + clearance {clearance:g} cm) but home: "
             "use a smaller spacing or clearance",
         )
+    return points
 
 
 _CLEAR: dict[tuple, bool] = {}  # (scene numbers, spacing, clearance) -> answer: a sweep asks again per cell
 
 
-def _has_clear_point(env: Env, spacing: float, clearance: float) -> bool:
-    """Whether some docs/model.md §5 grid point is clear of every landmark (r + clearance) and not home."""
+def _has_clear_point(env: Env, points: np.ndarray, spacing: float, clearance: float) -> bool:
+    """Whether some docs/model.md §5 grid point (`points`, of `spacing`) is clear of every landmark (r +
+    clearance) and not home."""
     key = (
         np.asarray(env.landmarks).tobytes(),
         np.asarray(env.valid).tobytes(),
@@ -155,15 +160,14 @@ def _has_clear_point(env: Env, spacing: float, clearance: float) -> bool:
     )
     if key not in _CLEAR:  # kept on disk by the command line (`kept_number`): a warm run compiles nothing here
         text = "|".join(k.hex() if isinstance(k, bytes) else repr(k) for k in key)
-        _CLEAR[key] = bool(kept_number("has_clear_point", text, lambda: int(_clear_point(env, spacing, clearance))))
+        _CLEAR[key] = bool(kept_number("has_clear_point", text, lambda: int(_clear_point(env, points, clearance))))
         if len(_CLEAR) > 4096:
             _CLEAR.pop(next(iter(_CLEAR)))
     return _CLEAR[key]
 
 
-def _clear_point(env: Env, spacing: float, clearance: float) -> bool:
+def _clear_point(env: Env, points: np.ndarray, clearance: float) -> bool:
     """`_has_clear_point`, computed: the grid's mask (`maps.grid_included`) on the device."""
-    points = maps.grid_points(env.arena, spacing)
     n = points.shape[0]
     if n == 0:
         return False
@@ -187,15 +191,24 @@ def map_request(
 ) -> dict:
     """Validate the public options of a vector map (before any array work): keyword
     arguments of `core.maps.vector_map`. Raises `InputError` naming the field and value."""
+    return _checked_map(
+        env, method, spacing, heading_deg, seed, clearance, hidden, batch_size, max_points, grid, **options
+    )[0]
+
+
+def _checked_map(
+    env, method, spacing, heading_deg, seed, clearance, hidden, batch_size, max_points, grid, **options
+) -> tuple[dict, np.ndarray]:
+    """(`map_request`'s keywords, the grid's points): the grid counted and built once (`check_grid`)."""
     g = unpack(grid, Grid, dict(spacing=spacing, clearance=clearance, heading_deg=heading_deg), GRID_DEFAULTS)
     spacing, clearance, heading_deg = g["spacing"], g["clearance"], g["heading_deg"]
     refuse_rollout_only(options)
     env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **options)
     spacing = positive(spacing, "spacing")
-    check_grid(env, spacing, clearance, max_points)
+    points = check_grid(env, spacing, clearance, max_points)
     batch_size = positive_int(batch_size, "batch_size")
     visible = visible_mask(env, hidden)
-    return dict(
+    request = dict(
         env=env,
         method=module,
         sensor=sensor,
@@ -206,6 +219,7 @@ def map_request(
         visible=None if visible is None else jax.device_put(visible),
         batch_size=batch_size,
     )
+    return request, points
 
 
 def vector_map(
@@ -219,6 +233,8 @@ def vector_map(
     batch_size: int = maps.DEFAULT_BATCH,
     max_points: int = MAX_POINTS,
     grid: Grid | None = None,
+    progress: Progress | Callable[[int, int], None] | None = None,
+    chunk_program: Callable[..., maps.VectorMap] | None = None,
     **options,
 ) -> maps.VectorMap:
     """Homing direction of `method` at every docs/model.md §5 grid point, one jitted vmapped call.
@@ -237,10 +253,15 @@ def vector_map(
     chunk size); a grid of more than `max_points` points is refused with an estimate (`options._limits`).
     Config objects may replace the keywords: `grid=Grid(spacing, clearance, heading_deg)`,
     `sensor=Sensor(...)`, `noise=Noise(...)` (evaluate/_config.py).
-    Returns a `VectorMap` pytree (points, included, heading, direction, valid, error_deg).
+    `progress`: a `Progress` (evaluate/_progress.py): `start(P)` once every option is valid, with the
+    P grid points, then `progress(n, P)` after each chunk of n points (a plain `f(n, P)` also works).
+    `chunk_program` stands in for one chunk's jitted program (the command line's, kept on disk).
+    Returns a `VectorMap` pytree (points, included, heading, direction, valid, error_deg) that carries
+    its grid's `spacing`.
     """
-    return maps.vector_map(
-        **map_request(
-            env, method, spacing, heading_deg, seed, clearance, hidden, batch_size, max_points, grid, **options
-        )
+    request, points = _checked_map(
+        env, method, spacing, heading_deg, seed, clearance, hidden, batch_size, max_points, grid, **options
     )
+    report = as_progress(progress)
+    report.start(points.shape[0])
+    return maps.vector_map(**request, progress=report, program=chunk_program, points=points)

@@ -57,7 +57,8 @@ def check_moves(trials: int, max_steps: int, max_points) -> None:
 
 def grid_count(arena, spacing: float) -> int:
     """Number of cells of the docs/model.md §5 grid (at most one more per axis than `maps.grid_points`
-    keeps), computed without building it."""
+    keeps), computed without building it: the count a run too large is refused by before it is built
+    (`evaluate._vector_map.check_grid`, which then builds the grid once; the exact count is its length)."""
     xmin, ymin, xmax, ymax = (float(v) for v in np.asarray(arena))  # host numbers, also while jax traces
     nx = max(0, math.ceil((xmax - xmin - spacing / 2) / spacing))
     ny = max(0, math.ceil((ymax - ymin - spacing / 2) / spacing))

@@ -131,8 +131,12 @@ def vector_map_handles(classes: bool = False, first: bool = False) -> list:
     return handles
 
 
-def vector_map_figure(env: Env, vm: VectorMap, spacing: float, title: str = "", classes: bool = False) -> Figure:
-    """Figure of one vector map (Fig 4.2; with `classes`, the error markers of Fig 4.3)."""
+def vector_map_figure(
+    env: Env, vm: VectorMap, spacing: float | None = None, title: str = "", classes: bool = False
+) -> Figure:
+    """Figure of one vector map (Fig 4.2; with `classes`, the error markers of Fig 4.3). The arrows'
+    length follows the grid's spacing: the map's own (`VectorMap.spacing`) unless `spacing` is given."""
+    spacing = map_spacing(vm, spacing)
     fig, ax = subplots(figsize=(6.4, 7.0), layout="constrained")
     draw_vector_map(
         ax, env, vm.points, vm.direction, vm.valid, vm.included, spacing, error_deg=vm.error_deg if classes else None
@@ -141,6 +145,16 @@ def vector_map_figure(env: Env, vm: VectorMap, spacing: float, title: str = "", 
     ax.set_title(title)
     fig.legend(handles=vector_map_handles(classes), loc="outside lower center", ncol=3, fontsize=8, frameon=False)
     return fig
+
+
+def map_spacing(vm: VectorMap, spacing: float | None = None) -> float:
+    """The grid spacing a figure of `vm` draws with: `spacing` when given, else the one the map carries;
+    a `ValueError` when neither is known (a map built by hand, or on scattered points)."""
+    if spacing is not None:
+        return float(spacing)
+    if vm.spacing is None:
+        raise ValueError("this VectorMap carries no grid spacing (not from vector_map): pass spacing=")
+    return float(vm.spacing)
 
 
 def error_curve_figure(curves: dict[str, list[dict]], title: str = "") -> Figure:
