@@ -9,7 +9,9 @@ rollouts); this top level is the edge: names, options, files, figures, CLI and t
 import warnings
 
 # Every public name is imported on first use (PEP 562): `import delvjax` loads neither JAX, matplotlib,
-# xarray nor PIL, and `delvjax --help` answers at once. name -> the module that defines it.
+# xarray nor PIL, and `delvjax --help` answers at once. name -> the module that defines it. The method
+# classes (DELV, Warping, MinWarping, ...) are not listed here: they are the registry's
+# (`options._registry.public_classes`), read on first use, so a new method needs no line in this file.
 _LAZY = {
     "InputError": "core.errors",
     "VectorMap": "core.maps",
@@ -21,24 +23,7 @@ _LAZY = {
     "error_curve": "core.metrics",
     "error_point_rates": "core.metrics",
     "summarize_map": "core.metrics",
-    **{
-        name: "core.methods"
-        for name in (
-            "ACV",
-            "ALV",
-            "DELV",
-            "MFDID",
-            "CartwrightCollett",
-            "Compass",
-            "DELVGap",
-            "DELVRefined",
-            "HomingMethod",
-            "Method",
-            "Program",
-            "VisualCompass",
-            "Warping",
-        )
-    },
+    **{name: "core.methods" for name in ("Compass", "HomingMethod", "Method", "Program", "VisualCompass")},
     "load_env": "envs",
     "to_dataframe": "core.tables",
     "to_xarray": "core.tables",
@@ -104,28 +89,32 @@ def __getattr__(name: str):
         return __getattr__(_RENAMED[name])
     if name in _PACKAGES:  # `delvjax.core.maps` after a bare `import delvjax`
         return importlib.import_module(f".{name}", __name__)
+    if name == "__all__":  # the names below and the registered methods' classes (read now, not kept)
+        return [*_PUBLIC, *(n for n in _method_classes() if n not in _PUBLIC)]
+    if not name.startswith("_") and name in (methods := _method_classes()):
+        return methods[name]  # not kept in globals(): `options.unregister` takes it away again
     raise AttributeError(f"module 'delvjax' has no attribute {name!r}")
 
 
+def _method_classes() -> dict:
+    """The public method classes by name: the registry's (`options.public_classes`; this loads JAX)."""
+    import importlib
+
+    return importlib.import_module(".options", __name__).public_classes()
+
+
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY) | set(_PACKAGES))
+    return sorted(set(globals()) | set(_LAZY) | set(_PACKAGES) | set(_method_classes()))
 
 
-__all__ = [
+_PUBLIC = [  # with the registered methods' classes, `__all__` (made on first use, `__getattr__`)
     "Grid",
     "Rules",
-    "ACV",
-    "ALV",
-    "CartwrightCollett",
     "Compass",
-    "DELV",
-    "DELVGap",
-    "DELVRefined",
     "Env",
     "HomingMethod",
     "InputError",
     "METHODS",
-    "MFDID",
     "Method",
     "Noise",
     "Program",
@@ -134,7 +123,6 @@ __all__ = [
     "UnitMove",
     "VectorMap",
     "VisualCompass",
-    "Warping",
     "catchment",
     "error_curve",
     "homing_loss",

@@ -1,5 +1,13 @@
-"""`python -m delvjax.options`: print docs/options.md."""
+"""`python -m delvjax.options`: print docs/options.md; `python -m delvjax.options api`: make
+docs/api.md's entries of the registered methods again (in place)."""
 
-from ._docs import options_markdown
+import sys
+from pathlib import Path
 
-print(options_markdown(), end="")
+from ._docs import options_markdown, with_api_methods
+
+if sys.argv[1:] == ["api"]:
+    page = Path("docs/api.md")
+    page.write_text(with_api_methods(page.read_text()))
+else:
+    print(options_markdown(), end="")

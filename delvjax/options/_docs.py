@@ -1,8 +1,10 @@
-"""docs/options.md, made from the settings declared on the modules (`python -m delvjax.options`)."""
+"""docs/options.md, made from the settings declared on the modules (`python -m delvjax.options`), and
+docs/api.md's entries of the registered methods (`python -m delvjax.options api`)."""
 
 from __future__ import annotations
 
 from ..core.sensor import Noise, Sensor
+from ._registry import public_classes
 from ._schema import all_options, extractor_options
 
 HEADER = """# Options
@@ -28,3 +30,22 @@ def options_markdown() -> str:
             f"| `{opt.name}` | `{opt.flag}` | {s.help} | {s.unit or '-'} | {check} | {opt.shown_default} | `{owner}` |"
         )
     return HEADER + "\n".join(rows) + "\n"
+
+
+API_START = "<!-- the registered methods: made by `python -m delvjax.options api` (options.public_classes) -->"
+API_END = "<!-- end of the registered methods -->"
+
+
+def api_methods_markdown() -> str:
+    """docs/api.md's entries of the public method classes (the registry's, in its order), from
+    `API_START` to `API_END`: a new method's registry line documents it."""
+    entries = [
+        f"::: {cls.__module__}.{name}\n    options:\n      members: false\n" for name, cls in public_classes().items()
+    ]
+    return "\n".join([API_START + "\n", *entries, API_END])
+
+
+def with_api_methods(page: str) -> str:
+    """`page` (docs/api.md) with its block of registered methods made again."""
+    start, end = page.index(API_START), page.index(API_END) + len(API_END)
+    return page[:start] + api_methods_markdown() + page[end:]

@@ -16,7 +16,7 @@ import math
 
 from ..core.errors import InputError
 from ..core.images.scene_panorama import scene_panorama
-from ..core.methods import HomingMethod, Program, Warping
+from ..core.methods import HomingMethod, Program
 from ..core.sensor import Noise, Sensor
 from ..core.settings import declared
 from ..core.types import Real
@@ -41,11 +41,6 @@ def make_noise(**kwargs: Real) -> Noise:
         name = sorted(unknown)[0]
         raise InputError(name, kwargs[name], f"unknown noise option (choose from {', '.join(NOISE_OPTIONS)})")
     return Noise(**{options[name].field: options[name].validate(value) for name, value in kwargs.items()})
-
-
-def defaults(module_type) -> dict[str, object]:
-    """The default of every field of a module class (written once, on the module; the CLI reads them)."""
-    return {f.name: f.default for f in dataclasses.fields(module_type) if f.default is not dataclasses.MISSING}
 
 
 def make_sensor(**options) -> Sensor:
@@ -80,26 +75,15 @@ def check_quantum(levels, scale, named_scale: bool) -> None:
     )
 
 
-def method_settings(
-    options: dict, n_pix: int | None = None, extra=(), method: HomingMethod | None = None
-) -> dict[str, object]:
-    """Validated method settings by public name (their field values; `options._schema`), and the
-    relations between them where `method` (default: any) has them: n_psi must divide the ring's n_pix
-    pixels, rho_min <= rho_max (the warping hypotheses)."""
+def method_settings(options: dict, extra=(), method: HomingMethod | None = None) -> dict[str, object]:
+    """Validated method settings by public name (their field values; `options._schema`). The relations
+    between settings are declared on the method and checked by `make_setup` through its `check_input`
+    (n_psi divides n_pix: `core.methods.warping.check_hypotheses`); the quantization step of DELV's
+    levels and scale (`check_quantum`) is checked here, where the float32 resolution is known."""
     known = method_options(extra)
     out = {name: known[name].validate(value) for name, value in options.items() if value is not None}
     if {"levels", "scale"} & set(out) and "scale" in known and (method is None or owns(method, "scale")):
         check_quantum(out.get("levels", 0), out.get("scale", known["scale"].default), "scale" in out)
-    if method is not None and not owns(method, "n_psi"):
-        return out
-    warping = defaults(Warping)
-    n_pix = defaults(Sensor)["n_pix"] if n_pix is None else n_pix
-    n_psi = out.get("n_psi", warping["n_psi"])
-    if n_pix % n_psi:
-        raise InputError("n_psi", n_psi, f"must divide n_pix = {n_pix} (psi hypotheses are whole-pixel rotations)")
-    lo, hi = out.get("rho_min", warping["rho_min"]), out.get("rho_max", warping["rho_max"])
-    if not lo <= hi:
-        raise InputError("rho_max", hi, f"must be in [rho_min = {lo}, 1)")
     return out
 
 
@@ -158,7 +142,7 @@ def make_setup(
         module = method
     else:
         module = get_method(method) if program is None else registry_program(method, program)[0]
-    settings = method_settings({k: v for k, v in options.items() if k in method_names}, sensor.n_pix, extra, module)
+    settings = method_settings({k: v for k, v in options.items() if k in method_names}, extra, module)
     label = method if isinstance(method, str) else type(method).__name__
     if "channel" in given_sensor and not reads_channel(module):
         raise InputError(
@@ -168,6 +152,8 @@ def make_setup(
         if not owns(module, name):
             raise InputError(name, value, f"is not a setting of the method {label}")
     configured = configure(module, **settings)
+    if not configured.reads_panorama():  # the relations between its settings, declared on the method
+        configured.check_input(sensor.n_pix)
     width = sensor.n_pix if panorama_cols is None else panorama_cols  # 0: a database not read yet
     if width:
         check_tables(configured, width)  # before a trace builds them

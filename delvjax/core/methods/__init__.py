@@ -1,7 +1,9 @@
 """Homing methods as equinox modules (docs/model.md §3-4; the protocol: `base.Method`).
 
 A new method is one module file here (a `HomingMethod` subclass) plus one line in the
-registry of names, `delvjax/options/_registry.py`.
+registry of names, `delvjax/options/_registry.py`, whose classes are the public methods
+(`delvjax.<Class>`; `options._registry.public_classes`). The names below are the core's
+own shortcuts.
 """
 
 from .acv import ACV
@@ -12,9 +14,12 @@ from .delv import DELV
 from .delv_gap import DELVGap
 from .delv_refined import DELVRefined
 from .heading import Compass, HeadingSource, VisualCompass
+from .hybrid import Hybrid
 from .mfdid import MFDID
+from .minwarping import MinWarping
 from .program import Program
 from .warping import Warping
+from .warping2d import Warping2D
 
 __all__ = [
     "ACV",
@@ -26,9 +31,12 @@ __all__ = [
     "DELVRefined",
     "HeadingSource",
     "HomingMethod",
+    "Hybrid",
     "MFDID",
     "Method",
+    "MinWarping",
     "Program",
     "VisualCompass",
     "Warping",
+    "Warping2D",
 ]

@@ -29,6 +29,7 @@ import jax.numpy as jnp
 from jax import Array
 
 from ..sensing import UnitMove
+from ..settings import setting
 from ..types import BlobFlags, Blobs, Flag, Point
 from .base import HomingMethod
 from .heading import Compass, HeadingSource
@@ -67,7 +68,9 @@ class CartwrightCollett(HomingMethod):
     """The snapshot model as a homing method: home blobs against current blobs turned into the
     alpha_r frame by the heading source (a compass by default); direction in the agent frame."""
 
-    radial_weight: float = 1.0
+    radial_weight: float = setting(
+        1.0, check="non_negative", help="weight of the radial unit vectors against the tangential ones"
+    )
     heading: HeadingSource = Compass()
 
     def __call__(self, home: UnitMove, view: UnitMove) -> tuple[Array, Array]:

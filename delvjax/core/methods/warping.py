@@ -48,14 +48,17 @@ WORD_BITS = 32
 
 
 def check_hypotheses(config: "Warping", n_pix: int) -> None:
-    """Raise `InputError` unless the hypothesis grid is usable on `n_pix`-pixel rings (trace time,
-    before any work)."""
+    """Raise `InputError` unless the hypothesis grid is usable on `n_pix`-pixel rings: the relations
+    between the settings, declared here once (the edge calls it through `Warping.check_input` before
+    any work; the search again at trace time)."""
     for name in ("n_alpha", "n_psi", "n_rho"):
         value = getattr(config, name)
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise InputError(name, value, "must be an integer >= 1")
-    if not 0.0 < config.rho_min <= config.rho_max < 1.0:
-        raise InputError("rho", (config.rho_min, config.rho_max), "must satisfy 0 < rho_min <= rho_max < 1")
+    if not 0.0 < config.rho_min < 1.0:
+        raise InputError("rho_min", config.rho_min, "must be in (0, 1)")
+    if not config.rho_min <= config.rho_max < 1.0:
+        raise InputError("rho_max", config.rho_max, f"must be in [rho_min = {config.rho_min}, 1)")
     if n_pix % config.n_psi:
         raise InputError(
             "n_psi", config.n_psi, f"must divide n_pix = {n_pix} (psi hypotheses are whole-pixel rotations)"
@@ -216,3 +219,7 @@ class Warping(HomingMethod):
 
     def reads_gray(self, channel: str) -> bool:
         return channel == "gray"
+
+    def check_input(self, n_pix: int) -> None:
+        """n_psi divides n_pix, rho_min <= rho_max (`check_hypotheses`)."""
+        check_hypotheses(self, n_pix)
