@@ -14,8 +14,11 @@ from ..core.rollouts import DEFAULT_LANES
 from ..core.rollouts.cells import catchment_cells_points
 from ..core.errors import InputError
 from ..evaluate import _vector_map as api
-from ._kinds import _traced, catchment_inputs, cell_setup, grid_inputs, idle_padding
-from ._run import CELL_CHUNK, _envs, _plan
+from ._kinds.catchment import catchment_inputs
+from ._kinds.cells import idle_padding
+from ._kinds.cells import traced as _traced
+from ._kinds.vector_map import grid_inputs
+from ._run import CELL_CHUNK, _envs, _plan, _setups
 from ._spec import SweepSpec
 
 QUANTUM = 8  # cells: a group smaller than a chunk is padded to a multiple of this
@@ -76,7 +79,8 @@ def _per_point(spec: SweepSpec, max_points: int, run, fill: dict, rollouts: bool
     chunk of each group, a chunk padded as `point_errors` says; rollout cells' masks padded to the sweep's most;
     `program` as `point_outcomes`'."""
     envs = _envs(spec)
-    groups, _, rows = _plan(spec, envs, max_points, None, program)
+    kept: dict[int, dict] = {}  # each cell validated once: the setups `_plan` made, kept for the chunks
+    groups, _, rows = _plan(spec, envs, max_points, None, program, kept)
     grids = {(float(c["spacing"]), tuple(np.asarray(envs[c["env"]].arena).tolist())) for c in spec.cells()}
     if len(grids) > 1:
         raise InputError("axes", sorted(grids), "per-point numbers need one grid: one spacing and one arena")
@@ -88,7 +92,7 @@ def _per_point(spec: SweepSpec, max_points: int, run, fill: dict, rollouts: bool
             chunk = cells[start : start + CELL_CHUNK]
             size = CELL_CHUNK if len(cells) > CELL_CHUNK else -(-len(chunk) // QUANTUM) * QUANTUM
             padded = chunk + [chunk[0]] * (size - len(chunk))
-            setups = [cell_setup(spec, envs, spec.cell(i), max_points, program) for i in padded]
+            setups = _setups(spec, envs, padded, kept, max_points, program)
             traced = jax.tree.map(stack, *[_traced(req, rows) if rollouts else _traced(req) for req in setups])
             traced = idle_padding(traced, len(chunk))  # the padding's rollouts run no trials
             points, res = run(setups, traced)

@@ -1,4 +1,4 @@
-"""A sweep's results as labelled data (docs/sweeps.md "Results"): per-cell sums -> metrics, an
+"""A sweep's results as labelled data (docs/sweeps.md "Results"): per-cell sums -> metrics (each kind's `metrics_of`), an
 `xarray.Dataset` (one dimension per axis, plus `distance_cm` for success rates), netCDF and a
 tidy CSV written as a unit, and `load_sweep`."""
 
@@ -11,8 +11,6 @@ import jax
 import numpy as np
 
 from ..core.errors import InputError
-from ..core.metrics import t_quantile
-from ..core.rollouts.success import wilson_pct
 from ..outputs._files import output_set
 from ._store import STORE
 
@@ -61,63 +59,6 @@ def safe_names(ds):
     ds = ds.rename(names)
     ds.attrs["renamed_axes"] = "; ".join(done + [f"{k} -> {v}" for k, v in names.items()])
     return ds
-
-
-def _pct(part: np.ndarray, whole: np.ndarray) -> np.ndarray:
-    """100 part / whole, NaN where whole is 0."""
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(whole > 0, 100.0 * part / np.maximum(whole, 1), np.nan)
-
-
-def error_metrics(sums: dict, n: np.ndarray) -> dict:
-    """Error point rates, mean error with its Student-t 95 % half-width, invalid rate over `n` directions."""
-    pts = np.maximum(n, 1)
-    mean = sums["error_sum"] / pts
-    var = np.maximum(sums["error_sq_sum"] - pts * mean**2, 0.0) / np.maximum(pts - 1, 1)
-    half = t_quantile(n) * np.sqrt(var / pts)
-    return {
-        "gt45_pct": _pct(sums["gt45"], n),
-        "gt90_pct": _pct(sums["gt90"], n),
-        "mean_error_deg": np.where(n > 0, mean, np.nan),
-        "mean_error_ci95_deg": np.where(n >= 2, half, np.nan),
-        "invalid_pct": _pct(sums["invalid"], n),
-        "points": sums["points"].astype(np.int64),
-    }
-
-
-def catchment_metrics(sums: dict) -> dict:
-    """Catchment % (mean, worst and best mask), failure rates and mean moves of the successes."""
-    trials, points, counted = sums["trials"], sums["counted_points"], sums["counted"]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        steps = np.where(sums["successes"] > 0, sums["steps_success"] / np.maximum(sums["successes"], 1), np.nan)
-    # the vector map's rates over every released trial; the catchment over the counted ones (docs/model.md §5)
-    return {
-        **error_metrics(sums, trials),
-        "catchment_pct": _pct(sums["successes"], counted),
-        "catchment_physical_pct": _pct(sums["successes_untouched"], counted),
-        "catchment_min_pct": _pct(sums["success_min"], points),
-        "catchment_max_pct": _pct(sums["success_max"], points),
-        "timeout_pct": _pct(sums["timeout"], counted),
-        "landmark_pct": _pct(sums["landmark"], counted),
-        "arena_pct": _pct(sums["arena"], counted),
-        "mean_steps_success": steps,
-        "catchment_points": counted_points(sums),
-    }
-
-
-def counted_points(sums: dict) -> np.ndarray:
-    return sums["counted_points"].astype(np.int64)
-
-
-def success_metrics(sums: dict) -> dict:
-    """Success % per distance with its Wilson interval, and the trials placed."""
-    lo, hi = wilson_pct(sums["successes"], sums["placed"])
-    return {
-        "success_pct": _pct(sums["successes"], sums["placed"]),
-        "success_ci95_lo_pct": lo,
-        "success_ci95_hi_pct": hi,
-        "placed": sums["placed"].astype(np.int64),
-    }
 
 
 def dataset(spec: SweepSpec, sums: dict, programs: int, env_names: dict[str, str] | None = None, missing=None):

@@ -141,7 +141,7 @@ def run_sweep(
     width = -(-CELL_CHUNK // per_call) * per_call  # cells per call, a multiple of the devices
     live = [cells for cells in ([i for i in g if todo[i]] for g in groups) if cells]  # one program each
     jobs = []  # (cells, padded size, the program's number on its first chunk else False); chunks padded to `width`
-    idle = str(spec.kind) != "vector-map"  # a rollout chunk's padding runs no trials: every chunk `width` cells,
+    idle = spec.kind.rollouts  # a rollout chunk's padding runs no trials: every chunk `width` cells,
     for number, cells in enumerate(live, 1):  # one program shape for sweeps of any size (`idle_padding`)
         size = width if idle or len(cells) > width else -(-len(cells) // per_call) * per_call
         jobs += [(cells[start : start + width], size, start == 0 and number) for start in range(0, len(cells), width)]

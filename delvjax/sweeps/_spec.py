@@ -15,7 +15,7 @@ from ..core.rollouts.rules import DEFAULT_DISTANCES, TRIALS_PER_DISTANCE
 from ..envs._ensembles import FAMILIES
 from ..envs._ensembles import ensemble_envs as ensemble_envs_of
 from ..options._schema import ROLLOUT_ONLY, all_options
-from ._kind import KINDS, SweepKind
+from ._kinds import KINDS, SweepKind
 
 # axis -> what it sets (the public option of `delvjax.vector_map` / `catchment` / `success_rate` of the same name).
 # Besides these, every setting declared on the modules is an axis (`options._schema`; read when a file is

@@ -14,13 +14,13 @@ import delvjax
 from delvjax.core import metrics
 from delvjax.core.metrics import CATCHMENT_METRICS, MAP_METRICS, METRICS, SUCCESS_METRICS
 from delvjax.sweeps import run_sweep
-from delvjax.sweeps._kind import KINDS
+from delvjax.sweeps._kinds import KINDS
 from delvjax.sweeps._spec import metric_units, parse_sweep
 
 ROOT = Path(__file__).resolve().parents[2]
 # every module that counts, sums or describes the error point rates (issue 55: "five homes")
 PATHS = ("core/metrics.py", "core/cells.py", "core/rollouts/cells.py", "core/rollouts/catchment.py")
-PATHS += ("sweeps/_results.py", "sweeps/_kind.py")
+PATHS += ("sweeps/_results.py", "sweeps/_kinds/base.py", "sweeps/_kinds/vector_map.py", "sweeps/_kinds/catchment.py")
 KIND_METRICS = {
     "vector-map": MAP_METRICS,
     "catchment": CATCHMENT_METRICS + MAP_METRICS,

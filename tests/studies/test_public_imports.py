@@ -14,7 +14,7 @@ EDGE = sorted(p.parent.name for p in (ROOT / "delvjax").glob("*/__init__.py") if
 
 PROGRAM = "`program` is one of the four meanings of the word (issue 55 point 5): named when that is settled"
 SETTINGS = "run settings become objects (issue 55 point 1); their public home comes with them"
-KINDS = "sweep kinds' internals, about to become a package of kind classes (issue 55 point 3)"
+KINDS = "a sweep's cells set up and run by hand (the settings study): the sweep kinds' internals, not a user's call"
 IMAGES = "a renderer or database detail, not a user's call; images' surface is its own part of issue 55"
 ALLOWED = {
     ("delvjax.cli._main", "main"): "the in-process command line; delvjax.cli.main sets up devices for a process",
@@ -35,7 +35,7 @@ ALLOWED = {
     ("delvjax.options._settings", "make_sensor"): SETTINGS,
     ("delvjax.sweeps._kinds", "cell_setup"): KINDS,
     ("delvjax.sweeps._kinds", "evaluate"): KINDS,
-    ("delvjax.sweeps._results", "catchment_metrics"): "the metrics move to one table (issue 55 point 4)",
+    ("delvjax.sweeps._kinds", "catchment_metrics"): KINDS,
 }
 
 

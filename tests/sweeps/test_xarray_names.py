@@ -13,8 +13,7 @@ import xarray as xr
 
 from delvjax.core.maps import VectorMap, map_dataset
 from delvjax.sweeps import load_sweep, run_sweep, save_sweep
-from delvjax.sweeps._kind import KINDS
-from delvjax.sweeps._kinds import sum_names
+from delvjax.sweeps._kinds import KINDS, sum_names
 from delvjax.sweeps._results import SELECTORS, XARRAY_KEYWORDS, dataset, safe_names
 from delvjax.sweeps._spec import SweepSpec, axes, name_axes, parse_sweep
 

@@ -1,0 +1,120 @@
+"""What every kind of sweep is (`SweepKind`, docs/sweeps.md): one class per kind owns its name (what a sweep
+file says; a kind is that string), metrics, shape (grid, rollouts, `distance_cm`), per-cell sums, the validated
+setup of a cell (`request`), its program's inputs, the program and the metrics from the sums; and the one
+validation of a cell that the kinds share (`validated`)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import ClassVar, Protocol, runtime_checkable
+
+import numpy as np
+
+from ...core import metrics as table
+from ...core.errors import InputError
+from ...options._registry import get_method, owns
+from ...options._settings import option_names, reads_channel
+
+
+@runtime_checkable
+class Sweep(Protocol):
+    """What a kind reads of a sweep (`SweepSpec`, which is built from the kinds: a protocol, not an import)."""
+
+    axes: dict
+    distances: tuple
+    trials: int
+
+
+class SweepKind(str):
+    """A kind of sweep, equal to its name (`KINDS[name]`); a subclass sets the class attributes and methods."""
+
+    name: ClassVar[str]
+    metrics: ClassVar[dict[str, str]]  # name -> description, from `core.metrics.METRICS`
+    grid: ClassVar[bool]  # a grid of release points (a `spacing` axis)
+    rollouts: ClassVar[bool]  # rollout axes (occlude, first_move, ...) and motion noise
+    per_distance: ClassVar[bool]  # a `distance_cm` dimension (release distances and trials per distance)
+    sums: ClassVar[type]  # the dataclass of the per-cell sums its program returns
+
+    def __new__(cls) -> SweepKind:
+        return super().__new__(cls, cls.name)
+
+    def request(self, env, cell: dict, spec: Sweep, max_points: int, program: Sequence[str] | None = None) -> dict:
+        """The validated setup of one cell (`validated`)."""
+        raise NotImplementedError
+
+    def inputs(self, setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
+        """(shared, traced) arguments of the program for a chunk of setups and their stacked pytrees."""
+        raise NotImplementedError
+
+    def program(self, lanes: int, trials: int | None) -> Callable:
+        """The per-chunk program, shared arguments first (max_steps comes traced, in `inputs`)."""
+        raise NotImplementedError
+
+    def metrics_of(self, sums: dict) -> dict:
+        """Every metric of the kind from the per-cell sums (NumPy)."""
+        raise NotImplementedError
+
+    def cell_seconds(self, spec: Sweep) -> float:
+        """Rough warm seconds of one cell on 2 CPU cores, for the time a sweep states before it starts."""
+        raise NotImplementedError
+
+
+def descriptions(rows: tuple) -> dict[str, str]:
+    """name -> description of rows of the metrics table (`core.metrics`)."""
+    return {m.name: m.description for m in rows}
+
+
+MAP_METRICS = descriptions(table.MAP_METRICS)
+
+
+def options(cell: dict) -> dict:
+    """A cell's options (every axis but the scene's env, method and seed)."""
+    return {k: v for k, v in cell.items() if k not in ("env", "method", "seed")}
+
+
+def _landmarks_only(name: str) -> bool:
+    """Whether a registered method reads landmark bearings alone: no ring image, no panorama."""
+    m = get_method(name)
+    return not m.reads_image() and not m.reads_panorama()
+
+
+def shared_program(spec: Sweep, method) -> tuple[str, ...] | None:
+    """The sweep's methods compiled into one `Program` with `method` (docs/sweeps.md, "One program
+    for the landmark methods"): every landmark method of the sweep's method axis, the same numbers
+    bit for bit in less compile time; None for a method alone or one that reads images (an image
+    method compiled in a `Program` sums its errors in another order: last-bit changes). Looked up in
+    the registry each time: a method registered at run time may change it."""
+    names = spec.axes.get("method", ())
+    if not isinstance(method, str) or not all(isinstance(n, str) for n in names) or not _landmarks_only(method):
+        return None
+    mine = tuple(n for n in names if _landmarks_only(n))
+    return mine if len(mine) > 1 else None
+
+
+def _own(cell: dict) -> None:
+    """In a `Program` of several methods, a setting (or the image channel) of another method than the cell's
+    stays an error: the program's validation accepts what any of its methods reads."""
+    method, label = get_method(cell["method"]), cell["method"]
+    settings = set(option_names()[0])
+    for name, value in options(cell).items():
+        if name in settings and value is not None and not owns(method, name):
+            raise InputError(name, value, f"is not a setting of the method {label}")
+    if cell.get("channel") is not None and not reads_channel(method):
+        raise InputError("channel", cell["channel"], f"is read only by image methods (warping, mfdid), not by {label}")
+
+
+def validated(request: Callable[..., dict], cell: dict, spec: Sweep, program=None, **kwargs) -> dict:
+    """`request(method=..., **kwargs)`: the cell validated once, by its API's request; where the sweep has
+    companions (or `program` names them), set up as one of their `Program`, a setting of another method still
+    an error (`_own`)."""
+    names = shared_program(spec, cell["method"]) if program is None else tuple(program)
+    if names is None:
+        return request(method=cell["method"], **kwargs)
+    _own(cell)
+    return request(method=cell["method"], program=names, **kwargs)
+
+
+def pct(part: np.ndarray, whole: np.ndarray) -> np.ndarray:
+    """100 part / whole, NaN where whole is 0."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(whole > 0, 100.0 * part / np.maximum(whole, 1), np.nan)
