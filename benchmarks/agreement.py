@@ -16,14 +16,13 @@ import jax.numpy as jnp
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository root: tests.twins
-from tests.twins import methods as ref
-from tests.conftest import random_landmarks
-
 import delvjax
-from delvjax.core.sensor import Sensor
-from delvjax.options._registry import METHODS
 from delvjax.core.maps import grid_included, grid_points, homing_directions, random_headings
 from delvjax.core.scene import stack_envs
+from delvjax.core.sensor import Sensor
+from delvjax.options._registry import METHODS
+from tests.conftest import random_landmarks
+from tests.twins import methods as ref
 
 ARENA, HOME = [0, 0, 1000, 1000], [500, 500]
 

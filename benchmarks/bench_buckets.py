@@ -24,8 +24,9 @@ import jax
 
 jax.config.update("jax_enable_compilation_cache", False)
 
-import delvjax  # noqa: E402
 from child import save_json  # noqa: E402
+
+import delvjax  # noqa: E402
 from delvjax.core import batching, maps  # noqa: E402
 
 EVENTS = (

@@ -17,8 +17,8 @@ import time
 
 import jax
 
-from delvjax.gradients._loss import problem_loss, problem_value_and_grad, loss_problem
 from delvjax.core import maps
+from delvjax.gradients._loss import loss_problem, problem_loss, problem_value_and_grad
 
 forward = jax.jit(problem_loss)
 

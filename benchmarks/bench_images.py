@@ -72,9 +72,9 @@ def reference_seconds_per_image(env: str, n: int) -> float:
     panorama, then band rings and blobs, at `n` poses."""
     sys.path.insert(0, str(ROOT))  # the repository root: tests.twins
     import numpy as np
-    from tests.twins import images as ref
 
     from delvjax.images._worlds import image_world
+    from tests.twins import images as ref
 
     iw = image_world(env)
     a = np.asarray(iw.world.arena)

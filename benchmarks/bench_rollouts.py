@@ -25,13 +25,12 @@ import jax.numpy as jnp
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository root: tests.twins
-from tests.twins.rollouts import HomeRecord, reference_rollout
-
 from delvjax.core import rollouts
 from delvjax.core.maps import grid_included, grid_points, random_headings
-from delvjax.options._registry import METHODS
 from delvjax.core.sensor import Sensor
 from delvjax.envs._presets import load_env
+from delvjax.options._registry import METHODS
+from tests.twins.rollouts import HomeRecord, reference_rollout
 
 
 def timed(fn, *args, **kw):

@@ -17,11 +17,11 @@ import jax
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository root: tests.twins
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from tests.twins import methods as ref
 from timing import reference_seconds_per_point, time_map_program
 
 import delvjax
 from delvjax.core.sensor import Sensor
+from tests.twins import methods as ref
 
 
 def bench(env_name: str, method: str, spacing: float, repeats: int, ref_points: int) -> dict:

@@ -20,11 +20,11 @@ import jax
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository root: tests.twins
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from tests.twins import holistic as ref
 from timing import reference_seconds_per_point, time_map_program
 
 from delvjax.core.sensor import BACKGROUNDS, Sensor
 from delvjax.options._registry import METHODS
+from tests.twins import holistic as ref
 
 LANES = 8  # 32-bit lanes per vector instruction in the code XLA emits here (256-bit AVX2/AVX-512VL)
 

@@ -10,7 +10,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-
 # Compiled programs go to the persistent cache of $DELVJAX_CACHE_DIR (as for the command line): the two
 # pytest-xdist workers and the command-line subprocesses then compile a shared program once. CI points it
 # at a fresh, empty folder (a cold run); "" disables it.

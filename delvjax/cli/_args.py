@@ -15,11 +15,11 @@ from ..core.maps import CLEARANCE, SPACING
 from ..core.rollouts import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
 from ..core.sensor import Noise, Sensor
 from ..evaluate._progress import Progress
+from ..options._limits import MAX_POINTS
+from ..options._registry import METHODS, owns
+from ..options._schema import method_options, sensor_options
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_distinct, check_output_path, output_set
-from ..options._limits import MAX_POINTS
-from ..options._schema import method_options, sensor_options
-from ..options._registry import METHODS, owns
 
 CSV = (".csv",)
 FIGURE = (".png", ".pdf", ".svg")

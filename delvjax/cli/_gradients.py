@@ -5,20 +5,18 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ._args import add_setting_args, progress, setting_values
 from ..core.maps import SPACING
-from ._help import COMMAND_HELP
+from ..envs._presets import env_to_dict
+from ..gradients._layout import STEPS, optimise_layout, start_layout
 from ..gradients._loss import TAU
 from ..gradients._sensitivity import SENSITIVITY_METHODS as METHODS
+from ..gradients._sensitivity import SETTING_UNITS, check_sensitivity, sensitivity
+from ..gradients._traps import find_traps
+from ..options._settings import NOISE_OPTIONS
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_out_dir, output_set
-from ..gradients._sensitivity import SETTING_UNITS, check_sensitivity, sensitivity
-from ..options._settings import NOISE_OPTIONS
-from ..gradients._traps import find_traps
-from ..gradients._layout import STEPS
-from ._args import ProgressBar
-from ..gradients._layout import optimise_layout, start_layout
-from ..envs._presets import env_to_dict
+from ._args import ProgressBar, add_setting_args, progress, setting_values
+from ._help import COMMAND_HELP
 
 
 def add_sensitivity(sub) -> None:

@@ -10,27 +10,26 @@ import time
 
 import numpy as np
 
-from ._args import ProgressBar, check_outputs, progress, warn, wrote, write_outputs
-from ..core.rollouts import check_rules
-from ..options._checks import non_negative, positive_int
 from ..core.errors import InputError
-from ..options._schema import extractor_options, method_options, sensor_options
+from ..core.images import Catadioptric
+from ..core.images.rollouts import OUTCOMES
+from ..core.metrics import summarize_map
+from ..core.rollouts import check_rules
+from ..core.tables import vector_map_columns
 from ..evaluate._vector_map import refuse_rollout_only
+from ..images._conventions import CHOICES
+from ..images._evaluate import catchment_numbers, database_catchment, database_vector_map
+from ..images._import import import_database
+from ..images._load import load_database
+from ..images._render import ImageSettings, camera, check_render, render_database
+from ..options._checks import non_negative, positive_int
+from ..options._limits import MAX_POINTS
+from ..options._schema import extractor_options, method_options, sensor_options
+from ..options._settings import make_setup
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_out_dir
-from ..options._limits import MAX_POINTS
-from ..core.tables import vector_map_columns
+from ._args import ProgressBar, check_outputs, progress, warn, write_outputs, wrote
 from ._help import COMMAND_HELP
-from ..images._load import load_database
-from ..options._settings import make_setup
-from ..images._evaluate import database_vector_map
-from ..core.metrics import summarize_map
-from ..images._evaluate import catchment_numbers, database_catchment
-from ..core.images.rollouts import OUTCOMES
-from ..images._render import ImageSettings, camera, check_render, render_database
-from ..core.images import Catadioptric
-from ..images._import import import_database
-from ..images._conventions import CHOICES
 
 # scene options that mean nothing for a database (its images fix the scene, the poses and the unit move)
 # the scene's options that a database replaces: the sensor's settings but the channel (the motion noise of a

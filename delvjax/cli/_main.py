@@ -7,38 +7,37 @@ import sys
 import time
 from collections.abc import Callable
 
-
 import numpy as np
 
+from ..core import maps
+from ..core.errors import InputError
+from ..core.metrics import summarize_map
+from ..core.tables import vector_map_columns
+from ..envs._presets import PRESET_DESCRIPTIONS, PRESETS
 from ..evaluate import _vector_map as api
+from ..options._registry import DESCRIPTIONS
+from ..options._schema import all_options
 from ..outputs._cache import enable_compilation_cache
 from ..outputs._programs import stored_program
 from ..outputs._temporary import Terminated, terminate_as_interrupt
+from ..reproduce import _run as reproduce
+from ..reproduce._study import figure_formats
 from ._args import (
     ProgressBar,
-    compiling,
     add_output_args,
     add_scene_args,
     check_outputs,
+    compiling,
     progress,
     scene_kwargs,
     warn,
     write_outputs,
 )
-from ._rollouts import ROLLOUT_COMMANDS
 from ._gradients import GRADIENT_COMMANDS
-from ._images import IMAGE_COMMANDS, add_image_args, cmd_vector_map_images
-from ._sweep import add_plot_sweep, add_sweep
-from ..core import maps
-from ..core.errors import InputError
-from ..options._schema import all_options
-from ..envs._presets import PRESET_DESCRIPTIONS, PRESETS
-from ..options._registry import DESCRIPTIONS
-from ..core.tables import vector_map_columns
 from ._help import COMMAND_HELP, DESCRIPTION, version
-from ..core.metrics import summarize_map
-from ..reproduce import _run as reproduce
-from ..reproduce._study import figure_formats
+from ._images import IMAGE_COMMANDS, add_image_args, cmd_vector_map_images
+from ._rollouts import ROLLOUT_COMMANDS
+from ._sweep import add_plot_sweep, add_sweep
 
 # --- commands ---------------------------------------------------------------------------
 

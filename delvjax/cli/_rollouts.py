@@ -10,21 +10,6 @@ import time
 
 import numpy as np
 
-from ..evaluate import _vector_map as api, _rollouts as api_rollouts
-from ._images import add_image_args, cmd_catchment_images
-from ._help import COMMAND_HELP
-from ._args import (
-    ProgressBar,
-    compiling,
-    add_output_args,
-    add_rollout_args,
-    add_scene_args,
-    check_outputs,
-    progress,
-    rollout_kwargs,
-    warn,
-    write_outputs,
-)
 from ..core.errors import InputError
 from ..core.rollouts import (
     DEFAULT_DISTANCES,
@@ -34,9 +19,6 @@ from ..core.rollouts import (
     catchment_summary,
     check_rules,
 )
-from ..options._settings import make_setup, option_names
-from ..options._checks import occlusion_count
-from ..options._registry import get_method
 from ..core.tables import (
     catchment_columns,
     concat_columns,
@@ -45,6 +27,25 @@ from ..core.tables import (
     success_trial_columns,
     trajectory_columns,
 )
+from ..evaluate import _rollouts as api_rollouts
+from ..evaluate import _vector_map as api
+from ..options._checks import occlusion_count
+from ..options._registry import get_method
+from ..options._settings import make_setup, option_names
+from ._args import (
+    ProgressBar,
+    add_output_args,
+    add_rollout_args,
+    add_scene_args,
+    check_outputs,
+    compiling,
+    progress,
+    rollout_kwargs,
+    warn,
+    write_outputs,
+)
+from ._help import COMMAND_HELP
+from ._images import add_image_args, cmd_catchment_images
 
 
 def _check_methods(methods: list[str], kw: dict) -> None:

@@ -7,24 +7,21 @@ import os
 import sys
 import threading
 import time
+from pathlib import Path
 
-from ._args import ProgressBar, progress
+import jax
+
 from ..core.errors import InputError
 from ..options._checks import positive
 from ..options._limits import MAX_POINTS, duration
-from ._help import COMMAND_HELP
-from ..sweeps._examples import EXAMPLES
-import jax
-from ..sweeps._file import read_sweep
-from ..outputs._files import check_out_dir
-from ..sweeps._run import run_sweep, save_sweep
-from pathlib import Path
-from ._args import FIGURE
-from ..outputs._files import check_output_path, output_set
-from ..sweeps._results import dim_name
-from ..sweeps._run import load_sweep, sweep_inputs
 from ..outputs._clashes import check_no_clash
-
+from ..outputs._files import check_out_dir, check_output_path, output_set
+from ..sweeps._examples import EXAMPLES
+from ..sweeps._file import read_sweep
+from ..sweeps._results import dim_name
+from ..sweeps._run import load_sweep, run_sweep, save_sweep, sweep_inputs
+from ._args import FIGURE, ProgressBar, progress
+from ._help import COMMAND_HELP
 
 CONNECT_TIMEOUT = 300.0  # s: jax.distributed's own default
 

@@ -15,13 +15,14 @@ padding changes no number either (docs/reproduce.md "Shape buckets").
 
 from __future__ import annotations
 
-from functools import partial
 from collections.abc import Callable
+from functools import partial
 
 import jax
 import jax.numpy as jnp
 import numpy as np
-from jax.sharding import Mesh, NamedSharding, PartitionSpec as P
+from jax.sharding import Mesh, NamedSharding
+from jax.sharding import PartitionSpec as P
 
 WIDTH = 128  # items per vectorised step (a power of two: 256 lanes are two groups)
 

@@ -17,7 +17,7 @@ from jax import Array
 from .geometry import unit, wrap
 from .search import first_argmin
 from .sensing import UnitMove
-from .types import BlobFlags, BlobVectors, Blobs, Real
+from .types import BlobFlags, Blobs, BlobVectors, Real
 
 
 @runtime_checkable

@@ -11,13 +11,13 @@ import jax
 import jax.numpy as jnp
 from jax import Array
 from jax.typing import ArrayLike
-from .types import Direction
 
 from .geometry import wrap
 from .methods.base import HomingMethod
 from .scene import Env
 from .sensing import MovePoses, UnitMove, observe_poses, unit_move_poses
 from .sensor import Sensor
+from .types import Direction
 
 
 def sense(env: Env, visible: Array, poses: MovePoses, method: HomingMethod, sensor: Sensor) -> UnitMove:

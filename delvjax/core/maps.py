@@ -10,8 +10,8 @@ each padded to a shape bucket (`batching.bucket`), so grids of many sizes share 
 from __future__ import annotations
 
 import dataclasses
-from functools import partial
 from collections.abc import Callable
+from functools import partial
 
 import equinox as eqx
 import jax
@@ -20,16 +20,15 @@ import numpy as np
 from jax import Array
 
 from .batching import bucket, fixed_width_map, item_width, local_mesh, n_devices, over_devices, pad_rows
+from .frames import frame
 from .geometry import TWO_PI
 from .kernel import direction_from, map_poses
 from .methods.base import HomingMethod
-from .frames import frame
 from .metrics import angular_error_deg, error_class
 from .scene import Env, clear_of_landmarks
 from .sensing import record_home
 from .sensor import Sensor
-from .types import BlobFlags, GridFlag, GridFloat, GridPoints, PerPoint, PerPointFlag, Points
-from .types import Real
+from .types import BlobFlags, GridFlag, GridFloat, GridPoints, PerPoint, PerPointFlag, Points, Real
 
 DEFAULT_BATCH = 16384  # grid points per host-side chunk
 SPACING = 25.0  # cm, grid spacing (docs/model.md §5: 40 x 40 in the 1000 cm arena)

@@ -15,6 +15,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 from jax import Array
+
 from .types import Real
 
 DEFAULT_ARENA = (0.0, 0.0, 1000.0, 1000.0)

@@ -12,12 +12,12 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 from jax import Array
-from .types import Point, Real, Scalar, SnapBlobs, SnapFlags, SnapMask, SnapRing
 
-from .sensor import Sensor
+from .cylinder_blobs import blobs_of_cylinders, cylinder_offsets, pixel_directions
 from .geometry import TWO_PI, rotate, unit, wrap, wrap_positive
 from .scene import Env
-from .cylinder_blobs import blobs_of_cylinders, cylinder_offsets, pixel_directions
+from .sensor import Sensor
+from .types import Point, Real, Scalar, SnapBlobs, SnapFlags, SnapMask, SnapRing
 
 
 class Snapshot(eqx.Module):

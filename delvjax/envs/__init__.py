@@ -7,7 +7,6 @@ from ._ensembles import family as family
 from ._ensembles import member_layouts as member_layouts
 from ._ensembles import violations as violations
 from ._ensembles import world_properties as world_properties
-
 from ._presets import PRESET_DESCRIPTIONS as PRESET_DESCRIPTIONS
 from ._presets import PRESETS as PRESETS
 from ._presets import env_from_dict as env_from_dict

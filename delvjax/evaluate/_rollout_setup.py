@@ -11,10 +11,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
-from ._vector_map import Indices, Values, scene_request, visible_mask
 from ..core.errors import InputError
-from ._config import GRID_DEFAULTS, RULES_DEFAULTS, Grid, Rules, unpack
-from ._progress import Progress, as_progress
 from ..core.methods import HomingMethod
 from ..core.rollouts import (
     ARENA,
@@ -27,8 +24,11 @@ from ..core.rollouts import (
     position_status,
 )
 from ..core.scene import Env
-from ..options._limits import check_size
 from ..options._checks import finite, is_traced, occlusion_count, positive, positive_int
+from ..options._limits import check_size
+from ._config import GRID_DEFAULTS, RULES_DEFAULTS, Grid, Rules, unpack
+from ._progress import Progress, as_progress
+from ._vector_map import Indices, Values, scene_request, visible_mask
 
 
 class RolloutSetup(NamedTuple):

@@ -3,16 +3,13 @@ the CLI (same names, same validation before any work)."""
 
 from __future__ import annotations
 
-from pathlib import Path
 from collections.abc import Callable, Sequence
+from pathlib import Path
 
 import jax.numpy as jnp
 import numpy as np
 
-from ._vector_map import Indices, PointList, Values, check_grid, visible_mask
 from ..core.errors import InputError
-from ._config import Grid, Rules
-from ._progress import Progress
 from ..core.maps import CLEARANCE, SPACING
 from ..core.methods import HomingMethod
 from ..core.rollouts import (
@@ -33,9 +30,12 @@ from ..core.rollouts import (
     trajectory_trials,
 )
 from ..core.scene import Env
-from ..options._limits import MAX_POINTS, check_moves, check_size, grid_count
 from ..options._checks import positive, positive_int
-from ._rollout_setup import _rollout_options, _configured, _masks, _distances, _announce, _check_starts
+from ..options._limits import MAX_POINTS, check_moves, check_size, grid_count
+from ._config import Grid, Rules
+from ._progress import Progress
+from ._rollout_setup import _announce, _check_starts, _configured, _distances, _masks, _rollout_options
+from ._vector_map import Indices, PointList, Values, check_grid, visible_mask
 
 
 def catchment(

@@ -15,19 +15,19 @@ from pathlib import Path
 import jax
 import numpy as np
 
-from ..options import _limits as limits
 from ..core import maps
 from ..core.batching import bucket, pad_rows
-from ..core.maps import CLEARANCE, SPACING
 from ..core.errors import InputError
+from ..core.maps import CLEARANCE, SPACING
 from ..core.methods import HomingMethod
 from ..core.scene import Env
 from ..core.sensor import Sensor
+from ..envs._presets import load_env
+from ..options import _limits as limits
+from ..options._checks import angle_deg, is_traced, non_negative, positive, positive_int, seed_value
+from ..options._limits import MAX_POINTS, check_size
 from ..options._schema import ROLLOUT_ONLY
 from ..options._settings import make_setup
-from ..options._checks import is_traced, angle_deg, non_negative, positive, positive_int, seed_value
-from ..options._limits import MAX_POINTS, check_size
-from ..envs._presets import load_env
 from ..outputs._programs import kept_number
 from ._config import GRID_DEFAULTS, Grid, unpack
 from ._progress import Progress, as_progress

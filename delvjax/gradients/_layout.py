@@ -15,25 +15,24 @@ The layouts are then compared by the ordinary (hard) evaluation: catchment and e
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from collections.abc import Callable
 
 import equinox as eqx
 import jax
 import jax.numpy as jnp
 import numpy as np
 
-from ..envs._presets import load_env
-from ..evaluate._rollouts import catchment
-from ._loss import TAU, LossProblem, loss_problem
 from ..core.errors import InputError
 from ..core.maps import SPACING
 from ..core.rollouts import Catchment, catchment_summary, occlusion_masks
 from ..core.scene import Env
 from ..core.soft.loss import soft_loss
+from ..envs._presets import load_env, make_env, random_env
+from ..evaluate._rollouts import catchment
 from ..options._checks import occlusion_count, positive_int
-from ..envs._presets import make_env, random_env
+from ._loss import TAU, LossProblem, loss_problem
 
 WALL_CM = 10.0
 HOME_GAP_CM = 40.0

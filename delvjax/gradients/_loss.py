@@ -19,21 +19,19 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from ..evaluate._vector_map import check_grid, scene_request
 from ..core.batching import traced_floats
-from ..core.maps import CLEARANCE, SPACING, grid_included, grid_points, random_headings
+from ..core.errors import InputError
+from ..core.maps import CLEARANCE, SPACING, grid_included, grid_points, random_headings, vector_map
 from ..core.methods import HomingMethod
 from ..core.scene import Env
-from ..core.soft.methods import check_differentiable
 from ..core.soft.loss import soft_loss
+from ..core.soft.methods import check_differentiable
 from ..core.soft.sensing import VISIBILITY_WIDTH
-from ..options._limits import MAX_POINTS
-from ..core.errors import InputError
-from ..options._limits import check_size, grid_count
-from ..options._settings import NOISE_FIELDS_DEG, NOISE_FIELDS_FRACTION
-from ..options._checks import is_traced, positive
-from ..core.maps import vector_map
 from ..core.types import Real
+from ..evaluate._vector_map import check_grid, scene_request
+from ..options._checks import is_traced, positive
+from ..options._limits import MAX_POINTS, check_size, grid_count
+from ..options._settings import NOISE_FIELDS_DEG, NOISE_FIELDS_FRACTION
 
 TAU = 0.01  # default softmin temperature (docs/differentiable.md)
 NOISE_NAMES = {

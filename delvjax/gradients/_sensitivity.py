@@ -6,18 +6,17 @@ soft version)."""
 
 from __future__ import annotations
 
-from pathlib import Path
 from collections.abc import Callable
+from pathlib import Path
 
 import numpy as np
 
-from ..envs._presets import load_env
-from ._loss import TAU, homing_loss, homing_loss_grad
+from ..core.errors import InputError
 from ..core.maps import SPACING
 from ..core.scene import Env
+from ..envs._presets import load_env
 from ..evaluate import _vector_map as api
-from ._loss import loss_problem
-from ..core.errors import InputError
+from ._loss import TAU, homing_loss, homing_loss_grad, loss_problem
 
 SENSITIVITY_METHODS = ("delv", "alv", "acv", "warping")
 # the operating point at which sensitivities are taken: noise a real robot has (docs/differentiable.md)

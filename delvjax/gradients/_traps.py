@@ -17,16 +17,16 @@ from pathlib import Path
 
 import numpy as np
 
-from ..envs._presets import load_env
-from ..evaluate._rollouts import catchment
-from ._loss import TAU, loss_problem
 from ..core.errors import InputError
 from ..core.maps import SPACING
 from ..core.rollouts import TIMEOUT, Catchment
 from ..core.rollouts.rules import HOME_RADIUS
 from ..core.scene import Env
 from ..core.soft.traps import KINDS, field_zeros, two_cycles
+from ..envs._presets import load_env
+from ..evaluate._rollouts import catchment
 from ..options._checks import positive, positive_int
+from ._loss import TAU, loss_problem
 
 MERGE_CM = 2.0  # zeros closer than this are one
 CYCLE_CM = 1.0  # a period-2 orbit closes within this

@@ -11,6 +11,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from ..core.errors import InputError
 from ..core.images.database import (
     RingDatabase,
     database_directions,
@@ -24,11 +25,10 @@ from ..core.images.rollouts import OUTCOMES, Field, Paths, nearest_snapshot_roll
 from ..core.maps import VectorMap
 from ..core.rollouts import MAX_STEPS, TRIALS_PER_DISTANCE
 from ..core.rollouts.success import wilson_pct
-from ._conventions import mismatch
-from ..core.errors import InputError
-from ..options._settings import make_setup
 from ..options._checks import non_negative, positive, positive_int, seed_value
-from ._load import _warn, LoadedDatabase, with_channel
+from ..options._settings import make_setup
+from ._conventions import mismatch
+from ._load import LoadedDatabase, _warn, with_channel
 
 
 def plans(db: LoadedDatabase):

@@ -5,26 +5,25 @@ naming the field, or the file, and the value)."""
 from __future__ import annotations
 
 import dataclasses
-
-from dataclasses import dataclass, field
 import math
 import warnings
-from pathlib import Path
 from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
 
 import jax
 import jax.numpy as jnp
 import numpy as np
 
-from ._render import DEFAULT_CHUNK, chunks, extract_rings, head
 from ..core.batching import pad_rows
 from ..core.errors import InputError
 from ..core.images import Camera, Catadioptric, Extractor
 from ..core.images.database import RingDatabase, home_plan
-from ._conventions import Conventions
-from ._disk import DatabaseIndex, read_image, read_images, read_index
 from ..options._checks import finite, positive, positive_int
 from ..options._schema import extractor_options
+from ._conventions import Conventions
+from ._disk import DatabaseIndex, read_image, read_images, read_index
+from ._render import DEFAULT_CHUNK, chunks, extract_rings, head
 
 
 @dataclass

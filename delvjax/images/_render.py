@@ -8,9 +8,10 @@ depend on the chunking and the memory is bounded by the chunk.
 from __future__ import annotations
 
 import math
+import shutil
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from collections.abc import Callable
 
 import equinox as eqx
 import jax
@@ -23,12 +24,11 @@ from ..core.images import Camera, Catadioptric, Extractor, camera_noise, donut, 
 from ..core.images.database import RingDatabase
 from ..core.maps import grid_points
 from ..core.types import Real
-from ._writer import DatabaseWriter
-from ._worlds import ImageWorld, image_world
-from ..options._limits import MAX_POINTS, check_size, grid_count
 from ..options._checks import angle_deg, non_negative, positive, positive_int, seed_value
-import shutil
+from ..options._limits import MAX_POINTS, check_size, grid_count
 from ..outputs._files import check_folder
+from ._worlds import ImageWorld, image_world
+from ._writer import DatabaseWriter
 
 DEFAULT_CHUNK = 256  # images per host-side chunk
 IMAGE_WIDTH = 16  # images rendered or reduced side by side (`fixed_width_map`): bounds a group's memory

@@ -11,7 +11,6 @@ from __future__ import annotations
 import dataclasses
 
 from ..core.errors import InputError, did_you_mean
-from ..core.settings import declared
 from ..core.methods.acv import ACV
 from ..core.methods.alv import ALV
 from ..core.methods.base import HomingMethod
@@ -26,6 +25,7 @@ from ..core.methods.minwarping import MinWarping
 from ..core.methods.program import Program
 from ..core.methods.warping import Warping
 from ..core.methods.warping2d import Warping2D
+from ..core.settings import declared
 
 # name: (module instance, one-line description). A new method is one line here.
 REGISTRY: dict[str, tuple[HomingMethod, str]] = {

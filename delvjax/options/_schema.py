@@ -8,8 +8,8 @@ from these `Option`s, so a setting is written once, on its field.
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
 from collections.abc import Iterable
+from dataclasses import dataclass
 from typing import Any
 
 from ..core.errors import InputError
@@ -19,7 +19,6 @@ from ..core.sensor import Noise, Sensor
 from ..core.settings import Setting, declared
 from . import _checks as checks
 from ._registry import METHODS
-
 
 ROLLOUT_ONLY = ("motion_",)  # settings that act only in rollouts (the motion noise): a vector map refuses them
 

@@ -7,7 +7,6 @@ from pathlib import Path
 
 import jax
 
-
 CACHE_SUFFIX, ATIME_SUFFIX = "-cache", "-atime"  # the names of an entry and its access time (jax._src.lru_cache)
 CACHE_BYTES = 2 << 30  # the compilation cache's bound (2 GiB; a full run writes about 0.1 GiB)
 

@@ -9,9 +9,9 @@ import json
 import math
 import os
 import tempfile
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from pathlib import Path
-from collections.abc import Callable, Iterator, Mapping, Sequence
 
 import numpy as np
 

@@ -14,8 +14,8 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
-from ..outputs._files import atomic_path
 from ..core.rollouts import DEFAULT_RULES, PHYSICAL_RULES
+from ..outputs._files import atomic_path
 
 VERDICT_MARK = {  # words, coloured by the CSS below (no emoji: they need a font that may be missing)
     v: f'<span class="verdict {c}">{w}</span>'

@@ -19,20 +19,19 @@ import os
 import sys
 import threading
 import time
+from collections.abc import Iterator, Sequence
 from concurrent.futures import Future, ThreadPoolExecutor
 from contextlib import contextmanager
 from dataclasses import asdict
 from pathlib import Path
-from collections.abc import Iterator, Sequence
 from typing import Any
 
 from ..core.errors import InputError, did_you_mean, warn
-from ..outputs._files import check_out_dir, write_json
-from ..outputs._cache import package_sources
-from ._study import STUDY_FILE, Settings, StudyContext, StudyRecord, compile_seconds, settings_record, versions
-from ..outputs._cache import enable_compilation_cache, release_programs_near_map_limit
 from ..options._checks import seed_value
+from ..outputs._cache import enable_compilation_cache, package_sources, release_programs_near_map_limit
+from ..outputs._files import check_out_dir, write_json
 from ._report import write_report
+from ._study import STUDY_FILE, Settings, StudyContext, StudyRecord, compile_seconds, settings_record, versions
 
 STUDIES = "delvjax.studies"  # the package of the study runners, the thesis's numbers and the claim checks
 

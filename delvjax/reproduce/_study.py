@@ -8,21 +8,20 @@ import platform
 import sys
 import threading
 import time
+from collections.abc import Callable, Sequence
 from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from collections.abc import Callable, Sequence
 from typing import Any
 
 import jax
+import numpy
 
+from .. import __version__
 from ..core.errors import InputError
 from ..core.maps import SPACING
-from ..core.rollouts import DEFAULT_LANES, TRIALS_PER_DISTANCE
+from ..core.rollouts import DEFAULT_LANES, DEFAULT_RULES, PHYSICAL_RULES, TRIALS_PER_DISTANCE
 from ..outputs._files import jsonable, write_csv, write_figure, write_json, write_rows_csv
-from ..core.rollouts import DEFAULT_RULES, PHYSICAL_RULES
-from .. import __version__
-import numpy
 
 STUDY_FILE = "study.json"
 COMPILE_EVENTS = (

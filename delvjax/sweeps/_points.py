@@ -10,9 +10,9 @@ import jax
 import numpy as np
 
 from ..core.cells import map_cells_errors
+from ..core.errors import InputError
 from ..core.rollouts import DEFAULT_LANES
 from ..core.rollouts.cells import catchment_cells_points
-from ..core.errors import InputError
 from ..evaluate import _vector_map as api
 from ._kinds.catchment import catchment_inputs
 from ._kinds.cells import idle_padding

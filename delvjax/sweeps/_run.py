@@ -4,21 +4,21 @@ processes, finished chunks kept on disk; results as labelled data (`_results.py`
 
 from __future__ import annotations
 
-from pathlib import Path
 from collections.abc import Callable
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import jax
 import numpy as np
 
-from ..evaluate import _vector_map as api
-from ._store import cell_digest, code_digest, load_cells, save_cells
 from ..core.batching import global_mesh, local_mesh, n_devices, process_rows
 from ..core.rollouts import DEFAULT_LANES
 from ..envs._presets import env_from_dict, load_env, random_env
+from ..evaluate import _vector_map as api
 from ._kinds import cell_setup, evaluate, group_key, mask_rows, programs_compiled, sum_names
 from ._results import dataset, load_sweep, save_sweep, sweep_inputs
 from ._spec import SweepSpec
+from ._store import cell_digest, code_digest, load_cells, save_cells
 
 __all__ = ["CELL_CHUNK", "load_sweep", "run_sweep", "save_sweep", "sweep_inputs"]
 

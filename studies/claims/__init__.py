@@ -15,14 +15,22 @@ function per claim, registered by `@check(id, tolerance)`), the registry and sha
 
 from __future__ import annotations
 
+from .. import thesis
 from . import (
     _ch4 as claims_ch4,
+)
+from . import (
     _ch4_more as claims_ch4_more,
+)
+from . import (
     _ch5 as claims_ch5,
+)
+from . import (
     _ch5_occlusion as claims_ch5_occlusion,
+)
+from . import (
     _ch5_visual as claims_ch5_visual,
 )
-from .. import thesis
 from ._claim import Claim, claims
 from ._common import BACKGROUNDS, CANNOT_TELL, CHECKED, ENVS, Missing, Undefined, _n, check, why_text
 

@@ -26,8 +26,8 @@ from ._common import (
     _verdict,
     _why,
     at_ceiling,
-    beyond,
     at_floor,
+    beyond,
     check,
     points_of,
 )

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ._ch4 import FAR_DROP, LARGE, THIRD, _over90_far, _physical  # the first part's tolerances and helpers
 from ._common import (
     CANNOT_TELL,
     CEILING,
@@ -19,7 +20,6 @@ from ._common import (
     check,
     points_of,
 )
-from ._ch4 import FAR_DROP, LARGE, THIRD, _over90_far, _physical  # the first part's tolerances and helpers
 
 
 @check(

@@ -2,18 +2,6 @@
 
 from __future__ import annotations
 
-from ._common import (
-    CANNOT_TELL,
-    CEILING,
-    ENVS,
-    _combine,
-    _n,
-    _share,
-    _why,
-    Missing,
-    at_ceiling,
-    check,
-)
 from ._ch5 import (
     BEYOND_TIE,
     GAP_TOL_OCCL,
@@ -23,6 +11,18 @@ from ._ch5 import (
     _occl,
     _short,
 )  # tolerances and helpers
+from ._common import (
+    CANNOT_TELL,
+    CEILING,
+    ENVS,
+    Missing,
+    _combine,
+    _n,
+    _share,
+    _why,
+    at_ceiling,
+    check,
+)
 
 
 @check(

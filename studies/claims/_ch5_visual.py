@@ -3,6 +3,12 @@ depends on a compass (continued from `claims._ch5_occlusion`; registered by `del
 
 from __future__ import annotations
 
+from ._ch5 import (
+    ACV_LAYOUT,
+    TIE_DEG,
+    _occl,
+    _short,
+)  # tolerances and helpers
 from ._common import (
     BACKGROUNDS,
     CANNOT_TELL,
@@ -20,12 +26,6 @@ from ._common import (
     check,
     no_loss,
 )
-from ._ch5 import (
-    ACV_LAYOUT,
-    TIE_DEG,
-    _occl,
-    _short,
-)  # tolerances and helpers
 
 
 def _visual(get, bg, m, field):

@@ -12,8 +12,6 @@ from __future__ import annotations
 
 import jax
 import numpy as np
-from delvjax.plots import catchment_handles, catchment_panel, draw_env, draw_vector_map, subplots, vector_map_handles
-from delvjax.plots import has_uncounted as not_counted
 from scipy.spatial import Delaunay
 
 import delvjax
@@ -22,9 +20,11 @@ from delvjax.core.maps import VectorMap
 from delvjax.core.metrics import error_curve, summarize_map
 from delvjax.core.scene import Env
 from delvjax.core.sensor import Sensor
+from delvjax.core.tables import concat_columns, success_rows, trajectory_columns
 from delvjax.envs import load_env
 from delvjax.options import get_method
-from delvjax.core.tables import concat_columns, success_rows, trajectory_columns
+from delvjax.plots import catchment_handles, catchment_panel, draw_env, draw_vector_map, subplots, vector_map_handles
+from delvjax.plots import has_uncounted as not_counted
 
 PAD = 6
 # the default rules (thesis Algorithm 2), the earlier default ("homing": every first move follows the

@@ -30,8 +30,8 @@ from delvjax.core.rollouts import MAX_STEPS
 from delvjax.core.scene import Env
 from delvjax.envs import ensemble_envs
 from delvjax.evaluate._vector_map import map_request
-from delvjax.images._load import with_channel
 from delvjax.images import ImageSettings
+from delvjax.images._load import with_channel
 from delvjax.images._worlds import ImageWorld, robot_arena
 from delvjax.options import make_setup
 

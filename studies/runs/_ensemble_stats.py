@@ -13,9 +13,8 @@ from delvjax.envs import world_properties
 
 from .. import thesis
 from ..claims import CHECKS, Missing, world_verdict
-from ..claims._common import CANNOT_TELL
+from ..claims._common import CANNOT_TELL, PARTLY
 from ..claims._common import HOLDS as HOLDS_TEXT
-from ..claims._common import PARTLY
 
 SEED_SPREAD = (1, 2, 3, 4)  # extra seeds of the built-in worlds: the spread a seed alone makes
 NOISE_DEG = 2.0  # bearing noise (sigma, degrees) of the noisy setting: issue 52 found 2° bring Table 5.1 closest

@@ -18,8 +18,8 @@ import numpy as np
 
 from delvjax.core import rollouts
 from delvjax.core.sensor import Sensor
-from delvjax.plots import subplots
 from delvjax.options._registry import program
+from delvjax.plots import subplots
 
 from ._common import HOME_RADIUS, PROGRAM, RULES
 from ._occlusion_layouts import ENVS, QUICK_RING_SPACING, RING_SPACING, fmt_spread, spread

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from delvjax.envs import FAMILIES, member_layouts
-from delvjax.sweeps import run_sweep, parse_sweep
+from delvjax.sweeps import parse_sweep, run_sweep
 
 from ._ensemble_stats import BAND, SOURCE_LABEL, thesis_numbers
 from ._gap_methods import register_variants, unregister_variants

@@ -13,8 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from delvjax.envs import world_properties, FAMILIES, member_layouts
-from delvjax.sweeps import run_sweep, parse_sweep
+from delvjax.envs import FAMILIES, member_layouts, world_properties
+from delvjax.sweeps import parse_sweep, run_sweep
 
 TAIL_FILE = Path(__file__).with_name("_gap_tails.json")
 QUANTITIES = {"e>45 %": "gt45_pct", "e>90 %": "gt90_pct", "catchment %": "catchment_pct"}

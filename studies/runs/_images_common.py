@@ -6,12 +6,12 @@ from __future__ import annotations
 import numpy as np
 
 import delvjax
-from delvjax.images import LoadedDatabase, database_vector_map, render_in_memory, ImageSettings, image_world
 from delvjax.core.maps import VectorMap
 from delvjax.core.metrics import error_curve, summarize_map
 from delvjax.core.scene import Env
-from delvjax.images._worlds import ImageWorld
 from delvjax.envs import make_env
+from delvjax.images import ImageSettings, LoadedDatabase, database_vector_map, image_world, render_in_memory
+from delvjax.images._worlds import ImageWorld
 
 # the methods of the image studies, one compiled program (`options._registry.program`)
 METHODS = ("delv", "alv", "acv", "warping")

@@ -18,11 +18,11 @@ from collections.abc import Callable
 import numpy as np
 
 from delvjax.envs import ensemble_envs, env_from_dict
-from delvjax.options._checks import SEED_LIMIT
 from delvjax.options import MAX_POINTS
+from delvjax.options._checks import SEED_LIMIT
 from delvjax.options._registry import program
-from delvjax.sweeps._kinds import catchment_metrics, cell_setup, evaluate
 from delvjax.sweeps import SweepSpec
+from delvjax.sweeps._kinds import catchment_metrics, cell_setup, evaluate
 
 from ._ensemble_stats import thesis_numbers
 

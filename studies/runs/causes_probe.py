@@ -41,7 +41,7 @@ import delvjax
 from delvjax.core import rollouts
 from delvjax.core.errors import InputError
 from delvjax.core.sensor import Sensor
-from delvjax.envs import FAMILIES, member_layouts, make_env, random_env
+from delvjax.envs import FAMILIES, make_env, member_layouts, random_env
 from delvjax.envs._presets import preset_dict
 from delvjax.options._registry import program
 

@@ -15,10 +15,10 @@ grid point cannot tell (the check's rule).
 from __future__ import annotations
 
 import numpy as np
-from delvjax.plots import subplots
 
 from delvjax.envs import ensemble_envs
-from delvjax.sweeps import point_outcomes, parse_sweep
+from delvjax.plots import subplots
+from delvjax.sweeps import parse_sweep, point_outcomes
 
 from ..claims import WORLD_FAILS, WORLD_HOLDS
 from ._common import LABEL

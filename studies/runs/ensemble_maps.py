@@ -22,7 +22,7 @@ import numpy as np
 from delvjax.core.maps import grid_points
 from delvjax.envs import ensemble_envs, world_properties
 from delvjax.options._settings import make_sensor
-from delvjax.sweeps import point_errors, run_sweep, parse_sweep
+from delvjax.sweeps import parse_sweep, point_errors, run_sweep
 
 from ..claims import WORLD_FAILS, WORLD_HOLDS
 from ._ensemble_maps import (
@@ -41,8 +41,8 @@ from ._ensemble_maps import (
 from ._ensemble_maps_report import (
     CLAIMS_NOTE,
     builtin_verdict,
-    curves_figure,
     curve_rows,
+    curves_figure,
     distribution_rows,
     visual_figure,
 )

@@ -19,9 +19,9 @@ import re
 
 import numpy as np
 
-from delvjax.envs import world_properties, family, member_layouts
+from delvjax.envs import family, member_layouts, world_properties
 from delvjax.plots import subplots
-from delvjax.sweeps import run_sweep, parse_sweep
+from delvjax.sweeps import parse_sweep, run_sweep
 
 from .. import thesis
 from ..claims import CHECKS, WORLD_FAILS, WORLD_HOLDS, Missing, world_verdict

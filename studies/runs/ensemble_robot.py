@@ -16,11 +16,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from delvjax.envs import world_properties, family
+from delvjax.envs import family, world_properties
 from delvjax.images._worlds import robot_arena
 from delvjax.plots import subplots
 
-from ..claims import CHECKS, Missing, WORLD_FAILS, WORLD_HOLDS
+from ..claims import CHECKS, WORLD_FAILS, WORLD_HOLDS, Missing
 from ..claims._common import HOLDS as HOLDS_TEXT
 from ._ensemble_robot import (
     Members,

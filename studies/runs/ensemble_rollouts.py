@@ -32,9 +32,9 @@ from ._ensemble_rollouts_report import (
 from ._ensemble_stats import BAND, claim_rows
 from ._settings_design import MASK_ROWS
 from .ensembles import (
+    CLAIMS_TABLE_NOTE,
     EVERY_METHOD,
     LANES,
-    CLAIMS_TABLE_NOTE,
     MEMBERS,
     PREVIEW_SPACING,
     QUICK_MEMBERS,

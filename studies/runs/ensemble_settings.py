@@ -20,8 +20,18 @@ import time
 import numpy as np
 
 from ._settings_design import FAMILIES, PAIRS, SETTINGS, combination, design, numbers, rollouts, targets
-from ._settings_estimate import BAND, GAP, SHARE, combinations, crps, identify, percentile_offsets, resample_weights
-from ._settings_estimate import scores, sentence
+from ._settings_estimate import (
+    BAND,
+    GAP,
+    SHARE,
+    combinations,
+    crps,
+    identify,
+    percentile_offsets,
+    resample_weights,
+    scores,
+    sentence,
+)
 from ._settings_tables import design_rows, identified_rows, settings_figure, unreached_rows, value_rows
 
 TITLE = (

@@ -27,7 +27,7 @@ import numpy as np
 
 from delvjax.envs import FAMILIES, ensemble_envs, world_properties
 from delvjax.plots import subplots
-from delvjax.sweeps import run_sweep, parse_sweep
+from delvjax.sweeps import parse_sweep, run_sweep
 
 from ..claims import WORLD_FAILS, WORLD_HOLDS
 from ._common import LABEL

@@ -8,11 +8,10 @@ from __future__ import annotations
 import argparse
 import math
 
-
 import delvjax
+from delvjax.envs import PRESET_DESCRIPTIONS, PRESETS, env_to_dict
 from delvjax.outputs import write_figure, write_json
 from delvjax.plots import environments_figure
-from delvjax.envs import PRESET_DESCRIPTIONS, PRESETS, env_to_dict
 
 TITLE = "The environments (thesis §4.2 and Tables 5.1-5.4)"
 COST = 1  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first

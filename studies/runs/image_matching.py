@@ -14,8 +14,9 @@ import numpy as np
 import delvjax
 from delvjax.plots import error_curve_figure
 
-from ._images_common import preview
 from ._common import (
+    LABEL,
+    RULES,
     as_vector_map,
     catchments,
     curve,
@@ -30,9 +31,8 @@ from ._common import (
     rule_suffix,
     success_set,
     trajectory_set,
-    LABEL,
-    RULES,
 )
+from ._images_common import preview
 
 TITLE = "DELV vs predictive image matching, no compass (Figs 4.9-4.11)"
 COST = 90  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first

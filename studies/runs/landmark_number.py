@@ -7,8 +7,8 @@ shape: one compiled program), vector maps and error curves; image matching on th
 
 from __future__ import annotations
 
-from delvjax.plots import error_curve_figure
 from delvjax.envs import random_env
+from delvjax.plots import error_curve_figure
 
 from ._common import PAD, curve, curve_means, curve_number, curves_rows, map_numbers, panel_figure, vector_map
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from delvjax.envs import env_to_dict
 from delvjax.gradients import optimise_layout
 from delvjax.plots import layout_figure
-from delvjax.envs import env_to_dict
 
 from ._common import env
 

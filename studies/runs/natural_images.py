@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from delvjax.core.images.rollouts import OUTCOMES
 from delvjax.images import database_catchment, database_rollouts
 from delvjax.images._evaluate import catchment_numbers
-from delvjax.core.images.rollouts import OUTCOMES
 from delvjax.plots import paths_figure
 
 from ._images_common import LABEL, database, image_map, numbers, preview

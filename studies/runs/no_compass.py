@@ -8,9 +8,10 @@ rules and the physical ones. The vector maps are the catchments' own first direc
 from __future__ import annotations
 
 from delvjax.plots import error_curve_figure
-from .. import thesis
 
+from .. import thesis
 from ._common import (
+    RULES_NOTE,
     as_vector_map,
     catchment_columns,
     catchment_figure,
@@ -21,7 +22,6 @@ from ._common import (
     env,
     map_numbers,
     panel_figure,
-    RULES_NOTE,
 )
 
 TITLE = "DELV without a compass, environments 1-3 (Figs 4.2-4.5)"

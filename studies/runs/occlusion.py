@@ -16,18 +16,18 @@ matching runs on the same masks (`_gap_matching`: what it changes in Tables 5.1-
 from __future__ import annotations
 
 import jax
-from delvjax.plots import catchment_panel, subplots
-from delvjax.plots import CATCHMENT_SQUARE as SQUARE
-from delvjax.plots import HOMING_ARROW as ARROW
 import numpy as np
+from matplotlib.lines import Line2D
+from matplotlib.patches import Circle, Patch
 
 from delvjax.core import rollouts
 from delvjax.core.sensor import Sensor
 from delvjax.options._registry import program
-from matplotlib.lines import Line2D
-from matplotlib.patches import Circle, Patch
-from .. import thesis
+from delvjax.plots import CATCHMENT_SQUARE as SQUARE
+from delvjax.plots import HOMING_ARROW as ARROW
+from delvjax.plots import catchment_panel, subplots
 
+from .. import thesis
 from . import _gap_matching as gap_matching
 from ._common import HOME_RADIUS, LABEL, PROGRAM, RULES, as_vector_map, env, every_rule, panel_figure
 from ._occlusion_layouts import (

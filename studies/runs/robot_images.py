@@ -14,12 +14,12 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from delvjax.images import database_catchment, image_world
-from delvjax.images._evaluate import catchment_numbers, perceived
 from delvjax.core.images import Camera, Catadioptric, donut, rgb_to_hsv, segment, unwrap
 from delvjax.core.methods import DELV
+from delvjax.images import database_catchment, image_world
 from delvjax.images._disk import file_columns
-from delvjax.plots import error_curve_figure, subplots, database_map_figure, pipeline_figure
+from delvjax.images._evaluate import catchment_numbers, perceived
+from delvjax.plots import database_map_figure, error_curve_figure, pipeline_figure, subplots
 
 from ._common import curves_rows
 from ._images_common import LABEL, ROBOT_SCALE, curve, database, ideal_map, image_map, numbers, preview

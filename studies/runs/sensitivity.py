@@ -14,17 +14,17 @@ import argparse
 
 import numpy as np
 
-from delvjax.evaluate._vector_map import resolve_headings
+from delvjax.cli._main import main as cli
 from delvjax.core import maps
 from delvjax.core.sensitivity import bearing_noise_gain
 from delvjax.core.sensor import Sensor
-from delvjax.plots import draw_env, subplots, landmark_figure, parameter_figure
+from delvjax.evaluate._vector_map import resolve_headings
+from delvjax.gradients import sensitivity
 from delvjax.options import METHODS as REGISTRY
 from delvjax.options._registry import program
-from delvjax.gradients import sensitivity
+from delvjax.plots import draw_env, landmark_figure, parameter_figure, subplots
 
 from ._common import env
-from delvjax.cli._main import main as cli
 
 TITLE = "Sensitivity of homing loss: landmarks, d and noise (gradients; beyond the thesis)"
 COST = 60  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first

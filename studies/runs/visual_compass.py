@@ -16,16 +16,16 @@ from __future__ import annotations
 
 import jax
 import jax.numpy as jnp
-from delvjax.plots import subplots
 import numpy as np
 
 from delvjax.core import rollouts
 from delvjax.core.maps import grid_points
 from delvjax.core.methods.heading import visual_compass_errors
 from delvjax.options._settings import make_sensor
-from .. import thesis
+from delvjax.plots import subplots
 
-from ._common import as_vector_map, catchment, catchments, env, map_numbers, outcome_counts, rule_suffix, LABEL
+from .. import thesis
+from ._common import LABEL, as_vector_map, catchment, catchments, env, map_numbers, outcome_counts, rule_suffix
 
 TITLE = "The visual compass and compass noise (Figs 5.11-5.12)"
 COST = 50  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first

@@ -10,10 +10,12 @@ says how much of the gap is heading estimation (claim "compass_slightly_smaller_
 from __future__ import annotations
 
 import numpy as np
-from delvjax.plots import error_curve_figure
-from .. import thesis
 
+from delvjax.plots import error_curve_figure
+
+from .. import thesis
 from ._common import (
+    RULES_NOTE,
     as_vector_map,
     catchment_columns,
     catchment_figure,
@@ -25,7 +27,6 @@ from ._common import (
     map_numbers,
     panel_figure,
     vector_map,
-    RULES_NOTE,
 )
 
 TITLE = "DELV with a compass, environments 1-3 (Figs 5.2-5.5)"

@@ -8,8 +8,8 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from delvjax.options import _registry as registry
 from delvjax.core import rollouts
+from delvjax.options import _registry as registry
 from delvjax.options._settings import make_sensor
 
 ARENA = [0.0, 0.0, 1000.0, 1000.0]

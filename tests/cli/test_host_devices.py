@@ -11,7 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from delvjax.cli._entry import DEVICE_FLAG, DEVICES_ENV, EVERY_CORE, host_devices, main as entry, split_command
+from delvjax.cli._entry import DEVICE_FLAG, DEVICES_ENV, EVERY_CORE, host_devices, split_command
+from delvjax.cli._entry import main as entry
 
 CORES = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
 

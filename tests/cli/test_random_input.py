@@ -11,11 +11,11 @@ from pathlib import Path
 from hypothesis import event, given, settings
 from hypothesis import strategies as st
 
+from delvjax import InputError
+from delvjax.cli._main import main
+from delvjax.evaluate._vector_map import map_request
 from tests import hints_unchecked
 from tests.cases.strategies import FAST, JUNK
-from delvjax import InputError
-from delvjax.evaluate._vector_map import map_request
-from delvjax.cli._main import main
 
 NUM_BAD, INT_BAD = ["0", "-1", "nan", "inf", "abc", "1e400"], ["0", "-2", "1.5", "abc", "99999999999"]
 SCENE = {  # option: (good values, bad values); the one good method, alv, reads no image and has no DELV/warping settings

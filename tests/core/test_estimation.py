@@ -9,10 +9,10 @@ import pytest
 
 import delvjax
 from delvjax.core.estimation import current_vectors, end_distances, quantize, reference_vectors, start_distances
-from delvjax.options._registry import METHODS
 from delvjax.core.methods import DELV
 from delvjax.core.methods.delv import delv_direction, match_arrangement
 from delvjax.core.sensing import Snapshot, UnitMove
+from delvjax.options._registry import METHODS
 from tests.cases.compiled import call, compiled
 from tests.conftest import random_landmarks
 

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 import delvjax
-from delvjax.core.sensor import Sensor
 from delvjax.core.maps import homing_directions, stream_keys
-from delvjax.options._registry import METHODS
 from delvjax.core.metrics import angular_error_deg, error_class, error_curve, error_point_rates, t_interval
 from delvjax.core.sensing import record_home, unit_move
+from delvjax.core.sensor import Sensor
+from delvjax.options._registry import METHODS
 
 
 @pytest.mark.parametrize("method", ["delv", "acv"])

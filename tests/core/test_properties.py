@@ -16,10 +16,10 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import delvjax
-from tests import hints_unchecked
-from tests.cases.strategies import FAST, JUNK
 from delvjax import InputError
 from delvjax.envs._presets import env_from_dict, load_env
+from tests import hints_unchecked
+from tests.cases.strategies import FAST, JUNK
 
 PAD = 12
 GRIDS = [(1, 12), (2, 6), (3, 4), (4, 3), (6, 2), (12, 1)]  # nx * ny = 12 grid points: one shape

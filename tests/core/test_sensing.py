@@ -7,11 +7,11 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from tests.twins import methods as ref
-from delvjax.core.sensor import Sensor
 from delvjax.core.methods.heading import visual_compass
 from delvjax.core.sensing import extract_blobs, render
+from delvjax.core.sensor import Sensor
 from tests.cases.compiled import compiled
+from tests.twins import methods as ref
 
 
 @compiled

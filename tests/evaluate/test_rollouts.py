@@ -10,13 +10,12 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from tests.cases.rollouts import ARENA, DEFAULT, FOUR, HOME, PHYSICAL, run
-
 import delvjax
 from delvjax.cli._main import main
 from delvjax.core.errors import InputError
 from delvjax.core.maps import grid_included, grid_points
 from delvjax.envs._presets import make_env
+from tests.cases.rollouts import ARENA, DEFAULT, FOUR, HOME, PHYSICAL, run
 
 
 def write_env(path, landmarks):

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from delvjax.cli._main import main
-from delvjax.gradients._layout import HOME_GAP_CM, optimise_layout, start_layout
 from delvjax.envs._presets import load_env
+from delvjax.gradients._layout import HOME_GAP_CM, optimise_layout, start_layout
 
 
 def test_an_optimised_layout_beats_its_start_on_the_hard_metrics():

@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 
 import delvjax
-from delvjax.evaluate._vector_map import scene_request
 from delvjax.core.errors import InputError
 from delvjax.core.kernel import map_poses
 from delvjax.core.maps import grid_included, grid_points, stream_keys
@@ -20,6 +19,7 @@ from delvjax.core.sensing import blob_runs, render
 from delvjax.core.soft.methods import soft_direction
 from delvjax.core.soft.sensing import analytic_blobs, as_unit_move, soft_home, soft_observe
 from delvjax.envs._presets import load_env, random_env
+from delvjax.evaluate._vector_map import scene_request
 from delvjax.studies.runs._common import PAD
 from tests.cases.compiled import call, compiled
 from tests.cases.reproduce import TINY

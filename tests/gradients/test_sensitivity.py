@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 import delvjax
-from delvjax.core.sensor import Sensor
 from delvjax.core.maps import stream_keys
-from delvjax.options._registry import METHODS
 from delvjax.core.sensing import record_home, unit_move
 from delvjax.core.sensitivity import _perturbed, bearing_jacobian, bearing_noise_gain
+from delvjax.core.sensor import Sensor
+from delvjax.options._registry import METHODS
 from delvjax.studies.runs.sensitivity import GAIN_PROGRAM, gain_method
 from tests.cases.compiled import call, compiled
 

@@ -9,9 +9,9 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from delvjax.gradients._loss import loss_problem
 from delvjax.cli._main import main
 from delvjax.core.soft.traps import KINDS, classify, field_zeros
+from delvjax.gradients._loss import loss_problem
 from delvjax.gradients._traps import failed_rollouts, find_traps
 
 

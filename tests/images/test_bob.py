@@ -15,8 +15,7 @@ import numpy as np
 import pytest
 
 from delvjax.cli._main import main
-from delvjax.images import load_database
-from delvjax.images import database_catchment, database_vector_map, import_database
+from delvjax.images import database_catchment, database_vector_map, import_database, load_database
 from delvjax.images._load import DatabaseWarning
 from delvjax.images._render import ImageSettings, camera, lit, render_images, render_rings
 from delvjax.images._worlds import image_world

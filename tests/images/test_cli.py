@@ -10,9 +10,7 @@ import math
 import pytest
 
 from delvjax.cli._main import main
-
-from tests.cases.images_io import at, error_line, no_leftovers, entries, read_csv, summary_numbers, write_plain
-
+from tests.cases.images_io import at, entries, error_line, no_leftovers, read_csv, summary_numbers, write_plain
 
 # --- vector-map / catchment --images options ---------------------------------------------------------
 

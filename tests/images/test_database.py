@@ -4,29 +4,33 @@ rollouts (twins/image_db.py)."""
 
 from __future__ import annotations
 
-
 import equinox as eqx
 import jax
 import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from tests.twins.sensing import wrap
-from delvjax.evaluate import _vector_map as api
-from delvjax.images import LoadedDatabase, database_vector_map, import_database, render_in_memory
-from delvjax.images import _evaluate, rendered_database
-from delvjax.images._render import ImageSettings, render_rings, world_grid
 from delvjax.core.images.database import home_plan, move_plan
 from delvjax.core.images.rollouts import Field, nearest_snapshot_rollouts
 from delvjax.core.images.world import Camera
 from delvjax.core.sensing import Snapshot, UnitMove
 from delvjax.core.sensing import render as ring_render
 from delvjax.core.sensor import Sensor
-from delvjax.images._worlds import image_world
 from delvjax.envs._presets import make_env
+from delvjax.evaluate import _vector_map as api
+from delvjax.images import (
+    LoadedDatabase,
+    _evaluate,
+    database_vector_map,
+    import_database,
+    render_in_memory,
+    rendered_database,
+)
+from delvjax.images._render import ImageSettings, render_rings, world_grid
+from delvjax.images._worlds import image_world
 from delvjax.options._registry import get_method
-
 from tests.twins import image_db as ref_db
+from tests.twins.sensing import wrap
 
 call_method = eqx.filter_jit(lambda method, home, view: method(home, view))
 

@@ -12,29 +12,27 @@ import pytest
 import yaml
 from PIL import Image
 
-from delvjax.images import load_database
-from delvjax.images._render import ImageSettings, camera, lit, render_images, render_rings, world_grid
 from delvjax.cli._main import main
 from delvjax.core.images import Catadioptric
+from delvjax.images import load_database
 from delvjax.images._disk import ENTRIES, METADATA, POSITIONS, file_columns, read_index
-from delvjax.images._writer import BOB_COLUMNS, BOB_GRID_COLUMNS
+from delvjax.images._render import ImageSettings, camera, lit, render_images, render_rings, world_grid
 from delvjax.images._worlds import image_world
-
+from delvjax.images._writer import BOB_COLUMNS, BOB_GRID_COLUMNS
 from tests.cases.images_io import (
+    CYLINDERS,
+    HEADER,
+    SEED,
+    SMALL,
     at,
-    render_db,
+    by_position,
     entries,
-    write_plain,
     leaves_equal,
     read_csv,
-    by_position,
+    render_db,
     summary_numbers,
-    SMALL,
-    SEED,
-    HEADER,
-    CYLINDERS,
+    write_plain,
 )
-
 
 # --- the BoB layout --------------------------------------------------------------------------------
 

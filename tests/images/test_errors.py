@@ -11,12 +11,10 @@ from pathlib import Path
 import pytest
 from PIL import Image
 
-from delvjax.images import _writer as image_db
 from delvjax.cli._main import main
+from delvjax.images import _writer as image_db
 from delvjax.images._disk import ENTRIES, POSITIONS
-
-from tests.cases.images_io import writer_argv, error_line, no_leftovers, entries, read_csv, SMALL
-
+from tests.cases.images_io import SMALL, entries, error_line, no_leftovers, read_csv, writer_argv
 
 # --- reading errors: exit 2, one line naming the file, nothing at --out ----------------------------
 

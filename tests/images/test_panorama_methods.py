@@ -16,7 +16,6 @@ from delvjax.core.methods.minwarping import AUTHORS_GRID
 from delvjax.images import load_database, render_in_memory
 from delvjax.images._evaluate import database_vector_map
 from delvjax.images._render import ImageSettings
-
 from tests.cases.images_io import error_line, read_csv
 
 GRID36 = ["--mw-n-alpha", "36", "--mw-n-psi", "36"]  # small_db is 72 columns wide: a small grid that divides it

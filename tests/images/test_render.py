@@ -11,11 +11,11 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from tests.twins import images as ref
-from tests.twins.sensing import wrap
 from delvjax.core.images import pipeline, render
 from delvjax.core.images.world import Camera, Catadioptric, make_world
 from delvjax.images._worlds import image_world
+from tests.twins import images as ref
+from tests.twins.sensing import wrap
 
 RED = (0.8, 0.1, 0.1)
 panorama = eqx.filter_jit(render.panorama)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from delvjax.images import _render
-from delvjax.images._render import IMAGE_WIDTH, RENDER_BUDGET, ImageSettings, camera, rendered_chunks, render_sizes
+from delvjax.images._render import IMAGE_WIDTH, RENDER_BUDGET, ImageSettings, camera, render_sizes, rendered_chunks
 from delvjax.images._worlds import image_world
 
 

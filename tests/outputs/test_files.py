@@ -11,9 +11,9 @@ import tempfile
 import pytest
 
 from delvjax.cli import _main as cli
-from delvjax.outputs import _files as io
 from delvjax.cli._main import main
 from delvjax.core.errors import InputError
+from delvjax.outputs import _files as io
 from delvjax.outputs._files import output_set
 
 

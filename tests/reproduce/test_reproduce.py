@@ -18,13 +18,10 @@ from pathlib import Path
 
 import pytest
 
-from delvjax.reproduce import _run as reproduce
-
 import delvjax.studies as studies
+from delvjax.reproduce import _run as reproduce
 from delvjax.studies import claims, thesis
-
 from tests.cases.reproduce import MAY_BE_NAN, METHOD_OF_LABEL, PNG_MAGIC, TINY, VERDICTS, numbers_by_study, read_record
-
 
 # --- 1. every study at the tiny size --------------------------------------------------------
 

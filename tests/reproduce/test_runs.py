@@ -3,6 +3,7 @@ fixture `run` (tests/conftest.py) is one run of the studies per test session, co
 worker; tests that change the folder put it back to "every study current under TINY" before they end."""
 
 from __future__ import annotations
+
 import base64
 import json
 import os
@@ -13,15 +14,11 @@ import time
 
 import pytest
 
-from delvjax.reproduce import _run as reproduce
-from delvjax.cli._main import main
-
 import delvjax.studies as studies
+from delvjax.cli._main import main
+from delvjax.reproduce import _run as reproduce
 from delvjax.studies import claims, thesis
-
-
 from tests.cases.reproduce import PNG_MAGIC, TINY, VERDICTS, dot_files, numbers_by_study, read_record
-
 
 # --- 3. the report ---------------------------------------------------------------------------
 
@@ -55,8 +52,9 @@ def test_report_is_self_contained_with_claims_settings_versions(run):
     for claim in thesis.CLAIMS:
         assert claim["section"] in md
     # the settings and the versions
-    from delvjax import __version__
     import jax
+
+    from delvjax import __version__
 
     assert re.search(rf"<td>seed</td>\s*<td>{TINY.seed}</td>", html)
     assert re.search(r"<td>spacing</td>\s*<td>200(\.0+)?</td>", html)

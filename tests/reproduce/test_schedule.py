@@ -8,14 +8,12 @@ import time
 
 import pytest
 
-from delvjax.reproduce import _run as reproduce
+import delvjax.studies as studies
 from delvjax.cli._main import main
 from delvjax.core.errors import InputError
+from delvjax.reproduce import _run as reproduce
 from delvjax.reproduce._report import settings_section
 from delvjax.reproduce._study import Settings, versions
-
-import delvjax.studies as studies
-
 from tests.cases.reproduce import TINY, read_record
 
 CHEAP = ["environments", "step_distance", "landmark_number", "with_compass"]

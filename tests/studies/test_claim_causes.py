@@ -6,6 +6,8 @@ from __future__ import annotations
 
 from tests.cases.claims import (
     E3,
+    FALLING,
+    OURS_PHYSICAL,
     compass_err,
     flat,
     merge,
@@ -16,7 +18,6 @@ from tests.cases.claims import (
     success3,
     verdict,
 )
-from tests.cases.claims import FALLING, OURS_PHYSICAL
 
 
 def _flat(key: str, counts: dict) -> dict:

@@ -13,7 +13,6 @@ import pytest
 from tests.cases.claims import *  # noqa: F401,F403  (the builders of synthetic numbers)
 from tests.cases.claims import THESIS_TEXT, _combine, claims, thesis  # noqa: F401
 
-
 NESTED = {"landmark_number:nested": 1.0}  # layouts whose fewer landmarks are a subset of the more
 
 CASES = {

@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax.options import METHODS
 from delvjax.studies.runs import _gap_probe, causes_probe
 from delvjax.studies.runs._common import env
 from delvjax.studies.runs._ensemble_stats import SOURCE_LABEL, thesis_numbers
-from delvjax.options import METHODS
 from delvjax.studies.runs._gap_methods import ACV_AGENT, ACV_NEAREST, ALV_MEAN, register_variants, unregister_variants
 
 PROBE = _gap_probe.Probe("t", "a test cause", "a test hypothesis", ("env1",), k_max=2)

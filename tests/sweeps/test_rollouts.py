@@ -12,8 +12,8 @@ from delvjax.core.errors import InputError
 from delvjax.core.rollouts import catchment_summary, wilson_interval_pct
 from delvjax.core.rollouts.success import wilson_pct
 from delvjax.sweeps._examples import EXAMPLES
-from delvjax.sweeps._spec import KINDS, parse_sweep
 from delvjax.sweeps._run import run_sweep
+from delvjax.sweeps._spec import KINDS, parse_sweep
 
 CATCHMENT = """
 [sweep]

@@ -3,14 +3,13 @@
 
 from __future__ import annotations
 
-
 import numpy as np
 import pytest
 
 import delvjax
-from delvjax.sweeps import _run as sweeps
 from delvjax.cli._main import main
 from delvjax.core.errors import InputError
+from delvjax.sweeps import _run as sweeps
 from delvjax.sweeps._examples import EXAMPLE
 from delvjax.sweeps._kinds.base import shared_program
 from delvjax.sweeps._spec import parse_sweep

@@ -7,7 +7,6 @@ import numpy as np
 
 from tests.twins.sensing import TWO_PI
 
-
 # ----------------------------------------------------------------------------- docs/images.md §6
 WEST_SOUTH_EAST_NORTH = [(-1.0, 0.0), (0.0, -1.0), (1.0, 0.0), (0.0, 1.0)]
 

@@ -22,13 +22,12 @@ from jax.typing import ArrayLike
 
 from ..batching import fixed_width_map, item_width, local_mesh, over_devices
 from ..errors import InputError
-from ..geometry import wrap
+from ..estimation import reference_vectors
+from ..geometry import rotate, wrap
 from ..kernel import world_direction
 from ..methods.base import HomingMethod
 from ..metrics import angular_error_deg
 from ..sensing import Snapshot, UnitMove, sort_blobs
-from ..estimation import reference_vectors
-from ..geometry import rotate
 
 # the agent moved east, north, west, south: the start is one spacing west, south, east, north
 MOVES = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]], np.float32)

@@ -7,7 +7,6 @@ Written for ONE image; callers `vmap` it.
 from __future__ import annotations
 
 import dataclasses
-
 import math
 
 import equinox as eqx

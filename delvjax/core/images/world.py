@@ -13,7 +13,6 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
-
 RED = (0.80, 0.10, 0.10)  # the landmarks of the robot world and of every docs/model.md environment
 
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import jax.numpy as jnp
 from jax import Array
 
-from ..search import first_argmin
 from ..geometry import angle_of, safe_norm, unit, wrap
+from ..search import first_argmin
 from ..sensing import UnitMove, sort_blobs
 from .base import HomingMethod
 from .heading import Compass, HeadingSource

@@ -17,9 +17,9 @@ from typing import Protocol, runtime_checkable
 
 import equinox as eqx
 from jax import Array
-from ..types import Direction
 
 from ..sensing import UnitMove
+from ..types import Direction
 
 
 @runtime_checkable

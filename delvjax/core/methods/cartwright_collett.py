@@ -28,14 +28,13 @@ from __future__ import annotations
 import jax.numpy as jnp
 from jax import Array
 
+from ..geometry import angle_of, safe_norm, unit, wrap
+from ..search import first_argmin
 from ..sensing import UnitMove
 from ..settings import setting
 from ..types import BlobFlags, Blobs, Flag, Point
 from .base import HomingMethod
 from .heading import Compass, HeadingSource
-
-from ..geometry import angle_of, safe_norm, unit, wrap
-from ..search import first_argmin
 
 
 def cc_home_vector(

@@ -10,22 +10,21 @@ import jax.numpy as jnp
 from jax import Array
 
 from ..errors import InputError
-from ..estimation import TIE_RAD
-from ..estimation import DistanceSettings, current_vectors, reference_vectors
-from ..search import first_argmin
-from ..settings import setting
+from ..estimation import TIE_RAD, DistanceSettings, current_vectors, reference_vectors
 from ..geometry import TWO_PI, angle_of, rotate, safe_norm, wrap
+from ..search import first_argmin
 from ..sensing import UnitMove
+from ..settings import setting
 from ..types import (
-    Blobs,
     BlobFlags,
+    Blobs,
     BlobVectors,
     CurrentFlags,
     CurrentVectors,
     Direction,
     Hypotheses,
-    Pairing,
     Move,
+    Pairing,
     PairingFlags,
     Point,
     Real,
@@ -36,7 +35,6 @@ from .base import HomingMethod
 from .heading import HeadingSource
 from .pairing import shift_pairs
 from .rotations import MIN_SLOTS, best_rotated
-
 
 ORDERS = ("home", "agent")  # docs/model.md §3.3: the frame in which the current landmark list is sorted
 

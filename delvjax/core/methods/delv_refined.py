@@ -14,7 +14,6 @@ heading is refined too: the landmarks then correct a noisy compass reading.
 
 from __future__ import annotations
 
-
 import equinox as eqx
 import jax.numpy as jnp
 from jax import Array

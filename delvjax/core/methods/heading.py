@@ -13,13 +13,13 @@ import equinox as eqx
 import jax
 import jax.numpy as jnp
 from jax import Array
-from ..types import Move, PerPoint, Scalar
 
 from ..geometry import TWO_PI, wrap
 from ..scene import Env
 from ..search import first_argmin
 from ..sensing import render
 from ..sensor import Sensor
+from ..types import Move, PerPoint, Scalar
 
 
 def visual_compass(home_gray: Array, view_gray: Array) -> Array:

@@ -32,9 +32,9 @@ from jax import Array
 from ..geometry import TWO_PI, angle_of, safe_norm, wrap
 from ..sensing import UnitMove
 from ..settings import setting
+from ..types import Real
 from .base import HomingMethod
 from .heading import Compass, HeadingSource
-from ..types import Real
 
 
 def sample_ring(image: Array, angle: Array) -> Array:

@@ -30,13 +30,12 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
-from ..types import Arrays
-
 from ..errors import InputError
 from ..geometry import TWO_PI, wrap
 from ..search import first_argmin
 from ..sensing import UnitMove
 from ..settings import declared, setting
+from ..types import Arrays
 from . import scale_planes as sp
 from . import warping_search as ws
 from .base import HomingMethod

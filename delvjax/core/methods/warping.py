@@ -40,8 +40,8 @@ from jax import Array
 from ..errors import InputError
 from ..geometry import TWO_PI, wrap
 from ..search import first_argmin
-from ..settings import setting
 from ..sensing import UnitMove
+from ..settings import setting
 from .base import HomingMethod
 
 WORD_BITS = 32

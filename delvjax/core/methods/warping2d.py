@@ -21,17 +21,16 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
-from ..types import Arrays
-
 from ..errors import InputError
 from ..geometry import TWO_PI, wrap
 from ..search import first_argmin
 from ..sensing import UnitMove
 from ..settings import setting
+from ..types import Arrays
 from . import scale_planes as sp
 from . import warping_search as ws
 from .base import HomingMethod
-from .minwarping import panorama_of, check_grid, panorama_setting, quantised
+from .minwarping import check_grid, panorama_of, panorama_setting, quantised
 
 
 @functools.lru_cache(maxsize=16)

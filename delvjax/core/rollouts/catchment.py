@@ -19,15 +19,25 @@ from ..methods.base import HomingMethod
 from ..metrics import RATES, angular_error_deg, error_point_rates
 from ..scene import Env
 from ..sensor import Sensor
-from ..types import GridFlag, GridFloat, GridPoints, MaskGridFlag, MaskGridFloat, MaskGridInt, MaskGridPoints, Masks
+from ..types import (
+    GridFlag,
+    GridFloat,
+    GridPoints,
+    MaskGridFlag,
+    MaskGridFloat,
+    MaskGridInt,
+    MaskGridPoints,
+    Masks,
+    Real,
+)
 from .rules import (
     DEFAULT_FIRST_MOVE,
     DEFAULT_LANES,
     EXCLUDED,
-    NEAR_WALL,
-    NO_CONTACT,
     HOME_RADIUS,
     MAX_STEPS,
+    NEAR_WALL,
+    NO_CONTACT,
     OUTCOMES,
     SUCCESS,
     Outcomes,
@@ -36,7 +46,6 @@ from .rules import (
     rule_columns,
 )
 from .trials import MASK_ROWS, TRIAL_BLOCK, run_trials
-from ..types import Real
 
 
 def occlusion_masks(env: Env, k: int) -> tuple[np.ndarray, list[tuple[int, ...]]]:

@@ -21,8 +21,8 @@ import jax
 import jax.numpy as jnp
 from jax import Array
 
-from .rules import LANDMARK, NO_CONTACT, RUNNING, position_status
 from ..batching import fixed_width_map, item_width, padded
+from .rules import LANDMARK, NO_CONTACT, RUNNING, position_status
 from .step import Rollout
 
 

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from functools import partial
 from collections.abc import Sequence
+from functools import partial
 
 import equinox as eqx
 import jax
@@ -17,7 +17,7 @@ from ..maps import CLEARANCE
 from ..methods.base import HomingMethod
 from ..scene import Env
 from ..sensor import Sensor
-from ..types import BinTrialFlag, BinTrialFloat, BinTrialInt, BinTrialPoints, Bins
+from ..types import Bins, BinTrialFlag, BinTrialFloat, BinTrialInt, BinTrialPoints, Real
 from .release import release_points
 from .rules import (
     DEFAULT_DISTANCES,
@@ -36,8 +36,6 @@ from .rules import (
     rule_columns,
 )
 from .trials import run_trials
-from ..types import Real
-
 
 RELEASE_BUCKETS = 1024  # trials a distance up to which the release draws run in shape buckets (memory: 9 bins
 # of 16384 trials would hold 0.9 GB of candidates at once, against 0.5 GB for 5000)

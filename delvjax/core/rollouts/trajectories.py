@@ -10,10 +10,9 @@ from jax import Array
 from ..methods.base import HomingMethod
 from ..scene import Env
 from ..sensor import Sensor
-from ..types import Paths, PerTrial, PerTrialInt, TrialPoints
+from ..types import Paths, PerTrial, PerTrialInt, Real, TrialPoints
 from .rules import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes, outcome_names, rule_columns
 from .trials import run_trials
-from ..types import Real
 
 
 class Trajectories(Outcomes):

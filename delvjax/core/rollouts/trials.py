@@ -8,27 +8,25 @@ block. Each trial keeps its own noise streams, so the numbers do not depend on t
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable
 
 import equinox as eqx
 import jax
 import numpy as np
-from collections.abc import Callable
-
 from jax import Array
 
+from ..batching import WIDTH, local_mesh, n_devices, over_devices, pad_rows
+from ..batching import padded as padded_width
 from ..errors import InputError
 from ..maps import stream_keys
 from ..methods.base import HomingMethod
 from ..scene import Env
 from ..sensing import UnitMove, record_home
 from ..sensor import Sensor
-from ..types import Masks, PerTrial, PerTrialFlag, PerTrialInt, TrialPoints
-from ..batching import WIDTH, local_mesh, n_devices, over_devices, pad_rows
-from ..batching import padded as padded_width
+from ..types import Masks, PerTrial, PerTrialFlag, PerTrialInt, Real, TrialPoints
 from .lanes import run_block
 from .rules import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes, check_rules, rollout_keys
 from .step import Rollout
-from ..types import Real
 
 TRIAL_BLOCK = 16384
 MASK_ROWS = 64  # visibility masks are padded to this many rows (all k of 6 landmarks: 42; one program)

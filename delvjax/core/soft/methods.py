@@ -24,8 +24,6 @@ import jax
 import jax.numpy as jnp
 from jax import Array
 
-from ..types import Real
-
 from ..errors import InputError
 from ..estimation import SIN_EPS, quantize
 from ..geometry import angle_of, rotate, safe_norm, unit, wrap
@@ -35,6 +33,7 @@ from ..methods.base import HomingMethod
 from ..methods.delv import DELV
 from ..methods.heading import Compass
 from ..methods.pairing import shift_pairs
+from ..types import Real
 from .sensing import SoftMove, _sorted
 
 DIFFERENTIABLE = (DELV, ALV, ACV)  # exactly these classes, with no heading source or a `Compass`

@@ -19,10 +19,9 @@ field flips.
 
 from __future__ import annotations
 
-
+import equinox as eqx
 import jax
 import jax.numpy as jnp
-import equinox as eqx
 from jax import Array
 
 from ..geometry import TWO_PI, rotate

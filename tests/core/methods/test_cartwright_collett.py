@@ -11,10 +11,9 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from tests.twins.cc import cc_home_vector_ref, wrap
-
 from delvjax.core.methods.cartwright_collett import cc_home_vector
 from tests.cases.compiled import compiled
+from tests.twins.cc import cc_home_vector_ref, wrap
 
 TWO_PI = 2.0 * math.pi
 B = 6

@@ -12,10 +12,9 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from tests.twins import gap as reference_gap
-
 from delvjax.core.methods.delv import match_arrangement
 from delvjax.core.methods.delv_gap import _hypotheses, _search, match_arrangement_gapped
+from tests.twins import gap as reference_gap
 
 B = 6
 ALPHAS64 = np.asarray(2 * np.pi * np.arange(360, dtype=np.float32) / 360, dtype=np.float32).astype(np.float64)

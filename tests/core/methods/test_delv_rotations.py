@@ -12,12 +12,11 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from tests.twins import methods as twin
-
 from delvjax.core.geometry import TWO_PI
 from delvjax.core.methods import delv
 from delvjax.core.methods.pairing import shift_pairs
 from delvjax.core.methods.rotations import MIN_SLOTS, best_rotated, rotation_table
+from tests.twins import methods as twin
 
 ALPHAS = TWO_PI * jnp.arange(360, dtype=jnp.float32) / 360
 

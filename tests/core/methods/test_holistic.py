@@ -15,19 +15,18 @@ import numpy as np
 import pytest
 
 import delvjax
-from tests.twins import holistic as rh
-from tests.conftest import random_landmarks
 from delvjax.cli import _main as cli
 from delvjax.core import maps
-from delvjax.core.methods import MFDID, Warping
-from delvjax.core.sensor import Sensor
 from delvjax.core.errors import InputError
+from delvjax.core.methods import MFDID, Warping, mfdid, warping
 from delvjax.core.metrics import angular_error_deg
-from delvjax.core.methods import mfdid, warping
 from delvjax.core.sensing import render
+from delvjax.core.sensor import Sensor
+from tests.cases.compiled import call, compiled
+from tests.conftest import random_landmarks
+from tests.twins import holistic as rh
 from tests.twins.methods import render as ref_render
 from tests.twins.methods import wrap
-from tests.cases.compiled import call, compiled
 
 KEY = jax.random.PRNGKey(0)
 

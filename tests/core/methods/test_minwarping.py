@@ -18,8 +18,8 @@ from delvjax.core.methods import warping_search as ws
 from delvjax.core.methods.minwarping import MinWarping, MinWarpingCompass
 from delvjax.core.methods.warping2d import Warping2D
 from delvjax.core.sensing import Snapshot, UnitMove
-from tests.twins import minwarping as tw
 from tests.cases.compiled import call, compiled
+from tests.twins import minwarping as tw
 
 W, H, N = 96, 12, 32  # a small panorama and hypothesis grid: the twin loops over every entry
 ELEV = np.radians(30.0 - 60.0 / H * (np.arange(H) + 0.5))

@@ -12,17 +12,17 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 import pytest
-from tests.twins.cc import cc_home_vector_ref
 
 import delvjax
-from delvjax import DELV, DELVGap, Compass, Sensor
+from delvjax import DELV, Compass, DELVGap, Sensor
 from delvjax.core import maps
 from delvjax.core.errors import InputError
-from delvjax.core.sensing import blob_runs, record_home, render, unit_move
-from delvjax.options._settings import make_setup
-from delvjax.options._registry import METHODS, configure, program
 from delvjax.core.kernel import direction_from, map_poses
+from delvjax.core.sensing import blob_runs, record_home, render, unit_move
+from delvjax.options._registry import METHODS, configure, program
+from delvjax.options._settings import make_setup
 from tests.cases.compiled import call, compiled
+from tests.twins.cc import cc_home_vector_ref
 
 record_home, unit_move = compiled(record_home), compiled(unit_move)
 

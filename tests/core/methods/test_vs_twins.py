@@ -14,11 +14,11 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from tests.twins import methods as ref
-from delvjax.core.sensor import Sensor
 from delvjax.core.maps import grid_included, grid_points, homing_directions, random_headings
 from delvjax.core.scene import stack_envs
+from delvjax.core.sensor import Sensor
 from delvjax.options._registry import METHODS, configure, program
+from tests.twins import methods as ref
 
 # points checked per environment against the (slow, readable) twin
 SUBSET = {"delv": 12, "delv-compass": 8, "alv": 8, "acv": 8, "delv-visual": 4, "alv-visual": 3, "acv-visual": 3}

@@ -9,8 +9,8 @@ import pytest
 
 import delvjax
 from delvjax.core import rollouts
-from delvjax.options._registry import get_method
 from delvjax.core.tables import catchment_columns
+from delvjax.options._registry import get_method
 from tests.cases.rollouts import run
 
 STARTS = np.array([[200.0, 300.0], [700.0, 800.0], [850.0, 250.0]], np.float32)

@@ -19,7 +19,13 @@ import jax
 import numpy as np
 import pytest
 
-from tests.twins.rollouts import HomeRecord, reference_rollout, release_direction
+import delvjax
+import delvjax.core.rollouts.trials
+from delvjax.core import rollouts
+from delvjax.core.errors import InputError
+from delvjax.core.maps import grid_points, random_headings
+from delvjax.envs._presets import make_env
+from delvjax.options._settings import make_sensor
 from tests.cases.rollouts import (
     ARENA,
     DEFAULT,
@@ -32,14 +38,7 @@ from tests.cases.rollouts import (
     random_landmarks,
     run,
 )
-
-import delvjax
-from delvjax.core import rollouts
-import delvjax.core.rollouts.trials
-from delvjax.core.errors import InputError
-from delvjax.core.maps import grid_points, random_headings
-from delvjax.options._settings import make_sensor
-from delvjax.envs._presets import make_env
+from tests.twins.rollouts import HomeRecord, reference_rollout, release_direction
 
 # --- analytic -------------------------------------------------------------------------------
 
