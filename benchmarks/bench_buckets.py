@@ -18,6 +18,8 @@ import argparse
 import os
 import time
 
+from delvjax import Grid
+
 os.environ["DELVJAX_CACHE_DIR"] = ""  # before delvjax: no persistent cache, every compile is real
 
 import jax
@@ -89,7 +91,7 @@ def main() -> None:
     vm = []
     for spacing in a.spacings:
         n = maps.grid_points(env.arena, spacing).shape[0]
-        m = measured(lambda s=spacing: delvjax.vector_map(a.env, method=a.method, spacing=s).error_deg)
+        m = measured(lambda s=spacing: delvjax.vector_map(a.env, method=a.method, grid=Grid(spacing=s)).error_deg)
         row(f"vector_map spacing {spacing:g}", n, padded(n, maps.DEFAULT_BATCH), m)
         vm.append(m)
     sr = []

@@ -43,9 +43,9 @@ jax.monitoring.register_event_duration_secs_listener(lambda e, d, **k: log.__set
 spacing = 100 if smoke else 10
 def call(seed):
     if work == "map":
-        return delvjax.vector_map("env1", method="alv" if smoke else "delv", spacing=spacing, seed=seed).error_deg
+        return delvjax.vector_map("env1", "alv" if smoke else "delv", grid=delvjax.Grid(spacing=spacing), seed=seed).error_deg
     if work == "catchment":
-        return delvjax.catchment("env1", method="alv", spacing=100 if smoke else 25, seed=seed).outcome
+        return delvjax.catchment("env1", "alv", grid=delvjax.Grid(spacing=100 if smoke else 25), seed=seed).outcome
     if work == "success":
         few = {"method": "alv", "trials": 3, "distances": [100.0]} if smoke else {"method": "delv", "trials": 100}
         return delvjax.success_rate("env1", seed=seed, **few).outcome

@@ -29,13 +29,13 @@ lms = np.stack([500.0 + r * np.cos(t), 500.0 + r * np.sin(t), np.full(n_lm, 5.0)
 env = Env(landmarks=lms, valid=np.ones(n_lm, bool), home=np.array([500.0, 500.0], np.float32),
           arena=np.array([0.0, 0.0, 1000.0, 1000.0], np.float32), name=f"ring{n_lm}")
 t0 = time.perf_counter()
-vm = delvjax.vector_map(env, method="delv", spacing=spacing, seed=0)
+vm = delvjax.vector_map(env, "delv", grid=delvjax.Grid(spacing=spacing), seed=0)
 jax.block_until_ready(vm.error_deg)
 first = time.perf_counter() - t0
 warm, cpu = [], []
 for seed in (1, 2, 3):
     t0, c0 = time.perf_counter(), time.process_time()
-    jax.block_until_ready(delvjax.vector_map(env, method="delv", spacing=spacing, seed=seed).error_deg)
+    jax.block_until_ready(delvjax.vector_map(env, "delv", grid=delvjax.Grid(spacing=spacing), seed=seed).error_deg)
     warm.append(time.perf_counter() - t0)
     cpu.append(time.process_time() - c0)
 print(json.dumps({"points": int(vm.points.shape[0]), "seconds": min(warm), "cpu": min(cpu), "compile": first - min(warm),

@@ -16,14 +16,15 @@ import time
 import numpy as np
 
 import delvjax
+from delvjax import Grid
 
 CORNER = [[800, 800, 30], [880, 690, 25], [690, 880, 20], [900, 900, 15]]
 
 
 def errors(env, method: str, spacing: float, **kw) -> tuple[np.ndarray, float]:
-    delvjax.vector_map(env, method, spacing=spacing, **kw)  # compile
+    delvjax.vector_map(env, method, grid=Grid(spacing=spacing), **kw)  # compile
     t = time.perf_counter()
-    vm = delvjax.vector_map(env, method, spacing=spacing, **kw)
+    vm = delvjax.vector_map(env, method, grid=Grid(spacing=spacing), **kw)
     return np.asarray(vm.error_deg)[np.asarray(vm.included)], time.perf_counter() - t
 
 

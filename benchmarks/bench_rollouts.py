@@ -24,6 +24,8 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from delvjax import Grid, Rules
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the repository root: tests.twins
 from delvjax.core import rollouts
 from delvjax.core.maps import grid_included, grid_points, random_headings
@@ -55,18 +57,27 @@ def bench_method(env, method, spacing, reps, lanes):
         pts, heads, cells, key = grid_trials(env, spacing, seed)
         n = pts.shape[0]
         return rollouts.run_trials(
-            env, pts, heads, cells, jnp.zeros(n, jnp.int32), env.valid[None], key, config, module, lanes=lanes
+            env,
+            pts,
+            heads,
+            cells,
+            jnp.zeros(n, jnp.int32),
+            env.valid[None],
+            key,
+            config,
+            module,
+            rules=Rules(lanes=lanes),
         )
 
     res, first = timed(rollouts_only, 0)
     warm = min(timed(rollouts_only, s)[1] for s in range(1, reps + 1))
-    _, first_full = timed(
-        rollouts.catchment_area, env, module, config, spacing, None, jax.random.PRNGKey(0), lanes=lanes
-    )
-    full = min(
-        timed(rollouts.catchment_area, env, module, config, spacing, None, jax.random.PRNGKey(s), lanes=lanes)[1]
-        for s in range(1, reps + 1)
-    )
+
+    def full_catchment(seed):
+        grid, rules = Grid(spacing=spacing), Rules(lanes=lanes)
+        return timed(rollouts.catchment_area, env, module, config, grid, rules, key=jax.random.PRNGKey(seed))
+
+    _, first_full = full_catchment(0)
+    full = min(full_catchment(s)[1] for s in range(1, reps + 1))
     steps = np.asarray(res.steps)
     print(
         f"{method:13s} rollouts: {steps.size} starts, {int(steps.sum())} moves (mean {steps.mean():.1f}, "
@@ -108,7 +119,7 @@ def bench_strategies(env, method, spacing):
 
         def run(lanes=lanes):
             return rollouts.run_trials(
-                env, pts, heads, cells, jnp.zeros(n, jnp.int32), masks, key, config, module, lanes=lanes
+                env, pts, heads, cells, jnp.zeros(n, jnp.int32), masks, key, config, module, rules=Rules(lanes=lanes)
             )
 
         timed(run)
@@ -131,7 +142,7 @@ def bench_strategies(env, method, spacing):
                     key,
                     config,
                     module,
-                    lanes=chunk,
+                    rules=Rules(lanes=chunk),
                 )
                 for i in range(0, n + pad, chunk)
             ]

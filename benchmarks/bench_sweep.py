@@ -73,7 +73,7 @@ def loop(first):
     call = delvjax.vector_map if kind == "vector-map" else delvjax.catchment
     for seed in range(first, first + seeds):
         for noise in levels:
-            out = call("env1", method=method, seed=seed, bearing_noise_deg=noise, spacing=spacing)
+            out = call("env1", method, seed=seed, bearing_noise_deg=noise, grid=delvjax.Grid(spacing=spacing))
             jax.block_until_ready(out.error_deg if kind == "vector-map" else out)
 run = sweep if side == "sweep" else loop
 times = []

@@ -9,12 +9,13 @@ a `VectorMap` of arrays, with `.to_dataframe()` (pandas) and `.to_xarray()` (a l
 from pathlib import Path
 
 import delvjax
+from delvjax import Grid
 from delvjax.plots import vector_map_figure
 
 out = Path("examples_out")
 out.mkdir(exist_ok=True)
 
-vm = delvjax.vector_map("env1", method="delv", spacing=50.0, seed=0)  # thesis defaults: d = 50 cm
+vm = delvjax.vector_map("env1", method="delv", seed=0, grid=Grid(spacing=50.0))  # thesis defaults: d = 50 cm
 numbers = delvjax.summarize_map(vm.error_deg, vm.valid, vm.included)
 print(
     f"{numbers['points']} points: e > 45° at {numbers['gt45_pct']:.1f} %, mean error {numbers['mean_error_deg']:.1f}°"

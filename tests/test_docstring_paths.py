@@ -49,7 +49,6 @@ FORMER = frozenset(
 )
 # (file, name) -> why it is left: names that look like modules but are not
 ALLOWED = {
-    ("delvjax/evaluate/_config.py", "config"): "the parameter `config`, not the delvjax/config.py of before",
     ("studies/runs/_common.py", "settings.trials"): "a study's settings object (`ctx.settings`), not core/settings.py",
     ("benchmarks/ab_vector_map.py", "delvjax.config.Config"): "the API of old revisions this A/B script also runs",
     ("tests/examples/test_examples.py", "examples/NAME.py"): "a placeholder",

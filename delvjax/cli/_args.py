@@ -12,7 +12,7 @@ from pathlib import Path
 
 from ..core.errors import InputError, warn  # noqa: F401 - warn: the commands import it from here
 from ..core.maps import CLEARANCE, SPACING
-from ..core.rollouts import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, check_rules
+from ..core.rollouts import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Grid, Rules
 from ..core.sensor import Noise, Sensor
 from ..evaluate._progress import Progress
 from ..options._limits import MAX_POINTS
@@ -178,18 +178,16 @@ def setting_values(args: argparse.Namespace) -> dict:
 
 
 def scene_kwargs(args: argparse.Namespace) -> dict:
+    if getattr(args, "unused_spacing", None) is not None:
+        raise InputError("--spacing", args.unused_spacing, f"is not used by {args.command} (it evaluates no grid)")
+    spacing = {"spacing": args.spacing} if hasattr(args, "spacing") else {}
     kw = dict(
         method=args.method,
-        clearance=args.clearance,
-        heading_deg=args.heading_deg,
+        grid=Grid(**spacing, clearance=args.clearance, heading_deg=args.heading_deg),
         seed=args.seed,
         hidden=args.hide,
         max_points=args.max_points,
     )
-    if getattr(args, "unused_spacing", None) is not None:
-        raise InputError("--spacing", args.unused_spacing, f"is not used by {args.command} (it evaluates no grid)")
-    if hasattr(args, "spacing"):
-        kw["spacing"] = args.spacing
     kw.update(setting_values(args))
     return kw
 
@@ -322,12 +320,15 @@ def add_rollout_args(p: argparse.ArgumentParser) -> None:
 
 
 def rollout_kwargs(args: argparse.Namespace, drop=()) -> dict:
-    """`scene_kwargs` plus the rollout options, validated (rules) before any work or progress line."""
+    """`scene_kwargs` plus the rollout `Rules`, validated before any work or progress line."""
     kw = scene_kwargs(args)
     for name in drop:
         kw.pop(name, None)
-    check_rules(args.first_move, args.collisions)
-    kw.update(
-        max_steps=args.max_steps, home_radius=args.home_radius, first_move=args.first_move, collisions=args.collisions
+    kw["rules"] = Rules(
+        max_steps=args.max_steps,
+        home_radius=args.home_radius,
+        first_move=args.first_move,
+        collisions=args.collisions,
+        lanes=args.lanes,
     )
     return kw

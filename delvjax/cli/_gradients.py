@@ -56,9 +56,9 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
     result = sensitivity(
         env,
         args.methods,
-        args.spacing,
-        args.seed,
-        args.tau,
+        spacing=args.spacing,
+        seed=args.seed,
+        tau=args.tau,
         progress=lambda m: progress(f"sensitivity of {m} on {env.name} ..."),
     )
     summary = {
@@ -171,11 +171,11 @@ def cmd_optimise_layout(args: argparse.Namespace) -> int:
         result = optimise_layout(
             env,
             args.method,
-            args.occlude,
-            args.spacing,
-            args.seed,
-            args.tau,
-            args.steps,
+            occlude=args.occlude,
+            spacing=args.spacing,
+            seed=args.seed,
+            tau=args.tau,
+            steps=args.steps,
             progress=lambda i, n, v: bar(1, n),
             announce=lambda: progress(
                 f"optimising the {env.n_landmarks} landmarks of {env.name} for {args.method} ..."

@@ -10,6 +10,7 @@ import time
 
 import numpy as np
 
+from ..core.checks import non_negative, positive_int
 from ..core.errors import InputError
 from ..core.images import Catadioptric
 from ..core.images.rollouts import OUTCOMES
@@ -22,7 +23,6 @@ from ..images._evaluate import catchment_numbers, database_catchment, database_v
 from ..images._import import import_database
 from ..images._load import load_database
 from ..images._render import ImageSettings, camera, check_render, render_database
-from ..options._checks import non_negative, positive_int
 from ..options._limits import MAX_POINTS
 from ..options._schema import extractor_options, method_options, sensor_options
 from ..options._settings import make_setup
@@ -332,7 +332,16 @@ def cmd_render_db(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     progress(f"rendering {iw.name} every {spacing:g} cm into {args.out} ...")
     with ProgressBar("img", args.chunk) as bar:
-        summary = render_database(args.env, args.out, spacing, settings, args.seed, args.chunk, args.max_points, bar)
+        summary = render_database(
+            args.env,
+            args.out,
+            spacing=spacing,
+            settings=settings,
+            seed=args.seed,
+            chunk=args.chunk,
+            max_points=args.max_points,
+            progress=bar,
+        )
     progress(f"{summary['images']} images in {time.perf_counter() - t0:.2f} s")
     print(wrote(args.out))
     return 0

@@ -10,6 +10,7 @@ import time
 
 import numpy as np
 
+from ..core.checks import occlusion_count
 from ..core.errors import InputError
 from ..core.rollouts import (
     DEFAULT_DISTANCES,
@@ -17,7 +18,6 @@ from ..core.rollouts import (
     TRIAL_BLOCK,
     TRIALS_PER_DISTANCE,
     catchment_summary,
-    check_rules,
 )
 from ..core.tables import (
     catchment_columns,
@@ -29,7 +29,6 @@ from ..core.tables import (
 )
 from ..evaluate import _rollouts as api_rollouts
 from ..evaluate import _vector_map as api
-from ..options._checks import occlusion_count
 from ..options._registry import get_method
 from ..options._settings import make_setup, option_names
 from ._args import (
@@ -96,7 +95,6 @@ def cmd_catchment(args: argparse.Namespace) -> int:
         return cmd_catchment_images(args)
     check_outputs(args)
     kw = rollout_kwargs(args, drop=())
-    kw["lanes"] = args.lanes
     if args.occlude is not None:
         if args.hide:
             raise InputError("--occlude", args.occlude, "cannot be combined with --hide")
@@ -177,7 +175,7 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
     methods = _methods(args.method)
     env = api.load_env(args.env)
     kw = rollout_kwargs(args, drop=("method",))
-    kw.update(lanes=args.lanes, trials=args.trials, distances=args.distances)
+    kw.update(trials=args.trials, distances=args.distances)
     _check_methods(methods, kw)
     tables, rows, trial_cols, timing = {}, [], [], {}
     for m in methods:  # one program per method (different methods are different programs)
@@ -194,7 +192,7 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
         progress(f"done in {timing[m]:.2f} s: {total[0]}/{total[1]} trials reach home")
         rows += success_rows(res, m)
         trial_cols.append(success_trial_columns(res, m))
-    rules = check_rules(args.first_move, args.collisions)
+    rules = kw["rules"].recorded
     from ..plots._rollouts import success_rate_figure  # matplotlib: loaded only when a figure is drawn
 
     summary = {
@@ -249,9 +247,9 @@ def cmd_trajectories(args: argparse.Namespace) -> int:
     methods = _methods(args.method)
     env = api.load_env(args.env)
     kw = rollout_kwargs(args, drop=("method",))
-    kw.update(starts=args.start, n_starts=N_STARTS if args.n_starts is None else args.n_starts, lanes=args.lanes)
+    kw.update(starts=args.start, n_starts=N_STARTS if args.n_starts is None else args.n_starts)
     results, cols = {}, []
-    summary = {"env": env.name, "rules": check_rules(args.first_move, args.collisions), "trials": {}}
+    summary = {"env": env.name, "rules": kw["rules"].recorded, "trials": {}}
     _check_methods(methods, kw)
     for m in methods:  # one program per method
         line = f"trajectories of {m} on {env.name} ...\n[delvjax] {compiling(methods.index(m) + 1, len(methods))} ..."

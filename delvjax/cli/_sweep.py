@@ -11,8 +11,8 @@ from pathlib import Path
 
 import jax
 
+from ..core.checks import positive
 from ..core.errors import InputError
-from ..options._checks import positive
 from ..options._limits import MAX_POINTS, duration
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_out_dir, check_output_path, output_set

@@ -11,6 +11,7 @@ import numpy as np
 from jax import Array
 from jax.typing import ArrayLike
 
+from .deprecation import keywords_after
 from .geometry import angle_of, wrap
 
 CLASS_EDGES_DEG = (45.0, 90.0)  # the one place of these thresholds: error classes and error point rates
@@ -165,11 +166,13 @@ def t_interval(values: np.ndarray, confidence: float = 0.95) -> tuple[float, flo
     return mean, half, n
 
 
+@keywords_after(4, ("bin_width", "confidence"))
 def error_curve(
     error_deg: ArrayLike,
     points: ArrayLike,
     home: ArrayLike,
     included: ArrayLike,
+    *,
     bin_width: float = 50.0,
     confidence: float = 0.95,
 ) -> list[dict[str, float]]:

@@ -1,8 +1,7 @@
 """Evaluating a method on an environment: vector maps and rollouts (catchment, success rate,
 trajectories; docs/model.md §5). The Python API the command line calls."""
 
-from ._config import Grid as Grid
-from ._config import Rules as Rules
+from ._progress import OnStart as OnStart
 from ._progress import Progress as Progress
 from ._rollouts import catchment as catchment
 from ._rollouts import success_rate as success_rate

@@ -32,6 +32,17 @@ class _Calls(Progress):
         self.fn(done, total)
 
 
+class OnStart(Progress):
+    """A `Progress` that calls `fn()` when the work begins and reports nothing else (what the deprecated
+    `announce=` keyword did)."""
+
+    def __init__(self, fn: Callable[[], None]):
+        self.fn = fn
+
+    def start(self, total: int | None, phase: str | None = None) -> None:
+        self.fn()
+
+
 def as_progress(progress: Progress | Callable[[int, int], None] | None) -> Progress:
     """`progress` as a `Progress`: itself, a plain `f(done, total)` wrapped, or a silent one for None."""
     if progress is None:

@@ -1,5 +1,6 @@
-"""The validated setup every rollout of the Python API shares (docs/model.md §5): the keywords and
-their config objects (`Grid`, `Rules`), the visibility masks, release distances and start points."""
+"""The validated setup every rollout of the Python API shares (docs/model.md §5): the config objects
+(`Grid`, `Rules`, or the deprecated flat keywords they replace), the visibility masks, release
+distances and start points."""
 
 from __future__ import annotations
 
@@ -11,104 +12,58 @@ import jax.numpy as jnp
 import numpy as np
 from jax import Array
 
+from ..core.checks import finite, is_traced, occlusion_count, positive, positive_int
+from ..core.deprecation import deprecated
 from ..core.errors import InputError
 from ..core.methods import HomingMethod
-from ..core.rollouts import (
-    ARENA,
-    DEFAULT_FIRST_MOVE,
-    DEFAULT_LANES,
-    LANDMARK,
-    check_rules,
-    hidden_masks,
-    occlusion_masks,
-    position_status,
-)
+from ..core.rollouts import ARENA, LANDMARK, Grid, Rules, hidden_masks, legacy_config, occlusion_masks, position_status
 from ..core.scene import Env
-from ..options._checks import finite, is_traced, occlusion_count, positive, positive_int
+from ..core.sensor import Sensor
 from ..options._limits import check_size
-from ._config import GRID_DEFAULTS, RULES_DEFAULTS, Grid, Rules, unpack
 from ._progress import Progress, as_progress
 from ._vector_map import Indices, Values, scene_request, visible_mask
 
 
 class RolloutSetup(NamedTuple):
-    """The validated keywords every rollout shares (`_rollout_options`)."""
+    """The validated setup every rollout shares (`rollout_setup`)."""
 
     env: Env
     method: HomingMethod
-    sensor: object
-    heading: float | None
+    sensor: Sensor
     key: Array
-    max_steps: int
-    home_radius: float
-    lanes: int
-    clearance: float
-    first_move: str
-    collisions: str
 
 
-def _rollout_options(
-    *,
-    env,
-    method,
-    max_steps,
-    home_radius,
-    clearance,
-    seed,
-    options,
-    lanes=DEFAULT_LANES,
-    heading_deg=None,
-    first_move=DEFAULT_FIRST_MOVE,
-    collisions="ignore",
-    program=None,
-    grid: Grid | None = None,
-    rules: Rules | None = None,
-    **_,
-) -> RolloutSetup:
-    """Validate the shared keywords before any work (`_vector_map.scene_request` plus the rollout limits and
-    rules), taking the grid's clearance and heading and the rules from `grid=` and `rules=` if given.
-    Each rollout function passes its own keywords, `_rollout_options(**locals())` on entry; the
-    keywords that are not shared (spacing, distances, starts, ...) are ignored here."""
-    clearance, heading_deg, max_steps, home_radius, first_move, collisions, lanes = _configured(
-        grid,
-        rules,
-        clearance=clearance,
-        heading_deg=heading_deg,
-        max_steps=max_steps,
-        home_radius=home_radius,
-        first_move=first_move,
-        collisions=collisions,
-        lanes=lanes,
+def configs(grid: Grid | None, rules: Rules | None, options: dict) -> tuple[Grid, Rules, Callable[[], None] | None]:
+    """(`Grid`, `Rules`, the deprecated `announce` callback) of a public rollout call: the objects given,
+    or ones built from the flat keywords of earlier releases in `options` (popped, each with a
+    `DeprecationWarning` that points at the caller; `core.rollouts.config.legacy_config`)."""
+    grid, rules = legacy_config(Grid, grid, options), legacy_config(Rules, rules, options)
+    announce = options.pop("announce", None)
+    if announce is not None:
+        deprecated(
+            "delvjax: the keyword announce is deprecated and will be removed in the next release: pass "
+            "progress=delvjax.evaluate.OnStart(announce) (evaluate/_progress.py)"
+        )
+    return grid, rules, announce
+
+
+def rollout_setup(env, method, grid: Grid, rules: Rules, seed: int, program, options: dict) -> RolloutSetup:
+    """Validate what every rollout shares before any work (`_vector_map.scene_request`: method, sensor,
+    environment, seed) and the success radius against the arena (the `Grid` and `Rules` checked their
+    own fields when they were built)."""
+    env, module, sensor, _, key, _ = scene_request(
+        env, method, grid.clearance, grid.heading_deg, seed, program, **options
     )
-    check_rules(first_move, collisions)
-    env, module, sensor, heading, key, clearance = scene_request(
-        env, method, clearance, heading_deg, seed, program, **options
-    )
-    max_steps = positive_int(max_steps, "max_steps")
-    home_radius = positive(home_radius, "home_radius")
     if not is_traced(env.arena) and not is_traced(env.home):
         arena, home = np.asarray(env.arena, np.float64), np.asarray(env.home, np.float64)
         farthest = float(np.max(np.hypot(arena[[0, 2]][:, None] - home[0], arena[[1, 3]][None, :] - home[1])))
-        if home_radius >= farthest:  # every release point would count as home: 100 % without a move
+        if rules.home_radius >= farthest:  # every release point would count as home: 100 % without a move
             raise InputError(
                 "home_radius",
-                home_radius,
+                rules.home_radius,
                 f"must be < {farthest:.4g} cm, home's distance to the arena's farthest corner",
             )
-    lanes = positive_int(lanes, "lanes")
-    return RolloutSetup(
-        env, module, sensor, heading, key, max_steps, home_radius, lanes, clearance, first_move, collisions
-    )
-
-
-def _configured(grid: Grid | None, rules: Rules | None, **given) -> tuple:
-    """The values of the grid and rule keywords `given` (in their order), from `grid=` and `rules=`
-    where those are given (evaluate/_config.py)."""
-    values = {
-        **unpack(grid, Grid, {k: v for k, v in given.items() if k in GRID_DEFAULTS}, GRID_DEFAULTS),
-        **unpack(rules, Rules, {k: v for k, v in given.items() if k in RULES_DEFAULTS}, RULES_DEFAULTS),
-    }
-    return tuple(values[k] for k in given)
+    return RolloutSetup(env, module, sensor, key)
 
 
 def _masks(env: Env, occlude: int | None, hidden: Indices | None) -> tuple[np.ndarray, list[tuple[int, ...]]]:

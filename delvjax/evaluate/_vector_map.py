@@ -17,19 +17,20 @@ import numpy as np
 
 from ..core import maps
 from ..core.batching import bucket, pad_rows
+from ..core.checks import angle_deg, is_traced, non_negative, positive_int, seed_value
+from ..core.deprecation import keywords_after
 from ..core.errors import InputError
 from ..core.maps import CLEARANCE, SPACING
 from ..core.methods import HomingMethod
+from ..core.rollouts import Grid, legacy_config
 from ..core.scene import Env
 from ..core.sensor import Sensor
 from ..envs._presets import load_env
 from ..options import _limits as limits
-from ..options._checks import angle_deg, is_traced, non_negative, positive, positive_int, seed_value
 from ..options._limits import MAX_POINTS, check_size
 from ..options._schema import ROLLOUT_ONLY
 from ..options._settings import make_setup
 from ..outputs._programs import kept_number
-from ._config import GRID_DEFAULTS, Grid, unpack
 from ._progress import Progress, as_progress
 
 
@@ -189,30 +190,31 @@ def map_request(
     grid: Grid | None = None,
     **options,
 ) -> dict:
-    """Validate the public options of a vector map (before any array work): keyword
-    arguments of `core.maps.vector_map`. Raises `InputError` naming the field and value."""
-    return _checked_map(
-        env, method, spacing, heading_deg, seed, clearance, hidden, batch_size, max_points, grid, **options
-    )[0]
+    """Validate the options of one vector map of a sweep (docs/sweeps.md; before any array work), whose
+    axes are flat names (`spacing`, ...): keyword arguments of `core.maps.vector_map`. Raises `InputError`
+    naming the field and value."""
+    flat = dict(spacing=spacing, clearance=clearance, heading_deg=heading_deg)
+    if grid is None:
+        grid = Grid(**flat)
+    else:
+        legacy_config(Grid, grid, {k: v for k, v in flat.items() if v != getattr(Grid(), k)})
+    return _checked_map(env, method, grid, seed, hidden, batch_size, max_points, **options)[0]
 
 
-def _checked_map(
-    env, method, spacing, heading_deg, seed, clearance, hidden, batch_size, max_points, grid, **options
-) -> tuple[dict, np.ndarray]:
+def _checked_map(env, method, grid: Grid, seed, hidden, batch_size, max_points, **options) -> tuple[dict, np.ndarray]:
     """(`map_request`'s keywords, the grid's points): the grid counted and built once (`check_grid`)."""
-    g = unpack(grid, Grid, dict(spacing=spacing, clearance=clearance, heading_deg=heading_deg), GRID_DEFAULTS)
-    spacing, clearance, heading_deg = g["spacing"], g["clearance"], g["heading_deg"]
     refuse_rollout_only(options)
-    env, module, sensor, heading, key, clearance = scene_request(env, method, clearance, heading_deg, seed, **options)
-    spacing = positive(spacing, "spacing")
-    points = check_grid(env, spacing, clearance, max_points)
+    env, module, sensor, heading, key, clearance = scene_request(
+        env, method, grid.clearance, grid.heading_deg, seed, **options
+    )
+    points = check_grid(env, grid.spacing, clearance, max_points)
     batch_size = positive_int(batch_size, "batch_size")
     visible = visible_mask(env, hidden)
     request = dict(
         env=env,
         method=module,
         sensor=sensor,
-        spacing=spacing,
+        spacing=grid.spacing,
         heading=heading,
         key=key,
         clearance=clearance,
@@ -222,17 +224,30 @@ def _checked_map(
     return request, points
 
 
+@keywords_after(
+    2,
+    (
+        "spacing",
+        "heading_deg",
+        "seed",
+        "clearance",
+        "hidden",
+        "batch_size",
+        "max_points",
+        "grid",
+        "progress",
+        "chunk_program",
+    ),
+)
 def vector_map(
     env: str | Path | Env,
     method: str | HomingMethod = "delv",
-    spacing: float = SPACING,
-    heading_deg: float | None = None,
+    *,
+    grid: Grid | None = None,
     seed: int = 0,
-    clearance: float = CLEARANCE,
     hidden: Indices | None = None,
     batch_size: int = maps.DEFAULT_BATCH,
     max_points: int = MAX_POINTS,
-    grid: Grid | None = None,
     progress: Progress | Callable[[int, int], None] | None = None,
     chunk_program: Callable[..., maps.VectorMap] | None = None,
     **options,
@@ -242,7 +257,7 @@ def vector_map(
     `method`: a registry name (`"delv-compass"`) or a method module (`DELV(levels=3,
     heading=Compass())`); `sensor=Sensor(...)` may replace the sensor options below.
 
-    heading_deg fixes the heading at every point; otherwise headings are uniform random
+    `grid.heading_deg` fixes the heading at every point; otherwise headings are uniform random
     per point from `seed` (which also drives every noise source). `options`: sensor options
     (d, background, channel, alpha_r_deg, n_pix, and the noise keywords bearing_noise_deg,
     step_noise, turn_noise_deg, odometry_turn_noise_deg, compass_noise_deg) and method settings
@@ -251,17 +266,18 @@ def vector_map(
     `hidden` lists landmark indices invisible in the current views (occlusion). The grid runs in
     host-side chunks of `batch_size` points (memory bounded by the chunk, the same numbers for every
     chunk size); a grid of more than `max_points` points is refused with an estimate (`options._limits`).
-    Config objects may replace the keywords: `grid=Grid(spacing, clearance, heading_deg)`,
-    `sensor=Sensor(...)`, `noise=Noise(...)` (evaluate/_config.py).
+    `grid`: a `Grid(spacing, clearance, heading_deg)` (core/rollouts/config.py; default `Grid()`);
+    `sensor=Sensor(...)` and `noise=Noise(...)` may replace the sensor and noise keywords. The flat
+    keywords of earlier releases (spacing=, heading_deg=, clearance=) still work for one release, with
+    a DeprecationWarning.
     `progress`: a `Progress` (evaluate/_progress.py): `start(P)` once every option is valid, with the
     P grid points, then `progress(n, P)` after each chunk of n points (a plain `f(n, P)` also works).
     `chunk_program` stands in for one chunk's jitted program (the command line's, kept on disk).
     Returns a `VectorMap` pytree (points, included, heading, direction, valid, error_deg) that carries
     its grid's `spacing`.
     """
-    request, points = _checked_map(
-        env, method, spacing, heading_deg, seed, clearance, hidden, batch_size, max_points, grid, **options
-    )
+    grid = legacy_config(Grid, grid, options)
+    request, points = _checked_map(env, method, grid, seed, hidden, batch_size, max_points, **options)
     report = as_progress(progress)
     report.start(points.shape[0])
     return maps.vector_map(**request, progress=report, program=chunk_program, points=points)

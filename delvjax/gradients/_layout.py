@@ -24,14 +24,15 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from ..core.checks import occlusion_count, positive_int
+from ..core.deprecation import keywords_after
 from ..core.errors import InputError
 from ..core.maps import SPACING
-from ..core.rollouts import Catchment, catchment_summary, occlusion_masks
+from ..core.rollouts import Catchment, Grid, catchment_summary, occlusion_masks
 from ..core.scene import Env
 from ..core.soft.loss import soft_loss
 from ..envs._presets import load_env, make_env, random_env
 from ..evaluate._rollouts import catchment
-from ..options._checks import occlusion_count, positive_int
 from ._loss import TAU, LossProblem, loss_problem
 
 WALL_CM = 10.0
@@ -148,9 +149,11 @@ def start_layout(env: str | Path | Env | None = None, landmarks: int | None = No
     return random_env(seed, n)
 
 
+@keywords_after(2, ("occlude", "spacing", "seed", "tau", "steps", "progress", "announce"))
 def optimise_layout(
     env: str | Path | Env,
     method: str = "delv",
+    *,
     occlude: int = 0,
     spacing: float = SPACING,
     seed: int = 0,
@@ -189,7 +192,8 @@ def optimise_layout(
     )  # the start's shape: its compiled programs serve both
     seconds = time.perf_counter() - t0
     catchments = tuple(
-        catchment(e, method, spacing=spacing, seed=seed, occlude=k or None, **options) for e in (env, optimised)
+        catchment(e, method, seed=seed, occlude=k or None, grid=Grid(spacing=spacing), **options)
+        for e in (env, optimised)
     )
     rows = [
         _hard_row(label, e, c, method, k, q)

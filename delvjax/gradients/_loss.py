@@ -20,6 +20,8 @@ import jax.numpy as jnp
 import numpy as np
 
 from ..core.batching import traced_floats
+from ..core.checks import is_traced, positive
+from ..core.deprecation import keywords_after
 from ..core.errors import InputError
 from ..core.maps import CLEARANCE, SPACING, grid_included, grid_points, random_headings, vector_map
 from ..core.methods import HomingMethod
@@ -29,7 +31,6 @@ from ..core.soft.methods import check_differentiable
 from ..core.soft.sensing import VISIBILITY_WIDTH
 from ..core.types import Real
 from ..evaluate._vector_map import check_grid, scene_request
-from ..options._checks import is_traced, positive
 from ..options._limits import MAX_POINTS, check_size, grid_count
 from ..options._settings import NOISE_FIELDS_DEG, NOISE_FIELDS_FRACTION
 
@@ -71,9 +72,11 @@ def _check_soft(tau, sharpness) -> tuple[float, float]:
     return tau, sharpness
 
 
+@keywords_after(2, ("spacing", "seed", "soft", "tau", "sharpness", "heading_deg", "clearance", "max_points"))
 def homing_loss(
     env: str | Path | Env,
     method: str | HomingMethod = "delv",
+    *,
     spacing: float = SPACING,
     seed: int = 0,
     soft: bool = True,
@@ -200,9 +203,11 @@ def problem_value_and_grad(problem: LossProblem) -> tuple[jax.Array, dict]:
     return jax.value_and_grad(problem_loss)(problem.params, problem)
 
 
+@keywords_after(2, ("spacing", "seed", "tau", "sharpness", "heading_deg", "clearance", "max_points"))
 def homing_loss_grad(
     env: str | Path | Env,
     method: str | HomingMethod = "delv",
+    *,
     spacing: float = SPACING,
     seed: int = 0,
     tau: float = TAU,

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.deprecation import keywords_after
 from ..core.errors import InputError
 from ..core.maps import SPACING
 from ..core.scene import Env
@@ -51,9 +52,11 @@ def check_sensitivity(
     return env
 
 
+@keywords_after(2, ("spacing", "seed", "tau", "progress"))
 def sensitivity(
     env: str | Path | Env,
     methods=SENSITIVITY_METHODS,
+    *,
     spacing: float = SPACING,
     seed: int = 0,
     tau: float = TAU,

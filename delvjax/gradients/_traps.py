@@ -17,15 +17,17 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.checks import positive, positive_int
+from ..core.deprecation import keywords_after
 from ..core.errors import InputError
 from ..core.maps import SPACING
-from ..core.rollouts import TIMEOUT, Catchment
+from ..core.rollouts import TIMEOUT, Catchment, Grid, Rules
 from ..core.rollouts.rules import HOME_RADIUS
 from ..core.scene import Env
 from ..core.soft.traps import KINDS, field_zeros, two_cycles
 from ..envs._presets import load_env
+from ..evaluate._progress import OnStart
 from ..evaluate._rollouts import catchment
-from ..options._checks import positive, positive_int
 from ._loss import TAU, loss_problem
 
 MERGE_CM = 2.0  # zeros closer than this are one
@@ -89,9 +91,11 @@ def failed_rollouts(c, m: int = 0) -> int:
     return int((np.asarray(c.counted) & ~np.asarray(c.success)[m]).sum())
 
 
+@keywords_after(2, ("spacing", "seed", "tau", "near", "max_starts", "home_radius", "announce"))
 def find_traps(
     env: str | Path | Env,
     method: str = "delv",
+    *,
     spacing: float = SPACING,
     seed: int = 0,
     tau: float = TAU,
@@ -111,7 +115,15 @@ def find_traps(
     problem = loss_problem(env, method, spacing=spacing, seed=seed, tau=tau, **options)  # validates first
     max_starts = positive_int(max_starts, "max_starts")
     near = float(problem.sensor.d) if near is None else positive(near, "near")
-    c = catchment(env, method, spacing=spacing, seed=seed, home_radius=home_radius, announce=announce, **options)
+    c = catchment(
+        env,
+        method,
+        seed=seed,
+        progress=None if announce is None else OnStart(announce),
+        grid=Grid(spacing=spacing),
+        rules=Rules(home_radius=home_radius),
+        **options,
+    )
     inc = np.asarray(c.included)
     timeout = inc & (np.asarray(c.outcome)[0] == TIMEOUT)
     ends = np.asarray(c.end)[0][timeout]

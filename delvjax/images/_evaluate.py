@@ -11,6 +11,8 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from ..core.checks import non_negative, positive, positive_int, seed_value
+from ..core.deprecation import keywords_after
 from ..core.errors import InputError
 from ..core.images.database import (
     RingDatabase,
@@ -25,7 +27,6 @@ from ..core.images.rollouts import OUTCOMES, Field, Paths, nearest_snapshot_roll
 from ..core.maps import VectorMap
 from ..core.rollouts import MAX_STEPS, TRIALS_PER_DISTANCE
 from ..core.rollouts.success import wilson_pct
-from ..options._checks import non_negative, positive, positive_int, seed_value
 from ..options._settings import make_setup
 from ._conventions import mismatch
 from ._load import LoadedDatabase, _warn, with_channel
@@ -104,10 +105,23 @@ def check_panorama_field(db: LoadedDatabase, method) -> None:
         )
 
 
+@keywords_after(
+    3,
+    (
+        "step",
+        "home_radius",
+        "max_steps",
+        "motion_heading_noise_deg",
+        "motion_step_noise",
+        "seed",
+        "collisions",
+    ),
+)
 def database_rollouts(
     db: LoadedDatabase,
     vm: VectorMap,
     starts,
+    *,
     step: float | None = None,
     home_radius: float | None = None,
     max_steps: int = MAX_STEPS,

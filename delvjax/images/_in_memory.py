@@ -8,6 +8,7 @@ import dataclasses
 import jax
 import numpy as np
 
+from ..core.deprecation import keywords_after
 from ..core.images import Extractor
 from ..options._limits import MAX_POINTS
 from ._load import LoadedDatabase, check_home_move
@@ -15,8 +16,10 @@ from ._render import DEFAULT_CHUNK, ImageSettings, check_render, render_rings, w
 from ._worlds import ImageWorld
 
 
+@keywords_after(1, ("spacing", "settings", "seed", "extractor", "chunk", "panoramas"))
 def render_in_memory(
     env: str | ImageWorld,
+    *,
     spacing: float | None = None,
     settings=None,
     seed: int = 0,

@@ -16,10 +16,11 @@ import jax.numpy as jnp
 import numpy as np
 
 from ..core.batching import pad_rows
+from ..core.checks import finite, positive, positive_int
+from ..core.deprecation import keywords_after
 from ..core.errors import InputError
 from ..core.images import Camera, Catadioptric, Extractor
 from ..core.images.database import RingDatabase, home_plan
-from ..options._checks import finite, positive, positive_int
 from ..options._schema import extractor_options
 from ._conventions import Conventions
 from ._disk import DatabaseIndex, read_image, read_images, read_index
@@ -230,8 +231,29 @@ def check_home_move(positions: np.ndarray, home_index: int, spacing: float, fiel
         )
 
 
+@keywords_after(
+    1,
+    (
+        "home",
+        "arena",
+        "spacing",
+        "channel",
+        "extractor",
+        "max_blobs",
+        "chunk",
+        "progress",
+        "sink",
+        "check",
+        "conventions",
+        "elevation",
+        "camera_height",
+        "warn",
+        "panoramas",
+    ),
+)
 def load_database(
     src: str | Path,
+    *,
     home=None,
     arena=None,
     spacing: float | None = None,

@@ -19,12 +19,13 @@ import jax.numpy as jnp
 import numpy as np
 
 from ..core.batching import fixed_width_map, pad_rows, traced_floats
+from ..core.checks import angle_deg, non_negative, positive, positive_int, seed_value
+from ..core.deprecation import keywords_after
 from ..core.errors import InputError
 from ..core.images import Camera, Catadioptric, Extractor, camera_noise, donut, panorama, to_uint8, unwrap
 from ..core.images.database import RingDatabase
 from ..core.maps import grid_points
 from ..core.types import Real
-from ..options._checks import angle_deg, non_negative, positive, positive_int, seed_value
 from ..options._limits import MAX_POINTS, check_size, grid_count
 from ..outputs._files import check_folder
 from ._worlds import ImageWorld, image_world
@@ -297,9 +298,11 @@ def database_metadata(
     }
 
 
+@keywords_after(2, ("spacing", "settings", "seed", "chunk", "max_points", "progress"))
 def render_database(
     env: str,
     out: str | Path,
+    *,
     spacing: float | None = None,
     settings: ImageSettings | None = None,
     seed: int = 0,

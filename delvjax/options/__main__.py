@@ -1,13 +1,8 @@
-"""`python -m delvjax.options`: print docs/options.md; `python -m delvjax.options api`: make
-docs/api.md's entries of the registered methods again (in place)."""
+"""`python -m delvjax.options`: print the table of options (docs/options.md's, made when the site is
+built); `python -m delvjax.options api`: print docs/api.md's entries of the registered methods."""
 
 import sys
-from pathlib import Path
 
-from ._docs import options_markdown, with_api_methods
+from ._docs import api_methods_markdown, options_markdown
 
-if sys.argv[1:] == ["api"]:
-    page = Path("docs/api.md")
-    page.write_text(with_api_methods(page.read_text()))
-else:
-    print(options_markdown(), end="")
+print(api_methods_markdown() if sys.argv[1:] == ["api"] else options_markdown().rstrip("\n"))

@@ -1,5 +1,7 @@
-"""docs/options.md, made from the settings declared on the modules (`python -m delvjax.options`), and
-docs/api.md's entries of the registered methods (`python -m delvjax.options api`)."""
+"""The pages made from the declarations: docs/options.md's table of every option (the settings declared
+on the modules) and docs/api.md's entries of the registered methods. The site makes them when it is
+built (`docs/_ext/generated.py`, a mkdocs hook), so a new method or setting needs no edit of a page;
+`python -m delvjax.options` prints the options, `python -m delvjax.options api` the method entries."""
 
 from __future__ import annotations
 
@@ -7,19 +9,16 @@ from ..core.sensor import Noise, Sensor
 from ._registry import public_classes
 from ._schema import all_options, extractor_options
 
-HEADER = """# Options
-
-Made from the settings declared on the modules (`delvjax/core/settings.py`; docs/architecture.md
-"Settings") by `python -m delvjax.options > docs/options.md`; a test checks it is current. Each
-option is a keyword of the Python API (`delvjax.vector_map(..., levels=3)`), a flag of the command
-line (`--levels 3`) and an axis of a sweep file (`levels = [2, 3, 4]`).
-
-| option | flag | what | unit | check | default | module |
+OPTIONS_MARK = (
+    "<!-- the table of options: made from the declarations when the site is built (docs/_ext/generated.py) -->"
+)
+HEADER = """| option | flag | what | unit | check | default | module |
 |---|---|---|---|---|---|---|
 """
 
 
 def options_markdown() -> str:
+    """The table of every option (flag, help, unit, check, default, owner), in declaration order."""
     rows = []
     for opt in {**all_options(), **extractor_options()}.values():  # extractor: options of --images
         s = opt.setting
@@ -32,7 +31,7 @@ def options_markdown() -> str:
     return HEADER + "\n".join(rows) + "\n"
 
 
-API_START = "<!-- the registered methods: made by `python -m delvjax.options api` (options.public_classes) -->"
+API_START = "<!-- the registered methods: made when the site is built (options.public_classes) -->"
 API_END = "<!-- end of the registered methods -->"
 
 
@@ -46,6 +45,22 @@ def api_methods_markdown() -> str:
 
 
 def with_api_methods(page: str) -> str:
-    """`page` (docs/api.md) with its block of registered methods made again."""
+    """`page` (docs/api.md) with its block of registered methods made from the registry."""
     start, end = page.index(API_START), page.index(API_END) + len(API_END)
     return page[:start] + api_methods_markdown() + page[end:]
+
+
+def with_options(page: str) -> str:
+    """`page` (docs/options.md) with the table of options in place of `OPTIONS_MARK`."""
+    if OPTIONS_MARK not in page:
+        raise ValueError(f"the page has no {OPTIONS_MARK!r}")
+    return page.replace(OPTIONS_MARK, options_markdown().rstrip("\n"))
+
+
+def generated_page(name: str, page: str) -> str:
+    """The site's page `name` (a path under docs/) with what is made from the declarations filled in."""
+    if name == "options.md":
+        return with_options(page)
+    if name == "api.md":
+        return with_api_methods(page)
+    return page

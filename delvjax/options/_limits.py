@@ -14,6 +14,7 @@ import numpy as np
 from jax.extend import core as jcore
 
 from ..core.batching import item_width
+from ..core.checks import is_traced, positive_int
 from ..core.errors import InputError
 from ..core.kernel import direction_from, map_poses
 from ..core.methods import HomingMethod
@@ -21,7 +22,6 @@ from ..core.scene import Env
 from ..core.sensing import record_home
 from ..core.sensor import Sensor
 from ..outputs._programs import kept_number
-from ._checks import is_traced, positive_int
 
 MAX_POINTS = 1_000_000  # grid points (times masks) or trials in one run, by default
 # host memory per item of the results and their CSV rows, bytes; slowest method per item on 2 CPU cores, s

@@ -12,12 +12,12 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
+from ..core import checks
 from ..core.errors import InputError
 from ..core.images.pipeline import Extractor
 from ..core.methods import HomingMethod, Program
 from ..core.sensor import Noise, Sensor
 from ..core.settings import Setting, declared
-from . import _checks as checks
 from ._registry import METHODS
 
 ROLLOUT_ONLY = ("motion_",)  # settings that act only in rollouts (the motion noise): a vector map refuses them

@@ -14,6 +14,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from ..core.checks import is_traced
 from ..core.errors import InputError
 from ..core.images.scene_panorama import scene_panorama
 from ..core.methods import HomingMethod, Program
@@ -21,7 +22,6 @@ from ..core.sensor import Noise, Sensor
 from ..core.settings import declared
 from ..core.types import Real
 from ..envs._presets import RESOLUTION_CM
-from ._checks import is_traced
 from ._limits import check_tables
 from ._registry import configure, get_method, owns
 from ._registry import program as registry_program

@@ -26,8 +26,8 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
+from ..core.checks import seed_value
 from ..core.errors import InputError, did_you_mean, warn
-from ..options._checks import seed_value
 from ..outputs._cache import enable_compilation_cache, package_sources, release_programs_near_map_limit
 from ..outputs._files import check_out_dir, write_json
 from ._report import write_report

@@ -12,6 +12,7 @@ import jax
 import numpy as np
 
 from ..core.batching import global_mesh, local_mesh, n_devices, process_rows
+from ..core.deprecation import keywords_after
 from ..core.rollouts import DEFAULT_LANES
 from ..envs._presets import env_from_dict, load_env, random_env
 from ..evaluate import _vector_map as api
@@ -83,8 +84,10 @@ def _setups(spec: SweepSpec, envs: dict, rows: list[int], kept: dict[int, dict],
     return [made[i] for i in rows]
 
 
+@keywords_after(1, ("max_points", "progress", "announce", "out", "phase", "lanes", "skip", "program", "mask_rows"))
 def run_sweep(
     spec: SweepSpec,
+    *,
     max_points: int = api.MAX_POINTS,
     progress: Callable[[int, int], None] | None = None,
     announce: Callable[[], None] | None = None,

@@ -15,6 +15,7 @@ import numpy as np
 from scipy.spatial import Delaunay
 
 import delvjax
+from delvjax import Grid, Rules
 from delvjax.core import rollouts
 from delvjax.core.maps import VectorMap
 from delvjax.core.metrics import error_curve, summarize_map
@@ -86,12 +87,10 @@ def catchment(
     return delvjax.catchment(
         e,
         method=method,
-        spacing=ctx.settings.spacing,
         seed=ctx.settings.seed,
-        home_radius=home_radius,
         program=PROGRAM,
-        lanes=ctx.settings.lanes,
-        **RULES[rules],
+        grid=Grid(spacing=ctx.settings.spacing),
+        rules=Rules(home_radius=home_radius, lanes=ctx.settings.lanes, **RULES[rules]),
         **options,
     )
 
@@ -130,10 +129,8 @@ def success_rate(ctx, e: Env, method: str, rules: str = "default", **options) ->
         method=method,
         trials=ctx.settings.trials,
         seed=ctx.settings.seed,
-        home_radius=HOME_RADIUS,
         program=PROGRAM,
-        lanes=ctx.settings.lanes,
-        **RULES[rules],
+        rules=Rules(home_radius=HOME_RADIUS, lanes=ctx.settings.lanes, **RULES[rules]),
         **options,
     )
 
@@ -361,9 +358,8 @@ def trajectory_set(
             method=m,
             n_starts=n_starts,
             seed=ctx.settings.seed,
-            home_radius=HOME_RADIUS,
             program=None if m in (own or {}) else PROGRAM,
-            lanes=ctx.settings.lanes,
+            rules=Rules(home_radius=HOME_RADIUS, lanes=ctx.settings.lanes),
             **(own or {}).get(m, {}),
         )
         results[LABEL[m]] = tr

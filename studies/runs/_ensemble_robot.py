@@ -35,7 +35,7 @@ from delvjax.images._load import with_channel
 from delvjax.images._worlds import ImageWorld, robot_arena
 from delvjax.options import make_setup
 
-from ._images_common import CAMERA_NOISE, CHANNEL, IDEAL_GRID, METHODS, ring_env
+from ._images_common import CAMERA_NOISE, CHANNEL, IDEAL_GRID, IDEAL_HEADING_DEG, METHODS, ring_env
 
 FAR = 1e6  # cm: where a padded (kept-out) database point is put for the nearest-snapshot search
 MEMBER_BATCH = 4  # members rendered side by side (`lax.map` over groups of members): bounds the memory
@@ -273,7 +273,9 @@ def catchments(m: Members, vm: VectorMap, seed: int) -> tuple[np.ndarray, np.nda
 
 def _ideal_program(env: Env, method: str, iw: ImageWorld, **options):
     """(method module, sensor, heading, key, clearance) of `_images_common.ideal_map` (`map_request`)."""
-    req = map_request(env, method, iw.spacing, d=iw.spacing, clearance=iw.clearance, **{**IDEAL_GRID, **options})
+    req = map_request(
+        env, method, iw.spacing, IDEAL_HEADING_DEG, d=iw.spacing, clearance=iw.clearance, **{**IDEAL_GRID, **options}
+    )
     return req["method"], req["sensor"], req["heading"], req["key"], req["clearance"]
 
 

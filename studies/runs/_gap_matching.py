@@ -16,6 +16,7 @@ from __future__ import annotations
 import jax
 import numpy as np
 
+from delvjax import Grid, Rules
 from delvjax.core import rollouts
 from delvjax.core.sensor import Sensor
 from delvjax.options._registry import program
@@ -41,13 +42,11 @@ def gap_aware_summary(e, masks, hidden, spacing: float, settings, method: str = 
         e,
         program(method, PROGRAM)[0],
         Sensor(),
-        spacing=spacing,
         key=jax.random.PRNGKey(settings.seed),
         masks=masks,
         hidden=hidden,
-        home_radius=HOME_RADIUS,
-        lanes=settings.lanes,
-        **RULES["default"],
+        grid=Grid(spacing=spacing),
+        rules=Rules(home_radius=HOME_RADIUS, lanes=settings.lanes, **RULES["default"]),
     )
     return rollouts.catchment_summary(c)["per_mask"]
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 import delvjax
+from delvjax import Grid
 from delvjax.core.maps import VectorMap
 from delvjax.core.metrics import error_curve, summarize_map
 from delvjax.core.scene import Env
@@ -65,7 +66,8 @@ def ring_env(iw: ImageWorld) -> Env:
     )
 
 
-IDEAL_GRID = {"heading_deg": 0.0, "program": METHODS, "channel": CHANNEL, "background": "walls"}
+IDEAL_HEADING_DEG = 0.0  # every grid point faces east
+IDEAL_GRID = {"program": METHODS, "channel": CHANNEL, "background": "walls"}
 
 
 def ideal_map(world: str | ImageWorld, method: str, **options) -> VectorMap:
@@ -74,5 +76,9 @@ def ideal_map(world: str | ImageWorld, method: str, **options) -> VectorMap:
     gray channel over the docs/model.md §2.3 `walls` background (the images' wall texture)."""
     iw = image_world(world) if isinstance(world, str) else world
     return delvjax.vector_map(
-        ring_env(iw), method, spacing=iw.spacing, d=iw.spacing, clearance=iw.clearance, **{**IDEAL_GRID, **options}
+        ring_env(iw),
+        method,
+        d=iw.spacing,
+        grid=Grid(spacing=iw.spacing, clearance=iw.clearance, heading_deg=IDEAL_HEADING_DEG),
+        **{**IDEAL_GRID, **options},
     )

@@ -17,9 +17,9 @@ from collections.abc import Callable
 
 import numpy as np
 
+from delvjax.core.checks import SEED_LIMIT
 from delvjax.envs import ensemble_envs, env_from_dict
 from delvjax.options import MAX_POINTS
-from delvjax.options._checks import SEED_LIMIT
 from delvjax.options._registry import program
 from delvjax.sweeps import SweepSpec
 from delvjax.sweeps._kinds import catchment_metrics, cell_setup, evaluate

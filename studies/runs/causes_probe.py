@@ -38,6 +38,7 @@ import jax
 import numpy as np
 
 import delvjax
+from delvjax import Grid, Rules
 from delvjax.core import rollouts
 from delvjax.core.errors import InputError
 from delvjax.core.sensor import Sensor
@@ -60,13 +61,13 @@ def pixels(spacing: float = 50.0, ds=(20.0, 50.0, 100.0), widths=(360, 1440)) ->
     for n_pix in widths:  # a handful of static ring widths: one program each
         row = {}
         for d in ds:
-            vm = delvjax.vector_map(e, method="delv", spacing=spacing, seed=0, d=d, n_pix=n_pix)
+            vm = delvjax.vector_map(e, method="delv", seed=0, d=d, n_pix=n_pix, grid=Grid(spacing=spacing))
             row[f"d={d:g}"] = float(np.asarray(vm.error_deg)[np.asarray(vm.included)].mean())
         out["env1_mean_error_deg"][n_pix] = row
         r3 = random_env(103, 3, pad_to=PAD)
         out["random3_curve_deg"][n_pix] = [
             r["mean_deg"]
-            for r in curve(r3, delvjax.vector_map(r3, method="delv", spacing=spacing, seed=0, n_pix=n_pix))
+            for r in curve(r3, delvjax.vector_map(r3, method="delv", seed=0, n_pix=n_pix, grid=Grid(spacing=spacing)))
         ]
     return out
 
@@ -80,7 +81,7 @@ def ring_radius(radii=(150.0, 250.0, 350.0, 420.0), spacing: float = 50.0) -> di
         angles = np.deg2rad(90.0 + 60.0 * np.arange(6))
         lm = [(500.0 + radius * np.cos(a), 500.0 + radius * np.sin(a), 30.0) for a in angles]
         e = make_env(lm, home=(500.0, 500.0), arena=(0.0, 0.0, 1000.0, 1000.0), pad_to=PAD)
-        c = delvjax.catchment(e, "alv", spacing=spacing, hidden=[0])
+        c = delvjax.catchment(e, "alv", hidden=[0], grid=Grid(spacing=spacing))
         ys = np.linspace(500.0, 500.0 - 0.9 * radius, 2001)  # short of the south landmark
         pts = np.stack([np.full_like(ys, 500.0), ys], 1)
         to = np.asarray(lm)[1:, None, :2] - pts[None]
@@ -98,7 +99,7 @@ def hull_pixels(spacing: float = 25.0, widths=(360, 1440)) -> dict:
     e = env("env2")
     out = {}
     for n_pix in widths:
-        vm = delvjax.vector_map(e, method="delv", spacing=spacing, seed=0, n_pix=n_pix)
+        vm = delvjax.vector_map(e, method="delv", seed=0, n_pix=n_pix, grid=Grid(spacing=spacing))
         inc, err = np.asarray(vm.included), np.asarray(vm.error_deg)
         hull = inside_hull(e, np.asarray(vm.points))
         out[n_pix] = {
@@ -136,7 +137,7 @@ def env3_layouts(
     variants moved up to `delv_jitter` cm."""
     acv = []
     for e in env3_variants(n, acv_jitter, seed=1):
-        vm = delvjax.vector_map(e, method="acv", spacing=spacing, seed=0)
+        vm = delvjax.vector_map(e, method="acv", seed=0, grid=Grid(spacing=spacing))
         acv.append(100.0 * float((np.asarray(vm.error_deg)[np.asarray(vm.included)] > 45.0).mean()))
     delv = []
     method = program("delv-compass", PROGRAM)[0]
@@ -146,13 +147,11 @@ def env3_layouts(
             e,
             method,
             Sensor(),
-            spacing=spacing,
             key=jax.random.PRNGKey(0),
             masks=masks[ks == 1],
             hidden=[h for h, k in zip(hidden, ks) if k == 1],
-            home_radius=HOME_RADIUS,
-            lanes=128,
-            **RULES["default"],
+            grid=Grid(spacing=spacing),
+            rules=Rules(home_radius=HOME_RADIUS, lanes=128, **RULES["default"]),
         )
         delv.append(float(np.mean([r["catchment_pct"] for r in rollouts.catchment_summary(c)["per_mask"]])))
     return {
@@ -181,7 +180,11 @@ def choice_maps(probe: _gap_probe.Probe, members: int, spacing: float, seed: int
                     rates = []
                     for hidden in itertools.combinations(range(family.n), k):
                         vm = delvjax.vector_map(
-                            e, method=run, spacing=spacing, seed=seed + i // size, hidden=list(hidden) or None
+                            e,
+                            method=run,
+                            seed=seed + i // size,
+                            hidden=list(hidden) or None,
+                            grid=Grid(spacing=spacing),
                         )
                         err = np.asarray(vm.error_deg)[np.asarray(vm.included)]
                         rates.append((100.0 * np.mean(err > 45.0), 100.0 * np.mean(err > 90.0)))

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 import delvjax
+from delvjax import Grid
 from delvjax.plots import error_curve_figure
 
 from ._common import (
@@ -87,7 +88,9 @@ def run(ctx) -> None:
         ctx.step("MinWarping: full run only")
     else:
         own["minwarping"] = SCENE_MINWARPING
-        vm = delvjax.vector_map(e, method="minwarping", spacing=spacing, seed=ctx.settings.seed, **SCENE_MINWARPING)
+        vm = delvjax.vector_map(
+            e, method="minwarping", seed=ctx.settings.seed, grid=Grid(spacing=spacing), **SCENE_MINWARPING
+        )
         s = map_numbers(e, vm)
         curves[LABEL["minwarping"]] = curves_mw = curve(e, vm)
         curve_number(ctx, "error_curve:env1:minwarping", curves_mw)

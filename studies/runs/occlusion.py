@@ -20,6 +20,7 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Patch
 
+from delvjax import Grid, Rules
 from delvjax.core import rollouts
 from delvjax.core.sensor import Sensor
 from delvjax.options._registry import program
@@ -137,13 +138,11 @@ def rule_catchments(e, m: str, sensor: Sensor, spacing: float, key, masks, hidde
             e,
             method,
             sensor,
-            spacing=spacing,
             key=key,
             masks=masks,
             hidden=hidden,
-            home_radius=HOME_RADIUS,
-            lanes=lanes,
-            **RULES[rules],
+            grid=Grid(spacing=spacing),
+            rules=Rules(home_radius=HOME_RADIUS, lanes=lanes, **RULES[rules]),
         )
 
     return every_rule(run, m, e.arena, sensor.d)

@@ -8,6 +8,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from delvjax import Rules
 from delvjax.core import rollouts
 from delvjax.options import _registry as registry
 from delvjax.options._settings import make_sensor
@@ -69,10 +70,8 @@ def run(
         jax.random.PRNGKey(key),
         make_sensor() if config is None else config,
         module,
-        lanes=lanes,
         record_paths=record_paths,
-        first_move=first_move,
-        collisions=collisions,
+        rules=Rules(first_move=first_move, collisions=collisions, lanes=lanes),
     )
 
 

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid
 from delvjax.cli._main import main
 from delvjax.core.errors import InputError
 
@@ -31,22 +32,22 @@ def test_a_seed_out_of_range_is_one_line_naming_it(tmp_path, capsys, seed):
 def test_seeds_at_the_32_bit_limit_are_distinct_and_valid():
     """PRNGKey keeps 32 bits: 2**32 would silently repeat seed 0, so the largest seed is 2**32 - 1."""
     with pytest.raises(InputError, match="seed"):
-        delvjax.vector_map("env1", spacing=200.0, seed=2**32, bearing_noise_deg=2.0)
-    a = delvjax.vector_map("env1", spacing=200.0, seed=2**32 - 1, bearing_noise_deg=2.0)
-    b = delvjax.vector_map("env1", spacing=200.0, seed=0, bearing_noise_deg=2.0)
+        delvjax.vector_map("env1", seed=2**32, bearing_noise_deg=2.0, grid=Grid(spacing=200.0))
+    a = delvjax.vector_map("env1", seed=2**32 - 1, bearing_noise_deg=2.0, grid=Grid(spacing=200.0))
+    b = delvjax.vector_map("env1", seed=0, bearing_noise_deg=2.0, grid=Grid(spacing=200.0))
     assert not np.array_equal(np.asarray(a.heading), np.asarray(b.heading))
 
 
 def test_a_huge_heading_is_reduced_in_float64_before_the_core():
-    kw = dict(method="delv-compass", spacing=200.0)
+    kw = dict(method="delv-compass")
     reduced = math.fmod(1e30, 360.0)
-    huge = delvjax.vector_map("env1", heading_deg=1e30, **kw)
-    same = delvjax.vector_map("env1", heading_deg=reduced, **kw)
+    huge = delvjax.vector_map("env1", grid=Grid(spacing=200.0, heading_deg=1e30), **kw)
+    same = delvjax.vector_map("env1", grid=Grid(spacing=200.0, heading_deg=reduced), **kw)
     assert np.array_equal(np.asarray(huge.direction), np.asarray(same.direction), equal_nan=True)
     inc = np.asarray(huge.included)
     assert float(np.asarray(huge.error_deg)[inc].mean()) < 30.0  # not the 90 deg of a float32 overflow
-    a = delvjax.vector_map("env1", heading_deg=30.0 + 3600.0, **kw)
-    b = delvjax.vector_map("env1", heading_deg=30.0, **kw)
+    a = delvjax.vector_map("env1", grid=Grid(spacing=200.0, heading_deg=30.0 + 3600.0), **kw)
+    b = delvjax.vector_map("env1", grid=Grid(spacing=200.0, heading_deg=30.0), **kw)
     assert np.array_equal(np.asarray(a.direction), np.asarray(b.direction), equal_nan=True)
 
 
@@ -206,7 +207,7 @@ def test_a_rollout_only_noise_on_a_vector_map_is_refused_not_ignored(tmp_path, c
     assert line.startswith(f"delvjax: error: {flag}:") and "acts only in rollouts" in line
     assert not out.exists()
     with pytest.raises(InputError, match="acts only in rollouts"):
-        delvjax.vector_map("env1", spacing=200.0, **{flag[2:].replace("-", "_"): 0.1})
+        delvjax.vector_map("env1", grid=Grid(spacing=200.0), **{flag[2:].replace("-", "_"): 0.1})
 
 
 @pytest.mark.parametrize(
@@ -223,7 +224,7 @@ def test_a_method_name_typed_otherwise_is_refused_with_the_name_meant(tmp_path, 
     assert main(["success-rate", "env1", "--method", f"delv,{typed}", "--trials", "1", "--out", str(out)]) == 2
     assert f"(did you mean {meant!r}?)" in error_line(capsys)
     with pytest.raises(InputError, match="did you mean"):
-        delvjax.vector_map("env1", typed, spacing=200.0)
+        delvjax.vector_map("env1", typed, grid=Grid(spacing=200.0))
 
 
 def test_a_name_like_no_method_gets_no_guess(tmp_path, capsys):

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid
 from delvjax.cli._main import main
 from delvjax.core.errors import InputError
 from delvjax.envs._presets import preset_dict
@@ -175,7 +176,7 @@ def test_a_hostile_input_is_refused_in_one_line_naming_it(tmp_path, capsys, monk
 def test_a_shifted_environment_within_float32s_resolution_gives_the_same_numbers():
     """Shifted by 1000 cm (float32 resolves 1.2e-4 cm there) env1's map is env1's, moved: within the
     tolerance the coordinates are kept, beyond it they are refused (above)."""
-    kw = dict(method="delv-compass", spacing=100.0, heading_deg=30.0)
+    kw = dict(method="delv-compass", grid=Grid(spacing=100.0, heading_deg=30.0))
     a = delvjax.vector_map("env1", **kw)
     b = delvjax.vector_map(delvjax.make_env(*_parts(shifted(1000.0))), **kw)
     assert np.allclose(np.asarray(b.points) - 1000.0, np.asarray(a.points))
@@ -194,7 +195,7 @@ def test_the_far_coordinates_of_the_api_name_the_field_too():
 def test_ten_thousand_landmarks_are_checked_in_seconds_not_minutes():
     start = time.perf_counter()
     with pytest.raises(InputError, match="landmarks"):
-        delvjax.vector_map(delvjax.make_env(*_parts(grid_of(100))), spacing=400.0)
+        delvjax.vector_map(delvjax.make_env(*_parts(grid_of(100))), grid=Grid(spacing=400.0))
     assert time.perf_counter() - start < 15  # the overlap check took 17 s in Python loops
 
 
@@ -268,10 +269,10 @@ def test_a_ring_too_coarse_and_a_step_below_resolution_are_refused_by_the_api_to
     """The checks sit in the setup every command and the Python API share (issue 53: both ran, every point
     invalid, with a hint about landmarks); the smallest accepted values run."""
     with pytest.raises(InputError, match=r"n_pix: .*use n_pix >= 16"):
-        delvjax.vector_map("env1", n_pix=15, spacing=400.0)
+        delvjax.vector_map("env1", n_pix=15, grid=Grid(spacing=400.0))
     with pytest.raises(InputError, match=r"scale: .*scale >= levels x 0.01 cm = 0.03 cm"):
-        delvjax.catchment("env1", levels=3, scale=0.029, spacing=400.0)
-    vm = delvjax.vector_map("env1", n_pix=16, levels=3, scale=0.03, spacing=400.0)
+        delvjax.catchment("env1", levels=3, scale=0.029, grid=Grid(spacing=400.0))
+    vm = delvjax.vector_map("env1", n_pix=16, levels=3, scale=0.03, grid=Grid(spacing=400.0))
     assert np.asarray(vm.included).any()
 
 

@@ -9,6 +9,7 @@ import jax
 import numpy as np
 
 import delvjax
+from delvjax import Grid, Rules
 from delvjax.core import batching, maps
 from delvjax.core.rollouts import release, success
 from delvjax.core.rollouts.rules import rollout_keys
@@ -54,9 +55,9 @@ def test_two_grid_sizes_in_one_bucket_compile_once_and_give_the_numbers_of_an_un
     monkeypatch.setattr(_vector_map, "_CLEAR", {})
     monkeypatch.setattr(_vector_map, "kept_number", lambda what, key, compute: compute())
     env = delvjax.load_env("env1")
-    first = delvjax.vector_map(env, method="delv", spacing=100.0, seed=3, bearing_noise_deg=1.0)
+    first = delvjax.vector_map(env, method="delv", seed=3, bearing_noise_deg=1.0, grid=Grid(spacing=100.0))
     with compiled_functions() as names:
-        second = delvjax.vector_map(env, method="delv", spacing=110.0, seed=3, bearing_noise_deg=1.0)
+        second = delvjax.vector_map(env, method="delv", seed=3, bearing_noise_deg=1.0, grid=Grid(spacing=110.0))
     assert first.points.shape[0] == 100 and second.points.shape[0] == 81
     assert names == []  # before: the map program (7 s of CPU for DELV), the grid mask and the grid check
     r = map_request(env, "delv", 100.0, seed=3, bearing_noise_deg=1.0)
@@ -75,7 +76,7 @@ def test_two_trial_counts_draw_their_release_points_in_one_program_and_the_same_
     runs = {}
     for trials in (3, 7):
         runs[trials] = success.success_rate_trials(
-            env, METHODS["alv"], Sensor(), [100.0, 300.0], trials, key=key, max_steps=3
+            env, METHODS["alv"], Sensor(), [100.0, 300.0], trials, key=key, rules=Rules(max_steps=3)
         )
     assert success._release_bins._cache_size() - programs <= 1  # before: one program per trial count
     _, _, k_start = rollout_keys(key)
@@ -87,9 +88,9 @@ def test_two_trial_counts_draw_their_release_points_in_one_program_and_the_same_
 
 
 def test_a_catchment_of_another_grid_size_in_the_bucket_compiles_nothing():
-    delvjax.catchment("env1", method="alv", spacing=100.0, max_steps=3)
+    delvjax.catchment("env1", method="alv", grid=Grid(spacing=100.0), rules=Rules(max_steps=3))
     with compiled_functions() as names:
-        c = delvjax.catchment("env1", method="alv", spacing=110.0, max_steps=3)
+        c = delvjax.catchment("env1", method="alv", grid=Grid(spacing=110.0), rules=Rules(max_steps=3))
     assert names == [] and c.outcome.shape == (1, 81)  # before: headings, grid mask, errors, outcome
 
 
@@ -100,9 +101,9 @@ def test_catchments_of_any_mask_count_share_the_error_program():
     from delvjax.core import metrics
 
     env = delvjax.load_env("env1")
-    delvjax.catchment(env, "alv", spacing=70, occlude=1)
+    delvjax.catchment(env, "alv", occlude=1, grid=Grid(spacing=70))
     before = metrics.angular_error_deg._cache_size()
-    two = delvjax.catchment(env, "alv", spacing=70, occlude=2)
+    two = delvjax.catchment(env, "alv", occlude=2, grid=Grid(spacing=70))
     assert metrics.angular_error_deg._cache_size() == before
     unpadded = metrics.angular_error_deg(two.direction, two.valid, two.points[None], env.home)
     np.testing.assert_array_equal(np.asarray(two.error_deg), np.asarray(unpadded))

@@ -15,21 +15,28 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid, Rules
 from delvjax.core.rollouts.trials import device_split
 
 FIELDS = ("outcome", "steps", "end", "invalid_steps", "direction", "valid")
 SCRIPT = """
 import sys, numpy as np, jax, delvjax
 assert jax.local_device_count() == 4, jax.local_devices()
-c = delvjax.catchment("env1", method=sys.argv[2], spacing=100.0, lanes=7, seed=3, bearing_noise_deg=1.0)
-vm = delvjax.vector_map("env1", method=sys.argv[2], spacing=50.0, batch_size=100, seed=3, bearing_noise_deg=1.0)
+c = delvjax.catchment(
+    "env1", sys.argv[2], grid=delvjax.Grid(spacing=100.0), rules=delvjax.Rules(lanes=7), seed=3, bearing_noise_deg=1.0
+)
+vm = delvjax.vector_map(
+    "env1", sys.argv[2], grid=delvjax.Grid(spacing=50.0), batch_size=100, seed=3, bearing_noise_deg=1.0
+)
 np.savez(sys.argv[1], **{f"c_{f}": np.asarray(getattr(c, f)) for f in %r}, v_direction=np.asarray(vm.direction),
          v_valid=np.asarray(vm.valid))
 """ % (FIELDS,)
 
 
 def single_device(method: str, lanes: int = 256) -> dict[str, np.ndarray]:
-    c = delvjax.catchment("env1", method=method, spacing=100.0, lanes=lanes, seed=3, bearing_noise_deg=1.0)
+    c = delvjax.catchment(
+        "env1", method=method, seed=3, bearing_noise_deg=1.0, grid=Grid(spacing=100.0), rules=Rules(lanes=lanes)
+    )
     return {f"c_{f}": np.asarray(getattr(c, f)) for f in FIELDS}
 
 
@@ -49,7 +56,7 @@ def test_catchment_is_bit_identical_for_1_7_and_256_lanes(method):
 @pytest.mark.parametrize("method", ["delv", "warping"])
 def test_vector_map_is_bit_identical_for_every_chunk_size(method):
     maps = [
-        delvjax.vector_map("env1", method=method, spacing=50.0, batch_size=b, bearing_noise_deg=1.0)
+        delvjax.vector_map("env1", method=method, batch_size=b, bearing_noise_deg=1.0, grid=Grid(spacing=50.0))
         for b in (16384, 1, 7, 100)
     ]
     for vm in maps[1:]:
@@ -75,6 +82,6 @@ def test_four_host_devices_give_the_one_device_numbers(tmp_path: Path, method):
     assert run.returncode == 0, run.stderr[-2000:]
     four = dict(np.load(out))
     ref = single_device(method, lanes=256)
-    vm = delvjax.vector_map("env1", method=method, spacing=50.0, seed=3, bearing_noise_deg=1.0)
+    vm = delvjax.vector_map("env1", method=method, seed=3, bearing_noise_deg=1.0, grid=Grid(spacing=50.0))
     ref.update(v_direction=np.asarray(vm.direction), v_valid=np.asarray(vm.valid))
     assert_same(ref, four)

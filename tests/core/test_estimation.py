@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid
 from delvjax.core.estimation import current_vectors, end_distances, quantize, reference_vectors, start_distances
 from delvjax.core.methods import DELV
 from delvjax.core.methods.delv import delv_direction, match_arrangement
@@ -161,7 +162,7 @@ def test_alv_method_follows_the_potential_gradient():
     """The ALV method on rendered images (exact compass) points along -grad U within 2 degrees
     (where every landmark is its own blob)."""
     env = delvjax.load_env("ring5")
-    vm = delvjax.vector_map(env, method="alv", spacing=50.0, heading_deg=30.0)
+    vm = delvjax.vector_map(env, method="alv", grid=Grid(spacing=50.0, heading_deg=30.0))
     lms, home = env.landmarks[:, :2], env.home
     # within 180 cm of home no two of the five landmarks merge into one blob
     inc = np.asarray(vm.included) & (np.linalg.norm(np.asarray(vm.points) - 500.0, axis=1) < 180.0)

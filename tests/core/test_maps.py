@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid
 from delvjax.core.maps import homing_directions, stream_keys
 from delvjax.core.metrics import angular_error_deg, error_class, error_curve, error_point_rates, t_interval
 from delvjax.core.sensing import record_home, unit_move
@@ -18,7 +19,7 @@ from delvjax.options._registry import METHODS
 @pytest.mark.parametrize("method", ["delv", "acv"])
 def test_vmapped_map_equals_single_point_calls(method):
     env = delvjax.load_env("env1")
-    vm = delvjax.vector_map(env, method=method, spacing=100.0, seed=3)
+    vm = delvjax.vector_map(env, method=method, seed=3, grid=Grid(spacing=100.0))
     cfg = Sensor()
     key = jax.random.PRNGKey(3)
     k_home, k_views, _ = stream_keys(key)
@@ -38,19 +39,23 @@ def test_vmapped_map_equals_single_point_calls(method):
 
 
 def test_same_seed_same_numbers_however_chunked():
-    kw = dict(method="delv", spacing=50.0, seed=11, bearing_noise_deg=1.0, step_noise=0.05, turn_noise_deg=2.0)
+    kw = dict(
+        method="delv", grid=Grid(spacing=50.0), seed=11, bearing_noise_deg=1.0, step_noise=0.05, turn_noise_deg=2.0
+    )
     a = delvjax.vector_map("env2", batch_size=2048, **kw)
     b = delvjax.vector_map("env2", batch_size=37, **kw)
-    c = delvjax.vector_map("env2", method="delv", spacing=50.0, seed=12, bearing_noise_deg=1.0)
+    c = delvjax.vector_map("env2", method="delv", seed=12, bearing_noise_deg=1.0, grid=Grid(spacing=50.0))
     for f in ("heading", "direction", "valid", "error_deg"):
         np.testing.assert_array_equal(np.asarray(getattr(a, f)), np.asarray(getattr(b, f)), err_msg=f)
     assert not np.array_equal(np.asarray(a.heading), np.asarray(c.heading))
 
 
 def test_zero_noise_is_noise_free_and_noise_changes_results():
-    plain = delvjax.vector_map("env1", spacing=100.0, heading_deg=45.0)
-    zero = delvjax.vector_map("env1", spacing=100.0, heading_deg=45.0, bearing_noise_deg=0.0, compass_noise_deg=0.0)
-    noisy = delvjax.vector_map("env1", spacing=100.0, heading_deg=45.0, bearing_noise_deg=3.0)
+    plain = delvjax.vector_map("env1", grid=Grid(spacing=100.0, heading_deg=45.0))
+    zero = delvjax.vector_map(
+        "env1", bearing_noise_deg=0.0, compass_noise_deg=0.0, grid=Grid(spacing=100.0, heading_deg=45.0)
+    )
+    noisy = delvjax.vector_map("env1", bearing_noise_deg=3.0, grid=Grid(spacing=100.0, heading_deg=45.0))
     np.testing.assert_array_equal(np.asarray(plain.direction), np.asarray(zero.direction))
     assert not np.allclose(np.asarray(plain.direction), np.asarray(noisy.direction), equal_nan=True)
     np.testing.assert_allclose(np.degrees(np.asarray(plain.heading)), 45.0, atol=1e-4)
@@ -78,14 +83,14 @@ def test_undefined_directions_are_invalid_not_nan_errors():
     points (error 180). With a compass (true or visual) one pair suffices (docs/model.md §3.4): every
     point is valid and, the one pairing being right, the errors are small."""
     env = delvjax.make_env([[700.0, 600.0, 30.0]], pad_to=4)  # env1's four slots: its programs serve both
-    vm = delvjax.vector_map(env, method="delv", spacing=100.0)
+    vm = delvjax.vector_map(env, method="delv", grid=Grid(spacing=100.0))
     assert not np.asarray(vm.valid).any()
     assert np.isnan(np.asarray(vm.direction)).all()
     np.testing.assert_array_equal(np.asarray(vm.error_deg), 180.0)
-    alv = delvjax.vector_map(env, method="alv", spacing=100.0)
+    alv = delvjax.vector_map(env, method="alv", grid=Grid(spacing=100.0))
     assert np.asarray(alv.valid)[np.asarray(alv.included)].mean() > 0.9
     for method in ("delv-compass", "delv-visual"):
-        one = delvjax.vector_map(env, method=method, spacing=50.0)
+        one = delvjax.vector_map(env, method=method, grid=Grid(spacing=50.0))
         inc = np.asarray(one.included)
         assert np.asarray(one.valid)[inc].all(), method
         assert np.median(np.asarray(one.error_deg)[inc]) < 5.0, method
@@ -97,20 +102,20 @@ def test_a_grid_point_at_home_is_left_out_and_a_grid_of_only_home_is_refused():
     home elsewhere evaluate that point, whichever of the two was asked first (the answer is cached)."""
     env1 = delvjax.load_env("env1")
     away = delvjax.make_env(np.asarray(env1.landmarks), home=(400.0, 400.0))
-    vm = delvjax.vector_map(away, method="alv", spacing=1000.0)
+    vm = delvjax.vector_map(away, method="alv", grid=Grid(spacing=1000.0))
     assert np.asarray(vm.included).sum() == 1 and np.asarray(vm.valid).all()
     for call in (delvjax.vector_map, delvjax.catchment):
         with pytest.raises(delvjax.InputError) as exc:
-            call(env1, method="alv", spacing=1000.0)
+            call(env1, method="alv", grid=Grid(spacing=1000.0))
         assert exc.value.field == "spacing" and "but home" in str(exc.value)
 
 
 def test_one_visible_landmark_needs_a_compass():
     """Occlusion down to one visible landmark (`hidden`): delv-compass stays defined, delv does not."""
     hidden = [1, 2, 3]
-    with_compass = delvjax.vector_map("env1", method="delv-compass", spacing=100.0, hidden=hidden)
+    with_compass = delvjax.vector_map("env1", method="delv-compass", hidden=hidden, grid=Grid(spacing=100.0))
     assert np.asarray(with_compass.valid)[np.asarray(with_compass.included)].all()
-    without = delvjax.vector_map("env1", method="delv", spacing=100.0, hidden=hidden)
+    without = delvjax.vector_map("env1", method="delv", hidden=hidden, grid=Grid(spacing=100.0))
     assert not np.asarray(without.valid).any()
 
 

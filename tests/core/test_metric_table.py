@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 import delvjax
+from delvjax import Grid
 from delvjax.core import metrics
 from delvjax.core.metrics import CATCHMENT_METRICS, MAP_METRICS, METRICS, SUCCESS_METRICS
 from delvjax.sweeps import run_sweep
@@ -91,7 +92,7 @@ def test_every_path_counts_the_same_rates():
     of `core.rollouts.cells.catchment_cells` (a catchment sweep's first directions, one mask) equal a NumPy count
     on the vector map's errors. Fails when one path's threshold or comparison (> vs >=) differs."""
     options = {"spacing": 100, "seed": 3, "bearing_noise_deg": 60.0}
-    vm = delvjax.vector_map("env1", "alv", **options)
+    vm = delvjax.vector_map("env1", "alv", seed=3, bearing_noise_deg=60.0, grid=Grid(spacing=100))
     e = np.asarray(vm.error_deg)[np.asarray(vm.included)]
     expected = {"gt45_pct": 100.0 * np.sum(e > 45) / e.size, "gt90_pct": 100.0 * np.sum(e > 90) / e.size}
     assert 0 < expected["gt90_pct"] < expected["gt45_pct"] < 100

@@ -16,7 +16,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import delvjax
-from delvjax import InputError
+from delvjax import Grid, InputError
 from delvjax.envs._presets import env_from_dict, load_env
 from tests import hints_unchecked
 from tests.cases.strategies import FAST, JUNK
@@ -87,7 +87,9 @@ def test_valid_environments_give_finite_results_where_valid(scene, seed, clearan
     assert env.n_landmarks == len(lms)
     for method in METHODS:
         try:
-            vm = delvjax.vector_map(env, method=method, spacing=spacing, seed=seed, clearance=clearance, d=d, **noise)
+            vm = delvjax.vector_map(
+                env, method=method, seed=seed, d=d, grid=Grid(spacing=spacing, clearance=clearance), **noise
+            )
         except InputError as exc:
             # the only refusals of a valid scene: no grid point clear, a method that reads panoramas, or every
             # landmark narrower from home than the default ring's 1-degree pixel (options._limits.check_pixels)

@@ -7,14 +7,15 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid, Rules
 from delvjax.core.tables import catchment_columns, success_trial_columns, trajectory_columns, vector_map_columns
 
 
 def test_every_result_becomes_the_table_of_its_csv():
-    vm = delvjax.vector_map("env1", spacing=200.0)
-    c = delvjax.catchment("env1", spacing=200.0, occlude=1)
+    vm = delvjax.vector_map("env1", grid=Grid(spacing=200.0))
+    c = delvjax.catchment("env1", occlude=1, grid=Grid(spacing=200.0))
     sr = delvjax.success_rate("env1", distances=[100.0], trials=4)
-    tr = delvjax.trajectories("env1", starts=[(300.0, 300.0)], max_steps=10)
+    tr = delvjax.trajectories("env1", starts=[(300.0, 300.0)], rules=Rules(max_steps=10))
     for result, columns in [
         (vm, vector_map_columns(vm)),
         (c, catchment_columns(c, with_hidden=True)),
@@ -36,7 +37,7 @@ def test_something_else_is_refused_by_name():
 
 
 def test_a_vector_map_as_xarray_is_its_grid_in_centimetres():
-    vm = delvjax.vector_map("env1", spacing=100.0, seed=3)
+    vm = delvjax.vector_map("env1", seed=3, grid=Grid(spacing=100.0))
     ds = vm.to_xarray()
     assert dict(ds.sizes) == {"y": 10, "x": 10} and ds.x.values.tolist() == [50.0 + 100 * i for i in range(10)]
     pts = np.asarray(vm.points)
@@ -51,7 +52,7 @@ def test_a_vector_map_as_xarray_is_its_grid_in_centimetres():
 
 
 def test_scattered_points_become_a_point_dimension():
-    vm = delvjax.vector_map("env1", spacing=100.0)
+    vm = delvjax.vector_map("env1", grid=Grid(spacing=100.0))
     scattered = type(vm)(
         points=vm.points[::-1], included=vm.included, heading=vm.heading, direction=vm.direction,
         valid=vm.valid, error_deg=vm.error_deg,

@@ -7,6 +7,7 @@ import pytest
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 
 import delvjax
+from delvjax import Grid, Rules
 from delvjax.cli import _main
 from delvjax.core import maps
 from delvjax.core.errors import InputError
@@ -33,7 +34,7 @@ class Recorder(Progress):
 def chunked():
     """(map, recorder): the 400-point grid in chunks of 128 points."""
     report = Recorder()
-    return delvjax.vector_map("env1", spacing=SPACING, batch_size=128, progress=report), report
+    return delvjax.vector_map("env1", batch_size=128, progress=report, grid=Grid(spacing=SPACING)), report
 
 
 def test_a_vector_map_starts_its_progress_once_with_the_grid_then_reports_each_chunk(chunked):
@@ -46,7 +47,9 @@ def test_a_vector_map_starts_its_progress_once_with_the_grid_then_reports_each_c
 
 def test_a_plain_function_still_gets_the_chunks():
     calls = []
-    delvjax.vector_map("env1", spacing=SPACING, batch_size=128, progress=lambda done, total: calls.append(done))
+    delvjax.vector_map(
+        "env1", batch_size=128, progress=lambda done, total: calls.append(done), grid=Grid(spacing=SPACING)
+    )
     assert calls == [128, 128, 128, 16]
 
 
@@ -54,9 +57,9 @@ def test_bad_input_starts_no_progress():
     # the command line prints its line in `start`: an error must stay one line
     report = Recorder()
     with pytest.raises(InputError, match="spacing"):
-        delvjax.vector_map("env1", spacing=-1.0, progress=report)
+        delvjax.vector_map("env1", progress=report, grid=Grid(spacing=-1.0))
     with pytest.raises(InputError, match="max_steps"):
-        delvjax.catchment("env1", spacing=SPACING, max_steps=0, progress=report)
+        delvjax.catchment("env1", progress=report, grid=Grid(spacing=SPACING), rules=Rules(max_steps=0))
     assert report.calls == []
 
 

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid, Rules
 from delvjax.cli._main import main
 from delvjax.core.errors import InputError
 from delvjax.core.maps import grid_included, grid_points
@@ -187,7 +188,7 @@ def test_api_bad_input_raises_input_error():
     with pytest.raises(InputError, match="occlude"):
         delvjax.catchment("env1", occlude=1, hidden=[0])
     with pytest.raises(InputError, match="max_steps"):
-        delvjax.success_rate("env1", max_steps=0)
+        delvjax.success_rate("env1", rules=Rules(max_steps=0))
     with pytest.raises(InputError, match="distances"):
         delvjax.success_rate("env1", distances=[])
     with pytest.raises(InputError, match=r"starts\[0\]"):  # inside a landmark
@@ -200,6 +201,9 @@ def test_api_bad_input_raises_input_error():
 )
 def test_bad_rules_raise_input_error_naming_the_field(call, field, value):
     with pytest.raises(InputError, match=field) as info:
+        call("env1", rules=Rules(**{field: value}))
+    assert info.value.field == field
+    with pytest.raises(InputError, match=field) as info, pytest.deprecated_call():  # the old keyword alike
         call("env1", **{field: value})
     assert info.value.field == field
 
@@ -221,15 +225,15 @@ def test_numpy_arrays_are_taken_wherever_lists_are():
     arrays = delvjax.success_rate("env1", "alv", trials=4, **{k: np.asarray(v) for k, v in kw.items()})
     same(lists, arrays, "outcome")
     same(lists, arrays, "start")
-    c = delvjax.catchment("env1", "alv", spacing=200, hidden=np.array([1], np.int32))
-    same(c, delvjax.catchment("env1", "alv", spacing=200, hidden=[1]), "outcome")
+    c = delvjax.catchment("env1", "alv", hidden=np.array([1], np.int32), grid=Grid(spacing=200))
+    same(c, delvjax.catchment("env1", "alv", hidden=[1], grid=Grid(spacing=200)), "outcome")
     assert c.hidden == ((1,),)
-    v = delvjax.vector_map("env1", "alv", spacing=200, hidden=np.array([1, 3]))
-    same(v, delvjax.vector_map("env1", "alv", spacing=200, hidden=[1, 3]), "direction")
+    v = delvjax.vector_map("env1", "alv", hidden=np.array([1, 3]), grid=Grid(spacing=200))
+    same(v, delvjax.vector_map("env1", "alv", hidden=[1, 3], grid=Grid(spacing=200)), "direction")
     t = delvjax.trajectories("env1", "alv", starts=np.array([[300.0, 300.0], [700.0, 250.0]]))
     same(t, delvjax.trajectories("env1", "alv", starts=[[300.0, 300.0], [700.0, 250.0]]), "path")
     with pytest.raises(InputError, match="0..3, got np.int64.4."):
-        delvjax.catchment("env1", "alv", spacing=200, hidden=np.array([4]))
+        delvjax.catchment("env1", "alv", hidden=np.array([4]), grid=Grid(spacing=200))
 
 
 def same(a, b, field: str) -> None:
@@ -244,10 +248,12 @@ def test_numpy_integers_are_integers(untyped):
     b = delvjax.success_rate("env1", "alv", trials=3, distances=[100.0], seed=2)
     same(a, b, "outcome")
     same(a, b, "start")
-    c = delvjax.catchment("env1", "alv", spacing=200, occlude=np.int64(1), max_steps=np.int16(20))
-    same(c, delvjax.catchment("env1", "alv", spacing=200, occlude=1, max_steps=20), "outcome")
+    c = delvjax.catchment(
+        "env1", "alv", occlude=np.int64(1), grid=Grid(spacing=200), rules=Rules(max_steps=np.int16(20))
+    )
+    same(c, delvjax.catchment("env1", "alv", occlude=1, grid=Grid(spacing=200), rules=Rules(max_steps=20)), "outcome")
     assert np.asarray(delvjax.trajectories("env1", "alv", n_starts=np.uint8(2)).steps).shape == (2,)
     for bad in (np.bool_(True), np.int64(-1)):
         with pytest.raises(InputError) as exc:
-            delvjax.vector_map("env1", "alv", spacing=200, seed=bad)
+            delvjax.vector_map("env1", "alv", seed=bad, grid=Grid(spacing=200))
         assert exc.value.field == "seed"

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid
 from delvjax.core.errors import InputError
 from delvjax.core.kernel import map_poses
 from delvjax.core.maps import grid_included, grid_points, stream_keys
@@ -74,7 +75,7 @@ def _soft_and_hard(name: str, sharpness: float, **options):
     least two blobs (one compiled program for every tau)."""
     env, module, sensor, _, key, _ = scene_request("env1", name, 10.0, None, 0, **options)
     env = env.arrays()
-    vm = delvjax.vector_map("env1", name, spacing=50, seed=0)
+    vm = delvjax.vector_map("env1", name, seed=0, grid=Grid(spacing=50))
     k_home, k_views, _ = stream_keys(key)
     # the soft DELV pairs the current list in the agent frame (docs/differentiable.md): so does its hard twin
     hard = dataclasses.replace(module, order="agent") if hasattr(module, "order") else module
@@ -220,7 +221,7 @@ def test_a_non_positive_tau_is_refused(tau):
 
 
 def test_the_hard_loss_is_the_vector_map_error():
-    vm = delvjax.vector_map("env1", "alv", spacing=100)
+    vm = delvjax.vector_map("env1", "alv", grid=Grid(spacing=100))
     err = np.radians(np.asarray(vm.error_deg))[np.asarray(vm.included)]
     assert delvjax.homing_loss("env1", "alv", spacing=100, soft=False) == pytest.approx(np.mean(1 - np.cos(err)))
     # the soft loss of a smooth method is close to the hard one (the views differ by half a pixel)

@@ -10,6 +10,7 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
+from delvjax import Grid
 from delvjax.core.images.database import home_plan, move_plan
 from delvjax.core.images.rollouts import Field, nearest_snapshot_rollouts
 from delvjax.core.images.world import Camera
@@ -199,7 +200,7 @@ def test_database_masks_and_map_are_the_ring_model(robot_db):
     differ = sum(int(np.sum(np.asarray(render_ring(jnp.asarray(p))) != m)) for p, m in zip(pts, masks))
     assert differ <= 0.001 * masks.size, differ
     vm = database_vector_map(db, "alv")
-    core = api.vector_map(env, "alv", spacing=iw.spacing, heading_deg=0.0, d=iw.spacing)
+    core = api.vector_map(env, "alv", d=iw.spacing, grid=Grid(spacing=iw.spacing, heading_deg=0.0))
     cp = np.asarray(core.points)
     idx = [int(np.argmin(np.linalg.norm(cp - p, axis=1))) for p in pts]
     included = np.arange(len(pts)) != db.home_index

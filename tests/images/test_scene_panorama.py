@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid, Rules
 from delvjax.core.images import Camera
 from delvjax.core.images.scene_panorama import scene_panorama
 from delvjax.images import render_in_memory
@@ -49,10 +50,12 @@ def test_a_hidden_landmark_is_missing_from_the_panorama_as_from_the_ring():
 
 
 def test_minwarping_homes_on_a_ring_scene_and_under_occlusion():
-    vm = delvjax.vector_map("env1", method="minwarping", spacing=200.0, **SMALL)
+    vm = delvjax.vector_map("env1", method="minwarping", grid=Grid(spacing=200.0), **SMALL)
     error = np.asarray(vm.error_deg)
     assert np.asarray(vm.valid).all() and np.median(error) < 10.0, error
-    c = delvjax.catchment("env1", method="minwarping", spacing=200.0, occlude=1, max_steps=40, **SMALL)
+    c = delvjax.catchment(
+        "env1", method="minwarping", occlude=1, grid=Grid(spacing=200.0), rules=Rules(max_steps=40), **SMALL
+    )
     outcome, steps = np.asarray(c.outcome), np.asarray(c.steps)
     assert outcome.shape == (4, 25)
     # a panorama at every step: trials of many moves, most of them home (none undefined on a scene)
@@ -60,10 +63,14 @@ def test_minwarping_homes_on_a_ring_scene_and_under_occlusion():
 
 
 def test_the_hybrid_takes_delv_where_it_converges_on_a_ring_scene():
-    kw = {"spacing": 100.0, "mw_n_alpha": 36, "mw_n_psi": 36}  # 360 px rings: DELV's fit converges at some points
+    kw = {
+        "grid": Grid(spacing=100.0),
+        "mw_n_alpha": 36,
+        "mw_n_psi": 36,
+    }  # 360 px rings: DELV's fit converges at some points
     mw = np.asarray(delvjax.vector_map("env1", method="minwarping", **kw).direction)
     hybrid = np.asarray(delvjax.vector_map("env1", method="hybrid", **kw).direction)
-    delv = np.asarray(delvjax.vector_map("env1", method="delv", spacing=100.0).direction)
+    delv = np.asarray(delvjax.vector_map("env1", method="delv", grid=Grid(spacing=100.0)).direction)
     from_delv, from_mw = np.isclose(hybrid, delv), np.isclose(hybrid, mw)
     assert 0.05 < from_delv.mean() < 0.95 and (from_delv | from_mw).all()
 

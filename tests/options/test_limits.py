@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid
 from delvjax.cli._main import main
 from delvjax.core import maps
 from delvjax.core.errors import InputError
@@ -52,7 +53,7 @@ def test_max_points_is_the_users_to_raise(tmp_path, capsys):
     assert main(["vector-map", "env1", "--spacing", "100", "--max-points", "100", "--out", str(out)]) == 0
     assert out.exists()
     with pytest.raises(InputError, match="max_points"):
-        delvjax.vector_map("env1", spacing=100.0, max_points=99)
+        delvjax.vector_map("env1", max_points=99, grid=Grid(spacing=100.0))
     assert MAX_POINTS == 1_000_000
 
 
@@ -75,7 +76,7 @@ def test_the_grid_count_is_known_before_the_grid_is_built(arena, spacing):
 
 def test_a_grid_in_many_chunks_reports_progress_and_gives_the_one_chunk_numbers():
     calls = []
-    vm = delvjax.vector_map("env1", spacing=50.0, batch_size=100)
+    vm = delvjax.vector_map("env1", batch_size=100, grid=Grid(spacing=50.0))
     env = delvjax.load_env("env1")
     chunked = maps.vector_map(
         env,

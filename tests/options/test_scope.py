@@ -58,4 +58,4 @@ def test_heading_and_lanes_reach_the_rollout(tmp_path, capsys, monkeypatch, comm
     monkeypatch.setattr(cli_rollouts.api_rollouts, api, record)
     argv = [command, "env1", "--heading-deg", "30", "--lanes", "7", "--out", str(tmp_path / "r.csv")]
     assert main(argv) == 2
-    assert seen["heading_deg"] == 30.0 and seen["lanes"] == 7 and "spacing" not in seen
+    assert seen["grid"].heading_deg == 30.0 and seen["rules"].lanes == 7 and "spacing" not in seen

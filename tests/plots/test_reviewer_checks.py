@@ -3,6 +3,7 @@ autouse fixture of tests/conftest.py) catch what they claim to: each defect is d
 
 from __future__ import annotations
 
+from delvjax import Grid
 from delvjax.plots._maps import subplots
 from tests.cases.figures import figure_defects
 
@@ -54,7 +55,7 @@ def test_a_catchment_map_under_occlusion_has_labelled_panels_and_says_what_its_c
     import delvjax
     from delvjax.plots import catchment_figure
 
-    c = delvjax.catchment("env1", spacing=200.0, occlude=1)  # one panel per hidden landmark
+    c = delvjax.catchment("env1", occlude=1, grid=Grid(spacing=200.0))  # one panel per hidden landmark
     fig = catchment_figure(delvjax.load_env("env1"), c, 200.0, "DELV, one landmark hidden")
     assert figure_defects(fig) == []
     labels = [t.get_text() for legend in fig.legends for t in legend.get_texts()]
@@ -66,7 +67,7 @@ def test_cells_not_counted_are_hatched_and_named_not_drawn_as_failures():
     import delvjax
     from delvjax.plots import catchment_figure
 
-    c = delvjax.catchment("env1", spacing=200.0, d=150.0)  # grid points 100 cm from a wall: not counted
+    c = delvjax.catchment("env1", d=150.0, grid=Grid(spacing=200.0))  # grid points 100 cm from a wall: not counted
     fig = catchment_figure(delvjax.load_env("env1"), c, 200.0, "DELV, d = 150 cm")
     labels = [t.get_text() for legend in fig.legends for t in legend.get_texts()]
     assert "not counted (within d of a wall)" in labels

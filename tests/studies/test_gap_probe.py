@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid
 from delvjax.options import METHODS
 from delvjax.studies.runs import _gap_probe, causes_probe
 from delvjax.studies.runs._common import env
@@ -69,8 +70,8 @@ def test_acv_nearest_agrees_with_acv_near_home_and_differs_far_from_it():
     register_variants()
     try:
         e = env("env1")
-        a = delvjax.vector_map(e, method="acv", spacing=100.0, seed=0)
-        b = delvjax.vector_map(e, method=ACV_NEAREST, spacing=100.0, seed=0)
+        a = delvjax.vector_map(e, method="acv", seed=0, grid=Grid(spacing=100.0))
+        b = delvjax.vector_map(e, method=ACV_NEAREST, seed=0, grid=Grid(spacing=100.0))
     finally:
         unregister_variants()  # the registry's methods live in delvjax/core/methods (tests/test_architecture.py)
     assert ACV_NEAREST not in METHODS
@@ -106,7 +107,7 @@ def test_alv_mean_is_alv_with_every_landmark_and_recovers_env3_with_one_hidden()
         e = env("env3")
         rates = {}
         for m in ("alv", ALV_MEAN):
-            vm = [delvjax.vector_map(e, method=m, spacing=100.0, seed=0, hidden=h) for h in (None, [1])]
+            vm = [delvjax.vector_map(e, method=m, seed=0, hidden=h, grid=Grid(spacing=100.0)) for h in (None, [1])]
             rates[m] = [100.0 * float((np.asarray(v.error_deg)[np.asarray(v.included)] > 45.0).mean()) for v in vm]
     finally:
         unregister_variants()
@@ -122,8 +123,8 @@ def test_acv_agent_is_acv_with_every_landmark_and_differs_with_one_hidden():
     register_variants()
     try:
         e = env("env2")
-        a = [delvjax.vector_map(e, method="acv", spacing=100.0, seed=0, hidden=h) for h in (None, [0])]
-        b = [delvjax.vector_map(e, method=ACV_AGENT, spacing=100.0, seed=0, hidden=h) for h in (None, [0])]
+        a = [delvjax.vector_map(e, method="acv", seed=0, hidden=h, grid=Grid(spacing=100.0)) for h in (None, [0])]
+        b = [delvjax.vector_map(e, method=ACV_AGENT, seed=0, hidden=h, grid=Grid(spacing=100.0)) for h in (None, [0])]
     finally:
         unregister_variants()
     pts = np.asarray(a[0].points)

@@ -30,7 +30,6 @@ ALLOWED = {
     ("delvjax.images._render", "render_rings"): IMAGES,
     ("delvjax.images._worlds", "ImageWorld"): IMAGES,
     ("delvjax.images._worlds", "robot_arena"): IMAGES,
-    ("delvjax.options._checks", "SEED_LIMIT"): "a validation limit the settings study designs around, not an API",
     ("delvjax.options._registry", "program"): PROGRAM,
     ("delvjax.options._settings", "make_sensor"): SETTINGS,
     ("delvjax.sweeps._kinds", "cell_setup"): KINDS,

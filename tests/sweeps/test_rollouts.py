@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid, Rules
 from delvjax.core.errors import InputError
 from delvjax.core.rollouts import catchment_summary, wilson_interval_pct
 from delvjax.core.rollouts.success import wilson_pct
@@ -55,12 +56,11 @@ def test_a_catchment_cell_equals_the_catchment_run_with_its_options(catchments):
                     delvjax.catchment(
                         "env1",
                         method,
-                        spacing=100,
                         seed=4,
                         occlude=occlude or None,
-                        first_move=first_move,
-                        collisions="fail",
                         bearing_noise_deg=3.0,
+                        grid=Grid(spacing=100),
+                        rules=Rules(first_move=first_move, collisions="fail"),
                     )
                 )
                 cell = ds.sel({"homing_method": method, "occlude": occlude, "first_move": first_move}).squeeze()
@@ -176,7 +176,7 @@ def test_random_layouts_on_the_env_axis_are_the_seeded_random_envs():
     for label, (seed, n) in spec.random_envs.items():
         ref = delvjax.summarize_map(
             *(lambda v: (v.error_deg, v.valid, v.included))(
-                delvjax.vector_map(random_env(seed, n, pad_to=5), spacing=150)
+                delvjax.vector_map(random_env(seed, n, pad_to=5), grid=Grid(spacing=150))
             )
         )  # padded: one program for both counts
         assert float(ds.gt45_pct.sel({"env": label}).squeeze()) == pytest.approx(ref["gt45_pct"], abs=1e-9), label
@@ -198,7 +198,7 @@ def test_ensemble_members_on_the_env_axis_are_the_family_members():
     ds = run_sweep(spec)
     assert ds.attrs["programs_compiled"] <= 1  # 4 and 5 landmarks padded to one shape
     for label, world in worlds.items():
-        vm = delvjax.vector_map(env_from_dict(world, pad_to=5), spacing=150)
+        vm = delvjax.vector_map(env_from_dict(world, pad_to=5), grid=Grid(spacing=150))
         ref = delvjax.summarize_map(vm.error_deg, vm.valid, vm.included)
         assert float(ds.gt45_pct.sel({"env": label}).squeeze()) == pytest.approx(ref["gt45_pct"], abs=1e-9), label
 

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid
 from delvjax.cli._main import main
 from delvjax.core.errors import InputError
 from delvjax.sweeps import _run as sweeps
@@ -66,7 +67,9 @@ def test_every_cell_equals_the_vector_map_of_its_settings(small):
     assert 0 <= small.attrs["programs_compiled"] <= 1
     for method in ("delv", "alv"):
         for seed in (0, 1):
-            vm = delvjax.vector_map("env1", method=method, d=60, bearing_noise_deg=3.0, seed=seed, spacing=90.0)
+            vm = delvjax.vector_map(
+                "env1", method=method, d=60, bearing_noise_deg=3.0, seed=seed, grid=Grid(spacing=90.0)
+            )
             s = delvjax.summarize_map(vm.error_deg, vm.valid, vm.included)
             cell = small.sel({"homing_method": method, "d": 60, "bearing_noise_deg": 3.0, "seed": seed}).squeeze()
             assert int(cell.points) == s["points"] and float(cell.invalid_pct) == 100 * s["invalid"] / s["points"]

@@ -1,6 +1,6 @@
 """Homing rollouts (thesis §4.3, §5.3.1; docs/model.md §5), split by job:
 
-rules (outcomes, the two rules, a point's status), step (one move of one lane), lanes (the
+config (the `Grid` and `Rules` objects), rules (outcomes, the two rules, a point's status), step (one move of one lane), lanes (the
 scheduler), trials (blocks of trials as one program), release (seeded release points),
 catchment, success (success rate vs distance), trajectories.
 """
@@ -14,6 +14,7 @@ from .catchment import (
     occlusion_masks,
     under_release,
 )
+from .config import Grid, Rules, legacy_config
 from .release import START_TRIES, release_points
 from .rules import (
     ARENA,
@@ -54,6 +55,9 @@ __all__ = [
     "ARENA",
     "COLLISIONS",
     "Catchment",
+    "Grid",
+    "Rules",
+    "legacy_config",
     "DEFAULT_DISTANCES",
     "DEFAULT_FIRST_MOVE",
     "DEFAULT_LANES",

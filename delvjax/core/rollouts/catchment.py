@@ -14,7 +14,7 @@ from jax import Array
 
 from ..batching import bucket, pad_rows
 from ..errors import InputError
-from ..maps import CLEARANCE, SPACING, grid_included, grid_points, random_headings
+from ..maps import grid_included, grid_points, random_headings
 from ..methods.base import HomingMethod
 from ..metrics import RATES, angular_error_deg, error_point_rates
 from ..scene import Env
@@ -30,12 +30,10 @@ from ..types import (
     Masks,
     Real,
 )
+from .config import Grid, Rules, legacy_config
 from .rules import (
     DEFAULT_FIRST_MOVE,
-    DEFAULT_LANES,
     EXCLUDED,
-    HOME_RADIUS,
-    MAX_STEPS,
     NEAR_WALL,
     NO_CONTACT,
     OUTCOMES,
@@ -77,7 +75,7 @@ class Catchment(Outcomes):
     under each mask with the same headings and home record: direction (M, P) world rad
     (NaN where invalid), valid (M, P), error_deg (M, P); the first landmark contact of each rollout
     (`rules.under_collisions`): contact (M, P) its step (NO_CONTACT: none), contact_end (M, P, 2),
-    contact_invalid (M, P).
+    contact_invalid (M, P); grid: the `Grid` it was computed on (None in a result built by hand).
     """
 
     points: GridPoints
@@ -98,6 +96,7 @@ class Catchment(Outcomes):
     hidden: tuple = eqx.field(static=True, default=((),))
     first_move: str = eqx.field(static=True, default=DEFAULT_FIRST_MOVE)
     collisions: str = eqx.field(static=True, default="ignore")
+    grid: Grid | None = eqx.field(static=True, default=None)
 
     def columns(self, method: str = "") -> dict:
         """Per grid point and mask, the catchment CSV's columns with the hidden landmarks (`catchment_columns`)."""
@@ -113,26 +112,28 @@ def catchment_area(
     env: Env,
     method: HomingMethod,
     sensor: Sensor,
-    spacing: float = SPACING,
-    heading: float | None = None,
+    grid: Grid | None = None,
+    rules: Rules | None = None,
+    *,
     key: Array | None = None,
-    clearance: Real = CLEARANCE,
     masks: np.ndarray | None = None,
     hidden: Sequence[tuple[int, ...]] = ((),),
-    home_radius: Real = HOME_RADIUS,
-    max_steps: int = MAX_STEPS,
-    lanes: int = DEFAULT_LANES,
-    first_move: str = DEFAULT_FIRST_MOVE,
-    collisions: str = "ignore",
     progress: Callable[[int, int], None] | None = None,
+    **legacy,
 ) -> Catchment:
-    """Rollouts from every grid point under every mask in `masks` (M, L), one program (docs/model.md §5).
+    """Rollouts from every point of `grid` under every mask in `masks` (M, L) by `rules`, one program
+    (docs/model.md §5; `Grid`, `Rules`: core/rollouts/config.py, defaults `Grid()`, `Rules()`).
 
-    Headings: fixed (rad) or per point from `key` as in `maps.random_headings`. The trial of
-    grid cell i uses noise stream i under every mask (common random numbers across masks).
+    Headings: the grid's fixed heading or per point from `key` as in `maps.random_headings`. The trial
+    of grid cell i uses noise stream i under every mask (common random numbers across masks).
     The vector map under each mask comes from the same program (each trial's first direction).
-    `progress(done, total)` after each block of trials.
+    `progress(done, total)` after each block of trials. The result carries its grid. The flat
+    keywords of earlier releases (spacing=, max_steps=, ...) still work, deprecated (`legacy_config`).
     """
+    grid, rules = legacy_config(Grid, grid, legacy), legacy_config(Rules, rules, legacy)
+    if legacy:
+        raise TypeError(f"catchment_area() got unexpected keyword arguments {sorted(legacy)}")
+    spacing, heading, clearance, first_move = grid.spacing, grid.heading, grid.clearance, rules.first_move
     key = jax.random.PRNGKey(0) if key is None else key
     masks = np.asarray(env.valid, bool)[None, :] if masks is None else np.asarray(masks, bool)
     # input preparation on the host (NumPy): eager device ops would compile once per shape; the grid's
@@ -166,11 +167,7 @@ def catchment_area(
         key,
         sensor,
         method,
-        home_radius=home_radius,
-        max_steps=max_steps,
-        lanes=lanes,
-        first_move=first_move,
-        collisions=collisions,
+        rules,
         progress=progress,
     )
 
@@ -204,7 +201,8 @@ def catchment_area(
         contact_invalid=put(per_cell(trials.contact_invalid, 0)),
         hidden=tuple(tuple(int(i) for i in h) for h in hidden),
         first_move=first_move,
-        collisions=collisions,
+        collisions=rules.collisions,
+        grid=grid,
     )
 
 

@@ -13,19 +13,16 @@ from jax import Array
 from jax.typing import ArrayLike
 
 from ..batching import bucket
-from ..maps import CLEARANCE
 from ..methods.base import HomingMethod
 from ..scene import Env
 from ..sensor import Sensor
 from ..types import Bins, BinTrialFlag, BinTrialFloat, BinTrialInt, BinTrialPoints, Real
+from .config import Grid, Rules, legacy_config
 from .release import release_points
 from .rules import (
     DEFAULT_DISTANCES,
     DEFAULT_FIRST_MOVE,
-    DEFAULT_LANES,
     EXCLUDED,
-    HOME_RADIUS,
-    MAX_STEPS,
     NO_CONTACT,
     OUTCOMES,
     SUCCESS,
@@ -123,17 +120,21 @@ def success_rate_trials(
     sensor: Sensor,
     distances: Sequence[float] = DEFAULT_DISTANCES,
     trials: int = TRIALS_PER_DISTANCE,
-    heading: float | None = None,
+    grid: Grid | None = None,
+    rules: Rules | None = None,
+    *,
     key: Array | None = None,
-    clearance: Real = CLEARANCE,
     visible: ArrayLike | None = None,
-    home_radius: Real = HOME_RADIUS,
-    max_steps: int = MAX_STEPS,
-    lanes: int = DEFAULT_LANES,
-    first_move: str = DEFAULT_FIRST_MOVE,
-    collisions: str = "ignore",
+    **legacy,
 ) -> SuccessRate:
-    """`trials` rollouts per release distance: random direction from home, random heading (docs/model.md §5)."""
+    """`trials` rollouts per release distance by `rules`: random direction from home, random heading unless
+    `grid` fixes one; release points clear of the landmarks by `grid.clearance` (docs/model.md §5; the
+    grid's spacing is not used). `Grid`, `Rules`: core/rollouts/config.py, defaults `Grid()`, `Rules()`;
+    the flat keywords of earlier releases still work, deprecated (`legacy_config`)."""
+    grid, rules = legacy_config(Grid, grid, legacy), legacy_config(Rules, rules, legacy)
+    if legacy:
+        raise TypeError(f"success_rate_trials() got unexpected keyword arguments {sorted(legacy)}")
+    heading, clearance = grid.heading, grid.clearance
     key = jax.random.PRNGKey(0) if key is None else key
     dist = np.asarray(distances, np.float32)
     n_bins = dist.shape[0]
@@ -156,11 +157,7 @@ def success_rate_trials(
         key,
         sensor,
         method,
-        home_radius=home_radius,
-        max_steps=max_steps,
-        lanes=lanes,
-        first_move=first_move,
-        collisions=collisions,
+        rules,
     )
     placed_flat = placed.reshape(total)
     outcome = np.where(placed_flat, np.asarray(res.outcome), EXCLUDED).reshape(n_bins, trials)
@@ -179,8 +176,8 @@ def success_rate_trials(
                 contact=contact,
             ).items()
         },
-        first_move=first_move,
-        collisions=collisions,
+        first_move=rules.first_move,
+        collisions=rules.collisions,
     )
 
 

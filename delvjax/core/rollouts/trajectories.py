@@ -10,8 +10,9 @@ from jax import Array
 from ..methods.base import HomingMethod
 from ..scene import Env
 from ..sensor import Sensor
-from ..types import Paths, PerTrial, PerTrialInt, Real, TrialPoints
-from .rules import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes, outcome_names, rule_columns
+from ..types import Paths, PerTrial, PerTrialInt, TrialPoints
+from .config import Rules, legacy_config
+from .rules import DEFAULT_FIRST_MOVE, Outcomes, outcome_names, rule_columns
 from .trials import run_trials
 
 
@@ -45,15 +46,18 @@ def trajectory_trials(
     sensor: Sensor,
     starts: Array,
     headings: Array,
+    rules: Rules | None = None,
+    *,
     key: Array | None = None,
     visible: Array | None = None,
-    home_radius: Real = HOME_RADIUS,
-    max_steps: int = MAX_STEPS,
-    lanes: int = DEFAULT_LANES,
-    first_move: str = DEFAULT_FIRST_MOVE,
-    collisions: str = "ignore",
+    **legacy,
 ) -> Trajectories:
-    """Rollouts from `starts` (T, 2) with `headings` (T,) rad, recording every position."""
+    """Rollouts from `starts` (T, 2) with `headings` (T,) rad by `rules` (a `Rules`, core/rollouts/config.py;
+    default `Rules()`), recording every position. The flat keywords of earlier releases still work,
+    deprecated (`legacy_config`)."""
+    rules = legacy_config(Rules, rules, legacy)
+    if legacy:
+        raise TypeError(f"trajectory_trials() got unexpected keyword arguments {sorted(legacy)}")
     key = jax.random.PRNGKey(0) if key is None else key
     starts = np.asarray(starts, np.float32)
     headings = np.asarray(headings, np.float32)
@@ -69,12 +73,8 @@ def trajectory_trials(
         key,
         sensor,
         method,
-        home_radius=home_radius,
-        max_steps=max_steps,
-        lanes=lanes,
+        rules,
         record_paths=True,
-        first_move=first_move,
-        collisions=collisions,
     )
     return Trajectories(
         start=jax.device_put(starts),
@@ -85,8 +85,8 @@ def trajectory_trials(
         invalid_steps=res.invalid_steps,
         contact=res.contact,
         contact_invalid=res.contact_invalid,
-        first_move=first_move,
-        collisions=collisions,
+        first_move=rules.first_move,
+        collisions=rules.collisions,
     )
 
 

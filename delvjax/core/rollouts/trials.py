@@ -23,9 +23,10 @@ from ..methods.base import HomingMethod
 from ..scene import Env
 from ..sensing import UnitMove, record_home
 from ..sensor import Sensor
-from ..types import Masks, PerTrial, PerTrialFlag, PerTrialInt, Real, TrialPoints
+from ..types import Masks, PerTrial, PerTrialFlag, PerTrialInt, TrialPoints
+from .config import Rules, legacy_config
 from .lanes import run_block
-from .rules import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_STEPS, Outcomes, check_rules, rollout_keys
+from .rules import DEFAULT_FIRST_MOVE, MAX_STEPS, Outcomes, rollout_keys
 from .step import Rollout
 
 TRIAL_BLOCK = 16384
@@ -130,13 +131,11 @@ def run_trials(
     key: Array,
     sensor: Sensor,
     method: HomingMethod,
-    home_radius: Real = HOME_RADIUS,
-    max_steps: int = MAX_STEPS,
-    lanes: int = DEFAULT_LANES,
+    rules: Rules | None = None,
+    *,
     record_paths: bool = False,
-    first_move: str = DEFAULT_FIRST_MOVE,
-    collisions: str = "ignore",
     progress: Callable[[int, int], None] | None = None,
+    **legacy,
 ) -> Trials:
     """Roll out T trials (docs/model.md §5), in blocks of one compiled program.
 
@@ -144,12 +143,16 @@ def run_trials(
     noise stream fold_in(key_rollout, key_index) and the vector map's view stream of its
     first direction (equal indices = common random numbers); mask_index: (T,) int into
     masks (M, L) bool, the landmarks visible during homing (the home record,
-    `home_record(env, key, sensor)`, always sees all). `lanes` trials run side by side;
-    finished lanes are refilled from the queue of pending trials. `first_move` and
-    `collisions` are the rules of `rules`. Several methods share one compiled program as a
-    `methods.Program`. `progress(done, T)` is called after each block.
+    `home_record(env, key, sensor)`, always sees all). `rules` (a `Rules`, core/rollouts/config.py;
+    default `Rules()`): max_steps, home_radius, first_move, collisions and the `lanes` trials run side
+    by side (finished lanes are refilled from the queue of pending trials). Several methods share one
+    compiled program as a `methods.Program`. `progress(done, T)` is called after each block. The
+    flat keywords of earlier releases (max_steps=, ...) still work, deprecated (`legacy_config`).
     """
-    check_rules(first_move, collisions)
+    rules = legacy_config(Rules, rules, legacy)
+    if legacy:
+        raise TypeError(f"run_trials() got unexpected keyword arguments {sorted(legacy)}")
+    max_steps, lanes = rules.max_steps, rules.lanes
     paths = keeps_paths(max_steps, record_paths)  # whether the blocks keep paths (trial_block sizes them)
     length = path_length(max_steps, record_paths)  # the blocks' static path buffer (1: none)
     n = int(starts.shape[0])
@@ -179,10 +182,10 @@ def run_trials(
             masks=masks,
             k_roll=k_roll,
             k_views=k_views,
-            radius=np.float32(home_radius),
+            radius=np.float32(rules.home_radius),
             max_steps=np.int32(max_steps),
-            homing_first=np.bool_(first_move == "homing"),
-            collide=np.bool_(collisions == "fail"),
+            homing_first=np.bool_(rules.first_move == "homing"),
+            collide=np.bool_(rules.collisions == "fail"),
         )
         n_valid = min(block, n - i)
         if mesh is None:
@@ -220,6 +223,6 @@ def run_trials(
         contact_end=res.contact_end,
         contact_invalid=res.contact_invalid,
         path=res.path[:, : max_steps + 1] if record_paths else None,  # the buffer may be longer (path_length)
-        first_move=first_move,
-        collisions=collisions,
+        first_move=rules.first_move,
+        collisions=rules.collisions,
     )

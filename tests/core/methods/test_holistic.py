@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid
 from delvjax.cli import _main as cli
 from delvjax.core import maps
 from delvjax.core.errors import InputError
@@ -250,9 +251,9 @@ def test_predicted_images_stay_unbatched_under_vmap():
 
 def test_api_runs_both_methods_and_channels():
     for method, channel in [("warping", "gray"), ("mfdid", "mask")]:
-        vm = delvjax.vector_map("env1", method=method, channel=channel, spacing=200.0)
+        vm = delvjax.vector_map("env1", method=method, channel=channel, grid=Grid(spacing=200.0))
         assert vm.direction.shape == (25,) and bool(np.all(np.asarray(vm.valid)[np.asarray(vm.included)]))
-    coarse = delvjax.vector_map("env1", method="warping", spacing=200.0, n_alpha=36, n_psi=36, n_rho=8)
+    coarse = delvjax.vector_map("env1", method="warping", n_alpha=36, n_psi=36, n_rho=8, grid=Grid(spacing=200.0))
     assert coarse.direction.shape == (25,)
 
 
@@ -291,7 +292,7 @@ def test_mfdid_low_pass_is_identity_at_zero_and_helps_far_from_home():
     img = (jnp.arange(360) % 50 < 9).astype(jnp.float32)
     np.testing.assert_allclose(np.asarray(call(low_pass, img, jnp.float32(0.0))), np.asarray(img), atol=1e-5)
     assert abs(float(call(low_pass, img, jnp.float32(20.0)).sum()) - float(img.sum())) < 1e-3  # mass preserved
-    raw = delvjax.vector_map("env1", method="mfdid", spacing=100.0)
-    blurred = delvjax.vector_map("env1", method="mfdid", spacing=100.0, mfdid_blur_deg=40.0)
+    raw = delvjax.vector_map("env1", method="mfdid", grid=Grid(spacing=100.0))
+    blurred = delvjax.vector_map("env1", method="mfdid", mfdid_blur_deg=40.0, grid=Grid(spacing=100.0))
     inc = np.asarray(raw.included)
     assert np.asarray(blurred.error_deg)[inc].mean() < 0.5 * np.asarray(raw.error_deg)[inc].mean()

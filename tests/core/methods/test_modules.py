@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import delvjax
-from delvjax import DELV, Compass, DELVGap, Sensor
+from delvjax import DELV, Compass, DELVGap, Grid, Sensor
 from delvjax.core import maps
 from delvjax.core.errors import InputError
 from delvjax.core.kernel import direction_from, map_poses
@@ -58,9 +58,11 @@ def test_a_module_with_settings_gives_the_public_api_numbers_and_a_traced_settin
     env = delvjax.load_env("env1")
     method = DELV(levels=3, heading=Compass())
     vm = maps.vector_map(env, method, Sensor(d=50.0), spacing=100.0)
-    api = delvjax.vector_map(env, method="delv-compass", levels=3, spacing=100.0)
+    api = delvjax.vector_map(env, method="delv-compass", levels=3, grid=Grid(spacing=100.0))
     assert np.array_equal(np.asarray(vm.direction), np.asarray(api.direction), equal_nan=True)
-    module_api = delvjax.vector_map(env, method=method, sensor=Sensor(d=50.0), spacing=100.0)  # a module, no name
+    module_api = delvjax.vector_map(
+        env, method=method, sensor=Sensor(d=50.0), grid=Grid(spacing=100.0)
+    )  # a module, no name
     assert np.array_equal(np.asarray(module_api.direction), np.asarray(vm.direction), equal_nan=True)
     compiled = maps._vector_map._cache_size()
     finer = maps.vector_map(env, eqx.tree_at(lambda m: m.levels, method, 6), Sensor(d=50.0), spacing=100.0)
@@ -159,7 +161,7 @@ def test_gap_aware_delv_equals_delv_where_the_counts_agree_and_helps_with_a_land
     """Where the current view shows as many blobs as the home view there is one subset: the same
     pairing as linear matching, bitwise. With a landmark hidden it skips the gap."""
     env = delvjax.load_env("env1")
-    kw = dict(spacing=100.0, seed=4)
+    kw = dict(grid=Grid(spacing=100.0), seed=4)
     ref = delvjax.vector_map(env, method="delv-compass", **kw)
     blobs = blob_counts(env.arrays(), ref.points)
     same = np.asarray(blobs) == env.n_landmarks

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid, Rules
 from delvjax.core import rollouts
 from delvjax.core.tables import catchment_columns
 from delvjax.options._registry import get_method
@@ -49,7 +50,7 @@ def test_view_only_methods_turn_at_once(method):
 
 
 def test_catchment_counts_points_at_least_d_from_the_walls():
-    c = delvjax.catchment("env1", "alv", spacing=80)  # cells at 40, 120, ..., 920 cm: 40 cm from two walls
+    c = delvjax.catchment("env1", "alv", grid=Grid(spacing=80))  # cells at 40, 120, ..., 920 cm: 40 cm from two walls
     pts, inc, counted = (np.asarray(a) for a in (c.points, c.included, c.counted))
     margin = np.minimum.reduce([pts[:, 0], pts[:, 1], 1000 - pts[:, 0], 1000 - pts[:, 1]])
     np.testing.assert_array_equal(counted, inc & (margin >= 50))
@@ -66,13 +67,13 @@ def test_catchment_counts_points_at_least_d_from_the_walls():
     summary = rollouts.catchment_summary(c)
     assert summary["catchment_points"] == int(counted.sum()) and summary["points"] == int(inc.sum())
     # under the earlier rule every grid point counts
-    h = delvjax.catchment("env1", "alv", spacing=80, first_move="homing")
+    h = delvjax.catchment("env1", "alv", grid=Grid(spacing=80), rules=Rules(first_move="homing"))
     np.testing.assert_array_equal(np.asarray(h.counted), inc)
 
 
 def test_a_step_too_long_for_the_arena_is_refused():
     with pytest.raises(ValueError, match="d"):
-        delvjax.catchment("env1", "delv", spacing=100, d=600)
+        delvjax.catchment("env1", "delv", d=600, grid=Grid(spacing=100))
 
 
 @pytest.mark.parametrize("method", ["alv", "acv"])
@@ -84,7 +85,13 @@ def test_a_view_only_homing_run_restated_under_release_is_the_release_run(method
     masks, hidden = rollouts.occlusion_masks(env, 1)
     runs = {
         fm: rollouts.catchment_area(
-            env.arrays(), get_method(method), Sensor(), spacing=80, masks=masks, hidden=hidden, first_move=fm
+            env.arrays(),
+            get_method(method),
+            Sensor(),
+            masks=masks,
+            hidden=hidden,
+            grid=Grid(spacing=80),
+            rules=Rules(first_move=fm),
         )
         for fm in ("release", "homing")
     }

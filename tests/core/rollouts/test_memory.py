@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid, Rules
 from delvjax.core.errors import InputError
 from delvjax.core.rollouts import trials
 from delvjax.core.rollouts.rules import TIMEOUT
@@ -23,7 +24,10 @@ class Stop(Exception):
     """Raised by the spy once it has seen the block's shapes: nothing is compiled or run."""
 
 
-KW = {"catchment": dict(spacing=200.0), "success_rate": dict(distances=[100.0], trials=4)}  # trajectories: STARTS
+KW = {
+    "catchment": dict(grid=Grid(spacing=200.0)),
+    "success_rate": dict(distances=[100.0], trials=4),
+}  # trajectories: STARTS
 STARTS = dict(starts=[(300.0, 300.0)])
 RUN_BLOCK = trials.run_block  # the real one (a spy replaces it during a test)
 
@@ -52,23 +56,23 @@ def block_of(monkeypatch, command: str, **options) -> tuple:
 
 @pytest.mark.parametrize("command", ["catchment", "success_rate", "trajectories"])
 def test_only_trajectories_record_paths(monkeypatch, command):
-    (block, *_), _, _, path = block_of(monkeypatch, command, max_steps=HUGE)
+    (block, *_), _, _, path = block_of(monkeypatch, command, rules=Rules(max_steps=HUGE))
     assert path == ((block, HUGE + 1, 2) if command == "trajectories" else (block, 1, 2))
 
 
 def test_trajectories_that_would_not_fit_are_refused_with_the_estimate():
     with pytest.raises(InputError) as exc:
-        delvjax.trajectories("env1", n_starts=24, max_steps=2_000_000_000)
+        delvjax.trajectories("env1", n_starts=24, rules=Rules(max_steps=2_000_000_000))
     assert exc.value.field == "max_steps" and "path point" in str(exc.value)
 
 
 @pytest.mark.parametrize(
     "command, kw",
-    [("catchment", dict(spacing=25.0)), ("success_rate", dict(distances=[100.0, 200.0], trials=500))],
+    [("catchment", dict(grid=Grid(spacing=25.0))), ("success_rate", dict(distances=[100.0, 200.0], trials=500))],
 )
 def test_rollouts_that_could_run_for_hours_are_refused_with_the_estimate(command, kw):
     with pytest.raises(InputError) as exc:
-        getattr(delvjax, command)("env1", max_steps=HUGE, **kw)
+        getattr(delvjax, command)("env1", rules=Rules(max_steps=HUGE), **kw)
     assert exc.value.field == "max_steps" and "moves" in str(exc.value) and " on 2 CPU cores" in str(exc.value)
 
 
@@ -88,7 +92,7 @@ def test_rollouts_of_every_short_max_steps_share_one_program_and_stop_where_the_
     starts = [(250.0, 250.0), (750.0, 300.0), (500.0, 850.0), (150.0, 600.0), (820.0, 780.0)]
     kw = dict(method="delv-compass", starts=starts, bearing_noise_deg=4.0, step_noise=0.1)
     before = trials.run_block._cache_size()
-    long, short = (delvjax.trajectories("env1", max_steps=m, **kw) for m in (40, 20))
+    long, short = (delvjax.trajectories("env1", rules=Rules(max_steps=m), **kw) for m in (40, 20))
     assert trials.run_block._cache_size() - before <= 1  # one program (none where another test compiled it)
     assert long.path.shape == (5, 41, 2) and short.path.shape == (5, 21, 2)
     steps, outcome = np.asarray(long.steps), np.asarray(long.outcome)

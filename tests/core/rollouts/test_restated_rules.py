@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import delvjax
+from delvjax import Grid, Rules
 from delvjax.core import rollouts
 from delvjax.core.sensor import Sensor
 
@@ -32,7 +33,9 @@ def assert_same(restated, run) -> None:
 @pytest.mark.parametrize(("method", "options"), [("delv-compass", NOISE), ("alv", {})])
 def test_a_catchment_restated_under_collisions_fail_is_the_fail_run(method, options):
     runs = {
-        rule: delvjax.catchment("env1", method, spacing=80, occlude=1, collisions=rule, **options)
+        rule: delvjax.catchment(
+            "env1", method, occlude=1, grid=Grid(spacing=80), rules=Rules(collisions=rule), **options
+        )
         for rule in rollouts.COLLISIONS
     }
     fail = runs["fail"]
@@ -51,7 +54,7 @@ def test_a_success_rate_restated_under_each_rule_is_its_own_run():
     """The success-rate tables: ALV (reads only the current view) once for all three rule sets."""
     runs = {
         (fm, col): delvjax.success_rate(
-            "env1", "alv", trials=40, distances=[250, 450], first_move=fm, collisions=col, **NOISE
+            "env1", "alv", trials=40, distances=[250, 450], rules=Rules(first_move=fm, collisions=col), **NOISE
         )
         for fm, col in (("homing", "ignore"), ("release", "ignore"), ("release", "fail"))
     }
@@ -68,7 +71,9 @@ def test_trajectories_restated_end_their_paths_at_the_contact():
     # release points just beside each landmark, heading into it: the blind first move (d) ends inside
     starts = lm[:, :2] - np.array([lm[:, 2] + 5.0, np.zeros(len(lm))]).T
     runs = {
-        rule: delvjax.trajectories(env, "delv-compass", starts=starts.tolist(), heading_deg=0.0, collisions=rule)
+        rule: delvjax.trajectories(
+            env, "delv-compass", starts=starts.tolist(), grid=Grid(heading_deg=0.0), rules=Rules(collisions=rule)
+        )
         for rule in rollouts.COLLISIONS
     }
     assert (np.asarray(runs["fail"].outcome) == rollouts.LANDMARK).sum() >= 2
@@ -76,7 +81,7 @@ def test_trajectories_restated_end_their_paths_at_the_contact():
 
 
 def test_only_an_ignore_run_is_restated():
-    fail = delvjax.success_rate("env1", "alv", trials=4, distances=[250], collisions="fail")
+    fail = delvjax.success_rate("env1", "alv", trials=4, distances=[250], rules=Rules(collisions="fail"))
     with pytest.raises(delvjax.InputError) as exc:
         rollouts.under_collisions(fail)
     assert exc.value.field == "collisions"
@@ -91,12 +96,12 @@ def test_the_studies_run_each_method_once_or_twice_for_three_rule_sets(method, r
 
     def run(rules: str):
         made.append(rules)
-        return delvjax.catchment(env, method, spacing=80, occlude=1, **RULES[rules])
+        return delvjax.catchment(env, method, occlude=1, grid=Grid(spacing=80), rules=Rules(**RULES[rules]))
 
     results = every_rule(run, method, env.arena)
     assert made == runs_made and list(results) == list(RULES)
     for rules, res in results.items():
-        assert_same(res, delvjax.catchment(env, method, spacing=80, occlude=1, **RULES[rules]))
+        assert_same(res, delvjax.catchment(env, method, occlude=1, grid=Grid(spacing=80), rules=Rules(**RULES[rules])))
 
 
 def test_restating_a_catchment_compiles_nothing():
@@ -106,8 +111,8 @@ def test_restating_a_catchment_compiles_nothing():
     from tests.core.test_buckets import compiled_functions
 
     env = delvjax.load_env("env1")
-    homing = delvjax.catchment(env, "alv", spacing=70, occlude=2, first_move="homing")
+    homing = delvjax.catchment(env, "alv", occlude=2, grid=Grid(spacing=70), rules=Rules(first_move="homing"))
     with compiled_functions() as names:
         default = rollouts.under_release(homing, env.arena, Sensor().d)
     assert names == []
-    assert_same(default, delvjax.catchment(env, "alv", spacing=70, occlude=2))
+    assert_same(default, delvjax.catchment(env, "alv", occlude=2, grid=Grid(spacing=70)))

@@ -21,6 +21,7 @@ import pytest
 
 import delvjax
 import delvjax.core.rollouts.trials
+from delvjax import Grid, Rules
 from delvjax.core import rollouts
 from delvjax.core.errors import InputError
 from delvjax.core.maps import grid_points, random_headings
@@ -145,8 +146,8 @@ def test_catchment_first_directions_are_the_vector_map():
     the same grid points for the same seed, noise included (the vector map's streams)."""
     env = make_env(FOUR)
     noise = {k: v for k, v in NOISE.items() if not k.startswith("motion")}  # the vector map's noise sources
-    c = delvjax.catchment(env, method="alv", spacing=100.0, seed=5, **noise)
-    vm = delvjax.vector_map(env, method="alv", spacing=100.0, seed=5, **noise)
+    c = delvjax.catchment(env, method="alv", seed=5, grid=Grid(spacing=100.0), **noise)
+    vm = delvjax.vector_map(env, method="alv", seed=5, grid=Grid(spacing=100.0), **noise)
     inc = np.asarray(c.included)
     assert np.array_equal(inc, np.asarray(vm.included)) and inc.sum() > 50
     assert np.array_equal(np.asarray(c.points), np.asarray(vm.points))
@@ -166,8 +167,10 @@ CROSSED = np.array([[500.0, 700.0, 45.0], [250.0, 350.0, 30.0], [750.0, 350.0, 3
 def test_collisions_fail_ends_inside_a_landmark_and_ignore_passes_through():
     env = make_env(CROSSED)
     starts = [[500.0, 900.0], [150.0, 150.0], [850.0, 150.0], [150.0, 850.0]]
-    fail = delvjax.trajectories(env, method="alv", starts=starts, heading_deg=-90.0, collisions="fail")
-    ignore = delvjax.trajectories(env, method="alv", starts=starts, heading_deg=-90.0)
+    fail = delvjax.trajectories(
+        env, method="alv", starts=starts, grid=Grid(heading_deg=-90.0), rules=Rules(collisions="fail")
+    )
+    ignore = delvjax.trajectories(env, method="alv", starts=starts, grid=Grid(heading_deg=-90.0))
     assert fail.rules == {"first_move": "release", "collisions": "fail"} and ignore.rules == DEFAULT
 
     def inside(p):
@@ -181,8 +184,8 @@ def test_collisions_fail_ends_inside_a_landmark_and_ignore_passes_through():
         assert fail.outcome[t] == ignore.outcome[t] == rollouts.SUCCESS and fail.steps[t] == ignore.steps[t]
 
     # a whole catchment: no LANDMARK outcome under "ignore"; the same trials as "fail" wherever "fail" met none
-    c_fail = delvjax.catchment(env, method="alv", spacing=100.0, collisions="fail")
-    c_ignore = delvjax.catchment(env, method="alv", spacing=100.0)
+    c_fail = delvjax.catchment(env, method="alv", grid=Grid(spacing=100.0), rules=Rules(collisions="fail"))
+    c_ignore = delvjax.catchment(env, method="alv", grid=Grid(spacing=100.0))
     s_fail, s_ignore = rollouts.catchment_summary(c_fail), rollouts.catchment_summary(c_ignore)
     assert s_ignore["rules"] == DEFAULT and s_fail["rules"] == {"first_move": "release", "collisions": "fail"}
     assert [row["landmark_count"] for row in s_ignore["per_mask"]] == [0]
@@ -253,20 +256,20 @@ def test_methods_sharing_one_program_give_the_same_numbers_as_their_own_programs
 def test_a_program_must_hold_known_methods_including_the_one_run(program, untyped):
     env = make_env(FOUR)
     with pytest.raises(InputError, match="program"):
-        delvjax.catchment(env, method="delv-compass", spacing=100.0, program=program)
+        delvjax.catchment(env, method="delv-compass", program=program, grid=Grid(spacing=100.0))
 
 
 def test_zero_noise_reproduces_the_noise_free_results_exactly():
     env = make_env(FOUR)
-    plain = delvjax.catchment(env, method="alv", spacing=100.0, seed=1)
-    zero = delvjax.catchment(env, method="alv", spacing=100.0, seed=1, **{k: 0.0 for k in NOISE})
+    plain = delvjax.catchment(env, method="alv", seed=1, grid=Grid(spacing=100.0))
+    zero = delvjax.catchment(env, method="alv", seed=1, grid=Grid(spacing=100.0), **{k: 0.0 for k in NOISE})
     for field in ("outcome", "steps", "end", "direction"):
         assert np.array_equal(np.asarray(getattr(plain, field)), np.asarray(getattr(zero, field)), equal_nan=True)
 
 
 def test_occlusion_k0_equals_no_occlusion_and_batched_masks_equal_single_ones():
     env = make_env(FOUR)
-    kw = dict(method="alv", spacing=200.0, seed=1)  # 25 points: one mask is a block of 32, four of 128
+    kw = dict(method="alv", grid=Grid(spacing=200.0), seed=1)  # 25 points: one mask is a block of 32, four of 128
     none = delvjax.catchment(env, **kw)
     k0 = delvjax.catchment(env, occlude=0, **kw)
     for field in ("outcome", "steps", "end", "error_deg"):
