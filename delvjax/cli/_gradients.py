@@ -7,6 +7,7 @@ from pathlib import Path
 
 from ..core.maps import SPACING
 from ..envs._presets import env_to_dict
+from ..evaluate._progress import OnStart
 from ..gradients._layout import STEPS, optimise_layout, start_layout
 from ..gradients._loss import TAU
 from ..gradients._sensitivity import SENSITIVITY_METHODS as METHODS
@@ -121,7 +122,7 @@ def cmd_traps(args: argparse.Namespace) -> int:
         seed=args.seed,
         tau=args.tau,
         near=args.near,
-        announce=lambda: progress(f"catchment of {args.method} on {args.env}, then its trap points ..."),
+        progress=OnStart(lambda: progress(f"catchment of {args.method} on {args.env}, then its trap points ...")),
         **options,
     )
     s = report.summary

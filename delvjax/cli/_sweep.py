@@ -131,24 +131,12 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     work = f"about {duration(spec.seconds())} of work on 2 CPU cores plus compilation"
     if lead and n >= 10_000:  # checking the cells takes about 1 ms each: a big sweep says what it is first
         progress(f"sweep of {n} cells: {work}; checking every cell first (about {duration(n * 1e-3)}) ...")
-    with ProgressBar("cell", 0 if lead else n) as bar:
-
-        def announce() -> None:  # every cell is checked: the bar covers the rest of the run
-            if lead:
-                progress(
-                    f"sweep of {n} cells ({' x '.join(map(str, spec.shape))}: {', '.join(spec.axes)}) on "
-                    f"{jax.process_count()} process(es), {jax.device_count()} device(s): {work} ..."
-                )
-                bar.start(n)
-
-        ds = run_sweep(
-            spec,
-            max_points=args.max_points,
-            progress=bar,
-            out=out,
-            phase=bar.phase if lead else None,
-            announce=announce,
-        )
+    line = (  # printed when every cell is checked: the bar covers the rest of the run
+        f"sweep of {n} cells ({' x '.join(map(str, spec.shape))}: {', '.join(spec.axes)}) on "
+        f"{jax.process_count()} process(es), {jax.device_count()} device(s): {work} ..."
+    )
+    with ProgressBar("cell", 0, lambda total: line) as bar:
+        ds = run_sweep(spec, max_points=args.max_points, progress=bar if lead else None, out=out)
     if not lead:
         return 0
     progress(

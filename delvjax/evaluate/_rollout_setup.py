@@ -13,14 +13,13 @@ import numpy as np
 from jax import Array
 
 from ..core.checks import finite, is_traced, occlusion_count, positive, positive_int
-from ..core.deprecation import deprecated
 from ..core.errors import InputError
 from ..core.methods import HomingMethod
 from ..core.rollouts import ARENA, LANDMARK, Grid, Rules, hidden_masks, legacy_config, occlusion_masks, position_status
 from ..core.scene import Env
 from ..core.sensor import Sensor
 from ..options._limits import check_size
-from ._progress import Progress, as_progress
+from ._progress import Progress, with_callbacks
 from ._vector_map import Indices, Values, scene_request, visible_mask
 
 
@@ -33,18 +32,21 @@ class RolloutSetup(NamedTuple):
     key: Array
 
 
-def configs(grid: Grid | None, rules: Rules | None, options: dict) -> tuple[Grid, Rules, Callable[[], None] | None]:
-    """(`Grid`, `Rules`, the deprecated `announce` callback) of a public rollout call: the objects given,
-    or ones built from the flat keywords of earlier releases in `options` (popped, each with a
-    `DeprecationWarning` that points at the caller; `core.rollouts.config.legacy_config`)."""
-    grid, rules = legacy_config(Grid, grid, options), legacy_config(Rules, rules, options)
-    announce = options.pop("announce", None)
-    if announce is not None:
-        deprecated(
-            "delvjax: the keyword announce is deprecated and will be removed in the next release: pass "
-            "progress=delvjax.evaluate.OnStart(announce) (evaluate/_progress.py)"
-        )
-    return grid, rules, announce
+def configs(
+    grid: Grid | None,
+    rules: Rules | None,
+    progress: Progress | Callable[[int, int], None] | None,
+    options: dict,
+    call: str,
+) -> tuple[Grid, Rules, Progress]:
+    """(`Grid`, `Rules`, `Progress`) of a public rollout call `call`: the objects given, or ones built from
+    the flat keywords and the `announce=` callback of earlier releases in `options` (popped, each with a
+    `DeprecationWarning` that points at the caller; `core.rollouts.config.legacy_config`, `with_callbacks`)."""
+    return (
+        legacy_config(Grid, grid, options),
+        legacy_config(Rules, rules, options),
+        with_callbacks(progress, options, call),
+    )
 
 
 def rollout_setup(env, method, grid: Grid, rules: Rules, seed: int, program, options: dict) -> RolloutSetup:
@@ -91,19 +93,6 @@ def _distances(env: Env, distances: Values, trials: int, max_points: int, copies
                 "distances", v, f"must be < {reach:.0f} cm: no release point that far from home lies in the arena"
             )
     return distances, trials
-
-
-def _announce(
-    announce: Callable[[], None] | None, progress: Progress | Callable[[int, int], None] | None, total: int | None
-) -> Progress:
-    """The call's `Progress` (`as_progress`), started: every option is valid, the work begins (`total` items,
-    None when the core reports no chunks or counts them itself). `announce()`, the older form of `start`,
-    is still called first."""
-    if announce is not None:
-        announce()
-    report = as_progress(progress)
-    report.start(total)
-    return report
 
 
 def _check_starts(env: Env, starts) -> Array:

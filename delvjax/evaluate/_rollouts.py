@@ -35,7 +35,7 @@ from ..core.rollouts import (
 from ..core.scene import Env
 from ..options._limits import MAX_POINTS, check_moves, check_size, grid_count
 from ._progress import Progress
-from ._rollout_setup import _announce, _check_starts, _distances, _masks, configs, rollout_setup
+from ._rollout_setup import _check_starts, _distances, _masks, configs, rollout_setup
 from ._vector_map import Indices, PointList, Values, check_grid, visible_mask
 
 # the positional order of success_rate's and trajectories' later arguments before they were keyword-only
@@ -98,12 +98,12 @@ def catchment(
     lanes=, first_move=, collisions=, announce=) still work for one release, with a DeprecationWarning.
     Returns a `Catchment` (see `catchment_summary`).
     """
-    grid, rules, announce = configs(grid, rules, options)
+    grid, rules, report = configs(grid, rules, progress, options, "catchment")
     setup = rollout_setup(env, method, grid, rules, seed, program, options)
     masks, combos = _masks(setup.env, occlude, hidden)
     check_grid(setup.env, grid.spacing, grid.clearance, max_points, copies=len(masks), what="trial")
     check_moves(grid_count(setup.env.arena, grid.spacing) * len(masks), rules.max_steps, max_points)
-    report = _announce(announce, progress, None)  # the core counts the trials: the bar opens at its first report
+    report.start(None)  # the core counts the trials: the bar opens at its first report
     env, module, sensor, key = setup
     return catchment_area(env, module, sensor, grid, rules, key=key, masks=masks, hidden=combos, progress=report)
 
@@ -133,12 +133,12 @@ def success_rate(
     deprecated flat keywords as in `catchment`; `progress.start(None)` just before the work (one
     program: no reports of chunks).
     """
-    grid, rules, announce = configs(grid, rules, options)
+    grid, rules, report = configs(grid, rules, progress, options, "success_rate")
     env, module, sensor, key = rollout_setup(env, method, grid, rules, seed, program, options)
     distances, trials = _distances(env, distances, trials, max_points)
     check_moves(len(distances) * trials, rules.max_steps, max_points)
     visible = visible_mask(env, hidden)
-    _announce(announce, progress, None)
+    report.start(None)
     return success_rate_trials(env, module, sensor, distances, trials, grid, rules, key=key, visible=visible)
 
 
@@ -168,7 +168,7 @@ def trajectories(
     keywords as in `catchment`, and `progress.start(None)` just before the work. Every position is
     kept: more than 100 x `max_points` of them (trials x (max_steps + 1)) are refused.
     """
-    grid, rules, announce = configs(grid, rules, options)
+    grid, rules, report = configs(grid, rules, progress, options, "trajectories")
     env, module, sensor, key = rollout_setup(env, method, grid, rules, seed, program, options)
     visible = visible_mask(env, hidden)
     _, _, k_start = rollout_keys(key)
@@ -189,7 +189,7 @@ def trajectories(
         _, heads, _ = release_points(env, k_start, pts.shape[0], None, grid.clearance)
     if grid.heading is not None:
         heads = jnp.full(pts.shape[0], grid.heading, jnp.float32)
-    _announce(announce, progress, None)
+    report.start(None)
     return trajectory_trials(env, module, sensor, pts, heads, rules, key=key, visible=visible)
 
 

@@ -26,7 +26,7 @@ from ..core.rollouts.rules import HOME_RADIUS
 from ..core.scene import Env
 from ..core.soft.traps import KINDS, field_zeros, two_cycles
 from ..envs._presets import load_env
-from ..evaluate._progress import OnStart
+from ..evaluate._progress import Progress, with_callbacks
 from ..evaluate._rollouts import catchment
 from ._loss import TAU, loss_problem
 
@@ -102,13 +102,15 @@ def find_traps(
     near: float | None = None,
     max_starts: int = MAX_STARTS,
     home_radius: float = HOME_RADIUS,
-    announce=None,
+    progress: Progress | None = None,
     **options,
 ) -> TrapReport:
     """Zeros of the soft homing field of `method` near the end points of the failed (timed-out)
     rollouts of its catchment. `near` (default d): a failed rollout counts as ending at a sink
     within this distance (a trapped agent circles its sink in steps of d). `options` as in
-    `delvjax.catchment` (noise sigmas, levels, d, ...)."""
+    `delvjax.catchment` (noise sigmas, levels, d, ...); `progress`: the catchment's `Progress` (the
+    `announce=` callback of earlier releases still works for one release, with a DeprecationWarning)."""
+    report = with_callbacks(progress, options, "find_traps")
     if not isinstance(method, str):
         raise InputError("method", method, "must be a registry name")
     env = load_env(env)
@@ -119,7 +121,7 @@ def find_traps(
         env,
         method,
         seed=seed,
-        progress=None if announce is None else OnStart(announce),
+        progress=report,
         grid=Grid(spacing=spacing),
         rules=Rules(home_radius=home_radius),
         **options,

@@ -16,6 +16,7 @@ from ..core.deprecation import keywords_after
 from ..core.rollouts import DEFAULT_LANES
 from ..envs._presets import env_from_dict, load_env, random_env
 from ..evaluate import _vector_map as api
+from ..evaluate._progress import Progress, with_callbacks
 from ._kinds import cell_setup, evaluate, group_key, mask_rows, programs_compiled, sum_names
 from ._results import dataset, load_sweep, save_sweep, sweep_inputs
 from ._spec import SweepSpec
@@ -89,18 +90,19 @@ def run_sweep(
     spec: SweepSpec,
     *,
     max_points: int = api.MAX_POINTS,
-    progress: Callable[[int, int], None] | None = None,
-    announce: Callable[[], None] | None = None,
+    progress: Progress | Callable[[int, int], None] | None = None,
     out: str | Path | None = None,
-    phase: Callable[[str], None] | None = None,
     lanes: int = DEFAULT_LANES,
     skip: Callable[[dict], bool] | None = None,
     program: tuple[str, ...] | None = None,
     mask_rows: int = 1,
+    **legacy,
 ) -> xarray.Dataset:
     """Every cell of `spec`: metrics as an `xarray.Dataset` (one dimension per axis of more than one
-    value). Every cell is validated before any work; `announce()` is called then; `progress(done,
-    total)` after each chunk; `phase(text)` says what runs now ("compiling program 2 of 3").
+    value). Every cell is validated before any work; then `progress` (a `Progress`, evaluate/_progress.py,
+    or a plain `f(done, total)`) hears `start(n)`, `phase(text)` where what runs changes ("compiling
+    program 2 of 3") and `(done, n)` after each chunk. The separate `announce=` and `phase=` callbacks of
+    earlier releases still work for one release, with a DeprecationWarning.
     With `out`, finished chunks are kept in out/.cells and cells found there are not computed again
     (`_store.py`: a killed or changed sweep resumes). `lanes`: rollout trials advanced side by side
     (`rollouts.run_trials`; no number depends on it): fewer waste less on cells of few trials.
@@ -109,6 +111,9 @@ def run_sweep(
     `program` (registry names compiled into one program with every cell's method, as `point_outcomes`') and
     `mask_rows` (visibility masks padded to at least this many rows) let sweeps of other methods or occlusions
     share one compiled program (the same numbers: a cell's trials do not depend on its companions)."""
+    report = with_callbacks(progress, legacy, "run_sweep")
+    if legacy:
+        raise TypeError(f"run_sweep() got unexpected keyword arguments {sorted(legacy)}")
     envs = _envs(spec)
     kept: dict[int, dict] = {}
     groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None, program, kept)
@@ -134,10 +139,9 @@ def run_sweep(
         from jax.experimental import multihost_utils  # only with several processes (jax.distributed)
 
         todo = multihost_utils.process_allgather(todo).any(axis=0)
-    if announce is not None:
-        announce()
-    if progress is not None and not todo.all():
-        progress(int((~todo).sum()), n)
+    report.start(n)
+    if not todo.all():
+        report(int((~todo).sum()), n)
     compiled = programs_compiled()
     mesh = local_mesh() if processes == 1 else global_mesh()  # one mesh over every device of every process
     per_call = n_devices(mesh)
@@ -150,8 +154,8 @@ def run_sweep(
         jobs += [(cells[start : start + width], size, start == 0 and number) for start in range(0, len(cells), width)]
     mine: list[int] = []  # the cells this process computed
     for chunk, size, first in jobs:
-        if first and phase is not None:  # the program's first call compiles it (or loads it from the cache)
-            phase(f"compiling program {first} of {len(live)}")
+        if first:  # the program's first call compiles it (or loads it from the cache)
+            report.phase(f"compiling program {first} of {len(live)}")
         padded = chunk + [chunk[0]] * (size - len(chunk))
         start, stop = (0, size) if processes == 1 else process_rows(mesh, size)  # this process's rows
         setups = _setups(spec, envs, padded[start:stop], kept, max_points, program)
@@ -162,8 +166,7 @@ def run_sweep(
         mine += own
         if out is not None and own:
             save_cells(Path(out), [digests[i] for i in own], {k: sums[k][own] for k in names})
-        if progress is not None:
-            progress(len(chunk), n)
+        report(len(chunk), n)
     if processes > 1:
         sums = _merge(sums, mine)
     ds = dataset(spec, sums, programs_compiled() - compiled, {k: e.name for k, e in envs.items()}, skipped)

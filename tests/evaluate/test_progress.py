@@ -106,3 +106,35 @@ def test_the_cli_vector_map_calls_the_api_once_and_the_core_only_through_it(tmp_
     assert isinstance(api_calls[0]["progress"], Progress)
     err = capsys.readouterr().err
     assert "(spacing 100 cm, 100 cells)" in err  # the count the API built, given to the bar's start
+
+
+class Phases(Recorder):
+    """A `Recorder` that also writes down the phases."""
+
+    def phase(self, text):
+        self.calls.append(("phase", text))
+
+
+TINY_SWEEP = '[sweep]\nkind = "vector-map"\n[axes]\nenv = ["env1"]\nmethod = ["alv"]\nspacing = [400]\nseed = [0, 1]\n'
+
+
+def test_a_sweep_reports_to_one_progress_start_phases_and_chunks():
+    """`run_sweep` speaks to one `Progress`: `start(n)` once every cell is checked, `phase` where a program
+    compiles, `(done, n)` per chunk (before: three callbacks, announce=, phase= and progress=)."""
+    from delvjax.sweeps import parse_sweep, run_sweep
+
+    report = Phases()
+    run_sweep(parse_sweep(TINY_SWEEP), progress=report)
+    assert report.calls[0] == ("start", 2) and report.calls[1] == ("phase", "compiling program 1 of 1")
+    assert sum(c[1] for c in report.calls if c[0] == "done") == 2
+
+
+def test_the_old_callbacks_still_work_with_a_deprecation_warning(monkeypatch):
+    from delvjax.sweeps import parse_sweep, run_sweep
+
+    seen = []
+    with pytest.deprecated_call(match=r"run_sweep\(\): announce= and phase= are deprecated"):
+        run_sweep(parse_sweep(TINY_SWEEP), announce=lambda: seen.append("announce"), phase=seen.append)
+    assert seen == ["announce", "compiling program 1 of 1"]
+    with pytest.raises(TypeError, match="unexpected keyword"):
+        run_sweep(parse_sweep(TINY_SWEEP), anounce=print)
