@@ -35,6 +35,13 @@ def deprecated(message: str) -> None:
     )
 
 
+def refuse_unknown(legacy: dict, call: str) -> None:
+    """`TypeError` for the keywords left in `legacy` once the deprecated ones were read from it (`call`: the
+    function given them), as Python's own for an unexpected keyword."""
+    if legacy:
+        raise TypeError(f"{call}() got unexpected keyword arguments {sorted(legacy)}")
+
+
 def keywords_after(n: int, old_order: Sequence[str]) -> Callable[[F], F]:
     """Every argument after the first `n` is keyword-only; one passed by position in the order of
     earlier releases (`old_order`) still works for one release, named in a `DeprecationWarning`."""

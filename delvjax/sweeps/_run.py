@@ -12,7 +12,7 @@ import jax
 import numpy as np
 
 from ..core.batching import global_mesh, local_mesh, n_devices, process_rows
-from ..core.deprecation import keywords_after
+from ..core.deprecation import keywords_after, refuse_unknown
 from ..core.rollouts import DEFAULT_LANES
 from ..envs._presets import env_from_dict, load_env, random_env
 from ..evaluate import _vector_map as api
@@ -112,8 +112,7 @@ def run_sweep(
     `mask_rows` (visibility masks padded to at least this many rows) let sweeps of other methods or occlusions
     share one compiled program (the same numbers: a cell's trials do not depend on its companions)."""
     report = with_callbacks(progress, legacy, "run_sweep")
-    if legacy:
-        raise TypeError(f"run_sweep() got unexpected keyword arguments {sorted(legacy)}")
+    refuse_unknown(legacy, "run_sweep")
     envs = _envs(spec)
     kept: dict[int, dict] = {}
     groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None, program, kept)

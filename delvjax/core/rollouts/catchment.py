@@ -13,6 +13,7 @@ import numpy as np
 from jax import Array
 
 from ..batching import bucket, pad_rows
+from ..deprecation import refuse_unknown
 from ..errors import InputError
 from ..maps import grid_included, grid_points, random_headings
 from ..methods.base import HomingMethod
@@ -131,8 +132,7 @@ def catchment_area(
     keywords of earlier releases (spacing=, max_steps=, ...) still work, deprecated (`legacy_config`).
     """
     grid, rules = legacy_config(Grid, grid, legacy), legacy_config(Rules, rules, legacy)
-    if legacy:
-        raise TypeError(f"catchment_area() got unexpected keyword arguments {sorted(legacy)}")
+    refuse_unknown(legacy, "catchment_area")
     spacing, heading, clearance, first_move = grid.spacing, grid.heading, grid.clearance, rules.first_move
     key = jax.random.PRNGKey(0) if key is None else key
     masks = np.asarray(env.valid, bool)[None, :] if masks is None else np.asarray(masks, bool)

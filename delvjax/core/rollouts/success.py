@@ -13,6 +13,7 @@ from jax import Array
 from jax.typing import ArrayLike
 
 from ..batching import bucket
+from ..deprecation import refuse_unknown
 from ..methods.base import HomingMethod
 from ..scene import Env
 from ..sensor import Sensor
@@ -132,8 +133,7 @@ def success_rate_trials(
     grid's spacing is not used). `Grid`, `Rules`: core/rollouts/config.py, defaults `Grid()`, `Rules()`;
     the flat keywords of earlier releases still work, deprecated (`legacy_config`)."""
     grid, rules = legacy_config(Grid, grid, legacy), legacy_config(Rules, rules, legacy)
-    if legacy:
-        raise TypeError(f"success_rate_trials() got unexpected keyword arguments {sorted(legacy)}")
+    refuse_unknown(legacy, "success_rate_trials")
     heading, clearance = grid.heading, grid.clearance
     key = jax.random.PRNGKey(0) if key is None else key
     dist = np.asarray(distances, np.float32)

@@ -7,6 +7,7 @@ import jax
 import numpy as np
 from jax import Array
 
+from ..deprecation import refuse_unknown
 from ..methods.base import HomingMethod
 from ..scene import Env
 from ..sensor import Sensor
@@ -56,8 +57,7 @@ def trajectory_trials(
     default `Rules()`), recording every position. The flat keywords of earlier releases still work,
     deprecated (`legacy_config`)."""
     rules = legacy_config(Rules, rules, legacy)
-    if legacy:
-        raise TypeError(f"trajectory_trials() got unexpected keyword arguments {sorted(legacy)}")
+    refuse_unknown(legacy, "trajectory_trials")
     key = jax.random.PRNGKey(0) if key is None else key
     starts = np.asarray(starts, np.float32)
     headings = np.asarray(headings, np.float32)

@@ -17,6 +17,7 @@ from jax import Array
 
 from ..batching import WIDTH, local_mesh, n_devices, over_devices, pad_rows
 from ..batching import padded as padded_width
+from ..deprecation import refuse_unknown
 from ..errors import InputError
 from ..maps import stream_keys
 from ..methods.base import HomingMethod
@@ -150,8 +151,7 @@ def run_trials(
     flat keywords of earlier releases (max_steps=, ...) still work, deprecated (`legacy_config`).
     """
     rules = legacy_config(Rules, rules, legacy)
-    if legacy:
-        raise TypeError(f"run_trials() got unexpected keyword arguments {sorted(legacy)}")
+    refuse_unknown(legacy, "run_trials")
     max_steps, lanes = rules.max_steps, rules.lanes
     paths = keeps_paths(max_steps, record_paths)  # whether the blocks keep paths (trial_block sizes them)
     length = path_length(max_steps, record_paths)  # the blocks' static path buffer (1: none)
