@@ -44,9 +44,9 @@ from tests.twins import minwarping as tw  # noqa: E402
 CAMERA = Camera(rows=48, cols=288)
 # the authors' configuration: 96 x 96 hypotheses on 288 columns (the defaults are 72 x 72: mw.AUTHORS_GRID)
 GRID = {
-    "minwarping": {f"mw_{k}": v for k, v in mw.AUTHORS_GRID.items()},
-    "hybrid": {f"mw_{k}": v for k, v in mw.AUTHORS_GRID.items()},
-    "warping2d": {f"w2d_{k}": v for k, v in mw.AUTHORS_GRID.items()},
+    "minwarping": dict(mw.AUTHORS_GRID),
+    "hybrid": dict(mw.AUTHORS_GRID),
+    "warping2d": dict(mw.AUTHORS_GRID),
 }
 
 

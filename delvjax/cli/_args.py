@@ -16,8 +16,8 @@ from ..core.rollouts import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_
 from ..core.sensor import Noise, Sensor
 from ..evaluate._progress import Progress
 from ..options._limits import MAX_POINTS
-from ..options._registry import METHODS, owns
-from ..options._schema import method_options, sensor_options
+from ..options._registry import METHODS, declaring, owns
+from ..options._schema import method_options, renamed, sensor_options
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_distinct, check_output_path, output_set
 
@@ -163,6 +163,22 @@ def add_setting_args(p: argparse.ArgumentParser, only: tuple[str, ...] | None = 
         title = noise if opt.owners[0] is Noise else None if opt.owners[0] is Sensor else _group_title(opt.owners)
         target = p if title is None else groups.setdefault(title, p.add_argument_group(title))
         target.add_argument(opt.flag, type=opt.type, default=None, dest=opt.name, help=opt.help)
+    added = {**sensor_options(), **method_options()} if only is None else {n: None for n in only}
+    for former, name in renamed().items():  # the flags of earlier releases (--n-alpha), hidden
+        if name in added:
+            opt = method_options()[name]
+            p.add_argument(
+                "--" + former.replace("_", "-"), type=opt.type, dest=name, action=FormerFlag, help=argparse.SUPPRESS
+            )
+
+
+class FormerFlag(argparse.Action):
+    """A flag renamed in this release (`--n-alpha` -> `--n-alpha`): still read, with a line on stderr."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        new = "--" + self.dest.replace("_", "-")
+        warn(f"{option_string} is now {new}; {option_string} goes next release")
+        setattr(namespace, self.dest, values)
 
 
 def _group_title(owners: tuple[type, ...]) -> str:
@@ -245,7 +261,7 @@ def command_settings(args: argparse.Namespace) -> dict:
                 choices, v = sensor[k].setting.choices, sensor[k].default
                 v = choices[v] if choices and isinstance(v, int) and not isinstance(v, bool) else v
             elif k in methods and chosen is not None and owns(chosen, k):
-                v = methods[k].default
+                v = methods[k].declaration(declaring(chosen, k)[0]).default  # the chosen method's default
             else:
                 continue  # an option of another method or of image input: does not apply
         if isinstance(v, (list, tuple)) and all(isinstance(x, plain) for x in v):

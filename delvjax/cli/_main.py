@@ -207,7 +207,7 @@ def command_defaults(parser: argparse.ArgumentParser, args: argparse.Namespace) 
     return {a.dest: a.default for a in command_parser(parser, args)._actions if a.dest != "help"}
 
 
-FILE_KEYED = ("sweep", "plot-sweep")  # commands whose settings are a file's keys (mw_n_psi), not flags
+FILE_KEYED = ("sweep", "plot-sweep")  # commands whose settings are a file's keys (n_psi), not flags
 
 
 def command_parser(parser: argparse.ArgumentParser, args: argparse.Namespace) -> argparse.ArgumentParser:
@@ -222,19 +222,20 @@ def command_parser(parser: argparse.ArgumentParser, args: argparse.Namespace) ->
 
 
 def as_typed(exc: InputError, parser: argparse.ArgumentParser, args: argparse.Namespace) -> InputError:
-    """The error as the user typed it: a field that is one of the command's options (`mw_n_psi`, the API
+    """The error as the user typed it: a field that is one of the command's options (`n_psi`, the API
     keyword a check raises with; `Option.flag` of the options registry, or the parser's own flags) named
-    by its flag (`--mw-n-psi`); a sweep's keys stay as its file writes them."""
+    by its flag (`--n-psi`); a sweep's keys stay as its file writes them."""
     if getattr(args, "command", None) in FILE_KEYED:
         return exc
-    flags = {a.dest: a.option_strings[-1] for a in command_parser(parser, args)._actions if a.option_strings}
+    actions = command_parser(parser, args)._actions
+    flags = {a.dest: a.option_strings[-1] for a in actions if a.option_strings and a.help != argparse.SUPPRESS}
 
     def typed(field: str) -> str:
         option = all_options().get(field)
         flag = flags.get(field) or (option.flag if option is not None and option.flag in flags.values() else None)
         return field if flag is None else flag
 
-    field = " and ".join(typed(f) for f in exc.field.split(" and "))  # "mw_n_alpha and mw_n_psi": each by its flag
+    field = " and ".join(typed(f) for f in exc.field.split(" and "))  # "n_alpha and n_psi": each by its flag
     return exc if field == exc.field else InputError(field, exc.value, exc.expected)
 
 

@@ -28,7 +28,9 @@ class Setting:
     option: the public name where it is not the field's; limit: the largest value of a setting that
     sizes an array; choices: the allowed names (`choice`); to_field: public value -> field value
     (degrees -> radians); shown_default: the default as the help prints it, where the field's is
-    not what a user types."""
+    not what a user types; formerly: the option's name before it lost its method prefix (`mw_n_alpha`
+    for MinWarping's `n_alpha`), still read for one release with a DeprecationWarning (docs/options.md
+    "Renamed options")."""
 
     help: str
     check: str = "finite"
@@ -38,6 +40,7 @@ class Setting:
     choices: tuple[str, ...] = ()
     to_field: Callable[[Any], Any] | None = None
     shown_default: str | None = None
+    formerly: str | None = None
 
     def __post_init__(self):
         if self.check not in CHECKS:

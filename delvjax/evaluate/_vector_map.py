@@ -262,7 +262,7 @@ def vector_map(
     (d, background, channel, alpha_r_deg, n_pix, and the noise keywords bearing_noise_deg,
     step_noise, turn_noise_deg, odometry_turn_noise_deg, compass_noise_deg) and method settings
     (levels, n_heading, scale, r_max; the warping hypotheses n_alpha, n_psi, n_rho, rho_min,
-    rho_max; mfdid_blur_deg); omitted ones take the modules' defaults.
+    rho_max; blur_deg); omitted ones take the modules' defaults.
     `hidden` lists landmark indices invisible in the current views (occlusion). The grid runs in
     host-side chunks of `batch_size` points (memory bounded by the chunk, the same numbers for every
     chunk size); a grid of more than `max_points` points is refused with an estimate (`options._limits`).

@@ -114,9 +114,15 @@ def configure(method: HomingMethod, **settings) -> HomingMethod:
 
 def owns(method: HomingMethod, option: str) -> bool:
     """Whether `method` (or, for a `Program`, one of its methods) declares the setting `option`."""
+    return bool(declaring(method, option))
+
+
+def declaring(method: HomingMethod, option: str) -> tuple[type, ...]:
+    """The classes in `method` (itself, a `Program`'s methods, a method's parts) that declare `option`."""
     if isinstance(method, Program):
-        return any(owns(m, option) for m in method.methods)
-    return option in declared(type(method)) or any(owns(p, option) for p in method.parts().values())
+        return tuple(dict.fromkeys(t for m in method.methods for t in declaring(m, option)))
+    mine = (type(method),) if option in declared(type(method)) else ()
+    return tuple(dict.fromkeys((*mine, *(t for p in method.parts().values() for t in declaring(p, option)))))
 
 
 def program(method: str, names) -> tuple[Program, tuple[str, ...]]:

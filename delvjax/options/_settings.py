@@ -23,9 +23,9 @@ from ..core.settings import declared
 from ..core.types import Real
 from ..envs._presets import RESOLUTION_CM
 from ._limits import check_tables
-from ._registry import configure, get_method, owns
+from ._registry import configure, declaring, get_method, owns
 from ._registry import program as registry_program
-from ._schema import method_options, sensor_options
+from ._schema import method_options, sensor_options, upgraded
 
 _NOISE = declared(Noise)  # public name -> (field, Setting, default)
 NOISE_FIELDS_DEG = {o: f for o, (f, s, _) in _NOISE.items() if s.unit == "deg"}  # degrees -> radians
@@ -81,7 +81,11 @@ def method_settings(options: dict, extra=(), method: HomingMethod | None = None)
     (n_psi divides n_pix: `core.methods.warping.check_hypotheses`); the quantization step of DELV's
     levels and scale (`check_quantum`) is checked here, where the float32 resolution is known."""
     known = method_options(extra)
-    out = {name: known[name].validate(value) for name, value in options.items() if value is not None}
+    out = {}
+    for name, value in options.items():  # checked by the declaration of each method it sets
+        if value is not None:
+            owners = declaring(method, name) if method is not None else ()
+            out[name] = [known[name].validate(value, t) for t in owners or (None,)][0]
     if {"levels", "scale"} & set(out) and "scale" in known and (method is None or owns(method, "scale")):
         check_quantum(out.get("levels", 0), out.get("scale", known["scale"].default), "scale" in out)
     return out
@@ -114,6 +118,7 @@ def make_setup(
     image database (0: a database not read yet; None: a scene of rings, whose sensor then renders the
     panoramas of its cylinders for a method that reads them, `core.images.scene_panorama`).
     A method setting that the method does not have is an error naming it."""
+    options = upgraded(options)  # a former name (mw_n_alpha) read as today's, with a DeprecationWarning
     extra = (method,) if isinstance(method, HomingMethod) else ()
     method_names, sensor_names = option_names(extra)
     unknown = sorted(set(options) - set(method_names) - set(sensor_names))

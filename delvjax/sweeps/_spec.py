@@ -14,7 +14,7 @@ from ..core.errors import InputError, did_you_mean, is_finite_number
 from ..core.rollouts.rules import DEFAULT_DISTANCES, TRIALS_PER_DISTANCE
 from ..envs._ensembles import FAMILIES
 from ..envs._ensembles import ensemble_envs as ensemble_envs_of
-from ..options._schema import ROLLOUT_ONLY, all_options
+from ..options._schema import ROLLOUT_ONLY, all_options, upgraded
 from ._kinds import KINDS, SweepKind
 
 # axis -> what it sets (the public option of `delvjax.vector_map` / `catchment` / `success_rate` of the same name).
@@ -279,6 +279,7 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
     head, table = data.get("sweep", {}), data.get("axes", {})
     if not isinstance(head, dict) or not isinstance(table, dict):
         raise InputError("sweep", source, "[sweep] and [axes] must be tables")
+    table = upgraded(table, "sweep axis")  # mw_n_psi = [...] read as n_psi, with a DeprecationWarning
     fields = ("kind", "metrics", "distances", "trials")
     for key in sorted(set(head) - set(fields)):
         every_axis = sorted({a for k in KINDS.values() for a in axes(k)})

@@ -18,7 +18,7 @@ from delvjax.images._worlds import ImageWorld
 METHODS = ("delv", "alv", "acv", "warping")
 LABEL = {"delv": "DELV", "alv": "ALV", "acv": "ACV", "warping": "image matching", "minwarping": "MinWarping"}
 # MinWarping (docs/model.md §4.7) reads whole panoramas: its own program, its grid on 360 columns
-MINWARPING = {"mw_n_alpha": 90, "mw_n_psi": 90}
+MINWARPING = {"n_alpha": 90, "n_psi": 90}
 # Image matching reads the gray ring (the band's mean value): on a camera image that is what it has.
 # On the mask ring it sees four narrow blobs and errs by about 60° (images and ideal rings alike).
 # The landmark methods read blobs, so the channel does not change them.

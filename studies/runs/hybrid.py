@@ -34,7 +34,7 @@ HIDDEN = (0, 1, 2)  # cylinders hidden from the robot database's current views (
 STEPS = len(HIDDEN) + 2  # a step per number hidden, then the natural database and the table
 METHODS = ("delv", "minwarping", "hybrid")
 LABEL = {"delv": "DELV", "minwarping": "MinWarping", "hybrid": "hybrid"}
-GRID = {"mw_n_alpha": 90, "mw_n_psi": 90}  # 360-column panoramas: 96 does not divide 360, 90 does
+GRID = {"n_alpha": 90, "n_psi": 90}  # 360-column panoramas: 96 does not divide 360, 90 does
 DISTANCES = (30.0, 50.0, 70.0)  # cm from home, release distances in the 1.8 m arena
 
 

@@ -70,7 +70,7 @@ def _database(factor: str, value, seed: int, panoramas: bool = False):
 def mw_grid(cols: int) -> dict:
     """MinWarping's hypotheses on `cols`-column panoramas: the most, up to the authors' 96, that divide them."""
     n = max(k for k in hypothesis_counts(cols) if k <= 96)
-    return {"mw_n_alpha": n, "mw_n_psi": n}
+    return {"n_alpha": n, "n_psi": n}
 
 
 def panorama_key(db, home_rings) -> str:

@@ -46,7 +46,7 @@ N_STARTS = 8
 # panoramas, 96 x 96 hypotheses (minwarping.AUTHORS_GRID). Full run only: its vector map of the full grid
 # takes about 30 s on 2 cores (at 360 columns and 90 x 90, 75 s, and 4.57° against 4.51° mean error at
 # spacing 50), a catchment of the full grid minutes, so no rollouts but trajectories.
-SCENE_MINWARPING = {"n_pix": 288, "mw_n_alpha": 96, "mw_n_psi": 96}
+SCENE_MINWARPING = {"n_pix": 288, "n_alpha": 96, "n_psi": 96}
 
 
 def run(ctx) -> None:

@@ -201,7 +201,7 @@ def test_a_summary_records_every_setting_and_the_figure_the_changed_ones(tmp_pat
     settings = json.loads(summary.read_text())["command_settings"]
     assert settings["bearing_noise_deg"] == 2.0 and settings["spacing"] == 200.0 and settings["seed"] == 0
     assert settings["d"] == 50.0 and settings["home_radius"] == 50.0  # defaults are recorded too
-    assert "levels" not in settings and "mw_n_psi" not in settings  # settings ALV does not have
+    assert "levels" not in settings and "n_psi" not in settings  # settings ALV does not have
     parser = build_parser()
     args = parser.parse_args(argv + ["--plot", "x.png"])
     args.defaults = command_defaults(parser, args)

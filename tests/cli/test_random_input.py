@@ -30,7 +30,7 @@ SCENE = {  # option: (good values, bad values); the one good method, alv, reads 
     "--n-heading": ([], [*INT_BAD, "4"]),
     "--n-psi": ([], ["7", "0", "8"]),
     "--rho-min": ([], ["0.5", "0", "2", "nan"]),
-    "--mfdid-blur-deg": ([], ["3", "-1"]),
+    "--blur-deg": ([], ["3", "-1"]),
     "--hide": ([], ["99", "-1", "abc", ["0", "99"]]),
     "--bearing-noise-deg": (["0", "2"], ["-1", "nan", "inf", "abc"]),
     "--step-noise": (["0.1"], ["-0.1", "nan"]),
@@ -130,13 +130,13 @@ def test_random_command_lines_exit_0_or_2_without_a_traceback(case, tmp_path_fac
             "seed",
             "d",
             "step_noise",
-            "mfdid_blur_deg",
+            "blur_deg",
         ]
     ),
     value=st.one_of(JUNK, st.floats(), st.integers(-(2**40), 2**70)),
 )
 def test_api_options_are_accepted_or_refused_by_name(name, value):
-    method = {"n_alpha": "warping", "mfdid_blur_deg": "mfdid"}.get(name, "delv")
+    method = {"n_alpha": "warping", "blur_deg": "mfdid"}.get(name, "delv")
     try:
         with hints_unchecked():  # values of every type on purpose: map_request's own errors are tested
             map_request("env1", method=method, spacing=500, **{name: value})

@@ -11,7 +11,7 @@ from delvjax.core.methods.minwarping import MinWarping
 from delvjax.images import load_database
 from delvjax.images._evaluate import database_vector_map
 
-GRID = {"mw_n_alpha": 36, "mw_n_psi": 36}
+GRID = {"n_alpha": 36, "n_psi": 36}
 
 
 @pytest.fixture(scope="module")
@@ -19,7 +19,7 @@ def maps(small_db):
     db = load_database(small_db, panoramas=True)
     out = {m: database_vector_map(db, m, **({} if m == "delv" else GRID)) for m in ("delv", "minwarping")}
     for rms in (1e-6, 25.0, 1e9):
-        out[rms] = database_vector_map(db, "hybrid", hybrid_rms_max=rms, **GRID)
+        out[rms] = database_vector_map(db, "hybrid", rms_max=rms, **GRID)
     return db, out
 
 
@@ -50,7 +50,7 @@ def test_the_hybrid_is_a_method_module():
     h = Hybrid(landmarks=DELV(levels=3), image=MinWarping(n_alpha=36, n_psi=36), rms_max=10.0)
     assert h.reads_panorama() and h.reads_start_view()
     h.check_input(72)
-    with pytest.raises(Exception, match="mw_n_alpha"):
+    with pytest.raises(Exception, match="n_alpha"):
         Hybrid().check_input(96)  # the default 72 x 72 hypotheses do not divide 96 columns
 
 
@@ -62,7 +62,7 @@ def test_the_map_put_together_from_its_parts_is_the_hybrids_map(maps):
 
     db, out = maps
     for rms in (1e-6, 25.0, 1e9):
-        gate = database_vector_map(db, HybridGate(), hybrid_rms_max=rms)
+        gate = database_vector_map(db, HybridGate(), rms_max=rms)
         put = hybrid_map(out["delv"], gate, out["minwarping"])
         for field in ("direction", "valid", "error_deg"):
             np.testing.assert_array_equal(np.asarray(getattr(put, field)), np.asarray(getattr(out[rms], field)))

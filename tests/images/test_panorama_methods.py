@@ -18,12 +18,10 @@ from delvjax.images._evaluate import database_vector_map
 from delvjax.images._render import ImageSettings
 from tests.cases.images_io import error_line, read_csv
 
-GRID36 = ["--mw-n-alpha", "36", "--mw-n-psi", "36"]  # small_db is 72 columns wide: a small grid that divides it
+GRID36 = ["--n-alpha", "36", "--n-psi", "36"]  # small_db is 72 columns wide: a small grid that divides it
 
 
-@pytest.mark.parametrize(
-    "method, grid", [("minwarping", GRID36), ("warping2d", ["--w2d-n-alpha", "36", "--w2d-n-psi", "36"])]
-)
+@pytest.mark.parametrize("method, grid", [("minwarping", GRID36), ("warping2d", ["--n-alpha", "36", "--n-psi", "36"])])
 def test_vector_map_and_catchment_on_a_database(small_db, tmp_path, capsys, method, grid):
     def run(command: str) -> dict:
         out, summary = tmp_path / f"{command}.csv", tmp_path / f"{command}.json"
@@ -41,12 +39,12 @@ def test_vector_map_and_catchment_on_a_database(small_db, tmp_path, capsys, meth
 @pytest.mark.parametrize(
     "flags, field",
     [
-        (["--mw-n-alpha", "96", "--mw-n-psi", "96"], "mw_n_alpha"),  # the authors' 96 does not divide 72 columns
-        (["--mw-n-alpha", "36", "--mw-n-psi", "5"], "mw_n_psi"),
-        ([*GRID36, "--mw-n-planes", "1"], "mw_n_planes"),  # one scale plane
-        ([*GRID36, "--mw-n-planes", "0"], "mw_n_planes"),
-        ([*GRID36, "--mw-threshold", "0"], "mw_threshold"),
-        ([*GRID36, "--mw-measure", "dot"], "mw_measure"),
+        (["--n-alpha", "96", "--n-psi", "96"], "n_alpha"),  # the authors' 96 does not divide 72 columns
+        (["--n-alpha", "36", "--n-psi", "5"], "n_psi"),
+        ([*GRID36, "--n-planes", "1"], "n_planes"),  # one scale plane
+        ([*GRID36, "--n-planes", "0"], "n_planes"),
+        ([*GRID36, "--threshold", "0"], "threshold"),
+        ([*GRID36, "--measure", "dot"], "measure"),
         ([*GRID36, "--elevation", "60", "10"], "elevation"),  # the vertical field misses the horizon
     ],
 )
@@ -62,21 +60,21 @@ def test_a_ring_scene_renders_panoramas_but_refuses_hypotheses_that_do_not_divid
     """docs/images.md §10: the authors' 96 does not divide the 360-pixel rings; the message names the setting
     and the divisors that would do, nothing is written."""
     out = tmp_path / "m.csv"
-    grid = ["--mw-n-alpha", "96", "--mw-n-psi", "96"]
+    grid = ["--n-alpha", "96", "--n-psi", "96"]
     assert main(["vector-map", "env1", "--method", "minwarping", *grid, "--out", str(out)]) == 2
     line = error_line(capsys)
-    assert line.startswith("delvjax: error: --mw-n-alpha and --mw-n-psi:") and "90" in line and "360" in line, line
+    assert line.startswith("delvjax: error: --n-alpha and --n-psi:") and "90" in line and "360" in line, line
     assert not out.exists()
 
 
 def test_the_api_asks_for_panoramas_and_they_follow_the_rolled_views(small_db):
     db = load_database(small_db)
     with pytest.raises(InputError, match="panoramas=True"):
-        database_vector_map(db, "minwarping", mw_n_alpha=36, mw_n_psi=36)
+        database_vector_map(db, "minwarping", n_alpha=36, n_psi=36)
     db = load_database(small_db, panoramas=True)
     snaps = db.rings.snapshots
     assert snaps.panorama.shape == (71, 12, 72) and snaps.elevations.shape == (71, 12)
-    vm = database_vector_map(db, "minwarping", mw_n_alpha=36, mw_n_psi=36)
+    vm = database_vector_map(db, "minwarping", n_alpha=36, n_psi=36)
     assert np.asarray(vm.valid)[np.asarray(vm.included)].all()
 
 
@@ -87,9 +85,8 @@ def test_rendered_world_maps_match_the_reference_numbers():
         "env1", spacing=100.0, settings=ImageSettings(camera=Camera(rows=48, cols=288)), panoramas=True
     )
     errors = {}
-    authors = {"minwarping": "mw", "warping2d": "w2d"}  # the reference's 96 x 96 hypotheses (the defaults: 72)
-    for method in ("minwarping", "warping2d"):
-        vm = database_vector_map(db, method, **{f"{authors[method]}_{k}": v for k, v in AUTHORS_GRID.items()})
+    for method in ("minwarping", "warping2d"):  # the reference's 96 x 96 hypotheses (the defaults: 72)
+        vm = database_vector_map(db, method, **AUTHORS_GRID)
         e = np.asarray(vm.error_deg)[np.asarray(vm.included)]
         errors[method] = (e.mean(), np.median(e), int((e > 45).sum()))
     mean, median, wild = errors["minwarping"]
@@ -110,7 +107,7 @@ def test_minwarpings_compass_serves_delv_and_alv(small_db):
         inc = np.asarray(vm.included)
         assert np.asarray(vm.valid)[inc].mean() > 0.9
         assert np.asarray(vm.error_deg)[inc].mean() < 45
-    with pytest.raises(InputError, match="mw_n_alpha"):
+    with pytest.raises(InputError, match="n_alpha"):
         database_vector_map(db, DELV(heading=MinWarpingCompass(warping=MinWarping(**AUTHORS_GRID))))  # 96 ∤ 72
 
 
@@ -134,8 +131,8 @@ def test_success_rate_on_a_database(small_db):
 def test_panoramas_too_wide_for_the_search_are_refused_before_any_work(tmp_path, capsys):
     """7200-pixel rings asked XLA for 1.1 TB (the search grows as width^3): one line naming the width."""
     out = tmp_path / "m.csv"
-    argv = ["vector-map", "env1", "--method", "minwarping", "--n-pix", "7200", "--mw-n-alpha", "90"]
-    assert main([*argv, "--mw-n-psi", "90", "--out", str(out)]) == 2
+    argv = ["vector-map", "env1", "--method", "minwarping", "--n-pix", "7200", "--n-alpha", "90"]
+    assert main([*argv, "--n-psi", "90", "--out", str(out)]) == 2
     line = error_line(capsys)
     assert line.startswith("delvjax: error: panorama width:") and "7200" in line, line
     assert not out.exists()

@@ -19,7 +19,7 @@ from delvjax.images import render_in_memory
 from delvjax.images._render import ImageSettings
 from tests.cases.compiled import call
 
-SMALL = {"n_pix": 96, "mw_n_alpha": 32, "mw_n_psi": 32}  # a small hypothesis grid: seconds, not minutes
+SMALL = {"n_pix": 96, "n_alpha": 32, "n_psi": 32}  # a small hypothesis grid: seconds, not minutes
 
 
 def test_a_scene_panorama_is_the_database_panorama_of_the_same_pose():
@@ -65,8 +65,8 @@ def test_minwarping_homes_on_a_ring_scene_and_under_occlusion():
 def test_the_hybrid_takes_delv_where_it_converges_on_a_ring_scene():
     kw = {
         "grid": Grid(spacing=100.0),
-        "mw_n_alpha": 36,
-        "mw_n_psi": 36,
+        "n_alpha": 36,
+        "n_psi": 36,
     }  # 360 px rings: DELV's fit converges at some points
     mw = np.asarray(delvjax.vector_map("env1", method="minwarping", **kw).direction)
     hybrid = np.asarray(delvjax.vector_map("env1", method="hybrid", **kw).direction)
@@ -81,7 +81,7 @@ def test_a_sweep_runs_minwarping_on_ring_scenes(tmp_path, kind):
     spec.write_text(
         f'[sweep]\nkind = "{kind}"\nmetrics = ["mean_error_deg", "invalid_pct"]\n\n'
         '[axes]\nenv = ["env1", "env2"]\nmethod = ["minwarping"]\nspacing = [200]\n'
-        "n_pix = [96]\nmw_n_alpha = [32]\nmw_n_psi = [32]\n"
+        "n_pix = [96]\nn_alpha = [32]\nn_psi = [32]\n"
     )
     run = subprocess.run(
         [sys.executable, "-m", "delvjax.cli", "sweep", str(spec), "--out", str(tmp_path / "out")],

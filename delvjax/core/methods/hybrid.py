@@ -5,7 +5,7 @@ converges, an image method (MinWarping by default) where it does not.
 DELV's answer is taken where it is valid, it sees as many landmarks as the home record holds
 (occlusion or a merged blob changes the count, and the cyclic pairing then pairs wrong landmarks,
 §3.2.4), and the root mean square of its matching residuals, sqrt(var / n) with var the minimised
-sum of Eq 3.5, is at most `hybrid_rms_max` cm. Elsewhere the image method's answer is taken; where
+sum of Eq 3.5, is at most `rms_max` cm. Elsewhere the image method's answer is taken; where
 that is invalid too, DELV's (valid or not). Both are computed at every point (under `vmap` a branch
 would compute both anyway).
 """
@@ -36,7 +36,7 @@ class Hybrid(HomingMethod):
         25.0,
         check="positive",
         unit="cm",
-        option="hybrid_rms_max",
+        formerly="hybrid_rms_max",
         help="DELV's largest RMS residual (Eq 3.5) taken as converged",
     )
 

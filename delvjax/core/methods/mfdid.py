@@ -75,7 +75,7 @@ class MFDID(HomingMethod):
     """
 
     blur_deg: Real = setting(
-        0.0, check="non_negative", unit="deg", option="mfdid_blur_deg", help="Gaussian low-pass of both images"
+        0.0, check="non_negative", unit="deg", formerly="mfdid_blur_deg", help="Gaussian low-pass of both images"
     )
     heading: HeadingSource = Compass()
 

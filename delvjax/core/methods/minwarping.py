@@ -68,11 +68,12 @@ PANORAMA_SETTINGS = {
 
 
 def panorama_setting(field: str, prefix: str):
-    """The declaration of a setting both panorama methods have, as option `{prefix}_{field}` (`stack`
-    for `stack_type`): `mw_n_alpha`, `w2d_n_alpha`, ..."""
+    """The declaration of a setting both panorama methods have, under the field's name (`n_alpha`: one
+    option that sets MinWarping's and Warping2D's); formerly `{prefix}_{field}` (`mw_n_alpha`,
+    `w2d_stack` for `stack_type`), read with a DeprecationWarning (docs/options.md "Renamed options")."""
     default, meta = PANORAMA_SETTINGS[field]
-    name = "stack" if field == "stack_type" else field
-    return setting(default, static=True, option=f"{prefix}_{name}", **meta)
+    former = "stack" if field == "stack_type" else field
+    return setting(default, static=True, formerly=f"{prefix}_{former}", **meta)
 
 
 MAX_WIDTH = 768  # the widest panorama MinWarping takes (`check_grid`: about 3 width^3 bytes a pair, 1.4 GB)
@@ -228,12 +229,12 @@ class MinWarping(HomingMethod):
     n_planes: int = panorama_setting("n_planes", "mw")
     max_scale: float = panorama_setting("max_scale", "mw")
     threshold: float = setting(
-        2.5, static=True, check="positive", help="largest scale factor a column may take", option="mw_threshold"
+        2.5, static=True, check="positive", help="largest scale factor a column may take", formerly="mw_threshold"
     )
     measure: str = panorama_setting("measure", "mw")
     preprocess: str = panorama_setting("preprocess", "mw")
     refine: str = setting(
-        "double+fine", static=True, check="choice", choices=REFINEMENTS, help="search refinements", option="mw_refine"
+        "double+fine", static=True, check="choice", choices=REFINEMENTS, help="search refinements", formerly="mw_refine"
     )
     stack_type: str = panorama_setting("stack_type", "mw")
 

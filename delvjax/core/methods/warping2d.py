@@ -71,10 +71,10 @@ class Warping2D(HomingMethod):
     n_alpha: int = panorama_setting("n_alpha", "w2d")
     n_psi: int = panorama_setting("n_psi", "w2d")
     n_rho: int = setting(
-        20, static=True, check="positive_int", limit=1_000, help="values of rho = d / r", option="w2d_n_rho"
+        20, static=True, check="positive_int", limit=1_000, help="values of rho = d / r", formerly="w2d_n_rho"
     )
-    rho_min: float = setting(0.0, static=True, check="non_negative", help="smallest rho", option="w2d_rho_min")
-    rho_max: float = setting(1.0, static=True, check="non_negative", help="largest rho (<= 1)", option="w2d_rho_max")
+    rho_min: float = setting(0.0, static=True, check="non_negative", help="smallest rho", formerly="w2d_rho_min")
+    rho_max: float = setting(1.0, static=True, check="non_negative", help="largest rho (<= 1)", formerly="w2d_rho_max")
     n_planes: int = panorama_setting("n_planes", "w2d")
     max_scale: float = panorama_setting("max_scale", "w2d")
     measure: str = panorama_setting("measure", "w2d")
@@ -95,4 +95,4 @@ class Warping2D(HomingMethod):
     def check_input(self, n_pix: int) -> None:
         check_grid(self, None, n_pix)
         if not self.rho_min <= self.rho_max <= 1.0:
-            raise InputError("w2d_rho_max", self.rho_max, f"must be in [rho_min = {self.rho_min}, 1]")
+            raise InputError("rho_max", self.rho_max, f"must be in [rho_min = {self.rho_min}, 1]")

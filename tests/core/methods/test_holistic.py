@@ -293,6 +293,6 @@ def test_mfdid_low_pass_is_identity_at_zero_and_helps_far_from_home():
     np.testing.assert_allclose(np.asarray(call(low_pass, img, jnp.float32(0.0))), np.asarray(img), atol=1e-5)
     assert abs(float(call(low_pass, img, jnp.float32(20.0)).sum()) - float(img.sum())) < 1e-3  # mass preserved
     raw = delvjax.vector_map("env1", method="mfdid", grid=Grid(spacing=100.0))
-    blurred = delvjax.vector_map("env1", method="mfdid", mfdid_blur_deg=40.0, grid=Grid(spacing=100.0))
+    blurred = delvjax.vector_map("env1", method="mfdid", blur_deg=40.0, grid=Grid(spacing=100.0))
     inc = np.asarray(raw.included)
     assert np.asarray(blurred.error_deg)[inc].mean() < 0.5 * np.asarray(raw.error_deg)[inc].mean()

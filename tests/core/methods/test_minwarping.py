@@ -308,13 +308,13 @@ def test_2d_warping_agrees_with_the_twin():
 @pytest.mark.parametrize(
     "settings,field",
     [
-        ({"n_alpha": 7}, "mw_n_alpha"),  # 7 does not divide 96 columns
-        ({"n_psi": 40}, "mw_n_psi"),
-        ({"n_planes": 1}, "mw_n_planes"),  # zero or one scale plane
-        ({"n_planes": 8}, "mw_n_planes"),  # even: no plane at 1
-        ({"threshold": 1.0}, "mw_threshold"),
-        ({"max_scale": 1.0}, "mw_max_scale"),
-        ({"n_alpha": 48, "n_psi": 32}, "mw_n_psi"),  # the double search maps psi onto alpha
+        ({"n_alpha": 7}, "n_alpha"),  # 7 does not divide 96 columns
+        ({"n_psi": 40}, "n_psi"),
+        ({"n_planes": 1}, "n_planes"),  # zero or one scale plane
+        ({"n_planes": 8}, "n_planes"),  # even: no plane at 1
+        ({"threshold": 1.0}, "threshold"),
+        ({"max_scale": 1.0}, "max_scale"),
+        ({"n_alpha": 48, "n_psi": 32}, "n_psi"),  # the double search maps psi onto alpha
     ],
 )
 def test_bad_settings_are_refused_naming_the_setting(settings, field):

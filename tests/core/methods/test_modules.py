@@ -105,7 +105,7 @@ def test_options_set_only_the_fields_a_method_has_and_name_the_bad_one():
         ("delv", dict(unknown_option=1.0)),
         ("alv", dict(levels=3)),
         ("delv", dict(n_alpha=36)),
-        ("warping", dict(mfdid_blur_deg=2.0)),
+        ("warping", dict(blur_deg=2.0)),
     ):
         with pytest.raises(InputError) as err:
             make_setup(method_name, **bad)
