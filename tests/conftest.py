@@ -104,7 +104,7 @@ def run(tmp_path_factory):
     if os.environ.get("PYTEST_XDIST_WORKER") is None:
         t0 = time.perf_counter()
         with recording_defects() as found:
-            result = reproduce.reproduce(own, settings=TINY, progress=False)
+            result = reproduce.reproduce(own, config=TINY, progress=False)
         return own, {**result, "figure_defects": found}, time.perf_counter() - t0
     shared = tmp_path_factory.getbasetemp().parent / "reproduce-shared"  # the same folder for every worker
     done, failed = shared.with_suffix(".pickle"), shared.with_suffix(".failed")
@@ -123,7 +123,7 @@ def run(tmp_path_factory):
         t0 = time.perf_counter()
         try:
             with recording_defects() as found:
-                result = {**reproduce.reproduce(shared, settings=TINY, progress=False), "figure_defects": found}
+                result = {**reproduce.reproduce(shared, config=TINY, progress=False), "figure_defects": found}
         except BaseException:
             import traceback
 

@@ -49,7 +49,7 @@ FORMER = frozenset(
 )
 # (file, name) -> why it is left: names that look like modules but are not
 ALLOWED = {
-    ("studies/runs/_common.py", "settings.trials"): "a study's settings object (`ctx.settings`), not core/settings.py",
+    ("studies/runs/_common.py", "config.trials"): "a study's RunConfig (`ctx.config`), not a module",
     ("benchmarks/ab_vector_map.py", "delvjax.config.Config"): "the API of old revisions this A/B script also runs",
     ("tests/examples/test_examples.py", "examples/NAME.py"): "a placeholder",
     ("tests/test_api_reference.py", "delvjax.NAME"): "a placeholder",

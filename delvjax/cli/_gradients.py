@@ -13,7 +13,7 @@ from ..gradients._loss import TAU
 from ..gradients._sensitivity import SENSITIVITY_METHODS as METHODS
 from ..gradients._sensitivity import SETTING_UNITS, check_sensitivity, sensitivity
 from ..gradients._traps import find_traps
-from ..options._settings import NOISE_OPTIONS
+from ..options._setup import NOISE_OPTIONS
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_out_dir, output_set
 from ._args import ProgressBar, add_setting_args, progress, setting_values

@@ -25,7 +25,7 @@ from ..images._load import load_database
 from ..images._render import ImageSettings, camera, check_render, render_database
 from ..options._limits import MAX_POINTS
 from ..options._schema import extractor_options, method_options, sensor_options
-from ..options._settings import make_setup
+from ..options._setup import make_setup
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_out_dir
 from ._args import ProgressBar, check_outputs, progress, warn, write_outputs, wrote

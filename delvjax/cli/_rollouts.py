@@ -30,7 +30,7 @@ from ..core.tables import (
 from ..evaluate import _rollouts as api_rollouts
 from ..evaluate import _vector_map as api
 from ..options._registry import get_method
-from ..options._settings import make_setup, option_names
+from ..options._setup import make_setup, option_names
 from ._args import (
     ProgressBar,
     add_output_args,

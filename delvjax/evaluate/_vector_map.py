@@ -29,7 +29,7 @@ from ..envs._presets import load_env
 from ..options import _limits as limits
 from ..options._limits import MAX_POINTS, check_size
 from ..options._schema import ROLLOUT_ONLY
-from ..options._settings import make_setup
+from ..options._setup import make_setup
 from ..outputs._programs import kept_number
 from ._progress import Progress, as_progress
 

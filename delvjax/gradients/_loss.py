@@ -32,7 +32,7 @@ from ..core.soft.sensing import VISIBILITY_WIDTH
 from ..core.types import Real
 from ..evaluate._vector_map import check_grid, scene_request
 from ..options._limits import MAX_POINTS, check_size, grid_count
-from ..options._settings import NOISE_FIELDS_DEG, NOISE_FIELDS_FRACTION
+from ..options._setup import NOISE_FIELDS_DEG, NOISE_FIELDS_FRACTION
 
 TAU = 0.01  # default softmin temperature (docs/differentiable.md)
 NOISE_NAMES = {

@@ -27,7 +27,7 @@ from ..core.images.rollouts import OUTCOMES, Field, Paths, nearest_snapshot_roll
 from ..core.maps import VectorMap
 from ..core.rollouts import MAX_STEPS, TRIALS_PER_DISTANCE
 from ..core.rollouts.success import wilson_pct
-from ..options._settings import make_setup
+from ..options._setup import make_setup
 from ._conventions import mismatch
 from ._load import LoadedDatabase, _warn, with_channel
 

@@ -10,4 +10,4 @@ from ._registry import register as register
 from ._registry import unregister as unregister
 from ._schema import Option as Option
 from ._schema import all_options as all_options
-from ._settings import make_setup as make_setup
+from ._setup import make_setup as make_setup

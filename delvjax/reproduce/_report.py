@@ -129,8 +129,8 @@ def study_section(rec) -> str:
     return "\n\n".join(parts)
 
 
-def settings_section(settings, versions: dict, records: dict, wall_seconds: float, ran: list[str]) -> str:
-    rows = [{"setting": k, "value": v} for k, v in asdict(settings).items()]
+def config_section(config, versions: dict, records: dict, wall_seconds: float, ran: list[str]) -> str:
+    rows = [{"setting": k, "value": v} for k, v in asdict(config).items()]
     rows += [
         {
             "setting": "rollout rules (default, docs/model.md §5)",
@@ -162,7 +162,7 @@ def settings_section(settings, versions: dict, records: dict, wall_seconds: floa
     from ..studies import FULL_RUN_ONLY  # the studies: loaded only when a report is written (they import the API)
 
     missing = [n for n in FULL_RUN_ONLY if n not in records]
-    if settings.quick and missing:
+    if config.quick and missing:
         parts.append(
             "**A preview (`--quick`)**: a 10 x 10 grid, and these studies are left to a full run (or "
             f"`--only`): {', '.join(f'`{n}`' for n in missing)}; claims that read them say *not run*."
@@ -259,10 +259,10 @@ def ensemble_more(records: dict, flat: dict) -> list[str]:
     return parts
 
 
-def build_markdown(records: dict, settings, versions: dict, wall_seconds: float, ran: list[str]) -> str:
+def build_markdown(records: dict, config, versions: dict, wall_seconds: float, ran: list[str]) -> str:
     from ..studies.claims import evaluate  # the studies: loaded only when a report is written (they import the API)
 
-    claims = evaluate({n: r.numbers for n, r in records.items()}, asdict(settings))
+    claims = evaluate({n: r.numbers for n, r in records.items()}, asdict(config))
     flat = {k: v for r in records.values() for k, v in r.numbers.items()}
     parts = [
         "# delvjax: reproduction of the thesis's simulation experiments",
@@ -270,9 +270,9 @@ def build_markdown(records: dict, settings, versions: dict, wall_seconds: float,
         "(chapters 4-5). It gives no landmark coordinates, grid spacing or home radius, so the claims "
         "to check are the trends (who beats whom, how fast each degrades), not the digits. "
         "Our environments, frames and every decision where the thesis is ambiguous: `docs/model.md`.",
-        *([QUICK_BANNER] if getattr(settings, "quick", False) else []),
+        *([QUICK_BANNER] if getattr(config, "quick", False) else []),
         "## Run settings",
-        settings_section(settings, versions, records, wall_seconds, ran),
+        config_section(config, versions, records, wall_seconds, ran),
         "## Claims of the thesis",
         claims_section(claims),
         *ensemble_section(records, flat),
@@ -298,12 +298,12 @@ def embed_images(html: str, root: Path) -> str:
 
 
 def write_report(
-    out: Path, records: dict, settings, versions: dict, wall_seconds: float = 0.0, ran: list[str] | None = None
+    out: Path, records: dict, config, versions: dict, wall_seconds: float = 0.0, ran: list[str] | None = None
 ) -> Path:
     """Write out/report.md and out/report.html; returns the HTML path."""
     import markdown  # markdown: loaded only when the HTML report is written
 
-    text = build_markdown(records, settings, versions, wall_seconds, ran or [])
+    text = build_markdown(records, config, versions, wall_seconds, ran or [])
     with atomic_path(out / "report.md") as tmp:
         tmp.write_text(text)
     title, rest = text.split("\n", 1)  # the HTML page gets a table of contents with an anchor per section

@@ -2,9 +2,9 @@
 
 A study is a module of the `studies` package with a `TITLE` and a `run(ctx)` function; the
 registry `studies.STUDIES` lists them in report order. The runner gives each study a
-`StudyContext` (its output folder, the run's settings, writers that record every figure,
+`StudyContext` (its output folder, the run's config, writers that record every figure,
 table and number), then writes `<study>/study.json` last. A study whose content hash (its
-code, the code of `delvjax`, the settings and the versions) matches its `study.json` is
+code, the code of `delvjax`, the run's config and the versions) matches its `study.json` is
 skipped, so an interrupted run resumes where it stopped and a second run does no work.
 Every file is written under a temporary name and renamed (`outputs._files.atomic_path`).
 """
@@ -27,11 +27,12 @@ from pathlib import Path
 from typing import Any
 
 from ..core.checks import seed_value
+from ..core.deprecation import deprecated
 from ..core.errors import InputError, did_you_mean, warn
 from ..outputs._cache import enable_compilation_cache, package_sources, release_programs_near_map_limit
 from ..outputs._files import check_out_dir, write_json
 from ._report import write_report
-from ._study import STUDY_FILE, Settings, StudyContext, StudyRecord, compile_seconds, settings_record, versions
+from ._study import STUDY_FILE, RunConfig, StudyContext, StudyRecord, compile_seconds, config_record, versions
 
 STUDIES = "delvjax.studies"  # the package of the study runners, the thesis's numbers and the claim checks
 
@@ -72,9 +73,9 @@ def _sibling_imports(path: Path) -> set[Path]:
     return seen
 
 
-def study_hash(module, settings: Settings) -> str:
+def study_hash(module, config: RunConfig) -> str:
     """Hash of the study's module and the study modules it imports (runs/_common.py, another study),
-    the thesis's numbers (studies/thesis/), every delvjax source, settings and versions."""
+    the thesis's numbers (studies/thesis/), every delvjax source, the run's config and versions."""
     h = hashlib.sha256()
     root = _studies_root()
     own = Path(module.__file__)
@@ -84,7 +85,7 @@ def study_hash(module, settings: Settings) -> str:
         if path.is_file():
             h.update(path.name.encode())
             h.update(path.read_bytes())
-    h.update(json.dumps(asdict(settings), sort_keys=True).encode())
+    h.update(json.dumps(asdict(config), sort_keys=True).encode())
     h.update(json.dumps({k: v for k, v in versions().items() if k != "python"}, sort_keys=True).encode())
     return h.hexdigest()[:16]
 
@@ -177,7 +178,7 @@ def run_study(
     name: str,
     module,
     out: Path,
-    settings: Settings,
+    config: RunConfig,
     force: bool = False,
     progress: bool = True,
     painter: ThreadPoolExecutor | None = None,
@@ -195,17 +196,17 @@ def run_study(
     from tqdm.auto import tqdm  # tqdm: loaded only when a progress bar is shown
 
     folder = out / name
-    digest = study_hash(module, settings) if digest is None else digest
+    digest = study_hash(module, config) if digest is None else digest
     if not force and is_current(folder, digest):
         return load_record(folder), False, None  # type: ignore[return-value]
     record = StudyRecord(
-        name=name, title=module.TITLE, hash=digest, settings=settings_record(settings), versions=versions()
+        name=name, title=module.TITLE, hash=digest, settings=config_record(config), versions=versions()
     )
     c0, t0 = compile_seconds(), time.perf_counter()
     with tqdm(
         total=getattr(module, "STEPS", None), desc=f"  {name}", leave=False, disable=not progress, file=sys.stderr
     ) as bar:
-        ctx = StudyContext(folder, record, settings, bar, painter)
+        ctx = StudyContext(folder, record, config, bar, painter)
         module.run(ctx)
     record.seconds = time.perf_counter() - t0
     record.compile_seconds = compile_seconds() - c0
@@ -222,14 +223,16 @@ def reproduce(
     force: bool = False,
     seed: int = 0,
     progress: bool = True,
-    settings: Settings | None = None,
+    config: RunConfig | None = None,
     workers: int | None = None,
     formats: str | Sequence[str] = "png",
+    settings: RunConfig | None = None,
 ) -> dict:
     """Run the selected studies (skipping current ones), then write report.md / report.html.
 
-    `settings` overrides quick/seed (e.g. a tiny grid for tests: Settings(spacing=200.0, trials=10)).
-    `formats`: figure files besides the PNG ("png,pdf,svg"; `Settings.formats`).
+    `config=` overrides quick/seed (e.g. a tiny grid for tests: RunConfig(spacing=200.0, trials=10); `settings=`,
+    its name before this release, still works for one release with a DeprecationWarning).
+    `formats`: figure files besides the PNG ("png,pdf,svg"; `RunConfig.formats`).
     `workers`: studies run side by side in threads (default `default_workers()`; 1: one at a time).
     Each study's numbers are the same either way: a study reads only its own inputs and keys, and
     the programs are the same (docs/reproduce.md "Speed"; tested).
@@ -237,8 +240,15 @@ def reproduce(
     """
 
     seed = seed_value(seed)
-    settings = settings or Settings.make(quick=quick, seed=seed, formats=formats)
-    names = select(only, settings.quick)
+    if settings is not None:  # the name before this release
+        if config is not None:
+            raise InputError("settings", settings, "is the former name of config=, given too: give config= alone")
+        deprecated(
+            "delvjax: reproduce(settings=...) is now reproduce(config=...) (a RunConfig); settings= goes next release"
+        )
+        config = settings
+    config = config or RunConfig.make(quick=quick, seed=seed, formats=formats)
+    names = select(only, config.quick)
     workers = default_workers() if workers is None else int(workers)
     if workers < 1:
         raise InputError("workers", workers, "must be at least 1")
@@ -250,7 +260,7 @@ def reproduce(
     enable_compilation_cache()
     compile_seconds()
     modules = registry(names)
-    digests = {name: study_hash(module, settings) for name, module in modules.items()}  # the code that runs
+    digests = {name: study_hash(module, config) for name, module in modules.items()}  # the code that runs
     records, ran = {}, []
     t0 = time.perf_counter()
     completions = []
@@ -258,7 +268,7 @@ def reproduce(
 
     def one(name: str) -> None:
         rec, did, done = run_study(
-            name, modules[name], out, settings, force=force, progress=progress, painter=painter, digest=digests[name]
+            name, modules[name], out, config, force=force, progress=progress, painter=painter, digest=digests[name]
         )
         records[name] = rec
         completions.append(done)
@@ -278,10 +288,10 @@ def reproduce(
     for name in order:  # studies of an earlier run (other --only) still appear in the report
         if name not in records:
             rec = load_record(out / name)
-            if rec is not None and rec.settings == settings_record(settings):
+            if rec is not None and rec.settings == config_record(config):
                 records[name] = rec
     ordered = {n: records[n] for n in order if n in records}
-    report = write_report(out, ordered, settings, versions(), wall_seconds=time.perf_counter() - t0, ran=ran)
+    report = write_report(out, ordered, config, versions(), wall_seconds=time.perf_counter() - t0, ran=ran)
     return {"records": ordered, "ran": ran, "report": report}
 
 

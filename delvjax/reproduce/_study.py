@@ -1,5 +1,5 @@
 """What one study of `delvjax reproduce` sees and leaves behind (docs/reproduce.md): the run's
-`Settings`, the `StudyContext` writers (figures, tables, numbers, data files) and the
+`RunConfig`, the `StudyContext` writers (figures, tables, numbers, data files) and the
 `StudyRecord` written last as `<study>/study.json`; plus the run's versions and compile time."""
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ import jax
 import numpy
 
 from .. import __version__
+from ..core.deprecation import deprecated
 from ..core.errors import InputError
 from ..core.maps import SPACING
 from ..core.rollouts import DEFAULT_LANES, DEFAULT_RULES, PHYSICAL_RULES, TRIALS_PER_DISTANCE
@@ -32,8 +33,9 @@ COMPILE_EVENTS = (
 
 
 @dataclass(frozen=True)
-class Settings:
-    """What a run depends on besides the code (recorded in the report and every JSON).
+class RunConfig:
+    """What a reproduce run depends on besides the code (recorded in the report and every JSON; named
+    `Settings` before this release: "settings" now means only the options declared on modules).
 
     spacing: grid spacing cm (docs/model.md §5, 25 = 40 x 40; --quick: 100 = 10 x 10); trials: rollouts
     per success-rate distance bin (thesis: 100; they fill one trial block, so --quick keeps
@@ -51,7 +53,7 @@ class Settings:
     formats: tuple[str, ...] = ("png",)
 
     @classmethod
-    def make(cls, quick: bool = False, seed: int = 0, formats: str | Sequence[str] = "png") -> "Settings":
+    def make(cls, quick: bool = False, seed: int = 0, formats: str | Sequence[str] = "png") -> "RunConfig":
         return cls(
             quick=quick,
             seed=seed,
@@ -60,6 +62,14 @@ class Settings:
             lanes=128 if quick else DEFAULT_LANES,
             formats=figure_formats(formats),
         )
+
+
+@dataclass(frozen=True)
+class Settings(RunConfig):
+    """Deprecated (one release): `RunConfig`'s name before this release; building one warns."""
+
+    def __post_init__(self):
+        deprecated("delvjax: reproduce.Settings is now reproduce.RunConfig; Settings goes next release")
 
 
 FORMATS = ("png", "pdf", "svg")
@@ -75,9 +85,10 @@ def figure_formats(value: str | Sequence[str]) -> tuple[str, ...]:
     return tuple(dict.fromkeys(["png", *items]))
 
 
-def settings_record(settings: Settings) -> dict:
-    """The settings as recorded in every study.json and the report, with the rollout rules."""
-    record = {**asdict(settings), "formats": list(settings.formats)}  # as JSON reads it back
+def config_record(config: RunConfig) -> dict:
+    """The run's configuration as recorded in every study.json (its key `settings`, as earlier
+    releases wrote it) and the report, with the rollout rules."""
+    record = {**asdict(config), "formats": list(config.formats)}  # as JSON reads it back
     return {**record, "rules": {"default": DEFAULT_RULES, "physical": PHYSICAL_RULES}}
 
 
@@ -223,12 +234,21 @@ class StudyContext:
     """The output folder and writers of one study; every write is atomic and recorded."""
 
     def __init__(
-        self, out: Path, record: StudyRecord, settings: Settings, bar=None, painter: ThreadPoolExecutor | None = None
+        self, out: Path, record: StudyRecord, config: RunConfig, bar=None, painter: ThreadPoolExecutor | None = None
     ):
-        self.out, self.record, self.settings, self._bar = out, record, settings, bar
+        self.out, self.record, self.config, self._bar = out, record, config, bar
         self._painter, self._pending = painter, []  # type: ignore[var-annotated]
         self.steps = 0  # `step` calls so far
         out.mkdir(parents=True, exist_ok=True)
+
+    @property
+    def settings(self) -> RunConfig:
+        """Deprecated (one release): now `ctx.config`, the run's `RunConfig` ("settings" names the options
+        declared on the modules, core/settings.py)."""
+        deprecated(
+            "delvjax: StudyContext.settings is now StudyContext.config (a RunConfig); .settings goes next release"
+        )
+        return self.config
 
     def _file(self, name: str) -> Path:
         self.record.files.append(name)
@@ -237,7 +257,7 @@ class StudyContext:
     def figure(self, name: str, fig, caption: str) -> None:
         """Save a figure (`plots.subplots`: outside pyplot's state) as `name` (.png) and in every other
         format of the settings (same name, .pdf / .svg), with the caption the report prints under it."""
-        paths = [self._file(str(Path(name).with_suffix(f".{f}"))) for f in self.settings.formats]
+        paths = [self._file(str(Path(name).with_suffix(f".{f}"))) for f in self.config.formats]
 
         def write() -> None:
             for path in paths:

@@ -87,10 +87,10 @@ def catchment(
     return delvjax.catchment(
         e,
         method=method,
-        seed=ctx.settings.seed,
+        seed=ctx.config.seed,
         program=PROGRAM,
-        grid=Grid(spacing=ctx.settings.spacing),
-        rules=Rules(home_radius=home_radius, lanes=ctx.settings.lanes, **RULES[rules]),
+        grid=Grid(spacing=ctx.config.spacing),
+        rules=Rules(home_radius=home_radius, lanes=ctx.config.lanes, **RULES[rules]),
         **options,
     )
 
@@ -115,7 +115,7 @@ def catchments(ctx, e: Env, method: str, **options) -> dict[str, rollouts.Catchm
 
 
 def success_tables(ctx, e: Env, method: str, **options) -> dict[str, list[dict]]:
-    """Success rate per release distance 50..450 cm (`settings.trials` per bin, Figs 4.10b, 5.7b) of
+    """Success rate per release distance 50..450 cm (`config.trials` per bin, Figs 4.10b, 5.7b) of
     `method` under every rule set of RULES (`every_rule`): {rules: the rows of `tables.success_rows`
     (the CLI's success-rate CSV)}."""
     runs = every_rule(lambda rules: success_rate(ctx, e, method, rules, **options), method, e.arena, options.get("d"))
@@ -127,10 +127,10 @@ def success_rate(ctx, e: Env, method: str, rules: str = "default", **options) ->
     return delvjax.success_rate(
         e,
         method=method,
-        trials=ctx.settings.trials,
-        seed=ctx.settings.seed,
+        trials=ctx.config.trials,
+        seed=ctx.config.seed,
         program=PROGRAM,
-        rules=Rules(home_radius=HOME_RADIUS, lanes=ctx.settings.lanes, **RULES[rules]),
+        rules=Rules(home_radius=HOME_RADIUS, lanes=ctx.config.lanes, **RULES[rules]),
         **options,
     )
 
@@ -336,7 +336,7 @@ def success_set(ctx, e: Env, methods, fig_file: str, title: str, caption: str, s
     )
     ctx.figure(
         f"{fig_file}.png",
-        success_rate_figure(tables, f"Success rate, {title} ({ctx.settings.trials} trials per distance; {source})"),
+        success_rate_figure(tables, f"Success rate, {title} ({ctx.config.trials} trials per distance; {source})"),
         caption,
     )
     ctx.csv(f"{fig_file}_counts.csv", rows=[{"label": k, **r} for k, v in tables.items() for r in v])
@@ -357,9 +357,9 @@ def trajectory_set(
             e,
             method=m,
             n_starts=n_starts,
-            seed=ctx.settings.seed,
+            seed=ctx.config.seed,
             program=None if m in (own or {}) else PROGRAM,
-            rules=Rules(home_radius=HOME_RADIUS, lanes=ctx.settings.lanes),
+            rules=Rules(home_radius=HOME_RADIUS, lanes=ctx.config.lanes),
             **(own or {}).get(m, {}),
         )
         results[LABEL[m]] = tr

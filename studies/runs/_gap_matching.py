@@ -34,7 +34,7 @@ LABELS = {
 FIELDS = {"catchment_pct": "catchment", "gt45_pct": "gt45", "gt90_pct": "gt90"}
 
 
-def gap_aware_summary(e, masks, hidden, spacing: float, settings, method: str = "delv-gap-compass") -> list[dict]:
+def gap_aware_summary(e, masks, hidden, spacing: float, config, method: str = "delv-gap-compass") -> list[dict]:
     """Per-mask catchment summaries (`rollouts.catchment_summary`) of `method` (gap-aware DELV with a
     compass, or linear DELV with the agent-frame list) on the occlusion study's masks, grid, seed and
     default rules."""
@@ -42,11 +42,11 @@ def gap_aware_summary(e, masks, hidden, spacing: float, settings, method: str = 
         e,
         program(method, PROGRAM)[0],
         Sensor(),
-        key=jax.random.PRNGKey(settings.seed),
+        key=jax.random.PRNGKey(config.seed),
         masks=masks,
         hidden=hidden,
         grid=Grid(spacing=spacing),
-        rules=Rules(home_radius=HOME_RADIUS, lanes=settings.lanes, **RULES["default"]),
+        rules=Rules(home_radius=HOME_RADIUS, lanes=config.lanes, **RULES["default"]),
     )
     return rollouts.catchment_summary(c)["per_mask"]
 

@@ -29,7 +29,7 @@ CAMERA_NOISE = ImageSettings(pixel_noise=0.02, gain_noise=0.03)  # "realistic ca
 
 def preview(ctx) -> bool:
     """A preview run (`--quick`, or the tests' coarse settings): fewer settings, the same programs."""
-    return ctx.settings.quick or ctx.settings.spacing >= 100
+    return ctx.config.quick or ctx.config.spacing >= 100
 
 
 def database(name: str, settings: ImageSettings = CAMERA_NOISE, seed: int = 0, **kw) -> LoadedDatabase:

@@ -14,12 +14,12 @@ RING_SPACING = 50.0
 QUICK_RING_SPACING = 200.0
 
 
-def layout_spacing(name: str, settings) -> float:
+def layout_spacing(name: str, config) -> float:
     """The grid spacing (cm) of layout `name`: env1-3 the run's, the rings at least RING_SPACING (a full run) or
     QUICK_RING_SPACING (`--quick`)."""
     if name.startswith("env"):
-        return settings.spacing
-    return max(settings.spacing, QUICK_RING_SPACING if settings.quick else RING_SPACING)
+        return config.spacing
+    return max(config.spacing, QUICK_RING_SPACING if config.quick else RING_SPACING)
 
 
 def stacked_masks(e, k_max: int):

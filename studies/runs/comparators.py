@@ -32,7 +32,7 @@ N_STARTS = 8
 
 
 def run(ctx) -> None:
-    spacing = ctx.settings.spacing
+    spacing = ctx.config.spacing
     rows = []
     for name in ENVS:  # three layouts x three methods, three compiled programs
         e = env(name)

@@ -39,8 +39,8 @@ STEPS = SLICES
 def plan(ctx) -> tuple[int, float, int]:
     """(members, grid spacing, seed slices) of this run: the full ensemble, or under --quick or a grid coarser than
     SPACING (the test suite's tiny run) a preview of QUICK_MEMBERS members on the PREVIEW_SPACING grid."""
-    if ctx.settings.quick or ctx.settings.spacing > SPACING:
-        return QUICK_MEMBERS, max(ctx.settings.spacing, PREVIEW_SPACING), 1
+    if ctx.config.quick or ctx.config.spacing > SPACING:
+        return QUICK_MEMBERS, max(ctx.config.spacing, PREVIEW_SPACING), 1
     return MEMBERS, SPACING, SLICES
 
 
@@ -156,8 +156,8 @@ def member_figure(worlds: dict[str, dict], members: int):
 
 def run(ctx) -> None:
     members, spacing, slices = plan(ctx)
-    seed = ctx.settings.seed
-    worlds = run_members(members, spacing, slices, seed, ctx.settings.lanes, ctx.step)
+    seed = ctx.config.seed
+    worlds = run_members(members, spacing, slices, seed, ctx.config.lanes, ctx.step)
     for _ in range(STEPS - slices):  # a preview: the progress bar still ends at its total
         ctx.step("the other seed slice: full run only")
     layouts = {

@@ -21,7 +21,7 @@ import numpy as np
 
 from delvjax.core.maps import grid_points
 from delvjax.envs import ensemble_envs, world_properties
-from delvjax.options._settings import make_sensor
+from delvjax.options._setup import make_sensor
 from delvjax.sweeps import parse_sweep, point_errors, run_sweep
 
 from ..claims import WORLD_FAILS, WORLD_HOLDS
@@ -91,7 +91,7 @@ STEPS = 6
 def plan(ctx) -> dict:
     """The run's sizes: FULL, or under --quick or a grid coarser than SPACING (the test suite's tiny run) the
     PREVIEW (2 members on a 200 cm grid, the per-point maps of the landmark methods only)."""
-    preview = ctx.settings.quick or ctx.settings.spacing > SPACING
+    preview = ctx.config.quick or ctx.config.spacing > SPACING
     return dict(PREVIEW if preview else FULL, preview=preview)
 
 
@@ -120,13 +120,13 @@ def run_slice(ctx, sizes: dict, j: int, size: int, worlds: dict) -> None:
     """One seed slice (the run's seed + j): the per-point maps, and on the full run the true compass's
     catchments, the visual compass's vector maps and heading errors, and in the visual slices its rollouts
     (the built-in worlds' in the first)."""
-    seed, lanes = ctx.settings.seed + j, ctx.settings.lanes
-    envs = slice_envs(size, j, ctx.settings.seed)
+    seed, lanes = ctx.config.seed + j, ctx.config.lanes
+    envs = slice_envs(size, j, ctx.config.seed)
     suffix = f"@{j}" if j else ""  # the built-in worlds of slice j: `env1@j` (their seed spread)
     methods = MAP_METHODS[:4] if sizes["preview"] else MAP_METHODS
     spec = parse_sweep(sweep_text("vector-map", envs, methods, sizes["map_spacing"], seed), "maps")
     add(worlds, curve_keys(point_errors(spec), methods, spec.axes["env"]), suffix)
-    envs1 = slice_envs(size, j, ctx.settings.seed, families=("env1",))  # claim 11: one program over every Q
+    envs1 = slice_envs(size, j, ctx.config.seed, families=("env1",))  # claim 11: one program over every Q
     spec = parse_sweep(sweep_text("vector-map", envs1, ["delv"], sizes["map_spacing"], seed, levels=LEVELS), "levels")
     add(worlds, level_keys(point_errors(spec), spec.axes["env"], LEVELS), suffix)
     if sizes["preview"]:
@@ -151,11 +151,11 @@ def random_layouts(ctx, sizes: dict, worlds: dict) -> dict[str, np.ndarray]:
     5 landmarks (member i: one seed, its fewer landmarks the first of its more: nested) and in the
     `landmark_number` study's three (the built-in `random`: separate seeds), one sweep; their layouts (W, n, 3)
     per count (`random<n>`, for the property that decides a claim). The preview: DELV only."""
-    base = RANDOM_BASE * (ctx.settings.seed + 1)
+    base = RANDOM_BASE * (ctx.config.seed + 1)
     envs = [f"{{random = {sizes['members']}, landmarks = {list(COUNTS)}, seed = {base}}}"]
     envs += [f"{{random = 1, landmarks = [{n}], seed = {POINT_RUN_SEED + n}}}" for n in COUNTS]
     methods = RANDOM_METHODS[:1] if sizes["preview"] else RANDOM_METHODS
-    spec = parse_sweep(sweep_text("vector-map", envs, methods, sizes["map_spacing"], ctx.settings.seed), "random")
+    spec = parse_sweep(sweep_text("vector-map", envs, methods, sizes["map_spacing"], ctx.config.seed), "random")
     res = point_errors(spec)
     merge(worlds, random_worlds(curve_keys(res, methods, spec.axes["env"]), res["landmarks"], base))
     members = range(base, base + sizes["members"])
@@ -171,7 +171,7 @@ def add(worlds: dict, more: dict, suffix: str) -> None:
 def heading_keys(ctx, size: int, j: int, spacing: float, seed: int) -> dict[str, dict]:
     """The visual compass's heading errors on env1's members of slice j and the built-in env1 (claim 30 reads
     env1's): one program over every world and background (`_ensemble_maps.heading_errors`)."""
-    members = ensemble_envs("env1", size, ctx.settings.seed, first=j * size)
+    members = ensemble_envs("env1", size, ctx.config.seed, first=j * size)
     envs = stacked_env([*members, "env1"], pad=4)
     sensors = jax.tree.map(lambda *x: np.stack(x), *[make_sensor(background=bg) for bg in BACKGROUNDS])
     points = grid_points(np.asarray(envs.arena[0]), spacing)
@@ -197,7 +197,7 @@ def run(ctx) -> None:
     ctx.step("random layouts of 3, 4 and 5 landmarks")
     for _ in range(STEPS - slices - 1):
         ctx.step("preview: the other slices are the full run's")
-    seed = ctx.settings.seed
+    seed = ctx.config.seed
     layouts = {
         fam: np.array(
             [[[lm["x"], lm["y"], lm["r"]] for lm in e["landmarks"]] for e in ensemble_envs(fam, members, seed)]

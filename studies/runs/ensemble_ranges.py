@@ -63,8 +63,8 @@ CLAIMS = (
 def plan(ctx) -> tuple[int, float, int]:
     """(members, spacing, slices) of this run: the full study on the ensembles' grid, or under --quick or a grid
     coarser than it a preview (QUICK_MEMBERS, one slice, PREVIEW_SPACING)."""
-    if ctx.settings.quick or ctx.settings.spacing > SPACING:
-        return QUICK_MEMBERS, max(ctx.settings.spacing, PREVIEW_SPACING), 1
+    if ctx.config.quick or ctx.config.spacing > SPACING:
+        return QUICK_MEMBERS, max(ctx.config.spacing, PREVIEW_SPACING), 1
     return MEMBERS, SPACING, SLICES
 
 
@@ -267,9 +267,9 @@ def range_rows(layouts: dict[float, dict[str, np.ndarray]]) -> list[dict]:
 
 def run(ctx) -> None:
     members, spacing, slices = plan(ctx)
-    seed = ctx.settings.seed
+    seed = ctx.config.seed
     worlds: dict[float, dict[str, dict]] = {f: {} for f in FACTORS}
-    lanes = min(LANES, ctx.settings.lanes) if members == MEMBERS else ctx.settings.lanes  # as `ensembles`
+    lanes = min(LANES, ctx.config.lanes) if members == MEMBERS else ctx.config.lanes  # as `ensembles`
     texts = [(fs, t) for fs in ORDER for t in range_texts(GROUP, members, spacing, seed, slices, fs)]
     for j, (factors, text) in enumerate(texts):  # one program, 2 x `slices` calls
         spec = parse_sweep(text, "ensemble_ranges")  # the cells no claim reads are skipped, as in `ensembles`

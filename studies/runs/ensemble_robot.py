@@ -58,7 +58,7 @@ PREVIEW_MAPS = ("delv", "warping", "delv:Q1")  # the preview: the image programs
 def plan(ctx) -> tuple[int, bool]:
     """(members, full): the full ensemble, or under --quick or the tests' coarse grid a preview of QUICK_MEMBERS
     members without the ideal ring maps."""
-    if ctx.settings.quick or ctx.settings.spacing > 100:
+    if ctx.config.quick or ctx.config.spacing > 100:
         return QUICK_MEMBERS, False
     return MEMBERS, True
 
@@ -214,7 +214,7 @@ def members_figure(worlds: dict[str, dict], members: int):
 
 def run(ctx) -> None:
     members, full = plan(ctx)
-    seed = ctx.settings.seed
+    seed = ctx.config.seed
     worlds, _, layouts = run_members(members, seed, full, ctx.step)
     sizes = (
         f"{members} members of the robot family (seed {seed}), camera noise under seeds {seed}.."

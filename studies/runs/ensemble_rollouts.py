@@ -63,10 +63,10 @@ CLAIM_IDS = (
 def plan(ctx) -> tuple[tuple[str, ...], int, float, int, int]:
     """(sweeps, members per family, spacing, trials per release distance, seed slices) of this run: the full
     ensembles, or under --quick or a grid coarser than SPACING a preview (QUICK_MEMBERS members, one slice)."""
-    if ctx.settings.quick or ctx.settings.spacing > SPACING:
-        trials = min(PREVIEW_TRIALS, ctx.settings.trials)
-        return PREVIEW_SWEEPS, QUICK_MEMBERS, max(ctx.settings.spacing, PREVIEW_SPACING), trials, 1
-    return SWEEPS, MEMBERS, SPACING, min(TRIALS, ctx.settings.trials), SEED_SLICES
+    if ctx.config.quick or ctx.config.spacing > SPACING:
+        trials = min(PREVIEW_TRIALS, ctx.config.trials)
+        return PREVIEW_SWEEPS, QUICK_MEMBERS, max(ctx.config.spacing, PREVIEW_SPACING), trials, 1
+    return SWEEPS, MEMBERS, SPACING, min(TRIALS, ctx.config.trials), SEED_SLICES
 
 
 def sharing(name: str, lanes: int, full: bool = True) -> dict:
@@ -99,8 +99,8 @@ def run_members(sweeps, members: int, spacing: float, trials: int, slices: int, 
 
 def run(ctx) -> None:
     sweeps, members, spacing, trials, slices = plan(ctx)
-    seed = ctx.settings.seed
-    worlds = run_members(sweeps, members, spacing, trials, slices, seed, ctx.settings.lanes, ctx.step)
+    seed = ctx.config.seed
+    worlds = run_members(sweeps, members, spacing, trials, slices, seed, ctx.config.lanes, ctx.step)
     for _ in range(STEPS - len(sweeps)):  # a preview: the progress bar still ends at its total
         ctx.step("the other sweeps: full run only")
     layouts = {

@@ -57,13 +57,13 @@ SPACING = 125.0
 
 def plan(ctx) -> dict:
     """The run's sizes: FULL, or under --quick or a grid coarser than SPACING (the test suite's) PREVIEW."""
-    preview = ctx.settings.quick or ctx.settings.spacing > SPACING
+    preview = ctx.config.quick or ctx.config.spacing > SPACING
     return dict(PREVIEW if preview else FULL, preview=preview)
 
 
 def run(ctx) -> None:
     sizes = plan(ctx)
-    seed, members = ctx.settings.seed, sizes["members"]
+    seed, members = ctx.config.seed, sizes["members"]
     levels = design(sizes["runs"])  # (C, 5): every combination, the defaults first
     runs = levels[:: len(SETTINGS["rules"][1])]
     t0, c0 = time.perf_counter(), time.process_time()
@@ -72,7 +72,7 @@ def run(ctx) -> None:
         members,
         sizes["spacing"],
         seed,
-        sizes["lanes"] or ctx.settings.lanes,
+        sizes["lanes"] or ctx.config.lanes,
         tick=lambda n: ctx.step(f"row {n} of {len(runs)}"),
     )
     seconds, cpu = time.perf_counter() - t0, time.process_time() - c0

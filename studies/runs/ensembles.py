@@ -104,8 +104,8 @@ def plan(ctx) -> tuple[tuple, int, float]:
     """(groups, members per family, spacing) of this run: the full ensembles at SPACING, or under --quick or
     a grid coarser than SPACING a preview (QUICK_MEMBERS of env1-3 on a PREVIEW_SPACING grid, default rules, one
     seed)."""
-    if ctx.settings.quick or ctx.settings.spacing > SPACING:
-        return QUICK_GROUPS, QUICK_MEMBERS, max(ctx.settings.spacing, PREVIEW_SPACING)
+    if ctx.config.quick or ctx.config.spacing > SPACING:
+        return QUICK_GROUPS, QUICK_MEMBERS, max(ctx.config.spacing, PREVIEW_SPACING)
     return GROUPS, MEMBERS, SPACING
 
 
@@ -213,9 +213,9 @@ def member_numbers(ds, group: Group) -> dict[str, dict]:
 
 def run(ctx) -> None:
     groups, members, spacing = plan(ctx)
-    seed = ctx.settings.seed
+    seed = ctx.config.seed
     worlds: dict[str, dict] = {}
-    lanes = min(LANES, ctx.settings.lanes) if groups is GROUPS else ctx.settings.lanes  # the preview's: settings'
+    lanes = min(LANES, ctx.config.lanes) if groups is GROUPS else ctx.config.lanes  # the preview's: settings'
     for group in groups:  # five groups, two programs (the noise and extra seeds share the first one's)
         for text in sweep_texts(group, members, spacing, seed, 1 if groups is QUICK_GROUPS else SEED_SLICES):
             shared = shared_cells() if group in SHARED_GROUPS else None  # ensemble_ranges reads these cells

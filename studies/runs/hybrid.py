@@ -107,7 +107,7 @@ def occlusion_figure(summary: dict, ks):
 
 
 def run(ctx) -> None:
-    seed = ctx.settings.seed
+    seed = ctx.config.seed
     ks = HIDDEN[:2] if preview(ctx) else HIDDEN
     rows, summary = [], {}
     full = database("robot", seed=seed, panoramas=True)

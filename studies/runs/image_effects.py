@@ -92,7 +92,7 @@ def run(ctx) -> None:
     rows, panorama_maps = [], {}
     for factor, (values, label, quick_values) in FACTORS.items():
         for v in quick_values if quick else values:
-            db, home_rings = _database(factor, v, ctx.settings.seed, panoramas=not quick)
+            db, home_rings = _database(factor, v, ctx.config.seed, panoramas=not quick)
             for m in methods:
                 if m == "minwarping":  # band and hue window do not reach the panoramas: one search for equal ones
                     key = panorama_key(db, home_rings)

@@ -51,7 +51,7 @@ SCENE_MINWARPING = {"n_pix": 288, "n_alpha": 96, "n_psi": 96}
 
 def run(ctx) -> None:
     e = env("env1")
-    spacing = ctx.settings.spacing
+    spacing = ctx.config.spacing
     items, curves, rows = [], {}, []
     for m in METHODS:  # two methods: two programs
         for rules, c in catchments(ctx, e, m).items():
@@ -89,7 +89,7 @@ def run(ctx) -> None:
     else:
         own["minwarping"] = SCENE_MINWARPING
         vm = delvjax.vector_map(
-            e, method="minwarping", seed=ctx.settings.seed, grid=Grid(spacing=spacing), **SCENE_MINWARPING
+            e, method="minwarping", seed=ctx.config.seed, grid=Grid(spacing=spacing), **SCENE_MINWARPING
         )
         s = map_numbers(e, vm)
         curves[LABEL["minwarping"]] = curves_mw = curve(e, vm)

@@ -53,7 +53,7 @@ def run(ctx) -> None:
     )
     ctx.figure(
         "fig4_8_landmark_numbers.png",
-        panel_figure(items, ctx.settings.spacing, title="DELV without compass, arbitrary layouts"),
+        panel_figure(items, ctx.config.spacing, title="DELV without compass, arbitrary layouts"),
         "Fig 4.8a-e: homing vectors of DELV without compass with 3, 4 and 5 landmarks.",
     )
     ctx.figure(

@@ -21,14 +21,12 @@ STEPS = 4
 
 
 def run(ctx) -> None:
-    quick = ctx.settings.quick or ctx.settings.spacing >= 100
+    quick = ctx.config.quick or ctx.config.spacing >= 100
     cases = [("env1", 0), ("env2", 0)] if quick else [("env1", 0), ("env2", 0), ("env3", 0), ("env1", 1)]
     steps = 10 if quick else 60
     rows, layouts = [], {}
     for name, k in cases:
-        r = optimise_layout(
-            env(name), "delv", occlude=k, spacing=ctx.settings.spacing, seed=ctx.settings.seed, steps=steps
-        )
+        r = optimise_layout(env(name), "delv", occlude=k, spacing=ctx.config.spacing, seed=ctx.config.seed, steps=steps)
         before, after = r.rows
         key = f"{name}:delv" + (f":occlude={k}" if k else "")
         for row in r.rows:
@@ -65,7 +63,7 @@ def run(ctx) -> None:
         }
         ctx.figure(
             f"layout_{name}{'_occlude' + str(k) if k else ''}.png",
-            layout_figure(r, ctx.settings.spacing),
+            layout_figure(r, ctx.config.spacing),
             f"{name}, DELV{' with ' + str(k) + ' landmark(s) hidden' if k else ''}: the thesis's layout and the "
             "optimised one (catchment squares, vector map), and the soft objective per BFGS step.",
         )

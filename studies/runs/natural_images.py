@@ -25,12 +25,12 @@ STARTS = ((380.0, 860.0), (620.0, 860.0), (900.0, 460.0), (460.0, 140.0))  # two
 
 
 def run(ctx) -> None:
-    db = database("natural", seed=ctx.settings.seed, panoramas=not preview(ctx))  # panoramas: MinWarping
+    db = database("natural", seed=ctx.config.seed, panoramas=not preview(ctx))  # panoramas: MinWarping
     rows = []
     for m in METHODS[:1] if preview(ctx) else METHODS:
         vm = image_map(db, m)
         s = numbers(vm)
-        _, paths = database_catchment(db, vm, seed=ctx.settings.seed, collisions=True)
+        _, paths = database_catchment(db, vm, seed=ctx.config.seed, collisions=True)
         c = catchment_numbers(paths)
         ctx.number(f"natural_images:{m}:mean_error_deg", s["mean_error_deg"])
         ctx.number(f"natural_images:{m}:catchment_pct", c["catchment_pct"])
@@ -45,7 +45,7 @@ def run(ctx) -> None:
             }
         )
         if m == "delv":
-            trips = database_rollouts(db, vm, np.asarray(STARTS), seed=ctx.settings.seed, max_steps=60)
+            trips = database_rollouts(db, vm, np.asarray(STARTS), seed=ctx.config.seed, max_steps=60)
             ctx.figure(
                 "fig4_24_natural.png",
                 paths_figure(db, vm, trips, "DELV with natural landmarks (Fig 4.24)"),

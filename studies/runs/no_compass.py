@@ -31,7 +31,7 @@ ENVS = ("env1", "env2", "env3")
 
 
 def run(ctx) -> None:
-    spacing = ctx.settings.spacing
+    spacing = ctx.config.spacing
     items, curves, catch_items, rows = [], {}, [], []
     for name in ENVS:  # three layouts; every call reuses one compiled program
         e = env(name)

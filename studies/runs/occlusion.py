@@ -59,16 +59,16 @@ def thesis_row(table: str, name: str, method: str, k: int, field: str | None = N
 
 
 def run(ctx) -> None:
-    settings = ctx.settings
+    config = ctx.config
     sensor = Sensor()
-    key = jax.random.PRNGKey(settings.seed)
+    key = jax.random.PRNGKey(config.seed)
     per_k, mask_rows, fig5_10, gap_rows, gap_choices = [], [], {}, [], []
     for name, k_max in ENVS.items():  # six layouts x three methods (and gap-aware DELV)
         e = env(name)
         masks, hidden, ks = stacked_masks(e, k_max)
-        spacing = layout_spacing(name, settings)
+        spacing = layout_spacing(name, config)
         for m in METHODS:
-            res = rule_catchments(e, m, sensor, spacing, key, masks, hidden, settings.lanes)
+            res = rule_catchments(e, m, sensor, spacing, key, masks, hidden, config.lanes)
             summaries = {rules: rollouts.catchment_summary(c)["per_mask"] for rules, c in res.items()}
             for i, row in enumerate(summaries["default"]):
                 mask_rows.append(
@@ -115,7 +115,7 @@ def run(ctx) -> None:
                 summary = {
                     m: summaries["default"],
                     **{
-                        other: gap_matching.gap_aware_summary(e, masks, hidden, spacing, settings, other)
+                        other: gap_matching.gap_aware_summary(e, masks, hidden, spacing, config, other)
                         for other in gap_matching.METHODS[1:]
                     },
                 }
@@ -260,7 +260,7 @@ FIG5_10_NOTE = (
 
 
 def figures(ctx, per_k: list[dict], fig5_10: dict) -> None:
-    spacing = ctx.settings.spacing
+    spacing = ctx.config.spacing
     for field, key, ylabel, name in (
         ("catchment_default", "table5_3", "catchment area (%)", "catchment_vs_k.png"),
         ("gt45_pct", "table5_1", "error points e > 45° (%)", "error_points_vs_k.png"),

@@ -64,7 +64,7 @@ def layout(name: str):
 
 def run(ctx) -> None:
     e = env("env1")
-    spacing = ctx.settings.spacing
+    spacing = ctx.config.spacing
     items, curves, rows = [], {}, []
     for q in (*LEVELS, None):  # six settings of a traced leaf: one compiled rollout program
         opts = {} if q is None else {"levels": q}
@@ -113,7 +113,7 @@ def run(ctx) -> None:
     ctx.figure(
         "fig4_13b_quantization_success.png",
         success_rate_figure(
-            tables, f"Success rate by quantization level, env1 ({ctx.settings.trials} trials per distance; Fig 4.13b)"
+            tables, f"Success rate by quantization level, env1 ({ctx.config.trials} trials per distance; Fig 4.13b)"
         ),
         "Fig 4.13b: success rate vs release distance per level, 95 % Wilson intervals (default rules; the "
         "table gives both rule sets).",

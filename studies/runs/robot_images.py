@@ -53,7 +53,7 @@ def pipeline_panels(db) -> object:
 
 
 def run(ctx) -> None:
-    db = database("robot", seed=ctx.settings.seed, panoramas=True)  # panoramas: MinWarping
+    db = database("robot", seed=ctx.config.seed, panoramas=True)  # panoramas: MinWarping
     home = db.home
     ctx.figure(
         "fig4_17_pipeline.png",
@@ -71,7 +71,7 @@ def run(ctx) -> None:
             vm, ideal = image_map(db, m, channel=channel), ideal_map("robot", m, channel=channel)
         s = numbers(vm)
         si = numbers(ideal) if ideal is not None else {"mean_error_deg": float("nan"), "gt45_pct": float("nan")}
-        starts, paths = database_catchment(db, vm, seed=ctx.settings.seed)
+        starts, paths = database_catchment(db, vm, seed=ctx.config.seed)
         c = catchment_numbers(paths)
         tag = m + ("" if channel in ("gray", "panorama") else f":{channel}")
         label = LABEL[m] + (f" ({channel} ring)" if m == "warping" else "")

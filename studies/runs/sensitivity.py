@@ -72,7 +72,7 @@ def gain_figure(e, spacing: float, seed: int):
 
 def run(ctx) -> None:
     e = env("env1")
-    result = sensitivity(e, spacing=ctx.settings.spacing, seed=ctx.settings.seed, progress=ctx.step)
+    result = sensitivity(e, spacing=ctx.config.spacing, seed=ctx.config.seed, progress=ctx.step)
     for m, r in result["methods"].items():
         ctx.number(f"sensitivity:env1:{m}:loss", r["loss"])
         for name, v in r["per_setting_unit"].items():
@@ -103,9 +103,9 @@ def run(ctx) -> None:
         parameter_figure(result),
         "Change of homing loss per 10 cm of d and per degree of each noise sigma.",
     )
-    if ctx.settings.quick or ctx.settings.spacing >= 100:  # four more compiled programs: only in a full run
+    if ctx.config.quick or ctx.config.spacing >= 100:  # four more compiled programs: only in a full run
         return
-    fig, rows = gain_figure(e, ctx.settings.spacing, ctx.settings.seed)
+    fig, rows = gain_figure(e, ctx.config.spacing, ctx.config.seed)
     ctx.csv("bearing_gain.csv", rows=rows)
     ctx.figure(
         "bearing_gain.png", fig, "First-order std of the homing direction per degree of bearing noise (jax.grad)."

@@ -77,7 +77,7 @@ def run(ctx) -> None:
     )
     ctx.figure(
         "fig4_6_step_distance_maps.png",
-        panel_figure(items, ctx.settings.spacing, title="DELV without compass on env1, step distance d"),
+        panel_figure(items, ctx.config.spacing, title="DELV without compass on env1, step distance d"),
         "Fig 4.6: homing vectors of DELV without compass for d = 20, 50, 100, 150 cm.",
     )
     ctx.figure(

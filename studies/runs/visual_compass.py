@@ -21,7 +21,7 @@ import numpy as np
 from delvjax.core import rollouts
 from delvjax.core.maps import grid_points
 from delvjax.core.methods.heading import visual_compass_errors
-from delvjax.options._settings import make_sensor
+from delvjax.options._setup import make_sensor
 from delvjax.plots import subplots
 
 from .. import thesis
@@ -69,8 +69,8 @@ def visual_key(world: str, bg: str) -> str:
 
 def grid(ctx, e):
     """The grid points, those included, and the vector map's release headings (random per point)."""
-    points = grid_points(e.arena, ctx.settings.spacing)
-    key = jax.random.PRNGKey(ctx.settings.seed)
+    points = grid_points(e.arena, ctx.config.spacing)
+    key = jax.random.PRNGKey(ctx.config.seed)
     _, headings, included = rollouts.bucketed_grid(e, points, key, None, 10.0)  # the catchments' programs
     return jnp.asarray(points), included, jnp.asarray(headings)
 

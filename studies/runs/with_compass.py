@@ -52,7 +52,7 @@ def heading_slips(with_compass, without) -> dict:
 
 
 def run(ctx) -> None:
-    spacing = ctx.settings.spacing
+    spacing = ctx.config.spacing
     items, curves, catch_items, rows = [], {}, [], []
     for name in ENVS:  # three layouts, one compiled program
         e = env(name)

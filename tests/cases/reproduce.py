@@ -1,4 +1,4 @@
-"""Shared cases of the reproduction tests: the tiny settings and readers of a results folder."""
+"""Shared cases of the reproduction tests: the tiny run config and readers of a results folder."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import delvjax.studies as studies
 from delvjax.reproduce import _run as reproduce
 from delvjax.studies.runs._common import LABEL
 
-TINY = reproduce.Settings(spacing=200.0, trials=10)
+TINY = reproduce.RunConfig(spacing=200.0, trials=10)
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 METHOD_OF_LABEL = {v: k for k, v in LABEL.items()}
 VERDICTS = {"holds", "partly", "fails", "cannot tell", "n/a"}

@@ -11,7 +11,7 @@ import numpy as np
 from delvjax import Rules
 from delvjax.core import rollouts
 from delvjax.options import _registry as registry
-from delvjax.options._settings import make_sensor
+from delvjax.options._setup import make_sensor
 
 ARENA = [0.0, 0.0, 1000.0, 1000.0]
 HOME = [500.0, 500.0]

@@ -25,7 +25,7 @@ from delvjax.core.methods.warping import Warping
 from delvjax.core.settings import radians, setting
 from delvjax.options import all_options, make_setup, public_classes, register, unregister
 from delvjax.options._docs import API_END, API_START, api_methods_markdown, generated_page
-from delvjax.options._settings import method_settings
+from delvjax.options._setup import method_settings
 from delvjax.sweeps import parse_sweep
 
 ROOT = Path(__file__).resolve().parents[2]

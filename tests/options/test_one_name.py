@@ -13,7 +13,7 @@ from delvjax.core.errors import InputError
 from delvjax.core.methods.alv import ALV
 from delvjax.core.settings import setting
 from delvjax.options._schema import _options, all_options, renamed
-from delvjax.options._settings import make_setup
+from delvjax.options._setup import make_setup
 from delvjax.sweeps._spec import parse_sweep
 
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "options.md"

@@ -11,8 +11,8 @@ from tests.cases.reproduce import TINY
 
 
 def test_every_figure_is_written_in_every_format_asked_for(tmp_path):
-    settings = replace(TINY, formats=("png", "pdf", "svg"))
-    reproduce.reproduce(tmp_path, settings=settings, progress=False, only="environments", workers=1)
+    config = replace(TINY, formats=("png", "pdf", "svg"))
+    reproduce.reproduce(tmp_path, config=config, progress=False, only="environments", workers=1)
     folder = tmp_path / "environments"
     assert (folder / "environments.png").read_bytes().startswith(b"\x89PNG")
     assert (folder / "environments.pdf").read_bytes().startswith(b"%PDF")

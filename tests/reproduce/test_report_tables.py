@@ -37,7 +37,7 @@ def test_verdicts_are_words_coloured_by_css_not_emoji():
 
 def test_a_quick_report_says_its_verdicts_are_a_preview():
     from delvjax.reproduce._report import QUICK_BANNER, build_markdown
-    from delvjax.reproduce._study import Settings, versions
+    from delvjax.reproduce._study import RunConfig, versions
 
-    assert QUICK_BANNER in build_markdown({}, Settings.make(quick=True), versions(), 1.0, [])
-    assert QUICK_BANNER not in build_markdown({}, Settings.make(quick=False), versions(), 1.0, [])
+    assert QUICK_BANNER in build_markdown({}, RunConfig.make(quick=True), versions(), 1.0, [])
+    assert QUICK_BANNER not in build_markdown({}, RunConfig.make(quick=False), versions(), 1.0, [])

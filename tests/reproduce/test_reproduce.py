@@ -51,7 +51,7 @@ def test_study_record_and_files(run, name):
     module = reproduce.registry([name])[name]
     rec = read_record(out, name)
     assert rec["name"] == name and rec["title"] == module.TITLE
-    assert rec["settings"] == reproduce.settings_record(TINY)
+    assert rec["settings"] == reproduce.config_record(TINY)
     assert rec["settings"]["rules"]["default"] == {"first_move": "release", "collisions": "ignore"}
     assert rec["hash"] == reproduce.study_hash(module, TINY)
     assert rec["versions"]["delvjax"] and rec["versions"]["jax"]

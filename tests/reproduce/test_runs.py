@@ -71,7 +71,7 @@ def test_report_is_self_contained_with_claims_settings_versions(run):
 def test_second_run_does_nothing_and_is_fast(run):
     out, first, _ = run
     t0 = time.perf_counter()
-    again = reproduce.reproduce(out, settings=TINY, progress=False)
+    again = reproduce.reproduce(out, config=TINY, progress=False)
     seconds = time.perf_counter() - t0
     assert again["ran"] == []
     assert seconds < 10.0, f"a run with nothing to do took {seconds:.1f} s"
@@ -85,7 +85,7 @@ def test_force_reruns_the_selected_study(run):
     out, _, _ = run
     before = (out / "environments" / reproduce.STUDY_FILE).stat().st_mtime_ns
     others = {n: (out / n / reproduce.STUDY_FILE).stat().st_mtime_ns for n in studies.STUDIES if n != "environments"}
-    result = reproduce.reproduce(out, settings=TINY, only="environments", force=True, progress=False)
+    result = reproduce.reproduce(out, config=TINY, only="environments", force=True, progress=False)
     assert result["ran"] == ["environments"]
     assert list(result["records"]) == list(studies.STUDIES)  # the report still shows every study
     assert (out / "environments" / reproduce.STUDY_FILE).stat().st_mtime_ns != before
@@ -97,11 +97,11 @@ def test_missing_record_or_file_reruns_only_that_study(run):
     (out / "landmark_number" / reproduce.STUDY_FILE).unlink()  # killed before its study.json
     fig = read_record(out, "step_distance")["figures"][0]["file"]
     (out / "step_distance" / fig).unlink()  # a listed file lost
-    result = reproduce.reproduce(out, settings=TINY, progress=False)
+    result = reproduce.reproduce(out, config=TINY, progress=False)
     assert result["ran"] == ["step_distance", "landmark_number"]
     assert (out / "landmark_number" / reproduce.STUDY_FILE).is_file()
     assert (out / "step_distance" / fig).read_bytes()[:8] == PNG_MAGIC
-    assert reproduce.reproduce(out, settings=TINY, progress=False)["ran"] == []
+    assert reproduce.reproduce(out, config=TINY, progress=False)["ran"] == []
 
 
 def test_crash_mid_study_leaves_it_incomplete_then_resumes(run, monkeypatch):
@@ -116,12 +116,12 @@ def test_crash_mid_study_leaves_it_incomplete_then_resumes(run, monkeypatch):
 
     monkeypatch.setattr(module, "run", killed)
     with pytest.raises(RuntimeError, match="killed mid-way"):
-        reproduce.reproduce(out, settings=TINY, progress=False)
+        reproduce.reproduce(out, config=TINY, progress=False)
     assert not record.exists(), "a crashed study must not look complete"
     assert (out / "environments" / "partial.json").is_file()
     assert dot_files(out) == []
     monkeypatch.undo()
-    result = reproduce.reproduce(out, settings=TINY, progress=False)
+    result = reproduce.reproduce(out, config=TINY, progress=False)
     assert result["ran"] == ["environments"]
     assert reproduce.is_current(out / "environments", reproduce.study_hash(module, TINY))
 
@@ -140,7 +140,7 @@ def test_a_source_edited_during_the_run_leaves_the_study_stale(run, monkeypatch)
         real_run(ctx)
 
     monkeypatch.setattr(module, "run", edit_then_run)
-    assert reproduce.reproduce(out, only="environments", force=True, settings=TINY, progress=False)["ran"] == [
+    assert reproduce.reproduce(out, only="environments", force=True, config=TINY, progress=False)["ran"] == [
         "environments"
     ]
     assert read_record(out, "environments")["hash"] == real_hash(module, TINY)  # the code that ran
@@ -170,26 +170,26 @@ def test_a_figure_that_fails_leaves_its_study_incomplete(run, monkeypatch):
 
     monkeypatch.setattr(module, "run", broken_figure)
     with pytest.raises(RuntimeError, match="cannot draw"):
-        reproduce.reproduce(out, settings=TINY, progress=False)
+        reproduce.reproduce(out, config=TINY, progress=False)
     assert not record.exists()
     assert not (out / "environments" / "broken.png").exists()
     assert dot_files(out) == []
     monkeypatch.undo()
-    assert reproduce.reproduce(out, settings=TINY, progress=False)["ran"] == ["environments"]
+    assert reproduce.reproduce(out, config=TINY, progress=False)["ran"] == ["environments"]
 
 
 def test_changed_settings_rerun(run):
     out, _, _ = run
-    other = reproduce.Settings(spacing=TINY.spacing, trials=TINY.trials, seed=TINY.seed + 1)
-    result = reproduce.reproduce(out, settings=other, only="environments", progress=False)
+    other = reproduce.RunConfig(spacing=TINY.spacing, trials=TINY.trials, seed=TINY.seed + 1)
+    result = reproduce.reproduce(out, config=other, only="environments", progress=False)
     assert result["ran"] == ["environments"]
     assert read_record(out, "environments")["settings"]["seed"] == TINY.seed + 1
     assert list(result["records"]) == ["environments"]  # records of other settings are not reported
     assert re.search(rf"<td>seed</td>\s*<td>{TINY.seed + 1}</td>", (out / "report.html").read_text())
-    back = reproduce.reproduce(out, settings=TINY, only="environments", progress=False)
+    back = reproduce.reproduce(out, config=TINY, only="environments", progress=False)
     assert back["ran"] == ["environments"]
     assert list(back["records"]) == list(studies.STUDIES)
-    assert reproduce.reproduce(out, settings=TINY, progress=False)["ran"] == []
+    assert reproduce.reproduce(out, config=TINY, progress=False)["ran"] == []
 
 
 # --- 5. atomic writes ----------------------------------------------------------------------------
@@ -293,7 +293,7 @@ def test_a_record_of_wrong_types_makes_its_study_run_again(run, capsys):
     record = out / "environments" / reproduce.STUDY_FILE
     good = record.read_text()
     record.write_text('{"name": "environments", "title": "x", "hash": "h", "tables": [{"id": 3}], "files": "abc"}')
-    result = reproduce.reproduce(out, settings=TINY, progress=False)
+    result = reproduce.reproduce(out, config=TINY, progress=False)
     assert result["ran"] == ["environments"]
     assert "cannot be read (TypeError)" in capsys.readouterr().err
     assert reproduce.StudyRecord.from_json(json.loads(record.read_text())).name == "environments"

@@ -12,8 +12,8 @@ import delvjax.studies as studies
 from delvjax.cli._main import main
 from delvjax.core.errors import InputError
 from delvjax.reproduce import _run as reproduce
-from delvjax.reproduce._report import settings_section
-from delvjax.reproduce._study import Settings, versions
+from delvjax.reproduce._report import config_section
+from delvjax.reproduce._study import RunConfig, versions
 from tests.cases.reproduce import TINY, read_record
 
 CHEAP = ["environments", "step_distance", "landmark_number", "with_compass"]
@@ -32,7 +32,7 @@ def _tables_and_numbers(out, name):
 def test_workers_do_not_change_a_number(run, tmp_path, workers):
     out, _, _ = run  # the default workers (one per core, at most 4)
     other = tmp_path / f"w{workers}"
-    result = reproduce.reproduce(other, settings=TINY, progress=False, only=",".join(CHEAP), workers=workers)
+    result = reproduce.reproduce(other, config=TINY, progress=False, only=",".join(CHEAP), workers=workers)
     assert result["ran"] == [n for n in studies.STUDIES if n in CHEAP]  # registry order, however they finished
     for name in CHEAP:
         assert _tables_and_numbers(other, name) == _tables_and_numbers(out, name), name
@@ -66,11 +66,11 @@ def test_only_takes_a_list_of_names_as_the_python_api_is_called(untyped):
 
 
 def test_quick_report_says_what_it_left_out():
-    text = settings_section(Settings.make(quick=True), versions(), {}, 1.0, [])
+    text = config_section(RunConfig.make(quick=True), versions(), {}, 1.0, [])
     assert "A preview (`--quick`)" in text
     for name in studies.FULL_RUN_ONLY:
         assert f"`{name}`" in text
-    assert "A preview" not in settings_section(TINY, versions(), {}, 1.0, [])
+    assert "A preview" not in config_section(TINY, versions(), {}, 1.0, [])
 
 
 def test_schedule_starts_every_study_side_by_side_longest_first():
@@ -109,7 +109,7 @@ def test_workers_below_one_is_refused_before_any_work(tmp_path, capsys):
     assert len(err) == 1 and "--workers" in err[0] and "0" in err[0]
     assert not target.exists()
     with pytest.raises(reproduce.InputError, match="workers"):
-        reproduce.reproduce(target, settings=TINY, progress=False, only="environments", workers=0)
+        reproduce.reproduce(target, config=TINY, progress=False, only="environments", workers=0)
     assert not target.exists()
 
 

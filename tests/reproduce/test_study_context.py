@@ -10,16 +10,18 @@ from pathlib import Path
 import jax
 import jax.numpy as jnp
 import numpy as np
+import pytest
 from tqdm import tqdm
 
-from delvjax.reproduce import _study
-from delvjax.reproduce._study import Settings, StudyContext, StudyRecord, compile_seconds
+from delvjax.core.errors import InputError
+from delvjax.reproduce import _run, _study
+from delvjax.reproduce._study import RunConfig, StudyContext, StudyRecord, compile_seconds
 from delvjax.studies.runs import _common, comparators, hybrid, image_matching, natural_images
 
 
 def test_a_study_taking_more_steps_than_it_declares_never_shows_more_than_its_total(tmp_path):
     with open(os.devnull, "w") as sink, tqdm(total=2, file=sink) as bar:
-        ctx = StudyContext(tmp_path, StudyRecord(name="s", title="t"), Settings(), bar)
+        ctx = StudyContext(tmp_path, StudyRecord(name="s", title="t"), RunConfig(), bar)
         for i in range(3):
             ctx.step(f"step {i}")
             assert bar.n <= bar.total
@@ -72,3 +74,17 @@ def test_a_study_waiting_for_the_program_its_neighbour_compiles_counts_the_wait(
     first, second = sorted(seconds.values())
     assert second > 0.3, seconds  # one compiled
     assert first > 0.5 * second, seconds  # the other counted its wait
+
+
+def test_the_former_names_of_the_run_config_still_work_with_a_deprecation_warning(tmp_path):
+    # "settings" names the options declared on modules (core/settings.py); a run's is a RunConfig (issue 55)
+    from delvjax import reproduce
+
+    with pytest.deprecated_call(match="reproduce.Settings is now reproduce.RunConfig"):
+        old = reproduce.Settings(spacing=200.0)
+    assert isinstance(old, reproduce.RunConfig) and old.spacing == 200.0
+    ctx = StudyContext(tmp_path, StudyRecord(name="s", title="t"), RunConfig(seed=3))
+    with pytest.deprecated_call(match="StudyContext.settings is now StudyContext.config"):
+        assert ctx.settings is ctx.config
+    with pytest.raises(InputError, match="former name of config="):
+        _run.reproduce(tmp_path, config=RunConfig(), settings=RunConfig())

@@ -13,7 +13,7 @@ from delvjax.core.maps import grid_points, random_headings
 from delvjax.core.methods.heading import visual_compass_errors
 from delvjax.core.metrics import error_curve
 from delvjax.envs._presets import env_from_dict, random_env
-from delvjax.options._settings import make_sensor
+from delvjax.options._setup import make_sensor
 from delvjax.studies.runs import _ensemble_maps as em
 from delvjax.studies.runs import ensemble_maps
 from delvjax.studies.runs._common import inside_hull

@@ -11,7 +11,7 @@ import pytest
 
 from delvjax.core.scene import DEFAULT_HOME
 from delvjax.envs._ensembles import violations
-from delvjax.reproduce._study import Settings
+from delvjax.reproduce._study import RunConfig
 from delvjax.studies.runs import _ensemble_rollouts_keys as keys
 from delvjax.studies.runs import _ensemble_rollouts_report as report
 from delvjax.studies.runs import ensemble_rollouts as study
@@ -154,10 +154,10 @@ def test_edge4_members_keep_home_slightly_outside_the_hull_and_the_point_runs_ed
 
 
 def test_the_preview_is_small_and_the_full_run_has_every_sweep():
-    tiny = SimpleNamespace(settings=Settings(spacing=200.0, trials=10))
+    tiny = SimpleNamespace(config=RunConfig(spacing=200.0, trials=10))
     sweeps, members, spacing, trials, slices = study.plan(tiny)
     assert (members, spacing, slices) == (2, 200.0, 1) and trials <= 10 and set(sweeps) < set(keys.SWEEPS)
-    full = study.plan(SimpleNamespace(settings=Settings()))
+    full = study.plan(SimpleNamespace(config=RunConfig()))
     assert full == (keys.SWEEPS, 44, 100.0, study.TRIALS, 4)
 
 

@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-from delvjax.reproduce._study import Settings
+from delvjax.reproduce._study import RunConfig
 from delvjax.studies.runs._occlusion_layouts import ENVS, QUICK_RING_SPACING, RING_SPACING, layout_spacing
 
 
 def test_quick_puts_the_rings_on_the_preview_grid_and_a_full_run_keeps_its_own():
-    quick, full, tiny = Settings.make(quick=True), Settings.make(), Settings(spacing=200.0, trials=10)
+    quick, full, tiny = RunConfig.make(quick=True), RunConfig.make(), RunConfig(spacing=200.0, trials=10)
     rings = [n for n in ENVS if not n.startswith("env")]
     assert rings == ["ring3", "ring5", "ring6"]
     for name in rings:

@@ -31,7 +31,7 @@ ALLOWED = {
     ("delvjax.images._worlds", "ImageWorld"): IMAGES,
     ("delvjax.images._worlds", "robot_arena"): IMAGES,
     ("delvjax.options._registry", "program"): PROGRAM,
-    ("delvjax.options._settings", "make_sensor"): SETTINGS,
+    ("delvjax.options._setup", "make_sensor"): SETTINGS,
     ("delvjax.sweeps._kinds", "cell_setup"): KINDS,
     ("delvjax.sweeps._kinds", "evaluate"): KINDS,
     ("delvjax.sweeps._kinds", "catchment_metrics"): KINDS,

@@ -13,7 +13,7 @@ import numpy as np
 from ...core import metrics as table
 from ...core.errors import InputError
 from ...options._registry import get_method, owns
-from ...options._settings import option_names, reads_channel
+from ...options._setup import option_names, reads_channel
 
 
 @runtime_checkable

@@ -20,7 +20,7 @@ from delvjax.core.errors import InputError
 from delvjax.core.kernel import direction_from, map_poses
 from delvjax.core.sensing import blob_runs, record_home, render, unit_move
 from delvjax.options._registry import METHODS, configure, program
-from delvjax.options._settings import make_setup
+from delvjax.options._setup import make_setup
 from tests.cases.compiled import call, compiled
 from tests.twins.cc import cc_home_vector_ref
 

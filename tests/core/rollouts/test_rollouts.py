@@ -26,7 +26,7 @@ from delvjax.core import rollouts
 from delvjax.core.errors import InputError
 from delvjax.core.maps import grid_points, random_headings
 from delvjax.envs._presets import make_env
-from delvjax.options._settings import make_sensor
+from delvjax.options._setup import make_sensor
 from tests.cases.rollouts import (
     ARENA,
     DEFAULT,

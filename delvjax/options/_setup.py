@@ -1,4 +1,4 @@
-"""The one place where user options (CLI flags, API keywords) become validated modules: a
+"""The one place where user options (CLI flags, API keywords) become a validated setup (`make_setup`): a
 method (`_registry.py`) with its settings and a `Sensor`. Which options exist, their checks and units
 are declared once on the module fields (`core/settings.py`) and read here through
 `options._schema`.
