@@ -23,7 +23,7 @@ _LAZY = {
     "error_curve": "core.metrics",
     "error_point_rates": "core.metrics",
     "summarize_map": "core.metrics",
-    **{name: "core.methods" for name in ("Compass", "HomingMethod", "Method", "Program", "VisualCompass")},
+    **{name: "core.methods" for name in ("Compass", "HomingMethod", "Method", "MethodSet", "VisualCompass")},
     "load_env": "envs",
     "to_dataframe": "core.tables",
     "to_xarray": "core.tables",
@@ -54,9 +54,10 @@ _LAZY = {
 }
 
 
-_RENAMED = {  # old name -> new name: still answered, with a DeprecationWarning (CHANGELOG)
-    "homing_quality": "homing_loss",  # mean 1 - cos error is lower-is-better: a loss, not a quality
-    "homing_quality_grad": "homing_loss_grad",
+_RENAMED = {  # old name -> (new name, why): still answered, with a DeprecationWarning (CHANGELOG)
+    "homing_quality": ("homing_loss", "lower is better"),  # mean 1 - cos error: a loss, not a quality
+    "homing_quality_grad": ("homing_loss_grad", "lower is better"),
+    "Program": ("MethodSet", "a program is what XLA compiles"),
 }
 
 _PACKAGES = (
@@ -83,10 +84,9 @@ def __getattr__(name: str):
         globals()[name] = value  # later lookups are plain attribute reads
         return value
     if name in _RENAMED:
-        warnings.warn(
-            f"delvjax.{name} is renamed delvjax.{_RENAMED[name]} (lower is better)", DeprecationWarning, stacklevel=2
-        )
-        return __getattr__(_RENAMED[name])
+        new, why = _RENAMED[name]
+        warnings.warn(f"delvjax.{name} is renamed delvjax.{new} ({why})", DeprecationWarning, stacklevel=2)
+        return __getattr__(new)
     if name in _PACKAGES:  # `delvjax.core.maps` after a bare `import delvjax`
         return importlib.import_module(f".{name}", __name__)
     if name == "__all__":  # the names below and the registered methods' classes (read now, not kept)
@@ -117,7 +117,7 @@ _PUBLIC = [  # with the registered methods' classes, `__all__` (made on first us
     "METHODS",
     "Method",
     "Noise",
-    "Program",
+    "MethodSet",
     "Sensor",
     "Snapshot",
     "UnitMove",

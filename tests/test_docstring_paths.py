@@ -169,7 +169,7 @@ def test_the_patterns_find_module_names_and_pass_over_the_rest():
         "delvjax.core.maps.vector_map": True,
         "core.maps": True,
         "maps.vector_map": True,
-        "options._registry.program": True,
+        "options._registry.method_set": True,
         "delvjax.studies.runs._common.vector_map": True,
         "delvjax.vector_map": True,  # delvjax/__init__.py's lazy table
         "delvjax.core.maps.nothing_here": False,

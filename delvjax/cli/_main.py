@@ -43,7 +43,7 @@ from ._sweep import add_plot_sweep, add_sweep
 
 # A vector map's chunk program, kept on disk between `delvjax` processes (`outputs._programs`): a warm run
 # neither traces nor lowers it. Not for a call of `main` from Python, whose process keeps its programs itself.
-KEPT_MAP = stored_program(maps.chunk_program, lambda leaves: maps.VectorMap(*leaves))
+KEPT_MAP = stored_program(maps.CHUNK_PROGRAM, lambda leaves: maps.VectorMap(*leaves))
 
 
 def cmd_envs(args: argparse.Namespace) -> int:

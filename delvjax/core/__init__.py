@@ -24,7 +24,7 @@ from .methods import Compass as Compass
 from .methods import DELVGap as DELVGap
 from .methods import DELVRefined as DELVRefined
 from .methods import HomingMethod as HomingMethod
-from .methods import Program as Program
+from .methods import MethodSet as MethodSet
 from .methods import VisualCompass as VisualCompass
 from .methods import Warping as Warping
 from .metrics import error_curve as error_curve

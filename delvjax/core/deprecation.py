@@ -35,6 +35,18 @@ def deprecated(message: str) -> None:
     )
 
 
+def renamed_keyword(legacy: dict, old: str, new: str, value, why: str = ""):
+    """The value of the keyword `new`, or of its former name `old` popped from `legacy` (the caller's
+    `**options`) with a `DeprecationWarning`; `TypeError` where both are given."""
+    if old not in legacy:
+        return value
+    former = legacy.pop(old)
+    if value is not None:
+        raise TypeError(f"{old}= is the former name of {new}=, given too: give {new}= alone")
+    deprecated(f"delvjax: {old}= is now {new}={f' ({why})' if why else ''}; {old}= goes next release")
+    return former
+
+
 def refuse_unknown(legacy: dict, call: str) -> None:
     """`TypeError` for the keywords left in `legacy` once the deprecated ones were read from it (`call`: the
     function given them), as Python's own for an unexpected keyword."""

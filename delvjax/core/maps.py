@@ -145,7 +145,7 @@ def vector_map(
     visible: Array | None = None,
     batch_size: int = DEFAULT_BATCH,
     progress: Callable[[int, int], None] | None = None,
-    program: Callable[..., VectorMap] | None = None,
+    chunk_program: Callable[..., VectorMap] | None = None,
     points: np.ndarray | None = None,
 ) -> VectorMap:
     """The vector map of `method` on the docs/model.md §5 grid; heading fixed (rad) or random per point from `key`.
@@ -154,7 +154,7 @@ def vector_map(
     program), so memory is bounded by the chunk; a grid smaller than a chunk is padded to its shape
     bucket (`batching.bucket`: grids of 1025 to 4096 points run one program). The padding is never
     evaluated. `progress(n, P)` is called after each chunk of n of the P points. The numbers are the
-    same for every `batch_size`. `program` stands in for the chunk's jitted program on one device (the
+    same for every `batch_size`. `chunk_program` stands in for the chunk's jitted program on one device (the
     command line's, kept on disk between runs). `points`: the grid `grid_points(env.arena, spacing)`
     when the caller has built it already (the API has, to check it). The result carries `spacing`.
     """
@@ -170,7 +170,7 @@ def vector_map(
         rows = pad_rows(points[start : start + chunk], chunk)
         n_valid = np.int32(min(chunk, n - start))
         if mesh is None:
-            part = (program or _vector_map)(
+            part = (chunk_program or _vector_map)(
                 env, rows, heading, key, sensor, method, clearance, visible, np.int32(start), n_valid
             )
         else:  # device d evaluates grid points start + d * per_device ...: the same per-point program
@@ -233,7 +233,7 @@ def _vector_map(
     )
 
 
-chunk_program = _vector_map  # one chunk's jitted program: what `vector_map(program=)` stands in for
+CHUNK_PROGRAM = _vector_map  # one chunk's jitted program: what `vector_map(chunk_program=)` stands in for
 
 
 def replace_field(method: HomingMethod, sensor: Sensor, name: str, value) -> tuple[HomingMethod, Sensor]:

@@ -49,12 +49,12 @@ def configs(
     )
 
 
-def rollout_setup(env, method, grid: Grid, rules: Rules, seed: int, program, options: dict) -> RolloutSetup:
+def rollout_setup(env, method, grid: Grid, rules: Rules, seed: int, method_set, options: dict) -> RolloutSetup:
     """Validate what every rollout shares before any work (`_vector_map.scene_request`: method, sensor,
     environment, seed) and the success radius against the arena (the `Grid` and `Rules` checked their
     own fields when they were built)."""
     env, module, sensor, _, key, _ = scene_request(
-        env, method, grid.clearance, grid.heading_deg, seed, program, **options
+        env, method, grid.clearance, grid.heading_deg, seed, method_set, **options
     )
     if not is_traced(env.arena) and not is_traced(env.home):
         arena, home = np.asarray(env.arena, np.float64), np.asarray(env.home, np.float64)

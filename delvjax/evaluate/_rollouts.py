@@ -74,7 +74,7 @@ def catchment(
     seed: int = 0,
     occlude: int | None = None,
     hidden: Indices | None = None,
-    program: Sequence[str] | None = None,
+    method_set: Sequence[str] | None = None,
     max_points: int = MAX_POINTS,
     progress: Progress | Callable[[int, int], None] | None = None,
     **options,
@@ -88,8 +88,8 @@ def catchment(
     `core.rollouts.catchment_area`, and the result carries its grid. `occlude=k` evaluates every choice
     of k hidden landmarks (C(N, k) masks, one program; the home record sees all); `hidden` names one
     choice. `options`: the method, sensor and noise settings of `vector_map` (or `sensor=Sensor(...)`,
-    `noise=Noise(...)`) plus motion_heading_noise_deg and motion_step_noise. `program`: registry names
-    compiled into one rollout program with this one (`options._registry.program`). More than
+    `noise=Noise(...)`) plus motion_heading_noise_deg and motion_step_noise. `method_set`: registry names
+    compiled into one rollout program with this one (`options.method_set`). More than
     `max_points` trials (grid points x masks) are refused with an estimate (`options._limits`).
     `progress`: a `Progress` (evaluate/_progress.py): `start(None)` once every option is valid, just
     before the work (the CLI prints its line there, so an error stays one line), then `progress(done,
@@ -99,7 +99,7 @@ def catchment(
     Returns a `Catchment` (see `catchment_summary`).
     """
     grid, rules, report = configs(grid, rules, progress, options, "catchment")
-    setup = rollout_setup(env, method, grid, rules, seed, program, options)
+    setup = rollout_setup(env, method, grid, rules, seed, method_set, options)
     masks, combos = _masks(setup.env, occlude, hidden)
     check_grid(setup.env, grid.spacing, grid.clearance, max_points, copies=len(masks), what="trial")
     check_moves(grid_count(setup.env.arena, grid.spacing) * len(masks), rules.max_steps, max_points)
@@ -119,7 +119,7 @@ def success_rate(
     rules: Rules | None = None,
     seed: int = 0,
     hidden: Indices | None = None,
-    program: Sequence[str] | None = None,
+    method_set: Sequence[str] | None = None,
     max_points: int = MAX_POINTS,
     progress: Progress | None = None,
     **options,
@@ -129,12 +129,12 @@ def success_rate(
     Each trial: a random direction from home at that distance and a random heading (seeded; fixed by
     `grid.heading_deg` if given); a release point inside a landmark's r + `grid.clearance` or outside
     the arena is redrawn (deterministically, up to 64 times; else the trial is not placed and not
-    counted); the grid's spacing is not used. `rules`, `options`, `program`, `max_points` and the
+    counted); the grid's spacing is not used. `rules`, `options`, `method_set`, `max_points` and the
     deprecated flat keywords as in `catchment`; `progress.start(None)` just before the work (one
     program: no reports of chunks).
     """
     grid, rules, report = configs(grid, rules, progress, options, "success_rate")
-    env, module, sensor, key = rollout_setup(env, method, grid, rules, seed, program, options)
+    env, module, sensor, key = rollout_setup(env, method, grid, rules, seed, method_set, options)
     distances, trials = _distances(env, distances, trials, max_points)
     check_moves(len(distances) * trials, rules.max_steps, max_points)
     visible = visible_mask(env, hidden)
@@ -153,7 +153,7 @@ def trajectories(
     rules: Rules | None = None,
     seed: int = 0,
     hidden: Indices | None = None,
-    program: Sequence[str] | None = None,
+    method_set: Sequence[str] | None = None,
     max_points: int = MAX_POINTS,
     progress: Progress | None = None,
     **options,
@@ -164,12 +164,12 @@ def trajectories(
     r + `grid.clearance` + d from every landmark (so that under first_move="release" the first move,
     along the random release heading, cannot end the trial) and at least 2 * home_radius from home;
     headings are random per trial from `seed` unless `grid.heading_deg` is given. The same seed gives
-    the same release points for every method. `rules`, `options`, `program` and the deprecated flat
+    the same release points for every method. `rules`, `options`, `method_set` and the deprecated flat
     keywords as in `catchment`, and `progress.start(None)` just before the work. Every position is
     kept: more than 100 x `max_points` of them (trials x (max_steps + 1)) are refused.
     """
     grid, rules, report = configs(grid, rules, progress, options, "trajectories")
-    env, module, sensor, key = rollout_setup(env, method, grid, rules, seed, program, options)
+    env, module, sensor, key = rollout_setup(env, method, grid, rules, seed, method_set, options)
     visible = visible_mask(env, hidden)
     _, _, k_start = rollout_keys(key)
     count = positive_int(n_starts, "n_starts") if starts is None else len(starts) if hasattr(starts, "__len__") else 0
@@ -208,7 +208,7 @@ def rollout_request(
     distances: Values = DEFAULT_DISTANCES,
     trials: int = TRIALS_PER_DISTANCE,
     max_points: int = MAX_POINTS,
-    program: Sequence[str] | None = None,
+    method_set: Sequence[str] | None = None,
     **options,
 ) -> dict:
     """Validate one rollout configuration of a sweep (docs/sweeps.md) as `catchment` (kind "catchment")
@@ -218,7 +218,7 @@ def rollout_request(
     key, masks, ...) that `core.rollouts.cells` evaluates."""
     rules = Rules(max_steps=max_steps, home_radius=home_radius, first_move=first_move, collisions=collisions)
     grid = Grid(spacing=spacing if kind == "catchment" else SPACING, clearance=clearance)
-    env, module, sensor, key = rollout_setup(env, method, grid, rules, seed, program, options)
+    env, module, sensor, key = rollout_setup(env, method, grid, rules, seed, method_set, options)
     masks, _ = _masks(env, occlude, None)
     if kind == "catchment":
         check_grid(env, grid.spacing, grid.clearance, max_points, copies=len(masks), what="trial")

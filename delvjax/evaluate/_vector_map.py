@@ -79,13 +79,13 @@ def scene_request(
     clearance: float,
     heading_deg: float | None,
     seed: int,
-    program=None,
+    method_set=None,
     **options,
 ) -> tuple[Env, HomingMethod, Sensor, float | None, jax.Array, float]:
     """The options every evaluation shares, validated before any work: method name and settings,
     sensor options, grid clearance, environment, heading/seed. Returns
     (env, method module, sensor, heading rad | None, key, clearance)."""
-    module, sensor = make_setup(method, program, **options)
+    module, sensor = make_setup(method, method_set, **options)
     clearance = non_negative(clearance, "clearance")
     env = load_env(env)
     check_step(env, sensor.d)
@@ -280,4 +280,4 @@ def vector_map(
     request, points = _checked_map(env, method, grid, seed, hidden, batch_size, max_points, **options)
     report = as_progress(progress)
     report.start(points.shape[0])
-    return maps.vector_map(**request, progress=report, program=chunk_program, points=points)
+    return maps.vector_map(**request, progress=report, chunk_program=chunk_program, points=points)

@@ -54,15 +54,15 @@ def database_vector_map(
     db: LoadedDatabase,
     method="delv",
     home_rings: RingDatabase | None = None,
-    program=None,
+    method_set=None,
     warn: Callable[[str], None] = _warn,
     **options,
 ) -> VectorMap:
     """The homing direction of `method` at every database point (docs/images.md §6). `options`: method
     settings and `channel` as in `evaluate.vector_map`; `home_rings`: take the home record from another
-    rendering of the same positions (e.g. other lighting); `program`: registry names compiled into one
-    program with `method` (`options._registry.program`). The home point itself is not included."""
-    module, sensor = make_setup(method, program, n_pix=db.camera.cols, panorama_cols=db.camera.cols, **options)
+    rendering of the same positions (e.g. other lighting); `method_set`: registry names compiled into one
+    program with `method` (`options.method_set`). The home point itself is not included."""
+    module, sensor = make_setup(method, method_set, n_pix=db.camera.cols, panorama_cols=db.camera.cols, **options)
     if module.reads_panorama():
         check_panorama_field(db, method)
     rings = with_channel(db.rings, sensor.channel)

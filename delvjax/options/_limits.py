@@ -158,7 +158,7 @@ def host_table_bytes(module: object, n_pix: int) -> int:
         inner = getattr(module, f.name, None)
         if dataclasses.is_dataclass(inner) and not isinstance(inner, type):
             best = max(best, host_table_bytes(inner, n_pix))
-    for inner in getattr(module, "methods", ()) or ():  # a Program's methods
+    for inner in getattr(module, "methods", ()) or ():  # a MethodSet's methods
         best = max(best, host_table_bytes(inner, n_pix))
     return best
 

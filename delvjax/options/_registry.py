@@ -20,9 +20,9 @@ from ..core.methods.delv_gap import DELVGap
 from ..core.methods.delv_refined import DELVRefined
 from ..core.methods.heading import Compass, VisualCompass
 from ..core.methods.hybrid import Hybrid
+from ..core.methods.method_set import MethodSet
 from ..core.methods.mfdid import MFDID
 from ..core.methods.minwarping import MinWarping
-from ..core.methods.program import Program
 from ..core.methods.warping import Warping
 from ..core.methods.warping2d import Warping2D
 from ..core.settings import declared
@@ -99,9 +99,9 @@ def get_method(name: str) -> HomingMethod:
 
 def configure(method: HomingMethod, **settings) -> HomingMethod:
     """`method` with those of `settings` (public option names, validated field values) that are its
-    own declared settings replaced (a `Program`: each of its methods); settings a method does not
+    own declared settings replaced (a `MethodSet`: each of its methods); settings a method does not
     have are left to the others (e.g. `levels` is DELV's)."""
-    if isinstance(method, Program):
+    if isinstance(method, MethodSet):
         return dataclasses.replace(method, methods=tuple(configure(m, **settings) for m in method.methods))
     own = declared(type(method))
     changes = {own[k][0]: v for k, v in settings.items() if v is not None and k in own}
@@ -113,34 +113,34 @@ def configure(method: HomingMethod, **settings) -> HomingMethod:
 
 
 def owns(method: HomingMethod, option: str) -> bool:
-    """Whether `method` (or, for a `Program`, one of its methods) declares the setting `option`."""
+    """Whether `method` (or, for a `MethodSet`, one of its methods) declares the setting `option`."""
     return bool(declaring(method, option))
 
 
 def declaring(method: HomingMethod, option: str) -> tuple[type, ...]:
-    """The classes in `method` (itself, a `Program`'s methods, a method's parts) that declare `option`."""
-    if isinstance(method, Program):
+    """The classes in `method` (itself, a `MethodSet`'s methods, a method's parts) that declare `option`."""
+    if isinstance(method, MethodSet):
         return tuple(dict.fromkeys(t for m in method.methods for t in declaring(m, option)))
     mine = (type(method),) if option in declared(type(method)) else ()
     return tuple(dict.fromkeys((*mine, *(t for p in method.parts().values() for t in declaring(p, option)))))
 
 
-def program(method: str, names) -> tuple[Program, tuple[str, ...]]:
-    """The `Program` of the methods `names` (a list of registry names containing `method`) that runs
-    `method`; validated: `InputError` naming "program"."""
+def method_set(method: str, names) -> tuple[MethodSet, tuple[str, ...]]:
+    """The `MethodSet` of the methods `names` (a list of registry names containing `method`) that runs
+    `method`; validated: `InputError` naming "method_set"."""
     get_method(method)
     if names is None:
         names = (method,)
     if isinstance(names, (str, bytes)) or not hasattr(names, "__iter__"):
-        raise InputError("program", names, "must be a list of method names")
+        raise InputError("method_set", names, "must be a list of method names")
     names = tuple(names)
     unknown = [m for m in names if m not in METHODS]
     if unknown:
         raise InputError(
-            "program",
+            "method_set",
             list(names),
             f"unknown method {unknown[0]!r}{did_you_mean(unknown[0], METHODS)} (choose from {', '.join(METHODS)})",
         )
     if method not in names:
-        raise InputError("program", list(names), f"must contain the method {method!r}")
-    return Program(methods=tuple(METHODS[m] for m in names), index=names.index(method)), names
+        raise InputError("method_set", list(names), f"must contain the method {method!r}")
+    return MethodSet(methods=tuple(METHODS[m] for m in names), index=names.index(method)), names

@@ -17,7 +17,7 @@ from ..core import checks
 from ..core.deprecation import deprecated
 from ..core.errors import InputError
 from ..core.images.pipeline import Extractor
-from ..core.methods import HomingMethod, Program
+from ..core.methods import HomingMethod, MethodSet
 from ..core.sensor import Noise, Sensor
 from ..core.settings import Setting, declared
 from ._registry import METHODS
@@ -164,10 +164,10 @@ def renamed() -> dict[str, str]:
 
 
 def method_types(extra: Iterable[HomingMethod] = ()) -> tuple[type, ...]:
-    """The classes of the registered methods and of `extra` modules (a `Program`'s members), once each."""
+    """The classes of the registered methods and of `extra` modules (a `MethodSet`'s members), once each."""
     out: dict[type, None] = {}
     for m in (*METHODS.values(), *extra):
-        for member in m.methods if isinstance(m, Program) else (m,):
+        for member in m.methods if isinstance(m, MethodSet) else (m,):
             out.setdefault(type(member), None)
     return tuple(out)
 

@@ -15,18 +15,20 @@ import dataclasses
 import math
 
 from ..core.checks import is_traced
+from ..core.deprecation import renamed_keyword
 from ..core.errors import InputError
 from ..core.images.scene_panorama import scene_panorama
-from ..core.methods import HomingMethod, Program
+from ..core.methods import HomingMethod, MethodSet
 from ..core.sensor import Noise, Sensor
 from ..core.settings import declared
 from ..core.types import Real
 from ..envs._presets import RESOLUTION_CM
 from ._limits import check_tables
 from ._registry import configure, declaring, get_method, owns
-from ._registry import program as registry_program
+from ._registry import method_set as registry_method_set
 from ._schema import method_options, sensor_options, upgraded
 
+METHOD_SET_WHY = "the methods compiled as one MethodSet; a program is what XLA compiles"
 _NOISE = declared(Noise)  # public name -> (field, Setting, default)
 NOISE_FIELDS_DEG = {o: f for o, (f, s, _) in _NOISE.items() if s.unit == "deg"}  # degrees -> radians
 NOISE_FIELDS_FRACTION = {o: f for o, (f, s, _) in _NOISE.items() if s.unit != "deg"}
@@ -98,27 +100,28 @@ def option_names(extra=()) -> tuple[tuple[str, ...], tuple[str, ...]]:
 
 def reads_channel(method: HomingMethod) -> bool:
     """Whether the sensor's image channel changes what `method` reads (an image method)."""
-    if isinstance(method, Program):
+    if isinstance(method, MethodSet):
         return any(reads_channel(m) for m in method.methods)
     return bool(method.reads_gray("gray")) != bool(method.reads_gray("mask"))
 
 
 def make_setup(
     method: str | HomingMethod,
-    program=None,
+    method_set=None,
     sensor: Sensor | None = None,
     noise: Noise | None = None,
     panorama_cols: int | None = None,
     **options,
 ) -> tuple[HomingMethod, Sensor]:
     """(method module, sensor), validated before any work. `method`: a registry name or a method
-    module (`DELV(levels=3, heading=Compass())`); `program`: registry names compiled into one
-    program with `method` (`_registry.program`); `sensor`: a `Sensor` instead of sensor options;
+    module (`DELV(levels=3, heading=Compass())`); `method_set`: registry names compiled into one
+    program with `method` (`_registry.method_set`); `sensor`: a `Sensor` instead of sensor options;
     `noise`: a `Noise` instead of the noise options; `panorama_cols`: the width of the panoramas of an
     image database (0: a database not read yet; None: a scene of rings, whose sensor then renders the
     panoramas of its cylinders for a method that reads them, `core.images.scene_panorama`).
     A method setting that the method does not have is an error naming it."""
     options = upgraded(options)  # a former name (mw_n_alpha) read as today's, with a DeprecationWarning
+    method_set = renamed_keyword(options, "program", "method_set", method_set, METHOD_SET_WHY)
     extra = (method,) if isinstance(method, HomingMethod) else ()
     method_names, sensor_names = option_names(extra)
     unknown = sorted(set(options) - set(method_names) - set(sensor_names))
@@ -142,11 +145,11 @@ def make_setup(
             )
         sensor = dataclasses.replace(sensor, noise=noise)
     if isinstance(method, HomingMethod):
-        if program is not None:
-            raise InputError("program", program, "needs a registry name as the method")
+        if method_set is not None:
+            raise InputError("method_set", method_set, "needs a registry name as the method")
         module = method
     else:
-        module = get_method(method) if program is None else registry_program(method, program)[0]
+        module = get_method(method) if method_set is None else registry_method_set(method, method_set)[0]
     settings = method_settings({k: v for k, v in options.items() if k in method_names}, extra, module)
     label = method if isinstance(method, str) else type(method).__name__
     if "channel" in given_sensor and not reads_channel(module):

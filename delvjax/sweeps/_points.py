@@ -10,10 +10,12 @@ import jax
 import numpy as np
 
 from ..core.cells import map_cells_errors
+from ..core.deprecation import refuse_unknown, renamed_keyword
 from ..core.errors import InputError
 from ..core.rollouts import DEFAULT_LANES
 from ..core.rollouts.cells import catchment_cells_points
 from ..evaluate import _vector_map as api
+from ..options._setup import METHOD_SET_WHY
 from ._kinds.catchment import catchment_inputs
 from ._kinds.cells import idle_padding
 from ._kinds.cells import traced as _traced
@@ -45,15 +47,18 @@ def point_outcomes(
     spec: SweepSpec,
     max_points: int = api.MAX_POINTS,
     lanes: int = DEFAULT_LANES,
-    program: tuple[str, ...] | None = None,
+    method_set: tuple[str, ...] | None = None,
+    **legacy,
 ) -> dict:
     """The per-point outcomes of every cell of a catchment sweep of one grid (one spacing, one arena), the trials
     `run_sweep` sums: {"successes": (*spec.shape, P) successful trials of each grid point over the cell's masks,
     "untouched": those that never touched a landmark (the physical rules' successes, `rules.under_collisions`),
     "trials": (*spec.shape, P) trials run from each point (its masks; 0 where not included), "counted": (*spec.shape,
     P) the points the catchment counts, "points", "homes", "landmarks" as `point_errors`}. Chunks as `point_errors`.
-    `program`: registry names compiled into one program with every cell's method, image methods too (one compiled
+    `method_set`: registry names compiled into one program with every cell's method, image methods too (one compiled
     program where the sweep's methods would make several; an image method's numbers may change in the last bit)."""
+    method_set = renamed_keyword(legacy, "program", "method_set", method_set, METHOD_SET_WHY)
+    refuse_unknown(legacy, "point_outcomes")
     if spec.kind != "catchment":
         raise InputError("sweep.kind", str(spec.kind), 'must be "catchment" for per-point outcomes')
 
@@ -70,17 +75,17 @@ def point_outcomes(
         }
 
     fill = {"successes": 0, "untouched": 0, "trials": 0, "counted": False}
-    points, out, envs = _per_point(spec, max_points, outcomes, fill, rollouts=True, program=program)
+    points, out, envs = _per_point(spec, max_points, outcomes, fill, rollouts=True, method_set=method_set)
     return {**out, "points": points, **_scenes(envs)}
 
 
-def _per_point(spec: SweepSpec, max_points: int, run, fill: dict, rollouts: bool = False, program=None):
+def _per_point(spec: SweepSpec, max_points: int, run, fill: dict, rollouts: bool = False, method_set=None):
     """(points, {name: (*spec.shape, P)}, envs): `run(setups, traced)` -> (points, {name: (cells, P)}) on each
     chunk of each group, a chunk padded as `point_errors` says; rollout cells' masks padded to the sweep's most;
-    `program` as `point_outcomes`'."""
+    `method_set` as `point_outcomes`'."""
     envs = _envs(spec)
     kept: dict[int, dict] = {}  # each cell validated once: the setups `_plan` made, kept for the chunks
-    groups, _, rows = _plan(spec, envs, max_points, None, program, kept)
+    groups, _, rows = _plan(spec, envs, max_points, None, method_set, kept)
     grids = {(float(c["spacing"]), tuple(np.asarray(envs[c["env"]].arena).tolist())) for c in spec.cells()}
     if len(grids) > 1:
         raise InputError("axes", sorted(grids), "per-point numbers need one grid: one spacing and one arena")
@@ -92,7 +97,7 @@ def _per_point(spec: SweepSpec, max_points: int, run, fill: dict, rollouts: bool
             chunk = cells[start : start + CELL_CHUNK]
             size = CELL_CHUNK if len(cells) > CELL_CHUNK else -(-len(chunk) // QUANTUM) * QUANTUM
             padded = chunk + [chunk[0]] * (size - len(chunk))
-            setups = _setups(spec, envs, padded, kept, max_points, program)
+            setups = _setups(spec, envs, padded, kept, max_points, method_set)
             traced = jax.tree.map(stack, *[_traced(req, rows) if rollouts else _traced(req) for req in setups])
             traced = idle_padding(traced, len(chunk))  # the padding's rollouts run no trials
             points, res = run(setups, traced)

@@ -12,11 +12,12 @@ import jax
 import numpy as np
 
 from ..core.batching import global_mesh, local_mesh, n_devices, process_rows
-from ..core.deprecation import keywords_after, refuse_unknown
+from ..core.deprecation import keywords_after, refuse_unknown, renamed_keyword
 from ..core.rollouts import DEFAULT_LANES
 from ..envs._presets import env_from_dict, load_env, random_env
 from ..evaluate import _vector_map as api
 from ..evaluate._progress import Progress, with_callbacks
+from ..options._setup import METHOD_SET_WHY
 from ._kinds import cell_setup, evaluate, group_key, mask_rows, programs_compiled, sum_names
 from ._results import dataset, load_sweep, save_sweep, sweep_inputs
 from ._spec import SweepSpec
@@ -51,20 +52,20 @@ def _plan(
     envs: dict,
     max_points: int,
     code: str | None,
-    program: tuple[str, ...] | None = None,
+    method_set: tuple[str, ...] | None = None,
     kept: dict[int, dict] | None = None,
 ) -> tuple[list[list[int]], list[str], int]:
     """Validate every cell before any work; return the cells of each program (group), with `code`
     every cell's digest (`_store.py`), and the most visibility masks of any cell. With `kept` (a dict) and
     at most KEEP_SETUPS cells, each cell's setup is kept there (cell number -> setup) for the run to use rather
-    than make again; a larger sweep's are not: memory does not grow with them. `program`: as `cell_setup`'s."""
+    than make again; a larger sweep's are not: memory does not grow with them. `method_set`: as `cell_setup`'s."""
     keep = kept is not None and spec.n_cells <= KEEP_SETUPS
     ids: dict[tuple, int] = {}
     groups: list[list[int]] = []
     digests: list[str] = []
     rows = 1
     for i, cell in enumerate(spec.cells()):  # input preparation, one small pytree per cell
-        req = cell_setup(spec, envs, cell, max_points, program)
+        req = cell_setup(spec, envs, cell, max_points, method_set)
         rows = max(rows, mask_rows(req))
         gid = ids.setdefault(group_key(req), len(ids))
         if gid == len(groups):
@@ -76,12 +77,12 @@ def _plan(
     return groups, digests, rows
 
 
-def _setups(spec: SweepSpec, envs: dict, rows: list[int], kept: dict[int, dict], max_points: int, program) -> list:
+def _setups(spec: SweepSpec, envs: dict, rows: list[int], kept: dict[int, dict], max_points: int, method_set) -> list:
     """The setups of a chunk's rows: those `_plan` kept, the others made once each (padding repeats a cell)."""
     made: dict[int, dict] = {}
     for i in rows:
         if i not in made:
-            made[i] = kept[i] if i in kept else cell_setup(spec, envs, spec.cell(i), max_points, program)
+            made[i] = kept[i] if i in kept else cell_setup(spec, envs, spec.cell(i), max_points, method_set)
     return [made[i] for i in rows]
 
 
@@ -94,7 +95,7 @@ def run_sweep(
     out: str | Path | None = None,
     lanes: int = DEFAULT_LANES,
     skip: Callable[[dict], bool] | None = None,
-    program: tuple[str, ...] | None = None,
+    method_set: tuple[str, ...] | None = None,
     mask_rows: int = 1,
     **legacy,
 ) -> xarray.Dataset:
@@ -108,14 +109,15 @@ def run_sweep(
     (`rollouts.run_trials`; no number depends on it): fewer waste less on cells of few trials.
     `skip(cell)` True: the cell (its axis values, as `spec.cells()` gives them) is not computed and its
     metrics are NaN (a study that needs only some cells of a product; the others' numbers are the same).
-    `program` (registry names compiled into one program with every cell's method, as `point_outcomes`') and
+    `method_set` (registry names compiled into one program with every cell's method, as `point_outcomes`') and
     `mask_rows` (visibility masks padded to at least this many rows) let sweeps of other methods or occlusions
     share one compiled program (the same numbers: a cell's trials do not depend on its companions)."""
     report = with_callbacks(progress, legacy, "run_sweep")
+    method_set = renamed_keyword(legacy, "program", "method_set", method_set, METHOD_SET_WHY)
     refuse_unknown(legacy, "run_sweep")
     envs = _envs(spec)
     kept: dict[int, dict] = {}
-    groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None, program, kept)
+    groups, digests, rows = _plan(spec, envs, max_points, code_digest() if out is not None else None, method_set, kept)
     rows = max(rows, mask_rows)
     n = spec.n_cells
     names = sum_names(spec.kind)
@@ -157,7 +159,7 @@ def run_sweep(
             report.phase(f"compiling program {first} of {len(live)}")
         padded = chunk + [chunk[0]] * (size - len(chunk))
         start, stop = (0, size) if processes == 1 else process_rows(mesh, size)  # this process's rows
-        setups = _setups(spec, envs, padded[start:stop], kept, max_points, program)
+        setups = _setups(spec, envs, padded[start:stop], kept, max_points, method_set)
         own = chunk[start:stop]  # this process's real cells (the rest of its rows are padding: no trials)
         res = evaluate(spec.kind, setups, mesh, rows, None if processes == 1 else size, lanes, real=len(own))
         for k in names:

@@ -51,11 +51,11 @@ LABEL = {
     "minwarping": "MinWarping",
 }
 HOME_RADIUS = rollouts.HOME_RADIUS
-# Every method of the reproduction is compiled into one rollout program (`options._registry.program`: a
-# `Program` module whose traced index picks the method): compiling a rollout program costs about 6 CPU-seconds, so the
+# Every method of the reproduction is compiled into one rollout program (`options.method_set`: a
+# `MethodSet` module whose traced index picks the method): compiling a rollout program costs about 6 CPU-seconds, so the
 # reproduction compiles one, not eight. Rendering a method does not need (the start snapshot, the gray
 # channel) is skipped at run time, so no method runs slower for sharing (docs/reproduce.md).
-PROGRAM = (
+METHOD_SET = (
     "delv",
     "delv-compass",
     "alv",
@@ -77,7 +77,7 @@ def env(name: str) -> Env:
 def vector_map(ctx, e: Env, method: str, **options) -> VectorMap:
     """The vector map of `method`, read from a catchment run: the rollouts' first directions are the
     vector map of the same seed (the same numbers as `delvjax.vector_map`, tested), and every study
-    then needs one compiled program (`PROGRAM`)."""
+    then needs one compiled program (`METHOD_SET`)."""
     return as_vector_map(catchment(ctx, e, method, **options))
 
 
@@ -88,7 +88,7 @@ def catchment(
         e,
         method=method,
         seed=ctx.config.seed,
-        program=PROGRAM,
+        method_set=METHOD_SET,
         grid=Grid(spacing=ctx.config.spacing),
         rules=Rules(home_radius=home_radius, lanes=ctx.config.lanes, **RULES[rules]),
         **options,
@@ -129,7 +129,7 @@ def success_rate(ctx, e: Env, method: str, rules: str = "default", **options) ->
         method=method,
         trials=ctx.config.trials,
         seed=ctx.config.seed,
-        program=PROGRAM,
+        method_set=METHOD_SET,
         rules=Rules(home_radius=HOME_RADIUS, lanes=ctx.config.lanes, **RULES[rules]),
         **options,
     )
@@ -348,7 +348,7 @@ def trajectory_set(
 ) -> None:
     """Homing paths of `methods` from the same `n_starts` seeded release points (Figs 4.11, 5.8):
     numbers `trajectories:env1:<method>:reach_home`, the figure and the CSV of every position. A method
-    in `own` runs in a program of its own with those options (one outside the shared PROGRAM)."""
+    in `own` runs in a program of its own with those options (one outside the shared METHOD_SET)."""
     from delvjax.plots import trajectories_figure  # matplotlib: loaded only when a figure is drawn
 
     results, tables = {}, []
@@ -358,7 +358,7 @@ def trajectory_set(
             method=m,
             n_starts=n_starts,
             seed=ctx.config.seed,
-            program=None if m in (own or {}) else PROGRAM,
+            method_set=None if m in (own or {}) else METHOD_SET,
             rules=Rules(home_radius=HOME_RADIUS, lanes=ctx.config.lanes),
             **(own or {}).get(m, {}),
         )

@@ -19,10 +19,10 @@ import numpy as np
 from delvjax import Grid, Rules
 from delvjax.core import rollouts
 from delvjax.core.sensor import Sensor
-from delvjax.options._registry import program
+from delvjax.options import method_set
 from delvjax.plots import subplots
 
-from ._common import HOME_RADIUS, PROGRAM, RULES
+from ._common import HOME_RADIUS, METHOD_SET, RULES
 from ._occlusion_layouts import ENVS, QUICK_RING_SPACING, RING_SPACING, fmt_spread, spread
 
 METHODS = ("delv-compass", "delv-gap-compass", "delv-compass-agent")
@@ -40,7 +40,7 @@ def gap_aware_summary(e, masks, hidden, spacing: float, config, method: str = "d
     default rules."""
     c = rollouts.catchment_area(
         e,
-        program(method, PROGRAM)[0],
+        method_set(method, METHOD_SET)[0],
         Sensor(),
         key=jax.random.PRNGKey(config.seed),
         masks=masks,

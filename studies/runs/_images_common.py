@@ -14,7 +14,7 @@ from delvjax.envs import make_env
 from delvjax.images import ImageSettings, LoadedDatabase, database_vector_map, image_world, render_in_memory
 from delvjax.images._worlds import ImageWorld
 
-# the methods of the image studies, one compiled program (`options._registry.program`)
+# the methods of the image studies, one compiled program (`options.method_set`)
 METHODS = ("delv", "alv", "acv", "warping")
 LABEL = {"delv": "DELV", "alv": "ALV", "acv": "ACV", "warping": "image matching", "minwarping": "MinWarping"}
 # MinWarping (docs/model.md §4.7) reads whole panoramas: its own program, its grid on 360 columns
@@ -42,7 +42,7 @@ def image_map(db: LoadedDatabase, method: str, **options) -> VectorMap:
     `channel` is given); MinWarping on its own, on the panoramas (`database(..., panoramas=True)`)."""
     if method == "minwarping":
         return database_vector_map(db, method, **{**MINWARPING, **options})
-    return database_vector_map(db, method, program=METHODS, **{"channel": CHANNEL, **options})
+    return database_vector_map(db, method, method_set=METHODS, **{"channel": CHANNEL, **options})
 
 
 def numbers(vm: VectorMap) -> dict:

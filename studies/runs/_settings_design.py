@@ -8,7 +8,7 @@ physical rules from the same trials (`catchment_physical_pct`, docs/sweeps.md), 
 combinations (48). A cell is one of a catchment sweep's (validated by `sweeps._kinds.cell_setup`, run by
 `sweeps._kinds.evaluate`); the cells are listed here, not from a sweep file's product, because DELV without a
 compass is needed at k = 0 only and each member runs under its own seed: every cell of the study is one
-program (the four methods one `Program`, the worlds padded alike, the settings traced leaves)."""
+program (the four methods one `MethodSet`, the worlds padded alike, the settings traced leaves)."""
 
 from __future__ import annotations
 
@@ -19,8 +19,7 @@ import numpy as np
 
 from delvjax.core.checks import SEED_LIMIT
 from delvjax.envs import ensemble_envs, env_from_dict
-from delvjax.options import MAX_POINTS
-from delvjax.options._registry import program
+from delvjax.options import MAX_POINTS, method_set
 from delvjax.sweeps import SweepSpec
 from delvjax.sweeps._kinds import catchment_metrics, cell_setup, evaluate
 
@@ -92,7 +91,7 @@ def rollouts(
     """Every cell of the rows `runs` (R, 4) of `design` under the default rules (their physical twins are
     restated from the same trials): "catchment", "catchment_physical", "gt45", "gt90" (%), each (R, F, M, P)
     over FAMILIES, members and PAIRS. `tick(runs done)` after each chunk that completes a row."""
-    methods = {m: program(m, METHODS)[0] for m in METHODS}
+    methods = {m: method_set(m, METHODS)[0] for m in METHODS}
     envs = {}
     for fam in FAMILIES:  # layouts from the run's seed: the members of the ensembles study
         for i, spec in enumerate(ensemble_envs(fam, members, seed)):

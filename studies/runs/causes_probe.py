@@ -44,10 +44,10 @@ from delvjax.core.errors import InputError
 from delvjax.core.sensor import Sensor
 from delvjax.envs import FAMILIES, make_env, member_layouts, random_env
 from delvjax.envs._presets import preset_dict
-from delvjax.options._registry import program
+from delvjax.options import method_set
 
 from . import _gap_probe, _gap_tail
-from ._common import HOME_RADIUS, PAD, PROGRAM, RULES, curve, env, inside_hull
+from ._common import HOME_RADIUS, METHOD_SET, PAD, RULES, curve, env, inside_hull
 from ._occlusion_layouts import stacked_masks
 
 EAST_OF_HOME = 80.0  # cm: every moved env3 landmark keeps its centre at least this far east of home
@@ -140,7 +140,7 @@ def env3_layouts(
         vm = delvjax.vector_map(e, method="acv", seed=0, grid=Grid(spacing=spacing))
         acv.append(100.0 * float((np.asarray(vm.error_deg)[np.asarray(vm.included)] > 45.0).mean()))
     delv = []
-    method = program("delv-compass", PROGRAM)[0]
+    method = method_set("delv-compass", METHOD_SET)[0]
     for e in env3_variants(delv_variants, delv_jitter, seed=0):
         masks, hidden, ks = stacked_masks(e, 1)
         c = rollouts.catchment_area(

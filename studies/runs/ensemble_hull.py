@@ -97,7 +97,7 @@ def run_members(members: int, spacing: float, slices: int, seed: int, lanes: int
     for j in range(slices):  # a handful of sweep calls of the same programs: input preparation
         first, count = j * size, min(size, members - j * size)
         spec = parse_sweep(sweep_text(count, first, seed, j, spacing), "ensemble_hull")
-        res = point_outcomes(spec, lanes=lanes, program=METHODS)  # one compiled program for both methods
+        res = point_outcomes(spec, lanes=lanes, method_set=METHODS)  # one compiled program for both methods
         worlds.update(hull_numbers(res, list(spec.axes["env"])))
         if step is not None:
             step(f"seed slice {j + 1} of {slices}")

@@ -21,7 +21,7 @@ import numpy as np
 
 from delvjax.core.maps import grid_points
 from delvjax.envs import ensemble_envs, world_properties
-from delvjax.options._setup import make_sensor
+from delvjax.options import make_sensor
 from delvjax.sweeps import parse_sweep, point_errors, run_sweep
 
 from ..claims import WORLD_FAILS, WORLD_HOLDS

@@ -23,14 +23,14 @@ from matplotlib.patches import Circle, Patch
 from delvjax import Grid, Rules
 from delvjax.core import rollouts
 from delvjax.core.sensor import Sensor
-from delvjax.options._registry import program
+from delvjax.options import method_set
 from delvjax.plots import CATCHMENT_SQUARE as SQUARE
 from delvjax.plots import HOMING_ARROW as ARROW
 from delvjax.plots import catchment_panel, subplots
 
 from .. import thesis
 from . import _gap_matching as gap_matching
-from ._common import HOME_RADIUS, LABEL, PROGRAM, RULES, as_vector_map, env, every_rule, panel_figure
+from ._common import HOME_RADIUS, LABEL, METHOD_SET, RULES, as_vector_map, env, every_rule, panel_figure
 from ._occlusion_layouts import (
     ENVS,
     QUICK_RING_SPACING,
@@ -131,7 +131,7 @@ def run(ctx) -> None:
 def rule_catchments(e, m: str, sensor: Sensor, spacing: float, key, masks, hidden, lanes: int) -> dict:
     """The catchments of `m` under every rule set of `RULES`, from as few runs as give the same trials
     (`every_rule`: ACV and ALV run once, DELV twice)."""
-    method = program(m, PROGRAM)[0]
+    method = method_set(m, METHOD_SET)[0]
 
     def run(rules: str):
         return rollouts.catchment_area(

@@ -21,7 +21,7 @@ from delvjax.core.sensor import Sensor
 from delvjax.evaluate._vector_map import resolve_headings
 from delvjax.gradients import sensitivity
 from delvjax.options import METHODS as REGISTRY
-from delvjax.options._registry import program
+from delvjax.options import method_set
 from delvjax.plots import draw_env, landmark_figure, parameter_figure, subplots
 
 from ._common import env
@@ -30,15 +30,15 @@ TITLE = "Sensitivity of homing loss: landmarks, d and noise (gradients; beyond t
 COST = 60  # rough seconds of a full run (2 CPU cores, two studies side by side): the longest start first
 STEPS = 5
 GAIN_METHODS = ("delv", "delv-compass", "alv", "acv")
-# One compiled Jacobian program for these (a `Program`: 18.0 -> 7.1 s for the four maps, cold, 2 cores;
+# One compiled Jacobian program for these (a `MethodSet`: 18.0 -> 7.1 s for the four maps, cold, 2 cores;
 # docs/reproduce.md "One compiled rollout program"). ACV keeps its own: in the shared program its gains
 # differ in the last bit (4.8e-7 deg/deg), and no number moves for speed.
-GAIN_PROGRAM = ("delv", "delv-compass", "alv")
+GAIN_SET = ("delv", "delv-compass", "alv")
 
 
 def gain_method(name: str):
     """The method whose gain map is drawn: in the shared program of GAIN_PROGRAM, or on its own."""
-    return program(name, GAIN_PROGRAM)[0] if name in GAIN_PROGRAM else REGISTRY[name]
+    return method_set(name, GAIN_SET)[0] if name in GAIN_SET else REGISTRY[name]
 
 
 def gain_figure(e, spacing: float, seed: int):

@@ -21,7 +21,7 @@ import numpy as np
 from delvjax.core import rollouts
 from delvjax.core.maps import grid_points
 from delvjax.core.methods.heading import visual_compass_errors
-from delvjax.options._setup import make_sensor
+from delvjax.options import make_sensor
 from delvjax.plots import subplots
 
 from .. import thesis

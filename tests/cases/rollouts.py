@@ -53,13 +53,13 @@ def run(
     record_paths=False,
     first_move="homing",
     collisions="ignore",
-    program=None,
+    method_set=None,
 ):
     """`rollouts.run_trials` with trial i on noise stream i under one mask; lanes default as the public API
     (so that these programs are the ones `catchment` and `success_rate` compile)."""
     n = starts.shape[0]
     masks = env.valid[None] if masks is None else masks
-    module = registry.METHODS[method] if program is None else registry.program(method, program)[0]
+    module = registry.METHODS[method] if method_set is None else registry.method_set(method, method_set)[0]
     return rollouts.run_trials(
         env,
         jnp.asarray(starts),

@@ -44,3 +44,28 @@ def test_every_wide_public_function_is_keyword_only_after_its_first_arguments():
             wide[name] = [p.name for p in params if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
     assert len(wide) >= 10, wide  # catchment, vector_map, homing_loss, run_sweep, load_database, ...
     assert {name: pos for name, pos in wide.items() if len(pos) > 4} == {}
+
+
+def test_a_method_set_is_one_word_and_its_former_names_still_work():
+    """Issue 55: "program" meant both what XLA compiles and the methods compiled together; the latter is a
+    `MethodSet` (`method_set=`), and `Program` / `program=` still work for one release, with a warning."""
+    from delvjax.core import methods
+    from delvjax.options import make_setup, method_set
+    from delvjax.sweeps import parse_sweep, point_outcomes
+
+    with pytest.deprecated_call(match="Program is renamed delvjax.MethodSet"):
+        assert delvjax.Program is delvjax.MethodSet
+    with pytest.deprecated_call(match="Program is now MethodSet"):
+        assert methods.Program is methods.MethodSet
+    new, _ = make_setup("alv", method_set=["delv", "alv"])
+    with pytest.deprecated_call(match="program= is now method_set="):
+        old, _ = make_setup("alv", program=["delv", "alv"])
+    assert old == new and new == method_set("alv", ["delv", "alv"])[0] and int(new.index) == 1
+    with pytest.raises(TypeError, match="former name of method_set="):
+        make_setup("alv", program=["alv"], method_set=["alv"])
+    with pytest.raises(delvjax.InputError) as e:
+        make_setup("alv", method_set=["delv"])
+    assert e.value.field == "method_set"
+    spec = parse_sweep('[sweep]\nkind = "catchment"\n[axes]\nenv = ["env1"]\nmethod = ["alv"]\nspacing = [500]\n')
+    with pytest.raises(TypeError, match="former name of method_set="):  # refused before any work
+        point_outcomes(spec, program=("alv",), method_set=("alv",))

@@ -13,7 +13,7 @@ from delvjax.core.sensing import record_home, unit_move
 from delvjax.core.sensitivity import _perturbed, bearing_jacobian, bearing_noise_gain
 from delvjax.core.sensor import Sensor
 from delvjax.options._registry import METHODS
-from delvjax.studies.runs.sensitivity import GAIN_PROGRAM, gain_method
+from delvjax.studies.runs.sensitivity import GAIN_SET, gain_method
 from tests.cases.compiled import call, compiled
 
 
@@ -67,7 +67,7 @@ def test_gain_maps_in_the_shared_program_equal_each_method_on_its_own():
     env = delvjax.load_env("env1").arrays()
     pts = jnp.array([[300.0, 450.0], [600.0, 560.0], [150.0, 850.0], [820.0, 200.0]])
     hd = jnp.array([0.3, 2.0, -1.0, 4.0])
-    assert "alv" in GAIN_PROGRAM and type(gain_method("alv")).__name__ == "Program"
+    assert "alv" in GAIN_SET and type(gain_method("alv")).__name__ == "MethodSet"
     shared = bearing_jacobian(env, pts, hd, jax.random.PRNGKey(5), Sensor(), gain_method("alv"))
     own = bearing_jacobian(env, pts, hd, jax.random.PRNGKey(5), Sensor(), METHODS["alv"])
     for a, b in zip(shared, own):

@@ -279,7 +279,7 @@ def test_nearest_snapshot_rollouts_match_reference_trials():
 
 def test_every_registered_method_runs_on_image_rings():
     """docs/images.md §5: the pipeline's `Snapshot` is what every method reads. Each registry method, in
-    one program (`options._registry.program`), gives a finite direction at every point of a small database."""
+    one program (`options.method_set`), gives a finite direction at every point of a small database."""
     from delvjax.images._render import camera
     from delvjax.options._registry import METHODS
 
@@ -288,7 +288,7 @@ def test_every_registered_method_runs_on_image_rings():
     names = tuple(METHODS)
     grids = {"n_alpha": 36, "n_psi": 36}  # every warping method's (the panorama ones' 96 does not divide 72)
     for name in names:  # a traced index picks the method: one compiled program
-        vm = database_vector_map(db, name, program=names, channel="gray", **grids)
+        vm = database_vector_map(db, name, method_set=names, channel="gray", **grids)
         inc = np.asarray(vm.included)
         assert np.asarray(vm.valid)[inc].all(), name
         assert np.isfinite(np.asarray(vm.direction)[inc]).all(), name

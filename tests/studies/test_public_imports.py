@@ -12,7 +12,6 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 EDGE = sorted(p.parent.name for p in (ROOT / "delvjax").glob("*/__init__.py") if p.parent.name != "core")
 
-PROGRAM = "`program` is one of the four meanings of the word (issue 55 point 5): named when that is settled"
 SETTINGS = "run settings become objects (issue 55 point 1); their public home comes with them"
 KINDS = "a sweep's cells set up and run by hand (the settings study): the sweep kinds' internals, not a user's call"
 IMAGES = "a renderer or database detail, not a user's call; images' surface is its own part of issue 55"
@@ -30,8 +29,6 @@ ALLOWED = {
     ("delvjax.images._render", "render_rings"): IMAGES,
     ("delvjax.images._worlds", "ImageWorld"): IMAGES,
     ("delvjax.images._worlds", "robot_arena"): IMAGES,
-    ("delvjax.options._registry", "program"): PROGRAM,
-    ("delvjax.options._setup", "make_sensor"): SETTINGS,
     ("delvjax.sweeps._kinds", "cell_setup"): KINDS,
     ("delvjax.sweeps._kinds", "evaluate"): KINDS,
     ("delvjax.sweeps._kinds", "catchment_metrics"): KINDS,

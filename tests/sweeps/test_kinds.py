@@ -79,13 +79,13 @@ def counting(monkeypatch, module, name: str) -> list:
     return calls
 
 
-SHARED = "[axes]\nmethod = ['delv', 'alv']\nspacing = [200]\n"  # two landmark methods: one shared Program
+SHARED = "[axes]\nmethod = ['delv', 'alv']\nspacing = [200]\n"  # two landmark methods: one shared MethodSet
 
 
 def test_a_sweep_validates_each_cell_once(monkeypatch):
     """Two cells of a vector-map sweep whose landmark methods share one program, run and then as per-point
     errors: `map_request` is called once per cell each time. Fails on the old code: 4 calls for the run (the
-    method alone, then as the Program) and 20 for the per-point errors (`_plan`, then again for each row of the
+    method alone, then as the MethodSet) and 20 for the per-point errors (`_plan`, then again for each row of the
     chunks, padding included)."""
     spec = parse_sweep(SHARED)
     calls = counting(monkeypatch, api, "map_request")
@@ -105,7 +105,7 @@ def test_a_rollout_sweep_validates_each_cell_once(monkeypatch):
 
 @pytest.mark.parametrize("axis", ["levels = [2]", "channel = ['mask']"])
 def test_in_a_shared_program_another_methods_setting_stays_an_error(axis):
-    """Validated once as a `Program` of delv and alv, a setting (or the image channel) that alv does not read is
+    """Validated once as a `MethodSet` of delv and alv, a setting (or the image channel) that alv does not read is
     still refused for alv's cells, naming the setting."""
     from delvjax.sweeps._kinds import cell_setup
     from delvjax.sweeps._run import _envs

@@ -298,12 +298,12 @@ def test_padding_runs_no_trials_and_moves_no_number():
 
 
 def test_sweeps_of_other_methods_and_occlusions_share_one_program():
-    """`run_sweep(program=..., mask_rows=...)`: a sweep compiled as a Program of more methods and with more mask
+    """`run_sweep(method_set=..., mask_rows=...)`: a sweep compiled as a MethodSet of more methods and with more mask
     rows than its own runs in the program of the sweep that needs them (nothing compiled) with the same numbers."""
     wide = parse_sweep(SUCCESS.replace('method = ["alv"]', 'method = ["alv", "acv"]').replace("[0, 1]", "[0, 2]"), "w")
     narrow = parse_sweep(SUCCESS.replace("occlude = [0, 1]", "occlude = [0]"), "n")
     run_sweep(wide, lanes=16)
-    shared = run_sweep(narrow, lanes=16, program=("alv", "acv"), mask_rows=6)
+    shared = run_sweep(narrow, lanes=16, method_set=("alv", "acv"), mask_rows=6)
     assert shared.attrs["programs_compiled"] == 0
     own = run_sweep(narrow, lanes=16)
     np.testing.assert_array_equal(shared["success_pct"].values, own["success_pct"].values)

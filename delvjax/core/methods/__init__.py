@@ -6,6 +6,7 @@ registry of names, `delvjax/options/_registry.py`, whose classes are the public 
 own shortcuts.
 """
 
+from ..deprecation import deprecated
 from .acv import ACV
 from .alv import ALV
 from .base import HomingMethod, Method
@@ -15,9 +16,9 @@ from .delv_gap import DELVGap
 from .delv_refined import DELVRefined
 from .heading import Compass, HeadingSource, VisualCompass
 from .hybrid import Hybrid
+from .method_set import MethodSet
 from .mfdid import MFDID
 from .minwarping import MinWarping
-from .program import Program
 from .warping import Warping
 from .warping2d import Warping2D
 
@@ -35,8 +36,17 @@ __all__ = [
     "MFDID",
     "Method",
     "MinWarping",
-    "Program",
+    "MethodSet",
     "VisualCompass",
     "Warping",
     "Warping2D",
 ]
+
+
+def __getattr__(name: str):
+    if name == "Program":  # the name before this release: a program is what XLA compiles
+        deprecated(
+            "delvjax: Program is now MethodSet (several methods compiled into one program); Program goes next release"
+        )
+        return MethodSet
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

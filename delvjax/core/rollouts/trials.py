@@ -147,7 +147,7 @@ def run_trials(
     `home_record(env, key, sensor)`, always sees all). `rules` (a `Rules`, core/rollouts/config.py;
     default `Rules()`): max_steps, home_radius, first_move, collisions and the `lanes` trials run side
     by side (finished lanes are refilled from the queue of pending trials). Several methods share one
-    compiled program as a `methods.Program`. `progress(done, T)` is called after each block. The
+    compiled program as a `methods.MethodSet`. `progress(done, T)` is called after each block. The
     flat keywords of earlier releases (max_steps=, ...) still work, deprecated (`legacy_config`).
     """
     rules = legacy_config(Rules, rules, legacy)

@@ -38,7 +38,7 @@ class SweepKind(str):
     def __new__(cls) -> SweepKind:
         return super().__new__(cls, cls.name)
 
-    def request(self, env, cell: dict, spec: Sweep, max_points: int, program: Sequence[str] | None = None) -> dict:
+    def request(self, env, cell: dict, spec: Sweep, max_points: int, method_set: Sequence[str] | None = None) -> dict:
         """The validated setup of one cell (`validated`)."""
         raise NotImplementedError
 
@@ -79,10 +79,10 @@ def _landmarks_only(name: str) -> bool:
 
 
 def shared_program(spec: Sweep, method) -> tuple[str, ...] | None:
-    """The sweep's methods compiled into one `Program` with `method` (docs/sweeps.md, "One program
+    """The sweep's methods compiled into one `MethodSet` with `method` (docs/sweeps.md, "One program
     for the landmark methods"): every landmark method of the sweep's method axis, the same numbers
     bit for bit in less compile time; None for a method alone or one that reads images (an image
-    method compiled in a `Program` sums its errors in another order: last-bit changes). Looked up in
+    method compiled in a `MethodSet` sums its errors in another order: last-bit changes). Looked up in
     the registry each time: a method registered at run time may change it."""
     names = spec.axes.get("method", ())
     if not isinstance(method, str) or not all(isinstance(n, str) for n in names) or not _landmarks_only(method):
@@ -92,7 +92,7 @@ def shared_program(spec: Sweep, method) -> tuple[str, ...] | None:
 
 
 def _own(cell: dict) -> None:
-    """In a `Program` of several methods, a setting (or the image channel) of another method than the cell's
+    """In a `MethodSet` of several methods, a setting (or the image channel) of another method than the cell's
     stays an error: the program's validation accepts what any of its methods reads."""
     method, label = get_method(cell["method"]), cell["method"]
     settings = set(option_names()[0])
@@ -103,15 +103,15 @@ def _own(cell: dict) -> None:
         raise InputError("channel", cell["channel"], f"is read only by image methods (warping, mfdid), not by {label}")
 
 
-def validated(request: Callable[..., dict], cell: dict, spec: Sweep, program=None, **kwargs) -> dict:
+def validated(request: Callable[..., dict], cell: dict, spec: Sweep, method_set=None, **kwargs) -> dict:
     """`request(method=..., **kwargs)`: the cell validated once, by its API's request; where the sweep has
-    companions (or `program` names them), set up as one of their `Program`, a setting of another method still
+    companions (or `method_set` names them), set up as one of their `MethodSet`, a setting of another method still
     an error (`_own`)."""
-    names = shared_program(spec, cell["method"]) if program is None else tuple(program)
+    names = shared_program(spec, cell["method"]) if method_set is None else tuple(method_set)
     if names is None:
         return request(method=cell["method"], **kwargs)
     _own(cell)
-    return request(method=cell["method"], program=names, **kwargs)
+    return request(method=cell["method"], method_set=names, **kwargs)
 
 
 def pct(part: np.ndarray, whole: np.ndarray) -> np.ndarray:

@@ -17,11 +17,11 @@ from .base import MAP_METRICS, Sweep, SweepKind, descriptions, options, pct, val
 from .vector_map import error_metrics, grid_inputs
 
 
-def rollout_request(kind: str, env, cell: dict, spec: Sweep, max_points: int, program=None) -> dict:
+def rollout_request(kind: str, env, cell: dict, spec: Sweep, max_points: int, method_set=None) -> dict:
     """A catchment or success-rate cell, validated as `delvjax.catchment` / `success_rate` validate theirs."""
     request = functools.partial(api_rollouts.rollout_request, env)
     common = dict(seed=cell["seed"], distances=spec.distances, trials=spec.trials, max_points=max_points)
-    return validated(request, cell, spec, program, kind=kind, **common, **options(cell))
+    return validated(request, cell, spec, method_set, kind=kind, **common, **options(cell))
 
 
 def catchment_metrics(sums: dict) -> dict:
@@ -70,8 +70,8 @@ class Catchment(SweepKind):
     grid, rollouts, per_distance = True, True, False
     sums = rollout_programs.CatchmentSums
 
-    def request(self, env, cell: dict, spec: Sweep, max_points: int, program: Sequence[str] | None = None) -> dict:
-        return rollout_request(self.name, env, cell, spec, max_points, program)
+    def request(self, env, cell: dict, spec: Sweep, max_points: int, method_set: Sequence[str] | None = None) -> dict:
+        return rollout_request(self.name, env, cell, spec, max_points, method_set)
 
     def inputs(self, setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
         return catchment_inputs(setups, traced)

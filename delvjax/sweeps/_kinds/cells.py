@@ -24,12 +24,12 @@ def sum_names(kind: SweepKind) -> tuple[str, ...]:
     return tuple(f.name for f in dataclasses.fields(kind.sums))
 
 
-def cell_setup(spec: Sweep, envs: dict, cell: dict, max_points: int, program: Sequence[str] | None = None) -> dict:
+def cell_setup(spec: Sweep, envs: dict, cell: dict, max_points: int, method_set: Sequence[str] | None = None) -> dict:
     """One cell's setup, validated (once) by the API call of its kind (`spec.kind.request`); an `InputError`
-    names the cell. `program`: registry names compiled into one program with the cell's method, image methods
+    names the cell. `method_set`: registry names compiled into one program with the cell's method, image methods
     too (`point_outcomes`); None: the sweep's landmark methods (`base.shared_program`)."""
     try:
-        return spec.kind.request(envs[cell["env"]], cell, spec, max_points, program)
+        return spec.kind.request(envs[cell["env"]], cell, spec, max_points, method_set)
     except InputError as exc:
         where = ", ".join(f"{k}={v}" for k, v in cell.items())
         raise InputError(f"cell ({where})", exc.value, f"{exc.field}: {exc.expected}") from None
@@ -113,13 +113,13 @@ def evaluate(
     stack = lambda *xs: np.stack([np.asarray(x) for x in xs])  # noqa: E731
     stacked = idle_padding(jax.tree.map(stack, *[traced(req, rows) for req in setups]), real)
     shared, stacked = kind.inputs(setups, stacked)
-    program = _program(kind, lanes, first.get("trials"))
+    compiled = _program(kind, lanes, first.get("trials"))
     if total is not None:
-        res = over_processes(program, mesh, len(shared), total, *shared, *stacked)
+        res = over_processes(compiled, mesh, len(shared), total, *shared, *stacked)
     elif mesh is None:
-        res = program(*shared, *stacked)
+        res = compiled(*shared, *stacked)
     else:
-        res = over_devices(program, mesh, len(shared), *shared, *stacked)
+        res = over_devices(compiled, mesh, len(shared), *shared, *stacked)
     return {name: np.asarray(getattr(res, name)) for name in sum_names(kind)}
 
 

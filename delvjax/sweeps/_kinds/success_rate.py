@@ -34,8 +34,8 @@ class SuccessRate(SweepKind):
     grid, rollouts, per_distance = False, True, True
     sums = rollout_programs.SuccessSums
 
-    def request(self, env, cell: dict, spec: Sweep, max_points: int, program: Sequence[str] | None = None) -> dict:
-        return rollout_request(self.name, env, cell, spec, max_points, program)
+    def request(self, env, cell: dict, spec: Sweep, max_points: int, method_set: Sequence[str] | None = None) -> dict:
+        return rollout_request(self.name, env, cell, spec, max_points, method_set)
 
     def inputs(self, setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
         """The release distances, clearance and max_steps shared."""

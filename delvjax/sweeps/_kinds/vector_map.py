@@ -57,9 +57,9 @@ class VectorMap(SweepKind):
     grid, rollouts, per_distance = True, False, False
     sums = map_cells.CellMetrics
 
-    def request(self, env, cell: dict, spec: Sweep, max_points: int, program: Sequence[str] | None = None) -> dict:
+    def request(self, env, cell: dict, spec: Sweep, max_points: int, method_set: Sequence[str] | None = None) -> dict:
         request = functools.partial(api.map_request, env)
-        return validated(request, cell, spec, program, seed=cell["seed"], max_points=max_points, **options(cell))
+        return validated(request, cell, spec, method_set, seed=cell["seed"], max_points=max_points, **options(cell))
 
     def inputs(self, setups: list[dict], traced: tuple) -> tuple[tuple, tuple]:
         return grid_inputs(setups, traced)

@@ -19,7 +19,7 @@ from delvjax.core import maps
 from delvjax.core.errors import InputError
 from delvjax.core.kernel import direction_from, map_poses
 from delvjax.core.sensing import blob_runs, record_home, render, unit_move
-from delvjax.options._registry import METHODS, configure, program
+from delvjax.options._registry import METHODS, configure, method_set
 from delvjax.options._setup import make_setup
 from tests.cases.compiled import call, compiled
 from tests.twins.cc import cc_home_vector_ref
@@ -80,10 +80,10 @@ def test_a_sweep_over_a_sensor_leaf_equals_the_single_maps():
 
 
 def test_a_program_switches_method_by_its_traced_index():
-    """Every landmark method of the twin tests (test_vs_twins.py runs them as one `Program`) gives its
-    own program's numbers bit for bit from a `Program`."""
+    """Every landmark method of the twin tests (test_vs_twins.py runs them as one `MethodSet`) gives its
+    own program's numbers bit for bit from a `MethodSet`."""
     env = delvjax.load_env("env1").arrays()
-    prog, names = program("alv", ["delv", "delv-compass", "alv", "acv", "delv-visual", "alv-visual", "acv-visual"])
+    prog, names = method_set("alv", ["delv", "delv-compass", "alv", "acv", "delv-visual", "alv-visual", "acv-visual"])
     for i, name in enumerate(names):
         chosen = eqx.tree_at(lambda p: p.index, prog, jnp.int32(i))
         a = maps.vector_map(env, chosen, Sensor(), spacing=100.0)
@@ -96,7 +96,7 @@ def test_options_set_only_the_fields_a_method_has_and_name_the_bad_one():
     assert method.levels == 4 and sensor.d == 30.0 and math.isclose(sensor.noise.bearing, math.radians(2.0))
     warping, _ = make_setup("warping", n_alpha=36)
     assert warping.n_alpha == 36
-    shared, _ = make_setup("alv", program=["delv-compass", "alv"], levels=4)  # DELV in the program takes it
+    shared, _ = make_setup("alv", method_set=["delv-compass", "alv"], levels=4)  # DELV in the program takes it
     assert shared.methods[0].levels == 4 and configure(METHODS["alv"], levels=3) is METHODS["alv"]
     for method_name, bad in (
         ("delv", dict(levels=0)),

@@ -1,7 +1,7 @@
 """Every method against the per-point NumPy twin on 20 random environments (>= 98% within 2 deg).
 
 All 20 environments run as ONE batched program: `homing_directions` vmapped over a stacked Env, and
-every method of this file runs in it as one `Program` (its traced index picks the method, and only
+every method of this file runs in it as one `MethodSet` (its traced index picks the method, and only
 that branch runs: tests/core/methods/test_modules.py checks that each of these seven gives its own
 program's numbers bit for bit there), so the file compiles one program, not ten.
 """
@@ -17,7 +17,7 @@ import pytest
 from delvjax.core.maps import grid_included, grid_points, homing_directions, random_headings
 from delvjax.core.scene import stack_envs
 from delvjax.core.sensor import Sensor
-from delvjax.options._registry import METHODS, configure, program
+from delvjax.options._registry import METHODS, configure, method_set
 from tests.twins import methods as ref
 
 # points checked per environment against the (slow, readable) twin
@@ -40,9 +40,9 @@ NAMES = tuple(SUBSET)
 @pytest.fixture(scope="module")
 def directions(batch):
     """`directions(method, levels, visible)`: (direction, valid) of every environment and point, from
-    the one compiled program of this file (a `Program` of NAMES; every landmark visible by default)."""
+    the one compiled program of this file (a `MethodSet` of NAMES; every landmark visible by default)."""
     envs, points, headings, key, _ = batch
-    shared, _ = program(NAMES[0], NAMES)
+    shared, _ = method_set(NAMES[0], NAMES)
     run = jax.jit(jax.vmap(homing_directions, in_axes=(0, None, None, None, None, None, None)))
 
     def directions(method, levels=None, visible=None):

@@ -236,7 +236,7 @@ def test_results_do_not_depend_on_the_trial_blocks(monkeypatch):
 
 
 def test_methods_sharing_one_program_give_the_same_numbers_as_their_own_programs():
-    """`program=`: a traced index picks the method (lax.switch) and ALV skips the start snapshot
+    """`method_set=`: a traced index picks the method (lax.switch) and ALV skips the start snapshot
     (lax.cond): bitwise the same results, with noise, under occlusion, for a method that reads
     the start snapshot (DELV) and one that does not (ALV)."""
     env = make_env(random_landmarks(np.random.default_rng(1), 4))
@@ -246,17 +246,17 @@ def test_methods_sharing_one_program_give_the_same_numbers_as_their_own_programs
     family = ("delv", "delv-compass", "alv", "acv")
     for method in ("delv-compass", "alv"):
         own = run(env, starts, heads, method, noisy, masks=masks)
-        shared = run(env, starts, heads, method, noisy, masks=masks, program=family)
+        shared = run(env, starts, heads, method, noisy, masks=masks, method_set=family)
         assert np.asarray(own.success).any()
         for field in ("outcome", "steps", "end", "invalid_steps", "first_direction", "first_valid"):
             assert np.array_equal(np.asarray(getattr(own, field)), np.asarray(getattr(shared, field)), equal_nan=True)
 
 
-@pytest.mark.parametrize("program", [("alv", "acv"), ("delv-compass", "nope"), "delv-compass", (), 3])
-def test_a_program_must_hold_known_methods_including_the_one_run(program, untyped):
+@pytest.mark.parametrize("method_set", [("alv", "acv"), ("delv-compass", "nope"), "delv-compass", (), 3])
+def test_a_method_set_must_hold_known_methods_including_the_one_run(method_set, untyped):
     env = make_env(FOUR)
-    with pytest.raises(InputError, match="program"):
-        delvjax.catchment(env, method="delv-compass", program=program, grid=Grid(spacing=100.0))
+    with pytest.raises(InputError, match="method_set"):
+        delvjax.catchment(env, method="delv-compass", method_set=method_set, grid=Grid(spacing=100.0))
 
 
 def test_zero_noise_reproduces_the_noise_free_results_exactly():

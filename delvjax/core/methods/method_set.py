@@ -1,6 +1,7 @@
-"""Several methods compiled into one program (docs/reproduce.md "One compiled rollout program").
+"""A method set: several methods compiled into one program (docs/reproduce.md "One compiled rollout
+program").
 
-`Program(methods, index)` is itself a method: a traced `index` picks one of `methods` through
+`MethodSet(methods, index)` is itself a method: a traced `index` picks one of `methods` through
 `lax.switch`. Unbatched under `vmap`, the switch runs only the chosen branch, so methods that
 share a program cost what they cost alone, and changing `index` (`eqx.tree_at`) reuses the
 compiled program.
@@ -17,7 +18,7 @@ from ..sensing import UnitMove
 from .base import HomingMethod
 
 
-class Program(HomingMethod):
+class MethodSet(HomingMethod):
     """methods: a tuple of methods; index: which one runs (a traced int32 leaf)."""
 
     methods: tuple
