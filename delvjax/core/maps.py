@@ -10,6 +10,7 @@ each padded to a shape bucket (`batching.bucket`), so grids of many sizes share 
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Callable
 from functools import partial
 
@@ -20,8 +21,13 @@ import numpy as np
 from jax import Array
 
 from .batching import bucket, fixed_width_map, item_width, local_mesh, n_devices, over_devices, pad_rows
+from .checks import is_traced
 from .frames import frame
 from .geometry import TWO_PI
+from .grid import CLEARANCE as CLEARANCE
+from .grid import SPACING as SPACING
+from .grid import Grid
+from .grid import grid_points as grid_points
 from .kernel import direction_from, map_poses
 from .methods.base import HomingMethod
 from .metrics import angular_error_deg, error_class
@@ -31,8 +37,6 @@ from .sensor import Sensor
 from .types import BlobFlags, GridFlag, GridFloat, GridPoints, PerPoint, PerPointFlag, Points, Real
 
 DEFAULT_BATCH = 16384  # grid points per host-side chunk
-SPACING = 25.0  # cm, grid spacing (docs/model.md §5: 40 x 40 in the 1000 cm arena)
-CLEARANCE = 10.0  # cm, grid points within r + clearance of a landmark are dropped (§5)
 
 
 class VectorMap(eqx.Module):
@@ -41,9 +45,9 @@ class VectorMap(eqx.Module):
     points: (P, 2) cm; included: (P,) cell is a grid point (not within r + clearance of a
     landmark); heading: (P,) release heading of the unit move, rad; direction: (P,) world
     homing direction, rad, NaN where invalid; valid: (P,); error_deg: (P,) angular error,
-    180 where invalid; spacing: the grid's cell side in cm (`vector_map` and `sweep` set it; None on
+    180 where invalid; grid: the `Grid` the map was computed on (`vector_map` and `sweep` set it; None on
     scattered points such as an image database, and on one chunk's result): a static field, no leaf, so
-    a figure needs no `spacing=` (`plots.vector_map_figure`).
+    a figure needs no `spacing=` (`plots.vector_map_figure`); `spacing` is its cell side.
     """
 
     points: GridPoints
@@ -52,7 +56,12 @@ class VectorMap(eqx.Module):
     direction: GridFloat
     valid: GridFlag
     error_deg: GridFloat
-    spacing: float | None = eqx.field(static=True, default=None)
+    grid: Grid | None = eqx.field(static=True, default=None)
+
+    @property
+    def spacing(self) -> float | None:
+        """The grid's cell side in cm (None without a grid)."""
+        return None if self.grid is None else self.grid.spacing
 
     def columns(self, method: str = "") -> dict:
         """The columns of the vector-map CSV (`vector_map_columns`); `method` is not a column of it."""
@@ -67,13 +76,13 @@ class VectorMap(eqx.Module):
         return map_dataset(self)
 
 
-def grid_points(arena, spacing: float) -> np.ndarray:
-    """Centres of square cells of side `spacing` tiling the arena (docs/model.md §5), row-major from (xmin, ymin)."""
-    xmin, ymin, xmax, ymax = (float(v) for v in np.asarray(arena))
-    xs = np.arange(xmin + spacing / 2, xmax, spacing, dtype=np.float64)
-    ys = np.arange(ymin + spacing / 2, ymax, spacing, dtype=np.float64)
-    gx, gy = np.meshgrid(xs[xs < xmax], ys[ys < ymax])
-    return np.stack([gx.ravel(), gy.ravel()], axis=-1).astype(np.float32)
+def computed_on(spacing: float, clearance, heading) -> Grid | None:
+    """The `Grid` of a map computed with these core arguments (heading in radians or None); None where the
+    clearance is traced or per cell (no number of one grid)."""
+    if is_traced(clearance) or np.ndim(clearance) or is_traced(heading):
+        return None
+    fixed = None if heading is None else math.degrees(float(heading))
+    return Grid(spacing=float(spacing), clearance=float(clearance), heading_deg=fixed)
 
 
 # A grid point within this distance of home is home itself: no homing direction is defined there
@@ -183,7 +192,7 @@ def vector_map(
         if progress is not None:
             progress(min(chunk, n - start), n)
     vm = jax.tree.map(lambda *a: jax.device_put(np.concatenate(a)), *parts)  # a plain copy: no program compiled
-    return dataclasses.replace(vm, spacing=float(spacing))
+    return dataclasses.replace(vm, grid=computed_on(spacing, clearance, heading))
 
 
 def _device_chunk(
@@ -288,7 +297,7 @@ def sweep(
         m, s = replace_field(method, sensor, name, v)
         return _vector_map(env, points, heading, key, s, m, clearance, visible)
 
-    return dataclasses.replace(jax.vmap(one)(jnp.asarray(values)), spacing=float(spacing))
+    return dataclasses.replace(jax.vmap(one)(jnp.asarray(values)), grid=computed_on(spacing, clearance, heading))
 
 
 def vector_map_columns(vm: VectorMap) -> dict[str, np.ndarray]:

@@ -127,7 +127,7 @@ def success_rate(
     """Success rate vs release distance (Figs 4.10b, 5.7b): `trials` rollouts per distance from home.
 
     Each trial: a random direction from home at that distance and a random heading (seeded; fixed by
-    `grid.heading_deg` if given); a release point inside a landmark's r + `grid.clearance` or outside
+    `Grid.heading_deg` if given); a release point inside a landmark's r + `Grid.clearance` or outside
     the arena is redrawn (deterministically, up to 64 times; else the trial is not placed and not
     counted); the grid's spacing is not used. `rules`, `options`, `method_set`, `max_points` and the
     deprecated flat keywords as in `catchment`; `progress.start(None)` just before the work (one
@@ -161,9 +161,9 @@ def trajectories(
     """Homing paths (Figs 4.11, 5.8) from `starts` [(x, y), ...] or `n_starts` seeded random release points.
 
     Random release points are uniform in the arena, at least d from the walls, farther than
-    r + `grid.clearance` + d from every landmark (so that under first_move="release" the first move,
+    r + `Grid.clearance` + d from every landmark (so that under first_move="release" the first move,
     along the random release heading, cannot end the trial) and at least 2 * home_radius from home;
-    headings are random per trial from `seed` unless `grid.heading_deg` is given. The same seed gives
+    headings are random per trial from `seed` unless `Grid.heading_deg` is given. The same seed gives
     the same release points for every method. `rules`, `options`, `method_set` and the deprecated flat
     keywords as in `catchment`, and `progress.start(None)` just before the work. Every position is
     kept: more than 100 x `max_points` of them (trials x (max_steps + 1)) are refused.

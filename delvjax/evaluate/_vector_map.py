@@ -7,6 +7,7 @@ means the module's default) and calls the core.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import numbers
 from collections.abc import Callable, Sequence
@@ -257,7 +258,7 @@ def vector_map(
     `method`: a registry name (`"delv-compass"`) or a method module (`DELV(levels=3,
     heading=Compass())`); `sensor=Sensor(...)` may replace the sensor options below.
 
-    `grid.heading_deg` fixes the heading at every point; otherwise headings are uniform random
+    `Grid.heading_deg` fixes the heading at every point; otherwise headings are uniform random
     per point from `seed` (which also drives every noise source). `options`: sensor options
     (d, background, channel, alpha_r_deg, n_pix, and the noise keywords bearing_noise_deg,
     step_noise, turn_noise_deg, odometry_turn_noise_deg, compass_noise_deg) and method settings
@@ -266,7 +267,7 @@ def vector_map(
     `hidden` lists landmark indices invisible in the current views (occlusion). The grid runs in
     host-side chunks of `batch_size` points (memory bounded by the chunk, the same numbers for every
     chunk size); a grid of more than `max_points` points is refused with an estimate (`options._limits`).
-    `grid`: a `Grid(spacing, clearance, heading_deg)` (core/rollouts/config.py; default `Grid()`);
+    `grid`: a `Grid(spacing, clearance, heading_deg)` (core/grid.py; default `Grid()`);
     `sensor=Sensor(...)` and `noise=Noise(...)` may replace the sensor and noise keywords. The flat
     keywords of earlier releases (spacing=, heading_deg=, clearance=) still work for one release, with
     a DeprecationWarning.
@@ -274,10 +275,13 @@ def vector_map(
     P grid points, then `progress(n, P)` after each chunk of n points (a plain `f(n, P)` also works).
     `chunk_program` stands in for one chunk's jitted program (the command line's, kept on disk).
     Returns a `VectorMap` pytree (points, included, heading, direction, valid, error_deg) that carries
-    its grid's `spacing`.
+    the `grid` it was computed on (`VectorMap.grid`, `.spacing`).
     """
+    if "rules" in options:  # a keyword of the rollout calls: say why it does not apply here
+        raise InputError("rules", options["rules"], "is not used by a vector map (one unit move per point, no rollout)")
     grid = legacy_config(Grid, grid, options)
     request, points = _checked_map(env, method, grid, seed, hidden, batch_size, max_points, **options)
     report = as_progress(progress)
     report.start(points.shape[0])
-    return maps.vector_map(**request, progress=report, chunk_program=chunk_program, points=points)
+    vm = maps.vector_map(**request, progress=report, chunk_program=chunk_program, points=points)
+    return dataclasses.replace(vm, grid=grid)  # the user's object, heading_deg as given

@@ -62,9 +62,12 @@ def catchment_handles(uncounted: bool, hidden: bool = False) -> list:
     return handles
 
 
-def catchment_panel(ax: Axes, env: Env, result: Catchment, m: int, spacing: float, title: str = "") -> None:
+def catchment_panel(
+    ax: Axes, env: Env, result: Catchment, m: int, spacing: float | None = None, title: str = ""
+) -> None:
     """One mask of a `Catchment`: its vector map with the catchment squares underneath (and the cells
-    not counted hatched)."""
+    not counted hatched); `spacing`: the catchment's own grid (`Catchment.grid`) unless given."""
+    spacing = result.grid.spacing if spacing is None else spacing
     draw_catchment(ax, result.points, np.asarray(result.success)[m], result.counted, spacing)
     draw_not_counted(ax, result.points, result.included, result.counted, spacing)
     draw_vector_map(

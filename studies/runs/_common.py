@@ -197,6 +197,7 @@ def as_vector_map(c: rollouts.Catchment, m: int = 0) -> VectorMap:
         direction=np.asarray(c.direction)[m],
         valid=np.asarray(c.valid)[m],
         error_deg=np.asarray(c.error_deg)[m],
+        grid=c.grid,  # the catchment's grid: a figure of it needs no spacing=
     )
 
 
@@ -245,18 +246,17 @@ def success_summary(rows: list[dict]) -> dict:
 # --- figures ---------------------------------------------------------------------------------
 
 
-def panel_figure(items, spacing: float, classes: bool = False, title: str = ""):
+def panel_figure(items, spacing: float | None = None, classes: bool = False, title: str = ""):
     """Vector-map panels, at most 3 a row (readable fonts at page width): items = [(panel title, env,
-    VectorMap)]; every marker in a legend."""
+    VectorMap)]; every marker in a legend. `spacing`: each map's own grid (`VectorMap.grid`) unless given."""
     cols = min(len(items), 3)
     rows = -(-len(items) // cols)
     fig, axes = subplots(rows, cols, figsize=(4.6 * cols, 4.6 * rows + 0.5), squeeze=False)
     for ax in axes.ravel()[len(items) :]:
         ax.set_visible(False)
     for ax, (label, e, vm) in zip(axes.ravel(), items):
-        draw_vector_map(
-            ax, e, vm.points, vm.direction, vm.valid, vm.included, spacing, error_deg=vm.error_deg if classes else None
-        )
+        errors, side = vm.error_deg if classes else None, vm.spacing if spacing is None else spacing
+        draw_vector_map(ax, e, vm.points, vm.direction, vm.valid, vm.included, side, error_deg=errors)
         draw_env(ax, e)
         ax.set_title(label, fontsize=9)
     handles = vector_map_handles(classes)
@@ -267,11 +267,11 @@ def panel_figure(items, spacing: float, classes: bool = False, title: str = ""):
     return fig
 
 
-def catchment_figure(items, spacing: float, title: str):
-    """1 x n catchment panels (Figs 4.5 / 5.5): items = [(panel title, env, Catchment)]."""
+def catchment_figure(items, title: str):
+    """1 x n catchment panels (Figs 4.5 / 5.5): items = [(panel title, env, Catchment)], each on its grid."""
     fig, axes = subplots(1, len(items), figsize=(4.8 * len(items), 5.4), squeeze=False)
     for ax, (label, e, c) in zip(axes[0], items):
-        catchment_panel(ax, e, c, 0, spacing, title=label)
+        catchment_panel(ax, e, c, 0, title=label)
     handles = catchment_handles(any(not_counted(c) for _, _, c in items))
     fig.legend(handles=handles, loc="lower center", ncol=4, fontsize=8, frameon=False)
     fig.suptitle(title)

@@ -85,6 +85,6 @@ def run(ctx) -> None:
     ctx.csv("fig4_4_error_curves.csv", rows=curves_rows(curves))
     ctx.figure(
         "fig4_5_catchment.png",
-        catchment_figure(catch_items, spacing, "DELV without compass: catchment area"),
+        catchment_figure(catch_items, "DELV without compass: catchment area"),
         "Fig 4.5: release points from which DELV without compass reaches home (default rules).",
     )

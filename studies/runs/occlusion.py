@@ -320,7 +320,7 @@ def figures(ctx, per_k: list[dict], fig5_10: dict) -> None:
     pct = c.catchment_pct()
     picks = [int(np.flatnonzero(ks == k)[np.argmin(np.abs(pct[ks == k] - pct[ks == k].mean()))]) for k in range(3)]
     items = [(f"k = {k}, hidden {list(c.hidden[i]) or 'none'}", e, as_vector_map(c, i)) for k, i in enumerate(picks)]
-    fig = panel_figure(items, spacing, classes=True, title="DELV with a compass, env1, landmarks hidden")
+    fig = panel_figure(items, classes=True, title="DELV with a compass, env1, landmarks hidden")
     lms = np.asarray(e.landmarks)
     for ax, i in zip(fig.axes, picks):  # hidden landmarks: hollow, dashed (as in Fig 5.10)
         for j in c.hidden[i]:

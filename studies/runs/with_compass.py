@@ -109,6 +109,6 @@ def run(ctx) -> None:
     ctx.csv("fig5_4_error_curves.csv", rows=curves_rows(curves))
     ctx.figure(
         "fig5_5_catchment.png",
-        catchment_figure(catch_items, spacing, "DELV with a compass: catchment area"),
+        catchment_figure(catch_items, "DELV with a compass: catchment area"),
         "Fig 5.5: release points from which DELV with a compass reaches home (default rules).",
     )

@@ -9,6 +9,7 @@ import math
 from pathlib import Path
 
 import equinox as eqx
+import jax.numpy as jnp
 import numpy as np
 import pytest
 
@@ -124,3 +125,26 @@ def test_a_keyword_beside_its_object_or_a_bad_object_is_refused(call, field, unt
     with pytest.raises(InputError) as info:
         call()
     assert info.value.field == field
+
+
+def test_results_carry_the_grid_they_were_computed_on():
+    """Issue 55: a `VectorMap` carries its `Grid` (as a `Catchment` does), so a figure needs no spacing=."""
+    from delvjax.core import maps
+    from delvjax.plots import vector_map_figure
+
+    grid = Grid(spacing=250, heading_deg=30)
+    vm = delvjax.vector_map("env1", "alv", grid=grid)
+    assert vm.grid is grid and vm.spacing == 250.0
+    assert delvjax.vector_map("env1", "alv", grid=Grid(spacing=500)).grid == Grid(spacing=500)
+    c = delvjax.catchment("env1", "alv", grid=Grid(spacing=500))
+    assert c.grid == Grid(spacing=500)
+    env = delvjax.load_env("env1")
+    swept = maps.sweep(
+        env, delvjax.options.get_method("delv"), Sensor(), "levels", jnp.asarray([2.0, 3.0]), spacing=500.0
+    )
+    assert swept.grid == Grid(spacing=500.0)  # heading None: random per point, as given
+    fixed = maps.vector_map(env, delvjax.options.get_method("alv"), Sensor(), spacing=500.0, heading=math.radians(90.0))
+    assert fixed.grid.heading_deg == pytest.approx(90.0)
+    vector_map_figure(env, vm).clf()  # the arrows' length from the map's own grid
+    with pytest.raises(InputError, match="not used by a vector map"):  # says why, not just "unknown"
+        delvjax.vector_map("env1", "alv", rules=Rules())

@@ -123,7 +123,7 @@ def catchment_area(
     **legacy,
 ) -> Catchment:
     """Rollouts from every point of `grid` under every mask in `masks` (M, L) by `rules`, one program
-    (docs/model.md §5; `Grid`, `Rules`: core/rollouts/config.py, defaults `Grid()`, `Rules()`).
+    (docs/model.md §5; `Grid`: core/grid.py, `Rules`: core/rollouts/config.py, defaults `Grid()`, `Rules()`).
 
     Headings: the grid's fixed heading or per point from `key` as in `maps.random_headings`. The trial
     of grid cell i uses noise stream i under every mask (common random numbers across masks).

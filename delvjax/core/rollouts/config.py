@@ -1,5 +1,5 @@
 """Run configuration as objects (docs/model.md §5; docs/architecture.md "How a setting travels"):
-`Grid` (where a vector map or catchment is evaluated) and `Rules` (how a rollout runs). Each field
+`Rules` (how a rollout runs), beside `Grid` (core/grid.py: where a vector map or catchment is evaluated). Each field
 is checked when the object is built (`InputError` naming the field and the value), so an object
 that exists is valid; the API passes it unchanged to the core (`catchment_area`, `run_trials`, ...),
 as diffrax passes its `SaveAt`. `legacy_config` keeps the flat keywords of earlier releases working
@@ -12,35 +12,15 @@ for one release, with a `DeprecationWarning`.
 from __future__ import annotations
 
 import dataclasses
-import math
 from typing import TypeVar
 
 import equinox as eqx
 
-from ..checks import angle_deg, choice, non_negative, positive, positive_int
+from ..checks import choice, positive, positive_int
 from ..deprecation import deprecated
 from ..errors import InputError
-from ..maps import CLEARANCE, SPACING
+from ..grid import Grid as Grid
 from .rules import COLLISIONS, DEFAULT_FIRST_MOVE, DEFAULT_LANES, FIRST_MOVES, HOME_RADIUS, MAX_STEPS
-
-
-def _heading(value: float | None) -> float | None:
-    return None if value is None else angle_deg(value, "heading_deg")
-
-
-class Grid(eqx.Module):
-    """The docs/model.md §5 grid: cell `spacing` and `clearance` from the landmarks (cm); a fixed
-    release heading at every point (`heading_deg`, degrees), or None for a random heading per point
-    from the seed. Also the release clearance and heading of the success rate and trajectories."""
-
-    spacing: float = eqx.field(default=SPACING, converter=lambda v: positive(v, "spacing"))
-    clearance: float = eqx.field(default=CLEARANCE, converter=lambda v: non_negative(v, "clearance"))
-    heading_deg: float | None = eqx.field(default=None, converter=_heading)
-
-    @property
-    def heading(self) -> float | None:
-        """The fixed release heading in radians, or None (random per point from the seed)."""
-        return None if self.heading_deg is None else math.radians(self.heading_deg)
 
 
 class Rules(eqx.Module):

@@ -129,8 +129,8 @@ def success_rate_trials(
     **legacy,
 ) -> SuccessRate:
     """`trials` rollouts per release distance by `rules`: random direction from home, random heading unless
-    `grid` fixes one; release points clear of the landmarks by `grid.clearance` (docs/model.md §5; the
-    grid's spacing is not used). `Grid`, `Rules`: core/rollouts/config.py, defaults `Grid()`, `Rules()`;
+    `grid` fixes one; release points clear of the landmarks by `Grid.clearance` (docs/model.md §5; the
+    grid's spacing is not used). `Grid`: core/grid.py, `Rules`: core/rollouts/config.py, defaults `Grid()`, `Rules()`;
     the flat keywords of earlier releases still work, deprecated (`legacy_config`)."""
     grid, rules = legacy_config(Grid, grid, legacy), legacy_config(Rules, rules, legacy)
     refuse_unknown(legacy, "success_rate_trials")
