@@ -168,7 +168,8 @@ def cmd_optimise_layout(args: argparse.Namespace) -> int:
     paths = [Path(out) / name for name in ("layout.png", "comparison.csv", "optimised_env.json", "layout.json")]
     check_no_clash({"--out": paths}, {"env": args.env})
     env = start_layout(args.env, args.landmarks, args.seed)
-    with ProgressBar("step", 0) as bar:
+    line = f"optimising the {env.n_landmarks} landmarks of {env.name} for {args.method} ..."
+    with ProgressBar("step", 0, lambda steps: line) as bar:
         result = optimise_layout(
             env,
             args.method,
@@ -177,10 +178,7 @@ def cmd_optimise_layout(args: argparse.Namespace) -> int:
             seed=args.seed,
             tau=args.tau,
             steps=args.steps,
-            progress=lambda i, n, v: bar(1, n),
-            announce=lambda: progress(
-                f"optimising the {env.n_landmarks} landmarks of {env.name} for {args.method} ..."
-            ),
+            progress=bar,
         )
     start, end = result.rows
     progress(

@@ -25,13 +25,14 @@ import jax.numpy as jnp
 import numpy as np
 
 from ..core.checks import occlusion_count, positive_int
-from ..core.deprecation import keywords_after
+from ..core.deprecation import deprecated, keywords_after
 from ..core.errors import InputError
 from ..core.maps import SPACING
 from ..core.rollouts import Catchment, Grid, catchment_summary, occlusion_masks
 from ..core.scene import Env
 from ..core.soft.loss import soft_loss
 from ..envs._presets import load_env, make_env, random_env
+from ..evaluate._progress import Progress, with_callbacks
 from ..evaluate._rollouts import catchment
 from ._loss import TAU, LossProblem, loss_problem
 
@@ -120,10 +121,12 @@ _value = eqx.filter_jit(_objective)
 
 
 def _minimise(
-    args, u0, steps: int, progress: Callable[[int, int, float], None] | None
+    args, u0, steps: int, report: Progress, old: Callable[[int, int, float], None] | None = None
 ) -> tuple[jax.Array, list[float]]:
     """optimistix BFGS, stepped by hand: (u, objective after each step). A step returns the last
-    accepted point (the line search rejects a worse one), so the last u is the best."""
+    accepted point (the line search rejects a worse one), so the last u is the best. Each step reports
+    `report(1, steps)` and its objective as the phase ("soft loss 0.1234"); `old`: the per-step callback
+    f(step, steps, objective) of earlier releases."""
     state = _init(u0, args)
     u, history = u0, [float(_value(u0, args))]
     for i in range(steps):  # one optimisation step per iteration: a progress report between them
@@ -132,8 +135,10 @@ def _minimise(
         u, state, _ = _step(u, state, args)
         if i > 0:  # the first step only evaluates its trial point
             history.append(float(state.f_info.f))
-        if progress is not None:
-            progress(i + 1, steps, history[-1])
+        report.phase(f"soft loss {history[-1]:.4g}")
+        report(1, steps)
+        if old is not None:
+            old(i + 1, steps, history[-1])
     return u, history
 
 
@@ -149,6 +154,20 @@ def start_layout(env: str | Path | Env | None = None, landmarks: int | None = No
     return random_env(seed, n)
 
 
+def _layout_progress(progress, options: dict) -> tuple[Progress, Callable[[int, int, float], None] | None]:
+    """(the `Progress` the steps report to, the per-step callback f(step, steps, objective) of earlier
+    releases, deprecated); `announce=` of earlier releases is popped from `options` (`with_callbacks`)."""
+    old = None
+    if progress is not None and not isinstance(progress, Progress):
+        deprecated(
+            "delvjax: optimise_layout(progress=f) with f(step, steps, objective) is deprecated and will be removed "
+            "in the next release: pass a delvjax.evaluate.Progress (start(steps), (1, steps) per step, the "
+            "objective as its phase; every step's objective is in the result's .objective)"
+        )
+        old, progress = progress, None
+    return with_callbacks(progress, options, "optimise_layout"), old
+
+
 @keywords_after(2, ("occlude", "spacing", "seed", "tau", "steps", "progress", "announce"))
 def optimise_layout(
     env: str | Path | Env,
@@ -159,13 +178,14 @@ def optimise_layout(
     seed: int = 0,
     tau: float = TAU,
     steps: int = STEPS,
-    progress: Callable[[int, int, float], None] | None = None,
-    announce: Callable[[], None] | None = None,
+    progress: Progress | Callable[[int, int, float], None] | None = None,
     **options,
 ) -> LayoutResult:
     """Optimise the landmark positions of `env` for `method` (module docstring); compare the start and
     the result by catchment and error rates on the `spacing` grid under every choice of `occlude`
-    hidden landmarks."""
+    hidden landmarks. `progress`: a `Progress` (evaluate/_progress.py): `start(steps)` once every option
+    is valid, then `(1, steps)` after each step with the step's soft loss as the phase."""
+    report, old = _layout_progress(progress, options)
     env = load_env(env)
     problem: LossProblem = loss_problem(env, method, spacing=OPT_SPACING, seed=seed, tau=tau, **options)
     k = occlusion_count(occlude, env.n_landmarks) if occlude else 0
@@ -177,10 +197,9 @@ def optimise_layout(
     frac = np.clip((pos0 - lo) / (hi - lo), 1e-3, 1 - 1e-3)
     u0 = jnp.asarray(np.log(frac / (1 - frac)), jnp.float32)
     args = (problem, jnp.asarray(masks), jnp.asarray(lo, jnp.float32), jnp.asarray(hi, jnp.float32), n)
-    if announce is not None:
-        announce()
+    report.start(steps)
     t0 = time.perf_counter()
-    u, history = _minimise(args, u0, steps, progress)
+    u, history = _minimise(args, u0, steps, report, old)
     pos = lo + (hi - lo) / (1 + np.exp(-np.asarray(u, np.float64)))
     radii = np.asarray(env.landmarks, np.float64)[np.asarray(env.valid), 2]
     optimised = make_env(

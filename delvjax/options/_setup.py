@@ -111,6 +111,7 @@ def make_setup(
     sensor: Sensor | None = None,
     noise: Noise | None = None,
     panorama_cols: int | None = None,
+    own_only: bool = False,
     **options,
 ) -> tuple[HomingMethod, Sensor]:
     """(method module, sensor), validated before any work. `method`: a registry name or a method
@@ -119,7 +120,9 @@ def make_setup(
     `noise`: a `Noise` instead of the noise options; `panorama_cols`: the width of the panoramas of an
     image database (0: a database not read yet; None: a scene of rings, whose sensor then renders the
     panoramas of its cylinders for a method that reads them, `core.images.scene_panorama`).
-    A method setting that the method does not have is an error naming it."""
+    A method setting that the method does not have is an error naming it; with a `method_set`, one that no
+    method of the set has, or with `own_only` (a sweep's set, which must not change what a cell may set) one
+    that `method` itself does not have."""
     options = upgraded(options)  # a former name (mw_n_alpha) read as today's, with a DeprecationWarning
     method_set = renamed_keyword(options, "program", "method_set", method_set, METHOD_SET_WHY)
     extra = (method,) if isinstance(method, HomingMethod) else ()
@@ -150,15 +153,16 @@ def make_setup(
         module = method
     else:
         module = get_method(method) if method_set is None else registry_method_set(method, method_set)[0]
-    settings = method_settings({k: v for k, v in options.items() if k in method_names}, extra, module)
     label = method if isinstance(method, str) else type(method).__name__
-    if "channel" in given_sensor and not reads_channel(module):
+    runs = get_method(method) if own_only and method_set is not None else module  # whose settings count
+    if "channel" in given_sensor and not reads_channel(runs):
         raise InputError(
             "channel", given_sensor["channel"], f"is read only by image methods (warping, mfdid), not by {label}"
         )
-    for name, value in settings.items():
-        if not owns(module, name):
-            raise InputError(name, value, f"is not a setting of the method {label}")
+    for name in (k for k in method_names if options.get(k) is not None):  # before its value is checked
+        if not owns(runs, name):
+            raise InputError(name, options[name], f"is not a setting of the method {label}")
+    settings = method_settings({k: v for k, v in options.items() if k in method_names}, extra, module)
     configured = configure(module, **settings)
     if not configured.reads_panorama():  # the relations between its settings, declared on the method
         configured.check_input(sensor.n_pix)

@@ -67,7 +67,7 @@ def ring_env(iw: ImageWorld) -> Env:
 
 
 IDEAL_HEADING_DEG = 0.0  # every grid point faces east
-IDEAL_GRID = {"program": METHODS, "channel": CHANNEL, "background": "walls"}
+IDEAL_GRID = {"method_set": METHODS, "channel": CHANNEL, "background": "walls"}
 
 
 def ideal_map(world: str | ImageWorld, method: str, **options) -> VectorMap:

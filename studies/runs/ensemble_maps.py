@@ -133,7 +133,7 @@ def run_slice(ctx, sizes: dict, j: int, size: int, worlds: dict) -> None:
         return
     text = sweep_text("catchment", envs, TRUE, sizes["spacing"], seed, compass_noise_deg=SIGMAS)
     # the `ensembles` study's compiled program (its methods, masks and lanes): no program of its own
-    shared = {"lanes": min(LANES, lanes), "program": EVERY_METHOD, "mask_rows": MASK_ROWS}
+    shared = {"lanes": min(LANES, lanes), "method_set": EVERY_METHOD, "mask_rows": MASK_ROWS}
     add(worlds, compass_keys(run_sweep(parse_sweep(text, "compass"), **shared), TRUE, SIGMAS), suffix)
     for bg in BACKGROUNDS:  # three sweeps of one program per method (the background a traced leaf)
         text = sweep_text("vector-map", envs, VISUAL, sizes["spacing"], seed, background=[bg])

@@ -74,9 +74,9 @@ def sharing(name: str, lanes: int, full: bool = True) -> dict:
     (its methods, masks and lanes: a full run's LANES, a preview's the run's), the landmark methods' success rates
     in one program; the numbers are the same (a cell's trials do not depend on the program's other methods)."""
     if name in ("steps", "levels"):
-        return {"lanes": min(LANES, lanes) if full else lanes, "program": EVERY_METHOD, "mask_rows": MASK_ROWS}
+        return {"lanes": min(LANES, lanes) if full else lanes, "method_set": EVERY_METHOD, "mask_rows": MASK_ROWS}
     if name in ("levels_success", "rules_success", "compass_success"):
-        return {"lanes": lanes, "program": EVERY_METHOD}
+        return {"lanes": lanes, "method_set": EVERY_METHOD}
     return {"lanes": lanes}
 
 

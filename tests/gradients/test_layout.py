@@ -10,13 +10,32 @@ import pytest
 
 from delvjax.cli._main import main
 from delvjax.envs._presets import load_env
+from delvjax.evaluate import Progress
 from delvjax.gradients._layout import HOME_GAP_CM, optimise_layout, start_layout
+
+
+class Record(Progress):
+    """Every report of a call, in order."""
+
+    def __init__(self):
+        self.calls: list = []
+
+    def start(self, total, phase=None):
+        self.calls.append(("start", total))
+
+    def phase(self, text):
+        self.calls.append(("phase", text))
+
+    def __call__(self, done, total):
+        self.calls.append((done, total))
 
 
 def test_an_optimised_layout_beats_its_start_on_the_hard_metrics():
     start = start_layout(landmarks=3, seed=10)  # a near-symmetric triangle: DELV confuses its orderings
-    steps = []
-    r = optimise_layout(start, "delv", spacing=100, steps=15, progress=lambda i, n, v: steps.append(v))
+    calls = Record()
+    r = optimise_layout(start, "delv", spacing=100, steps=15, progress=calls)
+    steps = [c for c in calls.calls if c == (1, 15)]
+    assert calls.calls[0] == ("start", 15) and ("phase", f"soft loss {r.objective[-1]:.4g}") in calls.calls
     before, after = r.rows
     assert after["catchment_pct"] > before["catchment_pct"] + 50  # measured 9.6 % -> 100 % at 25 cm
     assert after["gt45_pct"] < before["gt45_pct"] - 20
@@ -98,3 +117,20 @@ def test_a_start_layout_with_overlapping_landmarks_or_one_over_home_is_refused(t
     assert main(["optimise-layout", str(path), "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert "landmarks[" in err and message in err and not out.exists()
+
+
+def test_the_per_step_callbacks_of_earlier_releases_still_work_with_a_deprecation_warning():
+    start = start_layout(landmarks=3, seed=10)
+    seen, began = [], []
+    with pytest.deprecated_call(match=r"optimise_layout\(progress=f\)"):
+        with pytest.deprecated_call(match="announce= is deprecated"):
+            r = optimise_layout(
+                start,
+                "delv",
+                spacing=500,
+                steps=2,
+                progress=lambda i, n, v: seen.append((i, n, v)),
+                announce=lambda: began.append(True),
+            )
+    assert began == [True] and [s[:2] for s in seen] == [(1, 2), (2, 2)][: len(seen)] and seen
+    assert seen[-1][2] == r.objective[-1]

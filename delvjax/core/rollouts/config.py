@@ -20,7 +20,7 @@ from ..checks import choice, positive, positive_int
 from ..deprecation import deprecated
 from ..errors import InputError
 from ..grid import Grid as Grid
-from .rules import COLLISIONS, DEFAULT_FIRST_MOVE, DEFAULT_LANES, FIRST_MOVES, HOME_RADIUS, MAX_STEPS
+from .rules import COLLISIONS, DEFAULT_FIRST_MOVE, DEFAULT_LANES, FIRST_MOVES, HOME_RADIUS, MAX_STEPS, rules_record
 
 
 class Rules(eqx.Module):
@@ -39,8 +39,8 @@ class Rules(eqx.Module):
 
     @property
     def recorded(self) -> dict[str, str]:
-        """The two rules every summary and table records: {"first_move": ..., "collisions": ...}."""
-        return {"first_move": self.first_move, "collisions": self.collisions}
+        """The two rules every summary and table records (`rules.rules_record`)."""
+        return rules_record(self.first_move, self.collisions)
 
 
 GRID_FIELDS = tuple(f.name for f in dataclasses.fields(Grid))

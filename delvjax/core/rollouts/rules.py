@@ -65,6 +65,11 @@ def check_rules(first_move: str, collisions: str | None) -> dict[str, str]:
         raise InputError("first_move", first_move, f"must be one of {', '.join(FIRST_MOVES)}")
     if collisions not in COLLISIONS:
         raise InputError("collisions", collisions, f"must be one of {', '.join(COLLISIONS)}")
+    return rules_record(first_move, collisions)
+
+
+def rules_record(first_move: str, collisions: str) -> dict[str, str]:
+    """The two rules every summary and table records: {"first_move": ..., "collisions": ...}."""
     return {"first_move": first_move, "collisions": collisions}
 
 
@@ -120,7 +125,7 @@ class Outcomes(eqx.Module):
     @property
     def rules(self) -> dict[str, str]:
         """The rollout rules used (module docstring): {"first_move": ..., "collisions": ...}."""
-        return {"first_move": self.first_move, "collisions": self.collisions}  # type: ignore[attr-defined]
+        return rules_record(self.first_move, self.collisions)  # type: ignore[attr-defined]
 
     def columns(self, method: str = "") -> dict:
         """The columns of the result's CSV file (docs/model.md §7); `method` fills the method column."""

@@ -11,9 +11,7 @@ from typing import ClassVar, Protocol, runtime_checkable
 import numpy as np
 
 from ...core import metrics as table
-from ...core.errors import InputError
-from ...options._registry import get_method, owns
-from ...options._setup import option_names, reads_channel
+from ...options._registry import get_method
 
 
 @runtime_checkable
@@ -91,27 +89,14 @@ def shared_program(spec: Sweep, method) -> tuple[str, ...] | None:
     return mine if len(mine) > 1 else None
 
 
-def _own(cell: dict) -> None:
-    """In a `MethodSet` of several methods, a setting (or the image channel) of another method than the cell's
-    stays an error: the program's validation accepts what any of its methods reads."""
-    method, label = get_method(cell["method"]), cell["method"]
-    settings = set(option_names()[0])
-    for name, value in options(cell).items():
-        if name in settings and value is not None and not owns(method, name):
-            raise InputError(name, value, f"is not a setting of the method {label}")
-    if cell.get("channel") is not None and not reads_channel(method):
-        raise InputError("channel", cell["channel"], f"is read only by image methods (warping, mfdid), not by {label}")
-
-
 def validated(request: Callable[..., dict], cell: dict, spec: Sweep, method_set=None, **kwargs) -> dict:
     """`request(method=..., **kwargs)`: the cell validated once, by its API's request; where the sweep has
     companions (or `method_set` names them), set up as one of their `MethodSet`, a setting of another method still
-    an error (`_own`)."""
+    an error (`make_setup`'s `own_only`)."""
     names = shared_program(spec, cell["method"]) if method_set is None else tuple(method_set)
     if names is None:
         return request(method=cell["method"], **kwargs)
-    _own(cell)
-    return request(method=cell["method"], method_set=names, **kwargs)
+    return request(method=cell["method"], method_set=names, own_only=True, **kwargs)
 
 
 def pct(part: np.ndarray, whole: np.ndarray) -> np.ndarray:
