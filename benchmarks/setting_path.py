@@ -3,7 +3,8 @@
 
 Runs one small command in process under `sys.setprofile`, collects the delvjax functions it calls
 (module bodies not counted), and lists the files whose called functions read the setting by name (an
-identifier, attribute, keyword or parameter `name`; docstrings and comments do not count):
+identifier, attribute, keyword or parameter `name`; docstrings and comments do not count, nor an attribute
+of numpy, JAX or math such as `np.spacing`):
 
     python benchmarks/setting_path.py max_steps catchment env1 --max-steps 20 --spacing 200
     python benchmarks/setting_path.py levels vector-map env1 --levels 3 --spacing 200
@@ -58,11 +59,18 @@ def reads(path: Path, first_lines: set[int], name: str) -> int:
     for node in (x for d in defs for x in ast.walk(d)):
         count += (
             (isinstance(node, ast.Name) and node.id == name)
-            or (isinstance(node, ast.Attribute) and node.attr == name)
+            or (isinstance(node, ast.Attribute) and node.attr == name and not _of_a_library(node))
             or (isinstance(node, ast.keyword) and node.arg == name)
             or (isinstance(node, ast.arg) and node.arg == name)
         )
     return count
+
+
+LIBRARIES = ("np", "jnp", "jax", "math")  # `np.spacing` is numpy's function, not the setting
+
+
+def _of_a_library(node: ast.Attribute) -> bool:
+    return isinstance(node.value, ast.Name) and node.value.id in LIBRARIES
 
 
 def main() -> None:

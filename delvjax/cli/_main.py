@@ -72,7 +72,7 @@ def cmd_vector_map(args: argparse.Namespace) -> int:
     kw = scene_kwargs(args)
     env = api.load_env(args.env)
     t0 = time.perf_counter()
-    announce = lambda n: f"vector map of {args.method} on {env.name} (spacing {args.spacing:g} cm, {n} cells) ..."  # noqa: E731
+    announce = lambda n: f"vector map of {args.method} on {env.name} ({kw['grid'].describe()}, {n} cells) ..."  # noqa: E731
     with ProgressBar("pt", maps.DEFAULT_BATCH, announce, compiling(1, 1)) as bar:
         # a bar only when the grid runs in several chunks; the API counts the grid and calls bar.start
         vm = api.vector_map(env, **kw, progress=bar, chunk_program=getattr(args, "map_program", None))

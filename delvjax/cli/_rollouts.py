@@ -104,7 +104,7 @@ def cmd_catchment(args: argparse.Namespace) -> int:
         occlusion_count(args.occlude, env.n_landmarks)
     t0 = time.perf_counter()
     line = (  # printed when the API starts the bar: every option is valid
-        f"catchment of {args.method} on {env.name} (spacing {args.spacing:g} cm"
+        f"catchment of {args.method} on {env.name} ({kw['grid'].describe()}"
         + (f", {args.occlude} of {env.n_landmarks} landmarks hidden" if args.occlude else "")
         + f") ...\n[delvjax] {compiling(1, 1)} ..."
     )
@@ -140,7 +140,7 @@ def cmd_catchment(args: argparse.Namespace) -> int:
         args,
         catchment_columns(res, with_hidden=args.occlude is not None or bool(args.hide)),
         summary,
-        lambda: catchment_figure(env, res, args.spacing, title=f"{args.method} on {env.name}"),
+        lambda: catchment_figure(env, res, title=f"{args.method} on {env.name}"),  # on the result's own grid
     )
     return 0
 

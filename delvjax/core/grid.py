@@ -29,6 +29,10 @@ class Grid(eqx.Module):
     clearance: float = eqx.field(default=CLEARANCE, converter=lambda v: non_negative(v, "clearance"))
     heading_deg: float | None = eqx.field(default=None, converter=_heading)
 
+    def describe(self) -> str:
+        """The grid as a progress line names it: "spacing 25 cm"."""
+        return f"spacing {self.spacing:g} cm"
+
     @property
     def heading(self) -> float | None:
         """The fixed release heading in radians, or None (random per point from the seed)."""

@@ -33,7 +33,7 @@ from ..core.rollouts import (
     trajectory_trials,
 )
 from ..core.scene import Env
-from ..options._limits import MAX_POINTS, check_moves, check_size, grid_count
+from ..options._limits import MAX_POINTS, check_moves, check_size
 from ._progress import Progress
 from ._rollout_setup import _check_starts, _distances, _masks, configs, rollout_setup
 from ._vector_map import Indices, PointList, Values, check_grid, visible_mask
@@ -101,8 +101,8 @@ def catchment(
     grid, rules, report = configs(grid, rules, progress, options, "catchment")
     setup = rollout_setup(env, method, grid, rules, seed, method_set, options)
     masks, combos = _masks(setup.env, occlude, hidden)
-    check_grid(setup.env, grid.spacing, grid.clearance, max_points, copies=len(masks), what="trial")
-    check_moves(grid_count(setup.env.arena, grid.spacing) * len(masks), rules.max_steps, max_points)
+    points = check_grid(setup.env, grid, max_points, copies=len(masks), what="trial")
+    check_moves(len(points) * len(masks), rules.max_steps, max_points)
     report.start(None)  # the core counts the trials: the bar opens at its first report
     env, module, sensor, key = setup
     return catchment_area(env, module, sensor, grid, rules, key=key, masks=masks, hidden=combos, progress=report)
@@ -221,8 +221,8 @@ def rollout_request(
     env, module, sensor, key = rollout_setup(env, method, grid, rules, seed, method_set, options)
     masks, _ = _masks(env, occlude, None)
     if kind == "catchment":
-        check_grid(env, grid.spacing, grid.clearance, max_points, copies=len(masks), what="trial")
-        check_moves(grid_count(env.arena, grid.spacing) * len(masks), rules.max_steps, max_points)
+        points = check_grid(env, grid, max_points, copies=len(masks), what="trial")
+        check_moves(len(points) * len(masks), rules.max_steps, max_points)
     else:
         distances, trials = _distances(env, distances, trials, max_points, copies=len(masks))
         check_moves(len(distances) * trials * len(masks), rules.max_steps, max_points)

@@ -118,12 +118,13 @@ def check_step(env: Env, d) -> None:
 
 
 def check_grid(
-    env: Env, spacing: float, clearance: float, max_points: int = MAX_POINTS, copies: int = 1, what: str = "grid point"
+    env: Env, grid: Grid, max_points: int = MAX_POINTS, copies: int = 1, what: str = "grid point"
 ) -> np.ndarray:
-    """The docs/model.md §5 grid's points (`maps.grid_points`), built once and checked: `InputError` naming
+    """The points of `grid` (docs/model.md §5; `maps.grid_points`), built once and checked: `InputError` naming
     `spacing` when the grid (times `copies`, e.g. occlusion masks) has more than `max_points` points
     (`options._limits.check_size`, counted before the grid is built; `what` they are: grid points, or trials
     of a catchment) or no point clear of the landmarks."""
+    spacing, clearance = grid.spacing, grid.clearance
     count = limits.grid_count(env.arena, spacing)
     check_size(count * copies, max_points, "spacing", spacing, what)
     xmin, ymin, xmax, ymax = (float(v) for v in np.asarray(env.arena))
@@ -208,7 +209,7 @@ def _checked_map(env, method, grid: Grid, seed, hidden, batch_size, max_points, 
     env, module, sensor, heading, key, clearance = scene_request(
         env, method, grid.clearance, grid.heading_deg, seed, **options
     )
-    points = check_grid(env, grid.spacing, clearance, max_points)
+    points = check_grid(env, grid, max_points)
     batch_size = positive_int(batch_size, "batch_size")
     visible = visible_mask(env, hidden)
     request = dict(

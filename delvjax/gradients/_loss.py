@@ -23,6 +23,7 @@ from ..core.batching import traced_floats
 from ..core.checks import is_traced, positive
 from ..core.deprecation import keywords_after
 from ..core.errors import InputError
+from ..core.grid import Grid
 from ..core.maps import CLEARANCE, SPACING, grid_included, grid_points, random_headings, vector_map
 from ..core.methods import HomingMethod
 from ..core.scene import Env
@@ -55,7 +56,7 @@ def _setup(env, method, spacing, seed, clearance, heading_deg, max_points, optio
     if traced:  # which points are clear of the landmarks is computed in the program
         check_size(grid_count(env.arena, spacing), max_points, "spacing", spacing, "grid point")
     else:
-        check_grid(env, spacing, clearance, max_points)
+        check_grid(env, Grid(spacing=spacing, clearance=clearance), max_points)
     points = grid_points(env.arena, spacing)
     included = grid_included(env, points, clearance)
     headings = (

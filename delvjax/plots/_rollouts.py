@@ -81,8 +81,9 @@ def catchment_panel(
     ax.set_title(title, fontsize=10)
 
 
-def catchment_figure(env: Env, result: Catchment, spacing: float, title: str = "") -> Figure:
-    """Catchment map (Fig 4.5 style); with occlusion one panel per choice of hidden landmarks (Fig 5.10)."""
+def catchment_figure(env: Env, result: Catchment, spacing: float | None = None, title: str = "") -> Figure:
+    """Catchment map (Fig 4.5 style); with occlusion one panel per choice of hidden landmarks (Fig 5.10). The
+    squares' side: the catchment's own grid (`Catchment.grid`) unless `spacing` is given."""
     pct = result.catchment_pct()
     n = len(pct)
     cols = 1 if n == 1 else 2 if n <= 4 else 3 if n <= 9 else 4
