@@ -142,7 +142,7 @@ def table(results: dict[str, dict], s: dict) -> str:
         + f" cm; {METHOD}, soft, tau = sharpness = 0.01, spacing {s['spacing']:g} cm, seed 0",
         f"{'':44s}" + "".join(f"{d:>16s}" for d in ds),
         f"{'loss dtype / value':44s}"
-        + "".join(f"{r['value_dtype'] + ' ' + format(r['value'], '.6f'):>16s}" for r in results.values()),
+        + "".join(f"{r['value_dtype'] + ' ' + format(r['value'], '.6f'):>17s}" for r in results.values()),
     ]
 
     def row(label: str, values: list, fmt: str = "{:+16.3e}") -> None:

@@ -108,7 +108,7 @@ def random_headings(key: Array, n: int, start: Array | int = 0) -> Array:
     """Per-point uniform headings in [0, 2 pi), point i (counted from `start`) from fold_in(key_headings, i)."""
     _, _, k_head = stream_keys(key)
     keys = jax.vmap(partial(jax.random.fold_in, k_head))(start + jnp.arange(n))
-    return jax.vmap(lambda k: jax.random.uniform(k, (), minval=0.0, maxval=TWO_PI))(keys)
+    return jax.vmap(lambda k: jax.random.uniform(k, (), minval=0.0, maxval=TWO_PI, dtype=jnp.float32))(keys)
 
 
 @jax.jit

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import equinox as eqx
 import jax
+import jax.numpy as jnp
 from jax import Array
 
 from .settings import radians, setting
@@ -91,15 +92,15 @@ class Noise(eqx.Module):
         """Draws of an imagined unit movement (vector maps, the home record; docs/model.md §2.5):
         (true length, true turn psi, odometry's psi_hat, key of the observation)."""
         k_step, k_turn, k_odo, k_obs = jax.random.split(key, 4)
-        length = d * (1.0 + self.step * jax.random.normal(k_step))
-        psi = self.turn * jax.random.normal(k_turn)
-        return length, psi, psi + self.turn_odometry * jax.random.normal(k_odo), k_obs
+        length = d * (1.0 + self.step * jax.random.normal(k_step, dtype=jnp.float32))
+        psi = self.turn * jax.random.normal(k_turn, dtype=jnp.float32)
+        return length, psi, psi + self.turn_odometry * jax.random.normal(k_odo, dtype=jnp.float32), k_obs
 
     def rollout_move(self, key: Array, d: Real) -> tuple[Array, Array, Array, Array, Array]:
         """Draws of one rollout move (docs/model.md §5): (heading error, true length, psi, psi_hat,
         key of the observation); the length carries both the unit-move and the motion step noise."""
         k_draw, k_obs = jax.random.split(key)
-        z_heading, z_step, z_motion_step, z_turn, z_odometry = jax.random.normal(k_draw, (5,))
+        z_heading, z_step, z_motion_step, z_turn, z_odometry = jax.random.normal(k_draw, (5,), dtype=jnp.float32)
         length = d * (1.0 + self.step * z_step) * (1.0 + self.motion_step * z_motion_step)
         psi = self.turn * z_turn
         return self.motion_heading * z_heading, length, psi, psi + self.turn_odometry * z_odometry, k_obs
@@ -111,11 +112,11 @@ class Noise(eqx.Module):
 
     def compass_error(self, key: Array) -> Array:
         """Error of one compass reading, rad."""
-        return self.compass * jax.random.normal(key)
+        return self.compass * jax.random.normal(key, dtype=jnp.float32)
 
     def bearing_errors(self, key: Array, shape: tuple[int, ...]) -> Array:
         """Per-blob bearing errors, rad."""
-        return self.bearing * jax.random.normal(key, shape)
+        return self.bearing * jax.random.normal(key, shape, dtype=jnp.float32)
 
 
 class Sensor(eqx.Module):

@@ -150,21 +150,21 @@ def family(name: str) -> Family:
 
 
 def _uniform(key, shape, bounds):
-    return jax.random.uniform(key, shape, minval=bounds[0], maxval=bounds[1])
+    return jax.random.uniform(key, shape, minval=bounds[0], maxval=bounds[1], dtype=jnp.float32)
 
 
 def _bearings(key, fam: Family, k: int):
     """(k, n) bearings from home (radians) of `k` candidates, by the family's kind."""
     n = fam.n
     if fam.kind == "around":
-        return jax.random.uniform(key, (k, n), maxval=2 * math.pi)
+        return jax.random.uniform(key, (k, n), maxval=2 * math.pi, dtype=jnp.float32)
     if fam.kind == "side":
         k1, k2 = jax.random.split(key)
         half = math.radians(fam.sector_deg) / 2
-        centre = jax.random.uniform(k1, (k, 1), maxval=2 * math.pi)
-        return centre + jax.random.uniform(k2, (k, n), minval=-half, maxval=half)
+        centre = jax.random.uniform(k1, (k, 1), maxval=2 * math.pi, dtype=jnp.float32)
+        return centre + jax.random.uniform(k2, (k, n), minval=-half, maxval=half, dtype=jnp.float32)
     spacing = 2 * math.pi / n  # "square" (n = 4) and "ring": one common rotation
-    return jax.random.uniform(key, (k, 1), maxval=spacing) + spacing * jnp.arange(n)
+    return jax.random.uniform(key, (k, 1), maxval=spacing, dtype=jnp.float32) + spacing * jnp.arange(n)
 
 
 def _ranges(fam: Family, bounds) -> tuple:

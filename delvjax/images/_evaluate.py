@@ -191,7 +191,7 @@ def database_success_rate(
     trials = positive_int(trials, "trials")
     key = jax.random.PRNGKey(seed_value(seed))
     keys = [jax.random.fold_in(jax.random.fold_in(key, 11), round(100 * d)) for d in distances]  # per distance
-    phi = np.stack([np.asarray(jax.random.uniform(k, (trials,), maxval=2 * math.pi)) for k in keys])
+    phi = np.stack([np.asarray(jax.random.uniform(k, (trials,), maxval=2 * math.pi, dtype=jnp.float32)) for k in keys])
     d = np.asarray(distances)[:, None]
     starts = np.stack([db.home[0] + d * np.cos(phi), db.home[1] + d * np.sin(phi)], -1).reshape(-1, 2)
     lo, hi = np.asarray(db.arena[:2]), np.asarray(db.arena[2:])

@@ -46,7 +46,7 @@ def camera_noise(key: Array, image: Array, sigma: Real, gain_sigma: Real = 0.0) 
     """docs/images.md §5.1: a global brightness gain 1 + N(0, gain_sigma) (flicker, exposure) and
     independent noise of standard deviation sigma per pixel and channel (`pixel_normals`), clipped to [0, 1]."""
     k_gain, k_pix = jax.random.split(key)
-    gain = 1.0 + gain_sigma * jax.random.normal(k_gain)
+    gain = 1.0 + gain_sigma * jax.random.normal(k_gain, dtype=jnp.float32)
     return jnp.clip(image * gain + sigma * pixel_normals(k_pix, image.shape), 0.0, 1.0)
 
 

@@ -69,7 +69,7 @@ def one_trial(
         x, code, steps = carry
         nearest = jnp.argmin(jnp.sum((field.positions - x) ** 2, -1))
         ok = field.valid[nearest]
-        z = jax.random.normal(jax.random.fold_in(key, t), (2,))
+        z = jax.random.normal(jax.random.fold_in(key, t), (2,), dtype=jnp.float32)
         heading = jnp.where(ok, field.direction[nearest], 0.0) + noise[0] * z[0]
         moved = x + step * (1.0 + noise[1] * z[1]) * unit(heading)
         running = code == RUNNING

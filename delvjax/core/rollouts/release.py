@@ -39,10 +39,10 @@ def release_points(
         k_phi, k_x, k_head = jax.random.split(k, 3)
         if distance is None:
             lo, hi = env.arena[:2], env.arena[2:]
-            pos = lo + (hi - lo) * jax.random.uniform(k_x, (2,))
+            pos = lo + (hi - lo) * jax.random.uniform(k_x, (2,), dtype=jnp.float32)
         else:
-            pos = env.home + distance * unit(jax.random.uniform(k_phi, (), maxval=TWO_PI))
-        return pos, jax.random.uniform(k_head, (), maxval=TWO_PI)
+            pos = env.home + distance * unit(jax.random.uniform(k_phi, (), maxval=TWO_PI, dtype=jnp.float32))
+        return pos, jax.random.uniform(k_head, (), maxval=TWO_PI, dtype=jnp.float32)
 
     def one(t):
         keys = jax.vmap(partial(jax.random.fold_in, jax.random.fold_in(key, t)))(jnp.arange(tries))
