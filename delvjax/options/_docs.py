@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from ..core.sensor import Noise, Sensor
 from ._registry import public_classes
-from ._schema import all_options, extractor_options
+from ._schema import _shown_default, all_options, extractor_options
 
 OPTIONS_MARK = (
     "<!-- the table of options: made from the declarations when the site is built (docs/_ext/generated.py) -->"
@@ -21,13 +21,15 @@ def options_markdown() -> str:
     """The table of every option (flag, help, unit, check, default, owner), in declaration order."""
     rows = []
     for opt in {**all_options(), **extractor_options()}.values():  # extractor: options of --images
-        s = opt.setting
-        check = s.check + (f" <= {s.limit}" if s.limit else "") + (f": {', '.join(s.choices)}" if s.choices else "")
-        owner = "Sensor" if opt.owners[0] in (Sensor, Noise) else ", ".join(t.__name__ for t in opt.owners)
-        owner += f".{'noise.' if opt.owners[0] is Noise else ''}{opt.field}"
-        rows.append(
-            f"| `{opt.name}` | `{opt.flag}` | {s.help} | {s.unit or '-'} | {check} | {opt.shown_default} | `{owner}` |"
-        )
+        for owners, d in opt.variants():  # one row per distinct declaration (n_rho: Warping's, Warping2D's)
+            s = d.setting
+            check = s.check + (f" <= {s.limit}" if s.limit else "") + (f": {', '.join(s.choices)}" if s.choices else "")
+            owner = "Sensor" if owners[0] in (Sensor, Noise) else ", ".join(t.__name__ for t in owners)
+            owner += f".{'noise.' if owners[0] is Noise else ''}{d.field}"
+            rows.append(
+                f"| `{opt.name}` | `{opt.flag}` | {s.help} | {s.unit or '-'} | {check} | {_shown_default(d)} "
+                f"| `{owner}` |"
+            )
     return HEADER + "\n".join(rows) + "\n"
 
 

@@ -80,3 +80,10 @@ def test_one_name_with_two_kinds_of_value_is_a_developer_error():
 
     with pytest.raises(TypeError, match="'turn'"):
         _options((Other, Another))
+
+
+def test_the_docs_table_shows_each_method_s_declaration_of_a_shared_name():
+    from delvjax.options._docs import options_markdown
+
+    rows = [r for r in options_markdown().splitlines() if r.startswith("| `rho_min` |")]
+    assert len(rows) == 2 and "| 0.1 |" in rows[0] and "| 0 |" in rows[1]  # Warping's, Warping2D's default
