@@ -3,6 +3,7 @@
     python benchmarks/roughness.py [--spacing 25] [--json PATH]      # float32 and float64, one child each
     python benchmarks/roughness.py --dtype float64 [--json PATH]     # one precision, in this process
     python benchmarks/roughness.py --smoke                           # spacing 200, profile +-0.4 cm, h = 0.5
+    python benchmarks/roughness.py --method alv                      # another method (default delv-compass)
 
 `delvjax.homing_loss(env, "delv-compass", soft=True, tau=TAU, sharpness=VISIBILITY_WIDTH)` (0.01, 0.01: the
 defaults) on a 25 cm grid, seed 0, in a five-landmark world no test uses (`random_env(2026, 5)`), as a
@@ -15,7 +16,7 @@ function of landmark 0 (the loss through the public API only: landmarks replaced
    against `jax.grad` at the point, and whether their signs agree;
 3. `jax.grad` of landmark 0's x in float32 against float64 (x64 is a process-wide switch, so each precision
    runs in its own child process; float64 takes the same world's numbers as float64 arrays), with
-   `homing_loss_grad` beside it in float32, and a control with every heading fixed (`heading_deg=0`): under
+   `homing_loss_grad(..., smoothing_cm=None)` (the gradient at the point) beside it in float32, and a control with every heading fixed (`heading_deg=0`): under
    x64 `jax.random.uniform` draws float64 headings, other numbers than float32's, so with random headings the
    two precisions evaluate different grid samples, not only different roundings.
 
@@ -36,7 +37,7 @@ import jax
 import numpy as np
 
 DTYPES = ("float32", "float64")
-METHOD = "delv-compass"
+METHOD = "delv-compass"  # the issue's; --method picks another (alv shows the continuous loss of issue 56)
 WORLD = (2026, 5)  # random_env(seed, n): no test uses seed 2026
 COORDS = ("x", "y", "r")
 
@@ -115,7 +116,9 @@ def measure(dtype: str, spacing: float, extent: float, step: float, hs: list[flo
         "fixed_heading": {"value": float(loss(lm0, heading_deg=0.0)), "grad_x": float(fixed[0, 0])},
     }
     if dtype == "float32":  # the one-program gradient (it takes the landmarks as float32 in any mode)
-        _, grads = delvjax.homing_loss_grad(env, METHOD, spacing=spacing, seed=0, tau=TAU, sharpness=VISIBILITY_WIDTH)
+        _, grads = delvjax.homing_loss_grad(
+            env, METHOD, spacing=spacing, seed=0, tau=TAU, sharpness=VISIBILITY_WIDTH, smoothing_cm=None
+        )
         out["homing_loss_grad"] = dict(zip(COORDS, np.asarray(grads["landmarks"][0], np.float64).tolist()))
     out["world"] = {"name": world.name, "landmarks": np.asarray(world.landmarks, np.float64).tolist()}
     return out
@@ -185,7 +188,9 @@ def main() -> None:
     ap.add_argument("--smoke", action="store_true", help="tiny size: spacing 200, profile +-0.4 cm, h = 0.5")
     ap.add_argument("--json", type=Path, help="write the numbers here")
     ap.add_argument("--quiet", action="store_true", help="no table (a child of the two-precision run)")
+    ap.add_argument("--method", default=METHOD, help=f"delv, delv-compass, alv or acv (default {METHOD})")
     a = ap.parse_args()
+    globals()["METHOD"] = a.method  # one setting read by measure() and table() in this process and its children
     s = settings(a.smoke, a.spacing)
     t = time.perf_counter()
     if a.dtype:
@@ -193,6 +198,7 @@ def main() -> None:
         results = {a.dtype: measure(a.dtype, s["spacing"], s["extent"], s["step"], s["hs"])}
     else:
         passed = (["--smoke"] if a.smoke else []) + ([] if a.spacing is None else ["--spacing", str(a.spacing)])
+        passed += ["--method", a.method]
         results = {d: child(d, passed) for d in DTYPES}
     if not a.quiet:
         print(table(results, s))

@@ -30,8 +30,17 @@ for i, (g, lm) in enumerate(zip(d_landmarks, landmarks)):
     print(
         f"landmark {i} at ({x:.0f}, {y:.0f}) cm: d loss / d(x, y) = ({float(g[0]) * 100:+.4f}, {float(g[1]) * 100:+.4f}) per m"
     )
-# the same gradient and more in one call (reverse mode over every parameter at once)
-value2, grads = delvjax.homing_loss_grad("env1", "delv", spacing=100.0, bearing_noise_deg=1.0, tau=0.01)
+# the same gradient and more in one call (reverse mode over every parameter at once); smoothing_cm=None asks
+# for the gradient at the point, as jax.grad gives it
+kw = dict(spacing=100.0, bearing_noise_deg=1.0, tau=0.01)
+value2, grads = delvjax.homing_loss_grad("env1", "delv", smoothing_cm=None, **kw)
 print("homing_loss_grad gives:", ", ".join(sorted(grads)))
 assert abs(float(value2) - float(value)) < 1e-5
 assert jnp.allclose(grads["landmarks"], d_landmarks, rtol=1e-3, atol=1e-7)
+# what a researcher asks: the sensitivity at a stated scale, here the loss smoothed over 5 cm of every
+# landmark coordinate and 1 degree of each noise sigma (docs/differentiable.md), with its standard error
+value5, grads5 = delvjax.homing_loss_grad("env1", "delv", smoothing_cm=5.0, smoothing_deg=1.0, **kw)
+g, se = grads5["landmarks"][0], grads5["standard_error"]["landmarks"][0]
+print(
+    f"landmark 0 at 5 cm: d loss / d(x, y) = ({g[0] * 100:+.4f} +- {se[0] * 100:.4f}, {g[1] * 100:+.4f} +- {se[1] * 100:.4f}) per m"
+)

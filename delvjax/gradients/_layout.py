@@ -1,7 +1,9 @@
 """Landmark layouts designed for homing (docs/differentiable.md "Layout design").
 
 `optimise_layout` moves the landmarks (radii fixed) to minimise the soft homing loss of a
-method, averaged over every choice of `occlude` hidden landmarks, with optimistix's BFGS:
+method smoothed at a stated scale (docs/differentiable.md "Sensitivity at a stated scale": BFGS
+assumes a smooth objective, and the soft loss at the point is rough at the centimetre scale),
+averaged over every choice of `occlude` hidden landmarks, with optimistix's BFGS:
 
   * positions are x = lo + (hi - lo) sigmoid(u): every landmark stays inside the arena, r + WALL_CM
     from the walls, whatever u;
@@ -9,7 +11,8 @@ method, averaged over every choice of `occlude` hidden landmarks, with optimisti
     r_i + r_j + GAP_CM apart, so that the result is a valid environment (docs/model.md §7);
   * the loop is optimistix's own (init / step / terminate) written out, so each step reports progress.
 
-The layouts are then compared by the ordinary (hard) evaluation: catchment and error point rates.
+The layouts are then compared by the ordinary (hard) evaluation over several seeds: hard loss,
+catchment and error point rates, and whether each change exceeds the seed-to-seed spread.
 """
 
 from __future__ import annotations
@@ -30,11 +33,11 @@ from ..core.errors import InputError
 from ..core.maps import SPACING
 from ..core.rollouts import Catchment, Grid, catchment_summary, occlusion_masks
 from ..core.scene import Env
-from ..core.soft.loss import soft_loss
 from ..envs._presets import load_env, make_env, random_env
 from ..evaluate._progress import Progress, with_callbacks
 from ..evaluate._rollouts import catchment
-from ._loss import TAU, LossProblem, loss_problem
+from ._loss import TAU, LossProblem, homing_loss, loss_problem
+from ._smoothing import SAMPLES, SMOOTHING_CM, Smoothing, check_smoothing, smoothed_loss, smoothing_draws
 
 WALL_CM = 10.0
 HOME_GAP_CM = 40.0
@@ -42,12 +45,15 @@ GAP_CM = 20.0
 PENALTY = 1e-3  # per cm^2 of violation
 OPT_SPACING = 50.0  # grid of the objective (the hard comparison uses the caller's spacing)
 STEPS = 60
+SEEDS = 3  # evaluation seeds of the hard comparison (the improvement is judged against their spread)
 
 
 @dataclass
 class LayoutResult:
-    """The start and optimised environments, the soft objective along the way, the hard comparison
-    rows (catchment and error rates of both layouts) and the two catchments they come from."""
+    """The start and optimised environments, the smoothed objective along the way, the hard comparison
+    rows (catchment, error rates and hard loss of both layouts, means over the evaluation seeds),
+    the rows of each seed, the verdict on the improvement against the seed-to-seed spread, and the
+    two catchments of the first seed."""
 
     start: Env
     optimised: Env
@@ -57,6 +63,8 @@ class LayoutResult:
     method: str
     occlude: int
     catchments: tuple[Catchment, Catchment]
+    per_seed: list[dict]
+    verdict: dict
 
 
 def _bounds(env: Env) -> tuple[np.ndarray, np.ndarray]:
@@ -67,27 +75,11 @@ def _bounds(env: Env) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _objective(u, args):
-    problem, masks, lo, hi, n = args
+    problem, masks, lo, hi, n, sigmas, eps = args
     lm = problem.env.landmarks
     pos = lo + (hi - lo) * jax.nn.sigmoid(u)
-    landmarks = lm.at[:n, :2].set(pos)
-    env = eqx.tree_at(lambda e: e.landmarks, problem.env, landmarks)
-    loss = jnp.mean(
-        jax.vmap(
-            lambda vis: soft_loss(
-                env,
-                problem.points,
-                problem.included,
-                problem.headings,
-                problem.key,
-                problem.sensor,
-                problem.method,
-                problem.tau,
-                problem.sharpness,
-                vis,
-            )
-        )(masks)
-    )
+    params = dict(problem.params, landmarks=problem.params["landmarks"].at[:n, :2].set(pos))
+    loss = jnp.mean(jax.vmap(lambda vis: smoothed_loss(params, problem, sigmas, eps, vis))(masks))
     r = lm[:n, 2]
     home = jnp.linalg.norm(pos - problem.env.home, axis=-1)
     diff = pos[:, None] - pos[None]
@@ -178,25 +170,37 @@ def optimise_layout(
     seed: int = 0,
     tau: float = TAU,
     steps: int = STEPS,
+    smoothing_cm: float | None = SMOOTHING_CM,
+    samples: int = SAMPLES,
+    seeds: int = SEEDS,
     progress: Progress | Callable[[int, int, float], None] | None = None,
     **options,
 ) -> LayoutResult:
-    """Optimise the landmark positions of `env` for `method` (module docstring); compare the start and
-    the result by catchment and error rates on the `spacing` grid under every choice of `occlude`
-    hidden landmarks. `progress`: a `Progress` (evaluate/_progress.py): `start(steps)` once every option
-    is valid, then `(1, steps)` after each step with the step's soft loss as the phase."""
+    """Optimise the landmark positions of `env` for `method` (module docstring) on the soft loss
+    smoothed at `smoothing_cm` (`samples` common draws; None: the soft loss at the point); compare the
+    start and the result by the hard loss, catchment and error rates on the `spacing` grid under every
+    choice of `occlude` hidden landmarks, for `seeds` evaluation seeds (seed, seed + 1, ...), and say
+    whether the change is within the seed-to-seed spread. `progress`: a `Progress`
+    (evaluate/_progress.py): `start(steps)` once every option is valid, then `(1, steps)` after each
+    step with the step's objective as the phase."""
     report, old = _layout_progress(progress, options)
     env = load_env(env)
     problem: LossProblem = loss_problem(env, method, spacing=OPT_SPACING, seed=seed, tau=tau, **options)
     k = occlusion_count(occlude, env.n_landmarks) if occlude else 0
     steps = positive_int(steps, "steps")
+    seeds = positive_int(seeds, "seeds")
+    arena = np.asarray(env.arena, np.float64)
+    smoothing = check_smoothing(
+        smoothing_cm, Smoothing().deg, Smoothing().fraction, samples, float(max(arena[2:] - arena[:2]))
+    )
+    problem, sigmas, eps = smoothing_draws(problem, smoothing)
     n = env.n_landmarks
     masks = occlusion_masks(env, k)[0] if k else np.asarray(env.valid, bool)[None]
     lo, hi = _bounds(env)
     pos0 = np.asarray(env.landmarks, np.float64)[np.asarray(env.valid), :2]
     frac = np.clip((pos0 - lo) / (hi - lo), 1e-3, 1 - 1e-3)
     u0 = jnp.asarray(np.log(frac / (1 - frac)), jnp.float32)
-    args = (problem, jnp.asarray(masks), jnp.asarray(lo, jnp.float32), jnp.asarray(hi, jnp.float32), n)
+    args = (problem, jnp.asarray(masks), jnp.asarray(lo, jnp.float32), jnp.asarray(hi, jnp.float32), n, sigmas, eps)
     report.start(steps)
     t0 = time.perf_counter()
     u, history = _minimise(args, u0, steps, report, old)
@@ -210,14 +214,17 @@ def optimise_layout(
         pad_to=env.landmarks.shape[0],
     )  # the start's shape: its compiled programs serve both
     seconds = time.perf_counter() - t0
-    catchments = tuple(
-        catchment(e, method, seed=seed, occlude=k or None, grid=Grid(spacing=spacing), **options)
-        for e in (env, optimised)
-    )
-    rows = [
-        _hard_row(label, e, c, method, k, q)
-        for label, e, c, q in zip(("start", "optimised"), (env, optimised), catchments, (history[0], history[-1]))
-    ]
+    per_seed, first = [], None
+    for s in range(seed, seed + seeds):
+        pair = tuple(
+            catchment(e, method, seed=s, occlude=k or None, grid=Grid(spacing=spacing), **options)
+            for e in (env, optimised)
+        )
+        first = first or pair
+        for label, e, c, q in zip(("start", "optimised"), (env, optimised), pair, (history[0], history[-1])):
+            loss = float(homing_loss(e, method, spacing=spacing, seed=s, soft=False, **options))
+            per_seed.append({**_hard_row(label, e, c, method, k, q), "seed": s, "hard_loss": loss})
+    rows = [_mean_row([r for r in per_seed if r["layout"] == label]) for label in ("start", "optimised")]
     return LayoutResult(
         start=env,
         optimised=optimised,
@@ -226,8 +233,52 @@ def optimise_layout(
         seconds=seconds,
         method=method,
         occlude=k,
-        catchments=catchments,
+        catchments=first,
+        per_seed=per_seed,
+        verdict=layout_verdict(per_seed),
     )
+
+
+def _mean_row(rows: list[dict]) -> dict:
+    """One layout's rows over the seeds: the means, with the seed-to-seed standard deviation beside
+    catchment, e>45 and the hard loss."""
+    out = {**rows[0], "seeds": len(rows)}
+    out.pop("seed")
+    for col in ("catchment_pct", "catchment_min_pct", "gt45_pct", "gt90_pct", "hard_loss"):
+        values = np.array([r[col] for r in rows], np.float64)
+        out[col] = float(values.mean())
+        if col in ("catchment_pct", "gt45_pct", "hard_loss"):
+            out[f"{col}_sd"] = float(values.std(ddof=1)) if len(values) > 1 else float("nan")
+    return out
+
+
+def layout_verdict(per_seed: list[dict]) -> dict:
+    """Per measure (hard loss, catchment, e>45): the mean paired change optimised - start over the
+    seeds, its standard error, and whether it lies within two standard errors of 0 (one seed: unknown)."""
+    out = {}
+    for col in ("hard_loss", "catchment_pct", "gt45_pct"):
+        start = np.array([r[col] for r in per_seed if r["layout"] == "start"], np.float64)
+        end = np.array([r[col] for r in per_seed if r["layout"] == "optimised"], np.float64)
+        diff = end - start
+        se = float(diff.std(ddof=1) / np.sqrt(len(diff))) if len(diff) > 1 else float("nan")
+        within = None if len(diff) < 2 else bool(abs(diff.mean()) <= 2 * se)
+        reading = (
+            "no change"
+            if not np.any(diff)
+            else "one seed: cannot tell"
+            if within is None
+            else "within seed noise"
+            if within
+            else "beyond seed noise"
+        )
+        out[col] = {
+            "change": float(diff.mean()),
+            "se": se,
+            "seeds": len(diff),
+            "within_seed_noise": within,
+            "reading": reading,
+        }
+    return out
 
 
 def _hard_row(label: str, env: Env, c: Catchment, method: str, k: int, soft_objective: float) -> dict:

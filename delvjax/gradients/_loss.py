@@ -27,9 +27,9 @@ from ..core.grid import Grid
 from ..core.maps import CLEARANCE, SPACING, grid_included, grid_points, random_headings, vector_map
 from ..core.methods import HomingMethod
 from ..core.scene import Env
-from ..core.soft.loss import soft_loss
+from ..core.soft.loss import soft_included, soft_loss
 from ..core.soft.methods import check_differentiable
-from ..core.soft.sensing import VISIBILITY_WIDTH
+from ..core.soft.sensing import EDGE_CM, VISIBILITY_WIDTH
 from ..core.types import Real
 from ..evaluate._vector_map import check_grid, scene_request
 from ..options._limits import MAX_POINTS, check_size, grid_count
@@ -122,7 +122,8 @@ def homing_loss(
         err = np.radians(np.asarray(vm.error_deg))[np.asarray(vm.included)]
         return jnp.asarray(np.mean(1.0 - np.cos(err)))
     check_differentiable(module)
-    return _loss(env, points, included, headings, key, sensor, module, jnp.float32(tau), jnp.float32(sharpness))
+    weights = soft_included(env, points, clearance)  # the grid rule with soft edges (docs/differentiable.md)
+    return _loss(env, points, weights, headings, key, sensor, module, jnp.float32(tau), jnp.float32(sharpness))
 
 
 _loss = jax.jit(soft_loss)
@@ -130,7 +131,9 @@ _loss = jax.jit(soft_loss)
 
 class LossProblem(NamedTuple):
     """A soft homing-loss evaluation ready to run: the differentiable parameters (`params`:
-    landmarks (L, 3), home (2,), d, noise (a `Noise`), scale for DELV) and everything held fixed."""
+    landmarks (L, 3), home (2,), d, noise (a `Noise`), scale for DELV) and everything held fixed
+    (`included`: the hard grid rule at the given landmarks; the loss weighs points by
+    `soft_included` of the landmarks it is given)."""
 
     params: dict
     env: Env
@@ -143,6 +146,8 @@ class LossProblem(NamedTuple):
     tau: jax.Array
     sharpness: jax.Array
     n_landmarks: int
+    clearance: jax.Array
+    edge: jax.Array  # cm: the soft edge of the grid rule (`soft_included`)
 
 
 def loss_problem(
@@ -185,16 +190,20 @@ def loss_problem(
         jnp.float32(tau),
         jnp.float32(sharpness),
         env.n_landmarks,
+        jnp.asarray(clearance, jnp.float32),
+        jnp.float32(EDGE_CM),
     )
 
 
-def problem_loss(params: dict, problem: LossProblem) -> jax.Array:
-    """The soft loss of `problem` with `params` in place of its own (a pure, differentiable function)."""
+def problem_loss(params: dict, problem: LossProblem, visible: jax.Array | None = None) -> jax.Array:
+    """The soft loss of `problem` with `params` in place of its own (a pure, differentiable function);
+    `visible` (L,): the landmarks the current views see (occlusion; None: all)."""
     e = eqx.tree_at(lambda x: (x.landmarks, x.home), problem.env, (params["landmarks"], params["home"]))
     s = eqx.tree_at(lambda x: (x.d, x.noise), problem.sensor, (params["d"], params["noise"]))
     m = eqx.tree_at(lambda x: x.scale, problem.method, params["scale"]) if "scale" in params else problem.method
+    weights = soft_included(e, problem.points, problem.clearance, problem.edge)
     return soft_loss(
-        e, problem.points, problem.included, problem.headings, problem.key, s, m, problem.tau, problem.sharpness
+        e, problem.points, weights, problem.headings, problem.key, s, m, problem.tau, problem.sharpness, visible
     )
 
 
@@ -202,29 +211,6 @@ def problem_loss(params: dict, problem: LossProblem) -> jax.Array:
 def problem_value_and_grad(problem: LossProblem) -> tuple[jax.Array, dict]:
     """Quality and its gradient with respect to every parameter, reverse mode, one program."""
     return jax.value_and_grad(problem_loss)(problem.params, problem)
-
-
-@keywords_after(2, ("spacing", "seed", "tau", "sharpness", "heading_deg", "clearance", "max_points"))
-def homing_loss_grad(
-    env: str | Path | Env,
-    method: str | HomingMethod = "delv",
-    *,
-    spacing: float = SPACING,
-    seed: int = 0,
-    tau: float = TAU,
-    sharpness: float = VISIBILITY_WIDTH,
-    heading_deg: float | None = None,
-    clearance: Real = CLEARANCE,
-    max_points: int = MAX_POINTS,
-    **options,
-) -> tuple[float, dict]:
-    """`homing_loss` (soft) and its gradient by reverse mode in one program: a dict with
-    landmarks (N, 3) per [x, y, r] cm, home (2,) per cm, d per cm, scale per cm (DELV only) and
-    each noise sigma under its option name (per degree for *_deg, per unit for the step factors).
-    The grid points and their headings are held fixed; noise is differentiated pathwise."""
-    problem = loss_problem(env, method, spacing, seed, tau, sharpness, heading_deg, clearance, max_points, **options)
-    value, grads = problem_value_and_grad(problem)
-    return float(value), readable_grads(grads, problem.n_landmarks)
 
 
 def readable_grads(grads: dict, n_landmarks: int) -> dict:

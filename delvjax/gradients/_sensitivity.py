@@ -17,7 +17,9 @@ from ..core.maps import SPACING
 from ..core.scene import Env
 from ..envs._presets import load_env
 from ..evaluate import _vector_map as api
-from ._loss import TAU, homing_loss, homing_loss_grad, loss_problem
+from ._loss import TAU, homing_loss, loss_problem
+from ._profile import loss_profile
+from ._smoothing import SAMPLES, SMOOTHING_CM, SMOOTHING_DEG, SMOOTHING_FRACTION, check_smoothing, homing_loss_grad
 
 SENSITIVITY_METHODS = ("delv", "alv", "acv", "warping")
 # the operating point at which sensitivities are taken: noise a real robot has (docs/differentiable.md)
@@ -27,6 +29,7 @@ NOMINAL = {"d": 50.0, "bearing_noise_deg": 1.0, "odometry_turn_noise_deg": 1.0, 
 UNITS = {"d": 10.0, "bearing_noise_deg": 1.0, "odometry_turn_noise_deg": 1.0, "compass_noise_deg": 1.0}
 SETTING_UNITS = {"d": "cm", "bearing_noise_deg": "deg", "odometry_turn_noise_deg": "deg", "compass_noise_deg": "deg"}
 FD_STEP = {"d": 5.0, "bearing_noise_deg": 0.5, "odometry_turn_noise_deg": 0.5, "compass_noise_deg": 0.5}
+FD_TEXT = ", ".join(f"{k} {v:g}" for k, v in FD_STEP.items())
 READS = {"compass_noise_deg": ("alv", "acv")}  # parameters some methods never read (their sensitivity is 0)
 
 
@@ -36,10 +39,21 @@ def _options(method: str) -> dict:
 
 
 def check_sensitivity(
-    env: str | Path | Env, methods=SENSITIVITY_METHODS, spacing: float = SPACING, seed: int = 0, tau: float = TAU
+    env: str | Path | Env,
+    methods=SENSITIVITY_METHODS,
+    spacing: float = SPACING,
+    seed: int = 0,
+    tau: float = TAU,
+    smoothing_cm: float | None = SMOOTHING_CM,
+    smoothing_deg: float = SMOOTHING_DEG,
+    samples: int = SAMPLES,
 ) -> Env:
     """Validate everything `sensitivity` takes, before any work (`InputError` naming the field)."""
     env = load_env(env)
+    arena = env.arrays().arena
+    check_smoothing(
+        smoothing_cm, smoothing_deg, SMOOTHING_FRACTION, samples, float(max(arena[2] - arena[0], arena[3] - arena[1]))
+    )
     if isinstance(methods, str) or not methods:
         raise InputError("methods", methods, f"must be a non-empty list of {', '.join(SENSITIVITY_METHODS)}")
     for m in methods:
@@ -60,13 +74,18 @@ def sensitivity(
     spacing: float = SPACING,
     seed: int = 0,
     tau: float = TAU,
+    smoothing_cm: float | None = SMOOTHING_CM,
+    smoothing_deg: float = SMOOTHING_DEG,
+    samples: int = SAMPLES,
     progress: Callable[[str], None] | None = None,
 ) -> dict:
     """Per method: loss at the operating point, its gradient with respect to every landmark
-    [x, y, r] (soft methods), and d loss per unit of d and of each noise sigma. Returns
-    {"env", "methods": {name: {...}}, "landmark_rows", "parameter_rows"}."""
+    [x, y, r] (soft methods, smoothed at `smoothing_cm` / `smoothing_deg` with its standard error;
+    `homing_loss_grad`), and d loss per unit of d and of each noise sigma. Returns
+    {"env", "smoothing", "methods": {name: {...}}, "landmark_rows", "parameter_rows"}."""
     env = load_env(env)
-    out: dict = {"env": env, "methods": {}, "landmark_rows": [], "parameter_rows": []}
+    scale = {"smoothing_cm": smoothing_cm, "smoothing_deg": smoothing_deg, "samples": samples}
+    out: dict = {"env": env, "smoothing": scale, "methods": {}, "landmark_rows": [], "parameter_rows": []}
     for m in methods:
         if progress is not None:
             progress(m)
@@ -88,12 +107,33 @@ def sensitivity(
                     )
                 )
                 per[name] = (hi - lo) / (opts[name] + h - max(opts[name] - h, 0.0))
-            grads, how = None, "central difference, hard loss"
+            grads, se, how = None, None, f"central difference, hard loss (steps {FD_TEXT})"
         else:
-            value, g = homing_loss_grad(env, m, spacing=spacing, seed=seed, tau=tau, **opts)
+            value, g = homing_loss_grad(
+                env,
+                m,
+                spacing=spacing,
+                seed=seed,
+                tau=tau,
+                smoothing_cm=smoothing_cm,
+                smoothing_deg=smoothing_deg,
+                samples=samples,
+                **opts,
+            )
             per = {name: float(g.get(name, 0.0)) if name in opts else 0.0 for name in NOMINAL}
-            grads, how = g["landmarks"], f"reverse mode, soft loss (tau {tau:g})"
-        out["methods"][m] = {"loss": value, "per_setting_unit": per, "landmark_grad": grads, "how": how}
+            grads, se = g["landmarks"], g["standard_error"]
+            how = (
+                f"soft loss (tau {tau:g}) smoothed at {smoothing_cm:g} cm and {smoothing_deg:g} deg, {samples} draws"
+                if smoothing_cm is not None
+                else f"reverse mode at the point, soft loss (tau {tau:g})"
+            )
+        out["methods"][m] = {
+            "loss": value,
+            "per_setting_unit": per,
+            "landmark_grad": grads,
+            "landmark_se": None if se is None else se["landmarks"],
+            "how": how,
+        }
         for name in NOMINAL:
             out["parameter_rows"].append(
                 {
@@ -104,12 +144,14 @@ def sensitivity(
                     "d_loss_per_setting_unit": per[name],
                     "step": f"{UNITS[name]:g} {SETTING_UNITS[name]}",
                     "d_loss_per_step": per[name] * UNITS[name],
+                    "standard_error": float(se.get(name, 0.0)) if se is not None and name in opts else "",
                     "loss": value,
                     "how": how,
                 }
             )
         if grads is not None:
-            for i, (gx, gy, gr) in enumerate(np.asarray(grads)):
+            errors = np.full_like(np.asarray(grads), np.nan) if se is None else np.asarray(se["landmarks"])
+            for i, ((gx, gy, gr), (ex, ey, er)) in enumerate(zip(np.asarray(grads), errors)):
                 out["landmark_rows"].append(
                     {
                         "method": m,
@@ -118,6 +160,37 @@ def sensitivity(
                         "dq_dy_per_cm": float(gy),
                         "dq_dr_per_cm": float(gr),
                         "position_gradient_norm": float(np.hypot(gx, gy)),
+                        "se_dx": float(ex),
+                        "se_dy": float(ey),
+                        "se_dr": float(er),
+                        "smoothing_cm": "" if smoothing_cm is None else smoothing_cm,
                     }
                 )
+    return out
+
+
+def sensitivity_profiles(
+    env: str | Path | Env,
+    methods=SENSITIVITY_METHODS,
+    *,
+    spacing: float = SPACING,
+    seed: int = 0,
+    tau: float = TAU,
+    smoothing_cm: float | None = SMOOTHING_CM,
+    smoothing_deg: float = SMOOTHING_DEG,
+    samples: int = SAMPLES,
+    progress: Callable[[str], None] | None = None,
+) -> dict[str, list[dict]]:
+    """Per soft method at the operating point: `loss_profile` of landmark 0's x at the point, 1 cm and
+    `smoothing_cm` (over +-3 times the largest scale), the picture of what a sensitivity means."""
+    scales = tuple(dict.fromkeys((None, 1.0, smoothing_cm)))
+    extent = 3.0 * max(s for s in scales if s is not None) if any(scales[1:]) else 3.0
+    out = {}
+    for m in methods:
+        if m == "warping":
+            continue
+        if progress is not None:
+            progress(f"profile of {m} ...")
+        problem = loss_problem(env, m, spacing=spacing, seed=seed, tau=tau, **_options(m))
+        out[m] = loss_profile(problem, 0, "x", scales, extent=extent, samples=samples, deg=smoothing_deg)
     return out

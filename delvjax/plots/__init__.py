@@ -5,6 +5,7 @@ drawing pieces the studies compose into their own figures (panels, legends, styl
 from ._gradients import landmark_figure as landmark_figure
 from ._gradients import layout_figure as layout_figure
 from ._gradients import parameter_figure as parameter_figure
+from ._gradients import profile_figure as profile_figure
 from ._gradients import trap_figure as trap_figure
 from ._images import database_catchment_figure as database_catchment_figure
 from ._images import database_map_figure as database_map_figure

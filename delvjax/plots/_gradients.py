@@ -145,3 +145,26 @@ def layout_figure(result: LayoutResult, spacing: float) -> Figure:
     ax.ticklabel_format(axis="y", useOffset=True, style="sci", scilimits=(-2, 3))
     ax.set_title(f"{result.method}, occlude {result.occlude}: {result.seconds:.1f} s", fontsize=10)
     return fig
+
+
+def profile_figure(profiles: dict[str, list[dict]]) -> Figure:
+    """Per method: the loss along one landmark coordinate at each scale (`gradients._profile`), with the
+    sensitivity at t = 0 drawn as a dashed tangent of the same colour."""
+    n = max(len(profiles), 1)
+    fig, axes = subplots(1, n, figsize=(5.0 * n, 4.0), squeeze=False, layout="constrained")
+    for ax, (method, rows) in zip(axes[0], profiles.items()):
+        scales = list(dict.fromkeys(r["scale_cm"] for r in rows))
+        for i, scale in enumerate(scales):
+            part = [r for r in rows if r["scale_cm"] == scale]
+            t = np.array([r["t_cm"] for r in part])
+            q = np.array([r["loss"] for r in part])
+            label = "at the point" if scale == "" else f"smoothed at {scale:g} cm"
+            color = f"C{i}"
+            ax.plot(t, q, color=color, lw=1.2, label=label)
+            ax.plot(t, part[0]["loss_at_0"] + part[0]["slope_at_0"] * t, color=color, ls="--", lw=0.9)
+        r0 = rows[0]
+        ax.set_xlabel(f"landmark {r0['landmark']} {r0['coordinate']} moved by, cm")
+        ax.set_ylabel("homing loss (mean 1 - cos error)")
+        ax.set_title(f"{method}: loss and its sensitivity (dashed)", fontsize=10)
+        ax.legend(fontsize=8)
+    return fig

@@ -53,12 +53,14 @@ def test_analytic_views_agree_with_the_pixel_path_to_a_pixel_on_random_scenes():
         (pb, pw, pv), (ab, aw, weight) = (tuple(np.asarray(x) for x in t) for t in views)
         for i in range(len(pts)):
             seen = weight[i] > 0.5
+            inside = np.any(np.hypot(*(env.landmarks[:, :2] - pts[i]).T) <= np.asarray(env.landmarks[:, 2]) + 1)
+            if inside:  # within a centimetre of a surface the analytic weights fade (soft.sensing EDGE_CM)
+                continue
             lo, hi = ab[i][seen] - aw[i][seen] / 2, ab[i][seen] + aw[i][seen] / 2
             order = np.argsort(ab[i][seen])
             gaps = np.diff(np.concatenate([lo[order], [lo[order][0] + 2 * np.pi]])) - aw[i][seen][order]
-            inside = np.any(np.hypot(*(env.landmarks[:, :2] - pts[i]).T) <= np.asarray(env.landmarks[:, 2]) + 1)
             partly = np.any(np.asarray(env.valid) & (weight[i] < 0.99))  # a landmark (partly) behind another
-            if inside or partly or gaps.min() < 3 * PIXEL or (hi - lo).min() < 2 * PIXEL:
+            if partly or gaps.min() < 3 * PIXEL or (hi - lo).min() < 2 * PIXEL:
                 continue  # touching, overlapping or sub-pixel blobs merge or vanish in the pixel path
             compared += 1
             assert pv[i].sum() == seen.sum(), (seed, i)
@@ -72,7 +74,7 @@ def test_analytic_views_agree_with_the_pixel_path_to_a_pixel_on_random_scenes():
 def _soft_and_hard(name: str, sharpness: float, **options):
     """A function of tau: the difference between the soft and the hard directions of `name` on the same
     analytic views over env1 (50 cm grid), in degrees, where the hard method has a direction from at
-    least two blobs (one compiled program for every tau)."""
+    least two blobs and every visibility weight is 0 or 1 (one compiled program for every tau)."""
     env, module, sensor, _, key, _ = scene_request("env1", name, 10.0, None, 0, **options)
     env = env.arrays()
     vm = delvjax.vector_map("env1", name, seed=0, grid=Grid(spacing=50))
@@ -90,15 +92,18 @@ def _soft_and_hard(name: str, sharpness: float, **options):
             )
             _, a, v = soft_direction(module, home, view, tau)
             b, w = hard(as_unit_move(home, 360), as_unit_move(view, 360))
-            return a, v, b, w, jnp.sum(view.end.valid)
+            weights = jnp.concatenate([home.start.weight, view.start.weight, view.end.weight])
+            crisp = jnp.all((weights < 1e-6) | (weights > 1 - 1e-6))  # not within EDGE_CM of a surface or a tie
+            return a, v > 0.5, b, w, jnp.sum(view.end.weight > 0.5), crisp
 
         return jax.vmap(one)(vm.points, vm.heading, jnp.arange(vm.points.shape[0]))
 
     def differences(tau: float) -> np.ndarray:
-        a, v, b, w, n = (np.asarray(x) for x in run(jnp.float32(tau)))
+        a, v, b, w, n, crisp = (np.asarray(x) for x in run(jnp.float32(tau)))
         inc = np.asarray(vm.included)
-        assert np.array_equal(v[inc], w[inc])
-        ok = inc & w & (n >= 2)
+        assert np.array_equal(v[inc & crisp], w[inc & crisp])
+        assert crisp[inc].mean() > 0.95  # measured: 385 of 390 points (landmarks hidden at 220 of them)
+        ok = inc & w & (n >= 2) & crisp
         return np.degrees(np.abs(np.angle(np.exp(1j * (a - b)))))[ok]
 
     return differences
@@ -114,7 +119,7 @@ def test_soft_delv_tends_to_hard_delv_as_tau_goes_to_zero():
 
 @pytest.mark.parametrize("name", ["alv", "acv"])
 def test_soft_alv_and_acv_equal_the_hard_ones_at_small_tau_and_sharp_visibility(name):
-    assert _soft_and_hard(name, 1e-5, bearing_noise_deg=1.0)(1e-3).max() < 1e-3
+    assert _soft_and_hard(name, 1e-5, bearing_noise_deg=1.0)(1e-4).max() < 1e-3
 
 
 # env1 in the studies' six landmark slots on their tiny run's grid (`tests.cases.reproduce.TINY`): the
@@ -152,12 +157,14 @@ def _loss_at(name: str, landmarks=None, home=None, **options) -> float:
     ],
 )
 def test_gradients_match_central_finite_differences(name, options, scalars):
-    value, grads = delvjax.homing_loss_grad(FD_ENV, name, spacing=FD_SPACING, tau=0.05, **options)
+    value, grads = delvjax.homing_loss_grad(FD_ENV, name, spacing=FD_SPACING, tau=0.05, smoothing_cm=None, **options)
     assert value == pytest.approx(_loss_at(name, **options), rel=1e-5)
     lm = np.asarray(load_env("env1").landmarks, np.float64)
-    h = 0.05
     checks = []
     for i, j in [(0, 0), (1, 1), (3, 0), (2, 2)]:  # x, y and a radius
+        # the loss is continuous but has kinks (a start pose on a cylinder's surface: delv-compass's
+        # slope in landmark 2's radius changes 9-fold 0.03 cm away), so the radius step is smaller
+        h = 0.05 if j < 2 else 0.02
         a, b = lm.copy(), lm.copy()
         a[i, j] += h
         b[i, j] -= h
@@ -171,7 +178,7 @@ def test_gradients_match_central_finite_differences(name, options, scalars):
     home = np.asarray(FD_ENV.home, np.float64)
     checks.append(
         (
-            (_loss_at(name, home=home + [0, h], **options) - _loss_at(name, home=home - [0, h], **options)) / (2 * h),
+            (_loss_at(name, home=home + [0, 0.05], **options) - _loss_at(name, home=home - [0, 0.05], **options)) / 0.1,
             grads["home"][1],
             "home[1]",
         )
@@ -202,7 +209,9 @@ def test_a_grid_point_at_home_is_left_out_so_the_home_gradient_is_that_of_the_ot
     assert len(at_home) == 1
     included = np.asarray(grid_included(_ENV1, points, 10.0))
     assert not included[at_home[0]] and included.sum() > 10
-    value, grads = delvjax.homing_loss_grad(_ENV1, "alv", spacing=FD_SPACING, tau=0.05)  # FD_ENV's program
+    value, grads = delvjax.homing_loss_grad(
+        _ENV1, "alv", spacing=FD_SPACING, tau=0.05, smoothing_cm=None
+    )  # FD_ENV's program
     assert 0 < value < 2 and np.all(np.abs(grads["home"]) < 1.0), grads["home"]
 
 
@@ -262,7 +271,7 @@ def test_delvjax_sensitivity_writes_figures_and_numbers(tmp_path, capsys):
     params = list(csv.DictReader((out / "parameters.csv").open()))  # one name, one unit, in both files (issue 53)
     alv = {r["parameter"]: r for r in params if r["method"] == "alv"}
     for name, per in summary["methods"]["alv"]["d_loss_per_setting_unit"].items():
-        assert float(alv[name]["d_loss_per_setting_unit"]) == pytest.approx(per, rel=1e-6)
+        assert float(alv[name]["d_loss_per_setting_unit"]) == pytest.approx(per, rel=1e-5)  # 6 digits in the CSV
         assert alv[name]["setting_unit"] == summary["setting_units"][name]
     assert float(alv["d"]["d_loss_per_step"]) == pytest.approx(
         10 * summary["methods"]["alv"]["d_loss_per_setting_unit"]["d"]

@@ -57,10 +57,10 @@ def soft_vector(
     def one(heading):
         poses = map_poses(x, heading, k_views, 0, sensor)
         vec, _, valid = soft_direction(method, home, soft_observe(env, visible, poses, sensor, sharpness), tau)
-        return jnp.where(valid, rotate(vec, poses.heading_end), 0.0), valid
+        return valid * rotate(vec, poses.heading_end), valid  # validity in [0, 1] weighs each heading
 
     vecs, valid = jax.vmap(one)(TWO_PI * jnp.arange(FIELD_HEADINGS) / FIELD_HEADINGS)
-    return jnp.sum(vecs, axis=0) / jnp.maximum(jnp.sum(valid), 1)
+    return jnp.sum(vecs, axis=0) / jnp.maximum(jnp.sum(valid), 1.0)
 
 
 def classify(jac: Array) -> Array:
