@@ -38,7 +38,7 @@ from ._loss import TAU, LossProblem, loss_problem, problem_loss, problem_value_a
 SMOOTHING_CM = 5.0  # default scale for positions, radii, home, d and the quantization scale, cm
 SMOOTHING_DEG = 1.0  # default scale for the noise sigmas given in degrees
 SMOOTHING_FRACTION = 0.01  # default scale for the step-noise fractions
-SAMPLES = 8  # default draws (4 antithetic pairs): within 10 hard maps' time (benchmarks/bench_grad.py)
+SAMPLES = 8  # default draws (4 antithetic pairs): ALV 9.8 hard maps, ACV 16, DELV 38-50 (benchmarks/bench_grad.py)
 SMOOTHING_STREAM = 56  # the draws' stream, folded into the problem's key
 VIEW_CM = 50.0  # cm: the distance at which a move of sigma sets the visibility width (the unit move d)
 
