@@ -189,10 +189,7 @@ def optimise_layout(
     k = occlusion_count(occlude, env.n_landmarks) if occlude else 0
     steps = positive_int(steps, "steps")
     seeds = positive_int(seeds, "seeds")
-    arena = np.asarray(env.arena, np.float64)
-    smoothing = check_smoothing(
-        smoothing_cm, Smoothing().deg, Smoothing().fraction, samples, float(max(arena[2:] - arena[:2]))
-    )
+    smoothing = check_smoothing(smoothing_cm, Smoothing().deg, Smoothing().fraction, samples, env.arena)
     problem, sigmas, eps = smoothing_draws(problem, smoothing)
     n = env.n_landmarks
     masks = occlusion_masks(env, k)[0] if k else np.asarray(env.valid, bool)[None]

@@ -50,10 +50,7 @@ def check_sensitivity(
 ) -> Env:
     """Validate everything `sensitivity` takes, before any work (`InputError` naming the field)."""
     env = load_env(env)
-    arena = env.arrays().arena
-    check_smoothing(
-        smoothing_cm, smoothing_deg, SMOOTHING_FRACTION, samples, float(max(arena[2] - arena[0], arena[3] - arena[1]))
-    )
+    check_smoothing(smoothing_cm, smoothing_deg, SMOOTHING_FRACTION, samples, env.arrays().arena)
     if isinstance(methods, str) or not methods:
         raise InputError("methods", methods, f"must be a non-empty list of {', '.join(SENSITIVITY_METHODS)}")
     for m in methods:

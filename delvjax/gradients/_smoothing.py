@@ -63,14 +63,15 @@ class Smoothing(NamedTuple):
         }
 
 
-def check_smoothing(
-    cm: float | None, deg: float | None, fraction: float | None, samples: int, arena_cm: float
-) -> Smoothing:
+def check_smoothing(cm: float | None, deg: float | None, fraction: float | None, samples: int, arena) -> Smoothing:
     """`InputError` naming the option for a scale that is not positive, a length scale larger than
-    the arena, or a sample count that is not an even number >= 2; None for `cm` means no smoothing."""
+    the arena (xmin, ymin, xmax, ymax), or a sample count that is not an even number >= 2; None for
+    `cm` means no smoothing."""
     if cm is None:
         return Smoothing(None, None, None, samples)
     cm = positive(cm, "smoothing_cm")
+    xmin, ymin, xmax, ymax = (float(v) for v in arena)
+    arena_cm = max(xmax - xmin, ymax - ymin)
     if cm > arena_cm:
         raise InputError("smoothing_cm", cm, f"must not exceed the arena's size ({arena_cm:g} cm)")
     deg = positive(deg, "smoothing_deg")
@@ -205,9 +206,7 @@ def homing_loss_grad(
     `samples` common random draws; smoothing_cm=None: the exact gradient of the soft loss at the
     point (rough at the centimetre scale). The grid points and their headings are held fixed."""
     problem = loss_problem(env, method, spacing, seed, tau, sharpness, heading_deg, clearance, max_points, **options)
-    arena = jnp.asarray(problem.env.arena)
-    size = float(max(arena[2] - arena[0], arena[3] - arena[1]))
-    smoothing = check_smoothing(smoothing_cm, smoothing_deg, smoothing_fraction, samples, size)
+    smoothing = check_smoothing(smoothing_cm, smoothing_deg, smoothing_fraction, samples, problem.env.arena)
     if smoothing.cm is None:
         value, grads = problem_value_and_grad(problem)
         se = None
