@@ -115,6 +115,7 @@ def measure(dtype: str, spacing: float, extent: float, step: float, hs: list[flo
         "central": {"h_cm": hs, **central},
         "fixed_heading": {"value": float(loss(lm0, heading_deg=0.0)), "grad_x": float(fixed[0, 0])},
     }
+    out["smoothed"] = smoothed(env, spacing, float_type)
     if dtype == "float32":  # the one-program gradient (it takes the landmarks as float32 in any mode)
         _, grads = delvjax.homing_loss_grad(
             env, METHOD, spacing=spacing, seed=0, tau=TAU, sharpness=VISIBILITY_WIDTH, smoothing_cm=None
@@ -122,6 +123,32 @@ def measure(dtype: str, spacing: float, extent: float, step: float, hs: list[flo
         out["homing_loss_grad"] = dict(zip(COORDS, np.asarray(grads["landmarks"][0], np.float64).tolist()))
     out["world"] = {"name": world.name, "landmarks": np.asarray(world.landmarks, np.float64).tolist()}
     return out
+
+
+def smoothed(env, spacing: float, float_type) -> dict:
+    """The sensitivity at the default stated scale (`homing_loss_grad`'s 5 cm, 8 draws) computed in `float_type`:
+    the API's problem with every float leaf cast (the draws stay float32 numbers, so both precisions smooth
+    with the same sample); every landmark's x, y, r and their standard errors."""
+    import jax.numpy as jnp
+
+    from delvjax.core.maps import CLEARANCE
+    from delvjax.core.soft.sensing import VISIBILITY_WIDTH
+    from delvjax.gradients._loss import TAU, loss_problem
+    from delvjax.gradients._smoothing import check_smoothing, smoothed_value_and_grad
+    from delvjax.options._limits import MAX_POINTS
+
+    problem = loss_problem(env, METHOD, spacing, 0, TAU, VISIBILITY_WIDTH, None, CLEARANCE, MAX_POINTS)
+    cast = jax.tree.map(
+        lambda x: x.astype(float_type) if jnp.issubdtype(jnp.result_type(x), jnp.floating) else x, problem
+    )
+    value, grads, se = smoothed_value_and_grad(cast, check_smoothing(5.0, 1.0, 0.01, 8, problem.env.arena))
+    n = problem.n_landmarks
+    return {
+        "value": float(value),
+        "landmarks": np.asarray(grads["landmarks"][:n], np.float64).tolist(),
+        "se": np.asarray(se["landmarks"][:n], np.float64).tolist(),
+        "dtype": str(grads["landmarks"].dtype),
+    }
 
 
 def child(dtype: str, argv: list[str]) -> dict:
@@ -178,6 +205,17 @@ def table(results: dict[str, dict], s: dict) -> str:
     row("   homing_loss_grad (float32)", [r.get("homing_loss_grad", {}).get("x") for r in results.values()])
     row("   jax.grad, heading_deg = 0 (control)", [r["fixed_heading"]["grad_x"] for r in results.values()])
     row("   loss, heading_deg = 0 (control)", [r["fixed_heading"]["value"] for r in results.values()], "{:16.8f}")
+    sm = [r["smoothed"] for r in results.values()]
+    lines.append("   at the stated scale (homing_loss_grad, 5 cm, 8 draws), computed in each precision")
+    row("   d/dx of landmark 0", [q["landmarks"][0][0] for q in sm])
+    row("   its standard error", [q["se"][0][0] for q in sm])
+    if len(sm) == 2:
+        a, b = (np.asarray(q["landmarks"]) for q in sm)
+        rel = np.abs(a - b) / np.maximum(np.abs(b), 1e-12)
+        lines.append(
+            f"   float32 vs float64 over every landmark's x, y, r: largest |difference| / |float64| "
+            f"{100 * rel.max():.2g} %, median {100 * np.median(rel):.2g} %"
+        )
     return "\n".join(lines)
 
 

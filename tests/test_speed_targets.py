@@ -54,11 +54,17 @@ def test_a_target_marked_met_is_on_the_right_side_of_its_threshold():
 )
 def test_each_target_points_the_way_the_issue_asks(word, op):
     """Smaller is better for compile share, start-up and the L = 32 / L = 8 ratio; larger for loop / sweep
-    and 1 device / every core: a flipped sign would mark 0.87x met against >= 1.5x."""
+    and 1 core / every core: a flipped sign would mark 0.87x met against >= 1.5x."""
     ops = {t[3] for t in speed_targets.TARGETS if word in t[0]}
     assert ops == {op}
     assert speed_targets.met(">=", 0.87, 1.5) is False and speed_targets.met("<", 635.0, 480.0) is False
     assert speed_targets.met("<=", 20.0, 20.0) is True and speed_targets.met("<", 1.41, 2.0) is True
+
+
+def test_every_target_has_its_own_name():
+    """`ratios` keys each script's values by target: two rows of one name would read one value twice."""
+    names = [t[0] for t in speed_targets.TARGETS]
+    assert len(set(names)) == len(names)
 
 
 def test_a_stale_block_or_an_unmeasured_row_is_caught():
