@@ -5,13 +5,21 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..core.errors import warn
 from ..core.maps import SPACING
 from ..envs._presets import env_to_dict
 from ..evaluate._progress import OnStart
 from ..gradients._layout import SEEDS, STEPS, optimise_layout, start_layout
 from ..gradients._loss import TAU
+from ..gradients._sensitivity import (
+    RESOLVED_SE,
+    SETTING_UNITS,
+    check_sensitivity,
+    sensitivity,
+    sensitivity_profiles,
+    unresolved_counts,
+)
 from ..gradients._sensitivity import SENSITIVITY_METHODS as METHODS
-from ..gradients._sensitivity import SETTING_UNITS, check_sensitivity, sensitivity, sensitivity_profiles
 from ..gradients._smoothing import SAMPLES, SMOOTHING_CM, SMOOTHING_DEG
 from ..gradients._traps import find_traps
 from ..options._setup import NOISE_OPTIONS
@@ -102,6 +110,7 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
         **scale,
         progress=lambda m: progress(f"sensitivity of {m} on {env.name} ..."),
     )
+    unresolved = unresolved_counts(result)
     summary = {
         "env": env.name,
         "spacing": args.spacing,
@@ -119,6 +128,10 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
                     for row in result["parameter_rows"]
                     if row["method"] == m and row["standard_error"] != ""
                 },
+                # derivatives whose sign the draws leave open: |d| <= 2 standard errors (landmarks x, y, r and settings)
+                "within_noise": None
+                if m not in unresolved
+                else {"count": unresolved[m][0], "of": unresolved[m][1], "rule": f"|d| <= {RESOLVED_SE:g} SE"},
             }
             for m, r in result["methods"].items()
         },
@@ -135,6 +148,13 @@ def cmd_sensitivity(args: argparse.Namespace) -> int:
             )
             files.figure(profile_figure(profiles), paths[5], "--out")
             files.rows_csv(paths[6], [dict(method=m, **r) for m, rows in profiles.items() for r in rows], "--out")
+    for m, (k, n) in unresolved.items():
+        if k:
+            warn(
+                f"{m}: {k} of {n} derivatives are within {RESOLVED_SE:g} standard errors of 0 at this scale "
+                f"({args.samples} draws): their sign is not known (resolved_* = 0 in the CSVs); more --samples "
+                "or a larger --smoothing-cm narrow them"
+            )
     print("wrote " + ", ".join(str(p) for p in paths))
     return 0
 

@@ -31,6 +31,29 @@ SETTING_UNITS = {"d": "cm", "bearing_noise_deg": "deg", "odometry_turn_noise_deg
 FD_STEP = {"d": 5.0, "bearing_noise_deg": 0.5, "odometry_turn_noise_deg": 0.5, "compass_noise_deg": 0.5}
 FD_TEXT = ", ".join(f"{k} {v:g}" for k, v in FD_STEP.items())
 READS = {"compass_noise_deg": ("alv", "acv")}  # parameters some methods never read (their sensitivity is 0)
+RESOLVED_SE = 2.0  # a smoothed derivative is "resolved" when |value| > 2 standard errors: its sign is known
+
+
+def resolved(value, se):
+    """Whether a derivative's sign is known from its draws: |value| > RESOLVED_SE x its standard error
+    (elementwise); "" where it has no standard error (the gradient at the point, a central difference)."""
+    if se is None:
+        return np.full(np.shape(value), "", dtype=object) if np.ndim(value) else ""
+    out = np.abs(np.asarray(value)) > RESOLVED_SE * np.asarray(se)
+    return out if np.ndim(out) else bool(out)
+
+
+def unresolved_counts(result: dict) -> dict[str, tuple[int, int]]:
+    """Per method whose derivatives carry standard errors: (how many are within RESOLVED_SE standard errors
+    of 0, how many there are), over every landmark's x, y, r and every setting it reads."""
+    out = {}
+    for m in result["methods"]:
+        flags = [r[f"resolved_d{c}"] for r in result["landmark_rows"] if r["method"] == m for c in "xyr"]
+        flags += [r["resolved"] for r in result["parameter_rows"] if r["method"] == m]
+        flags = [f for f in flags if f != ""]
+        if flags:
+            out[m] = (sum(not f for f in flags), len(flags))
+    return out
 
 
 def _options(method: str) -> dict:
@@ -142,13 +165,15 @@ def sensitivity(
                     "step": f"{UNITS[name]:g} {SETTING_UNITS[name]}",
                     "d_loss_per_step": per[name] * UNITS[name],
                     "standard_error": float(se.get(name, 0.0)) if se is not None and name in opts else "",
+                    "resolved": resolved(per[name], se.get(name)) if se is not None and name in opts else "",
                     "loss": value,
                     "how": how,
                 }
             )
         if grads is not None:
             errors = np.full_like(np.asarray(grads), np.nan) if se is None else np.asarray(se["landmarks"])
-            for i, ((gx, gy, gr), (ex, ey, er)) in enumerate(zip(np.asarray(grads), errors)):
+            known = resolved(np.asarray(grads), None if se is None else errors)
+            for i, ((gx, gy, gr), (ex, ey, er), (kx, ky, kr)) in enumerate(zip(np.asarray(grads), errors, known)):
                 out["landmark_rows"].append(
                     {
                         "method": m,
@@ -160,6 +185,9 @@ def sensitivity(
                         "se_dx": float(ex),
                         "se_dy": float(ey),
                         "se_dr": float(er),
+                        "resolved_dx": kx if kx == "" else bool(kx),
+                        "resolved_dy": ky if ky == "" else bool(ky),
+                        "resolved_dr": kr if kr == "" else bool(kr),
                         "smoothing_cm": "" if smoothing_cm is None else smoothing_cm,
                     }
                 )

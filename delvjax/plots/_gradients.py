@@ -8,7 +8,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..gradients._layout import LayoutResult
-from ..gradients._sensitivity import NOMINAL, UNITS
+from ..gradients._sensitivity import NOMINAL, RESOLVED_SE, UNITS, resolved
 from ..gradients._traps import TrapReport
 from ._maps import draw_env, subplots
 from ._rollouts import catchment_panel
@@ -16,7 +16,9 @@ from ._rollouts import catchment_panel
 
 def landmark_figure(result: dict) -> Figure:
     """Arrows on the landmarks: the direction that lowers the homing loss (minus the position gradient),
-    scaled per method so that its longest arrow is 150 cm; the number is |grad| x 100 (per metre)."""
+    scaled per method so that its longest arrow is 150 cm; the number is |grad| x 100 (per metre). An arrow
+    whose x and y derivatives are both within RESOLVED_SE standard errors of 0 (smoothed sensitivities) is
+    gray: its direction is not known."""
     env = result["env"]
     soft = [m for m, r in result["methods"].items() if r["landmark_grad"] is not None]
     n = max(len(soft), 1)
@@ -24,6 +26,9 @@ def landmark_figure(result: dict) -> Figure:
     lm = np.asarray(env.landmarks)[np.asarray(env.valid)]
     for ax, m in zip(axes[0], soft):
         g = np.asarray(result["methods"][m]["landmark_grad"])
+        se = result["methods"][m].get("landmark_se")
+        known = np.ones(len(g), bool) if se is None else np.any(resolved(g[:, :2], np.asarray(se)[:, :2]), axis=1)
+        colors = np.where(known, "tab:red", "0.6")
         norm = np.hypot(g[:, 0], g[:, 1])
         scale = 150.0 / max(norm.max(), 1e-12)
         draw_env(ax, env)
@@ -35,11 +40,11 @@ def landmark_figure(result: dict) -> Figure:
             angles="xy",
             scale_units="xy",
             scale=1.0,
-            color="tab:red",
+            color=colors,
             width=0.008,
             zorder=5,
         )
-        for (x, y, r), n in zip(lm, norm):
+        for (x, y, r), n, c in zip(lm, norm, colors):
             ax.annotate(
                 f"{100 * n:.2g}",
                 (x, y),
@@ -47,13 +52,14 @@ def landmark_figure(result: dict) -> Figure:
                 textcoords="offset points",
                 ha="center",
                 fontsize=8,
-                color="tab:red",
+                color=c,
                 zorder=6,
             )
         ax.set_title(f"{m}: loss {result['methods'][m]['loss']:.3g} (lower is better)", fontsize=10)
     fig.suptitle(
         "Which landmark matters: arrows move a landmark the way that lowers the homing loss\n"
-        "(arrow lengths scaled per panel, the longest 150 cm; numbers |dL/dx| per metre)",
+        "(arrow lengths scaled per panel, the longest 150 cm; numbers |dL/dx| per metre; "
+        f"gray: x and y within {RESOLVED_SE:g} standard errors of 0)",
         fontsize=10,
     )
     return fig

@@ -148,3 +148,68 @@ def test_delvjax_sensitivity_profile_draws_the_loss_at_each_scale_with_its_tange
     assert t.min() == -9.0 and t.max() == 9.0  # three times the largest scale
     zero = float(min(at_3, key=lambda r: abs(float(r["t_cm"])))["loss"])
     assert zero == pytest.approx(float(at_3[0]["loss_at_0"]), rel=1e-5)  # the curve passes through its tangent
+
+
+def test_a_derivative_is_resolved_when_more_than_two_standard_errors_from_zero():
+    from delvjax.gradients._sensitivity import resolved, unresolved_counts
+
+    assert resolved(3.0, 1.0) is True and resolved(-3.0, 1.0) is True
+    assert resolved(2.0, 1.0) is False and resolved(0.5, 1.0) is False
+    assert resolved(1.0, float("nan")) is False  # two draws: no standard error, so the sign is not shown
+    assert resolved(1.0, None) == ""  # the gradient at the point or a central difference: no claim either way
+    assert resolved(np.array([[3.0, -1.0]]), np.array([[1.0, 1.0]])).tolist() == [[True, False]]
+    result = {
+        "methods": {"alv": {}, "warping": {}},
+        "landmark_rows": [{"method": "alv", "resolved_dx": True, "resolved_dy": False, "resolved_dr": False}],
+        "parameter_rows": [{"method": "alv", "resolved": True}, {"method": "warping", "resolved": ""}],
+    }
+    assert unresolved_counts(result) == {"alv": (2, 4)}  # warping has no standard errors: not counted
+
+
+def test_delvjax_sensitivity_marks_the_derivatives_whose_sign_the_draws_leave_open(tmp_path, capsys):
+    """landmarks.csv and parameters.csv say per derivative whether it is more than 2 standard errors from 0
+    (resolved_*), sensitivity.json counts those that are not, and a warning line names each method with any."""
+    import csv
+    import json
+
+    out = tmp_path / "s"
+    args = ["sensitivity", "env1", "--out", str(out), "--spacing", "200", "--methods", "alv", "warping"]
+    assert main([*args, "--smoothing-cm", "3", "--samples", "4"]) == 0
+    flags = []
+    for r in csv.DictReader((out / "landmarks.csv").open()):
+        for c in "xyr":
+            expect = abs(float(r[f"dq_d{c}_per_cm"])) > 2 * float(r[f"se_d{c}"])
+            assert r[f"resolved_d{c}"] == str(int(expect)), r  # CSV booleans are 1 / 0
+            flags.append(expect)
+    for r in csv.DictReader((out / "parameters.csv").open()):
+        if r["method"] == "warping" or r["standard_error"] == "":
+            assert r["resolved"] == "", r  # central differences / settings the method does not take
+            continue
+        expect = abs(float(r["d_loss_per_setting_unit"])) > 2 * float(r["standard_error"])
+        assert r["resolved"] == str(int(expect)), r
+        flags.append(expect)
+    summary = json.loads((out / "sensitivity.json").read_text())["methods"]
+    assert summary["warping"]["within_noise"] is None
+    count = summary["alv"]["within_noise"]
+    assert (count["count"], count["of"]) == (flags.count(False), len(flags))
+    warned = [line for line in capsys.readouterr().err.splitlines() if "standard errors of 0" in line]
+    assert len(warned) == (1 if count["count"] else 0)
+    assert not warned or warned[0].startswith(f"delvjax: warning: alv: {count['count']} of {len(flags)} ")
+
+
+def test_the_landmark_figure_draws_an_arrow_whose_direction_the_draws_leave_open_in_gray():
+    import matplotlib.colors as mcolors
+    from matplotlib.quiver import Quiver
+
+    from delvjax.envs._presets import load_env
+    from delvjax.plots._gradients import landmark_figure
+
+    env = load_env("env1")
+    n = int(np.asarray(env.valid).sum())
+    grad = np.tile([[1e-4, -1e-4, 1e-5]], (n, 1))
+    se = np.full((n, 3), 1e-6)
+    se[0, :2] = 1e-3  # landmark 0: x and y both within 2 standard errors of 0
+    fig = landmark_figure({"env": env, "methods": {"alv": {"landmark_grad": grad, "landmark_se": se, "loss": 0.1}}})
+    (quiver,) = [c for c in fig.axes[0].collections if isinstance(c, Quiver)]
+    colors = [mcolors.to_hex(c) for c in quiver.get_facecolors()]
+    assert colors[0] == mcolors.to_hex("0.6") and set(colors[1:]) == {mcolors.to_hex("tab:red")}
