@@ -19,7 +19,9 @@ setting: the first call's compile seconds (JAX's compile events: trace, lowering
 seconds (compile included: what a user of a fresh process waits for), and the median wall and CPU seconds
 of --reps warm calls (other seeds); then the ratios 1 core / the default on every core, of the first call
 and of the warm calls, against the target (>= 1.6x on 2 cores). --smoke: an ALV map of 100 points, one
-round: that it runs (tests/test_benchmarks_smoke.py).
+round: that it runs (tests/test_benchmarks_smoke.py). --large: the map at 4 cm (62 500 points) and the
+catchment at 8 cm (about 15 000 rollouts), where a warm call lasts long enough for the cores to share it (not
+the issue's sizes; speed_targets.py runs without it).
 """
 
 from __future__ import annotations
@@ -42,17 +44,17 @@ if sys.argv[4] == "1":  # pinned to one core before JAX starts its threads
 import jax
 jax.config.update("jax_enable_compilation_cache", False)
 import delvjax
-work, reps, smoke = sys.argv[1], int(sys.argv[2]), sys.argv[3] == "1"
+work, reps, smoke, large = sys.argv[1], int(sys.argv[2]), sys.argv[3] == "1", sys.argv[5] == "1"
 EVENTS = ("/jax/core/compile/jaxpr_trace_duration", "/jax/core/compile/jaxpr_to_mlir_module_duration",
           "/jax/core/compile/backend_compile_duration")
 log = [0.0]
 jax.monitoring.register_event_duration_secs_listener(lambda e, d, **k: log.__setitem__(0, log[0] + d * (e in EVENTS)))
-spacing = 100 if smoke else 10
+spacing = 100 if smoke else 4 if large else 10
 def call(seed):
     if work == "map":
         return delvjax.vector_map("env1", "alv" if smoke else "delv", grid=delvjax.Grid(spacing=spacing), seed=seed).error_deg
     if work == "catchment":
-        return delvjax.catchment("env1", "alv", grid=delvjax.Grid(spacing=100 if smoke else 25), seed=seed).outcome
+        return delvjax.catchment("env1", "alv", grid=delvjax.Grid(spacing=100 if smoke else 8 if large else 25), seed=seed).outcome
     if work == "success":
         few = {"method": "alv", "trials": 3, "distances": [100.0]} if smoke else {"method": "delv", "trials": 100}
         return delvjax.success_rate("env1", seed=seed, **few).outcome
@@ -76,10 +78,18 @@ WORKS = ("map", "catchment", "success", "sweep")
 COMMAND = {"map": "vector-map", "catchment": "catchment", "success": "success-rate", "sweep": "sweep"}
 
 
-def measure(work: str, one_core: bool, devices: int, reps: int, smoke: bool) -> dict:
+def measure(work: str, one_core: bool, devices: int, reps: int, smoke: bool, large: bool = False) -> dict:
     flags = f"{os.environ.get('XLA_FLAGS', '')} {DEVICE_FLAG}={devices}".strip()
     return run_child(
-        CHILD, work, reps, int(smoke), int(one_core), XLA_FLAGS=flags, DELVJAX_CACHE_DIR="", JAX_PLATFORMS="cpu"
+        CHILD,
+        work,
+        reps,
+        int(smoke),
+        int(one_core),
+        int(large),
+        XLA_FLAGS=flags,
+        DELVJAX_CACHE_DIR="",
+        JAX_PLATFORMS="cpu",
     )
 
 
@@ -90,6 +100,9 @@ def main() -> None:
     p.add_argument("--devices", type=int, default=0, help="the N of every core, N dev (default: one per core)")
     p.add_argument("--works", nargs="+", choices=WORKS, default=list(WORKS))
     p.add_argument("--smoke", action="store_true", help="a tiny map, one round: that the script runs")
+    p.add_argument(
+        "--large", action="store_true", help="more work a call: the map at 4 cm (62 500 points), the catchment at 8 cm"
+    )
     p.add_argument("--json", metavar="PATH", help="also write the ratio(s) and raw numbers here (speed_targets.py)")
     a = p.parse_args()
     if DEVICE_FLAG in os.environ.get("XLA_FLAGS", ""):
@@ -110,7 +123,7 @@ def main() -> None:
         runs: dict[str, list[dict]] = {label: [] for label in settings}
         for _ in range(rounds):
             for label, (one_core, devices) in settings.items():
-                m = measure(work, one_core, devices, reps, a.smoke)
+                m = measure(work, one_core, devices, reps, a.smoke, a.large)
                 runs[label].append(m)
                 print(
                     f"{work:10s} {label:>18s} {m['compile']:9.2f} {m['first_wall']:10.2f} {m['first_cpu']:9.2f}"
@@ -132,7 +145,7 @@ def main() -> None:
             "settings": best, "default": default, "first_ratio": first, "warm_ratio": warm,
             "devices_warm_ratio": devices_warm, "compile_share": one["compile"] / max(one["first_wall"], 1e-9),
         }  # fmt: skip
-    save_json(a.json, {"cores": cores, "devices": n, "rounds": rounds, "reps": reps, "works": raw})
+    save_json(a.json, {"cores": cores, "devices": n, "rounds": rounds, "reps": reps, "large": a.large, "works": raw})
 
 
 if __name__ == "__main__":

@@ -19,7 +19,8 @@ mean 1 - cos(error) over the hard grid rule, `core.maps.vector_map`, as `homing_
 the same draws, one map per draw (a loop of maps: slow, so fewer --kref or --landmarks); the issue asks that
 the sensitivity agree with the smoothed hard loss as well as the soft one.
 
-A measurement script, not a test; tests/gradients/test_smoothing.py checks ALV at the default scale.
+A measurement script, not a test; tests/gradients/test_smoothing.py checks ALV at the default scale. --smoke:
+a 200 cm grid, 4 reference draws, landmark 0, one draw set (tests/test_benchmarks_smoke.py runs both references).
 """
 
 from __future__ import annotations
@@ -69,8 +70,13 @@ def main() -> None:
     ap.add_argument("--spacing", type=float, default=25.0)
     ap.add_argument("--landmarks", type=int, default=99, help="how many landmarks to check (the first N)")
     ap.add_argument("--reference", choices=["soft", "hard"], default="soft", help="the loss the reference smooths")
+    ap.add_argument(
+        "--smoke", action="store_true", help="that it runs: 200 cm grid, 4 reference draws, landmark 0, 1 set"
+    )
     ap.add_argument("--json")
     a = ap.parse_args()
+    if a.smoke:
+        a.spacing, a.kref, a.landmarks, a.reps = 200.0, 4, 1, 1
     smoothing = Smoothing(a.sigma, 1.0, 0.01, a.samples)
     base = loss_problem(random_env(*a.world), a.method, spacing=a.spacing, seed=0)
     prob = at_scale(base, smoothing)
