@@ -14,7 +14,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from ._loss import LossProblem, problem_loss, problem_value_and_grad
-from ._smoothing import Smoothing, _draws, _sigmas, at_scale, smoothed_loss, smoothed_value_and_grad
+from ._smoothing import Smoothing, _value_and_grad, smoothed_loss, smoothing_draws
 
 COORDS = ("x", "y", "r")
 
@@ -55,10 +55,9 @@ def loss_profile(
             value, grads = problem_value_and_grad(problem)
         else:
             smoothing = Smoothing(sigma, deg, Smoothing().fraction, samples)
-            scaled = at_scale(problem, smoothing)
-            sig, eps = _sigmas(scaled, smoothing), _draws(scaled, samples)
+            scaled, sig, eps = smoothing_draws(problem, smoothing)
             curve = _smoothed_curve(scaled, sig, eps, ts, index, c)
-            value, grads, _ = smoothed_value_and_grad(problem, smoothing)
+            value, grads, _ = _value_and_grad(scaled, sig, eps)
         slope = float(np.asarray(grads["landmarks"])[index, c])
         for t, q in zip(np.asarray(ts, np.float64), np.asarray(curve, np.float64)):
             rows.append(

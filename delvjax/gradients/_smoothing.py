@@ -172,8 +172,7 @@ def smoothing_draws(problem: LossProblem, smoothing: Smoothing) -> tuple[LossPro
 def smoothed_value_and_grad(problem: LossProblem, smoothing: Smoothing):
     """(L_sigma estimate, its gradient by parameter, the gradient's standard error by parameter) of
     `problem` at the scale `smoothing`."""
-    problem = at_scale(problem, smoothing)
-    return _value_and_grad(problem, _sigmas(problem, smoothing), _draws(problem, smoothing.samples))
+    return _value_and_grad(*smoothing_draws(problem, smoothing))
 
 
 @keywords_after(2, ("spacing", "seed", "tau", "sharpness", "heading_deg", "clearance", "max_points"))
