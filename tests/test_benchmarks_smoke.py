@@ -239,3 +239,12 @@ def test_the_speed_targets_table_is_made_from_saved_outputs(tmp_path):
     rows = [line for line in smoke.stdout.splitlines() if line.startswith("| ") and "---" not in line][1:]
     assert len(rows) == len(speed_targets.TARGETS) + 1 and all(" met |" in r for r in rows), smoke.stdout
     assert json.loads((tmp_path / "t.json").read_text())["rows"] == json.loads(saved.read_text())["rows"]
+
+
+def test_the_familiarity_benchmark_runs_at_smoke_size(tmp_path):
+    """benchmarks/bench_familiarity.py --smoke: every model's query against its twin, and the route experiments."""
+    smoke = smoke_run("benchmarks/bench_familiarity.py", "--json", str(tmp_path / "familiarity.json"))
+    out = json.loads((tmp_path / "familiarity.json").read_text())
+    assert [r["model"] for r in out["queries"]] == ["perfect-memory", "infomax", "mushroom-body"], smoke.stdout
+    assert all(r["ratio"] > 0 and r["jax_ms_per_query"] > 0 for r in out["queries"])
+    assert all(t["moves"] > 0 for t in out["route_experiments"])

@@ -19,6 +19,7 @@ COMMAND_HELP = {
     "traps": "trap points (sinks, saddles, sources) of a homing field near its failed rollouts (optimistix; docs/differentiable.md)",
     "optimise-layout": "move the landmarks to minimise the homing loss (optimistix BFGS), compare by catchment (docs/differentiable.md)",
     "images": "image databases: render one from a world, import one (docs/images.md)",
+    "familiarity": "route following by visual familiarity: perfect memory, InfoMax, mushroom body (docs/familiarity.md)",
 }
 
 

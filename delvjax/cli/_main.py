@@ -33,6 +33,7 @@ from ._args import (
     warn,
     write_outputs,
 )
+from ._familiarity import FAMILIARITY_COMMANDS
 from ._gradients import GRADIENT_COMMANDS
 from ._help import COMMAND_HELP, DESCRIPTION, version
 from ._images import IMAGE_COMMANDS, add_image_args, cmd_vector_map_images
@@ -179,6 +180,7 @@ COMMANDS: list[Callable] = [
     add_plot_sweep,
     *GRADIENT_COMMANDS,
     *IMAGE_COMMANDS,
+    *FAMILIARITY_COMMANDS,
 ]
 
 

@@ -180,13 +180,7 @@ def world_grid(iw: ImageWorld, spacing: float) -> tuple[np.ndarray, np.ndarray]:
     """Grid points of the world's arena (docs/model.md §5 cells) clear of every obstacle by the world's
     clearance, and their integer grid indices."""
     pts = grid_points(np.asarray(iw.world.arena), spacing)
-    obs = iw.obstacles()
-    keep = np.ones(len(pts), bool)
-    for x, y, r in obs["cylinders"]:
-        keep &= np.hypot(pts[:, 0] - x, pts[:, 1] - y) > r + iw.clearance
-    for x0, y0, x1, y1 in obs["boxes"]:
-        c = iw.clearance
-        keep &= ~((pts[:, 0] > x0 - c) & (pts[:, 0] < x1 + c) & (pts[:, 1] > y0 - c) & (pts[:, 1] < y1 + c))
+    keep = iw.clear(pts)
     a = np.asarray(iw.world.arena)
     grid = np.round((pts - a[:2] - spacing / 2) / spacing).astype(int)
     return pts[keep], grid[keep]

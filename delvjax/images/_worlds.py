@@ -38,6 +38,18 @@ class ImageWorld:
         b = np.asarray(self.world.boxes)
         return {"cylinders": c[c[:, 3] > 0, :3].tolist(), "boxes": b[b[:, 4] > 0, :4].tolist()}
 
+    def clear(self, points: np.ndarray) -> np.ndarray:
+        """(N,) True where a point (N, 2) is inside the arena and clear of every obstacle by `clearance`."""
+        a = np.asarray(self.world.arena)
+        x, y = points[:, 0], points[:, 1]
+        keep = (x >= a[0]) & (x <= a[2]) & (y >= a[1]) & (y <= a[3])
+        obs, c = self.obstacles(), self.clearance
+        for cx, cy, r in obs["cylinders"]:
+            keep &= np.hypot(x - cx, y - cy) > r + c
+        for x0, y0, x1, y1 in obs["boxes"]:
+            keep &= ~((x > x0 - c) & (x < x1 + c) & (y > y0 - c) & (y < y1 + c))
+        return keep
+
 
 ROBOT_LANDMARKS = ((45.0, 135.0, 8.0), (130.0, 150.0, 8.0), (145.0, 55.0, 8.0), (55.0, 42.0, 8.0))  # x, y, r cm
 ROBOT_HEIGHT = 50.0  # cm, the robot world's cylinders

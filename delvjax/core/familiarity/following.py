@@ -1,0 +1,126 @@
+"""Route following by familiarity, as Ardin et al. (2016) run it (docs/familiarity.md §3.2): at every
+step the agent scans +-`scan_deg` about its heading in `scan_step_deg` steps, turns to the most
+familiar view (the model's `choose`), adds N(0, heading_noise) and moves `step` cm. Leaving the route
+by more than `off_route` cm, entering an obstacle or leaving the arena is an error: the agent is put
+back on the nearest point of the route, facing along it. A trial succeeds within `goal_radius` of
+the route's last image, else times out after `max_steps`. A windowed perfect memory searches the
+route images about its last best match (`perfect_memory.window`). Move t of trial i draws from
+fold_in(fold_in(key, i), t): the same numbers however the trials are chunked."""
+
+from __future__ import annotations
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+from jax import Array
+
+from ..batching import fixed_width_map
+from ..geometry import unit, wrap
+from ..images.rollouts import Field, status
+from ..images.world import World
+from ..rollouts.rules import RUNNING, SUCCESS, TIMEOUT
+from .base import FamiliarityModel
+from .perfect_memory import PerfectMemory, window
+from .route import Route, nearest_on_route
+from .views import ViewCamera, views_at
+
+TRIAL_WIDTH = 8  # trials per vectorised step: each renders a panorama a move
+
+
+class Following(eqx.Module):
+    """The rules of a route-following trial (module docstring); lengths in cm, angles in deg."""
+
+    step: Array | float = 4.0
+    off_route: Array | float = 20.0
+    goal_radius: Array | float = 20.0
+    heading_noise_deg: Array | float = 0.0
+    scan_deg: float = eqx.field(static=True, default=60.0)
+    scan_step_deg: float = eqx.field(static=True, default=2.0)
+    max_steps: int = eqx.field(static=True, default=400)
+
+    def turns(self) -> Array:
+        """(R,) the scanned turns, rad, from -scan_deg to +scan_deg."""
+        n = int(round(2 * self.scan_deg / self.scan_step_deg)) + 1
+        return jnp.radians(jnp.linspace(-self.scan_deg, self.scan_deg, n, dtype=jnp.float32))
+
+
+class Trials(eqx.Module):
+    """outcome: (T,) SUCCESS or TIMEOUT; steps: (T,) moves made; errors: (T,) returns to the route;
+    path: (T, max_steps + 1, 2) cm (the last position repeated after the trial ends); value: (T,
+    max_steps) the chosen view's unfamiliarity at every move (NaN after the end)."""
+
+    outcome: Array
+    steps: Array
+    errors: Array
+    path: Array
+    value: Array
+
+
+def scene(world: World, route: Route) -> Field:
+    """The obstacle and goal test of a trial (`core/images/rollouts.py` `status`): the goal is the route's end."""
+    c, b = world.cylinders, world.boxes
+    return Field(
+        positions=route.positions,
+        direction=jnp.zeros(route.positions.shape[0]),
+        valid=jnp.ones(route.positions.shape[0], bool),
+        home=route.positions[-1],
+        arena=world.arena,
+        cylinders=jnp.where(c[:, 3:4] > 0, c[:, :3], jnp.array([0.0, 0.0, -1.0])),  # padding never hits
+        boxes=jnp.where(b[:, 4:5] > 0, b[:, :4], jnp.array([0.0, 0.0, -1.0, -1.0])),
+    )
+
+
+def one_trial(
+    model: FamiliarityModel, world: World, vc: ViewCamera, route: Route, rules: Following, start, heading0, key
+):
+    """One trial from `start` (2,) facing `heading0` rad (module docstring)."""
+    field = scene(world, route)
+    turns = rules.turns()
+    n_img = model.n_images()
+    windowed = isinstance(model, PerfectMemory) and model.window_ahead > 0
+
+    def body(carry, t):
+        x, heading, pointer, errors, code, steps = carry
+        active = window(n_img, pointer, model.window_ahead, model.window_behind) if windowed else None
+        choice = model.choose(views_at(world, vc, x, heading, turns), turns, None, active)
+        z = jax.random.normal(jax.random.fold_in(key, t), (), jnp.float32)
+        h = wrap(heading + choice.turn + jnp.radians(rules.heading_noise_deg) * z)
+        moved = x + rules.step * unit(h)
+        dist, back, along, _ = nearest_on_route(route, moved)
+        hit = status(field, moved, jnp.float32(-1.0))  # LANDMARK / ARENA / RUNNING (no goal test here)
+        error = (dist > rules.off_route) | (hit != RUNNING)
+        moved = jnp.where(error, back, moved)
+        h = jnp.where(error, along, h)
+        done = jnp.sqrt(jnp.sum((moved - field.home) ** 2)) <= rules.goal_radius
+        running = code == RUNNING
+        x = jnp.where(running, moved, x)
+        heading = jnp.where(running, h, heading)
+        pointer = jnp.where(running & (choice.snapshot >= 0), choice.snapshot, pointer)
+        errors = errors + (running & error)
+        code = jnp.where(running & done, SUCCESS, code)
+        return (x, heading, pointer, errors, code, steps + running), (x, jnp.where(running, choice.value, jnp.nan))
+
+    start = jnp.asarray(start, jnp.float32)
+    at_goal = jnp.sqrt(jnp.sum((start - field.home) ** 2)) <= rules.goal_radius
+    carry = (
+        start,
+        jnp.asarray(heading0, jnp.float32),
+        jnp.int32(-1),
+        jnp.int32(0),
+        jnp.where(at_goal, SUCCESS, RUNNING),
+        jnp.int32(0),
+    )
+    (_, _, _, errors, code, steps), (path, value) = jax.lax.scan(body, carry, jnp.arange(rules.max_steps))
+    return jnp.where(code == RUNNING, TIMEOUT, code), steps, errors, jnp.concatenate([start[None], path]), value
+
+
+@eqx.filter_jit
+def follow_route(
+    model: FamiliarityModel, world: World, vc: ViewCamera, route: Route, rules: Following, starts, headings, key
+) -> Trials:
+    """Route-following trials from every start (T, 2) facing headings (T,) rad; trial i draws from
+    fold_in(key, i)."""
+    keys = jax.vmap(lambda i: jax.random.fold_in(key, i))(jnp.arange(starts.shape[0]))
+    run = lambda s, h, k: one_trial(model, world, vc, route, rules, s, h, k)  # noqa: E731
+    outcome, steps, errors, path, value = fixed_width_map(run, (starts, headings, keys), width=TRIAL_WIDTH)
+    return Trials(outcome=outcome, steps=steps, errors=errors, path=path, value=value)

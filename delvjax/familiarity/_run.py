@@ -1,0 +1,235 @@
+"""The route experiments of a familiarity model (docs/familiarity.md §3) in a colour world: train on
+the route's images, then (a) the heading field on a grid, (b) route-following trials (Ardin et al.
+2016), (c) catchment areas along the route (BoB's `calculate_ca`, `calculate_rca`). Every setting is
+checked before any work."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from ..core.checks import non_negative, positive, positive_int, seed_value
+from ..core.errors import InputError
+from ..core.familiarity.catchment import route_catchments
+from ..core.familiarity.fields import HeadingField, heading_field, stored_view_field
+from ..core.familiarity.following import Following, Trials, follow_route
+from ..core.familiarity.route import Route
+from ..core.familiarity.views import downsample, view_camera
+from ..core.rollouts.rules import OUTCOMES, SUCCESS
+from ..core.rollouts.success import wilson_pct
+from ..images._render import world_grid
+from ..images._worlds import ImageWorld, image_world
+from ._models import make_model, model_settings
+from ._routes import RouteImages, default_waypoints, plan_route, route_from_database, route_in_world
+
+MAX_TRIALS = 10000
+OFF_ROUTE = 20.0  # cm: "near the route" in the summary, the distance at which a trial counts an error
+
+
+@dataclass
+class FamiliarityResult:
+    """What `familiarity` computed, with the settings it ran with."""
+
+    world: str
+    model: str
+    settings: dict
+    route: RouteImages
+    points: np.ndarray
+    field: HeadingField
+    rules: Following | None
+    trials: Trials | None
+    catchments: dict = field(default_factory=dict)
+    arena: np.ndarray = field(default_factory=lambda: np.zeros(4))
+    obstacles: dict = field(default_factory=dict)
+
+    def field_columns(self) -> dict:
+        """The heading field, one row per grid point."""
+        f = self.field
+        return {
+            "x_cm": self.points[:, 0],
+            "y_cm": self.points[:, 1],
+            "heading_deg": np.degrees(np.asarray(f.heading)),
+            "unfamiliarity": np.asarray(f.value),
+            "best_image": np.where(np.asarray(f.snapshot) >= 0, np.asarray(f.snapshot), np.nan),  # none kept: empty
+            "route_direction_deg": np.degrees(np.asarray(f.route_direction)),
+            "distance_to_route_cm": np.asarray(f.distance),
+            "error_deg": np.asarray(f.error_deg),
+        }
+
+    def trial_columns(self) -> dict:
+        """The route-following trials, one row each (none on an image database)."""
+        t = self.trials
+        if t is None:
+            return {"trial": [], "outcome": [], "steps": [], "errors": []}
+        return {
+            "trial": np.arange(len(t.outcome)),
+            "outcome": [OUTCOMES[int(c)] for c in np.asarray(t.outcome)],
+            "steps": np.asarray(t.steps),
+            "errors": np.asarray(t.errors),
+        }
+
+    def catchment_columns(self) -> dict:
+        """Catchment areas along the route, one row per route image as the goal (sizes in images)."""
+        p = np.asarray(self.route.route.positions)
+        return {"image": np.arange(len(p)), "x_cm": p[:, 0], "y_cm": p[:, 1],
+                **{k: np.asarray(v) for k, v in self.catchments.items()}}  # fmt: skip
+
+    def summary(self) -> dict:
+        """The headline numbers (and the settings) as JSON-ready values."""
+        outcome = np.asarray([] if self.trials is None else self.trials.outcome)
+        n, k = len(outcome), int(np.sum(outcome == SUCCESS))
+        lo, hi = wilson_pct(k, n) if n else (math.nan, math.nan)
+        near = np.asarray(self.field.distance) <= OFF_ROUTE
+        err = np.asarray(self.field.error_deg)
+        c = {k: np.asarray(v) for k, v in self.catchments.items()}
+        spacing = float(self.settings["route_spacing"])
+        return {
+            "world": self.world,
+            "model": self.model,
+            "route_images": self.route.n_images,
+            "route_length_cm": float(self.route.route.length()),
+            "trials": n,
+            "success_pct": 100.0 * k / n if n else None,
+            "success_ci95_pct": [float(lo), float(hi)] if n else None,
+            "mean_route_errors": float(np.mean(np.asarray(self.trials.errors))) if n else None,
+            "field_points": int(len(err)),
+            "median_error_deg_near_route": float(np.median(err[near])) if near.any() else None,
+            "share_error_below_45_near_route": float(np.mean(err[near] < 45.0)) if near.any() else None,
+            "median_error_deg_all": float(np.median(err)),
+            "median_ca_on_route_cm": float(np.median(c["ca_size_on_route"]) * spacing),
+            "median_rca_on_route_cm": float(np.median(c["rca_size_on_route"]) * spacing),
+            "ca_reaching_a_route_end": int(np.sum(~np.isfinite(c["ca_size"]))),
+            "rca_reaching_a_route_end": int(np.sum(~np.isfinite(c["rca_size"]))),
+            "settings": self.settings,
+        }
+
+
+def route_experiments(
+    world: str | ImageWorld = "robot",
+    model: str = "perfect-memory",
+    *,
+    route=None,
+    route_spacing: float = 4.0,
+    view_rows: int = 10,
+    view_cols: int = 90,
+    grid_spacing: float | None = None,
+    trials: int = 20,
+    heading_noise_deg: float = 10.0,
+    step: float | None = None,
+    max_steps: int | None = None,
+    seed: int = 0,
+    progress: Callable[[str], None] | None = None,
+    **model_options,
+) -> FamiliarityResult:
+    """Train `model` on a route through `world` and run the three route experiments (module docstring).
+
+    route: waypoints [[x, y], ...] cm (default: `_routes.default_waypoints`); route_spacing: cm between
+    route images; view_rows x view_cols: the views (rendered at 4x, block-averaged); grid_spacing: the
+    heading field's grid (default: the world's spacing); trials, heading_noise_deg, step (default: the
+    route spacing), max_steps (default: 2.1 route lengths): the route-following trials; seed: the
+    trials' noise, InfoMax's weights and the mushroom body's wiring; model_options: the model's
+    settings (`_models.SETTINGS`)."""
+    say = progress or (lambda _: None)
+    iw = image_world(world) if isinstance(world, str) else world
+    settings = model_settings(model, **model_options)
+    rows, cols = positive_int(view_rows, "view_rows"), positive_int(view_cols, "view_cols")
+    if 180 % cols:
+        raise InputError("view_cols", cols, "must divide 180 (a 2 deg scan step is then whole columns rendered at 4 x)")
+    trials = positive_int(trials, "trials")
+    if trials > MAX_TRIALS:
+        raise InputError("trials", trials, f"must be at most {MAX_TRIALS}")
+    noise = non_negative(heading_noise_deg, "heading_noise_deg")
+    seed = seed_value(seed)
+    spacing = positive(iw.spacing if grid_spacing is None else grid_spacing, "grid_spacing")
+    vc = view_camera(rows, cols)
+    route_points = plan_route(iw, route, route_spacing)
+    length = float(np.sum(np.hypot(*np.diff(route_points, axis=0).T)))
+    step = positive(route_spacing if step is None else step, "step")
+    n_steps = math.ceil(2.1 * length / step) if max_steps is None else positive_int(max_steps, "max_steps")
+    rules = Following(step=step, heading_noise_deg=noise, max_steps=n_steps)
+    points, _ = world_grid(iw, spacing)
+    if len(points) == 0:
+        raise InputError("grid_spacing", spacing, f"leaves no grid point clear of the obstacles in {iw.name}")
+    say(f"rendering {len(route_points)} route images in {iw.name} ...")
+    ri = route_in_world(iw, route_points, vc)
+    trained = make_model(model, (rows, cols), seed, **settings).train(jnp.asarray(ri.views))
+    say(f"{model}: heading field at {len(points)} points, {trials} route-following trials, catchments ...")
+    hf = heading_field(trained, iw.world, vc, ri.route, jnp.asarray(points, jnp.float32))
+    starts = jnp.repeat(ri.route.positions[:1], trials, 0)
+    heads = jnp.repeat(ri.route.headings[:1], trials, 0)
+    tr = follow_route(trained, iw.world, vc, ri.route, rules, starts, heads, jax.random.key(seed))
+    ca = route_catchments(jnp.asarray(ri.views), settings.get("kind", "abs"))
+    used = default_waypoints(iw, route_spacing) if route is None else np.asarray(route, float).reshape(-1, 2)
+    run_settings = {"route_spacing": float(route_spacing), "view_rows": rows, "view_cols": cols,
+                    "grid_spacing": float(spacing), "trials": trials, "heading_noise_deg": float(noise),
+                    "step": float(step), "max_steps": n_steps, "seed": seed,
+                    "route": used.round(2).tolist(), **settings}  # fmt: skip
+    result = FamiliarityResult(
+        iw.name, model, run_settings, ri, points, hf, rules, tr, ca, np.asarray(iw.world.arena), iw.obstacles()
+    )
+    for name, a in (("field", hf.error_deg), ("unfamiliarity", hf.value), ("trials", tr.steps)):
+        if not np.all(np.isfinite(np.asarray(a, np.float64))):
+            raise InputError(model, name, "gave a non-finite number (a constant view or an empty mask)")
+    return result
+
+
+def database_experiments(
+    route_db,
+    model: str = "perfect-memory",
+    *,
+    test_db=None,
+    view_rows: int = 10,
+    view_cols: int = 90,
+    seed: int = 0,
+    progress: Callable[[str], None] | None = None,
+    **model_options,
+) -> FamiliarityResult:
+    """The route experiments on image databases (docs/familiarity.md §3.4): `model` trained on a route
+    database (`images.load_database(..., panoramas=True)`, a route); the heading at every image of
+    `test_db` (a grid or route database of the same camera), or, without one, trained on the route's
+    even images and tested on its odd ones; catchment areas along the route. No route-following trials: a
+    database has no views between its images."""
+    say = progress or (lambda _: None)
+    settings = model_settings(model, **model_options)
+    seed = seed_value(seed)
+    if route_db.kind != "route":
+        raise InputError("images", route_db.name, f"must be a route database (its metadata says {route_db.kind})")
+    shape = (positive_int(view_rows, "view_rows"), positive_int(view_cols, "view_cols"))
+    ri = route_from_database(route_db, shape)
+    if test_db is None:
+        if ri.n_images < 4:
+            raise InputError("images", route_db.name, "needs at least 4 images to train on half and test on the rest")
+        train = ri.views[0::2]
+        test = RouteImages(ri.name, Route(ri.route.positions[1::2], ri.route.headings[1::2]), ri.views[1::2], None)
+    else:
+        pano = test_db.rings.snapshots.panorama
+        if pano is None or pano.shape[-2:] != route_db.rings.snapshots.panorama.shape[-2:]:
+            raise InputError("test_images", test_db.name, "must hold panoramas of the route's size")
+        test = route_from_database(test_db, shape) if test_db.kind == "route" else grid_views(test_db, shape)
+        train = ri.views
+    say(f"{model}: trained on {len(train)} route images, headings at {test.n_images} images, catchments ...")
+    trained = make_model(model, shape, seed, **settings).train(jnp.asarray(train))
+    r = test.route
+    hf = stored_view_field(trained, jnp.asarray(test.views), r.headings, r.positions, ri.route)
+    ca = route_catchments(jnp.asarray(ri.views), settings.get("kind", "abs"))
+    run_settings = {"route_spacing": float(np.median(np.hypot(*np.diff(np.asarray(ri.route.positions), axis=0).T))),
+                    "view_rows": shape[0], "view_cols": shape[1], "seed": seed,
+                    "tested_on": "odd route images" if test_db is None else test_db.name, **settings}  # fmt: skip
+    return FamiliarityResult(
+        route_db.name, model, run_settings, ri, np.asarray(r.positions), hf, None, None, ca,
+        np.asarray(route_db.arena), route_db.obstacles,
+    )  # fmt: skip
+
+
+def grid_views(db, shape: tuple[int, int]) -> RouteImages:
+    """A grid database's images as views (their positions and column-0 headings, in the `RouteImages` form)."""
+    pano = db.rings.snapshots.panorama
+    h = pano.shape[-2]
+    views = np.asarray(downsample(jnp.asarray(pano, jnp.float32), h // shape[0]))
+    route = Route(jnp.asarray(db.rings.positions, jnp.float32), jnp.asarray(db.rings.headings, jnp.float32))
+    return RouteImages(db.name, route, views, None)
