@@ -56,7 +56,9 @@ class FamiliarityResult:
             "heading_deg": np.degrees(np.asarray(f.heading)),
             "unfamiliarity": np.asarray(f.value),
             "best_image": np.where(np.asarray(f.snapshot) >= 0, np.asarray(f.snapshot), np.nan),  # none kept: empty
-            "route_direction_deg": np.degrees(np.asarray(f.route_direction)),
+            ("route_image_heading_deg" if self.rules is None else "route_direction_deg"): np.degrees(
+                np.asarray(f.route_direction)
+            ),
             "distance_to_route_cm": np.asarray(f.distance),
             "error_deg": np.asarray(f.error_deg),
         }
@@ -109,6 +111,13 @@ class FamiliarityResult:
         }
 
 
+def render_factor(cols: int) -> int:
+    """Rendered pixels per view pixel: at least 4, and a multiple of what makes the 2 deg scan step whole
+    rendered columns (90 columns: 4, 1 deg a rendered column; 36: 5; 72: 5)."""
+    unit = 180 // math.gcd(cols, 180)
+    return unit * math.ceil(4 / unit)
+
+
 def route_experiments(
     world: str | ImageWorld = "robot",
     model: str = "perfect-memory",
@@ -138,15 +147,15 @@ def route_experiments(
     iw = image_world(world) if isinstance(world, str) else world
     settings = model_settings(model, **model_options)
     rows, cols = positive_int(view_rows, "view_rows"), positive_int(view_cols, "view_cols")
-    if 180 % cols:
-        raise InputError("view_cols", cols, "must divide 180 (a 2 deg scan step is then whole columns rendered at 4 x)")
+    if 360 % cols:
+        raise InputError("view_cols", cols, "must divide 360 (a turn of the heading field is one view column)")
     trials = positive_int(trials, "trials")
     if trials > MAX_TRIALS:
         raise InputError("trials", trials, f"must be at most {MAX_TRIALS}")
     noise = non_negative(heading_noise_deg, "heading_noise_deg")
     seed = seed_value(seed)
     spacing = positive(iw.spacing if grid_spacing is None else grid_spacing, "grid_spacing")
-    vc = view_camera(rows, cols)
+    vc = view_camera(rows, cols, render_factor(cols))
     route_points = plan_route(iw, route, route_spacing)
     length = float(np.sum(np.hypot(*np.diff(route_points, axis=0).T)))
     step = positive(route_spacing if step is None else step, "step")
@@ -159,7 +168,7 @@ def route_experiments(
     ri = route_in_world(iw, route_points, vc)
     trained = make_model(model, (rows, cols), seed, **settings).train(jnp.asarray(ri.views))
     say(f"{model}: heading field at {len(points)} points, {trials} route-following trials, catchments ...")
-    hf = heading_field(trained, iw.world, vc, ri.route, jnp.asarray(points, jnp.float32))
+    hf = heading_field(trained, iw.world, vc, ri.route, jnp.asarray(points, jnp.float32), n_turns=cols)
     starts = jnp.repeat(ri.route.positions[:1], trials, 0)
     heads = jnp.repeat(ri.route.headings[:1], trials, 0)
     tr = follow_route(trained, iw.world, vc, ri.route, rules, starts, heads, jax.random.key(seed))

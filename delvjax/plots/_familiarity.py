@@ -24,20 +24,28 @@ def familiarity_figure(result: FamiliarityResult, title: str = "") -> Figure:
     h = np.radians(f["heading_deg"])
     q = a.quiver(f["x_cm"], f["y_cm"], np.cos(h), np.sin(h), np.minimum(f["error_deg"], 180.0), cmap="viridis_r",
                  clim=(0, 180), angles="xy", scale=25, width=0.004, zorder=4)  # fmt: skip
-    fig.colorbar(q, ax=a, label="heading error vs the route (deg)", shrink=0.8)
+    database = result.rules is None  # an image database's field: column-0 headings against the nearest route image's
+    fig.colorbar(
+        q,
+        ax=a,
+        label="error vs the nearest route image (deg)" if database else "heading error vs the route (deg)",
+        shrink=0.8,
+    )
     path = np.zeros((0, 1, 2)) if result.trials is None else np.asarray(result.trials.path)
     for t in range(min(len(path), 5)):  # a few paths: drawing, not computing
         a.plot(path[t, :, 0], path[t, :, 1], "-", color="tab:red", lw=0.8, alpha=0.7, zorder=5)
-    a.set_title(f"(a) {result.model}: heading field" + (" and paths" if len(path) else ""), fontsize=10)
+    what = "column-0 heading of the most familiar view" if database else "heading field"
+    a.set_title(f"(a) {result.model}: {what}" + (" and paths" if len(path) else ""), fontsize=10)
     a.legend(loc="lower right", fontsize=8)
     curve = np.asarray(result.field.curve)
-    turns = np.arange(curve.shape[1]) * 360.0 / curve.shape[1]
-    turns = np.where(turns > 180, turns - 360, turns)
+    start = np.degrees(np.asarray(result.field.curve_start))
+    step = 360.0 / curve.shape[1]
     dist = f["distance_to_route_cm"]
+    reference = f["route_direction_deg"] if "route_direction_deg" in f else f["route_image_heading_deg"]
     colors = matplotlib.colormaps["plasma"](np.linspace(0, 0.8, len(RIDF_DISTANCES)))
     for d, col in zip(RIDF_DISTANCES, colors):
         i = int(np.argmin(np.abs(dist - d)))
-        rel = (turns - f["route_direction_deg"][i] + 180) % 360 - 180
+        rel = (start[i] + step * np.arange(curve.shape[1]) - reference[i] + 180) % 360 - 180
         o = np.argsort(rel)
         b.plot(rel[o], curve[i][o], color=col, label=f"{dist[i]:.0f} cm from the route")
     b.axvline(0, color="0.5", lw=0.8)
@@ -54,10 +62,10 @@ def familiarity_figure(result: FamiliarityResult, title: str = "") -> Figure:
     c.set_title("(c) catchment areas along the route", fontsize=10)
     c.legend(fontsize=8)
     s = result.summary()
-    fig.suptitle(
-        title
-        or f"{result.world}: {result.model}, success {s['success_pct']:.0f} % of {s['trials']} "
-        f"(95 % CI {s['success_ci95_pct'][0]:.0f}-{s['success_ci95_pct'][1]:.0f} %)"
-    )
+    if not title and s["trials"]:
+        ci = s["success_ci95_pct"]
+        title = f"{result.world}: {result.model}, success {s['success_pct']:.0f} % of {s['trials']} trials"
+        title += f" (95 % CI {ci[0]:.0f}-{ci[1]:.0f} %)"
+    fig.suptitle(title or f"{result.world}: {result.model}, tested on {s['settings']['tested_on']}")
     fig.set_layout_engine("tight")
     return fig

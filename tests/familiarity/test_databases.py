@@ -70,10 +70,13 @@ def test_the_command_runs_on_a_route_database(bob_route, bob_grid, tmp_path, cap
     out, summary = tmp_path / "f.csv", tmp_path / "s.json"
     argv = ["familiarity", "--images", str(bob_route), "--test-images", str(bob_grid), "--model", "mushroom-body",
             "--n-kc", "2000", "--n-active", "20", "--view-rows", "6", "--view-cols", "36",
-            "--out", str(out), "--summary", str(summary), "--catchments-out", str(tmp_path / "c.csv")]  # fmt: skip
+            "--out", str(out), "--summary", str(summary), "--catchments-out", str(tmp_path / "c.csv"),
+            "--plot", str(tmp_path / "p.png")]  # fmt: skip
     assert main(argv) == 0
     s = json.loads(summary.read_text())
     assert s["trials"] == 0 and s["success_pct"] is None and s["field_points"] == 64
+    assert (tmp_path / "p.png").stat().st_size > 10000
+    assert "route_image_heading_deg" in out.read_text().splitlines()[0]
     assert "64 test images" in capsys.readouterr().out
     assert main(["familiarity", "robot", "--images", str(bob_route), "--out", str(tmp_path / "g.csv")]) == 2
     assert main(["familiarity", "--images", str(bob_route), "--step", "3", "--out", str(tmp_path / "g.csv")]) == 2

@@ -18,6 +18,7 @@ from delvjax.core.familiarity.following import Following, follow_route
 from delvjax.core.familiarity.perfect_memory import PerfectMemory
 from delvjax.core.familiarity.views import view_camera, views_at
 from delvjax.familiarity import plan_route, ridf, route_in_world, train_model
+from delvjax.familiarity._run import render_factor
 from delvjax.images import image_world
 
 ROBOT = image_world("robot")
@@ -63,6 +64,13 @@ def test_near_the_route_the_heading_field_points_along_it(robot_route):
     hf = heading_field(model, ROBOT.world, ri.camera, ri.route, jnp.asarray(points))
     assert np.median(np.asarray(hf.error_deg)) < 20.0
     assert np.all(np.asarray(hf.distance) < 6.0)
+
+
+@pytest.mark.parametrize("cols", [12, 36, 72, 90, 360])
+def test_every_scan_and_field_turn_is_whole_rendered_columns(cols):
+    factor = render_factor(cols)
+    per_deg = cols * factor / 360.0  # rendered columns a degree
+    assert factor >= 4 and float(2.0 * per_deg).is_integer() and float(360.0 / cols * per_deg).is_integer()
 
 
 BAD_TRAINING = [
@@ -122,7 +130,7 @@ def test_the_command_writes_every_output_with_its_numbers(tmp_path, capsys):
         (["--route", "10,10 170,170"], "--route: passes through an obstacle"),
         (["--route", "a,b c,d"], "--route: must be waypoints"),
         (["--route-spacing", "0"], "--route-spacing: must be > 0"),
-        (["--view-cols", "7"], "--view-cols: must divide 180"),
+        (["--view-cols", "7"], "--view-cols: must divide 360"),
         (["--trials", "0"], "--trials: must be >= 1"),
         (["--window-ahead", "-1"], "--window-ahead: must be >= 0"),
         (["--n-active", "30000", "--model", "mushroom-body"], "--n-active: must be at most n_kc"),

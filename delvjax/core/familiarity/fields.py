@@ -26,7 +26,8 @@ class HeadingField(eqx.Module):
     """heading: (P,) rad, the most familiar world heading; value: (P,) its unfamiliarity; snapshot: (P,)
     the best-matching route image (-1: none kept); route_direction: (P,) rad at the nearest point of the
     route; distance: (P,) cm to the route; error_deg: (P,) |heading - route_direction|; curve: (P, R)
-    the unfamiliarity of every turn (the RIDF)."""
+    the unfamiliarity of R equal turns counter-clockwise from the world heading curve_start (P,) rad
+    (the RIDF)."""
 
     heading: Array
     value: Array
@@ -35,6 +36,7 @@ class HeadingField(eqx.Module):
     distance: Array
     error_deg: Array
     curve: Array
+    curve_start: Array
 
 
 def full_turns(n_turns: int) -> Array:
@@ -54,7 +56,7 @@ def heading_field(
         dist, _, along, _ = nearest_on_route(route, p)
         heading = wrap(choice.turn)
         error = jnp.abs(jnp.degrees(wrap(heading - along)))
-        return heading, choice.value, choice.snapshot, along, dist, error, choice.curve
+        return heading, choice.value, choice.snapshot, along, dist, error, choice.curve, jnp.float32(0.0)
 
     out = fixed_width_map(one, (jnp.asarray(points, jnp.float32),), width=POINT_WIDTH)
     return HeadingField(*out)
@@ -80,7 +82,8 @@ def stored_view_field(
         reference = route.headings[nearest_image(route, p)]
         heading = wrap(h + choice.turn)
         error = jnp.abs(jnp.degrees(wrap(heading - reference)))
-        return heading, choice.value, choice.snapshot, reference, dist, error, choice.curve
+        ccw = choice.curve[jnp.mod(-shifts, w)]  # entry k: a turn of +2 pi k / W
+        return heading, choice.value, choice.snapshot, reference, dist, error, ccw, h
 
     args = (views, jnp.asarray(headings, jnp.float32), jnp.asarray(positions, jnp.float32))
     return HeadingField(*jax.lax.map(one, args))
