@@ -50,6 +50,7 @@ _LAZY = {
     "database_rollouts": "images",
     "route_experiments": "familiarity",
     "database_experiments": "familiarity",
+    "unfamiliarity_grad": "familiarity",
     "train_model": "familiarity",
     "ridf": "familiarity",
     "METHODS": "options",

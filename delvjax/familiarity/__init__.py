@@ -2,6 +2,7 @@
 body trained on a route, their rotational image difference functions, heading fields, route-following
 trials and catchment areas."""
 
+from ._gradients import unfamiliarity_grad as unfamiliarity_grad
 from ._models import MODELS as MODELS
 from ._models import make_model as make_model
 from ._models import ridf as ridf

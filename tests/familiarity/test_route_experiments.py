@@ -17,7 +17,7 @@ from delvjax.core.familiarity.fields import heading_field
 from delvjax.core.familiarity.following import Following, follow_route
 from delvjax.core.familiarity.perfect_memory import PerfectMemory
 from delvjax.core.familiarity.views import view_camera, views_at
-from delvjax.familiarity import plan_route, ridf, route_in_world, train_model
+from delvjax.familiarity import plan_route, ridf, route_in_world, train_model, unfamiliarity_grad
 from delvjax.familiarity._run import render_factor
 from delvjax.images import image_world
 
@@ -142,3 +142,28 @@ def test_bad_options_are_refused_in_one_line_and_nothing_is_written(tmp_path, ca
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith(f"delvjax: error: {says}"), err
     assert not out.exists()
+
+
+@pytest.mark.parametrize("name,settings", [("perfect-memory", {"kind": "rms"}), ("perfect-memory", {"kind": "corr"}),
+                                           ("infomax", {"learning_rate": 0.5})])  # fmt: skip
+def test_the_unfamiliarity_gradient_is_central_differences(name, settings):
+    rng = np.random.default_rng(3)
+    route = rng.integers(0, 256, (4, 4, 8)).astype(np.float32)
+    model = train_model(name, route, **settings)
+    view = route[1] + rng.normal(0, 30, route[1].shape).astype(np.float32)
+    value, d_view, d_model = unfamiliarity_grad(model, view)
+    f = lambda v: float(model.unfamiliarity(jnp.asarray(v)[None])[0])  # noqa: E731
+    for r, c in [(0, 0), (2, 5), (3, 7)]:
+        e = np.zeros_like(view)
+        e[r, c] = 0.5
+        fd = (f(view + e) - f(view - e)) / 1.0
+        assert d_view[r, c] == pytest.approx(fd, rel=2e-2, abs=1e-5 * max(1.0, abs(value)))
+    memory = d_model.images if name == "perfect-memory" else d_model.weights
+    assert memory is not None and np.isfinite(memory).all() and np.abs(memory).max() > 0
+
+
+def test_the_mushroom_bodys_view_gradient_is_zero_and_its_weights_are_not():
+    route = np.random.default_rng(4).integers(0, 256, (3, 4, 8)).astype(np.float32)
+    model = train_model("mushroom-body", route, n_kc=200, pn_per_kc=4, n_active=10)
+    _, d_view, d_model = unfamiliarity_grad(model, route[0] + 3.0)
+    assert np.all(d_view == 0.0) and np.abs(d_model.kc_weights).sum() == pytest.approx(1.0)
