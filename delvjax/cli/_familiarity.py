@@ -138,6 +138,7 @@ def on_databases(args: argparse.Namespace, given: dict):
     test_db = None if args.test_images is None else load_database(args.test_images, panoramas=True, warn=warn)
     return database_experiments(
         route_db, args.model, test_db=test_db, view_rows=args.view_rows, view_cols=args.view_cols, seed=args.seed,
+        trials=args.trials, heading_noise_deg=args.heading_noise_deg,
         progress=lambda s: print(s, flush=True), **given,
     )  # fmt: skip
 

@@ -17,7 +17,7 @@ from ..core.checks import non_negative, positive, positive_int, seed_value
 from ..core.errors import InputError
 from ..core.familiarity.catchment import route_catchments
 from ..core.familiarity.fields import HeadingField, heading_field, stored_view_field
-from ..core.familiarity.following import Following, Trials, follow_route
+from ..core.familiarity.following import Following, StoredViews, Surroundings, Trials, WorldViews, follow_route
 from ..core.familiarity.route import Route
 from ..core.familiarity.views import downsample, view_camera
 from ..core.rollouts.rules import OUTCOMES, SUCCESS
@@ -25,7 +25,14 @@ from ..core.rollouts.success import wilson_pct
 from ..images._render import world_grid
 from ..images._worlds import ImageWorld, image_world
 from ._models import make_model, model_settings
-from ._routes import RouteImages, default_waypoints, plan_route, route_from_database, route_in_world
+from ._routes import (
+    RouteImages,
+    default_waypoints,
+    headings_along,
+    plan_route,
+    route_from_database,
+    route_in_world,
+)
 
 MAX_TRIALS = 10000
 OFF_ROUTE = 20.0  # cm: "near the route" in the summary, the distance at which a trial counts an error
@@ -46,6 +53,7 @@ class FamiliarityResult:
     catchments: dict = field(default_factory=dict)
     arena: np.ndarray = field(default_factory=lambda: np.zeros(4))
     obstacles: dict = field(default_factory=dict)
+    on_database: bool = False  # the field's reference is the nearest route image's column-0 heading
 
     def field_columns(self) -> dict:
         """The heading field, one row per grid point."""
@@ -56,7 +64,7 @@ class FamiliarityResult:
             "heading_deg": np.degrees(np.asarray(f.heading)),
             "unfamiliarity": np.asarray(f.value),
             "best_image": np.where(np.asarray(f.snapshot) >= 0, np.asarray(f.snapshot), np.nan),  # none kept: empty
-            ("route_image_heading_deg" if self.rules is None else "route_direction_deg"): np.degrees(
+            ("route_image_heading_deg" if self.on_database else "route_direction_deg"): np.degrees(
                 np.asarray(f.route_direction)
             ),
             "distance_to_route_cm": np.asarray(f.distance),
@@ -171,7 +179,7 @@ def route_experiments(
     hf = heading_field(trained, iw.world, vc, ri.route, jnp.asarray(points, jnp.float32), n_turns=cols)
     starts = jnp.repeat(ri.route.positions[:1], trials, 0)
     heads = jnp.repeat(ri.route.headings[:1], trials, 0)
-    tr = follow_route(trained, iw.world, vc, ri.route, rules, starts, heads, jax.random.key(seed))
+    tr = follow_route(trained, WorldViews(iw.world, vc), ri.route, rules, starts, heads, jax.random.key(seed))
     ca = route_catchments(jnp.asarray(ri.views), settings.get("kind", "abs"))
     used = default_waypoints(iw, route_spacing) if route is None else np.asarray(route, float).reshape(-1, 2)
     run_settings = {"route_spacing": float(route_spacing), "view_rows": rows, "view_cols": cols,
@@ -194,6 +202,8 @@ def database_experiments(
     test_db=None,
     view_rows: int = 10,
     view_cols: int = 90,
+    trials: int = 20,
+    heading_noise_deg: float = 10.0,
     seed: int = 0,
     progress: Callable[[str], None] | None = None,
     **model_options,
@@ -201,11 +211,13 @@ def database_experiments(
     """The route experiments on image databases (docs/familiarity.md §3.4): `model` trained on a route
     database (`images.load_database(..., panoramas=True)`, a route); the heading at every image of
     `test_db` (a grid or route database of the same camera), or, without one, trained on the route's
-    even images and tested on its odd ones; catchment areas along the route. No route-following trials: a
-    database has no views between its images."""
+    even images and tested on its odd ones; on a grid `test_db`, route-following `trials` on its stored
+    views (the nearest image, rolled); catchment areas along the route."""
     say = progress or (lambda _: None)
     settings = model_settings(model, **model_options)
     seed = seed_value(seed)
+    trials = positive_int(trials, "trials")
+    noise = non_negative(heading_noise_deg, "heading_noise_deg")
     if route_db.kind != "route":
         raise InputError("images", route_db.name, f"must be a route database (its metadata says {route_db.kind})")
     shape = (positive_int(view_rows, "view_rows"), positive_int(view_cols, "view_cols"))
@@ -226,13 +238,43 @@ def database_experiments(
     r = test.route
     hf = stored_view_field(trained, jnp.asarray(test.views), r.headings, r.positions, ri.route)
     ca = route_catchments(jnp.asarray(ri.views), settings.get("kind", "abs"))
-    run_settings = {"route_spacing": float(np.median(np.hypot(*np.diff(np.asarray(ri.route.positions), axis=0).T))),
-                    "view_rows": shape[0], "view_cols": shape[1], "seed": seed,
+    points = np.asarray(ri.route.positions, np.float64)
+    spacing = float(np.median(np.hypot(*np.diff(points, axis=0).T)))
+    rules = tr = None
+    if test_db is not None and test_db.kind == "grid":
+        rules, tr = stored_trials(trained, test, ri.route, route_db, trials, noise, spacing, seed)
+    run_settings = {"route_spacing": spacing, "view_rows": shape[0], "view_cols": shape[1], "seed": seed,
+                    "trials": trials if tr is not None else 0, "heading_noise_deg": float(noise),
                     "tested_on": "odd route images" if test_db is None else test_db.name, **settings}  # fmt: skip
     return FamiliarityResult(
-        route_db.name, model, run_settings, ri, np.asarray(r.positions), hf, None, None, ca,
-        np.asarray(route_db.arena), route_db.obstacles,
+        route_db.name, model, run_settings, ri, np.asarray(r.positions), hf, rules, tr, ca,
+        np.asarray(route_db.arena), route_db.obstacles, on_database=True,
     )  # fmt: skip
+
+
+def stored_trials(
+    model, test: RouteImages, route: Route, route_db, trials: int, noise: float, spacing: float, seed: int
+):
+    """Route-following trials on a grid database's stored views (`following.StoredViews`) from the route's
+    start, a route spacing a move, 2.1 route lengths of moves; column 0 of the route's images looks
+    `camera_offset` left of the direction of travel (their circular mean)."""
+    p = np.asarray(route.positions, np.float64)
+    travel = headings_along(p)
+    offset = float(np.angle(np.mean(np.exp(1j * (np.asarray(route.headings, np.float64) - travel)))))
+    length = float(np.sum(np.hypot(*np.diff(p, axis=0).T)))
+    rules = Following(
+        step=spacing, heading_noise_deg=noise, camera_offset=offset, max_steps=math.ceil(2.1 * length / spacing)
+    )
+    obs = route_db.obstacles
+    area = Surroundings(
+        jnp.asarray(route_db.arena, jnp.float32),
+        jnp.asarray(np.asarray(obs.get("cylinders") or [[0.0, 0.0, -1.0]], np.float32).reshape(-1, 3)),
+        jnp.asarray(np.asarray(obs.get("boxes") or [[0.0, 0.0, -1.0, -1.0]], np.float32).reshape(-1, 4)),
+    )
+    source = StoredViews(jnp.asarray(test.views), test.route.positions, test.route.headings, area)
+    starts = jnp.repeat(route.positions[:1], trials, 0)
+    heads = jnp.full((trials,), travel[0] + offset, jnp.float32)
+    return rules, follow_route(model, source, route, rules, starts, heads, jax.random.key(seed))
 
 
 def grid_views(db, shape: tuple[int, int]) -> RouteImages:

@@ -24,7 +24,7 @@ def familiarity_figure(result: FamiliarityResult, title: str = "") -> Figure:
     h = np.radians(f["heading_deg"])
     q = a.quiver(f["x_cm"], f["y_cm"], np.cos(h), np.sin(h), np.minimum(f["error_deg"], 180.0), cmap="viridis_r",
                  clim=(0, 180), angles="xy", scale=25, width=0.004, zorder=4)  # fmt: skip
-    database = result.rules is None  # an image database's field: column-0 headings against the nearest route image's
+    database = result.on_database  # an image database's field: column-0 headings against the nearest route image's
     fig.colorbar(
         q,
         ax=a,

@@ -14,7 +14,7 @@ import pytest
 from delvjax.cli._main import main
 from delvjax.core.errors import InputError
 from delvjax.core.familiarity.fields import heading_field
-from delvjax.core.familiarity.following import Following, follow_route
+from delvjax.core.familiarity.following import Following, WorldViews, follow_route
 from delvjax.core.familiarity.perfect_memory import PerfectMemory
 from delvjax.core.familiarity.views import view_camera, views_at
 from delvjax.familiarity import plan_route, ridf, route_in_world, train_model, unfamiliarity_grad
@@ -33,7 +33,7 @@ def trials_of(model, ri, n, seed=0, noise=10.0):
     rules = Following(heading_noise_deg=noise, max_steps=60)
     starts = jnp.repeat(ri.route.positions[:1], n, 0)
     heads = jnp.repeat(ri.route.headings[:1], n, 0)
-    return follow_route(model, ROBOT.world, ri.camera, ri.route, rules, starts, heads, jax.random.key(seed))
+    return follow_route(model, WorldViews(ROBOT.world, ri.camera), ri.route, rules, starts, heads, jax.random.key(seed))
 
 
 def test_a_memory_of_the_route_follows_it_and_a_memory_facing_back_does_not(robot_route):

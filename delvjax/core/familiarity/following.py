@@ -3,7 +3,8 @@ step the agent scans +-`scan_deg` about its heading in `scan_step_deg` steps, tu
 familiar view (the model's `choose`), adds N(0, heading_noise) and moves `step` cm. Leaving the route
 by more than `off_route` cm, entering an obstacle or leaving the arena is an error: the agent is put
 back on the nearest point of the route, facing along it. A trial succeeds within `goal_radius` of
-the route's last image, else times out after `max_steps`. A windowed perfect memory searches the
+the route's last image, else times out after `max_steps`. The heading is column 0's; the agent moves
+`camera_offset` to the right of it (0 for rendered routes; a database's camera may look elsewhere). A windowed perfect memory searches the
 route images about its last best match (`perfect_memory.window`). Move t of trial i draws from
 fold_in(fold_in(key, i), t): the same numbers however the trials are chunked."""
 
@@ -15,16 +16,17 @@ import jax.numpy as jnp
 from jax import Array
 
 from ..batching import fixed_width_map
-from ..geometry import unit, wrap
+from ..geometry import TWO_PI, unit, wrap
 from ..images.rollouts import Field, status
 from ..images.world import World
 from ..rollouts.rules import RUNNING, SUCCESS, TIMEOUT
 from .base import FamiliarityModel
 from .perfect_memory import PerfectMemory, window
+from .ridf import rolled
 from .route import Route, nearest_on_route
 from .views import ViewCamera, views_at
 
-TRIAL_WIDTH = 8  # trials per vectorised step: each renders a panorama a move
+TRIAL_WIDTH = 8  # trials per vectorised step: each renders a panorama a move (or reads a stored view)
 
 
 class Following(eqx.Module):
@@ -34,6 +36,7 @@ class Following(eqx.Module):
     off_route: Array | float = 20.0
     goal_radius: Array | float = 20.0
     heading_noise_deg: Array | float = 0.0
+    camera_offset: Array | float = 0.0  # rad: where column 0 looks, left of the direction of travel
     scan_deg: float = eqx.field(static=True, default=60.0)
     scan_step_deg: float = eqx.field(static=True, default=2.0)
     max_steps: int = eqx.field(static=True, default=400)
@@ -56,25 +59,64 @@ class Trials(eqx.Module):
     value: Array
 
 
-def scene(world: World, route: Route) -> Field:
-    """The obstacle and goal test of a trial (`core/images/rollouts.py` `status`): the goal is the route's end."""
-    c, b = world.cylinders, world.boxes
-    return Field(
-        positions=route.positions,
-        direction=jnp.zeros(route.positions.shape[0]),
-        valid=jnp.ones(route.positions.shape[0], bool),
-        home=route.positions[-1],
-        arena=world.arena,
-        cylinders=jnp.where(c[:, 3:4] > 0, c[:, :3], jnp.array([0.0, 0.0, -1.0])),  # padding never hits
-        boxes=jnp.where(b[:, 4:5] > 0, b[:, :4], jnp.array([0.0, 0.0, -1.0, -1.0])),
-    )
+class Surroundings(eqx.Module):
+    """arena (4,) [xmin, ymin, xmax, ymax]; cylinders (C, 3) [x, y, r]; boxes (K, 4): what ends a move
+    (a radius -1 or an empty box never does)."""
+
+    arena: Array
+    cylinders: Array
+    boxes: Array
+
+    def field(self, route: Route) -> Field:
+        """The obstacle and goal test of a trial (`core/images/rollouts.py` `status`); the goal is the route's end."""
+        n = route.positions.shape[0]
+        return Field(route.positions, jnp.zeros(n), jnp.ones(n, bool), route.positions[-1], self.arena,
+                     self.cylinders, self.boxes)  # fmt: skip
 
 
-def one_trial(
-    model: FamiliarityModel, world: World, vc: ViewCamera, route: Route, rules: Following, start, heading0, key
-):
-    """One trial from `start` (2,) facing `heading0` rad (module docstring)."""
-    field = scene(world, route)
+class WorldViews(eqx.Module):
+    """Views rendered in a colour world at any pose (`views.views_at`)."""
+
+    world: World
+    camera: ViewCamera
+
+    def __call__(self, x: Array, heading: Array, turns: Array) -> Array:
+        return views_at(self.world, self.camera, x, heading, turns)
+
+    def surroundings(self) -> Surroundings:
+        c, b = self.world.cylinders, self.world.boxes
+        return Surroundings(
+            arena=self.world.arena,
+            cylinders=jnp.where(c[:, 3:4] > 0, c[:, :3], jnp.array([0.0, 0.0, -1.0])),  # padding never hits
+            boxes=jnp.where(b[:, 4:5] > 0, b[:, :4], jnp.array([0.0, 0.0, -1.0, -1.0])),
+        )
+
+
+class StoredViews(eqx.Module):
+    """The views of an image database (navipy's and BoB's nearest-snapshot rule): at x the stored view
+    nearest to x, rolled by whole columns so that column 0 looks along each turned heading (a turn is
+    rounded to the view's column width). views: (N, H, W); positions: (N, 2) cm; headings: (N,) rad
+    (column 0's)."""
+
+    views: Array
+    positions: Array
+    headings: Array
+    area: Surroundings
+
+    def __call__(self, x: Array, heading: Array, turns: Array) -> Array:
+        i = jnp.argmin(jnp.sum((self.positions - x) ** 2, -1))
+        w = self.views.shape[-1]
+        k = jnp.round(wrap(heading + turns - self.headings[i]) / (TWO_PI / w)).astype(jnp.int32)
+        return rolled(self.views[i], -k)  # column j of the result: column j + k of the stored view
+
+    def surroundings(self) -> Surroundings:
+        return self.area
+
+
+def one_trial(model: FamiliarityModel, source, route: Route, rules: Following, start, heading0, key):
+    """One trial from `start` (2,) facing `heading0` rad, views from `source` (`WorldViews` or
+    `StoredViews`; module docstring)."""
+    field = source.surroundings().field(route)
     turns = rules.turns()
     n_img = model.n_images()
     windowed = isinstance(model, PerfectMemory) and model.window_ahead > 0
@@ -82,15 +124,15 @@ def one_trial(
     def body(carry, t):
         x, heading, pointer, errors, code, steps = carry
         active = window(n_img, pointer, model.window_ahead, model.window_behind) if windowed else None
-        choice = model.choose(views_at(world, vc, x, heading, turns), turns, None, active)
+        choice = model.choose(source(x, heading, turns), turns, None, active)
         z = jax.random.normal(jax.random.fold_in(key, t), (), jnp.float32)
         h = wrap(heading + choice.turn + jnp.radians(rules.heading_noise_deg) * z)
-        moved = x + rules.step * unit(h)
+        moved = x + rules.step * unit(h - rules.camera_offset)
         dist, back, along, _ = nearest_on_route(route, moved)
         hit = status(field, moved, jnp.float32(-1.0))  # LANDMARK / ARENA / RUNNING (no goal test here)
         error = (dist > rules.off_route) | (hit != RUNNING)
         moved = jnp.where(error, back, moved)
-        h = jnp.where(error, along, h)
+        h = jnp.where(error, along + rules.camera_offset, h)
         done = jnp.sqrt(jnp.sum((moved - field.home) ** 2)) <= rules.goal_radius
         running = code == RUNNING
         x = jnp.where(running, moved, x)
@@ -116,11 +158,11 @@ def one_trial(
 
 @eqx.filter_jit
 def follow_route(
-    model: FamiliarityModel, world: World, vc: ViewCamera, route: Route, rules: Following, starts, headings, key
+    model: FamiliarityModel, source: WorldViews | StoredViews, route: Route, rules: Following, starts, headings, key
 ) -> Trials:
     """Route-following trials from every start (T, 2) facing headings (T,) rad; trial i draws from
     fold_in(key, i)."""
     keys = jax.vmap(lambda i: jax.random.fold_in(key, i))(jnp.arange(starts.shape[0]))
-    run = lambda s, h, k: one_trial(model, world, vc, route, rules, s, h, k)  # noqa: E731
+    run = lambda s, h, k: one_trial(model, source, route, rules, s, h, k)  # noqa: E731
     outcome, steps, errors, path, value = fixed_width_map(run, (starts, headings, keys), width=TRIAL_WIDTH)
     return Trials(outcome=outcome, steps=steps, errors=errors, path=path, value=value)
