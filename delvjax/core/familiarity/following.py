@@ -121,8 +121,8 @@ def one_trial(model: FamiliarityModel, source, route: Route, rules: Following, s
     n_img = model.n_images()
     windowed = isinstance(model, PerfectMemory) and model.window_ahead > 0
 
-    def body(carry, t):
-        x, heading, pointer, errors, code, steps = carry
+    def move(x, heading, pointer, t):
+        """(position, heading, error, best image, unfamiliarity) after move t."""
         active = window(n_img, pointer, model.window_ahead, model.window_behind) if windowed else None
         choice = model.choose(source(x, heading, turns), turns, None, active)
         z = jax.random.normal(jax.random.fold_in(key, t), (), jnp.float32)
@@ -133,26 +133,27 @@ def one_trial(model: FamiliarityModel, source, route: Route, rules: Following, s
         error = (dist > rules.off_route) | (hit != RUNNING)
         moved = jnp.where(error, back, moved)
         h = jnp.where(error, along + rules.camera_offset, h)
-        done = jnp.sqrt(jnp.sum((moved - field.home) ** 2)) <= rules.goal_radius
-        running = code == RUNNING
-        x = jnp.where(running, moved, x)
-        heading = jnp.where(running, h, heading)
-        pointer = jnp.where(running & (choice.snapshot >= 0), choice.snapshot, pointer)
-        errors = errors + (running & error)
-        code = jnp.where(running & done, SUCCESS, code)
-        return (x, heading, pointer, errors, code, steps + running), (x, jnp.where(running, choice.value, jnp.nan))
+        return moved, h, error, choice.snapshot, choice.value
+
+    def running(carry):
+        return (carry[4] == RUNNING) & (carry[5] < rules.max_steps)
+
+    def body(carry):  # one move of a running trial; a lane group stops when all of its trials have ended
+        x, heading, pointer, errors, code, t, path, value = carry
+        x, heading, error, best, v = move(x, heading, pointer, t)
+        done = jnp.sqrt(jnp.sum((x - field.home) ** 2)) <= rules.goal_radius
+        pointer = jnp.where(best >= 0, best, pointer)
+        path = jax.lax.dynamic_update_index_in_dim(path, x, t, 0)
+        value = jax.lax.dynamic_update_index_in_dim(value, v, t, 0)
+        return x, heading, pointer, errors + error, jnp.where(done, SUCCESS, code), t + 1, path, value
 
     start = jnp.asarray(start, jnp.float32)
     at_goal = jnp.sqrt(jnp.sum((start - field.home) ** 2)) <= rules.goal_radius
-    carry = (
-        start,
-        jnp.asarray(heading0, jnp.float32),
-        jnp.int32(-1),
-        jnp.int32(0),
-        jnp.where(at_goal, SUCCESS, RUNNING),
-        jnp.int32(0),
-    )
-    (_, _, _, errors, code, steps), (path, value) = jax.lax.scan(body, carry, jnp.arange(rules.max_steps))
+    n = rules.max_steps
+    carry = (start, jnp.asarray(heading0, jnp.float32), jnp.int32(-1), jnp.int32(0),
+             jnp.where(at_goal, SUCCESS, RUNNING), jnp.int32(0), jnp.zeros((n, 2), jnp.float32), jnp.full(n, jnp.nan, jnp.float32))  # fmt: skip
+    x, _, _, errors, code, steps, path, value = jax.lax.while_loop(running, body, carry)
+    path = jnp.where((jnp.arange(n) < steps)[:, None], path, x)  # the last position repeated after the end
     return jnp.where(code == RUNNING, TIMEOUT, code), steps, errors, jnp.concatenate([start[None], path]), value
 
 
