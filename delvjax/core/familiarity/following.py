@@ -125,7 +125,7 @@ def one_trial(model: FamiliarityModel, source, route: Route, rules: Following, s
         """(position, heading, error, best image, unfamiliarity) after move t."""
         active = window(n_img, pointer, model.window_ahead, model.window_behind) if windowed else None
         choice = model.choose(source(x, heading, turns), turns, None, active)
-        z = jax.random.normal(jax.random.fold_in(key, t), (), jnp.float32)
+        z = jax.random.normal(jax.random.fold_in(key, t), (), dtype=jnp.float32)
         h = wrap(heading + choice.turn + jnp.radians(rules.heading_noise_deg) * z)
         moved = x + rules.step * unit(h - rules.camera_offset)
         dist, back, along, _ = nearest_on_route(route, moved)

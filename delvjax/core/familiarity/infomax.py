@@ -26,7 +26,7 @@ BYTE = 255.0
 def initial_weights(key: ArrayLike, n_inputs: int, n_hidden: int) -> Array:
     """(M, N) standard normal weights, every input's column centred and scaled to RMS 1 over the hidden
     units (as BoB's `generateInitialWeights`; its own generator is libstdc++'s, ours `jax.random`)."""
-    w = jax.random.normal(key, (n_hidden, n_inputs), jnp.float32)
+    w = jax.random.normal(key, (n_hidden, n_inputs), dtype=jnp.float32)
     w = w - jnp.mean(w, 0, keepdims=True)
     return w / jnp.sqrt(jnp.mean(w * w, 0, keepdims=True))
 
