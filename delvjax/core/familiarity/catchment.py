@@ -23,6 +23,10 @@ from jax.typing import ArrayLike
 from .ridf import difference, rolled, turn_of_shift
 
 
+IMAGE_BATCH = 64  # route images compared with one goal side by side (`route_tables`)
+GOAL_BATCH = 4  # goals side by side: GOAL_BATCH x IMAGE_BATCH x W x H x W floats at most (75 MB for 10 x 90 views)
+
+
 def medfilt(values: ArrayLike, size: int) -> Array:
     """scipy.signal.medfilt of a 1-D array: the median of `size` (odd) neighbours, zero-padded."""
     if size == 1:
@@ -78,9 +82,9 @@ def route_tables(images: ArrayLike, kind: str = "abs") -> tuple[Array, Array]:
             best = jnp.argmin(jnp.where(jnp.isnan(curve), jnp.inf, curve))
             return curve[0], turns[best]
 
-        return jax.lax.map(one_image, images)
+        return jax.lax.map(one_image, images, batch_size=IMAGE_BATCH)
 
-    return jax.lax.map(one_goal, images)
+    return jax.lax.map(one_goal, images, batch_size=GOAL_BATCH)
 
 
 def route_catchments(images: ArrayLike, kind: str = "abs", threshold: float = 45.0, size: int = 1) -> dict[str, Array]:
