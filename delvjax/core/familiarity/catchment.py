@@ -22,7 +22,6 @@ from jax.typing import ArrayLike
 
 from .ridf import difference, rolled, turn_of_shift
 
-
 IMAGE_BATCH = 64  # route images compared with one goal side by side (`route_tables`)
 GOAL_BATCH = 4  # goals side by side: GOAL_BATCH x IMAGE_BATCH x W x H x W floats at most (75 MB for 10 x 90 views)
 
