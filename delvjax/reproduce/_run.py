@@ -32,7 +32,16 @@ from ..core.errors import InputError, did_you_mean, warn
 from ..outputs._cache import enable_compilation_cache, package_sources, release_programs_near_map_limit
 from ..outputs._files import check_out_dir, write_json
 from ._report import write_report
-from ._study import STUDY_FILE, RunConfig, StudyContext, StudyRecord, compile_seconds, config_record, versions
+from ._study import (
+    STUDY_FILE,
+    RunConfig,
+    StudyContext,
+    StudyRecord,
+    compile_seconds,
+    config_record,
+    stop_sampling,
+    versions,
+)
 
 STUDIES = "delvjax.studies"  # the package of the study runners, the thesis's numbers and the claim checks
 
@@ -203,13 +212,16 @@ def run_study(
         name=name, title=module.TITLE, hash=digest, settings=config_record(config), versions=versions()
     )
     c0, t0 = compile_seconds(), time.perf_counter()
-    with tqdm(
-        total=getattr(module, "STEPS", None), desc=f"  {name}", leave=False, disable=not progress, file=sys.stderr
-    ) as bar:
-        ctx = StudyContext(folder, record, config, bar, painter)
-        module.run(ctx)
-    record.seconds = time.perf_counter() - t0
-    record.compile_seconds = compile_seconds() - c0
+    try:
+        with tqdm(
+            total=getattr(module, "STEPS", None), desc=f"  {name}", leave=False, disable=not progress, file=sys.stderr
+        ) as bar:
+            ctx = StudyContext(folder, record, config, bar, painter)
+            module.run(ctx)
+        record.seconds = time.perf_counter() - t0
+        record.compile_seconds = compile_seconds() - c0
+    finally:
+        stop_sampling()
     data = asdict(record)
     # last, after the figures: its presence marks the study complete
     done = ctx.finish(lambda: write_json(folder / STUDY_FILE, data))
@@ -258,7 +270,8 @@ def reproduce(
             raise InputError("--out", str(out), f"holds a file {name}, where the folder of study {name} goes")
     out.mkdir(parents=True, exist_ok=True)
     enable_compilation_cache()
-    compile_seconds()
+    compile_seconds()  # the compile-event listener from the start; this thread runs no study itself
+    stop_sampling()
     modules = registry(names)
     digests = {name: study_hash(module, config) for name, module in modules.items()}  # the code that runs
     records, ran = {}, []

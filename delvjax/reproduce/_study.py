@@ -131,6 +131,8 @@ _JAX = str(Path(jax.__file__).parent / "_src")
 _OWN = (str(Path(__file__).parents[1]), str(Path(__file__).parents[2] / "studies"))  # delvjax, studies
 _MAKING = ("pjit.py", "pxla.py", "compiler.py", "mlir.py", "partial_eval.py")  # JAX making a program
 _STUDY_THREADS: set[int] = set()
+_SAMPLER_LOCK = threading.Lock()
+_REGISTERED: list[bool] = []  # the compile-event listener, registered once per process
 
 
 def _making_program(frame) -> bool:
@@ -143,16 +145,34 @@ def _making_program(frame) -> bool:
 
 
 def _sample() -> None:
+    """Until no study thread is alive: every SAMPLE_S, the study threads in a call from our code into C
+    while another study thread makes a program count as waiting for it. Only study threads' frames are
+    read (walking every thread's frames, the test session's included, once crashed the interpreter in
+    its garbage collector: a `dict` where a frame's f_back should be), and the sampler ends with the
+    studies, so nothing reads frames after a run."""
     while True:
         time.sleep(SAMPLE_S)
-        frames = sys._current_frames()
+        alive = {t.ident for t in threading.enumerate()}
+        with _SAMPLER_LOCK:
+            _STUDY_THREADS.intersection_update(alive)
+            if not _STUDY_THREADS:
+                _LISTENING.clear()  # the next study starts a new sampler
+                return
+            studies = set(_STUDY_THREADS)
+        frames = {ident: f for ident, f in sys._current_frames().items() if ident in studies}
         making = {ident for ident, frame in frames.items() if _making_program(frame)}
         if not making:
             continue
-        for ident in _STUDY_THREADS - making:
+        for ident in studies - making:
             frame = frames.get(ident)
             if frame is not None and frame.f_code.co_filename.startswith(_OWN):  # in a C call: a jit call
                 _add(ident, SAMPLE_S)
+
+
+def stop_sampling() -> None:
+    """This thread's study is over: the sampler no longer reads its frames (and ends with the last study)."""
+    with _SAMPLER_LOCK:
+        _STUDY_THREADS.discard(threading.get_ident())
 
 
 def compile_seconds() -> float:
@@ -160,11 +180,14 @@ def compile_seconds() -> float:
     a program another thread was compiling (each study runs in one thread, so a study's compile time is
     not mixed with its neighbour's, and a study that needs the program its neighbour compiles counts
     the wait as compilation; sampled, to SAMPLE_S)."""
-    if not _LISTENING:
-        jax.monitoring.register_event_duration_secs_listener(_on_duration)
-        threading.Thread(target=_sample, name="compile-waits", daemon=True).start()
-        _LISTENING.append(True)
-    _STUDY_THREADS.add(threading.get_ident())
+    with _SAMPLER_LOCK:
+        _STUDY_THREADS.add(threading.get_ident())
+        if not _REGISTERED:
+            jax.monitoring.register_event_duration_secs_listener(_on_duration)
+            _REGISTERED.append(True)
+        if not _LISTENING:
+            threading.Thread(target=_sample, name="compile-waits", daemon=True).start()
+            _LISTENING.append(True)
     return _COMPILE_SECONDS.get(threading.get_ident(), 0.0)
 
 
