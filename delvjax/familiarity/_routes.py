@@ -105,7 +105,7 @@ def route_in_world(iw: ImageWorld, points: np.ndarray, vc: ViewCamera | None = N
 
 
 def route_from_database(db, view_shape: tuple[int, int] = (10, 90)) -> RouteImages:
-    """The images of a loaded route database (`images.load_database(..., panoramas=True)`), block-averaged
+    """The images of a loaded database (`images.load_database(..., panoramas=True)`; a route, or a grid to test on), block-averaged
     to `view_shape` (rows, cols must divide the panorama's), in the order they were recorded."""
     pano = db.rings.snapshots.panorama
     if pano is None:

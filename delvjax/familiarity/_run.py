@@ -19,7 +19,7 @@ from ..core.familiarity.catchment import route_catchments
 from ..core.familiarity.fields import HeadingField, heading_field, stored_view_field
 from ..core.familiarity.following import Following, StoredViews, Surroundings, Trials, WorldViews, follow_route
 from ..core.familiarity.route import Route
-from ..core.familiarity.views import downsample, view_camera
+from ..core.familiarity.views import view_camera
 from ..core.rollouts.rules import OUTCOMES, SUCCESS
 from ..core.rollouts.success import wilson_pct
 from ..images._render import world_grid
@@ -231,7 +231,7 @@ def database_experiments(
         pano = test_db.rings.snapshots.panorama
         if pano is None or pano.shape[-2:] != route_db.rings.snapshots.panorama.shape[-2:]:
             raise InputError("test_images", test_db.name, "must hold panoramas of the route's size")
-        test = route_from_database(test_db, shape) if test_db.kind == "route" else grid_views(test_db, shape)
+        test = route_from_database(test_db, shape)  # a grid's images in the same form
         train = ri.views
     say(f"{model}: trained on {len(train)} route images, headings at {test.n_images} images, catchments ...")
     trained = make_model(model, shape, seed, **settings).train(jnp.asarray(train))
@@ -275,12 +275,3 @@ def stored_trials(
     starts = jnp.repeat(route.positions[:1], trials, 0)
     heads = jnp.full((trials,), travel[0] + offset, jnp.float32)
     return rules, follow_route(model, source, route, rules, starts, heads, jax.random.key(seed))
-
-
-def grid_views(db, shape: tuple[int, int]) -> RouteImages:
-    """A grid database's images as views (their positions and column-0 headings, in the `RouteImages` form)."""
-    pano = db.rings.snapshots.panorama
-    h = pano.shape[-2]
-    views = np.asarray(downsample(jnp.asarray(pano, jnp.float32), h // shape[0]))
-    route = Route(jnp.asarray(db.rings.positions, jnp.float32), jnp.asarray(db.rings.headings, jnp.float32))
-    return RouteImages(db.name, route, views, None)
