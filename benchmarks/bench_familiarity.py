@@ -9,6 +9,8 @@ JAX >= 100x the twin per query on 2 CPU cores.
 
     python benchmarks/bench_familiarity.py            # 10 x 90 views, 200 route images, 64 queries
     python benchmarks/bench_familiarity.py --smoke    # tiny sizes, no targets (the test suite runs it)
+
+The last route row is a thousand-image route (natural, 0.5 cm between images: 1068 images).
 """
 
 from __future__ import annotations
@@ -95,9 +97,12 @@ def query_table(shape, n_images: int, n_queries: int, n_kc: int, twin_queries: i
     return rows
 
 
-def trials_row(world: str, model: str, trials: int, smoke: bool) -> dict:
+def trials_row(world: str, model: str, trials: int, smoke: bool, route_spacing: float = 4.0) -> dict:
+    """One `route_experiments` call, first and warm; a route spacing below the 4 cm step gives a long route
+    (natural at 0.5 cm: 1068 images) followed in 4 cm moves."""
     iw = image_world(world)
-    kw = dict(trials=trials, grid_spacing=60.0 if smoke else None, max_steps=20 if smoke else None)
+    kw = dict(trials=trials, grid_spacing=60.0 if smoke else None, max_steps=20 if smoke else None,
+              route_spacing=route_spacing, step=4.0)  # fmt: skip
     if model == "mushroom-body" and smoke:
         kw.update(n_kc=500, n_active=5)
     t0 = time.perf_counter()
@@ -130,6 +135,7 @@ def main() -> None:
     trials = [
         trials_row("robot", m, 4 if a.smoke else 20, a.smoke) for m in ("perfect-memory", "infomax", "mushroom-body")
     ]
+    trials.append(trials_row("robot" if a.smoke else "natural", "perfect-memory", 4 if a.smoke else 20, a.smoke, 0.5))
     print("route experiments (heading field, trials, catchments), whole call:")
     for t in trials:
         print(f"  {t['world']} {t['model']:15s} {t['route_images']} images, {t['trials']} trials, {t['moves']} moves: "

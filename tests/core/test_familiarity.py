@@ -15,7 +15,7 @@ from delvjax.core.familiarity.catchment import ca_bounds, medfilt, rca_bounds, r
 from delvjax.core.familiarity.infomax import InfoMax, initial_weights
 from delvjax.core.familiarity.mushroom_body import mushroom_body
 from delvjax.core.familiarity.perfect_memory import PerfectMemory, window
-from delvjax.core.familiarity.ridf import ridf_table, rolled, turn_of_shift
+from delvjax.core.familiarity.ridf import difference, ridf_table, rolled, turn_of_shift, unmasked_table
 from tests.twins import familiarity as twin
 
 RNG = np.random.default_rng(7)
@@ -33,6 +33,20 @@ def test_the_ridf_table_is_the_twins(kind, masked):
     sm = RNG.random(snaps.shape) > 0.3 if masked else None
     got = np.asarray(ridf_table(view, snaps, kind, vm, sm))
     np.testing.assert_allclose(got, twin.ridf_table(view, snaps, kind, vm, sm), rtol=2e-5, atol=2e-4)
+
+
+@pytest.mark.parametrize("kind", ["abs", "rms", "corr"])
+def test_the_unmasked_fast_table_is_the_masked_one_with_every_pixel_kept(kind):
+    views, snaps = images(7), images(40)  # a flat pixel loop against the (H, W) reduction
+    keep = np.ones((7, 6, 24), bool)
+    got = np.asarray(unmasked_table(views, snaps, kind))
+    want = np.asarray(jax.vmap(lambda s: difference(views, s[None], keep, kind))(jnp.asarray(snaps)))
+    np.testing.assert_allclose(got, want, rtol=1e-5, atol=1e-4)
+    assert got.shape == (40, 7)
+    pm = PerfectMemory(kind=kind).train(snaps)
+    masked = PerfectMemory(kind=kind).train(snaps, np.ones(snaps.shape, bool))
+    assert pm.masks is None and masked.masks is not None
+    np.testing.assert_allclose(np.asarray(pm.table(views)), np.asarray(masked.table(views)), rtol=1e-5, atol=1e-4)
 
 
 def test_an_empty_common_mask_and_a_constant_image_are_nan_not_a_number():

@@ -20,10 +20,9 @@ import jax.numpy as jnp
 from jax import Array
 from jax.typing import ArrayLike
 
-from .ridf import difference, rolled, turn_of_shift
+from .ridf import rolled, turn_of_shift, unmasked_table
 
-IMAGE_BATCH = 64  # route images compared with one goal side by side (`route_tables`)
-GOAL_BATCH = 4  # goals side by side: GOAL_BATCH x IMAGE_BATCH x W x H x W floats at most (75 MB for 10 x 90 views)
+GOAL_BATCH = 4  # goals side by side (`route_tables`; the differences are reduced as they are made)
 
 
 def medfilt(values: ArrayLike, size: int) -> Array:
@@ -76,12 +75,10 @@ def route_tables(images: ArrayLike, kind: str = "abs") -> tuple[Array, Array]:
     turns = jnp.abs(jnp.degrees(turn_of_shift(shifts, w)))
 
     def one_goal(goal: ArrayLike) -> tuple[Array, Array]:
-        def one_image(image: ArrayLike) -> tuple[Array, Array]:
-            curve = difference(rolled(image, shifts), goal[None], jnp.ones(goal.shape, bool)[None], kind)
-            best = jnp.argmin(jnp.where(jnp.isnan(curve), jnp.inf, curve))
-            return curve[0], turns[best]
-
-        return jax.lax.map(one_image, images, batch_size=IMAGE_BATCH)
+        # image i rolled right by k against the goal = the goal rolled left by k against image i
+        curves = unmasked_table(rolled(goal, -shifts), images, kind)  # (N, W)
+        best = jnp.argmin(jnp.where(jnp.isnan(curves), jnp.inf, curves), -1)
+        return curves[:, 0], turns[best]
 
     return jax.lax.map(one_goal, images, batch_size=GOAL_BATCH)
 

@@ -18,7 +18,7 @@ from jax.typing import ArrayLike
 
 from ..search import first_argmin
 from .base import Choice, FamiliarityModel
-from .ridf import difference
+from .ridf import difference, unmasked_table
 
 BYTE = 255.0  # BoB reports a best difference / 255 (its images are 8-bit)
 
@@ -26,7 +26,7 @@ BYTE = 255.0  # BoB reports a best difference / 255 (its images are 8-bit)
 class PerfectMemory(FamiliarityModel):
     """kind: "abs", "rms" or "corr" (`ridf.difference`); select: "best" or "weighted"; n_best: images
     averaged by "weighted"; window_ahead / window_behind: route images searched ahead of / behind the
-    last best match in a rollout (0 ahead: the whole route). images: (S, H, W), masks: (S, H, W) once
+    last best match in a rollout (0 ahead: the whole route). images: (S, H, W), masks: (S, H, W) or None (every pixel) once
     trained."""
 
     kind: str = eqx.field(static=True, default="abs")
@@ -39,9 +39,7 @@ class PerfectMemory(FamiliarityModel):
 
     def train(self, views: ArrayLike, masks: ArrayLike | None = None) -> PerfectMemory:
         views = jnp.asarray(views, jnp.float32)
-        masks = (
-            jnp.ones(views.shape, bool) if masks is None else jnp.broadcast_to(jnp.asarray(masks, bool), views.shape)
-        )
+        masks = None if masks is None else jnp.broadcast_to(jnp.asarray(masks, bool), views.shape)
         return eqx.tree_at(lambda m: (m.images, m.masks), self, (views, masks), is_leaf=lambda x: x is None)
 
     def n_images(self) -> int:
@@ -49,14 +47,18 @@ class PerfectMemory(FamiliarityModel):
 
     def table(self, views: ArrayLike, masks: ArrayLike | None = None, active: ArrayLike | None = None) -> Array:
         """(S, R): the difference of every candidate view (R, H, W) from every route image; inactive
-        images are +inf."""
+        images are +inf. Without masks on either side, `ridf.unmasked_table` (a flat pixel axis)."""
         views = jnp.asarray(views, jnp.float32)
-        keep = jnp.ones(views.shape, bool) if masks is None else jnp.asarray(masks, bool)
+        if masks is None and self.masks is None:
+            t = unmasked_table(views, self.images, self.kind)
+        else:
+            keep = jnp.ones(views.shape, bool) if masks is None else jnp.asarray(masks, bool)
+            mine = jnp.ones(self.images.shape, bool) if self.masks is None else self.masks
 
-        def one(image: ArrayLike, mask: ArrayLike) -> Array:
-            return difference(views, image[None], keep & mask[None], self.kind)
+            def one(image: ArrayLike, mask: ArrayLike) -> Array:
+                return difference(views, image[None], keep & mask[None], self.kind)
 
-        t = jax.vmap(one)(self.images, self.masks)
+            t = jax.vmap(one)(self.images, mine)
         return t if active is None else jnp.where(active[:, None], t, jnp.inf)
 
     def unfamiliarity(self, views: ArrayLike, masks: ArrayLike | None = None, active: ArrayLike | None = None) -> Array:

@@ -60,6 +60,37 @@ def difference(a: ArrayLike, b: ArrayLike, keep: ArrayLike, kind: str) -> Array:
     return jnp.where(n > 0, out, jnp.nan)
 
 
+def pixel_sum(term, views: Array, snapshots: Array) -> Array:
+    """(S, R) sum over pixels of term(snapshot pixel (S, 1), view pixel (1, R)) for flat views (R, P) and
+    snapshots (S, P): a loop over the P pixels adding to one (S, R) table, which stays in cache (a broadcast
+    (S, R, P) reduction falls off a cliff past about 1000 snapshots on a CPU: 30x slower)."""
+    v, m = views.T, snapshots.T  # (P, R), (P, S)
+    add = lambda p, acc: acc + term(m[p][:, None], v[p][None])  # noqa: E731
+    return jax.lax.fori_loop(0, v.shape[0], add, jnp.zeros((m.shape[1], v.shape[1]), jnp.float32))
+
+
+def unmasked_table(views: ArrayLike, snapshots: ArrayLike, kind: str) -> Array:
+    """(S, R) `difference` of every view (R, H, W) from every snapshot (S, H, W) keeping every pixel: the same
+    numbers up to the order of a float sum, over a flat pixel axis (`pixel_sum`), 10-20x faster on a CPU
+    than the masked form's reduction over (H, W) (docs/familiarity.md §1)."""
+    r, s = jnp.asarray(views, jnp.float32), jnp.asarray(snapshots, jnp.float32)
+    v = r.reshape(r.shape[0], -1)  # (R, P)
+    m = s.reshape(s.shape[0], -1)  # (S, P)
+    n = jnp.float32(v.shape[1])
+    if kind == "abs":
+        return pixel_sum(lambda a, b: jnp.abs(a - b), v, m) / n
+    if kind == "rms":
+        return jnp.sqrt(pixel_sum(lambda a, b: (a - b) ** 2, v, m) / n)
+    if kind != "corr":
+        raise ValueError(f"kind must be one of {KINDS}, got {kind!r}")
+    dv = v - jnp.mean(v, -1, keepdims=True)
+    dm = m - jnp.mean(m, -1, keepdims=True)
+    cov = pixel_sum(lambda a, b: a * b, dv, dm)
+    var = jnp.sum(dm * dm, -1)[:, None] * jnp.sum(dv * dv, -1)[None]
+    r_ = jnp.minimum(jnp.abs(cov) / jnp.sqrt(jnp.where(var > 0, var, 1.0)), 1.0)  # |r| <= 1 despite rounding
+    return jnp.where(var > 0, 1.0 - r_, jnp.nan)
+
+
 def ridf_table(
     view: ArrayLike,
     snapshots: ArrayLike,
@@ -75,6 +106,8 @@ def ridf_table(
     w = view.shape[-1]
     shifts = jnp.arange(w) if shifts is None else jnp.asarray(shifts)
     views = rolled(view, shifts)  # (R, H, W)
+    if view_mask is None and snapshot_masks is None:
+        return unmasked_table(views, snapshots, kind)
     vmask = jnp.ones(view.shape, bool) if view_mask is None else jnp.asarray(view_mask, bool)
     vmasks = rolled(vmask, shifts)
     smasks = jnp.ones(snapshots.shape, bool) if snapshot_masks is None else jnp.asarray(snapshot_masks, bool)
