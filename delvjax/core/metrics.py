@@ -112,7 +112,25 @@ SUCCESS_METRICS = (
     ),
     Metric("placed", "trials placed per distance (over every mask)", "1", "placed trials (`release_points`)"),
 )
-METRICS = {m.name: m for m in MAP_METRICS + CATCHMENT_METRICS + SUCCESS_METRICS}  # name -> row
+FOLLOWING_METRICS = (  # route following by familiarity (docs/familiarity.md §3.2)
+    Metric(
+        "route_success_pct",
+        "% of route-following trials that end within 20 cm of the route's end (Ardin et al. 2016)",
+        "percent",
+        "100 successes / trials",
+    ),
+    Metric("route_success_ci95_lo_pct", "lower end of its 95 % Wilson interval", "percent", "Wilson, lower end"),
+    Metric("route_success_ci95_hi_pct", "upper end of its 95 % Wilson interval", "percent", "the same, upper end"),
+    Metric(
+        "mean_route_errors",
+        "returns to the route per trial (more than 20 cm off it, in an obstacle or out of the arena)",
+        "1",
+        "sum(errors) / trials",
+    ),
+    Metric("mean_moves", "moves per trial (successes and timeouts)", "1", "sum(moves) / trials"),
+    Metric("trials_run", "route-following trials run", "1", "trials"),
+)
+METRICS = {m.name: m for m in MAP_METRICS + CATCHMENT_METRICS + SUCCESS_METRICS + FOLLOWING_METRICS}  # name -> row
 RATES = tuple(m for m in MAP_METRICS if m.edge_deg is not None)  # the error point rates, gt45_pct and gt90_pct
 
 

@@ -19,7 +19,6 @@ from ..core.familiarity.catchment import route_catchments
 from ..core.familiarity.fields import HeadingField, heading_field, stored_view_field
 from ..core.familiarity.following import Following, StoredViews, Surroundings, Trials, WorldViews, follow_route
 from ..core.familiarity.route import Route
-from ..core.familiarity.views import view_camera
 from ..core.rollouts.rules import OUTCOMES, SUCCESS
 from ..core.rollouts.success import wilson_pct
 from ..images._render import world_grid
@@ -27,14 +26,11 @@ from ..images._worlds import ImageWorld, image_world
 from ._models import make_model, model_settings
 from ._routes import (
     RouteImages,
-    default_waypoints,
     headings_along,
-    plan_route,
     route_from_database,
-    route_in_world,
 )
+from ._setup import following_setup
 
-MAX_TRIALS = 10000
 OFF_ROUTE = 20.0  # cm: "near the route" in the summary, the distance at which a trial counts an error
 
 
@@ -119,13 +115,6 @@ class FamiliarityResult:
         }
 
 
-def render_factor(cols: int) -> int:
-    """Rendered pixels per view pixel: at least 4, and a multiple of what makes the 2 deg scan step whole
-    rendered columns (90 columns: 4, 1 deg a rendered column; 36: 5; 72: 5)."""
-    unit = 180 // math.gcd(cols, 180)
-    return unit * math.ceil(4 / unit)
-
-
 def route_experiments(
     world: str | ImageWorld = "robot",
     model: str = "perfect-memory",
@@ -153,39 +142,22 @@ def route_experiments(
     settings (`_models.SETTINGS`)."""
     say = progress or (lambda _: None)
     iw = image_world(world) if isinstance(world, str) else world
-    settings = model_settings(model, **model_options)
-    rows, cols = positive_int(view_rows, "view_rows"), positive_int(view_cols, "view_cols")
-    if 360 % cols:
-        raise InputError("view_cols", cols, "must divide 360 (a turn of the heading field is one view column)")
-    trials = positive_int(trials, "trials")
-    if trials > MAX_TRIALS:
-        raise InputError("trials", trials, f"must be at most {MAX_TRIALS}")
-    noise = non_negative(heading_noise_deg, "heading_noise_deg")
-    seed = seed_value(seed)
     spacing = positive(iw.spacing if grid_spacing is None else grid_spacing, "grid_spacing")
-    vc = view_camera(rows, cols, render_factor(cols))
-    route_points = plan_route(iw, route, route_spacing)
-    length = float(np.sum(np.hypot(*np.diff(route_points, axis=0).T)))
-    step = positive(route_spacing if step is None else step, "step")
-    n_steps = math.ceil(2.1 * length / step) if max_steps is None else positive_int(max_steps, "max_steps")
-    rules = Following(step=step, heading_noise_deg=noise, max_steps=n_steps)
     points, _ = world_grid(iw, spacing)
     if len(points) == 0:
         raise InputError("grid_spacing", spacing, f"leaves no grid point clear of the obstacles in {iw.name}")
-    say(f"rendering {len(route_points)} route images in {iw.name} ...")
-    ri = route_in_world(iw, route_points, vc)
-    trained = make_model(model, (rows, cols), seed, **settings).train(jnp.asarray(ri.views))
-    say(f"{model}: heading field at {len(points)} points, {trials} route-following trials, catchments ...")
-    hf = heading_field(trained, iw.world, vc, ri.route, jnp.asarray(points, jnp.float32), n_turns=cols)
-    starts = jnp.repeat(ri.route.positions[:1], trials, 0)
-    heads = jnp.repeat(ri.route.headings[:1], trials, 0)
-    tr = follow_route(trained, WorldViews(iw.world, vc), ri.route, rules, starts, heads, jax.random.key(seed))
-    ca = route_catchments(jnp.asarray(ri.views), settings.get("kind", "abs"))
-    used = default_waypoints(iw, route_spacing) if route is None else np.asarray(route, float).reshape(-1, 2)
-    run_settings = {"route_spacing": float(route_spacing), "view_rows": rows, "view_cols": cols,
-                    "grid_spacing": float(spacing), "trials": trials, "heading_noise_deg": float(noise),
-                    "step": float(step), "max_steps": n_steps, "seed": seed,
-                    "route": used.round(2).tolist(), **settings}  # fmt: skip
+    say(f"checking the settings and rendering the route in {iw.name} ...")
+    setup = following_setup(iw, model, route=route, route_spacing=route_spacing, view_rows=view_rows,
+                            view_cols=view_cols, trials=trials, heading_noise_deg=heading_noise_deg, step=step,
+                            max_steps=max_steps, seed=seed, **model_options)  # fmt: skip
+    ri, trained, rules, vc, s = setup.route, setup.trained, setup.rules, setup.camera, setup.settings
+    say(f"{model}: heading field at {len(points)} points, {s['trials']} route-following trials, catchments ...")
+    hf = heading_field(trained, iw.world, vc, ri.route, jnp.asarray(points, jnp.float32), n_turns=s["view_cols"])
+    starts = jnp.repeat(ri.route.positions[:1], s["trials"], 0)
+    heads = jnp.repeat(ri.route.headings[:1], s["trials"], 0)
+    tr = follow_route(trained, WorldViews(iw.world, vc), ri.route, rules, starts, heads, jax.random.key(s["seed"]))
+    ca = route_catchments(jnp.asarray(ri.views), s.get("kind", "abs"))
+    run_settings = {**s, "grid_spacing": float(spacing)}
     result = FamiliarityResult(
         iw.name, model, run_settings, ri, points, hf, rules, tr, ca, np.asarray(iw.world.arena), iw.obstacles()
     )

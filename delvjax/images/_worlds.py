@@ -17,6 +17,7 @@ from ..core.errors import InputError
 from ..core.images import Extractor
 from ..core.images.scene_panorama import scene_panorama
 from ..core.images.world import RED, World, make_world
+from ..core.scene import Env
 from ..envs._presets import PRESETS, load_env
 
 
@@ -102,9 +103,9 @@ DESCRIPTIONS = {
 
 
 def env_world(
-    name_or_path: str, height: float = 100.0, wall_height: float = 150.0, spacing: float = 25.0
+    name_or_path: str | Env, height: float = 100.0, wall_height: float = 150.0, spacing: float = 25.0
 ) -> ImageWorld:
-    """A docs/model.md environment (preset or JSON file) as red cylinders of `height` cm: the world a ring
+    """A docs/model.md environment (preset, JSON file or an `Env`) as red cylinders of `height` cm: the world a ring
     scene's panoramas show (`scene_panorama`)."""
     env = load_env(name_or_path)
     world = scene_panorama(1, height=height, wall_height=wall_height).world_of(env, env.valid)

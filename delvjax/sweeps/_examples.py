@@ -52,5 +52,22 @@ bearing_noise_deg = { start = 0, stop = 4, step = 2 }
 motion_heading_noise_deg = [0, 10]
 seed = [0, 1]
 """,
+    "route-following": """# delvjax sweep file: route following by familiarity (docs/sweeps.md "Route-following sweeps").
+# Run: delvjax sweep this.toml --out results/following
+
+[sweep]
+kind = "route-following"             # trials from the route's start (Ardin et al. 2016; docs/familiarity.md)
+metrics = ["route_success_pct", "route_success_ci95_lo_pct", "route_success_ci95_hi_pct", "mean_route_errors"]
+trials = 20                          # trials per cell (default 20)
+
+[axes]
+env = ["robot"]                      # robot, natural, or an environment as for the other kinds (default robot)
+method = ["perfect-memory", "infomax"]  # familiarity models (default perfect-memory)
+heading_noise_deg = [30, 60, 90]     # heading noise at every move, deg (default 10)
+seed = [0, 1]                        # trial noise, InfoMax's weights, the mushroom body's wiring
+# route_spacing, step, view_rows, view_cols, max_steps: as `delvjax familiarity`;
+# a model's settings (kind, select, n_best, window_ahead, window_behind, learning_rate, rate_divisor,
+# normalise, n_hidden, n_kc, pn_per_kc, n_active) apply to that model's cells only: sweep one model
+""",
 }
 EXAMPLE = EXAMPLES["vector-map"]

@@ -42,6 +42,8 @@ def _envs(spec: SweepSpec) -> dict:
             return env_from_dict(spec.ensemble_envs[name], pad_to=pad_to)
         return load_env(spec.env_files.get(name, name), pad_to=pad_to)
 
+    if spec.kind.own_cells:  # the kind's own worlds (route following: colour worlds)
+        return spec.kind.environments(spec.axes["env"], env)
     envs = {name: env(name) for name in spec.axes["env"]}
     slots = max(int(e.landmarks.shape[0]) for e in envs.values())
     return {name: env(name, pad_to=slots) for name in envs}
@@ -67,7 +69,7 @@ def _plan(
     for i, cell in enumerate(spec.cells()):  # input preparation, one small pytree per cell
         req = cell_setup(spec, envs, cell, max_points, method_set)
         rows = max(rows, mask_rows(req))
-        gid = ids.setdefault(group_key(req), len(ids))
+        gid = ids.setdefault(group_key(req, spec.kind), len(ids))
         if gid == len(groups):
             groups.append([])
         groups[gid].append(i)

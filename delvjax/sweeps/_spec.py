@@ -44,6 +44,11 @@ def setting_axes() -> dict[str, str]:
 def axes(kind: SweepKind) -> dict[str, str]:
     """The axes of a kind of sweep: name -> what it sets (no `spacing` without a grid; the rollout
     axes and the motion noise only for rollouts)."""
+    if kind.own_axes is not None:  # route following: its worlds, models and settings (docs/sweeps.md)
+        scene = {k: v for k, v in SCENE_AXES.items() if k != "spacing"}
+        scene["env"] = "colour world: robot, natural, or an environment as for the other kinds (red cylinders)"
+        scene["method"] = "familiarity model: perfect-memory, infomax or mushroom-body"
+        return {**scene, **kind.own_axes}
     settings = setting_axes()
     scene = {k: v for k, v in SCENE_AXES.items() if kind.grid or k != "spacing"}
     if not kind.rollouts:
@@ -59,6 +64,9 @@ def axis_units(name: str) -> dict[str, str]:
     """{"units": ...} of an axis (from the setting's declaration or the scene axes); {} for a name axis."""
     if name in AXIS_UNITS:
         return {"units": AXIS_UNITS[name]}
+    for kind in KINDS.values():  # a kind's own axes (route following)
+        if kind.own_axes and name in kind.own_axes and name not in all_options():
+            return {} if name in kind.text_axes else {"units": kind.units.get(name, "1")}
     option = all_options().get(name)
     if option is None or option.type is str:
         return {}
@@ -72,7 +80,8 @@ def metric_units(name: str) -> str:
 
 def name_axes() -> tuple[str, ...]:
     """The axes whose values are names (strings)."""
-    return ("env", "method", "first_move", "collisions", *(n for n, o in all_options().items() if o.type is str))
+    own = (n for k in KINDS.values() for n in k.text_axes)  # a kind's own name axes (route following's `kind`, ...)
+    return ("env", "method", "first_move", "collisions", *(n for n, o in all_options().items() if o.type is str), *own)
 
 
 DEFAULTS = {"env": ["env1"], "method": ["delv"], "spacing": [25.0], "seed": [0]}
@@ -295,8 +304,9 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
         raise InputError("sweep.kind", name, f"must be one of {', '.join(KINDS)}")
     kind = KINDS[name]
     for key in ("distances", "trials"):
-        if key in head and not kind.per_distance:
-            users = " or ".join(f'"{k}"' for k, v in KINDS.items() if v.per_distance)
+        if key in head and not (kind.per_distance or (key == "trials" and kind.default_trials)):
+            takes = [k for k, v in KINDS.items() if v.per_distance or (key == "trials" and v.default_trials)]
+            users = " or ".join(f'"{k}"' for k in takes)
             raise InputError(f"sweep.{key}", head[key], f"is a setting of kind = {users} only")
     known = kind.metrics
     metrics = head.get("metrics", list(known))
@@ -330,15 +340,16 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
     if "env" in table:
         table = {**table, "env": _env_labels(table["env"], random_envs, ensemble_envs)}
     values = {name: _values(name, raw) for name, raw in table.items()}
-    for name, default in DEFAULTS.items():
+    for name, default in (kind.defaults or DEFAULTS).items():
         if name in kind_axes[kind]:
             values.setdefault(name, default)
     extra = {}
-    if kind.per_distance:
-        extra["distances"] = tuple(
-            float(v) for v in _values("distances", head.get("distances", list(DISTANCES)), "sweep.distances")
-        )
-        trials = head.get("trials", TRIALS)
+    if kind.per_distance or kind.default_trials:
+        if kind.per_distance:
+            extra["distances"] = tuple(
+                float(v) for v in _values("distances", head.get("distances", list(DISTANCES)), "sweep.distances")
+            )
+        trials = head.get("trials", kind.default_trials or TRIALS)
         if isinstance(trials, bool) or not isinstance(trials, int) or trials < 1:
             raise InputError("sweep.trials", trials, "must be an integer >= 1")
         extra["trials"] = trials

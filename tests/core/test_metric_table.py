@@ -13,7 +13,7 @@ import numpy as np
 import delvjax
 from delvjax import Grid
 from delvjax.core import metrics
-from delvjax.core.metrics import CATCHMENT_METRICS, MAP_METRICS, METRICS, SUCCESS_METRICS
+from delvjax.core.metrics import CATCHMENT_METRICS, FOLLOWING_METRICS, MAP_METRICS, METRICS, SUCCESS_METRICS
 from delvjax.sweeps import run_sweep
 from delvjax.sweeps._kinds import KINDS
 from delvjax.sweeps._spec import metric_units, parse_sweep
@@ -26,6 +26,7 @@ KIND_METRICS = {
     "vector-map": MAP_METRICS,
     "catchment": CATCHMENT_METRICS + MAP_METRICS,
     "success-rate": SUCCESS_METRICS,
+    "route-following": FOLLOWING_METRICS,
 }
 START, END = "<!-- metrics -->", "<!-- /metrics -->"
 
@@ -65,7 +66,7 @@ def test_each_kinds_metrics_are_the_tables():
         sums = {f.name: np.array([0, 3, 7]) for f in dataclasses.fields(kind.sums)}
         with np.errstate(all="ignore"):
             assert set(kind.metrics_of(sums)) == set(kind.metrics), name
-    assert len(METRICS) == len(MAP_METRICS + CATCHMENT_METRICS + SUCCESS_METRICS)  # no name twice
+    assert len(METRICS) == len(MAP_METRICS + CATCHMENT_METRICS + SUCCESS_METRICS + FOLLOWING_METRICS)  # no name twice
     assert {n: metric_units(n) for n in METRICS} == {n: m.unit for n, m in METRICS.items()}
 
 

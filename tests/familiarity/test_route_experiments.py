@@ -18,7 +18,7 @@ from delvjax.core.familiarity.following import Following, WorldViews, follow_rou
 from delvjax.core.familiarity.perfect_memory import PerfectMemory
 from delvjax.core.familiarity.views import view_camera, views_at
 from delvjax.familiarity import plan_route, ridf, route_in_world, train_model, unfamiliarity_grad
-from delvjax.familiarity._run import render_factor
+from delvjax.familiarity._setup import render_factor
 from delvjax.images import image_world
 
 ROBOT = image_world("robot")

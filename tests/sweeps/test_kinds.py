@@ -66,7 +66,7 @@ def test_each_kind_is_one_class_in_the_registry():
     from delvjax.sweeps._kinds import KINDS, SweepKind
 
     modules = {type(k).__module__ for k in KINDS.values()}
-    assert sorted(KINDS) == ["catchment", "success-rate", "vector-map"] and len(modules) == 3
+    assert sorted(KINDS) == ["catchment", "route-following", "success-rate", "vector-map"] and len(modules) == 4
     for name, kind in KINDS.items():
         assert isinstance(kind, SweepKind) and kind == name and type(kind).name == name
         assert type(kind).__module__ == f"delvjax.sweeps._kinds.{name.replace('-', '_')}"

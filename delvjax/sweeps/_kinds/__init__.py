@@ -1,5 +1,5 @@
 """The kinds of sweep (docs/sweeps.md), one class per kind (`base.SweepKind`: `vector_map.py`, `catchment.py`,
-`success_rate.py`) and the registry `KINDS` (name -> kind; nothing else compares a kind's name), with what a sweep
+`success_rate.py`, `route_following.py`) and the registry `KINDS` (name -> kind; nothing else compares a kind's name), with what a sweep
 does with cells of any kind (`cells.py`). To add a kind: CONTRIBUTING.md "Add a sweep kind"."""
 
 from .base import SweepKind as SweepKind
@@ -13,7 +13,8 @@ from .cells import mask_rows as mask_rows
 from .cells import programs_compiled as programs_compiled
 from .cells import sum_names as sum_names
 from .cells import traced as traced
+from .route_following import ROUTE_FOLLOWING as ROUTE_FOLLOWING
 from .success_rate import SUCCESS_RATE as SUCCESS_RATE
 from .vector_map import VECTOR_MAP as VECTOR_MAP
 
-KINDS: dict[str, SweepKind] = {k: k for k in (VECTOR_MAP, CATCHMENT, SUCCESS_RATE)}  # name -> kind
+KINDS: dict[str, SweepKind] = {k: k for k in (VECTOR_MAP, CATCHMENT, SUCCESS_RATE, ROUTE_FOLLOWING)}  # name -> kind

@@ -32,6 +32,13 @@ class SweepKind(str):
     rollouts: ClassVar[bool]  # rollout axes (occlude, first_move, ...) and motion noise
     per_distance: ClassVar[bool]  # a `distance_cm` dimension (release distances and trials per distance)
     sums: ClassVar[type]  # the dataclass of the per-cell sums its program returns
+    # A kind of other worlds and methods than the landmark kinds' (route-following) sets these:
+    own_axes: ClassVar[dict[str, str] | None] = None  # its axes besides env, method and seed (None: `_spec.axes`)
+    text_axes: ClassVar[tuple[str, ...]] = ()  # those of its axes whose values are names
+    defaults: ClassVar[dict[str, list] | None] = None  # env, method, seed when a file leaves them out
+    default_trials: ClassVar[int | None] = None  # trials per cell, `[sweep] trials` (None: no such field)
+    units: ClassVar[dict[str, str]] = {}  # its axes' CF units
+    own_cells: ClassVar[bool] = False  # True: its own `environments`, `traced`, `group_key` and `idle_padding`
 
     def __new__(cls) -> SweepKind:
         return super().__new__(cls, cls.name)
@@ -50,6 +57,22 @@ class SweepKind(str):
 
     def metrics_of(self, sums: dict) -> dict:
         """Every metric of the kind from the per-cell sums (NumPy)."""
+        raise NotImplementedError
+
+    def environments(self, names: Sequence[str], environment: Callable[[str], object]) -> dict:
+        """(own_cells) label -> the world of each `env` value; `environment(label)`: the landmark kinds' `Env`."""
+        raise NotImplementedError
+
+    def traced(self, req: dict, mask_rows: int = 1) -> tuple:
+        """(own_cells) The pytree a cell's program takes (`cells.traced`)."""
+        raise NotImplementedError
+
+    def group_key(self, req: dict) -> tuple:
+        """(own_cells) Cells with equal keys share a program (`cells.group_key`)."""
+        raise NotImplementedError
+
+    def idle_padding(self, stacked: tuple, real: int | None) -> tuple:
+        """(own_cells) A chunk's rows from `real` on left idle (`cells.idle_padding`)."""
         raise NotImplementedError
 
     def cell_seconds(self, spec: Sweep) -> float:

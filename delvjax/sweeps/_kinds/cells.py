@@ -14,6 +14,7 @@ import numpy as np
 from ...core import cells as map_cells
 from ...core.batching import over_devices, over_processes, pad_rows
 from ...core.errors import InputError
+from ...core.familiarity.cells import following_cells
 from ...core.rollouts import DEFAULT_LANES
 from ...core.rollouts import cells as rollout_programs
 from .base import Sweep, SweepKind
@@ -35,9 +36,12 @@ def cell_setup(spec: Sweep, envs: dict, cell: dict, max_points: int, method_set:
         raise InputError(f"cell ({where})", exc.value, f"{exc.field}: {exc.expected}") from None
 
 
-def traced(req: dict, mask_rows: int = 1) -> tuple:
+def traced(req: dict, mask_rows: int = 1, kind: SweepKind | None = None) -> tuple:
     """The pytree a cell's program takes (stacked over the cells of a chunk); a rollout cell's masks
-    padded to `mask_rows` rows (the most of any cell of the sweep: one program for every occlusion)."""
+    padded to `mask_rows` rows (the most of any cell of the sweep: one program for every occlusion); a kind
+    with `own_cells` says its own."""
+    if kind is not None and kind.own_cells:
+        return kind.traced(req, mask_rows)
     if req.get("kind") is None:
         return req["env"], req["method"], req["sensor"], req["key"]
     masks = np.asarray(req["masks"], bool)
@@ -62,10 +66,12 @@ def mask_rows(req: dict) -> int:
     return len(req["masks"]) if "masks" in req else 0
 
 
-def group_key(req: dict) -> tuple:
+def group_key(req: dict, kind: SweepKind | None = None) -> tuple:
     """Cells with equal keys stack into one program: pytree structure, leaf shapes (the number of
     masks aside), and the settings one call shares (grid, clearance, max_steps: a traced number, so its
-    values share the program but not a call)."""
+    values share the program but not a call); a kind with `own_cells` says its own."""
+    if kind is not None and kind.own_cells:
+        return kind.group_key(req)
     leaves, treedef = jax.tree.flatten(traced(dict(req, masks=req["masks"][:1]) if "masks" in req else req))
     shapes = tuple((np.shape(x), np.asarray(x).dtype.str) for x in leaves)
     return (
@@ -78,12 +84,14 @@ def group_key(req: dict) -> tuple:
     )
 
 
-def idle_padding(stacked: tuple, real: int | None) -> tuple:
+def idle_padding(stacked: tuple, real: int | None, kind: SweepKind | None = None) -> tuple:
     """A chunk's stacked traced inputs with its rows from `real` on (copies that pad the chunk to its
     program's size, results thrown away) left idle: a rollout cell with no masks runs no trials, and a
     vector-map row gets a False flag (appended: one per row, `map_cells`' `live`) and evaluates no grid point.
     So a padded row costs nearly nothing (the cells run one after the other, `lax.map`) and the real rows'
-    numbers are unchanged (a cell's numbers do not depend on its chunk)."""
+    numbers are unchanged (a cell's numbers do not depend on its chunk). A kind with `own_cells` says its own."""
+    if kind is not None and kind.own_cells:
+        return kind.idle_padding(stacked, real)
     cell = stacked[0]
     if not isinstance(cell, rollout_programs.RolloutCell):
         rows = len(np.asarray(stacked[3]))
@@ -111,7 +119,7 @@ def evaluate(
     padding (`idle_padding`: no trials). Returns the sums (of `setups`) by name."""
     first = setups[0]
     stack = lambda *xs: np.stack([np.asarray(x) for x in xs])  # noqa: E731
-    stacked = idle_padding(jax.tree.map(stack, *[traced(req, rows) for req in setups]), real)
+    stacked = idle_padding(jax.tree.map(stack, *[traced(req, rows, kind) for req in setups]), real, kind)
     shared, stacked = kind.inputs(setups, stacked)
     compiled = _program(kind, lanes, first.get("trials"))
     if total is not None:
@@ -136,5 +144,6 @@ def programs_compiled() -> int:
         map_cells.map_cells._cache_size()
         + rollout_programs.catchment_cells._cache_size()
         + rollout_programs.success_cells._cache_size()
+        + following_cells._cache_size()
         + over_devices._cache_size()
     )
