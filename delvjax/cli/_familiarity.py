@@ -18,7 +18,7 @@ from ._args import CSV, FIGURE, JSON, wrote
 from ._help import COMMAND_HELP
 
 OUTPUTS = (("out", "--out", CSV), ("trials_out", "--trials-out", CSV), ("catchments_out", "--catchments-out", CSV),
-           ("summary", "--summary", JSON), ("plot", "--plot", FIGURE))  # fmt: skip
+           ("ridf_out", "--ridf-out", CSV), ("summary", "--summary", JSON), ("plot", "--plot", FIGURE))  # fmt: skip
 MODEL_FLAGS = {k: v for s in SETTINGS.values() for k, v in s.items()}  # every model setting, as a flag
 
 
@@ -70,6 +70,9 @@ def add_familiarity(sub) -> None:
     p.add_argument("--out", default=None, help="heading field CSV, one row per grid point")
     p.add_argument("--trials-out", default=None, help="route-following trials CSV")
     p.add_argument("--catchments-out", default=None, help="catchment areas along the route CSV")
+    p.add_argument(
+        "--ridf-out", default=None, help="RIDF CSV: the unfamiliarity of every heading at every field point (long form)"
+    )
     p.add_argument("--summary", default=None, help="JSON file with the headline numbers and every setting")
     p.add_argument("--plot", default=None, help="figure (.png, .pdf or .svg)")
     p.set_defaults(func=cmd_familiarity)
@@ -79,7 +82,9 @@ def cmd_familiarity(args: argparse.Namespace) -> int:
     named = {flag: getattr(args, name) for name, flag, _ in OUTPUTS if getattr(args, name) is not None}
     if not named:
         raise InputError(
-            "--out", None, "no output asked for (give --out, --trials-out, --catchments-out, --summary or --plot)"
+            "--out",
+            None,
+            "no output asked for (give --out, --trials-out, --catchments-out, --ridf-out, --summary or --plot)",
         )
     for name, flag, suffixes in OUTPUTS:
         if flag in named:
@@ -102,6 +107,8 @@ def cmd_familiarity(args: argparse.Namespace) -> int:
             files.csv(args.trials_out, result.trial_columns(), "--trials-out")
         if args.catchments_out:
             files.csv(args.catchments_out, result.catchment_columns(), "--catchments-out")
+        if args.ridf_out:
+            files.csv(args.ridf_out, result.ridf_columns(), "--ridf-out")
         if args.summary:
             files.json(args.summary, summary, "--summary")
         if args.plot:

@@ -67,6 +67,21 @@ class FamiliarityResult:
             "error_deg": np.asarray(f.error_deg),
         }
 
+    def ridf_columns(self) -> dict:
+        """The RIDF at every field point, one row per point and turn (long form): the world heading of the view
+        (deg, counter-clockwise from +x; on a database, column 0's) and its unfamiliarity."""
+        f = self.field
+        curve = np.asarray(f.curve, np.float64)  # (P, R)
+        p, r = curve.shape
+        heading = np.degrees(np.asarray(f.curve_start, np.float64))[:, None] + 360.0 * np.arange(r)[None] / r
+        return {
+            "point": np.repeat(np.arange(p), r),
+            "x_cm": np.repeat(self.points[:, 0], r),
+            "y_cm": np.repeat(self.points[:, 1], r),
+            "heading_deg": np.mod(heading, 360.0).ravel(),
+            "unfamiliarity": curve.ravel(),
+        }
+
     def trial_columns(self) -> dict:
         """The route-following trials, one row each (none on an image database)."""
         t = self.trials

@@ -105,11 +105,12 @@ def test_ridf_refuses_masks_that_keep_nothing_in_common():
 
 def test_the_command_writes_every_output_with_its_numbers(tmp_path, capsys):
     out = {
-        k: tmp_path / f"{k}.{ext}" for k, ext in (("f", "csv"), ("t", "csv"), ("c", "csv"), ("s", "json"), ("p", "png"))
+        k: tmp_path / f"{k}.{ext}"
+        for k, ext in (("f", "csv"), ("t", "csv"), ("c", "csv"), ("r", "csv"), ("s", "json"), ("p", "png"))
     }
     argv = ["familiarity", "robot", "--model", "infomax", "--trials", "4", "--max-steps", "40", "--grid-spacing", "40",
             "--out", str(out["f"]), "--trials-out", str(out["t"]), "--catchments-out", str(out["c"]),
-            "--summary", str(out["s"]), "--plot", str(out["p"])]  # fmt: skip
+            "--ridf-out", str(out["r"]), "--summary", str(out["s"]), "--plot", str(out["p"])]  # fmt: skip
     assert main(argv) == 0
     assert all(p.is_file() for p in out.values())
     s = json.loads(out["s"].read_text())
@@ -118,6 +119,13 @@ def test_the_command_writes_every_output_with_its_numbers(tmp_path, capsys):
     head = out["f"].read_text().splitlines()[0]
     assert head.startswith("x_cm,y_cm,heading_deg,unfamiliarity,best_image")
     assert "success" in capsys.readouterr().out
+    field = np.genfromtxt(out["f"], delimiter=",", names=True)
+    ridf = np.genfromtxt(out["r"], delimiter=",", names=True)
+    assert len(ridf) == 90 * len(field)  # every heading of a 90-column view at every field point
+    curves = ridf["unfamiliarity"].reshape(len(field), 90)
+    best = ridf["heading_deg"].reshape(len(field), 90)[np.arange(len(field)), np.argmin(curves, 1)]
+    np.testing.assert_allclose(np.mod(field["heading_deg"], 360.0), best, atol=1e-3)  # the field is the RIDF's minimum
+    np.testing.assert_allclose(curves.min(1), field["unfamiliarity"], rtol=1e-5)
 
 
 @pytest.mark.parametrize(
