@@ -100,3 +100,17 @@ def test_distances_belong_to_the_success_rate_kind():
         parse_sweep('[sweep]\nkind = "route-following"\ndistances = [50]\n')
     assert exc.value.field == "sweep.distances"
     assert parse_sweep('[sweep]\nkind = "route-following"\n').trials == 20
+
+
+def test_the_results_are_saved_reloaded_and_drawn(swept, tmp_path):
+    from delvjax.cli._main import main
+    from delvjax.sweeps import load_sweep, save_sweep
+
+    save_sweep(swept, tmp_path)
+    back = load_sweep(tmp_path)
+    np.testing.assert_array_equal(back.route_success_pct.values, swept.route_success_pct.values)
+    assert back.heading_noise_deg.attrs["units"] == "degree" and back.route_success_pct.attrs["units"] == "percent"
+    argv = ["plot-sweep", str(tmp_path), "--x", "heading_noise_deg", "--metric", "route_success_pct"]
+    assert main(argv) == 0
+    drawn = np.genfromtxt(tmp_path / "route_success_pct.csv", delimiter=",", names=True, dtype=None, encoding=None)
+    assert len(drawn) == 4  # two models x two noise levels, mean over the seeds
