@@ -9,6 +9,10 @@ with the same heading noise, step, goal radius and move budget. Each family is a
 task near the route: the familiarity models' heading against the route's direction, the homing
 methods' direction against the direction home. The two tasks differ (a route against one goal), and
 so does what each method is given (every route image against one snapshot): the table says which.
+
+A second table repeats route following over seeds (each seed new trial noise, InfoMax weights and mushroom-body
+wiring) and up to 90 deg of noise, as one route-following sweep (docs/sweeps.md): the spread over seeds, and
+that success can fall far below 100 %.
 """
 
 from __future__ import annotations
@@ -24,14 +28,15 @@ from delvjax.core.rollouts.success import wilson_pct
 from delvjax.familiarity import route_experiments
 from delvjax.images import database_rollouts, database_vector_map
 from delvjax.plots import subplots
+from delvjax.sweeps import parse_sweep, run_sweep
 
 from ._images_common import database, preview
 from .hybrid import LABEL, options
 
 TITLE = "Route following by familiarity beside DELV and MinWarping (beyond the thesis)"
-COST = 400  # rough seconds of a full run (2 CPU cores, two studies side by side; 950 s with 40 trials and the
+COST = 600  # rough seconds of a full run (2 CPU cores, two studies side by side; 950 s with 40 trials and the
 # mushroom body in both worlds, beside a test suite)
-STEPS = 3  # the robot world, the natural world, the table
+STEPS = 4  # the robot world, the natural world, the table, the seeds
 NEAR_CM = 20.0  # "near the route": within a trial's off-route distance
 FAMILIARITY = ("perfect-memory", "infomax", "mushroom-body")
 HOMING = ("delv", "minwarping")
@@ -74,6 +79,34 @@ def homing_rows(world: str, method: str, route, noises, trials: int, seed: int, 
                      "failed by": failures(outcome, OUTCOMES),
                      "returns to route": "", "error near route ° (vs route)": "",
                      "error near route ° (vs home)": float(np.median(err)) if len(err) else float("nan")})  # fmt: skip
+    return rows
+
+
+def seed_rows(worlds, models, noises, seeds: int, trials: int, seed: int) -> list[dict]:
+    """Route following of every model over `seeds` seeds from `seed` on (one route-following sweep): per world,
+    model and noise the mean success over the seeds, their range, and the Wilson interval of the pooled trials."""
+    text = (
+        f'[sweep]\nkind = "route-following"\ntrials = {trials}\n[axes]\nenv = {list(worlds)}\n'
+        f"method = {list(models)}\nheading_noise_deg = {list(noises)}\nseed = {{start = {seed}, stop = {seed + seeds - 1}}}\n"
+    )
+    ds = run_sweep(parse_sweep(text))
+    rows = []
+    for world in worlds:
+        for model in models:
+            for noise in noises:
+                cell = (
+                    ds.sel(env=world, homing_method=model, heading_noise_deg=noise)
+                    if len(worlds) > 1
+                    else ds.sel(homing_method=model, heading_noise_deg=noise)
+                )
+                pct = np.atleast_1d(cell.route_success_pct.values)
+                k = int(round(float(np.sum(pct * trials / 100.0))))
+                lo, hi = wilson_pct(k, trials * len(pct))
+                rows.append({"world": world, "method": model, "noise °": noise, "seeds": len(pct),
+                             "trials a seed": trials, "success % (mean over seeds)": float(np.mean(pct)),
+                             "range over seeds %": f"{pct.min():.0f}-{pct.max():.0f}",
+                             "pooled 95 % interval": f"{lo:.1f}-{hi:.1f}",
+                             "returns to route": float(np.mean(cell.mean_route_errors.values))})  # fmt: skip
     return rows
 
 
@@ -142,3 +175,22 @@ def run(ctx) -> None:
         f"{NEAR_CM:g} cm of the route, against the route's direction (familiarity) or home (homing methods).",
     )
     ctx.step("table")
+    seeds = 2 if quick else 5
+    sweep_models = FAMILIARITY[:2]  # perfect memory and InfoMax (the mushroom body: the first table)
+    spread = seed_rows(
+        worlds, sweep_models, (30.0, 90.0) if quick else (30.0, 60.0, 90.0), seeds, 4 if quick else 20, seed
+    )
+    for row in spread:
+        ctx.number(
+            f"familiarity_seeds:{row['world']}:{row['method']}:{row['noise °']:g}:success_pct",
+            row["success % (mean over seeds)"],
+        )
+    ctx.table(
+        "familiarity_seeds",
+        f"Route following over {seeds} seeds (a route-following sweep)",
+        spread,
+        source="beyond the thesis (Ardin et al. 2016; bob_robotics)",
+        note="Each seed draws new trial noise and InfoMax's initial weights; the route and its images are the same. "
+        "Mean and range of the success over the seeds, and the 95 % Wilson interval of all the seeds' trials pooled.",
+    )
+    ctx.step("seeds")
