@@ -17,8 +17,8 @@ PACKAGE = ROOT / "delvjax"
 STUDIES = ROOT / "studies"  # installed as delvjax.studies (pyproject.toml)
 # 300 lines of the dense style before ruff format, which spreads the same code over 1.25 x the lines
 MAX_LINES = 375
-FEATURES = {"cli", "core", "envs", "evaluate", "familiarity", "gradients", "images", "options", "outputs", "plots",
-            "reproduce", "sweeps"}  # fmt: skip
+FEATURES = {"cli", "core", "envs", "evaluate", "familiarity", "gradients", "images", "mesh", "options", "outputs",
+            "plots", "reproduce", "sweeps"}  # fmt: skip
 
 
 def module_name(path: Path) -> str:

@@ -248,3 +248,11 @@ def test_the_familiarity_benchmark_runs_at_smoke_size(tmp_path):
     assert [r["model"] for r in out["queries"]] == ["perfect-memory", "infomax", "mushroom-body"], smoke.stdout
     assert all(r["ratio"] > 0 and r["jax_ms_per_query"] > 0 for r in out["queries"])
     assert all(t["moves"] > 0 for t in out["route_experiments"])
+
+
+def test_the_mesh_benchmark_runs_at_smoke_size(tmp_path):
+    """benchmarks/bench_mesh.py --smoke: ant-eye and 360 x 90 views of a tiny habitat against the NumPy ray caster."""
+    smoke = smoke_run("benchmarks/bench_mesh.py", "--json", str(tmp_path / "mesh.json"))
+    rows = json.loads((tmp_path / "mesh.json").read_text())
+    assert [r["eye"] for r in rows] == ["ant eye 74 x 19", "360 x 90"], smoke.stdout
+    assert all(r["views_per_s"] > 0 and r["ratio"] > 0 for r in rows)
