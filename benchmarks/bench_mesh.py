@@ -5,6 +5,7 @@ plain NumPy ray caster (tests/twins/mesh.py) on the same views in the same run, 
 
     python benchmarks/bench_mesh.py            # 256 ant-eye poses, 32 panoramas, 2 twin views
     python benchmarks/bench_mesh.py --smoke    # tiny sizes, no targets (the test suite runs it)
+    python benchmarks/bench_mesh.py --twin-views 0   # no NumPy views (benchmarks/gpu.sh: GPU_PARTS=mesh)
 """
 
 from __future__ import annotations
@@ -43,7 +44,7 @@ def row(world, h, eye, name: str, n: int, batch: int, twin_views: int) -> dict:
     for p in poses[:twin_views]:
         twin.render(v, rgb, g, s, p.astype(np.float64), eye.rows, eye.cols, eye.width_deg, eye.elev_top_deg,
                     eye.elev_bottom_deg)  # fmt: skip
-    per_twin = (time.perf_counter() - t0) / twin_views
+    per_twin = (time.perf_counter() - t0) / twin_views if twin_views else float("nan")
     return {"eye": name, "poses": n, "batch": batch, "compile_s": first - warm, "views_per_s": n / warm,
             "twin_s_per_view": per_twin, "ratio": per_twin * n / warm}  # fmt: skip
 
@@ -52,12 +53,14 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--smoke", action="store_true", help="tiny sizes, no targets")
     p.add_argument("--json", default=None, help="write the numbers here")
+    p.add_argument("--twin-views", type=int, default=None, help="views the NumPy caster draws (0: none, no ratio)")
     a = p.parse_args()
     h = habitat(0, tussocks=10, blades=4, trees=1) if a.smoke else habitat(0)
     world = mesh_world(h)
     n_ant, n_pano, twin_views = (4, 2, 1) if a.smoke else (256, 32, 2)
+    twin_views = twin_views if a.twin_views is None else a.twin_views
     rows = [row(world, h, ANT_EYE, "ant eye 74 x 19", n_ant, 16, twin_views)]
-    rows.append(row(world, h, Eye(rows=90, cols=360), "360 x 90", n_pano, 4, 1))
+    rows.append(row(world, h, Eye(rows=90, cols=360), "360 x 90", n_pano, 4, min(twin_views, 1)))
     print(f"{h.name}: {world.n_triangles} triangles; twin: tests/twins/mesh.py (NumPy, one core, a loop over pixels)")
     print(f"{'eye':16s} {'poses':>5s} {'compile s':>9s} {'views/s':>8s} {'twin s/view':>11s} {'JAX / twin':>10s}")
     for r in rows:

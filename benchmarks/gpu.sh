@@ -63,6 +63,10 @@ run ensembles 60 python benchmarks/bench_ensembles.py --members 256 --spacing 50
 case " ${GPU_PARTS:-} " in *" ensembles_full "*)
   run ensembles_full 420 python benchmarks/bench_ensembles.py --members 256 --spacing 25 ;;
 esac
+# issue 58's mesh views (ant eye and 360 x 90, benchmarks/bench_mesh.py): GPU_PARTS=mesh in a call of its own
+case " ${GPU_PARTS:-} " in *" mesh "*)
+  run mesh 120 python benchmarks/bench_mesh.py --twin-views 0 ;;
+esac
 
 echo
 echo "| benchmark | exit | wall s | key lines |"
@@ -70,7 +74,7 @@ echo "|---|---|---|---|"
 while IFS='|' read -r name rc secs; do
   status=$rc
   [ "$rc" = 124 ] && status="timeout"
-  key=$(grep -E "ratio|warm|cold|second run|peak|x$|[0-9]x |device\(s\)|process\(es\)|^\| (minwarping|warping2d) " "$OUT/logs/$name.txt" \
+  key=$(grep -E "ratio|warm|cold|second run|peak|x$|[0-9]x |device\(s\)|process\(es\)|^\| (minwarping|warping2d) |^ant eye|^360 x 90" "$OUT/logs/$name.txt" \
     | grep -v "^ *setting" | tail -4 | tr '\n' ';' | tr -s ' ')
   echo "| $name | $status | $secs | ${key:0:300} |"
 done < "$OUT/parts.txt"
