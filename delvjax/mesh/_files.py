@@ -39,7 +39,8 @@ def read_mesh(path: str | Path, abs_z: bool = True) -> MeshFile:
     elif suffix == ".bin":
         x, y, z, colp = _bin_world(p)
     elif suffix == ".obj":
-        return checked(MeshFile(_obj_vertices(p), np.full(0, 0.5), str(p)))
+        v = _obj_vertices(p)
+        return checked(MeshFile(v, np.full(len(v), 0.5), str(p)))
     else:
         raise InputError("mesh", str(path), "must be a .mat (InvertSy), .bin (bob_robotics) or .obj (Wavefront) file")
     z = np.abs(z) if abs_z else z
@@ -110,8 +111,6 @@ def checked(m: MeshFile) -> MeshFile:
     flat = area <= 1e-9 * np.maximum(np.max(np.abs(v), (1, 2)) ** 2, 1.0)
     if flat.any():
         raise InputError("mesh", m.source, f"triangle {int(np.argmax(flat))} is degenerate (zero area)")
-    if m.shade.size == 0:
-        m.shade = np.full(v.shape[0], 0.5)
     return m
 
 

@@ -94,11 +94,8 @@ def seed_rows(worlds, models, noises, seeds: int, trials: int, seed: int) -> lis
     for world in worlds:
         for model in models:
             for noise in noises:
-                cell = (
-                    ds.sel(env=world, homing_method=model, heading_noise_deg=noise)
-                    if len(worlds) > 1
-                    else ds.sel(homing_method=model, heading_noise_deg=noise)
-                )
+                at = {"env": world, "homing_method": model, "heading_noise_deg": noise}
+                cell = ds.sel({k: v for k, v in at.items() if k in ds.dims})  # an axis of one value is no dimension
                 pct = np.atleast_1d(cell.route_success_pct.values)
                 k = int(round(float(np.sum(pct * trials / 100.0))))
                 lo, hi = wilson_pct(k, trials * len(pct))

@@ -18,7 +18,7 @@ from ...core.errors import InputError
 from ...core.familiarity.cells import FollowingCell, FollowingSums, following_cells
 from ...core.familiarity.following import WorldViews
 from ...core.rollouts.success import wilson_pct
-from ...familiarity._models import MODELS, SETTINGS
+from ...familiarity._models import SETTINGS
 from ...familiarity._setup import following_setup
 from ...images._worlds import BUILT_IN, ImageWorld, env_world, image_world
 from .base import Sweep, SweepKind, descriptions, options, pct
@@ -61,7 +61,6 @@ class RouteFollowing(SweepKind):
     own_axes = {**RUN_AXES, **MODEL_AXES}
     text_axes = tuple(k for s in SETTINGS.values() for k, v in s.items() if isinstance(v, str))
     defaults = {"env": ["robot"], "method": ["perfect-memory"], "seed": [0]}
-    methods = tuple(MODELS)
     default_trials = 20
     units = UNITS
 
