@@ -1,5 +1,5 @@
-"""`delvjax familiarity`: a familiarity model trained on a route through a colour world, then its
-heading field, route-following trials and catchment areas (docs/familiarity.md §3). Every option is
+"""`delvjax familiarity`: a familiarity model trained on a route through a colour or mesh world (docs/mesh.md §6),
+then its heading field, route-following trials and catchment areas (docs/familiarity.md §3). Every option is
 checked before any work; exit 2 on bad input, nothing written."""
 
 from __future__ import annotations
@@ -12,6 +12,7 @@ from ..familiarity._models import MODELS, SETTINGS, model_settings
 from ..familiarity._run import database_experiments, route_experiments
 from ..images._load import load_database
 from ..images._worlds import BUILT_IN
+from ..mesh._site import given_files
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_distinct, check_output_path, output_set
 from ._args import CSV, FIGURE, JSON, wrote
@@ -36,7 +37,15 @@ def add_familiarity(sub) -> None:
         "world",
         nargs="?",
         default=None,
-        help=f"a colour world ({', '.join(BUILT_IN)}) or an environment (default robot)",
+        help=f"a colour world ({', '.join(BUILT_IN)}), an environment, or a generated mesh habitat (habitat, "
+        "habitat<seed>; docs/mesh.md) (default robot)",
+    )
+    p.add_argument(
+        "--mesh", default=None, help="a mesh world file (.mat, .bin, .obj: the Seville world) instead of a world"
+    )
+    p.add_argument("--ant-route", default=None, help="with --mesh: the recorded route (AntRoutes.mat or a route .bin)")
+    p.add_argument(
+        "--route-name", default="Ant1_Route1", help="with an AntRoutes.mat: which route (default Ant1_Route1)"
     )
     p.add_argument(
         "--images", default=None, help="a route image database (BoB's layout) to train on, instead of a world"
@@ -53,7 +62,7 @@ def add_familiarity(sub) -> None:
         help="waypoints 'x,y x,y ...' cm (default: a bent route from the arena's corner to home)",
     )
     p.add_argument("--route-spacing", type=float, default=4.0, help="cm between route images (default 4)")
-    p.add_argument("--view-rows", type=int, default=10, help="rows of a view (default 10)")
+    p.add_argument("--view-rows", type=int, default=None, help="rows of a view (default 10; 19 in a mesh world)")
     p.add_argument("--view-cols", type=int, default=90, help="columns of a view, dividing 360 (default 90)")
     p.add_argument("--grid-spacing", type=float, default=None, help="heading-field grid, cm (default: the world's)")
     p.add_argument("--trials", type=int, default=20, help="route-following trials (default 20)")
@@ -90,7 +99,8 @@ def cmd_familiarity(args: argparse.Namespace) -> int:
         if flag in named:
             check_output_path(named[flag], flag, suffixes)
     check_distinct(named)
-    inputs = {f: getattr(args, k) for k, f in (("images", "--images"), ("test_images", "--test-images"))}
+    inputs = {f: getattr(args, k) for k, f in (("images", "--images"), ("test_images", "--test-images"),
+                                               ("mesh", "--mesh"), ("ant_route", "--ant-route"))}  # fmt: skip
     check_no_clash(named, {f: v for f, v in inputs.items() if v is not None})
     given = {k: getattr(args, k) for k in MODEL_FLAGS if getattr(args, k) is not None}
     applies = SETTINGS.get(args.model, {})
@@ -121,11 +131,13 @@ def cmd_familiarity(args: argparse.Namespace) -> int:
 
 
 def in_world(args: argparse.Namespace, given: dict):
-    """The route experiments in a colour world."""
+    """The route experiments in a colour world or a mesh world."""
     if args.test_images is not None:
         raise InputError("--test-images", args.test_images, "applies with --images only")
+    model_settings(args.model, **given)  # checked before any file is read
+    world = given_files(args.world, args.mesh, args.ant_route, args.route_name) or args.world or "robot"
     return route_experiments(
-        args.world or "robot", args.model, route=None if args.route is None else waypoints(args.route),
+        world, args.model, route=None if args.route is None else waypoints(args.route),
         route_spacing=args.route_spacing, view_rows=args.view_rows, view_cols=args.view_cols,
         grid_spacing=args.grid_spacing, trials=args.trials, heading_noise_deg=args.heading_noise_deg,
         step=args.step, max_steps=args.max_steps, seed=args.seed, progress=lambda s: print(s, flush=True), **given,
@@ -134,8 +146,8 @@ def in_world(args: argparse.Namespace, given: dict):
 
 def on_databases(args: argparse.Namespace, given: dict):
     """The route experiments on a route database (and a test database)."""
-    if args.world is not None:
-        raise InputError("world", args.world, "give a world or --images, not both")
+    if args.world is not None or args.mesh is not None:
+        raise InputError("world", args.world or args.mesh, "give a world, --mesh or --images, not more than one")
     for flag in ("route", "grid_spacing", "step", "max_steps"):
         if getattr(args, flag) is not None:
             raise InputError("--" + flag.replace("_", "-"), getattr(args, flag), "applies to a world, not to --images")
@@ -144,7 +156,8 @@ def on_databases(args: argparse.Namespace, given: dict):
     route_db = load_database(args.images, panoramas=True, warn=warn)
     test_db = None if args.test_images is None else load_database(args.test_images, panoramas=True, warn=warn)
     return database_experiments(
-        route_db, args.model, test_db=test_db, view_rows=args.view_rows, view_cols=args.view_cols, seed=args.seed,
+        route_db, args.model, test_db=test_db, view_rows=10 if args.view_rows is None else args.view_rows,
+        view_cols=args.view_cols, seed=args.seed,
         trials=args.trials, heading_noise_deg=args.heading_noise_deg,
         progress=lambda s: print(s, flush=True), **given,
     )  # fmt: skip

@@ -12,7 +12,6 @@ import numpy as np
 
 from ..core.checks import non_negative, positive_int
 from ..core.errors import InputError
-from ..core.images import Catadioptric
 from ..core.images.rollouts import OUTCOMES
 from ..core.metrics import summarize_map
 from ..core.rollouts import check_rules
@@ -22,14 +21,13 @@ from ..images._conventions import CHOICES
 from ..images._evaluate import catchment_numbers, database_catchment, database_vector_map
 from ..images._import import import_database
 from ..images._load import load_database
-from ..images._render import ImageSettings, camera, check_render, render_database
-from ..options._limits import MAX_POINTS
 from ..options._schema import extractor_options, method_options, sensor_options
 from ..options._setup import make_setup
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_out_dir
 from ._args import ProgressBar, check_outputs, progress, warn, write_outputs, wrote
 from ._help import COMMAND_HELP
+from ._render_db import add_render_db
 
 # scene options that mean nothing for a database (its images fix the scene, the poses and the unit move)
 # the scene's options that a database replaces: the sensor's settings but the channel (the motion noise of a
@@ -291,22 +289,7 @@ def cmd_catchment_images(args: argparse.Namespace) -> int:
 def add_images(sub) -> None:
     p = sub.add_parser("images", help=COMMAND_HELP["images"])
     isub = p.add_subparsers(dest="images_command", required=True)
-    r = isub.add_parser("render-db", help="render a grid database of colour panoramas in the BoB layout")
-    r.add_argument("env", help="image world (robot, natural), preset or environment JSON file")
-    r.add_argument("--out", required=True, help="database folder (must not exist or be empty)")
-    r.add_argument("--spacing", type=float, default=None, help="grid spacing = unit move, cm (default: the world's)")
-    r.add_argument("--cols", type=int, default=360, help="panorama width in pixels (default 360)")
-    r.add_argument("--rows", type=int, default=60, help="panorama height in pixels (default 60: 30 to -30 deg)")
-    r.add_argument("--donut", action="store_true", help="store catadioptric (donut) images instead of panoramas")
-    r.add_argument(
-        "--pixel-noise", type=float, default=0.02, help="camera noise per pixel, of full scale (default 0.02)"
-    )
-    r.add_argument("--gain-noise", type=float, default=0.0, help="per-image brightness gain noise (default 0)")
-    r.add_argument("--light-deg", type=float, default=None, help="light azimuth, deg (default: the world's, 45)")
-    r.add_argument("--seed", type=int, default=0, help="seed of the camera noise (default 0)")
-    r.add_argument("--max-points", type=int, default=MAX_POINTS, help="refuse more images than this")
-    r.add_argument("--chunk", type=int, default=256, help="images rendered at a time (memory bound)")
-    r.set_defaults(func=cmd_render_db)
+    add_render_db(isub)
     i = isub.add_parser("import", help="check a database (BoB, or panoramas + positions.csv) and write it as BoB")
     i.add_argument("src", help="database folder")
     i.add_argument("--out", required=True, help="new database folder (must not exist or be empty)")
@@ -317,34 +300,6 @@ def add_images(sub) -> None:
     i.add_argument("--spacing", type=float, default=None, help="grid spacing = unit move, cm")
     add_reading_args(i)
     i.set_defaults(func=cmd_import)
-
-
-def cmd_render_db(args: argparse.Namespace) -> int:
-    check_out_dir(args.out)
-    settings = ImageSettings(
-        camera=camera(args.rows, args.cols),
-        mirror=Catadioptric() if args.donut else None,
-        pixel_noise=args.pixel_noise,
-        gain_noise=args.gain_noise,
-        light_azimuth_deg=args.light_deg,
-    )
-    iw, spacing = check_render(args.env, args.spacing, settings, args.seed, args.max_points, args.chunk)
-    t0 = time.perf_counter()
-    progress(f"rendering {iw.name} every {spacing:g} cm into {args.out} ...")
-    with ProgressBar("img", args.chunk) as bar:
-        summary = render_database(
-            args.env,
-            args.out,
-            spacing=spacing,
-            settings=settings,
-            seed=args.seed,
-            chunk=args.chunk,
-            max_points=args.max_points,
-            progress=bar,
-        )
-    progress(f"{summary['images']} images in {time.perf_counter() - t0:.2f} s")
-    print(wrote(args.out))
-    return 0
 
 
 def cmd_import(args: argparse.Namespace) -> int:

@@ -1,6 +1,6 @@
 """Routes for the familiarity experiments (docs/familiarity.md §3): a polyline through waypoints in a
-colour world, resampled every `spacing` cm, its images rendered facing along it; or the images of a
-route database. Checked before any work (`InputError` naming the field and the value)."""
+colour world or a mesh world (docs/mesh.md §6), resampled every `spacing` cm, its images rendered facing along
+it; or the images of a route database. Checked before any work (`InputError` naming the field and the value)."""
 
 from __future__ import annotations
 
@@ -12,10 +12,15 @@ import numpy as np
 
 from ..core.checks import finite, positive, positive_int
 from ..core.errors import InputError
+from ..core.familiarity.following import MeshViews, WorldViews
+from ..core.familiarity.mesh_views import MeshCamera, mesh_camera
 from ..core.familiarity.route import Route
-from ..core.familiarity.views import ViewCamera, downsample, view_camera, views_at
+from ..core.familiarity.views import ViewCamera, downsample, view_camera
+from ..core.polyline import headings_along, resample
 from ..images._worlds import ImageWorld
+from ..mesh._site import MeshSite
 
+MESH_BATCH = 16  # mesh views rendered side by side
 MAX_IMAGES = 20000  # a route longer than this many images is refused (memory of the perfect memory)
 
 
@@ -26,7 +31,7 @@ class RouteImages:
     name: str
     route: Route
     views: np.ndarray
-    camera: ViewCamera | None
+    camera: ViewCamera | MeshCamera | None
 
     @property
     def n_images(self) -> int:
@@ -36,31 +41,18 @@ class RouteImages:
 BENDS = (0.2, -0.2, 0.35, -0.35, 0.0)  # the default route's bend, the first that is clear of every obstacle
 
 
-def default_waypoints(iw: ImageWorld, spacing: float = 4.0) -> np.ndarray:
+def default_waypoints(iw: ImageWorld | MeshSite, spacing: float = 4.0) -> np.ndarray:
     """(3, 2) cm: from 15 % into the arena's south-west corner to the world's home, bent sideways by the
-    first of BENDS (a share of its length, to the left) that keeps the route clear of every obstacle."""
+    first of BENDS (a share of its length, to the left) that keeps the route clear of every obstacle. A mesh
+    world's: its recorded route."""
+    if isinstance(iw, MeshSite):
+        return iw.waypoints()
     a = np.asarray(iw.world.arena, np.float64)
     start = a[:2] + 0.15 * (a[2:] - a[:2])
     goal = np.asarray(iw.home, np.float64)
     v = goal - start
     tries = [np.stack([start, (start + goal) / 2 + b * np.array([-v[1], v[0]]), goal]) for b in BENDS]
     return next((w for w in tries if iw.clear(resample(w, spacing)).all()), tries[0])
-
-
-def resample(waypoints: np.ndarray, spacing: float) -> np.ndarray:
-    """(N, 2): points every `spacing` cm along the polyline (the last waypoint included)."""
-    seg = np.diff(waypoints, axis=0)
-    cum = np.concatenate([[0.0], np.cumsum(np.hypot(*seg.T))])
-    s = np.append(np.arange(0.0, cum[-1], spacing), cum[-1])
-    s = s[np.append(np.diff(s) > 1e-6 * spacing, True)]
-    return np.stack([np.interp(s, cum, waypoints[:, k]) for k in range(2)], -1)
-
-
-def headings_along(points: np.ndarray) -> np.ndarray:
-    """(N,) rad: the direction to the next point (the last repeats the one before)."""
-    d = np.diff(points, axis=0)
-    h = np.arctan2(d[:, 1], d[:, 0])
-    return np.append(h, h[-1])
 
 
 def check_waypoints(waypoints) -> np.ndarray:
@@ -78,7 +70,7 @@ def check_waypoints(waypoints) -> np.ndarray:
     return w
 
 
-def plan_route(iw: ImageWorld, waypoints=None, spacing: float = 4.0) -> np.ndarray:
+def plan_route(iw: ImageWorld | MeshSite, waypoints=None, spacing: float = 4.0) -> np.ndarray:
     """(N, 2) cm: the route through `waypoints` (default `default_waypoints`) every `spacing` cm, checked:
     at least two images, at most MAX_IMAGES, none in an obstacle (+ the world's clearance) or outside.
     """
@@ -96,17 +88,31 @@ def plan_route(iw: ImageWorld, waypoints=None, spacing: float = 4.0) -> np.ndarr
     return points
 
 
-def route_in_world(iw: ImageWorld, points: np.ndarray, vc: ViewCamera | None = None) -> RouteImages:
+def view_source(iw: ImageWorld | MeshSite, vc: ViewCamera | MeshCamera) -> WorldViews | MeshViews:
+    """The views of a world at any pose (`following.WorldViews` or `following.MeshViews`)."""
+    if isinstance(iw, MeshSite):
+        return MeshViews(iw.mesh, vc, jnp.asarray(iw.arena, jnp.float32))
+    return WorldViews(iw.world, vc)
+
+
+def route_in_world(
+    iw: ImageWorld | MeshSite, points: np.ndarray, vc: ViewCamera | MeshCamera | None = None
+) -> RouteImages:
     """The route through `points` (N, 2) (`plan_route`) and its views, each facing along the route."""
-    vc = view_camera() if vc is None else vc
+    vc = (mesh_camera(height=iw.eye_height) if isinstance(iw, MeshSite) else view_camera()) if vc is None else vc
     route = Route(jnp.asarray(points, jnp.float32), jnp.asarray(headings_along(points), jnp.float32))
-    render = jax.jit(jax.vmap(lambda p, h: views_at(iw.world, vc, p, h, jnp.zeros(1))[0]))
+    source = view_source(iw, vc)
+    one = lambda p, h: source(p, h, jnp.zeros(1))[0]  # noqa: E731
+    if isinstance(iw, MeshSite):  # MESH_BATCH poses side by side: a mesh view's work grows with its triangles
+        render = jax.jit(lambda p, h: jax.lax.map(lambda a: one(*a), (p, h), batch_size=MESH_BATCH))
+    else:
+        render = jax.jit(jax.vmap(one))
     return RouteImages(iw.name, route, np.asarray(render(route.positions, route.headings)), vc)
 
 
 def route_from_database(db, view_shape: tuple[int, int] = (10, 90)) -> RouteImages:
-    """The images of a loaded database (`images.load_database(..., panoramas=True)`; a route, or a grid to test on), block-averaged
-    to `view_shape` (rows, cols must divide the panorama's), in the order they were recorded."""
+    """The images of a loaded database (`images.load_database(..., panoramas=True)`; a route, or a grid to test
+    on), block-averaged to `view_shape` (rows, cols must divide the panorama's), in the order they were recorded."""
     pano = db.rings.snapshots.panorama
     if pano is None:
         raise InputError("images", db.name, "holds no panoramas: load it with panoramas=True")

@@ -1,4 +1,4 @@
-"""The route experiments of a familiarity model (docs/familiarity.md §3) in a colour world: train on
+"""The route experiments of a familiarity model (docs/familiarity.md §3) in a colour or mesh world: train on
 the route's images, then (a) the heading field on a grid, (b) route-following trials (Ardin et al.
 2016), (c) catchment areas along the route (BoB's `calculate_ca`, `calculate_rca`). Every setting is
 checked before any work."""
@@ -15,21 +15,20 @@ import numpy as np
 
 from ..core.checks import non_negative, positive, positive_int, seed_value
 from ..core.errors import InputError
+from ..core.familiarity.base import FamiliarityModel
 from ..core.familiarity.catchment import route_catchments
 from ..core.familiarity.fields import HeadingField, heading_field, stored_view_field
-from ..core.familiarity.following import Following, StoredViews, Surroundings, Trials, WorldViews, follow_route
+from ..core.familiarity.following import Following, StoredViews, Surroundings, Trials, ViewSource, follow_route
 from ..core.familiarity.route import Route
+from ..core.polyline import headings_along
 from ..core.rollouts.rules import OUTCOMES, SUCCESS
 from ..core.rollouts.success import wilson_pct
 from ..images._render import world_grid
-from ..images._worlds import ImageWorld, image_world
+from ..images._worlds import ImageWorld
+from ..mesh._site import MeshSite
 from ._models import make_model, model_settings
-from ._routes import (
-    RouteImages,
-    headings_along,
-    route_from_database,
-)
-from ._setup import following_setup
+from ._routes import RouteImages, route_from_database, view_source
+from ._setup import any_world, following_setup
 
 OFF_ROUTE = 20.0  # cm: "near the route" in the summary, the distance at which a trial counts an error
 
@@ -50,6 +49,9 @@ class FamiliarityResult:
     arena: np.ndarray = field(default_factory=lambda: np.zeros(4))
     obstacles: dict = field(default_factory=dict)
     on_database: bool = False  # the field's reference is the nearest route image's column-0 heading
+    footprint: np.ndarray | None = None  # a mesh world's triangles seen from above (T, 3, 2) cm, for figures
+    trained: FamiliarityModel | None = None  # the model trained on the route (more trials: `follow_route`)
+    source: ViewSource | None = None  # the views the trials read
 
     def field_columns(self) -> dict:
         """The heading field, one row per grid point."""
@@ -131,12 +133,12 @@ class FamiliarityResult:
 
 
 def route_experiments(
-    world: str | ImageWorld = "robot",
+    world: str | ImageWorld | MeshSite = "robot",
     model: str = "perfect-memory",
     *,
     route=None,
     route_spacing: float = 4.0,
-    view_rows: int = 10,
+    view_rows: int | None = None,
     view_cols: int = 90,
     grid_spacing: float | None = None,
     trials: int = 20,
@@ -149,16 +151,18 @@ def route_experiments(
 ) -> FamiliarityResult:
     """Train `model` on a route through `world` and run the three route experiments (module docstring).
 
-    route: waypoints [[x, y], ...] cm (default: `_routes.default_waypoints`); route_spacing: cm between
-    route images; view_rows x view_cols: the views (rendered at 4x, block-averaged); grid_spacing: the
-    heading field's grid (default: the world's spacing); trials, heading_noise_deg, step (default: the
-    route spacing), max_steps (default: 2.1 route lengths): the route-following trials; seed: the
+    world: a colour world or environment by name, a generated habitat (`habitat<seed>`) or a `MeshSite`;
+    route: waypoints [[x, y], ...] cm (default: `_routes.default_waypoints`, a mesh world's recorded route);
+    route_spacing: cm between route images; view_rows x view_cols: the views (rendered at 4x in a colour world,
+    2x in a mesh world, block-averaged; view_rows default 10, in a mesh world 19); grid_spacing: the heading
+    field's grid (default: the world's spacing; in a mesh world within `band` cm of the route); trials,
+    heading_noise_deg, step (default: the route spacing), max_steps (default: 2.1 route lengths): the route-following trials; seed: the
     trials' noise, InfoMax's weights and the mushroom body's wiring; model_options: the model's
     settings (`_models.SETTINGS`)."""
     say = progress or (lambda _: None)
-    iw = image_world(world) if isinstance(world, str) else world
+    iw = any_world(world)
     spacing = positive(iw.spacing if grid_spacing is None else grid_spacing, "grid_spacing")
-    points, _ = world_grid(iw, spacing)
+    points = iw.field_points(spacing) if isinstance(iw, MeshSite) else world_grid(iw, spacing)[0]
     if len(points) == 0:
         raise InputError("grid_spacing", spacing, f"leaves no grid point clear of the obstacles in {iw.name}")
     say(f"checking the settings and rendering the route in {iw.name} ...")
@@ -167,15 +171,17 @@ def route_experiments(
                             max_steps=max_steps, seed=seed, **model_options)  # fmt: skip
     ri, trained, rules, vc, s = setup.route, setup.trained, setup.rules, setup.camera, setup.settings
     say(f"{model}: heading field at {len(points)} points, {s['trials']} route-following trials, catchments ...")
-    hf = heading_field(trained, iw.world, vc, ri.route, jnp.asarray(points, jnp.float32), n_turns=s["view_cols"])
+    source = view_source(iw, vc)
+    hf = heading_field(trained, source, ri.route, jnp.asarray(points, jnp.float32), n_turns=s["view_cols"])
     starts = jnp.repeat(ri.route.positions[:1], s["trials"], 0)
     heads = jnp.repeat(ri.route.headings[:1], s["trials"], 0)
-    tr = follow_route(trained, WorldViews(iw.world, vc), ri.route, rules, starts, heads, jax.random.key(s["seed"]))
+    tr = follow_route(trained, source, ri.route, rules, starts, heads, jax.random.key(s["seed"]))
     ca = route_catchments(jnp.asarray(ri.views), s.get("kind", "abs"))
-    run_settings = {**s, "grid_spacing": float(spacing)}
-    result = FamiliarityResult(
-        iw.name, model, run_settings, ri, points, hf, rules, tr, ca, np.asarray(iw.world.arena), iw.obstacles()
-    )
+    mesh = isinstance(iw, MeshSite)
+    run_settings = {**s, "grid_spacing": float(spacing), **({"eye_height_cm": iw.eye_height} if mesh else {})}
+    arena = np.asarray(iw.arena if mesh else iw.world.arena)
+    result = FamiliarityResult(iw.name, model, run_settings, ri, points, hf, rules, tr, ca, arena, iw.obstacles(),
+                               footprint=iw.footprint if mesh else None, trained=trained, source=source)  # fmt: skip
     for name, a in (("field", hf.error_deg), ("unfamiliarity", hf.value), ("trials", tr.steps)):
         if not np.all(np.isfinite(np.asarray(a, np.float64))):
             raise InputError(model, name, "gave a non-finite number (a constant view or an empty mask)")

@@ -1,5 +1,5 @@
-"""The validated setup of route following in a colour world (docs/familiarity.md §3): the model's settings,
-the views' camera, the route and its rendered images, the trained model and the rules of a trial. Shared
+"""The validated setup of route following in a colour or mesh world (docs/familiarity.md §3, docs/mesh.md §6):
+the model's settings, the views' camera, the route and its rendered images, the trained model and the rules of a trial. Shared
 by `route_experiments` and the route-following sweep kind (docs/sweeps.md "Route-following sweeps"), so
 that both check every setting the same way before any work and a sweep cell runs the trials
 `route_experiments` runs with the same settings, number for number."""
@@ -18,8 +18,10 @@ from ..core.checks import non_negative, positive, positive_int, seed_value
 from ..core.errors import InputError
 from ..core.familiarity.base import FamiliarityModel
 from ..core.familiarity.following import Following
+from ..core.familiarity.mesh_views import MeshCamera, mesh_camera
 from ..core.familiarity.views import ViewCamera, view_camera
 from ..images._worlds import ImageWorld, image_world
+from ..mesh._site import MeshSite, is_mesh_name, mesh_site
 from ._models import make_model, model_settings
 from ._routes import RouteImages, default_waypoints, plan_route, route_in_world
 
@@ -32,29 +34,48 @@ _rendered: dict[str, RouteImages] = {}
 class FollowingSetup:
     """What a run of route following needs, checked: `settings` holds every setting it ran with."""
 
-    world: ImageWorld
+    world: ImageWorld | MeshSite
     model: str
-    camera: ViewCamera
+    camera: ViewCamera | MeshCamera
     route: RouteImages
     trained: FamiliarityModel
     rules: Following
     settings: dict
 
 
-def render_factor(cols: int) -> int:
-    """Rendered pixels per view pixel: at least 4, and a multiple of what makes the 2 deg scan step whole
-    rendered columns (90 columns: 4, 1 deg a rendered column; 36: 5; 72: 5)."""
+def render_factor(cols: int, least: int = 4) -> int:
+    """Rendered pixels per view pixel: at least `least` (4 in a colour world; 2 in a mesh world, whose views are
+    dearer), and a multiple of what makes the 2 deg scan step whole rendered columns (90 columns: 4 or 2; 36: 5)."""
     unit = 180 // math.gcd(cols, 180)
-    return unit * math.ceil(4 / unit)
+    return unit * math.ceil(least / unit)
 
 
-def rendered_route(iw: ImageWorld, points: np.ndarray, vc: ViewCamera) -> RouteImages:
+def any_world(world: str | ImageWorld | MeshSite) -> ImageWorld | MeshSite:
+    """A world by name (a generated habitat, a colour world or an environment) or as given."""
+    if not isinstance(world, str):
+        return world
+    if is_mesh_name(world):
+        return mesh_site(world)
+    try:
+        return image_world(world)
+    except InputError as e:
+        raise InputError(e.field, e.value, e.expected + "; nor a generated mesh habitat (habitat<seed>)") from None
+
+
+def camera_of(iw: ImageWorld | MeshSite, rows: int, cols: int) -> ViewCamera | MeshCamera:
+    """The views' camera: a colour world's (`view_camera`) or a mesh world's (`mesh_camera`, its eye height)."""
+    if isinstance(iw, MeshSite):
+        return mesh_camera(rows, cols, render_factor(cols, 2), iw.eye_height)
+    return view_camera(rows, cols, render_factor(cols))
+
+
+def rendered_route(iw: ImageWorld | MeshSite, points: np.ndarray, vc: ViewCamera | MeshCamera) -> RouteImages:
     """`route_in_world`, its images kept for the RENDERED routes last asked for (by the world's arrays, the
     points and the camera: a sweep renders each route once, not once a cell)."""
     h = hashlib.sha256(np.asarray(points, np.float64).tobytes())
     for leaf in jax.tree.leaves((iw.world, vc)):
         h.update(np.asarray(leaf).tobytes())
-    h.update(repr((iw.name, vc.factor, vc.camera.rows, vc.camera.cols)).encode())
+    h.update(repr((iw.name, vc)).encode())  # the camera's static fields (its arrays are hashed above)
     key = h.hexdigest()
     if key not in _rendered:
         while len(_rendered) >= RENDERED:
@@ -64,12 +85,12 @@ def rendered_route(iw: ImageWorld, points: np.ndarray, vc: ViewCamera) -> RouteI
 
 
 def following_setup(
-    world: str | ImageWorld = "robot",
+    world: str | ImageWorld | MeshSite = "robot",
     model: str = "perfect-memory",
     *,
     route=None,
     route_spacing: float = 4.0,
-    view_rows: int = 10,
+    view_rows: int | None = None,
     view_cols: int = 90,
     trials: int = 20,
     heading_noise_deg: float = 10.0,
@@ -80,8 +101,10 @@ def following_setup(
 ) -> FollowingSetup:
     """Every setting checked (`InputError` naming the field), then the route rendered and the model trained
     (`route_experiments` documents the settings)."""
-    iw = image_world(world) if isinstance(world, str) else world
+    iw = any_world(world)
     settings = model_settings(model, **model_options)
+    if view_rows is None:
+        view_rows = 19 if isinstance(iw, MeshSite) else 10  # a mesh world: the ant eye's 4 deg rows
     rows, cols = positive_int(view_rows, "view_rows"), positive_int(view_cols, "view_cols")
     if 360 % cols:
         raise InputError("view_cols", cols, "must divide 360 (a turn of the heading field is one view column)")
@@ -90,7 +113,7 @@ def following_setup(
         raise InputError("trials", trials, f"must be at most {MAX_TRIALS}")
     noise = non_negative(heading_noise_deg, "heading_noise_deg")
     seed = seed_value(seed)
-    vc = view_camera(rows, cols, render_factor(cols))
+    vc = camera_of(iw, rows, cols)
     points = plan_route(iw, route, route_spacing)
     length = float(np.sum(np.hypot(*np.diff(points, axis=0).T)))
     step = positive(route_spacing if step is None else step, "step")
@@ -98,8 +121,13 @@ def following_setup(
     rules = Following(step=step, heading_noise_deg=noise, max_steps=n_steps)
     ri = rendered_route(iw, points, vc)
     trained = make_model(model, (rows, cols), seed, **settings).train(jnp.asarray(ri.views))
-    used = default_waypoints(iw, route_spacing) if route is None else np.asarray(route, float).reshape(-1, 2)
+    if route is not None:
+        used = np.asarray(route, float).reshape(-1, 2).round(2).tolist()
+    elif isinstance(iw, MeshSite):
+        used = f"the recorded route of {iw.name}"
+    else:
+        used = default_waypoints(iw, route_spacing).round(2).tolist()
     run = {"route_spacing": float(route_spacing), "view_rows": rows, "view_cols": cols, "trials": trials,
            "heading_noise_deg": float(noise), "step": float(step), "max_steps": n_steps, "seed": seed,
-           "route": used.round(2).tolist(), **settings}  # fmt: skip
+           "route": used, **settings}  # fmt: skip
     return FollowingSetup(iw, model, vc, ri, trained, rules, run)

@@ -123,30 +123,31 @@ def matlab_green(shade: np.ndarray) -> np.ndarray:
     return np.stack([np.zeros_like(g), g, np.zeros_like(g)], -1)
 
 
-def read_route(path: str | Path, name: str = "Ant1_Route1") -> np.ndarray:
-    """(N, 3) [x cm, y cm, heading rad counter-clockwise from +x] of a recorded route: variable `name` of
-    AntRoutes.mat, or a bob_robotics route .bin (N x 3 float64, column-major, heading in deg)."""
-    p = Path(path)
+def read_route(ant_route: str | Path, route_name: str = "Ant1_Route1") -> np.ndarray:
+    """(N, 3) [x cm, y cm, heading rad counter-clockwise from +x] of a recorded route: variable `route_name` of
+    the file `ant_route` (AntRoutes.mat), or a bob_robotics route .bin (N x 3 float64, column-major, heading in
+    deg; `route_name` unused)."""
+    p = Path(ant_route)
     if not p.is_file():
-        raise InputError("route", str(path), "is no file")
+        raise InputError("ant_route", str(ant_route), "is no file")
     if p.suffix.lower() == ".mat":
         from scipy.io import loadmat  # scipy.io: loaded only when a .mat file is read
 
         try:
             data = loadmat(p)
         except Exception as exc:  # noqa: BLE001
-            raise InputError("route", str(p), f"is not a MATLAB .mat file ({type(exc).__name__})") from None
+            raise InputError("ant_route", str(p), f"is not a MATLAB .mat file ({type(exc).__name__})") from None
         routes = sorted(k for k in data if not k.startswith("__"))
-        if name not in data:
-            raise InputError("route", name, f"is not in {p.name} (it holds {', '.join(routes[:4])}, ...)")
-        r = np.asarray(data[name], np.float64)
+        if route_name not in data:
+            raise InputError("route_name", route_name, f"is not in {p.name} (it holds {', '.join(routes[:4])}, ...)")
+        r = np.asarray(data[route_name], np.float64)
     elif p.suffix.lower() == ".bin":
         raw = np.fromfile(p, dtype="<f8")
         if raw.size == 0 or raw.size % 3:
-            raise InputError("route", str(p), f"holds {raw.size} doubles, not 3 a point (bob_robotics' route .bin)")
+            raise InputError("ant_route", str(p), f"holds {raw.size} doubles, not 3 a point (bob_robotics' route .bin)")
         r = raw.reshape(3, -1).T
     else:
-        raise InputError("route", str(p), "must be AntRoutes.mat or a bob_robotics route .bin")
+        raise InputError("ant_route", str(p), "must be AntRoutes.mat or a bob_robotics route .bin")
     if r.ndim != 2 or r.shape[1] != 3 or r.shape[0] < 2 or not np.isfinite(r).all():
-        raise InputError("route", str(p), f"must be N >= 2 finite rows of x, y, heading, got {list(r.shape)}")
+        raise InputError("ant_route", str(p), f"must be N >= 2 finite rows of x, y, heading, got {list(r.shape)}")
     return np.column_stack([r[:, 0], r[:, 1], np.radians(r[:, 2])])

@@ -25,8 +25,8 @@ from ..outputs._programs import kept_number
 
 MAX_POINTS = 1_000_000  # grid points (times masks) or trials in one run, by default
 # host memory per item of the results and their CSV rows, bytes; slowest method per item on 2 CPU cores, s
-BYTES = {"grid point": 120, "trial": 160, "path point": 40}
-SECONDS = {"grid point": 50e-6, "trial": 1.5e-3, "path point": 1e-4, "move": 1.5e-5}
+BYTES = {"grid point": 120, "trial": 160, "path point": 40, "mesh image": 10_000}  # a 76 x 360 PNG of habitat0: 7.8 kB
+SECONDS = {"grid point": 50e-6, "trial": 1.5e-3, "path point": 1e-4, "move": 1.5e-5, "mesh image": 0.025}
 MOVES_PER_POINT = 100  # trials x (max_steps + 1) moves of a rollout run: at most this times max_points
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import matplotlib
 import numpy as np
+from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
 
 from ..familiarity._run import FamiliarityResult
@@ -20,6 +21,8 @@ def familiarity_figure(result: FamiliarityResult, title: str = "") -> Figure:
     f = result.field_columns()
     p = np.asarray(result.route.route.positions)
     draw_world(a, result.arena, p[-1], result.obstacles)
+    if result.footprint is not None:  # a mesh world: its triangles seen from above
+        a.add_collection(PolyCollection(result.footprint, facecolor="0.55", edgecolor="none", alpha=0.5, zorder=1))
     a.plot(p[:, 0], p[:, 1], "-", color="tab:green", lw=2.5, zorder=2, label="route")
     h = np.radians(f["heading_deg"])
     q = a.quiver(f["x_cm"], f["y_cm"], np.cos(h), np.sin(h), np.minimum(f["error_deg"], 180.0), cmap="viridis_r",

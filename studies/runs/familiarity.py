@@ -113,16 +113,20 @@ def failures(outcome: np.ndarray, names) -> str:
     return ", ".join(f"{k} {v}" for k, v in counts.items())
 
 
+def success_errorbar(ax, rows: list[dict], x, label: str) -> None:
+    """The success of `rows` at `x` with their 95 % Wilson intervals (the rows' "95 % interval": "lo-hi")."""
+    y = np.array([r["success %"] for r in rows], np.float64)
+    ci = np.array([[float(v) for v in r["95 % interval"].split("-")] for r in rows])
+    ax.errorbar(x, y, yerr=[y - ci[:, 0], ci[:, 1] - y], marker="o", capsize=3, label=label)
+
+
 def success_figure(rows: list[dict], worlds, noises):
     """Success from the route's start against heading noise, one panel a world, one line a method."""
     fig, axes = subplots(1, len(worlds), figsize=(5.5 * len(worlds), 4.2), squeeze=False)
     for ax, world in zip(axes[0], worlds):
         for method in dict.fromkeys(r["method"] for r in rows if r["world"] == world):
             mine = [r for r in rows if r["world"] == world and r["method"] == method]
-            y = [r["success %"] for r in mine]
-            ci = np.array([[float(v) for v in r["95 % interval"].split("-")] for r in mine])
-            ax.errorbar([r["noise °"] for r in mine], y, yerr=[np.subtract(y, ci[:, 0]), ci[:, 1] - y], marker="o",
-                        capsize=3, label=method)  # fmt: skip
+            success_errorbar(ax, mine, [r["noise °"] for r in mine], method)
         ax.set(xlabel="heading noise per move (°)", ylabel="success from the route's start (%)", ylim=(-5, 105),
                xticks=list(noises), title=world)  # fmt: skip
         ax.legend(fontsize=8)

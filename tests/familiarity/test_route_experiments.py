@@ -61,7 +61,7 @@ def test_near_the_route_the_heading_field_points_along_it(robot_route):
     ri = robot_route
     model = train_model("perfect-memory", ri.views)
     points = np.asarray(ri.route.positions)[2:-2:3] + np.array([3.0, -3.0], np.float32)
-    hf = heading_field(model, ROBOT.world, ri.camera, ri.route, jnp.asarray(points))
+    hf = heading_field(model, WorldViews(ROBOT.world, ri.camera), ri.route, jnp.asarray(points))
     assert np.median(np.asarray(hf.error_deg)) < 20.0
     assert np.all(np.asarray(hf.distance) < 6.0)
 

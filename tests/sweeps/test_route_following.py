@@ -79,7 +79,7 @@ def test_an_environment_as_cylinders_and_a_model_setting_are_axes():
         ("learning_rate = [0.5]", "cell (", "is no setting of perfect-memory"),
         ("heading_noise_deg = [-1]", "cell (", "heading_noise_deg"),
         ("route_spacing = [0]", "cell (", "route_spacing"),
-        ('env = ["nowhere"]', "env", "is no image world (robot, natural) and unknown preset"),
+        ('env = ["nowhere"]', "env", "is no image world (robot, natural) nor habitat<seed>, and unknown preset"),
         ('method = ["delv"]', "cell (", "must be one of"),
         ("spacing = [25]", "axes.spacing", "is not an axis of kind"),
         ("bearing_noise_deg = [1]", "axes.bearing_noise_deg", "is not an axis of kind"),

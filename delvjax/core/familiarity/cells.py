@@ -15,7 +15,7 @@ from jax.typing import ArrayLike
 
 from ..rollouts.rules import SUCCESS
 from .base import FamiliarityModel
-from .following import Following, StoredViews, WorldViews, follow_route
+from .following import Following, ViewSource, follow_route
 from .route import Route
 
 
@@ -24,7 +24,7 @@ class FollowingCell(eqx.Module):
     (`jax.random.key_data`), stackable with NumPy; live: False for a padding row."""
 
     model: FamiliarityModel
-    source: WorldViews | StoredViews
+    source: ViewSource
     route: Route
     rules: Following
     key: ArrayLike

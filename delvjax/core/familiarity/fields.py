@@ -1,7 +1,7 @@
 """Heading fields of a familiarity model (docs/familiarity.md §3.1): at every query point the agent
 turns through the full circle (`n_turns` equal turns) from heading 0 and takes the most familiar view;
 its world heading is compared with the route's direction at the nearest point of the route. Points
-run `POINT_WIDTH` at a time (each renders a panorama)."""
+run `POINT_WIDTH` at a time (each renders a panorama, in a colour or a mesh world: `following.ViewSource`)."""
 
 from __future__ import annotations
 
@@ -13,11 +13,10 @@ from jax.typing import ArrayLike
 
 from ..batching import fixed_width_map
 from ..geometry import TWO_PI, wrap
-from ..images.world import World
 from .base import FamiliarityModel
+from .following import MeshViews, WorldViews
 from .ridf import rolled
 from .route import Route, nearest_image, nearest_on_route
-from .views import ViewCamera, views_at
 
 POINT_WIDTH = 8
 
@@ -46,13 +45,13 @@ def full_turns(n_turns: int) -> Array:
 
 @eqx.filter_jit
 def heading_field(
-    model: FamiliarityModel, world: World, vc: ViewCamera, route: Route, points: ArrayLike, n_turns: int = 90
+    model: FamiliarityModel, source: WorldViews | MeshViews, route: Route, points: ArrayLike, n_turns: int = 90
 ) -> HeadingField:
-    """The `HeadingField` at every point (P, 2) (module docstring)."""
+    """The `HeadingField` at every point (P, 2), views from `source` (module docstring)."""
     turns = full_turns(n_turns)
 
     def one(p: ArrayLike):
-        choice = model.choose(views_at(world, vc, p, jnp.float32(0.0), turns), turns)
+        choice = model.choose(source(p, jnp.float32(0.0), turns), turns)
         dist, _, along, _ = nearest_on_route(route, p)
         heading = wrap(choice.turn)
         error = jnp.abs(jnp.degrees(wrap(heading - along)))

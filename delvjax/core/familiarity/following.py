@@ -19,8 +19,10 @@ from ..batching import fixed_width_map
 from ..geometry import TWO_PI, unit, wrap
 from ..images.rollouts import Field, status
 from ..images.world import World
+from ..mesh.mesh import Mesh
 from ..rollouts.rules import RUNNING, SUCCESS, TIMEOUT
 from .base import FamiliarityModel
+from .mesh_views import MeshCamera, mesh_views_at
 from .perfect_memory import PerfectMemory, window
 from .ridf import rolled
 from .route import Route, nearest_on_route
@@ -92,6 +94,22 @@ class WorldViews(eqx.Module):
         )
 
 
+class MeshViews(eqx.Module):
+    """Views rendered in a triangle-mesh world at any pose (`mesh_views.mesh_views_at`); arena (4,) [xmin, ymin,
+    xmax, ymax]: leaving it ends a move (an agent walks through the grass, as in Ardin et al. 2016)."""
+
+    mesh: Mesh
+    camera: MeshCamera
+    arena: Array
+
+    def __call__(self, x: Array, heading: Array, turns: Array) -> Array:
+        return mesh_views_at(self.mesh, self.camera, x, heading, turns)
+
+    def surroundings(self) -> Surroundings:
+        none = jnp.array([[0.0, 0.0, -1.0, -1.0]])  # a radius -1, an empty box: never hit
+        return Surroundings(jnp.asarray(self.arena, jnp.float32), none[:, :3], none)
+
+
 class StoredViews(eqx.Module):
     """The views of an image database (navipy's and BoB's nearest-snapshot rule): at x the stored view
     nearest to x, rolled by whole columns so that column 0 looks along each turned heading (a turn is
@@ -113,9 +131,11 @@ class StoredViews(eqx.Module):
         return self.area
 
 
+ViewSource = WorldViews | MeshViews | StoredViews  # (x, heading, turns) -> (R, H, W) views; surroundings()
+
+
 def one_trial(model: FamiliarityModel, source, route: Route, rules: Following, start, heading0, key):
-    """One trial from `start` (2,) facing `heading0` rad, views from `source` (`WorldViews` or
-    `StoredViews`; module docstring)."""
+    """One trial from `start` (2,) facing `heading0` rad, views from `source` (a `ViewSource`; module docstring)."""
     field = source.surroundings().field(route)
     turns = rules.turns()
     n_img = model.n_images()
@@ -159,7 +179,7 @@ def one_trial(model: FamiliarityModel, source, route: Route, rules: Following, s
 
 @eqx.filter_jit
 def follow_route(
-    model: FamiliarityModel, source: WorldViews | StoredViews, route: Route, rules: Following, starts, headings, key
+    model: FamiliarityModel, source: ViewSource, route: Route, rules: Following, starts, headings, key
 ) -> Trials:
     """Route-following trials from every start (T, 2) facing headings (T,) rad; trial i draws from
     fold_in(key, i)."""

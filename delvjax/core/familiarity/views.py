@@ -49,13 +49,13 @@ def gray(world: World, camera: Camera, pos: ArrayLike, heading: ArrayLike) -> Ar
     return jnp.round(jnp.clip(lum, 0.0, 1.0) * 255.0)
 
 
-def turn_columns(turns: ArrayLike, vc: ViewCamera) -> Array:
-    """Whole rendered columns of every turn (rad, counter-clockwise)."""
-    return jnp.round(jnp.asarray(turns) / (TWO_PI / vc.camera.cols)).astype(jnp.int32)
+def turn_columns(turns: ArrayLike, cols: int) -> Array:
+    """Whole columns of a `cols`-column panorama in every turn (rad, counter-clockwise)."""
+    return jnp.round(jnp.asarray(turns) / (TWO_PI / cols)).astype(jnp.int32)
 
 
 def views_at(world: World, vc: ViewCamera, pos: ArrayLike, heading: ArrayLike, turns: ArrayLike) -> Array:
     """(R, H, W) the views after every turn (R,) rad from `heading` at `pos`: one rendering, rolled (a
     left turn by k columns rolls the counter-clockwise panorama left by k) and block-averaged."""
     g = gray(world, vc.camera, pos, heading)
-    return downsample(rolled(g, -turn_columns(turns, vc)), vc.factor)
+    return downsample(rolled(g, -turn_columns(turns, vc.camera.cols)), vc.factor)

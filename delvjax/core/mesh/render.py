@@ -8,10 +8,11 @@ from either side), and the hit is in front: t = (n . a) / (n . d) > 0, n = (b - 
 Most triangles of a habitat are small in the view, so each triangle is first placed in the image (its corners'
 azimuth and elevation as fractional pixels). A small one (its corners within SPLAT x SPLAT pixel centres, with
 a margin for the bulge of a great-circle edge) is tested against those pixels' rays only and its hits are
-merged by a scatter-min of depth (then of the triangle's index among the nearest); a medium one (within MEDIUM x
-MEDIUM) likewise, MEDIUM_CHUNK at a time; the large ones (near the eye, around a pole, across the seam) are
-tested against every pixel, CHUNK at a time. The chunked tiers are `while_loop`s that stop after their last
-triangle. Every tier is the exact ray test above, so the image is the brute-force one (ties to the lower index)."""
+merged by a scatter-min of depth (then of the triangle's index among the nearest), SPLAT_CHUNK at a time and
+only if a pixel centre lies within its bounds (most small ones fall between pixel centres: 60 % of habitat0's
+in the ant eye); a middling one (within MID x MID) and a medium one (MEDIUM x MEDIUM) likewise; the large ones
+(near the eye, around a pole, across the seam) are tested against every pixel, CHUNK at a time. The tiers are
+`while_loop`s over the triangles of their tier, gathered in index order, that stop after the last. Every tier is the exact ray test above, so the image is the brute-force one (ties to the lower index)."""
 
 from __future__ import annotations
 
@@ -24,32 +25,38 @@ from ..geometry import wrap
 from .eye import Eye
 from .mesh import Mesh
 
-SPLAT = 4  # a small triangle's candidate pixels: SPLAT x SPLAT (every small one at once)
-MEDIUM, MEDIUM_CHUNK = 16, 128  # a medium one's: MEDIUM x MEDIUM, MEDIUM_CHUNK of them at a time
-CHUNK = 128  # large triangles tested side by side against every pixel
+SPLAT, SPLAT_CHUNK = 4, 1024  # a small triangle's candidate pixels: SPLAT x SPLAT, SPLAT_CHUNK of them at a time
+MID, MID_CHUNK = 8, 64  # a middling one's: MID x MID
+MEDIUM, MEDIUM_CHUNK = 16, 16  # a medium one's: MEDIUM x MEDIUM, MEDIUM_CHUNK of them at a time
+CHUNK = 8  # large triangles tested side by side against every pixel
 ROW_MARGIN, COL_MARGIN = 0.5, 0.05  # pixels added about a triangle's corners (an edge bulges in elevation)
 FAR = 1e12
 
 
+def corners(mesh: Mesh, origin: ArrayLike) -> list[list[Array]]:
+    """The corners relative to `origin` (3,) by component: [corner][x, y, z], each (T,) (a CPU is slow on
+    an axis of 3: the arithmetic is written out by component)."""
+    o = jnp.asarray(origin, jnp.float32)
+    return [[mesh.vertices[:, k, j] - o[j] for j in range(3)] for k in range(3)]
+
+
+def cross(u: list[Array], v: list[Array]) -> list[Array]:
+    """u x v by component."""
+    return [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+
+
 def triangle_planes(mesh: Mesh, origin: ArrayLike) -> Array:
-    """(T, 13) per triangle relative to `origin` (3,): the edge-plane normals a x b, b x c, c x a, the normal
+    """(13, T) per triangle relative to `origin` (3,): the edge-plane normals a x b, b x c, c x a, the normal
     n and n . a; a padding triangle gets a zero normal (never hit)."""
-    v = mesh.vertices - jnp.asarray(origin, jnp.float32)
-    a, b, c = v[:, 0], v[:, 1], v[:, 2]
-    n = jnp.where(mesh.valid[:, None], jnp.cross(b - a, c - a), 0.0)
-    return jnp.concatenate(
-        [jnp.cross(a, b), jnp.cross(b, c), jnp.cross(c, a), n, jnp.sum(n * a, -1, keepdims=True)], -1
-    )
-
-
-def ray_depth(planes: Array, d: Array) -> Array:
-    """Depth t of every ray d (..., 3) against its triangle's planes (..., 13) (broadcast): FAR where missed.
-    Written out by component (a reduction over an axis of 3 is slow on a CPU)."""
-    return depth_of(tuple(planes[..., k] for k in range(13)), d[..., 0], d[..., 1], d[..., 2])
+    a, b, c = corners(mesh, origin)
+    n = cross([b[j] - a[j] for j in range(3)], [c[j] - a[j] for j in range(3)])
+    n = [jnp.where(mesh.valid, x, 0.0) for x in n]
+    return jnp.stack([*cross(a, b), *cross(b, c), *cross(c, a), *n, n[0] * a[0] + n[1] * a[1] + n[2] * a[2]])
 
 
 def depth_of(p: tuple, dx: Array, dy: Array, dz: Array) -> Array:
-    """`ray_depth` from the 13 plane components and the ray's 3 (each broadcast)."""
+    """Depth t of the ray (dx, dy, dz) against a triangle's 13 plane components (`triangle_planes`; each
+    broadcast): FAR where it misses (written out by component: a reduction over an axis of 3 is slow on a CPU)."""
     s0 = dx * p[0] + dy * p[1] + dz * p[2]
     s1 = dx * p[3] + dy * p[4] + dz * p[5]
     s2 = dx * p[6] + dy * p[7] + dz * p[8]
@@ -62,10 +69,11 @@ def depth_of(p: tuple, dx: Array, dy: Array, dz: Array) -> Array:
 def placement(mesh: Mesh, eye: Eye, origin: Array, turn: Array) -> tuple[Array, Array, Array]:
     """Per triangle: the first and last candidate pixel (row, col) and its size in pixels (the larger side; a
     huge number where its corners do not place it: across the seam of azimuth, around a pole)."""
-    rel = (mesh.vertices - origin) @ turn  # eye frame: turn^T (v - origin)
-    az = jnp.arctan2(rel[..., 1], rel[..., 0])
+    v = corners(mesh, origin)
+    x, y, z = (jnp.stack([sum(v[k][j] * turn[j, i] for j in range(3)) for k in range(3)], -1) for i in range(3))
+    az = jnp.arctan2(y, x)  # (T, 3) in the eye frame: turn^T (v - origin)
     az = az[:, :1] + wrap(az - az[:, :1])  # unwrapped about the first corner
-    el = jnp.arctan2(rel[..., 2], jnp.hypot(rel[..., 0], rel[..., 1]))
+    el = jnp.arctan2(z, jnp.hypot(x, y))
     row, col = eye.fractional_pixel(az, el)
     r0 = jnp.ceil(jnp.min(row, -1) - ROW_MARGIN)
     r1 = jnp.floor(jnp.max(row, -1) + ROW_MARGIN)
@@ -91,11 +99,11 @@ def window_hits(planes: Array, d: Array, first: Array, last: Array, ids: Array, 
     ok = ok & (cc >= 0) & (cc < eye.cols)
     pix = jnp.where(ok, rr * eye.cols + cc, 0)  # (K, S, S)
     dp = d[pix]
-    pl = planes[ids].T[:, :, None, None]  # (13, K, 1, 1)
+    pl = planes[:, ids][:, :, None, None]  # (13, K, 1, 1)
     t = jnp.where(ok, depth_of(tuple(pl), dp[..., 0], dp[..., 1], dp[..., 2]), FAR)
     p = d.shape[0]
     zbuf = jnp.full(p, FAR, jnp.float32).at[pix.ravel()].min(t.ravel())
-    n = planes.shape[0]
+    n = planes.shape[1]
     won = (t < FAR) & (t == zbuf[pix])
     index = jnp.full(p, n, jnp.int32).at[pix.ravel()].min(jnp.where(won, ids[:, None, None], n).ravel())
     return zbuf, index
@@ -111,9 +119,9 @@ def chunked(members: Array, width: int, hits, init: tuple[Array, Array]) -> tupl
     """`hits(ids, live)` over the `members` triangles `width` at a time (a `while_loop` that stops after the last),
     merged with `nearer`."""
     n = members.shape[0]
-    order = jnp.argsort(~members, stable=True).astype(jnp.int32)  # the members first
-    order = jnp.concatenate([order, jnp.zeros(-n % width + width, jnp.int32)])
     count = jnp.sum(members)
+    at = jnp.where(members, jnp.cumsum(members) - 1, n + width)  # the members first, in index order
+    order = jnp.zeros(n + width, jnp.int32).at[at].set(jnp.arange(n, dtype=jnp.int32), mode="drop")
 
     def body(carry):
         best, start = carry
@@ -126,10 +134,10 @@ def chunked(members: Array, width: int, hits, init: tuple[Array, Array]) -> tupl
 
 def every_pixel_hits(planes: Array, d: Array, ids: Array, live: Array) -> tuple[Array, Array]:
     """(t, index) (P,) of the nearest of triangles `ids` (K,) (`live` ones) along every ray: each against every pixel."""
-    pl = jnp.where(live[None], planes[ids].T, 0.0)[:, None, :]  # (13, 1, K); a dead one has a zero normal
+    pl = jnp.where(live[None], planes[:, ids], 0.0)[:, None, :]  # (13, 1, K); a dead one has a zero normal
     t = depth_of(tuple(pl), d[:, 0:1], d[:, 1:2], d[:, 2:3])  # (P, K)
     k = jnp.argmin(t, -1)
-    return jnp.min(t, -1), jnp.where(jnp.min(t, -1) < FAR, ids[k], planes.shape[0])
+    return jnp.min(t, -1), jnp.where(jnp.min(t, -1) < FAR, ids[k], planes.shape[1])
 
 
 def mesh_colours(mesh: Mesh, eye: Eye, pose: ArrayLike) -> Array:
@@ -139,10 +147,15 @@ def mesh_colours(mesh: Mesh, eye: Eye, pose: ArrayLike) -> Array:
     d = eye.rays(pose[3:]).reshape(-1, 3)
     planes = triangle_planes(mesh, origin)
     first, last, size = placement(mesh, eye, origin, turn)
-    n = planes.shape[0]
-    every = jnp.arange(n, dtype=jnp.int32)
-    best = window_hits(planes, d, first, last, every, size <= SPLAT, eye, SPLAT)
-    medium = (size > SPLAT) & (size <= MEDIUM)
+    n = planes.shape[1]
+    seen = (last[:, 0] >= first[:, 0]) & (last[:, 1] >= first[:, 1]) & (last[:, 0] >= 0) & (first[:, 0] < eye.rows)
+    if not eye.cyclic:
+        seen = seen & (last[:, 1] >= 0) & (first[:, 1] < eye.cols)  # a candidate pixel in view
+    init = (jnp.full(d.shape[0], FAR, jnp.float32), jnp.full(d.shape[0], n, jnp.int32))
+    tier = lambda w: lambda ids, live: window_hits(planes, d, first, last, ids, live, eye, w)  # noqa: E731
+    best = chunked(seen & (size <= SPLAT), SPLAT_CHUNK, tier(SPLAT), init)
+    best = chunked(seen & (size > SPLAT) & (size <= MID), MID_CHUNK, tier(MID), best)
+    medium = (size > MID) & (size <= MEDIUM)
     best = chunked(
         medium, MEDIUM_CHUNK, lambda ids, live: window_hits(planes, d, first, last, ids, live, eye, MEDIUM), best
     )

@@ -16,18 +16,19 @@ import numpy as np
 from ...core import metrics as table
 from ...core.errors import InputError
 from ...core.familiarity.cells import FollowingCell, FollowingSums, following_cells
-from ...core.familiarity.following import WorldViews
 from ...core.rollouts.success import wilson_pct
 from ...familiarity._models import SETTINGS
+from ...familiarity._routes import view_source
 from ...familiarity._setup import following_setup
 from ...images._worlds import BUILT_IN, ImageWorld, env_world, image_world
+from ...mesh._site import MeshSite, is_mesh_name, mesh_site
 from .base import Sweep, SweepKind, descriptions, options, pct
 
 RUN_AXES = {
     "heading_noise_deg": "heading noise added at every move, deg (sigma of a normal; default 10)",
     "route_spacing": "cm between route images (default 4)",
     "step": "cm a move (default: the route spacing)",
-    "view_rows": "rows of a view (default 10)",
+    "view_rows": "rows of a view (default 10; 19 in a mesh world)",
     "view_cols": "columns of a view, dividing 360 (default 90)",
     "max_steps": "moves before a trial times out (default 2.1 route lengths)",
 }
@@ -39,15 +40,20 @@ MODEL_AXES = {  # every model's settings (docs/familiarity.md §2): an axis appl
 UNITS = {"heading_noise_deg": "degree", "route_spacing": "cm", "step": "cm"}
 
 
-def following_world(name: str, environment: Callable[[str], object]) -> ImageWorld:
-    """An `env` axis value as a colour world: a built-in image world by name, else the environment the landmark
-    kinds would read (`environment(name)`: preset, JSON file, random or ensemble member) as red cylinders."""
+def following_world(name: str, environment: Callable[[str], object]) -> ImageWorld | MeshSite:
+    """An `env` axis value as a world: a built-in image world or a generated mesh habitat (`habitat<seed>`) by
+    name, else the environment the landmark kinds would read (`environment(name)`: preset, JSON file, random or
+    ensemble member) as red cylinders."""
     if name in BUILT_IN:
         return image_world(name)
+    if is_mesh_name(name):
+        return mesh_site(name)
     try:
         return env_world(environment(name))
     except InputError as exc:
-        raise InputError("env", name, f"is no image world ({', '.join(BUILT_IN)}) and {exc.expected}") from None
+        raise InputError(
+            "env", name, f"is no image world ({', '.join(BUILT_IN)}) nor habitat<seed>, and {exc.expected}"
+        ) from None
 
 
 class RouteFollowing(SweepKind):
@@ -70,7 +76,7 @@ class RouteFollowing(SweepKind):
     def request(self, env, cell: dict, spec: Sweep, max_points: int, method_set: Sequence[str] | None = None) -> dict:
         s = following_setup(env, cell["method"], seed=cell["seed"], trials=spec.trials, **options(cell))
         key = np.asarray(jax.random.key_data(jax.random.key(s.settings["seed"])))
-        return {"model": s.trained, "source": WorldViews(env.world, s.camera), "route": s.route.route,
+        return {"model": s.trained, "source": view_source(env, s.camera), "route": s.route.route,
                 "rules": s.rules, "key": key, "trials": s.settings["trials"]}  # fmt: skip
 
     def traced(self, req: dict, mask_rows: int = 1) -> tuple:
@@ -110,7 +116,11 @@ class RouteFollowing(SweepKind):
         }
 
     def cell_seconds(self, spec: Sweep) -> float:
-        return spec.trials * 0.1  # a trial of the robot route: about 25 moves of 3 ms, and the model's training
+        """A trial of the robot route: about 25 moves of 3 ms, and the model's training; of a habitat's 8 m route
+        about 200 moves, each a mesh view rendered (8 trials side by side: 15 moves a second)."""
+        envs = spec.axes.get("env", self.defaults["env"])
+        mesh = sum(isinstance(e, str) and is_mesh_name(e) for e in envs) / max(len(envs), 1)
+        return spec.trials * (0.1 * (1 - mesh) + 1.7 * mesh)
 
 
 ROUTE_FOLLOWING = RouteFollowing()
