@@ -40,7 +40,7 @@ from ._images_common import MINWARPING, preview
 from .familiarity import success_errorbar
 
 TITLE = "Route following in the ant's world: familiarity and MinWarping on mesh habitats (beyond the thesis)"
-COST = 1200  # rough seconds of a full run on 2 CPU cores (three habitats, three models; the Seville world adds 400)
+COST = 1300  # rough seconds of a full run on 2 CPU cores (three habitats: 1290 s alone; the Seville world adds 650)
 STEPS = 4  # three habitats (one in a preview) and the table; the Seville world adds one
 NOISE = 30.0  # deg of heading noise a move
 GOAL_CM = 20.0  # success radius and the off-route distance (Ardin et al. 2016)
