@@ -103,9 +103,9 @@ def mesh_db(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     progress(f"rendering a {args.kind} database of {site.name} into {args.out} ...")
     with ProgressBar("img", args.chunk) as bar:
-        summary = render_mesh_database(site, args.out, kind=args.kind, spacing=args.spacing, band=args.band, colour=args.colour,
-                                       rows=76 if args.rows is None else args.rows, cols=args.cols, chunk=args.chunk,
-                                       max_points=args.max_points, progress=bar)  # fmt: skip
+        summary = render_mesh_database(site, args.out, kind=args.kind, spacing=args.spacing, band=args.band,
+                                       colour=args.colour, rows=76 if args.rows is None else args.rows, cols=args.cols,
+                                       chunk=args.chunk, max_points=args.max_points, progress=bar)  # fmt: skip
     progress(f"{summary['images']} images every {summary['spacing_cm']:g} cm in {time.perf_counter() - t0:.2f} s")
     print(wrote(args.out))
     return 0

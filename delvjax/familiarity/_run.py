@@ -156,8 +156,8 @@ def route_experiments(
     route_spacing: cm between route images; view_rows x view_cols: the views (rendered at 4x in a colour world,
     2x in a mesh world, block-averaged; view_rows default 10, in a mesh world 19); grid_spacing: the heading
     field's grid (default: the world's spacing; in a mesh world within `band` cm of the route); trials,
-    heading_noise_deg, step (default: the route spacing), max_steps (default: 2.1 route lengths): the route-following trials; seed: the
-    trials' noise, InfoMax's weights and the mushroom body's wiring; model_options: the model's
+    heading_noise_deg, step (default: the route spacing), max_steps (default: 2.1 route lengths): the
+    route-following trials; seed: the trials' noise, InfoMax's weights and the mushroom body's wiring; model_options: the model's
     settings (`_models.SETTINGS`)."""
     say = progress or (lambda _: None)
     iw = any_world(world)

@@ -1,7 +1,7 @@
 """The validated setup of route following in a colour or mesh world (docs/familiarity.md §3, docs/mesh.md §6):
-the model's settings, the views' camera, the route and its rendered images, the trained model and the rules of a trial. Shared
-by `route_experiments` and the route-following sweep kind (docs/sweeps.md "Route-following sweeps"), so
-that both check every setting the same way before any work and a sweep cell runs the trials
+the model's settings, the views' camera, the route and its rendered images, the trained model and the rules of
+a trial. Shared by `route_experiments` and the route-following sweep kind (docs/sweeps.md "Route-following
+sweeps"), so that both check every setting the same way before any work and a sweep cell runs the trials
 `route_experiments` runs with the same settings, number for number."""
 
 from __future__ import annotations

@@ -59,8 +59,8 @@ def render_mesh_database(
     progress: Callable[[int, int], None] | None = None,
 ) -> dict:
     """Render a database of `world` (a generated habitat by name, or a `MeshSite`) into `out` (module
-    docstring): rows x cols panoramas (colour: the colours, else the green channel) (default 76 x 360: 1 deg a column, 75/76 deg a row, so that 19 x 90 views
-    are 4 x 4 block means); spacing: default the world's grid spacing on a grid, 4 cm on a route; band: a grid's
+    docstring): rows x cols panoramas (default 76 x 360: 1 deg a column, 75/76 deg a row, so that 19 x 90 views
+    are 4 x 4 block means), the colours if `colour`, else the green channel; spacing: default the world's grid spacing on a grid, 4 cm on a route; band: a grid's
     points lie within it of the route (cm, default the world's). Returns a summary."""
     s = mesh_site(world) if isinstance(world, str) else world
     if kind not in KINDS:

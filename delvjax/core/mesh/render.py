@@ -12,7 +12,8 @@ merged by a scatter-min of depth (then of the triangle's index among the nearest
 only if a pixel centre lies within its bounds (most small ones fall between pixel centres: 60 % of habitat0's
 in the ant eye); a middling one (within MID x MID) and a medium one (MEDIUM x MEDIUM) likewise; the large ones
 (near the eye, around a pole, across the seam) are tested against every pixel, CHUNK at a time. The tiers are
-`while_loop`s over the triangles of their tier, gathered in index order, that stop after the last. Every tier is the exact ray test above, so the image is the brute-force one (ties to the lower index)."""
+`while_loop`s over the triangles of their tier, gathered in index order, that stop after the last. Every tier
+is the exact ray test above, so the image is the brute-force one (ties to the lower index)."""
 
 from __future__ import annotations
 
