@@ -1,5 +1,5 @@
-"""Routes as polylines on the host (input preparation, NumPy): points every `spacing` cm along waypoints and the
-direction of travel at each (docs/familiarity.md §3)."""
+"""Routes as polylines on the host (input preparation, NumPy): points every `spacing` cm along waypoints, the
+direction of travel at each, a route's length and the distance of points from it (docs/familiarity.md §3)."""
 
 from __future__ import annotations
 
@@ -25,3 +25,11 @@ def headings_along(points: np.ndarray) -> np.ndarray:
 def route_length(points: np.ndarray) -> float:
     """cm along the polyline through `points` (N, 2)."""
     return float(np.sum(np.hypot(*np.diff(np.asarray(points, np.float64), axis=0).T)))
+
+
+def distance_to(points: np.ndarray, route: np.ndarray) -> np.ndarray:
+    """(P,) cm from every point (P, 2) to the route's polyline."""
+    a, b = route[:-1, None, :2], route[1:, None, :2]
+    ab = b - a
+    t = np.clip(np.sum((points - a) * ab, -1) / np.maximum(np.sum(ab * ab, -1), 1e-12), 0.0, 1.0)
+    return np.min(np.linalg.norm(a + t[..., None] * ab - points, axis=-1), 0)

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.errors import InputError
+from ..core.polyline import distance_to
 
 BLADE_BASE = 10.0  # cm between a blade's two ground corners (the Seville world's)
 
@@ -44,14 +45,6 @@ def meander(rng: np.random.Generator, start: np.ndarray, nest: np.ndarray, step:
     d = np.diff(xy, axis=0)
     heading = np.append(np.arctan2(d[:, 1], d[:, 0]), np.arctan2(d[-1, 1], d[-1, 0]))
     return np.column_stack([xy, heading])
-
-
-def distance_to(points: np.ndarray, route: np.ndarray) -> np.ndarray:
-    """(P,) cm from every point (P, 2) to the route's polyline."""
-    a, b = route[:-1, None, :2], route[1:, None, :2]
-    ab = b - a
-    t = np.clip(np.sum((points - a) * ab, -1) / np.maximum(np.sum(ab * ab, -1), 1e-12), 0.0, 1.0)
-    return np.min(np.linalg.norm(a + t[..., None] * ab - points, axis=-1), 0)
 
 
 def habitat(

@@ -15,9 +15,10 @@ import numpy as np
 from ..core.errors import InputError
 from ..core.grid import grid_points
 from ..core.mesh.mesh import Mesh
+from ..core.polyline import distance_to
 from ..options._limits import MAX_POINTS, check_size, grid_count
 from ._files import MeshFile, read_mesh, read_route
-from ._habitat import Habitat, distance_to, habitat
+from ._habitat import Habitat, habitat
 from ._world import mesh_world
 
 HABITAT = re.compile(r"habitat(\d*)$")

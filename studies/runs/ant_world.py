@@ -27,13 +27,12 @@ import jax.numpy as jnp
 import numpy as np
 
 from delvjax.core.familiarity.following import follow_route
+from delvjax.core.polyline import distance_to
 from delvjax.core.rollouts.rules import SUCCESS
 from delvjax.core.rollouts.success import wilson_pct
 from delvjax.familiarity import route_experiments
 from delvjax.images import database_rollouts, database_vector_map, load_database
-from delvjax.mesh._database import render_mesh_database
-from delvjax.mesh._habitat import distance_to
-from delvjax.mesh._site import MeshSite, file_site, mesh_site
+from delvjax.mesh import MeshSite, file_site, mesh_site, render_mesh_database
 from delvjax.plots import subplots
 
 from ._images_common import MINWARPING, preview
