@@ -39,7 +39,6 @@ class MeshSite:
     eye_height: float = EYE_HEIGHT
     spacing: float = 20.0
     band: float = 100.0
-    clearance: float = 0.0
 
     @property
     def world(self) -> Mesh:
