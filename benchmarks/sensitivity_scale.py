@@ -19,6 +19,12 @@ mean 1 - cos(error) over the hard grid rule, `core.maps.vector_map`, as `homing_
 the same draws, one map per draw (a loop of maps: slow, so fewer --kref or --landmarks); the issue asks that
 the sensitivity agree with the smoothed hard loss as well as the soft one.
 
+`--estimate stein` or `--estimate cv` (with `--reference hard`) replaces the soft estimate by one of the hard
+loss's smoothed gradient from Stein's identity, the mean of eps L_hard(theta + sigma eps) / sigma over the same
+antithetic draws, plain or with the soft loss as its control variate (the soft pathwise gradient plus eps
+(L_hard - L_soft) / sigma; unbiased whatever the soft loss): one hard map per draw (docs/differentiable.md "An
+unbiased estimate of the smoothed hard gradient").
+
 A measurement script, not a test; tests/gradients/test_smoothing.py checks ALV at the default scale. --smoke:
 a 200 cm grid, 4 reference draws, landmark 0, one draw set (tests/test_benchmarks_smoke.py runs both references).
 """
@@ -43,6 +49,7 @@ from delvjax.gradients._smoothing import (
     at_scale,
     smoothed_loss,
     smoothed_value_and_grad,
+    smoothing_draws,
 )
 
 
@@ -59,6 +66,30 @@ def hard_loss(params: dict, prob) -> float:
     return float(np.mean(1.0 - np.cos(err)))
 
 
+def stein_estimate(p, smoothing: Smoothing, base, sig: dict, n: int, control: bool) -> tuple[np.ndarray, dict]:
+    """The hard loss's smoothed gradient for landmarks (n, 3) by Stein's identity over `p`'s own draws (those
+    `smoothed_value_and_grad` takes), with the soft loss as control variate when `control`; and its standard
+    error from the antithetic pairs."""
+    scaled, _, eps = smoothing_draws(p, smoothing)
+    k = smoothing.samples
+    hard = np.asarray(
+        [hard_loss(_perturbed(scaled.params, sig, jax.tree.map(lambda x, i=i: x[i], eps)), base) for i in range(k)]
+    )
+    e = np.asarray(eps["landmarks"], np.float64)[:, :n]
+    s = np.asarray(sig["landmarks"], np.float64)[:n]
+    per = e * hard[:, None, None] / s
+    if control:
+        grad = jax.jit(
+            jax.vmap(jax.value_and_grad(lambda q, x: problem_loss(_perturbed(q, sig, x), scaled)), (None, 0))
+        )
+        soft, g = grad(scaled.params, eps)
+        per = (
+            np.asarray(g["landmarks"], np.float64)[:, :n] + e * (hard - np.asarray(soft, np.float64))[:, None, None] / s
+        )
+    pairs = (per[: k // 2] + per[k // 2 :]) / 2
+    return per.mean(0), {"landmarks": pairs.std(0, ddof=1) / np.sqrt(k // 2)}
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--method", default="alv")
@@ -70,6 +101,12 @@ def main() -> None:
     ap.add_argument("--spacing", type=float, default=25.0)
     ap.add_argument("--landmarks", type=int, default=99, help="how many landmarks to check (the first N)")
     ap.add_argument("--reference", choices=["soft", "hard"], default="soft", help="the loss the reference smooths")
+    ap.add_argument(
+        "--estimate",
+        choices=["soft", "stein", "cv"],
+        default="soft",
+        help="what is checked (stein, cv: the hard loss's)",
+    )
     ap.add_argument(
         "--smoke", action="store_true", help="that it runs: 200 cm grid, 4 reference draws, landmark 0, 1 set"
     )
@@ -114,8 +151,11 @@ def main() -> None:
     reps = []
     for rep in range(a.reps):
         p = base._replace(key=jax.random.fold_in(base.key, 1000 + rep)) if rep else base
-        _, grads, errors = smoothed_value_and_grad(p, smoothing)
-        est = np.asarray(grads["landmarks"], np.float64)[:n]
+        if a.estimate == "soft":
+            _, grads, errors = smoothed_value_and_grad(p, smoothing)
+            est = np.asarray(grads["landmarks"], np.float64)[:n]
+        else:
+            est, errors = stein_estimate(p, smoothing, base, sig, n, a.estimate == "cv")
         rel = np.abs(est - ref) / np.maximum(np.abs(ref), 1e-30)
         row = {
             "rep": rep,

@@ -205,17 +205,21 @@ def test_the_cores_benchmark_runs_one_core_against_every_core(tmp_path):
     assert len(measured("cores", tmp_path / "cores.json")) == 2  # the map's first call and warm calls
 
 
-@pytest.mark.parametrize("reference", ["soft", "hard"])
-def test_the_stated_scale_benchmark_runs_against_either_reference(tmp_path, reference):
+@pytest.mark.parametrize("reference, estimate", [("soft", "soft"), ("hard", "cv")])
+def test_the_stated_scale_benchmark_runs_against_either_reference(tmp_path, reference, estimate):
     """benchmarks/sensitivity_scale.py --smoke: ALV's sensitivity at 5 cm against central differences of the
-    smoothed soft or hard loss (issue 56), on a 200 cm grid with 4 reference draws; its JSON holds landmark 0's
+    smoothed soft or hard loss (issue 56), on a 200 cm grid with 4 reference draws; against the hard loss the
+    estimate is Stein's with the soft loss as control variate (`--estimate cv`). Its JSON holds landmark 0's
     three reference derivatives and one draw set's error (no accuracy asserted at this size)."""
     out = tmp_path / "s.json"
-    smoke = smoke_run("benchmarks/sensitivity_scale.py", "--reference", reference, "--json", str(out))
+    smoke = smoke_run(
+        "benchmarks/sensitivity_scale.py", "--reference", reference, "--estimate", estimate, "--json", str(out)
+    )
     assert f"{reference} reference: 4 draws" in smoke.stdout, smoke.stdout
     data = json.loads(out.read_text())
     assert len(data["reference"]) == 1 and len(data["reference"][0]) == 3 and len(data["reps"]) == 1
     assert all(np.isfinite(data["reference"][0])) and np.isfinite(data["reps"][0]["error"])
+    assert data["args"]["estimate"] == estimate and np.isfinite(data["reps"][0]["stated_se_over_norm"])
 
 
 def test_the_sweep_benchmark_runs_and_prints_sweep_against_loop(tmp_path):

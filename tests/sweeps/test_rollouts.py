@@ -117,11 +117,32 @@ def test_a_success_rate_cell_equals_the_runs_under_each_hidden_landmark():
     assert np.allclose([r["ci95_lo"] for r in drawn], lo) and np.allclose([r["ci95_hi"] for r in drawn], hi)
 
 
-@pytest.mark.parametrize("k, n", [(0, 1), (3, 10), (7, 10), (10, 10), (50, 100), (0, 0)])
-def test_the_vectorised_wilson_interval_is_scipys(k, n):
-    lo, hi = wilson_pct(np.array([k]), np.array([n]))
-    ref = wilson_interval_pct(k, n)
-    assert np.allclose([lo[0], hi[0]], [ref["ci_lo_pct"], ref["ci_hi_pct"]], equal_nan=True)
+@pytest.mark.parametrize("confidence", [0.9, 0.95, 0.99])
+def test_the_vectorised_wilson_interval_is_scipys_to_the_bit(confidence):
+    """`wilson_pct` writes Newcombe's formula as scipy's binomtest does, without importing scipy.stats: the
+    same float64 for every count up to 60 trials, NaN without trials; and the t quantile is scipy's t.ppf."""
+    from scipy import stats
+
+    from delvjax.core.metrics import t_quantile
+
+    n = np.repeat(np.arange(61), np.arange(61) + 1)
+    k = np.concatenate([np.arange(m + 1) for m in range(61)])
+    lo, hi = wilson_pct(k, n, confidence)
+    cis = [stats.binomtest(int(a), int(b)).proportion_ci(confidence, "wilson") for a, b in zip(k[1:], n[1:])]
+    assert np.isnan(lo[0]) and np.isnan(hi[0])  # no trials
+    assert np.array_equal(lo[1:], [100.0 * c.low for c in cis]) and np.array_equal(
+        hi[1:], [100.0 * c.high for c in cis]
+    )
+    assert (
+        wilson_interval_pct(3, 10, confidence)["ci_lo_pct"]
+        == 100.0 * stats.binomtest(3, 10).proportion_ci(confidence, "wilson").low
+    )
+    counts = np.arange(500)
+    t = t_quantile(counts, confidence)
+    ref = stats.t.ppf(0.5 + confidence / 2, np.maximum(counts - 1, 1))
+    assert np.all(np.isnan(t[:2])) and np.array_equal(t[2:], ref[2:])
+    with pytest.raises(ValueError, match="successes"):  # as binomtest: more successes than trials
+        wilson_pct(np.array([11]), np.array([10]))
 
 
 @pytest.mark.parametrize("kind", KINDS)
