@@ -64,7 +64,7 @@ class MushroomBody(FamiliarityModel):
 
     def unfamiliarity(self, views: ArrayLike, masks: ArrayLike | None = None, active: ArrayLike | None = None) -> Array:
         # the firing KCs' weights summed: the code's product with the weights without making the (R, K) code
-        # (the same float32: sums of 0s and 1s are exact; 10 % of a scan's time)
+        # (the same float32: sums of 0s and 1s are exact; 1440 candidates 337 -> 290 ms)
         return jnp.sum(self.kc_weights[self.firing(views)], -1) / self.n_active
 
 
