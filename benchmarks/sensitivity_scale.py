@@ -66,11 +66,11 @@ def hard_loss(params: dict, prob) -> float:
     return float(np.mean(1.0 - np.cos(err)))
 
 
-def stein_estimate(p, smoothing: Smoothing, base, sig: dict, n: int, control: bool) -> tuple[np.ndarray, dict]:
+def stein_estimate(p, smoothing: Smoothing, base, n: int, control: bool) -> tuple[np.ndarray, dict]:
     """The hard loss's smoothed gradient for landmarks (n, 3) by Stein's identity over `p`'s own draws (those
     `smoothed_value_and_grad` takes), with the soft loss as control variate when `control`; and its standard
     error from the antithetic pairs."""
-    scaled, _, eps = smoothing_draws(p, smoothing)
+    scaled, sig, eps = smoothing_draws(p, smoothing)  # the sigmas and draws `smoothed_value_and_grad` takes
     k = smoothing.samples
     hard = np.asarray(
         [hard_loss(_perturbed(scaled.params, sig, jax.tree.map(lambda x, i=i: x[i], eps)), base) for i in range(k)]
@@ -155,7 +155,7 @@ def main() -> None:
             _, grads, errors = smoothed_value_and_grad(p, smoothing)
             est = np.asarray(grads["landmarks"], np.float64)[:n]
         else:
-            est, errors = stein_estimate(p, smoothing, base, sig, n, a.estimate == "cv")
+            est, errors = stein_estimate(p, smoothing, base, n, a.estimate == "cv")
         rel = np.abs(est - ref) / np.maximum(np.abs(ref), 1e-30)
         row = {
             "rep": rep,
