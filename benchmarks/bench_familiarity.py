@@ -9,6 +9,7 @@ JAX >= 100x the twin per query on 2 CPU cores.
 
     python benchmarks/bench_familiarity.py            # 10 x 90 views, 200 route images, 64 queries
     python benchmarks/bench_familiarity.py --smoke    # tiny sizes, no targets (the test suite runs it)
+    python benchmarks/bench_familiarity.py --dft      # also InfoMax's scan by the columns' DFT (not in delvjax)
 
 The last route row is a thousand-image route (natural, 0.5 cm between images: 1068 images).
 """
@@ -97,6 +98,33 @@ def query_table(shape, n_images: int, n_queries: int, n_kc: int, twin_queries: i
     return rows
 
 
+def infomax_dft_row(shape, n_images: int, n_queries: int) -> dict:
+    """InfoMax's scan of every column rotation two ways, per query: the direct product (what delvjax runs) and
+    the circular correlation along the columns by the real DFT, u(r) = irfft(sum_rows rfft(W) conj(rfft(x)))
+    (docs/familiarity.md §5: measured, not used); their largest relative difference and whether the first
+    least unfamiliar rotation is the same."""
+    rng = np.random.default_rng(0)
+    h, w = shape
+    trained = infomax(shape, jax.random.key(0)).train(rng.integers(0, 256, (n_images, *shape)).astype(np.float32))
+    queries = jnp.asarray(rng.integers(0, 256, (n_queries, *shape)).astype(np.float32))
+    shifts = jnp.arange(w)
+    direct = jax.jit(jax.vmap(lambda v: trained.unfamiliarity(rolled(v, shifts))))
+    spectrum = jnp.fft.rfft(trained.weights.reshape(-1, h, w), axis=-1)  # (M, H, W/2 + 1), once per model
+
+    @jax.jit
+    def by_dft(views):
+        xf = jnp.conj(jnp.fft.rfft(trained.inputs(views).reshape(-1, h, w), axis=-1))  # (Q, H, W/2 + 1)
+        u = jnp.fft.irfft(jnp.einsum("mhk,qhk->qmk", spectrum, xf), n=w, axis=-1)  # (Q, M, rotations)
+        return jnp.sum(jnp.abs(u), axis=1)
+
+    _, t_direct = timed(direct, queries)
+    _, t_dft = timed(by_dft, queries)
+    a, b = np.asarray(direct(queries)), np.asarray(by_dft(queries))
+    return {"direct_ms_per_query": 1e3 * t_direct / n_queries, "dft_ms_per_query": 1e3 * t_dft / n_queries,
+            "largest_relative_difference": float(np.max(np.abs(a - b) / np.abs(a))),
+            "same_choice_pct": 100.0 * float(np.mean(np.argmin(a, 1) == np.argmin(b, 1)))}  # fmt: skip
+
+
 def trials_row(world: str, model: str, trials: int, smoke: bool, route_spacing: float = 4.0) -> dict:
     """One `route_experiments` call, first and warm; a route spacing below the 4 cm step gives a long route
     (natural at 0.5 cm: 1068 images) followed in 4 cm moves."""
@@ -119,6 +147,7 @@ def trials_row(world: str, model: str, trials: int, smoke: bool, route_spacing: 
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--smoke", action="store_true", help="tiny sizes, no targets")
+    p.add_argument("--dft", action="store_true", help="also InfoMax's scan by the columns' DFT (measured, not used)")
     p.add_argument("--json", default=None, help="write the numbers here")
     a = p.parse_args()
     if a.smoke:
@@ -132,6 +161,13 @@ def main() -> None:
         print(
             f"{r['model']:16s} {r['compile_s']:9.2f} {r['jax_ms_per_query']:12.3f} {r['twin_ms_per_query']:13.1f} {r['ratio']:9.0f}x"
         )
+    dft = infomax_dft_row(shape, n_images, n_queries) if a.dft else None
+    if dft:
+        twin = next(r["twin_ms_per_query"] for r in rows if r["model"] == "infomax")
+        print(f"InfoMax scan, direct {dft['direct_ms_per_query']:.3f} ms/query ({twin / dft['direct_ms_per_query']:.0f}x "
+              f"the twin), by the columns' DFT {dft['dft_ms_per_query']:.3f} ms/query ({twin / dft['dft_ms_per_query']:.0f}x); "
+              f"largest relative difference {dft['largest_relative_difference']:.1e}, same choice "
+              f"{dft['same_choice_pct']:.0f} %")  # fmt: skip
     trials = [
         trials_row("robot", m, 4 if a.smoke else 20, a.smoke) for m in ("perfect-memory", "infomax", "mushroom-body")
     ]
@@ -141,7 +177,9 @@ def main() -> None:
         print(f"  {t['world']} {t['model']:15s} {t['route_images']} images, {t['trials']} trials, {t['moves']} moves: "
               f"first {t['first_s']:.1f} s, warm {t['warm_s']:.1f} s, success {t['success_pct']:.0f} %")  # fmt: skip
     if a.json:
-        Path(a.json).write_text(json.dumps({"queries": rows, "route_experiments": trials}, indent=1))
+        Path(a.json).write_text(
+            json.dumps({"queries": rows, "infomax_dft": dft, "route_experiments": trials}, indent=1)
+        )
 
 
 if __name__ == "__main__":

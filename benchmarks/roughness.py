@@ -40,6 +40,7 @@ DTYPES = ("float32", "float64")
 METHOD = "delv-compass"  # the issue's; --method picks another (alv shows the continuous loss of issue 56)
 WORLD = (2026, 5)  # random_env(seed, n): no test uses seed 2026
 COORDS = ("x", "y", "r")
+TAU = None  # the softmins' temperature; None: the loss's default (gradients._loss.TAU); --tau sets it
 
 
 def settings(smoke: bool, spacing: float | None) -> dict:
@@ -57,13 +58,14 @@ def measure(dtype: str, spacing: float, extent: float, step: float, hs: list[flo
     import delvjax
     from delvjax.core.soft.sensing import VISIBILITY_WIDTH
     from delvjax.envs._presets import random_env
-    from delvjax.gradients._loss import TAU
+    from delvjax.gradients._loss import TAU as DEFAULT_TAU
 
+    tau = DEFAULT_TAU if TAU is None else TAU
     world = random_env(*WORLD)
     float_type = jnp.float64 if dtype == "float64" else jnp.float32
     lm0 = jnp.asarray(np.asarray(world.landmarks, np.float64), float_type)
     env = eqx.tree_at(lambda e: e.home, world, jnp.asarray(np.asarray(world.home, np.float64), float_type))
-    kw = {"spacing": spacing, "seed": 0, "soft": True, "tau": TAU, "sharpness": VISIBILITY_WIDTH}
+    kw = {"spacing": spacing, "seed": 0, "soft": True, "tau": tau, "sharpness": VISIBILITY_WIDTH}
 
     def loss(lm: jax.Array, **extra) -> jax.Array:
         """The soft loss with landmarks `lm`."""
@@ -115,17 +117,17 @@ def measure(dtype: str, spacing: float, extent: float, step: float, hs: list[flo
         "central": {"h_cm": hs, **central},
         "fixed_heading": {"value": float(loss(lm0, heading_deg=0.0)), "grad_x": float(fixed[0, 0])},
     }
-    out["smoothed"] = smoothed(env, spacing, float_type)
+    out["smoothed"] = smoothed(env, spacing, float_type, tau)
     if dtype == "float32":  # the one-program gradient (it takes the landmarks as float32 in any mode)
         _, grads = delvjax.homing_loss_grad(
-            env, METHOD, spacing=spacing, seed=0, tau=TAU, sharpness=VISIBILITY_WIDTH, smoothing_cm=None
+            env, METHOD, spacing=spacing, seed=0, tau=tau, sharpness=VISIBILITY_WIDTH, smoothing_cm=None
         )
         out["homing_loss_grad"] = dict(zip(COORDS, np.asarray(grads["landmarks"][0], np.float64).tolist()))
     out["world"] = {"name": world.name, "landmarks": np.asarray(world.landmarks, np.float64).tolist()}
     return out
 
 
-def smoothed(env, spacing: float, float_type) -> dict:
+def smoothed(env, spacing: float, float_type, tau: float) -> dict:
     """The sensitivity at the default stated scale (`homing_loss_grad`'s 5 cm, 8 draws) computed in `float_type`:
     the API's problem with every float leaf cast (the draws stay float32 numbers, so both precisions smooth
     with the same sample); every landmark's x, y, r and their standard errors."""
@@ -133,11 +135,11 @@ def smoothed(env, spacing: float, float_type) -> dict:
 
     from delvjax.core.maps import CLEARANCE
     from delvjax.core.soft.sensing import VISIBILITY_WIDTH
-    from delvjax.gradients._loss import TAU, loss_problem
+    from delvjax.gradients._loss import loss_problem
     from delvjax.gradients._smoothing import check_smoothing, smoothed_value_and_grad
     from delvjax.options._limits import MAX_POINTS
 
-    problem = loss_problem(env, METHOD, spacing, 0, TAU, VISIBILITY_WIDTH, None, CLEARANCE, MAX_POINTS)
+    problem = loss_problem(env, METHOD, spacing, 0, tau, VISIBILITY_WIDTH, None, CLEARANCE, MAX_POINTS)
     cast = jax.tree.map(
         lambda x: x.astype(float_type) if jnp.issubdtype(jnp.result_type(x), jnp.floating) else x, problem
     )
@@ -169,7 +171,7 @@ def table(results: dict[str, dict], s: dict) -> str:
     lines = [
         f"world {first['world']['name']} (random_env{WORLD}), landmark 0 at "
         + ", ".join(f"{c} {v:.3f}" for c, v in zip(COORDS, first["world"]["landmarks"][0]))
-        + f" cm; {METHOD}, soft, tau = sharpness = 0.01, spacing {s['spacing']:g} cm, seed 0",
+        + f" cm; {METHOD}, soft, tau {0.01 if TAU is None else TAU:g}, sharpness 0.01, spacing {s['spacing']:g} cm, seed 0",
         f"{'':44s}" + "".join(f"{d:>16s}" for d in ds),
         f"{'loss dtype / value':44s}"
         + "".join(f"{r['value_dtype'] + ' ' + format(r['value'], '.6f'):>17s}" for r in results.values()),
@@ -227,8 +229,10 @@ def main() -> None:
     ap.add_argument("--json", type=Path, help="write the numbers here")
     ap.add_argument("--quiet", action="store_true", help="no table (a child of the two-precision run)")
     ap.add_argument("--method", default=METHOD, help=f"delv, delv-compass, alv or acv (default {METHOD})")
+    ap.add_argument("--tau", type=float, help="the softmins' temperature (default: the loss's, 0.01)")
     a = ap.parse_args()
     globals()["METHOD"] = a.method  # one setting read by measure() and table() in this process and its children
+    globals()["TAU"] = a.tau  # read by measure() and table(), passed on to the children
     s = settings(a.smoke, a.spacing)
     t = time.perf_counter()
     if a.dtype:
@@ -236,7 +240,7 @@ def main() -> None:
         results = {a.dtype: measure(a.dtype, s["spacing"], s["extent"], s["step"], s["hs"])}
     else:
         passed = (["--smoke"] if a.smoke else []) + ([] if a.spacing is None else ["--spacing", str(a.spacing)])
-        passed += ["--method", a.method]
+        passed += ["--method", a.method] + ([] if a.tau is None else ["--tau", str(a.tau)])
         results = {d: child(d, passed) for d in DTYPES}
     if not a.quiet:
         print(table(results, s))

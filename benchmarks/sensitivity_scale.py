@@ -110,12 +110,15 @@ def main() -> None:
     ap.add_argument(
         "--smoke", action="store_true", help="that it runs: 200 cm grid, 4 reference draws, landmark 0, 1 set"
     )
+    ap.add_argument("--tau", type=float, default=None, help="the softmins' temperature (default: the loss's own)")
     ap.add_argument("--json")
     a = ap.parse_args()
     if a.smoke:
         a.spacing, a.kref, a.landmarks, a.reps = 200.0, 4, 1, 1
     smoothing = Smoothing(a.sigma, 1.0, 0.01, a.samples)
-    base = loss_problem(random_env(*a.world), a.method, spacing=a.spacing, seed=0)
+    base = loss_problem(
+        random_env(*a.world), a.method, spacing=a.spacing, seed=0, **({} if a.tau is None else {"tau": a.tau})
+    )
     prob = at_scale(base, smoothing)
     sig = _sigmas(prob, smoothing)
     n = min(a.landmarks, prob.n_landmarks)

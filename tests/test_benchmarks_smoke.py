@@ -246,12 +246,14 @@ def test_the_speed_targets_table_is_made_from_saved_outputs(tmp_path):
 
 
 def test_the_familiarity_benchmark_runs_at_smoke_size(tmp_path):
-    """benchmarks/bench_familiarity.py --smoke: every model's query against its twin, and the route experiments."""
-    smoke = smoke_run("benchmarks/bench_familiarity.py", "--json", str(tmp_path / "familiarity.json"))
+    """benchmarks/bench_familiarity.py --smoke: every model's query against its twin, and the route experiments;
+    --dft: InfoMax's scan by the columns' DFT gives the direct product's numbers."""
+    smoke = smoke_run("benchmarks/bench_familiarity.py", "--dft", "--json", str(tmp_path / "familiarity.json"))
     out = json.loads((tmp_path / "familiarity.json").read_text())
     assert [r["model"] for r in out["queries"]] == ["perfect-memory", "infomax", "mushroom-body"], smoke.stdout
     assert all(r["ratio"] > 0 and r["jax_ms_per_query"] > 0 for r in out["queries"])
     assert all(t["moves"] > 0 for t in out["route_experiments"])
+    assert out["infomax_dft"]["largest_relative_difference"] < 1e-5, out["infomax_dft"]
 
 
 def test_the_mesh_benchmark_runs_at_smoke_size(tmp_path):
