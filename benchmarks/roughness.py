@@ -123,6 +123,7 @@ def measure(dtype: str, spacing: float, extent: float, step: float, hs: list[flo
             env, METHOD, spacing=spacing, seed=0, tau=tau, sharpness=VISIBILITY_WIDTH, smoothing_cm=None
         )
         out["homing_loss_grad"] = dict(zip(COORDS, np.asarray(grads["landmarks"][0], np.float64).tolist()))
+    out["tau"] = tau
     out["world"] = {"name": world.name, "landmarks": np.asarray(world.landmarks, np.float64).tolist()}
     return out
 
@@ -171,7 +172,7 @@ def table(results: dict[str, dict], s: dict) -> str:
     lines = [
         f"world {first['world']['name']} (random_env{WORLD}), landmark 0 at "
         + ", ".join(f"{c} {v:.3f}" for c, v in zip(COORDS, first["world"]["landmarks"][0]))
-        + f" cm; {METHOD}, soft, tau {0.01 if TAU is None else TAU:g}, sharpness 0.01, spacing {s['spacing']:g} cm, seed 0",
+        + f" cm; {METHOD}, soft, tau {first['tau']:g}, sharpness 0.01, spacing {s['spacing']:g} cm, seed 0",
         f"{'':44s}" + "".join(f"{d:>16s}" for d in ds),
         f"{'loss dtype / value':44s}"
         + "".join(f"{r['value_dtype'] + ' ' + format(r['value'], '.6f'):>17s}" for r in results.values()),
@@ -232,7 +233,7 @@ def main() -> None:
     ap.add_argument("--tau", type=float, help="the softmins' temperature (default: the loss's, 0.01)")
     a = ap.parse_args()
     globals()["METHOD"] = a.method  # one setting read by measure() and table() in this process and its children
-    globals()["TAU"] = a.tau  # read by measure() and table(), passed on to the children
+    globals()["TAU"] = a.tau  # read by measure(), passed on to the children
     s = settings(a.smoke, a.spacing)
     t = time.perf_counter()
     if a.dtype:

@@ -41,7 +41,7 @@ import numpy as np
 
 from delvjax.core.maps import vector_map
 from delvjax.envs._presets import random_env
-from delvjax.gradients._loss import loss_problem, problem_loss
+from delvjax.gradients._loss import TAU, loss_problem, problem_loss
 from delvjax.gradients._smoothing import (
     Smoothing,
     _perturbed,
@@ -110,15 +110,13 @@ def main() -> None:
     ap.add_argument(
         "--smoke", action="store_true", help="that it runs: 200 cm grid, 4 reference draws, landmark 0, 1 set"
     )
-    ap.add_argument("--tau", type=float, default=None, help="the softmins' temperature (default: the loss's own)")
+    ap.add_argument("--tau", type=float, default=TAU, help=f"the softmins' temperature (default: the loss's, {TAU:g})")
     ap.add_argument("--json")
     a = ap.parse_args()
     if a.smoke:
         a.spacing, a.kref, a.landmarks, a.reps = 200.0, 4, 1, 1
     smoothing = Smoothing(a.sigma, 1.0, 0.01, a.samples)
-    base = loss_problem(
-        random_env(*a.world), a.method, spacing=a.spacing, seed=0, **({} if a.tau is None else {"tau": a.tau})
-    )
+    base = loss_problem(random_env(*a.world), a.method, spacing=a.spacing, seed=0, tau=a.tau)
     prob = at_scale(base, smoothing)
     sig = _sigmas(prob, smoothing)
     n = min(a.landmarks, prob.n_landmarks)
