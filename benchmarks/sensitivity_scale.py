@@ -25,6 +25,9 @@ antithetic draws, plain or with the soft loss as its control variate (the soft p
 (L_hard - L_soft) / sigma; unbiased whatever the soft loss): one hard map per draw (docs/differentiable.md "An
 unbiased estimate of the smoothed hard gradient").
 
+`--estimate per-point` keeps the soft loss but gives each grid point its own draws (each point's term, home
+record included, in its own perturbed world; docs/differentiable.md "Draws per grid point").
+
 A measurement script, not a test; tests/gradients/test_smoothing.py checks ALV at the default scale. --smoke:
 a 200 cm grid, 4 reference draws, landmark 0, one draw set (tests/test_benchmarks_smoke.py runs both references).
 """
@@ -35,14 +38,21 @@ import argparse
 import json
 import time
 
+import equinox as eqx
 import jax
 import jax.numpy as jnp
 import numpy as np
 
-from delvjax.core.maps import vector_map
+from delvjax.core.geometry import rotate
+from delvjax.core.kernel import map_poses
+from delvjax.core.maps import stream_keys, vector_map
+from delvjax.core.soft.loss import alignment_loss, soft_included
+from delvjax.core.soft.methods import soft_direction
+from delvjax.core.soft.sensing import soft_home, soft_observe
 from delvjax.envs._presets import random_env
 from delvjax.gradients._loss import TAU, loss_problem, problem_loss
 from delvjax.gradients._smoothing import (
+    SMOOTHING_STREAM,
     Smoothing,
     _perturbed,
     _sigmas,
@@ -56,8 +66,6 @@ from delvjax.gradients._smoothing import (
 def hard_loss(params: dict, prob) -> float:
     """The hard (pixel) loss of `prob` with `params` in place of its own: the mean 1 - cos(error) over the
     grid points the hard rule keeps, headings from the problem's key (as `homing_loss(soft=False)`)."""
-    import equinox as eqx
-
     e = eqx.tree_at(lambda x: (x.landmarks, x.home), prob.env, (params["landmarks"], params["home"]))
     sensor = eqx.tree_at(lambda x: (x.d, x.noise), prob.sensor, (params["d"], params["noise"]))
     m = eqx.tree_at(lambda x: x.scale, prob.method, params["scale"]) if "scale" in params else prob.method
@@ -90,6 +98,52 @@ def stein_estimate(p, smoothing: Smoothing, base, n: int, control: bool) -> tupl
     return per.mean(0), {"landmarks": pairs.std(0, ddof=1) / np.sqrt(k // 2)}
 
 
+def per_point_terms(moved: dict, prob) -> tuple[jax.Array, jax.Array]:
+    """Per grid point its weight and weighted loss, each point with its own parameters (`moved`, leading axis P):
+    `core.soft.loss.soft_loss`'s terms with the home record seen in each point's own world."""
+    k_home, k_views, _ = stream_keys(prob.key)
+
+    def one(par, point, heading, index):
+        e = eqx.tree_at(lambda x: (x.landmarks, x.home), prob.env, (par["landmarks"], par["home"]))
+        s = eqx.tree_at(lambda x: (x.d, x.noise), prob.sensor, (par["d"], par["noise"]))
+        m = eqx.tree_at(lambda x: x.scale, prob.method, par["scale"]) if "scale" in par else prob.method
+        poses = map_poses(point, heading, k_views, index, s)
+        view = soft_observe(e, jnp.ones(e.landmarks.shape[0], bool), poses, s, prob.sharpness)
+        vec, _, valid = soft_direction(m, soft_home(e, k_home, s, prob.sharpness), view, prob.tau)
+        loss = alignment_loss(rotate(vec, poses.heading_end)[None], valid[None], point[None], e.home)[0]
+        w = soft_included(e, point[None], prob.clearance, prob.edge)[0]
+        return w, w * loss
+
+    points, headings = jnp.asarray(prob.points), jnp.asarray(prob.headings)
+    return jax.vmap(one)(moved, points, headings, jnp.arange(points.shape[0]))
+
+
+@jax.jit
+def _per_point_value_and_grad(prob, sig: dict, eps: dict):
+    def loss(q, e):
+        w, wl = per_point_terms(jax.vmap(lambda x: _perturbed(q, sig, x))(e), prob)
+        return jnp.sum(wl) / jnp.maximum(jnp.sum(w), 1e-6)
+
+    _, grads = jax.lax.map(lambda e: jax.value_and_grad(loss)(prob.params, e), eps)
+    half = grads["landmarks"].shape[0] // 2
+    pairs = (grads["landmarks"][:half] + grads["landmarks"][half:]) / 2
+    return jnp.mean(grads["landmarks"], 0), jnp.std(pairs, 0, ddof=1) / jnp.sqrt(half)
+
+
+def per_point_estimate(p, smoothing: Smoothing, n: int) -> tuple[np.ndarray, dict]:
+    """The smoothed soft gradient for landmarks (n, 3) with independent draws per grid point: the loss is a
+    weighted mean of per-point terms, so each point may take its own eps (`smoothing.samples` antithetic draws of
+    (P, ...) per leaf; the same expectation up to the mean's normaliser); and its standard error."""
+    scaled, sig, _ = smoothing_draws(p, smoothing)
+    size = scaled.points.shape[0]
+    leaves, tree = jax.tree.flatten(scaled.params)
+    keys = jax.random.split(jax.random.fold_in(scaled.key, SMOOTHING_STREAM), len(leaves))
+    half = [jax.random.normal(k, (smoothing.samples // 2, size, *jnp.shape(x))) for k, x in zip(keys, leaves)]
+    eps = jax.tree.unflatten(tree, [jnp.concatenate([e, -e]) for e in half])
+    grad, se = _per_point_value_and_grad(scaled, sig, eps)
+    return np.asarray(grad, np.float64)[:n], {"landmarks": np.asarray(se)[:n]}
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--method", default="alv")
@@ -103,9 +157,9 @@ def main() -> None:
     ap.add_argument("--reference", choices=["soft", "hard"], default="soft", help="the loss the reference smooths")
     ap.add_argument(
         "--estimate",
-        choices=["soft", "stein", "cv"],
+        choices=["soft", "stein", "cv", "per-point"],
         default="soft",
-        help="what is checked (stein, cv: the hard loss's)",
+        help="what is checked (stein, cv: the hard loss's; per-point: the soft one with draws per grid point)",
     )
     ap.add_argument(
         "--smoke", action="store_true", help="that it runs: 200 cm grid, 4 reference draws, landmark 0, 1 set"
@@ -155,6 +209,8 @@ def main() -> None:
         if a.estimate == "soft":
             _, grads, errors = smoothed_value_and_grad(p, smoothing)
             est = np.asarray(grads["landmarks"], np.float64)[:n]
+        elif a.estimate == "per-point":
+            est, errors = per_point_estimate(p, smoothing, n)
         else:
             est, errors = stein_estimate(p, smoothing, base, n, a.estimate == "cv")
         rel = np.abs(est - ref) / np.maximum(np.abs(ref), 1e-30)

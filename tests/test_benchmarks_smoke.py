@@ -205,11 +205,12 @@ def test_the_cores_benchmark_runs_one_core_against_every_core(tmp_path):
     assert len(measured("cores", tmp_path / "cores.json")) == 2  # the map's first call and warm calls
 
 
-@pytest.mark.parametrize("reference, estimate", [("soft", "soft"), ("hard", "cv")])
+@pytest.mark.parametrize("reference, estimate", [("soft", "soft"), ("soft", "per-point"), ("hard", "cv")])
 def test_the_stated_scale_benchmark_runs_against_either_reference(tmp_path, reference, estimate):
     """benchmarks/sensitivity_scale.py --smoke: ALV's sensitivity at 5 cm against central differences of the
     smoothed soft or hard loss (issue 56), on a 200 cm grid with 4 reference draws; against the hard loss the
-    estimate is Stein's with the soft loss as control variate (`--estimate cv`). Its JSON holds landmark 0's
+    estimate is Stein's with the soft loss as control variate (`--estimate cv`), against the soft loss also the
+    one with draws per grid point (`--estimate per-point`). Its JSON holds landmark 0's
     three reference derivatives and one draw set's error (no accuracy asserted at this size)."""
     out = tmp_path / "s.json"
     smoke = smoke_run(
