@@ -16,7 +16,7 @@ from ..core.rollouts import DEFAULT_FIRST_MOVE, DEFAULT_LANES, HOME_RADIUS, MAX_
 from ..core.sensor import Noise, Sensor
 from ..evaluate._progress import Progress
 from ..options._limits import MAX_POINTS
-from ..options._registry import METHODS, declaring, owns
+from ..options._registry import METHODS, declaring, owns, reads_compass
 from ..options._schema import method_options, renamed, sensor_options
 from ..outputs._clashes import check_no_clash
 from ..outputs._files import check_distinct, check_output_path, output_set
@@ -205,7 +205,20 @@ def scene_kwargs(args: argparse.Namespace) -> dict:
         max_points=args.max_points,
     )
     kw.update(setting_values(args))
+    check_compass_read(args.method, kw.get("compass_noise_deg"))
     return kw
+
+
+def check_compass_read(method: str, compass_noise_deg: float | None) -> None:
+    """`InputError` for --compass-noise-deg given to methods none of which reads a compass (it would change
+    nothing while a summary recorded it); `method`: a name or comma-separated names."""
+    modules = [METHODS.get(name.strip()) for name in str(method).split(",") if name.strip()]
+    if compass_noise_deg is None or not modules or None in modules or any(reads_compass(m) for m in modules):
+        return  # an unknown name is refused where the method is made
+    readers = ", ".join(name for name, m in METHODS.items() if reads_compass(m))
+    raise InputError(
+        "--compass-noise-deg", compass_noise_deg, f"is read only by methods with a compass ({readers}), not by {method}"
+    )
 
 
 def add_output_args(p: argparse.ArgumentParser, plot_help: str) -> None:
@@ -260,8 +273,9 @@ def command_settings(args: argparse.Namespace) -> dict:
             if k in sensor:  # a choice stored as its index (background 0) is recorded by its name ("distant")
                 choices, v = sensor[k].setting.choices, sensor[k].default
                 v = choices[v] if choices and isinstance(v, int) and not isinstance(v, bool) else v
-            elif k in methods and chosen is not None and owns(chosen, k):
-                v = methods[k].declaration(declaring(chosen, k)[0]).default  # the chosen method's default
+            elif k in methods and chosen is not None and owns(chosen, k):  # the chosen method's default, as its
+                d = methods[k].declaration(declaring(chosen, k)[0])  # help shows it (levels: "continuous", not 0)
+                v = d.default if d.setting.shown_default is None else d.setting.shown_default
             else:
                 continue  # an option of another method or of image input: does not apply
         if isinstance(v, (list, tuple)) and all(isinstance(x, plain) for x in v):

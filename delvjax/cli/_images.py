@@ -70,7 +70,18 @@ def add_image_args(p: argparse.ArgumentParser) -> None:
     add_extractor_args(g)
     add_reading_args(g)
     g.add_argument("--chunk", type=int, default=256, help="images read and reduced at a time (memory bound)")
-    p.set_defaults(parser_defaults={a.dest: a.default for a in p._actions})
+    only = {a.dest: a.option_strings[0] for a in g._group_actions if a.dest != "images"}
+    p.set_defaults(parser_defaults={a.dest: a.default for a in p._actions}, image_only=only)
+
+
+def refuse_image_options(args: argparse.Namespace) -> None:
+    """`InputError` naming the first option of the --images group given without --images: it would be
+    ignored, while a summary recorded it (a --home that moved nothing)."""
+    for dest, flag in getattr(args, "image_only", {}).items():
+        if getattr(args, dest) != args.parser_defaults.get(dest):
+            raise InputError(
+                flag, getattr(args, dest), "is used only with --images (it sets how an image database is read)"
+            )
 
 
 def add_extractor_args(g) -> None:

@@ -36,7 +36,7 @@ from ._args import (
 from ._familiarity import FAMILIARITY_COMMANDS
 from ._gradients import GRADIENT_COMMANDS
 from ._help import COMMAND_HELP, DESCRIPTION, version
-from ._images import IMAGE_COMMANDS, add_image_args, cmd_vector_map_images
+from ._images import IMAGE_COMMANDS, add_image_args, cmd_vector_map_images, refuse_image_options
 from ._rollouts import ROLLOUT_COMMANDS
 from ._sweep import add_plot_sweep, add_sweep
 
@@ -67,8 +67,11 @@ def add_vector_map(sub) -> None:
 
 
 def cmd_vector_map(args: argparse.Namespace) -> int:
+    if args.classes and args.plot is None:
+        raise InputError("--classes", True, "marks the figure: give --plot as well")
     if args.images is not None:
         return cmd_vector_map_images(args)
+    refuse_image_options(args)
     check_outputs(args)
     kw = scene_kwargs(args)
     env = api.load_env(args.env)
@@ -226,8 +229,8 @@ def command_parser(parser: argparse.ArgumentParser, args: argparse.Namespace) ->
 def as_typed(exc: InputError, parser: argparse.ArgumentParser, args: argparse.Namespace) -> InputError:
     """The error as the user typed it: a field that is one of the command's options (`n_psi`, the API
     keyword a check raises with; `Option.flag` of the options registry, or the parser's own flags) named
-    by its flag (`--n-psi`); a sweep's keys stay as its file writes them."""
-    if getattr(args, "command", None) in FILE_KEYED:
+    by its flag (`--n-psi`); a sweep's keys and an environment file's (`file_key`) stay as the file writes them."""
+    if getattr(args, "command", None) in FILE_KEYED or getattr(exc, "file_key", False):
         return exc
     actions = command_parser(parser, args)._actions
     flags = {a.dest: a.option_strings[-1] for a in actions if a.option_strings and a.help != argparse.SUPPRESS}

@@ -44,7 +44,7 @@ from ._args import (
     write_outputs,
 )
 from ._help import COMMAND_HELP
-from ._images import add_image_args, cmd_catchment_images
+from ._images import add_image_args, cmd_catchment_images, refuse_image_options
 
 
 def _check_methods(methods: list[str], kw: dict) -> None:
@@ -56,9 +56,12 @@ def _check_methods(methods: list[str], kw: dict) -> None:
 
 
 def _methods(text: str) -> list[str]:
-    names = [m.strip() for m in text.split(",") if m.strip()]
-    if not names:
-        raise InputError("method", text, "must name at least one method")
+    parts = [m.strip() for m in text.split(",")]
+    names = [m for m in parts if m]
+    if not names or len(names) < len(parts):
+        raise InputError("method", text, "must be method names separated by commas, none empty")
+    if len(set(names)) < len(names):  # its rows would appear twice in the CSV and once in the JSON
+        raise InputError("method", text, f"names {next(m for m in names if names.count(m) > 1)} twice")
     for m in names:
         get_method(m)
     return names
@@ -93,6 +96,7 @@ def add_catchment(sub) -> None:
 def cmd_catchment(args: argparse.Namespace) -> int:
     if args.images is not None:
         return cmd_catchment_images(args)
+    refuse_image_options(args)
     check_outputs(args)
     kw = rollout_kwargs(args, drop=())
     if args.occlude is not None:
@@ -190,6 +194,12 @@ def cmd_success_rate(args: argparse.Namespace) -> int:
         tables[m] = res.table()
         total = sum(r["successes"] for r in tables[m]), sum(r["placed"] for r in tables[m])
         progress(f"done in {timing[m]:.2f} s: {total[0]}/{total[1]} trials reach home")
+        asked = args.trials * len(args.distances)
+        if total[1] < asked:  # release points outside the arena or in a landmark: no trial, success_pct NaN if none
+            warn(
+                f"{asked - total[1]} of {asked} release points of {m} could not be placed (outside the arena or in a "
+                "landmark): their trials are outcome not_placed, and a distance with none placed has success_pct NaN"
+            )
         rows += success_rows(res, m)
         trial_cols.append(success_trial_columns(res, m))
     rules = kw["rules"].recorded

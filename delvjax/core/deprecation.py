@@ -54,6 +54,9 @@ def refuse_unknown(legacy: dict, call: str) -> None:
         raise TypeError(f"{call}() got unexpected keyword arguments {sorted(legacy)}")
 
 
+BY_NAME = {"Grid": "grid", "Rules": "rules"}  # settings objects, by the keyword that takes them
+
+
 def keywords_after(n: int, old_order: Sequence[str]) -> Callable[[F], F]:
     """Every argument after the first `n` is keyword-only; one passed by position in the order of
     earlier releases (`old_order`) still works for one release, named in a `DeprecationWarning`."""
@@ -65,6 +68,12 @@ def keywords_after(n: int, old_order: Sequence[str]) -> Callable[[F], F]:
                 extra = args[n:]
                 if len(extra) > len(old_order):
                     raise TypeError(f"{fn.__name__}() takes {n + len(old_order)} positional arguments at most")
+                params = inspect.signature(fn).parameters
+                for value in extra:  # a settings object where an old positional number was: name the keyword
+                    keyword = BY_NAME.get(type(value).__name__)
+                    if keyword in params:
+                        kind = type(value).__name__
+                        raise TypeError(f"{fn.__name__}() takes a {kind} by name only: {keyword}={kind}(...)")
                 given = dict(zip(old_order, extra))
                 for name in given:
                     if name in kwargs:

@@ -329,7 +329,11 @@ def map_dataset(vm: VectorMap):
         "direction_deg": (np.degrees(np.asarray(vm.direction)), "degree", "homing direction, world frame"),
         "error_deg": (np.asarray(vm.error_deg), "degree", "angular error to the true home direction"),
         "valid": (np.asarray(vm.valid), "1", "a homing direction was found"),
-        "included": (np.asarray(vm.included), "1", "a grid point (not inside or next to a landmark)"),
+        "included": (
+            np.asarray(vm.included),
+            "1",
+            "a grid point of the mean (not inside or next to a landmark, not home)",
+        ),
     }
     xs, ys = np.unique(pts[:, 0]), np.unique(pts[:, 1])
     gx, gy = np.meshgrid(xs, ys)

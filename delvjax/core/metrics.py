@@ -196,7 +196,8 @@ def error_curve(
 ) -> list[dict[str, float]]:
     """Mean angular error per distance-from-home bin with a Student-t CI (Fig 4.4).
 
-    Rows: bin_lo, bin_hi, n, mean_deg, ci_lo_deg, ci_hi_deg (CI NaN where n < 2).
+    Rows: bin_lo, bin_hi, n, mean_deg, ci_lo_deg, ci_hi_deg (CI NaN where n < 2; clipped to the errors'
+    range 0-180 deg, which a t interval of a few points near 0 would leave).
     """
     inc = np.asarray(included)
     e = np.asarray(error_deg)[inc]
@@ -216,8 +217,8 @@ def error_curve(
                 "bin_hi": (b + 1) * bin_width,
                 "n": n,
                 "mean_deg": mean,
-                "ci_lo_deg": mean - half,
-                "ci_hi_deg": mean + half,
+                "ci_lo_deg": max(mean - half, 0.0) if np.isfinite(half) else mean - half,
+                "ci_hi_deg": min(mean + half, 180.0) if np.isfinite(half) else mean + half,
             }
         )
     return rows

@@ -267,6 +267,8 @@ def load_env(name_or_path: str | Path | Env, pad_to: int | None = None) -> Env:
     if key in PRESETS:
         return env_from_dict(preset_dict(key), pad_to=pad_to)
     path = Path(key)
+    if path.is_dir():
+        raise InputError("env", str(path), "is a folder: give an environment JSON file or a preset name")
     if not path.is_file():
         preset_dict(key)  # raises the "unknown preset" error
     try:
@@ -282,4 +284,6 @@ def load_env(name_or_path: str | Path | Env, pad_to: int | None = None) -> Env:
     try:
         return env_from_dict(spec, pad_to=pad_to)
     except InputError as exc:  # which file: a sweep or a study reads several
-        raise InputError(exc.field, exc.value, f"{exc.expected} (in {path})") from None
+        error = InputError(exc.field, exc.value, f"{exc.expected} (in {path})")
+        error.file_key = True  # a key of the file, not a command-line option of the same name (arena, home)
+        raise error from None

@@ -84,6 +84,9 @@ def _distances(env: Env, distances: Values, trials: int, max_points: int, copies
     if isinstance(distances, (str, bytes)) or not hasattr(distances, "__len__") or len(distances) == 0:
         raise InputError("distances", distances, "must be a non-empty list of distances in cm")
     distances = [positive(v, "distances") for v in distances]
+    repeated = [v for i, v in enumerate(distances) if v in distances[:i]]
+    if repeated:  # two bins of one distance: the table's (distance, trial) keys would repeat
+        raise InputError("distances", repeated[0], "is given twice: each distance is one bin of the table")
     check_size(len(distances) * trials * copies, max_points, "trials", trials, "trial")
     corners = np.asarray(env.arena, float)[[[0, 1], [2, 1], [2, 3], [0, 3]]]
     reach = float(np.max(np.hypot(*(corners - np.asarray(env.home, float)).T)))

@@ -27,7 +27,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from ..core.checks import occlusion_count, positive_int
+from ..core.checks import occlusion_count, positive_int, seed_value
 from ..core.deprecation import deprecated, keywords_after
 from ..core.errors import InputError
 from ..core.maps import SPACING
@@ -143,7 +143,7 @@ def start_layout(env: str | Path | Env | None = None, landmarks: int | None = No
     n = positive_int(landmarks, "landmarks")
     if n > 12:
         raise InputError("landmarks", n, "must be in 1..12")
-    return random_env(seed, n)
+    return random_env(seed_value(seed), n)
 
 
 def _layout_progress(progress, options: dict) -> tuple[Progress, Callable[[int, int, float], None] | None]:

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import dataclasses
 
+import jax
+
 from ..core.errors import InputError, did_you_mean
 from ..core.methods.acv import ACV
 from ..core.methods.alv import ALV
@@ -115,6 +117,13 @@ def configure(method: HomingMethod, **settings) -> HomingMethod:
 def owns(method: HomingMethod, option: str) -> bool:
     """Whether `method` (or, for a `MethodSet`, one of its methods) declares the setting `option`."""
     return bool(declaring(method, option))
+
+
+def reads_compass(method: HomingMethod) -> bool:
+    """Whether `method` holds a `Compass` anywhere (its heading source, a part's, a `MethodSet`'s methods'):
+    the only readers of the compass reading and so of its noise (docs/model.md §4.4)."""
+    is_compass = lambda x: isinstance(x, Compass)  # noqa: E731
+    return any(is_compass(x) for x in jax.tree.leaves(method, is_leaf=is_compass))
 
 
 def declaring(method: HomingMethod, option: str) -> tuple[type, ...]:

@@ -157,17 +157,22 @@ def _lines(ax, ds, sel: dict, x: str, metric: str, title: str) -> list[dict]:
     return rows
 
 
-def _heat(fig, ax, ds, sel: dict, x: str, y: str, metric: str, title: str) -> list[dict]:
-    """A heat map of the mean over seeds with each cell's value written in it; the rows drawn."""
-    mean, _ = summarize(_seeded(ds[metric].sel(sel), (y, x)).values)
-    im = ax.imshow(mean, origin="lower", aspect="auto", cmap="viridis")
+def _heat_mean(ds, sel: dict, x: str, y: str, metric: str) -> np.ndarray:
+    """The mean over seeds of one panel, (y, x)."""
+    return summarize(_seeded(ds[metric].sel(sel), (y, x)).values)[0]
+
+
+def _heat(fig, ax, ds, sel: dict, x: str, y: str, metric: str, title: str, limits) -> list[dict]:
+    """A heat map of the mean over seeds with each cell's value written in it, on the colour scale limits
+    (vmin, vmax) that every panel shares; the rows drawn."""
+    mean = _heat_mean(ds, sel, x, y, metric)
+    im = ax.imshow(mean, origin="lower", aspect="auto", cmap="viridis", vmin=limits[0], vmax=limits[1])
     for axis, name in ((ax.xaxis, x), (ax.yaxis, y)):  # at most MAX_TICKS labels, evenly thinned
         step = -(-ds.sizes[name] // MAX_TICKS)
         axis.set_ticks(range(0, ds.sizes[name], step), _labels(ds, name)[::step])
     fig.colorbar(im, ax=ax, label=axis_label(ds, metric))
     if mean.size <= MAX_ANNOTATED and max(mean.shape) <= 2 * MAX_TICKS:  # values that fit in their cells
-        finite = mean[np.isfinite(mean)]
-        middle = (finite.min() + finite.max()) / 2 if finite.size else 0.0
+        middle = (limits[0] + limits[1]) / 2 if limits[0] is not None else 0.0  # dark text on the light half
         size = 7 if mean.size <= 100 else 5
         for (i, j), v in np.ndenumerate(mean):
             text = "n/a" if not np.isfinite(v) else f"{v:.3g}"
@@ -191,12 +196,17 @@ def sweep_figure(ds, x: str, y: str | None, metric: str) -> tuple[Figure, list[d
         rows_n, cols, figsize=(4.6 * cols, 3.8 * rows_n), squeeze=False, sharey=y is None, layout="constrained"
     )
     rows = []
+    limits = (None, None)
+    if y is not None:  # one colour scale for every panel: the same colour is the same number
+        finite = np.concatenate([_heat_mean(ds, sel, x, y, metric).ravel() for _, sel in items])
+        finite = finite[np.isfinite(finite)]
+        limits = (finite.min(), finite.max()) if finite.size else limits
     for ax, (title, sel) in zip(axes.ravel(), items):
         if y is None:
             rows += _lines(ax, ds, sel, x, metric, title)
             ax.set_ylabel(axis_label(ds, metric))
         else:
-            rows += _heat(fig, ax, ds, sel, x, y, metric, title)
+            rows += _heat(fig, ax, ds, sel, x, y, metric, title, limits)
             ax.set_ylabel(axis_label(ds, y))
         ax.set_xlabel(axis_label(ds, x))
         ax.set_title(title, fontsize=9)

@@ -282,6 +282,8 @@ def parse_sweep(text: str, source: str = "sweep") -> SweepSpec:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(source, source, f"is not valid TOML ({exc})") from None
+    if not data:  # almost surely a mistake (a file not saved yet): it would run the default map
+        raise InputError(source, source, "is empty: a sweep file names its axes under [axes] (docs/sweeps.md)")
     unknown = sorted(set(data) - {"sweep", "axes"})
     if unknown:
         raise InputError(unknown[0], source, "unknown table (a sweep file has [sweep] and [axes])")

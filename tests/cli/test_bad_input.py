@@ -29,6 +29,14 @@ def test_a_seed_out_of_range_is_one_line_naming_it(tmp_path, capsys, seed):
     assert not out.exists()
 
 
+def test_a_negative_seed_of_a_random_layout_is_one_line_naming_it(tmp_path, capsys):
+    """optimise-layout --landmarks N draws its layout from --seed before any other check saw it (a traceback once)."""
+    out = tmp_path / "o"
+    assert main(["optimise-layout", "--landmarks", "4", "--seed", "-3", "--out", str(out)]) == 2
+    assert error_line(capsys) == "delvjax: error: --seed: must be an integer in 0..4294967295, got -3"
+    assert not out.exists()
+
+
 def test_seeds_at_the_32_bit_limit_are_distinct_and_valid():
     """PRNGKey keeps 32 bits: 2**32 would silently repeat seed 0, so the largest seed is 2**32 - 1."""
     with pytest.raises(InputError, match="seed"):
@@ -230,3 +238,90 @@ def test_a_method_name_typed_otherwise_is_refused_with_the_name_meant(tmp_path, 
 def test_a_name_like_no_method_gets_no_guess(tmp_path, capsys):
     assert main(["vector-map", "env1", "--method", "xyz", "--spacing", "200", "--out", str(tmp_path / "m.csv")]) == 2
     assert "did you mean" not in error_line(capsys)
+
+
+@pytest.mark.parametrize(
+    "option, flag",
+    [
+        (["--home", "100", "100"], "--home"),
+        (["--arena", "0", "0", "10", "10"], "--arena"),
+        (["--hue-deg", "30"], "--hue-deg"),
+        (["--max-blobs", "0"], "--max-blobs"),
+        (["--elevation", "60", "-15"], "--elevation"),
+        (["--heading-convention", "math"], "--heading-convention"),
+        (["--camera-height", "5"], "--camera-height"),
+        (["--chunk", "0"], "--chunk"),
+    ],
+)
+@pytest.mark.parametrize("command", ["vector-map", "catchment"])
+def test_an_image_option_without_images_is_refused_not_recorded(tmp_path, capsys, option, flag, command):
+    """The --images group's options read a database: on an environment they changed nothing while the summary
+    recorded them (a --home that moved no home)."""
+    out = tmp_path / "s.json"
+    assert main([command, "env1", "--spacing", "200", *option, "--summary", str(out)]) == 2
+    line = error_line(capsys)
+    assert line.startswith(f"delvjax: error: {flag}: is used only with --images"), line
+    assert not out.exists()
+
+
+def test_classes_without_a_figure_is_refused(tmp_path, capsys):
+    out = tmp_path / "m.csv"
+    assert main(["vector-map", "env1", "--spacing", "200", "--classes", "--out", str(out)]) == 2
+    assert error_line(capsys).startswith("delvjax: error: --classes: marks the figure: give --plot")
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("method, refused", [("delv", True), ("delv-visual", True), ("alv", False)])
+def test_compass_noise_is_refused_where_no_method_reads_a_compass(tmp_path, capsys, method, refused):
+    out = tmp_path / "s.json"
+    code = main(["vector-map", "env1", "--method", method, "--spacing", "200", "--compass-noise-deg", "5",
+                 "--summary", str(out)])  # fmt: skip
+    if refused:
+        assert code == 2 and not out.exists()
+        line = error_line(capsys)
+        assert line.startswith("delvjax: error: --compass-noise-deg: is read only by methods with a compass"), line
+        assert "delv-compass" in line and f"not by {method}" in line
+    else:
+        assert code == 0 and json.loads(out.read_text())["command_settings"]["compass_noise_deg"] == 5.0
+
+
+def test_compass_noise_with_one_compass_method_of_several_runs(tmp_path):
+    out = tmp_path / "s.csv"
+    args = ["success-rate", "env1", "--method", "delv,alv", "--trials", "2", "--distances", "100"]
+    assert main([*args, "--compass-noise-deg", "5", "--out", str(out)]) == 0
+
+
+@pytest.mark.parametrize(
+    "option, field, says",
+    [
+        (["--method", "delv,delv"], "--method", "names delv twice"),
+        (["--method", ",delv"], "--method", "none empty"),
+        (["--distances", "100", "200", "100"], "--distances", "is given twice"),
+    ],
+)
+def test_a_repeated_method_or_distance_is_refused(tmp_path, capsys, option, field, says):
+    """Repeats gave rows twice in the CSV and once in the JSON, or repeated (distance, trial) keys."""
+    out = tmp_path / "s.csv"
+    assert main(["success-rate", "env1", "--trials", "2", *option, "--out", str(out)]) == 2
+    line = error_line(capsys)
+    assert line.startswith(f"delvjax: error: {field}:") and says in line, line
+    assert not out.exists()
+
+
+def test_release_points_that_could_not_be_placed_are_said(tmp_path, capsys):
+    """A release 699 cm from env1's home falls outside the arena for most directions: the count is warned, the rows
+    say not_placed."""
+    out = tmp_path / "s.csv"
+    assert main(["success-rate", "env1", "--trials", "5", "--distances", "699", "--out", str(out)]) == 0
+    err = capsys.readouterr().err
+    warned = [line for line in err.splitlines() if "could not be placed" in line]
+    assert len(warned) == 1 and warned[0].startswith("delvjax: warning: "), err
+    n = int(warned[0].split("warning: ")[1].split()[0])
+    assert 1 <= n <= 5 and "of 5 release points of delv" in warned[0]
+
+
+def test_continuous_levels_are_recorded_as_continuous(tmp_path):
+    """DELV's default levels (0 inside the model) is recorded as its help shows it: `--levels 0` is refused."""
+    out = tmp_path / "s.json"
+    assert main(["vector-map", "env1", "--spacing", "200", "--summary", str(out)]) == 0
+    assert json.loads(out.read_text())["command_settings"]["levels"] == "continuous"

@@ -59,6 +59,8 @@ REFUSED = [
     ("env radius true", {"e.json": "BOOL"}, ["catchment", "{t}/e.json"], r"landmarks\[0\]\.r: "),
     ("env overlap", {"e.json": "TWIN"}, ["vector-map", "{t}/e.json"], r"landmarks\[1\]: .*overlaps landmarks\[0\]"),
     ("env empty file", {"e.json": ""}, ["vector-map", "{t}/e.json"], r"env: .*JSON"),
+    ("env home outside", {"e.json": {**ENV1, "home": [2000, 2000]}}, ["vector-map", "{t}/e.json"], r"^home: must lie"),
+    ("env no arena", {"e.json": {"landmarks": [[100, 100, 10]]}}, ["vector-map", "{t}/e.json"], r"^arena: missing"),
     ("env is a folder", {"e.json/x": ""}, ["vector-map", "{t}/e.json"], r"env: "),
     ("spacing 0", {}, ["vector-map", "env1", "--spacing", "0"], r"spacing: "),
     ("spacing nan", {}, ["catchment", "env1", "--spacing", "nan"], r"spacing: "),
@@ -78,6 +80,7 @@ REFUSED = [
         r"did you mean",
     ),
     ("sweep bad TOML", {"s.toml": "[sweep\nkind = 1\n"}, ["sweep", "{t}/s.toml", "--out", "{t}/sw"], r"s\.toml|sweep"),
+    ("sweep empty file", {"s.toml": "\n"}, ["sweep", "{t}/s.toml", "--out", "{t}/sw"], r"s\.toml: is empty"),
     ("sweep empty axis", {"s.toml": SWEEP + "d = []\n"}, ["sweep", "{t}/s.toml", "--out", "{t}/sw"], r"d"),
     (
         "sweep step 0",

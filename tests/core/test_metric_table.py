@@ -104,3 +104,16 @@ def test_every_path_counts_the_same_rates():
         ds = run_sweep(parse_sweep(f'{text}env = ["env1"]\nmethod = ["alv"]\n{axes}\n'))
         assert int(ds.points) == e.size, kind
         assert {k: float(ds[k]) for k in expected} == expected, kind
+
+
+def test_an_error_curves_interval_stays_within_the_errors_range():
+    """A t interval of three small errors reaches below 0 deg: the curve clips it to 0-180 (a mean angular error
+    cannot be negative); a bin of one point keeps NaN."""
+    error = np.array([1.0, 2.0, 30.0, 179.0, 179.5, 179.9, 90.0])
+    points = np.array([[10.0, 0], [20, 0], [30, 0], [60, 0], [70, 0], [80, 0], [120, 0]])
+    rows = metrics.error_curve(error, points, np.zeros(2), np.ones(7, bool), bin_width=50.0)
+    raw = [metrics.t_interval(error[s], 0.95) for s in (slice(0, 3), slice(3, 6))]
+    assert raw[0][0] - raw[0][1] < 0 and raw[1][0] + raw[1][1] > 180  # what the clip is for
+    assert rows[0]["ci_lo_deg"] == 0.0 and rows[0]["ci_hi_deg"] == raw[0][0] + raw[0][1]
+    assert rows[1]["ci_hi_deg"] == 180.0 and rows[1]["ci_lo_deg"] == raw[1][0] - raw[1][1]
+    assert rows[2]["n"] == 1 and np.isnan(rows[2]["ci_lo_deg"]) and np.isnan(rows[2]["ci_hi_deg"])

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import inspect
 import math
+import warnings
 from pathlib import Path
 
 import equinox as eqx
@@ -76,6 +77,18 @@ def test_wide_public_calls_are_keyword_only_and_narrow():
     with pytest.deprecated_call() as record:  # the old positional spacing: named for one release more
         result = delvjax.catchment("env1", "alv", 400.0)
     assert "spacing by position" in str(record[0].message) and result.grid == Grid(spacing=400.0)
+
+
+@pytest.mark.parametrize("call, obj, keyword", [(delvjax.vector_map, Grid(spacing=200.0), "grid"),
+                                                (delvjax.catchment, Rules(max_steps=5), "rules")])  # fmt: skip
+def test_a_settings_object_by_position_names_its_keyword(call, obj, keyword):
+    """A Grid where the old positional spacing was once read as spacing=Grid(...), with advice to pass
+    grid=Grid(spacing=Grid(...)); now one TypeError names the keyword, before any deprecation warning."""
+    kind = type(obj).__name__
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(TypeError, match=rf"takes a {kind} by name only: {keyword}={kind}\(\.\.\.\)"):
+            call("env1", "delv", obj)
 
 
 @pytest.mark.parametrize(

@@ -261,6 +261,9 @@ def test_sweep_figures_heat_maps_and_lines_with_intervals_over_seeds(small, tmp_
     assert [
         r["gt45_pct"] for r in rows if r["panel"] == "method=alv" and r["d"] == 60 and r["bearing_noise_deg"] == 3.0
     ] == [pytest.approx(cell)]
+    images = [a.images[0] for a in fig.axes if a.images]  # one colour scale: the same colour is the same number
+    values = [r["gt45_pct"] for r in rows]
+    assert len(images) == 2 and {im.get_clim() for im in images} == {(min(values), max(values))}
     _, lines = sweep_figure(small, "d", None, "mean_error_deg")  # two seeds: a finite 95 % interval
     assert len(lines) == 2 * 2 * 2 and all(r["ci95_lo"] < r["mean_error_deg"] < r["ci95_hi"] for r in lines)
     for args, flag in [
