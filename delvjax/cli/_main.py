@@ -230,7 +230,7 @@ def as_typed(exc: InputError, parser: argparse.ArgumentParser, args: argparse.Na
     """The error as the user typed it: a field that is one of the command's options (`n_psi`, the API
     keyword a check raises with; `Option.flag` of the options registry, or the parser's own flags) named
     by its flag (`--n-psi`); a sweep's keys and an environment file's (`file_key`) stay as the file writes them."""
-    if getattr(args, "command", None) in FILE_KEYED or getattr(exc, "file_key", False):
+    if getattr(args, "command", None) in FILE_KEYED or exc.file_key:
         return exc
     actions = command_parser(parser, args)._actions
     flags = {a.dest: a.option_strings[-1] for a in actions if a.option_strings and a.help != argparse.SUPPRESS}

@@ -11,8 +11,9 @@ from collections.abc import Iterable
 class InputError(ValueError):
     """Bad input, reported as one line that names the field and the value."""
 
-    def __init__(self, field: str, value: object, expected: str):
-        self.field, self.value, self.expected = field, value, expected
+    def __init__(self, field: str, value: object, expected: str, file_key: bool = False):
+        """file_key: `field` is a key of an input file (an environment's arena), not a command-line option."""
+        self.field, self.value, self.expected, self.file_key = field, value, expected, file_key
         super().__init__(f"{field}: {expected}, got {value!r}")
 
 

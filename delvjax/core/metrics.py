@@ -217,8 +217,8 @@ def error_curve(
                 "bin_hi": (b + 1) * bin_width,
                 "n": n,
                 "mean_deg": mean,
-                "ci_lo_deg": max(mean - half, 0.0) if np.isfinite(half) else mean - half,
-                "ci_hi_deg": min(mean + half, 180.0) if np.isfinite(half) else mean + half,
+                "ci_lo_deg": float(np.clip(mean - half, 0.0, 180.0)),  # NaN (n < 2) stays NaN
+                "ci_hi_deg": float(np.clip(mean + half, 0.0, 180.0)),
             }
         )
     return rows

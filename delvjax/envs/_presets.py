@@ -284,6 +284,4 @@ def load_env(name_or_path: str | Path | Env, pad_to: int | None = None) -> Env:
     try:
         return env_from_dict(spec, pad_to=pad_to)
     except InputError as exc:  # which file: a sweep or a study reads several
-        error = InputError(exc.field, exc.value, f"{exc.expected} (in {path})")
-        error.file_key = True  # a key of the file, not a command-line option of the same name (arena, home)
-        raise error from None
+        raise InputError(exc.field, exc.value, f"{exc.expected} (in {path})", file_key=True) from None

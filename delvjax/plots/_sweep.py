@@ -162,10 +162,9 @@ def _heat_mean(ds, sel: dict, x: str, y: str, metric: str) -> np.ndarray:
     return summarize(_seeded(ds[metric].sel(sel), (y, x)).values)[0]
 
 
-def _heat(fig, ax, ds, sel: dict, x: str, y: str, metric: str, title: str, limits) -> list[dict]:
-    """A heat map of the mean over seeds with each cell's value written in it, on the colour scale limits
-    (vmin, vmax) that every panel shares; the rows drawn."""
-    mean = _heat_mean(ds, sel, x, y, metric)
+def _heat(fig, ax, ds, mean: np.ndarray, x: str, y: str, metric: str, title: str, limits) -> list[dict]:
+    """A heat map of one panel's mean over seeds (`_heat_mean`) with each cell's value written in it, on the
+    colour scale limits (vmin, vmax) that every panel shares; the rows drawn."""
     im = ax.imshow(mean, origin="lower", aspect="auto", cmap="viridis", vmin=limits[0], vmax=limits[1])
     for axis, name in ((ax.xaxis, x), (ax.yaxis, y)):  # at most MAX_TICKS labels, evenly thinned
         step = -(-ds.sizes[name] // MAX_TICKS)
@@ -196,17 +195,18 @@ def sweep_figure(ds, x: str, y: str | None, metric: str) -> tuple[Figure, list[d
         rows_n, cols, figsize=(4.6 * cols, 3.8 * rows_n), squeeze=False, sharey=y is None, layout="constrained"
     )
     rows = []
-    limits = (None, None)
+    limits, means = (None, None), [None] * len(items)
     if y is not None:  # one colour scale for every panel: the same colour is the same number
-        finite = np.concatenate([_heat_mean(ds, sel, x, y, metric).ravel() for _, sel in items])
+        means = [_heat_mean(ds, sel, x, y, metric) for _, sel in items]
+        finite = np.concatenate([m.ravel() for m in means])
         finite = finite[np.isfinite(finite)]
         limits = (finite.min(), finite.max()) if finite.size else limits
-    for ax, (title, sel) in zip(axes.ravel(), items):
+    for ax, (title, sel), mean in zip(axes.ravel(), items, means):
         if y is None:
             rows += _lines(ax, ds, sel, x, metric, title)
             ax.set_ylabel(axis_label(ds, metric))
         else:
-            rows += _heat(fig, ax, ds, sel, x, y, metric, title, limits)
+            rows += _heat(fig, ax, ds, mean, x, y, metric, title, limits)
             ax.set_ylabel(axis_label(ds, y))
         ax.set_xlabel(axis_label(ds, x))
         ax.set_title(title, fontsize=9)
